@@ -1,0 +1,28 @@
+#include <cstdio>
+#include <exception>
+
+#include <CLI/CLI.hpp>
+
+#include "commands.hpp"
+#include "trackphys/error.hpp"
+
+int main(int argc, char** argv) {
+    CLI::App app{"trackphys: racing-game physics, ellipsoid cars on triangle-mesh tracks",
+                 "trackphys"};
+    app.require_subcommand(1);
+    trackphys::cli::add_track_command(app);
+    trackphys::cli::add_info_command(app);
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        return app.exit(e);
+    } catch (const trackphys::Error& e) {
+        std::fprintf(stderr, "trackphys: error: %s\n", e.what());
+        return 1;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "trackphys: unexpected error: %s\n", e.what());
+        return 2;
+    }
+    return 0;
+}

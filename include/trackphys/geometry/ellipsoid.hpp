@@ -1,0 +1,71 @@
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include <glm/gtc/quaternion.hpp>
+#include <glm/mat3x3.hpp>
+#include <glm/vec3.hpp>
+
+#include "trackphys/export.hpp"
+#include "trackphys/geometry/aabb.hpp"
+
+namespace trackphys {
+
+/// A solid ellipsoid: center c, orientation Q (maps local to world) and semi-axes along
+/// the local x, y, z axes, in any order.
+///
+/// The exact kernels want the radii sorted, rx >= ry >= rz (DESIGN.md), so the ellipsoid
+/// also keeps a sorted frame: sorted_radii() and the world directions of the matching
+/// axes, sorted_axes() (columns, a proper rotation). to_sorted_local() maps a world point
+/// into that frame, where the ellipsoid is x^2/rx^2 + y^2/ry^2 + z^2/rz^2 <= 1.
+class TRACKPHYS_API Ellipsoid {
+public:
+    /// orientation: any non-zero finite quaternion (it is normalised); semi_axes: all
+    /// finite and > 0, in metres. Throws trackphys::Error naming the problem otherwise.
+    Ellipsoid(const glm::dvec3& center, const glm::dquat& orientation,
+              const glm::dvec3& semi_axes);
+
+    /// The non-throwing factory: the ellipsoid, or nullopt with the reason in *error.
+    static std::optional<Ellipsoid> make(const glm::dvec3& center, const glm::dquat& orientation,
+                                         const glm::dvec3& semi_axes,
+                                         std::string* error = nullptr);
+
+    /// Why these arguments would not make an ellipsoid; empty when they would.
+    static std::string validate(const glm::dvec3& center, const glm::dquat& orientation,
+                                const glm::dvec3& semi_axes);
+
+    const glm::dvec3& center() const { return center_; }
+    /// The unit orientation quaternion (local -> world).
+    const glm::dquat& orientation() const { return orientation_; }
+    /// The semi-axes as given, along local x, y, z (m).
+    const glm::dvec3& semi_axes() const { return semi_axes_; }
+
+    /// The semi-axes sorted descending: x >= y >= z (m).
+    const glm::dvec3& sorted_radii() const { return sorted_radii_; }
+    /// World directions of the sorted axes as matrix columns (a rotation, det = +1).
+    const glm::dmat3& sorted_axes() const { return sorted_axes_; }
+
+    /// A world point in the sorted frame: sorted_axes()^T (p - center()).
+    glm::dvec3 to_sorted_local(const glm::dvec3& world_point) const;
+    /// A sorted-frame direction in world space: sorted_axes() * v.
+    glm::dvec3 sorted_direction_to_world(const glm::dvec3& v) const { return sorted_axes_ * v; }
+
+    /// Radius of the smallest sphere about center() that holds the ellipsoid (m).
+    double bounding_radius() const { return sorted_radii_.x; }
+    /// The tight axis-aligned world box.
+    Aabb bounds() const;
+
+private:
+    struct Unchecked {};
+    Ellipsoid(Unchecked, const glm::dvec3& center, const glm::dquat& orientation,
+              const glm::dvec3& semi_axes);
+
+    glm::dvec3 center_;
+    glm::dquat orientation_;
+    glm::dvec3 semi_axes_;
+    glm::dvec3 sorted_radii_;
+    glm::dmat3 sorted_axes_;
+};
+
+}  // namespace trackphys

@@ -1,0 +1,25 @@
+#pragma once
+
+/// trackphys computes in double everywhere (DESIGN.md, "Conventions"): positions and
+/// velocities keep 1e-5 m anywhere in a 20 km world only in double precision. glm's double
+/// types are the public vocabulary: glm::dvec3, glm::dquat (local -> world), glm::dmat3.
+
+#include <glm/gtc/quaternion.hpp>
+#include <glm/mat3x3.hpp>
+#include <glm/vec3.hpp>
+
+#include <cmath>
+
+namespace trackphys {
+
+/// True when every component is finite (neither NaN nor infinite).
+inline bool is_finite(const glm::dvec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+/// True when every component is finite.
+inline bool is_finite(const glm::dquat& q) {
+    return std::isfinite(q.w) && std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z);
+}
+
+}  // namespace trackphys

@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# Installs every Debian package trackphys needs that is missing, and nothing else.
+# Safe to run again: when everything is present it says so and changes nothing.
+# Needs root (as on the project's machines) only when something is missing.
+set -euo pipefail
+
+# package          why (also in README.md, "Dependencies")
+required=(
+  cmake # the build (>= 3.25)
+  g++ # the compiler
+  libgtest-dev # tests
+  libbenchmark-dev # benchmarks
+  libglm-dev # vector, quaternion and matrix types in double (public headers)
+  libassimp-dev # mesh import and export: OBJ, glTF/GLB, PLY, AC3D, FBX...
+  nlohmann-json3-dev # JSON output of the command line tool
+  libcli11-dev # command line parsing of the trackphys tool
+)
+
+missing=()
+for package in "${required[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$package")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "setup: all ${#required[@]} required packages are installed"
+  exit 0
+fi
+
+echo "setup: installing ${missing[*]}"
+sudo_cmd=()
+[ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
+export DEBIAN_FRONTEND=noninteractive
+# The package index of a fresh machine is stale: refresh it before installing.
+"${sudo_cmd[@]}" apt-get update -q
+"${sudo_cmd[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}"
+echo "setup: done"

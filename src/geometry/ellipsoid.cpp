@@ -1,0 +1,97 @@
+#include "trackphys/geometry/ellipsoid.hpp"
+
+#include <array>
+#include <cmath>
+#include <sstream>
+#include <utility>
+
+#include <glm/geometric.hpp>
+
+#include "trackphys/error.hpp"
+#include "trackphys/math/types.hpp"
+
+namespace trackphys {
+
+std::string Ellipsoid::validate(const glm::dvec3& center, const glm::dquat& orientation,
+                                const glm::dvec3& semi_axes) {
+    std::ostringstream why;
+    if (!is_finite(center)) {
+        why << "ellipsoid center is not finite (" << center.x << ", " << center.y << ", "
+            << center.z << ")";
+    } else if (!is_finite(orientation)) {
+        why << "ellipsoid orientation quaternion is not finite";
+    } else if (!(glm::length(orientation) > 1e-150)) {
+        why << "ellipsoid orientation quaternion is zero";
+    } else {
+        static constexpr const char* axis_name[3] = {"x", "y", "z"};
+        for (int i = 0; i < 3; ++i) {
+            if (!std::isfinite(semi_axes[i]) || !(semi_axes[i] > 0.0)) {
+                why << "ellipsoid semi-axis " << axis_name[i] << " must be finite and > 0, got "
+                    << semi_axes[i];
+                break;
+            }
+        }
+    }
+    return why.str();
+}
+
+Ellipsoid::Ellipsoid(const glm::dvec3& center, const glm::dquat& orientation,
+                     const glm::dvec3& semi_axes)
+    : Ellipsoid(Unchecked{}, center, orientation, semi_axes) {
+    if (std::string why = validate(center, orientation, semi_axes); !why.empty())
+        throw Error(why);
+}
+
+std::optional<Ellipsoid> Ellipsoid::make(const glm::dvec3& center, const glm::dquat& orientation,
+                                         const glm::dvec3& semi_axes, std::string* error) {
+    std::string why = validate(center, orientation, semi_axes);
+    if (!why.empty()) {
+        if (error) *error = std::move(why);
+        return std::nullopt;
+    }
+    return Ellipsoid(Unchecked{}, center, orientation, semi_axes);
+}
+
+Ellipsoid::Ellipsoid(Unchecked, const glm::dvec3& center, const glm::dquat& orientation,
+                     const glm::dvec3& semi_axes)
+    : center_(center), semi_axes_(semi_axes) {
+    // Validation runs after this constructor in the throwing path; keep every step finite
+    // for any input so that a rejected ellipsoid never computes with NaN on the way out.
+    const double length = glm::length(orientation);
+    orientation_ = length > 1e-150 && std::isfinite(length) ? orientation / length
+                                                            : glm::dquat(1.0, 0.0, 0.0, 0.0);
+    const glm::dmat3 rotation = glm::mat3_cast(orientation_);
+
+    // Sort the axes by radius, descending; ties keep the given order.
+    std::array<int, 3> order = {0, 1, 2};
+    for (int i = 0; i < 2; ++i)
+        for (int j = 0; j < 2 - i; ++j)
+            if (semi_axes[order[j]] < semi_axes[order[j + 1]]) std::swap(order[j], order[j + 1]);
+
+    for (int k = 0; k < 3; ++k) {
+        sorted_radii_[k] = semi_axes[order[k]];
+        sorted_axes_[k] = rotation[order[k]];
+    }
+    // An odd permutation of the columns flips handedness; flipping one axis (the ellipsoid
+    // is symmetric about it) makes the sorted frame a proper rotation again.
+    if (glm::dot(glm::cross(sorted_axes_[0], sorted_axes_[1]), sorted_axes_[2]) < 0.0)
+        sorted_axes_[2] = -sorted_axes_[2];
+}
+
+glm::dvec3 Ellipsoid::to_sorted_local(const glm::dvec3& world_point) const {
+    return (world_point - center_) * sorted_axes_;  // row vector times M = M^T * column
+}
+
+Aabb Ellipsoid::bounds() const {
+    // Half-extent along world axis w is || D * (row w of the rotation) ||.
+    glm::dvec3 half_extent;
+    for (int w = 0; w < 3; ++w) {
+        const glm::dvec3 row(sorted_axes_[0][w] * sorted_radii_.x,
+                             sorted_axes_[1][w] * sorted_radii_.y,
+                             sorted_axes_[2][w] * sorted_radii_.z);
+        half_extent[w] = glm::length(row);
+    }
+    return {center_ - half_extent, center_ + half_extent};
+}
+
+}  // namespace trackphys

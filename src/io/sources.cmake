@@ -1,0 +1,2 @@
+target_sources(trackphys PRIVATE
+  io/mesh_io.cpp)

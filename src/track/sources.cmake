@@ -1,0 +1,2 @@
+target_sources(trackphys PRIVATE
+  track/bezier_track.cpp)
