@@ -1,2 +1,1 @@
-target_sources(trackphys PRIVATE
-  io/mesh_io.cpp)
+# The io part's sources: target_sources(trackphys PRIVATE io/...).

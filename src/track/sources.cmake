@@ -1,2 +1,1 @@
-target_sources(trackphys PRIVATE
-  track/bezier_track.cpp)
+# The track part's sources: target_sources(trackphys PRIVATE track/...).

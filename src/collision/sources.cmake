@@ -1,0 +1,1 @@
+# The collision part's sources: target_sources(trackphys PRIVATE collision/...).
