@@ -5,6 +5,7 @@
 #include "trackphys/assert.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/export.hpp"
+#include "trackphys/math/symmetric_eigen.hpp"
 #include "trackphys/math/types.hpp"
 
 #include "trackphys/geometry/aabb.hpp"
