@@ -1,0 +1,2 @@
+target_sources(trackphys PRIVATE
+  dynamics/rigid_body.cpp)
