@@ -15,4 +15,6 @@
 #include "trackphys/geometry/triangle.hpp"
 #include "trackphys/geometry/triangle_mesh.hpp"
 
+#include "trackphys/dynamics/car_spec.hpp"
+#include "trackphys/dynamics/contact_force.hpp"
 #include "trackphys/dynamics/rigid_body.hpp"
