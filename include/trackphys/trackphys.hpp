@@ -18,3 +18,7 @@
 #include "trackphys/dynamics/car_spec.hpp"
 #include "trackphys/dynamics/contact_force.hpp"
 #include "trackphys/dynamics/rigid_body.hpp"
+
+#include "trackphys/profile/profile_statistics.hpp"
+#include "trackphys/profile/trace_recorder.hpp"
+#include "trackphys/profile/update_profile.hpp"
