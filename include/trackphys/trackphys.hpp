@@ -13,3 +13,5 @@
 #include "trackphys/geometry/sphere_cull_variants.hpp"
 #include "trackphys/geometry/triangle.hpp"
 #include "trackphys/geometry/triangle_mesh.hpp"
+
+#include "trackphys/io/mesh_io.hpp"
