@@ -92,7 +92,10 @@ TEST_F(MeshLoadErrors, GarbageAfterAValidLookingHeader) {
     const std::vector<std::pair<std::string, std::string>> cases{
         {"h.glb", std::string("glTF\x02\x00\x00\x00\xff\xff\x00\x00", 12)},
         {"h.gltf", R"({"asset":{"version":"2.0"},"meshes":[{"primitives":[{"attributes":{"POSITION":7}}]}],)"},
-        {"h.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 100000000\n"
+        // Claims a million vertices (12 MB) and holds a few hundred. assimp allocates what
+        // the header claims before it finds out, and on this error path leaks that mesh
+        // (assimp 5.2.5; see lsan_suppressions.cpp).
+        {"h.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 1000000\n"
                   "property float x\nproperty float y\nproperty float z\nend_header\n"},
         {"h.stl", std::string(80, ' ') + std::string("\xff\xff\xff\x0f", 4)},
         {"h.obj", "v 1 2\nf 1 2 3 4 5 6 7 8 9\nf -9 -10 -11\n"},
