@@ -53,6 +53,19 @@ TEST_F(MeshImport, PolygonsAreTriangulated) {
         EXPECT_EQ(triangle(mesh, t).normal(), glm::dvec3(0, 1, 0)) << "triangle " << t;
 }
 
+TEST_F(MeshImport, TrianglesAssimpFailsToTriangulateAreCounted) {
+    // A self-intersecting 7-gon (found by a seeded search): assimp's ear clipping finds no
+    // ear after two triangles and silently drops the other three of its n - 2 = 5.
+    test::write_file(file("knot.obj"),
+                     "v 2 0 -3\nv 1 0 -4\nv 2 0 -1\nv 1 0 -1\nv 4 0 -2\nv 3 0 -4\nv 1 0 0\n"
+                     "f 1 2 3 4 5 6 7\n");
+    MeshLoadReport report;
+    load_mesh(file("knot.obj"), report);
+    EXPECT_EQ(report.triangles, 2u);
+    EXPECT_EQ(report.degenerate_dropped, 0u);
+    EXPECT_EQ(report.triangulation_lost, 3u);
+}
+
 TEST_F(MeshImport, DegenerateTrianglesAreDroppedAndCounted) {
     test::write_file(file("d.obj"),
                      "v 0 0 0\nv 1 0 0\nv 0 0 -1\nv 1 0 -1\n"  // 1-4: two good triangles
