@@ -87,7 +87,8 @@ TEST_F(InfoCommand, BadFileIsAnErrorOnStderr) {
         const CommandResult result = run("info " + quoted(name));
         EXPECT_EQ(result.exit_code, 1) << name;
         EXPECT_TRUE(result.out.empty()) << result.out;
-        EXPECT_NE(result.err.find("trackphys: error: mesh file '"), std::string::npos) << result.err;
+        EXPECT_NE(result.err.find("trackphys: error: mesh file '"), std::string::npos)
+            << result.err;
         EXPECT_NE(result.err.find(name), std::string::npos) << result.err;
     }
 }

@@ -124,7 +124,8 @@ inline void write_gltf(const fs::path& path, const std::vector<float>& positions
     const std::string json =
         R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[)" + scene_roots +
         R"(]}],"nodes":[)" + nodes +
-        R"(],"meshes":[{"name":"road","primitives":[{"attributes":{"POSITION":0},"indices":1,"mode":)" +
+        R"(],"meshes":[{"name":"road","primitives":[{"attributes":{"POSITION":0},)" +
+        R"("indices":1,"mode":)" +
         std::to_string(mode) + R"(}]}],"buffers":[{"uri":")" + bin.filename().string() +
         R"(","byteLength":)" + std::to_string(bytes.size()) +
         R"(}],"bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":)" +

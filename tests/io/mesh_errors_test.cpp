@@ -91,7 +91,8 @@ TEST_F(MeshLoadErrors, GarbageAfterAValidLookingHeader) {
     // Magic bytes that send assimp straight to one reader, followed by random bytes.
     const std::vector<std::pair<std::string, std::string>> cases{
         {"h.glb", std::string("glTF\x02\x00\x00\x00\xff\xff\x00\x00", 12)},
-        {"h.gltf", R"({"asset":{"version":"2.0"},"meshes":[{"primitives":[{"attributes":{"POSITION":7}}]}],)"},
+        {"h.gltf", R"({"asset":{"version":"2.0"},"meshes":[{"primitives":[{"attributes":)"
+                   R"({"POSITION":7}}]}],)"},
         // Claims a million vertices (12 MB) and holds a few hundred. assimp allocates what
         // the header claims before it finds out, and on this error path leaks that mesh
         // (assimp 5.2.5; see lsan_suppressions.cpp).

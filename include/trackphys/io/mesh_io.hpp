@@ -49,7 +49,13 @@ struct MeshLoadReport {
 /// Throws trackphys::Error, with a message naming the file, when the file is missing,
 /// unreadable, empty, not a mesh format assimp recognises, corrupt or truncated; when a
 /// vertex coordinate or node transform is NaN or infinite (the message also names the mesh
-/// or node and the vertex); or when no triangle is left.
+/// or node and the vertex, e.g. "mesh 'road', vertex 17 has a non-finite coordinate (0, nan,
+/// 1)"; vertices are numbered as assimp numbers them within the mesh, which for OBJ counts
+/// face corners, not `v` lines); or when no triangle is left.
+///
+/// assimp sizes some buffers from the file's header before it can check them, so a small
+/// corrupt file can make it allocate what the header claims (a 200-byte PLY claiming 1e8
+/// vertices allocates 1.2 GB) before the import fails.
 TRACKPHYS_API TriangleMesh load_mesh(const std::filesystem::path& path, MeshLoadReport& report);
 
 /// load_mesh without the report.
