@@ -144,7 +144,7 @@ public:
         } catch (const fs::filesystem_error& e) {
             std::error_code ignored;
             for (const fs::path& p : moved) fs::remove(p, ignored);
-            fail(destination_, e.code().message());
+            fail(destination_, "cannot move the written file into place: " + e.code().message());
         }
     }
 
