@@ -53,7 +53,8 @@ std::string node_label(const aiNode& node) {
 void check_is_nonempty_file(const fs::path& path) {
     std::error_code ec;
     const fs::file_status status = fs::status(path, ec);
-    if (!fs::exists(status)) fail(path, "no such file");
+    if (status.type() == fs::file_type::not_found) fail(path, "no such file");
+    if (ec) fail(path, "cannot access it: " + ec.message());
     if (!fs::is_regular_file(status)) fail(path, "not a regular file");
     const std::uintmax_t size = fs::file_size(path, ec);
     if (ec) fail(path, "cannot read its size: " + ec.message());
