@@ -22,3 +22,5 @@
 #include "trackphys/profile/profile_statistics.hpp"
 #include "trackphys/profile/trace_recorder.hpp"
 #include "trackphys/profile/update_profile.hpp"
+
+#include "trackphys/io/mesh_io.hpp"
