@@ -13,3 +13,7 @@
 #include "trackphys/geometry/sphere_cull_variants.hpp"
 #include "trackphys/geometry/triangle.hpp"
 #include "trackphys/geometry/triangle_mesh.hpp"
+
+#include "trackphys/track/track.hpp"
+#include "trackphys/track/track_params.hpp"
+#include "trackphys/track/track_stats.hpp"
