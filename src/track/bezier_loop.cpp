@@ -100,7 +100,7 @@ void BezierLoop::locate(double s, std::size_t& segment, double& t) const {
     t = sub_length > 0.0 ? a + (b - a) * std::clamp(target / sub_length, 0.0, 1.0) : a;
     for (int iteration = 0; iteration < 60; ++iteration) {
         const double f = arc_length(segment, a, t) - target;
-        if (std::abs(f) <= 1e-13 * (1.0 + std::abs(s))) break;
+        if (std::abs(f) <= 1e-13 * (1.0 + sub_length)) break;
         if (f < 0.0)
             lo = t;
         else

@@ -60,11 +60,22 @@ double required_clearance(const TrackParams& params) {
     return 1.5 * params.width_m + 2.0 * params.wall_thickness_m;
 }
 
+double elevation_amplitude(const TrackParams& params) {
+    // Neighbouring control points differ in height by up to 2a over one spacing; 4% of
+    // the spacing keeps grades near 8% (Catmull-Rom adds up to half again), and keeps the
+    // horizontal shape from shrinking much when the loop is scaled to its 3-D length.
+    return std::min(params.elevation_amplitude_m, 0.04 * params.length_m / control_point_count(params));
+}
+
+int control_point_count(const TrackParams& params) {
+    return std::clamp(static_cast<int>(std::lround(params.length_m / kControlSpacing)), 12, 64);
+}
+
 std::vector<glm::dvec3> draw_control_points(const TrackParams& params, double relax,
                                             std::mt19937_64& rng) {
-    const int count =
-        std::clamp(static_cast<int>(std::lround(params.length_m / kControlSpacing)), 8, 64);
+    const int count = control_point_count(params);
     const double radius = params.length_m / (2.0 * std::numbers::pi);
+    const double amplitude = elevation_amplitude(params);
     // Our own uniform map (not std::uniform_real_distribution, whose algorithm is
     // implementation-defined) keeps the track identical across standard libraries.
     const auto uniform = [&rng](double lo, double hi) {
@@ -77,7 +88,7 @@ std::vector<glm::dvec3> draw_control_points(const TrackParams& params, double re
         const double angle =
             2.0 * std::numbers::pi * (i + relax * uniform(-0.3, 0.3)) / count;
         const double r = radius * (1.0 + relax * uniform(-0.45, 0.45));
-        const double height = params.elevation_amplitude_m * uniform(-1.0, 1.0);
+        const double height = amplitude * uniform(-1.0, 1.0);
         points.emplace_back(r * std::cos(angle), height, r * std::sin(angle));
     }
     return points;

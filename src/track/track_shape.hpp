@@ -17,8 +17,15 @@ struct TrackShape {
     int rejected = 0;
 };
 
+/// Number of control points (= Bezier segments) for params: about one per 300 m, 12 to 64.
+int control_point_count(const TrackParams& params);
+
+/// Amplitude of the control-point heights (m): params.elevation_amplitude_m, capped at 4%
+/// of the control-point spacing.
+double elevation_amplitude(const TrackParams& params);
+
 /// Draws control points around a circle of circumference params.length_m (angles and radii
-/// jittered by `relax` in [0, 1], heights in +-elevation_amplitude_m) from rng.
+/// jittered by `relax` in [0, 1], heights in +-elevation_amplitude(params)) from rng.
 std::vector<glm::dvec3> draw_control_points(const TrackParams& params, double relax,
                                             std::mt19937_64& rng);
 

@@ -25,7 +25,9 @@ struct TrackParams {
     /// Turn radius (m) at and below which the road gets the full bank; wider turns get a
     /// bank proportional to their curvature.
     double full_bank_radius_m = 150.0;
-    /// Control-point heights are drawn in [-a, a] (m); 0 gives a flat track.
+    /// Control-point heights are drawn in [-a, a] (m); 0 gives a flat track. a is capped
+    /// at 4% of the control-point spacing (~300 m, at least 12 points per loop), which keeps
+    /// grades below ~12% on short tracks.
     double elevation_amplitude_m = 10.0;
     /// Wall height above the road edge (m).
     double wall_height_m = 1.0;
