@@ -33,7 +33,7 @@ struct CenterlineSample {
 /// (inner faces look at the road, tops up, outer faces away). Neighbouring chunks share
 /// their boundary row of vertices exactly (equal coordinates, duplicated).
 struct TrackChunk {
-    TriangleMesh mesh;
+    TriangleMesh mesh;                      ///< world-space vertices (m), CCW triangles
     Aabb bounds;                            ///< tight box of mesh.vertices
     std::size_t road_triangle_count = 0;    ///< triangles [0, this) are road
     std::size_t first_sample = 0;           ///< centreline sample of the chunk's first row
@@ -47,6 +47,8 @@ struct Track {
     /// curvature (denser in tight turns). The loop closes: the row after the last sample
     /// is sample 0 again (its vertices are exactly sample 0's).
     std::vector<CenterlineSample> centerline;
+    /// Collider chunks in driving order; chunk c starts at centreline sample
+    /// chunks[c].first_sample and ends on the first row of chunk c + 1 (of chunk 0 for the last).
     std::vector<TrackChunk> chunks;
     /// Number of Bezier segments (control points) of the centreline.
     std::size_t bezier_segment_count = 0;
