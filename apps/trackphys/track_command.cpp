@@ -74,6 +74,7 @@ void print_summary(const Track& track, double seconds) {
                 "for %.0f km/h over %.0f ms, in the tightest turn\n",
                 in_box.road, in_box.wall, box_spec.car_size.z, box_spec.car_size.x, box_spec.car_size.y,
                 box_spec.speed_mps * 3.6, box_spec.update_dt_s * 1000.0);
+    std::printf("mesh hash    %016llx\n", static_cast<unsigned long long>(stats.mesh_hash));
     std::printf("generated in %.1f ms\n", seconds * 1000.0);
 }
 

@@ -1,8 +1,9 @@
 #include "trackphys/track/track_stats.hpp"
 
 #include <algorithm>
-#include <cstdint>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numbers>
 
@@ -10,6 +11,31 @@
 
 
 namespace trackphys {
+namespace {
+
+// FNV-1a, 64 bit, fed one 64-bit word at a time (byte by byte, little end first).
+struct Fnv1a {
+    std::uint64_t state = 0xcbf29ce484222325ull;
+    void add(std::uint64_t word) {
+        for (int byte = 0; byte < 8; ++byte) {
+            state ^= (word >> (8 * byte)) & 0xffu;
+            state *= 0x100000001b3ull;
+        }
+    }
+};
+
+std::uint64_t hash_meshes(const Track& track) {
+    Fnv1a hash;
+    for (const TrackChunk& chunk : track.chunks) {
+        for (const glm::dvec3& v : chunk.mesh.vertices)
+            for (int axis = 0; axis < 3; ++axis) hash.add(std::bit_cast<std::uint64_t>(v[axis]));
+        for (const auto& t : chunk.mesh.triangles)
+            for (const std::uint32_t index : t) hash.add(index);
+    }
+    return hash.state;
+}
+
+}  // namespace
 
 TrackStats compute_track_stats(const Track& track) {
     TrackStats stats;
@@ -51,6 +77,7 @@ TrackStats compute_track_stats(const Track& track) {
     stats.min_turn_radius_m = max_curvature > 0.0 ? 1.0 / max_curvature : infinity;
     stats.min_road_edge_m = min_edge;
     stats.max_road_edge_m = max_edge;
+    stats.mesh_hash = hash_meshes(track);
     return stats;
 }
 

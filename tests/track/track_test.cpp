@@ -217,8 +217,10 @@ TEST(Track, SameSeedSameTrackOtherSeedOtherTrack) {
         ASSERT_EQ(a.chunks[c].mesh.vertices, b.chunks[c].mesh.vertices);
         ASSERT_EQ(a.chunks[c].mesh.triangles, b.chunks[c].mesh.triangles);
     }
+    EXPECT_EQ(compute_track_stats(a).mesh_hash, compute_track_stats(b).mesh_hash);
     params.seed = 8;
     const Track other = generate_track(params);
+    EXPECT_NE(compute_track_stats(other).mesh_hash, compute_track_stats(a).mesh_hash);
     const bool same_rows = other.centerline.size() == a.centerline.size();
     EXPECT_FALSE(same_rows && other.chunks[0].mesh.vertices == a.chunks[0].mesh.vertices);
     EXPECT_GT(glm::distance(other.centerline[100].position, a.centerline[100].position), 1.0);

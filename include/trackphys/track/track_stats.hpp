@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 
 #include <glm/vec3.hpp>
 
@@ -25,6 +26,9 @@ struct TrackStats {
     std::size_t tightest_sample = 0;     ///< centreline sample with the largest |curvature|
     double min_road_edge_m = 0.0;        ///< shortest along-track road edge (outer edge, m)
     double max_road_edge_m = 0.0;        ///< longest along-track road edge (outer edge, m)
+    /// FNV-1a hash of every chunk's vertex bits and indices: equal hashes mean the same
+    /// meshes, bit for bit (a quick check that a seed reproduces its track).
+    std::uint64_t mesh_hash = 0;
 };
 
 /// Computes the summary of track (linear in its size).
