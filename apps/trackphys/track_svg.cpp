@@ -19,7 +19,7 @@ namespace {
 
 constexpr double kMapWidthPx = 1200.0;  // drawing area for the track
 constexpr double kMarginPx = 40.0;
-constexpr double kLegendWidthPx = 190.0;
+constexpr double kLegendWidthPx = 230.0;
 constexpr double kCaptionHeightPx = 50.0;
 // Bank angles are drawn in this many colour steps; neighbouring row steps of one step
 // merge into one polygon, which keeps the file small (a few hundred kB).
