@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <numbers>
 #include <sstream>
 #include <utility>
@@ -34,8 +35,9 @@ std::vector<CheckPoint> sample_for_check(const BezierLoop& loop) {
     double distance = 0.0;
     glm::dvec3 previous = loop.points()[0];
     for (std::size_t i = 0; i < loop.segment_count(); ++i) {
-        // Segment i's length is (within a few %) the chord-sum of a coarse sampling; only
-        // the number of check points depends on it.
+        // A segment's arc is longer than its chord but, for these gentle cubics, well
+        // under twice as long: twice the chord's worth of points keeps the spacing at or
+        // below kCheckSpacing.
         const double chord = glm::distance(loop.points()[i],
                                            loop.points()[(i + 1) % loop.segment_count()]);
         const int steps = std::max(8, static_cast<int>(std::ceil(2.0 * chord / kCheckSpacing)));
@@ -114,8 +116,12 @@ std::string shape_problem(const BezierLoop& loop, const TrackParams& params) {
     const std::vector<CheckPoint> samples = sample_for_check(loop);
     std::ostringstream why;
 
+    // A cusp (zero horizontal speed) gives an infinite or NaN curvature: both fail.
     double max_curvature = 0.0;
-    for (const CheckPoint& s : samples) max_curvature = std::max(max_curvature, std::abs(s.curvature));
+    for (const CheckPoint& s : samples) {
+        const double k = std::abs(s.curvature);
+        if (!(k <= max_curvature)) max_curvature = std::isnan(k) ? std::numeric_limits<double>::infinity() : k;
+    }
     if (!(max_curvature * params.min_turn_radius_m <= 1.0)) {
         why << "turn of radius " << 1.0 / max_curvature << " m is tighter than min_turn_radius_m "
             << params.min_turn_radius_m;
