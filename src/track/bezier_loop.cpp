@@ -126,15 +126,18 @@ BezierLoop::Point BezierLoop::at(double s) const {
 
     Point point;
     point.position = s == total ? points_[0] : segment_position(segment, t);
-    const glm::dvec3 d1 = segment_derivative(segment, t);
-    const glm::dvec3 d2 = segment_second_derivative(segment, t);
-    point.tangent = glm::normalize(d1);
-    // Top-view curvature of (x(t), z(t)) with left = +Y x tangent = (tz, 0, -tx):
-    // kappa = (x'' z' - z'' x') / |(x', z')|^3.
-    const double horizontal_speed = std::sqrt(d1.x * d1.x + d1.z * d1.z);
-    point.horizontal_curvature =
-        (d2.x * d1.z - d2.z * d1.x) / (horizontal_speed * horizontal_speed * horizontal_speed);
+    point.tangent = glm::normalize(segment_derivative(segment, t));
+    point.horizontal_curvature = segment_horizontal_curvature(segment, t);
     return point;
+}
+
+double BezierLoop::segment_horizontal_curvature(std::size_t i, double t) const {
+    // Top-view curvature of (x(t), z(t)) with left = +Y x tangent = (tz, 0, -tx):
+    // kappa = (x'' z' - z'' x') / |(x', z')|^3 (infinite or NaN at a top-view cusp).
+    const glm::dvec3 d1 = segment_derivative(i, t);
+    const glm::dvec3 d2 = segment_second_derivative(i, t);
+    const double speed = std::sqrt(d1.x * d1.x + d1.z * d1.z);
+    return (d2.x * d1.z - d2.z * d1.x) / (speed * speed * speed);
 }
 
 }  // namespace trackphys::track_detail

@@ -46,6 +46,8 @@ public:
     glm::dvec3 segment_position(std::size_t i, double t) const;
     glm::dvec3 segment_derivative(std::size_t i, double t) const;
     glm::dvec3 segment_second_derivative(std::size_t i, double t) const;
+    /// Segment i's signed top-view curvature at t (1/m, > 0 turning left; see Point).
+    double segment_horizontal_curvature(std::size_t i, double t) const;
 
     /// Parameter of arc length s (in [0, length()]): the segment and t in [0, 1].
     void locate(double s, std::size_t& segment, double& t) const;

@@ -75,8 +75,8 @@ void validate_track_params(const TrackParams& p) {
                  std::to_string(3.0 * std::numbers::pi * p.min_turn_radius_m) + " m)",
              p.length_m);
 
-    // Upper bound of the rows (all at the tightest spacing, stretched on the inner side of
-    // the tightest allowed turn) times the triangles of one row step.
+    // Upper bound of the rows (all at the tight spacing on the outer edge of the tightest
+    // allowed turn: ds = edge / (1 + w / 2R)) times the triangles of one row step.
     const double rows = p.length_m * (1.0 + 0.5 * p.width_m / p.min_turn_radius_m) / p.edge_tight_m;
     const double triangles = rows * 2.0 * (p.strips + 6);
     if (triangles > kTriangleBudget)

@@ -27,7 +27,10 @@ constexpr double kControlSpacing = 300.0;
 struct CheckPoint {
     glm::dvec3 position;
     double curvature;
-    double distance;  // chord-sum distance from the start (m)
+    double distance;    // chord-sum distance from the start (m)
+    std::size_t segment;
+    double t;           // parameter in the segment
+    double step;        // parameter step between this segment's points
 };
 
 std::vector<CheckPoint> sample_for_check(const BezierLoop& loop) {
@@ -44,15 +47,55 @@ std::vector<CheckPoint> sample_for_check(const BezierLoop& loop) {
         for (int k = 0; k < steps; ++k) {
             const double t = static_cast<double>(k) / steps;
             const glm::dvec3 p = loop.segment_position(i, t);
-            const glm::dvec3 d1 = loop.segment_derivative(i, t);
-            const glm::dvec3 d2 = loop.segment_second_derivative(i, t);
-            const double speed = std::sqrt(d1.x * d1.x + d1.z * d1.z);
             distance += glm::distance(previous, p);
             previous = p;
-            out.push_back({p, (d2.x * d1.z - d2.z * d1.x) / (speed * speed * speed), distance});
+            out.push_back({p, loop.segment_horizontal_curvature(i, t), distance, i, t, 1.0 / steps});
         }
     }
     return out;
+}
+
+// |curvature| of the loop at its largest: the largest sampled value, with every local peak
+// of the samples refined by golden-section search on its segment (the true peak lies
+// within one parameter step of the sampled one; on short segments 0.5 m of sampling can
+// miss it by a percent). A cusp gives infinity (or NaN, reported as infinity).
+double max_abs_curvature(const BezierLoop& loop, const std::vector<CheckPoint>& samples) {
+    constexpr double infinity = std::numeric_limits<double>::infinity();
+    const auto magnitude = [&loop](std::size_t segment, double t) {
+        const double k = std::abs(loop.segment_horizontal_curvature(segment, t));
+        return std::isnan(k) ? infinity : k;
+    };
+    const std::size_t n = samples.size();
+    double largest = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+        const CheckPoint& s = samples[i];
+        const double here = std::isnan(s.curvature) ? infinity : std::abs(s.curvature);
+        largest = std::max(largest, here);
+        if (here < std::abs(samples[(i + n - 1) % n].curvature) || here < std::abs(samples[(i + 1) % n].curvature) ||
+            here == infinity)
+            continue;
+        constexpr double golden = 0.6180339887498949;
+        double lo = std::max(0.0, s.t - s.step), hi = std::min(1.0, s.t + s.step);
+        double a = hi - golden * (hi - lo), b = lo + golden * (hi - lo);
+        double fa = magnitude(s.segment, a), fb = magnitude(s.segment, b);
+        for (int iteration = 0; iteration < 60 && hi - lo > 1e-12; ++iteration) {
+            if (fa < fb) {
+                lo = a;
+                a = b;
+                fa = fb;
+                b = lo + golden * (hi - lo);
+                fb = magnitude(s.segment, b);
+            } else {
+                hi = b;
+                b = a;
+                fb = fa;
+                a = hi - golden * (hi - lo);
+                fa = magnitude(s.segment, a);
+            }
+        }
+        largest = std::max({largest, fa, fb});
+    }
+    return largest;
 }
 
 }  // namespace
@@ -116,12 +159,7 @@ std::string shape_problem(const BezierLoop& loop, const TrackParams& params) {
     const std::vector<CheckPoint> samples = sample_for_check(loop);
     std::ostringstream why;
 
-    // A cusp (zero horizontal speed) gives an infinite or NaN curvature: both fail.
-    double max_curvature = 0.0;
-    for (const CheckPoint& s : samples) {
-        const double k = std::abs(s.curvature);
-        if (!(k <= max_curvature)) max_curvature = std::isnan(k) ? std::numeric_limits<double>::infinity() : k;
-    }
+    const double max_curvature = max_abs_curvature(loop, samples);
     if (!(max_curvature * params.min_turn_radius_m <= 1.0)) {
         why << "turn of radius " << 1.0 / max_curvature << " m is tighter than min_turn_radius_m "
             << params.min_turn_radius_m;
