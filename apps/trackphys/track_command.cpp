@@ -33,7 +33,9 @@ bool is_mesh_extension(const std::filesystem::path& path) {
 // before it). Chunk boundary rows stay duplicated: exporters keep them as they are.
 TriangleMesh merge_chunks(const Track& track) {
     TriangleMesh merged;
-    merged.vertices.reserve(track.triangle_count());
+    std::size_t vertex_count = 0;
+    for (const TrackChunk& chunk : track.chunks) vertex_count += chunk.mesh.vertices.size();
+    merged.vertices.reserve(vertex_count);
     merged.triangles.reserve(track.triangle_count());
     for (const TrackChunk& chunk : track.chunks) {
         const auto offset = static_cast<std::uint32_t>(merged.vertices.size());
