@@ -24,3 +24,7 @@
 #include "trackphys/profile/update_profile.hpp"
 
 #include "trackphys/io/mesh_io.hpp"
+
+#include "trackphys/track/track.hpp"
+#include "trackphys/track/track_params.hpp"
+#include "trackphys/track/track_stats.hpp"

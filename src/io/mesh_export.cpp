@@ -28,9 +28,10 @@ namespace fs = std::filesystem;
     throw Error("cannot save mesh to '" + path.string() + "': " + reason);
 }
 
-// Extension (lower case) -> assimp exporter id. OBJ goes through "objnomtl": the plain "obj"
-// exporter also writes a .mtl file that only names assimp's default material.
-const char* exporter_id(const fs::path& path) {
+// Extension (lower case) -> assimp exporter id, nullptr for none. OBJ goes through
+// "objnomtl": the plain "obj" exporter also writes a .mtl file that only names assimp's
+// default material.
+const char* find_exporter_id(const fs::path& path) {
     std::string ext = path.extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(),
                    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
@@ -39,8 +40,13 @@ const char* exporter_id(const fs::path& path) {
     if (ext == ".obj") return "objnomtl";
     if (ext == ".ply") return "plyb";
     if (ext == ".stl") return "stlb";
-    fail(path, "unknown extension '" + path.extension().string() +
-                   "' (expected .glb, .gltf, .obj, .ply or .stl)");
+    return nullptr;
+}
+
+const char* exporter_id(const fs::path& path) {
+    if (const char* id = find_exporter_id(path)) return id;
+    fail(path, "unknown extension '" + path.extension().string() + "' (expected " +
+                   std::string(saved_mesh_extensions) + ")");
 }
 
 // Rejects what no format can hold, before any file is created.
@@ -154,6 +160,8 @@ private:
 };
 
 }  // namespace
+
+bool can_save_mesh_as(const fs::path& path) { return find_exporter_id(path) != nullptr; }
 
 void save_mesh(const TriangleMesh& mesh, const fs::path& path) {
     const char* format = exporter_id(path);

@@ -74,4 +74,11 @@ TRACKPHYS_API TriangleMesh load_mesh(const std::filesystem::path& path);
 /// coordinate or one beyond float32's range), or writing fails.
 TRACKPHYS_API void save_mesh(const TriangleMesh& mesh, const std::filesystem::path& path);
 
+/// The extensions save_mesh writes, for messages: ".glb, .gltf, .obj, .ply or .stl".
+inline constexpr const char* saved_mesh_extensions = ".glb, .gltf, .obj, .ply or .stl";
+
+/// True when save_mesh knows the format of path's extension (a check to run before long
+/// work whose result would go there).
+TRACKPHYS_API bool can_save_mesh_as(const std::filesystem::path& path);
+
 }  // namespace trackphys
