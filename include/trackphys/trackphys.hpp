@@ -13,3 +13,8 @@
 #include "trackphys/geometry/sphere_cull_variants.hpp"
 #include "trackphys/geometry/triangle.hpp"
 #include "trackphys/geometry/triangle_mesh.hpp"
+
+#include "trackphys/collision/brute_force_collider.hpp"
+#include "trackphys/collision/bvh_node.hpp"
+#include "trackphys/collision/static_collider.hpp"
+#include "trackphys/collision/static_world.hpp"
