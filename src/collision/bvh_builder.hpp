@@ -23,12 +23,25 @@ static_assert(sizeof(FloatBox) == 24);
 /// for max), so double tests against it never reject what the double box would accept.
 FloatBox outward_float_box(const Aabb& box);
 
-/// One primitive to build over: its box and its index in the caller's list. 28 bytes.
-struct BuildPrimitive {
-    FloatBox box;
-    std::uint32_t index;
+/// A float box padded to four lanes (lane 3 is 0), so that box unions compile to
+/// four-wide min/max. 32 bytes.
+struct Box4 {
+    float lo[4];
+    float hi[4];
 };
-static_assert(sizeof(BuildPrimitive) == 28);
+static_assert(sizeof(Box4) == 32);
+
+/// One primitive to build over: its box and its index in the caller's list. 36 bytes.
+struct BuildPrimitive {
+    Box4 box;
+    std::uint32_t index;
+
+    BuildPrimitive() = default;
+    BuildPrimitive(const FloatBox& b, std::uint32_t i)
+        : box{{b.min[0], b.min[1], b.min[2], 0.0f}, {b.max[0], b.max[1], b.max[2], 0.0f}},
+          index(i) {}
+};
+static_assert(sizeof(BuildPrimitive) == 36);
 
 /// Deepest a built tree gets: SAH splits up to kMaxSahDepth, then median splits that halve
 /// the count (at most 31 more levels); queries size their fixed stacks from this.
@@ -40,7 +53,8 @@ struct BuiltBvh {
     std::vector<std::uint32_t> order;  ///< leaf slot -> index of the primitive given
 };
 
-/// Builds the tree (binned SAH, 16 bins on centroids, leaves of up to 8 primitives).
+/// Builds the tree (binned SAH on centroids, all three axes, up to 16 bins; leaves of up to
+/// 8 primitives).
 /// Deterministic: the same primitives give the same tree. Empty input -> no nodes.
 BuiltBvh build_bvh(std::vector<BuildPrimitive> primitives);
 

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <numbers>
 #include <random>
+#include <vector>
 
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
@@ -101,8 +102,9 @@ inline TriangleMesh nasty_mesh(std::uint64_t seed, std::size_t* degenerate = nul
 
 /// A banked track stand-in: a closed loop around an ellipse (400 m x 150 m half axes, the
 /// tightest turn radius 56 m at the ends), rolling 10 m up and down, banked up to 25 deg in
-/// the turns; a 12 m road between two 1 m walls. `segments` cross-sections along the loop,
-/// 24 quads across (20 road, 2 per wall): 48 * segments triangles sharing vertices.
+/// the turns; a 12 m road between two 1 m walls. `segments` cross-sections evenly spaced
+/// along the loop (1.82 km), 24 quads across (20 road, 2 per wall): 48 * segments triangles
+/// sharing vertices.
 struct BankedLoop {
     static constexpr double kHalfX = 400.0, kHalfZ = 150.0, kRoadWidth = 12.0,
                             kWallHeight = 1.0;
@@ -131,12 +133,31 @@ struct BankedLoop {
         return f;
     }
 
+    /// Loop parameters of `segments` cross-sections evenly spaced by arc length (as a track
+    /// generator would place them), from a piecewise-linear length table.
+    static std::vector<double> even_parameters(std::uint32_t segments) {
+        constexpr int kTable = 4096;
+        std::vector<double> length(kTable + 1, 0.0);
+        for (int k = 1; k <= kTable; ++k)
+            length[k] = length[k - 1] + glm::distance(frame(double(k) / kTable).center,
+                                                      frame(double(k - 1) / kTable).center);
+        std::vector<double> u(segments);
+        int k = 0;
+        for (std::uint32_t i = 0; i < segments; ++i) {
+            const double target = length[kTable] * i / segments;
+            while (length[k + 1] < target) ++k;
+            u[i] = (k + (target - length[k]) / (length[k + 1] - length[k])) / kTable;
+        }
+        return u;
+    }
+
     static TriangleMesh mesh(std::uint32_t segments) {
         TriangleMesh m;
         m.vertices.reserve(std::size_t{segments} * (kAcross + 1));
         m.triangles.reserve(std::size_t{segments} * kAcross * 2);
+        const std::vector<double> parameters = even_parameters(segments);
         for (std::uint32_t i = 0; i < segments; ++i) {
-            const Frame f = frame(double(i) / segments);
+            const Frame f = frame(parameters[i]);
             const double half = 0.5 * kRoadWidth;
             for (std::uint32_t k = 0; k <= kAcross; ++k) {
                 glm::dvec3 p;
