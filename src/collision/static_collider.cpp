@@ -76,7 +76,7 @@ StaticCollider::StaticCollider(const TriangleMesh& mesh) {
         if (vertex_remap[v] != kNoSlot) vertices_[vertex_remap[v]] = mesh.vertices[v];
 }
 
-bool StaticCollider::triangle_box_overlaps(std::uint32_t slot, const Aabb& box) const {
+inline bool StaticCollider::triangle_box_overlaps(std::uint32_t slot, const Aabb& box) const {
     const auto& tri = slot_vertices_[slot];
     return collision_detail::triangle_box(vertices_[tri[0]], vertices_[tri[1]], vertices_[tri[2]])
         .overlaps(box);

@@ -185,7 +185,7 @@ TEST(BruteForceMatch, DegenerateHugeAndDuplicateTriangles) {
 }
 
 TEST(BruteForceMatch, TrackLikeBankedLoop) {
-    expect_same_everywhere(test::BankedLoop::mesh(200), 33);
+    expect_same_everywhere(test::BankedLoop{}.mesh(200), 33);
 }
 
 }  // namespace

@@ -100,26 +100,28 @@ inline TriangleMesh nasty_mesh(std::uint64_t seed, std::size_t* degenerate = nul
     return mesh;
 }
 
-/// A banked track stand-in: a closed loop around an ellipse (400 m x 150 m half axes, the
-/// tightest turn radius 56 m at the ends), rolling 10 m up and down, banked up to 25 deg in
-/// the turns; a 12 m road between two 1 m walls. `segments` cross-sections evenly spaced
-/// along the loop (1.82 km), 24 quads across (20 road, 2 per wall): 48 * segments triangles
-/// sharing vertices.
+/// A banked track stand-in: a closed loop around an ellipse (scale * 400 m x 150 m half
+/// axes, the tightest turn radius scale * 56 m at the ends), rolling scale * 10 m up and
+/// down, banked up to 25 deg in the turns; a 12 m road between two 1 m walls. `segments`
+/// cross-sections evenly spaced along the loop (scale * 1.82 km), 24 quads across (20 road,
+/// 2 per wall): 48 * segments triangles sharing vertices.
 struct BankedLoop {
     static constexpr double kHalfX = 400.0, kHalfZ = 150.0, kRoadWidth = 12.0,
                             kWallHeight = 1.0;
     static constexpr std::uint32_t kAcross = 24;
+
+    double scale = 1.0;
 
     /// Frame of the road at loop parameter u in [0, 1): center line point, unit tangent,
     /// banked left (in the road surface) and banked up (road normal).
     struct Frame {
         glm::dvec3 center, tangent, left, up;
     };
-    static Frame frame(double u) {
+    Frame frame(double u) const {
         const double theta = 2.0 * std::numbers::pi * u;
         Frame f;
-        f.center = {kHalfX * std::cos(theta), 10.0 * std::sin(2.0 * theta),
-                    kHalfZ * std::sin(theta)};
+        f.center = glm::dvec3(kHalfX * std::cos(theta), 10.0 * std::sin(2.0 * theta),
+                              kHalfZ * std::sin(theta)) * scale;
         f.tangent = glm::normalize(glm::dvec3(-kHalfX * std::sin(theta),
                                               20.0 * std::cos(2.0 * theta),
                                               kHalfZ * std::cos(theta)));
@@ -135,7 +137,7 @@ struct BankedLoop {
 
     /// Loop parameters of `segments` cross-sections evenly spaced by arc length (as a track
     /// generator would place them), from a piecewise-linear length table.
-    static std::vector<double> even_parameters(std::uint32_t segments) {
+    std::vector<double> even_parameters(std::uint32_t segments) const {
         constexpr int kTable = 4096;
         std::vector<double> length(kTable + 1, 0.0);
         for (int k = 1; k <= kTable; ++k)
@@ -151,7 +153,7 @@ struct BankedLoop {
         return u;
     }
 
-    static TriangleMesh mesh(std::uint32_t segments) {
+    TriangleMesh mesh(std::uint32_t segments) const {
         TriangleMesh m;
         m.vertices.reserve(std::size_t{segments} * (kAcross + 1));
         m.triangles.reserve(std::size_t{segments} * kAcross * 2);
@@ -186,7 +188,7 @@ struct BankedLoop {
     /// A car's swept, padded box at loop parameter u: a 4.5 x 1.2 x 2 m box (length along
     /// the tangent, height along the road normal) resting on the road, moved `travel` m
     /// along the tangent and padded by `margin` m.
-    static Aabb car_box(double u, double travel, double margin) {
+    Aabb car_box(double u, double travel, double margin) const {
         const Frame f = frame(u);
         const glm::dvec3 half_extent = glm::abs(f.tangent) * 2.25 + glm::abs(f.up) * 0.6 +
                                        glm::abs(f.left) * 1.0;

@@ -104,7 +104,7 @@ TEST(StaticCollider, SingleTriangle) {
 }
 
 TEST(StaticCollider, QueriesFarOutsideFindNothing) {
-    const StaticCollider collider(test::BankedLoop::mesh(100));
+    const StaticCollider collider(test::BankedLoop{}.mesh(100));
     std::vector<std::uint32_t> out;
     collider.query_aabb({glm::dvec3(1e6), glm::dvec3(1e6 + 10)}, out);
     collider.query_sphere(glm::dvec3(-1e7), 100.0, out);

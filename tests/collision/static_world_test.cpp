@@ -26,8 +26,8 @@ TEST(SweptBox, CoversStartAndEndPadded) {
 // A world of three colliders (the loop, a soup inside it, the loop again shifted up 0.5 m,
 // overlapping): its queries equal the brute-force twins' combined in collider order.
 TEST(StaticWorld, MatchesBruteForceOverColliders) {
-    std::vector<TriangleMesh> meshes{test::BankedLoop::mesh(300), test::random_soup(2000, 3),
-                                     test::BankedLoop::mesh(300)};
+    std::vector<TriangleMesh> meshes{test::BankedLoop{}.mesh(300), test::random_soup(2000, 3),
+                                     test::BankedLoop{}.mesh(300)};
     for (glm::dvec3& v : meshes[2].vertices) v.y += 0.5;
     StaticWorld world;
     std::vector<BruteForceCollider> brute;
@@ -46,7 +46,7 @@ TEST(StaticWorld, MatchesBruteForceOverColliders) {
         const Aabb box = i % 5 == 0 ? Aabb{glm::dvec3(unit(rng), unit(rng), unit(rng)) * 120.0,
                                            glm::dvec3(unit(rng), unit(rng), unit(rng)) * 120.0 +
                                                glm::dvec3(30.0)}
-                                    : test::BankedLoop::car_box(u01(rng), 2.8, 0.5);
+                                    : test::BankedLoop{}.car_box(u01(rng), 2.8, 0.5);
         got.clear();
         want.clear();
         world.query_aabb(box, got);
@@ -60,7 +60,7 @@ TEST(StaticWorld, MatchesBruteForceOverColliders) {
         found += !want.empty();
 
         // Rays down onto the road (both loops: the shifted one is nearer, except ties).
-        const auto frame = test::BankedLoop::frame(u01(rng));
+        const auto frame = test::BankedLoop{}.frame(u01(rng));
         const glm::dvec3 origin = frame.center + frame.left * (unit(rng) * 7.0) +
                                   glm::dvec3(unit(rng), 5.0 + 5.0 * u01(rng), unit(rng));
         const glm::dvec3 dir = glm::normalize(glm::dvec3(unit(rng) * 0.3, -1.0, unit(rng) * 0.3));
