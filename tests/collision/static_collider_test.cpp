@@ -1,6 +1,7 @@
 #include "trackphys/collision/static_collider.hpp"
 
 #include <algorithm>
+#include <cstring>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -196,6 +197,43 @@ TEST(StaticCollider, TreeInvariants) {
     EXPECT_TRUE(std::all_of(seen.begin(), seen.end(), [](int k) { return k == 1; }));
     EXPECT_EQ(nodes.size(), 2 * leaves);  // 2 leaves - 1 nodes, plus the unused node 1
     EXPECT_LE(collider.bytes_used(), 200 * mesh.triangles.size());
+}
+
+}  // namespace
+}  // namespace trackphys
+
+namespace trackphys {
+namespace {
+
+// Same mesh, same tree, same answers in the same order (DESIGN.md: determinism).
+TEST(StaticCollider, BuildsAreDeterministic) {
+    const TriangleMesh mesh = test::random_soup(5000, 77);
+    const StaticCollider a(mesh), b(mesh);
+    ASSERT_EQ(a.nodes().size(), b.nodes().size());
+    EXPECT_EQ(std::memcmp(a.nodes().data(), b.nodes().data(), a.nodes().size() * sizeof(BvhNode)), 0);
+    std::vector<std::uint32_t> out_a, out_b;
+    a.query_aabb({glm::dvec3(-50.0), glm::dvec3(20.0)}, out_a);
+    b.query_aabb({glm::dvec3(-50.0), glm::dvec3(20.0)}, out_b);
+    EXPECT_EQ(out_a, out_b);
+    EXPECT_FALSE(out_a.empty());
+}
+
+// Queries append into the caller's vector and nothing else grows: once it has the
+// capacity, repeated queries keep the same storage.
+TEST(StaticCollider, ReusedBuffersDoNotReallocate) {
+    const test::BankedLoop loop;
+    const StaticCollider collider(loop.mesh(400));
+    std::vector<std::uint32_t> out;
+    out.reserve(4096);
+    const std::uint32_t* storage = out.data();
+    for (int i = 0; i < 200; ++i) {
+        out.clear();
+        collider.query_aabb(loop.car_box(i / 200.0, 2.8, 0.5), out);
+        ASSERT_FALSE(out.empty());
+        collider.query_capsule(loop.frame(i / 200.0).center, loop.frame(i / 200.0).center + 0.3, 0.5,
+                               out);
+        ASSERT_EQ(out.data(), storage);
+    }
 }
 
 }  // namespace
