@@ -190,3 +190,17 @@ TEST(BruteForceMatch, TrackLikeBankedLoop) {
 
 }  // namespace
 }  // namespace trackphys
+
+namespace trackphys {
+namespace {
+
+// Far from the origin (a 30 km world) float node bounds are ~2 mm coarse, bigger than the
+// smallest triangles here: the outward rounding must keep every answer exact.
+TEST(BruteForceMatch, FarFromTheOrigin) {
+    TriangleMesh mesh = test::random_soup(3000, 4);
+    for (glm::dvec3& v : mesh.vertices) v = glm::dvec3(15000.0, 300.0, -12000.0) + v * 0.05;
+    expect_same_everywhere(mesh, 44);
+}
+
+}  // namespace
+}  // namespace trackphys
