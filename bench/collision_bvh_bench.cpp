@@ -20,6 +20,7 @@
 #include "collision/collision_meshes.hpp"
 #include "trackphys/collision/brute_force_collider.hpp"
 #include "trackphys/collision/static_collider.hpp"
+#include "trackphys/collision/static_world.hpp"
 
 namespace trackphys {
 namespace {
@@ -162,6 +163,37 @@ void BM_SphereQuery(benchmark::State& state) {
     state.counters["candidates"] = double(found) / double(state.iterations());
 }
 
+// The world broad phase: the 300k loop (scale 2) cut into `chunks` colliders of
+// consecutive road pieces (tiles of an open-world map), one car driving: collider boxes
+// first, then each hit collider's BVH, into one reused (collider, triangle) buffer.
+void BM_WorldCarBox(benchmark::State& state) {
+    const BankedLoop loop{2.0};
+    const TriangleMesh& mesh = loop_mesh(300000, loop.scale);
+    const auto chunks = static_cast<std::size_t>(state.range(0));
+    StaticWorld world;
+    const std::size_t per_chunk = (mesh.triangles.size() + chunks - 1) / chunks;
+    for (std::size_t c = 0; c < chunks; ++c) {
+        TriangleMesh chunk{mesh.vertices, {}};
+        for (std::size_t t = c * per_chunk; t < std::min(mesh.triangles.size(), (c + 1) * per_chunk); ++t)
+            chunk.triangles.push_back(mesh.triangles[t]);
+        world.add(std::make_shared<const StaticCollider>(chunk));
+    }
+    const double loop_length = loop.scale * 1820.0;
+    std::vector<Aabb> boxes;
+    for (int k = 0; k < 10000; ++k)
+        boxes.push_back(loop.car_box(std::fmod(0.37 + k * kTravel / loop_length, 1.0), kTravel, kMargin));
+    std::vector<TriangleRef> out;
+    std::size_t i = 0, found = 0;
+    for (auto _ : state) {
+        out.clear();
+        world.query_aabb(boxes[i], out);
+        found += out.size();
+        benchmark::DoNotOptimize(out.data());
+        i = i + 1 == boxes.size() ? 0 : i + 1;
+    }
+    state.counters["candidates"] = double(found) / double(state.iterations());
+}
+
 template <class F>
 double median_us(const std::vector<Aabb>& boxes, F&& query) {
     std::vector<double> us;
@@ -224,6 +256,7 @@ BENCHMARK(BM_Build)->RangeMultiplier(10)->Range(1000, 1000000)->Arg(300000)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CarBoxQuery)->ArgsProduct({{1000, 10000, 100000, 300000, 1000000}, {0, 1}});
 BENCHMARK(BM_Raycast)->RangeMultiplier(10)->Range(1000, 1000000)->Arg(300000);
+BENCHMARK(BM_WorldCarBox)->Arg(1)->Arg(16)->Arg(256);
 BENCHMARK(BM_SphereQuery)->Args({300000, 0})->Args({300000, 1});
 BENCHMARK(BM_Track300k_BvhVsBruteForce)->Arg(10)->Arg(20)->Iterations(1)
     ->Unit(benchmark::kMillisecond);
