@@ -50,11 +50,15 @@ struct TriangleRef {
 /// vectors have grown to their working size.
 ///
 /// Layout (bytes_used() counts it all): vertices in double, re-ordered by first use in leaf
-/// order and without unused ones; per triangle, in leaf order, its three vertex indices and
-/// its mesh index; the inverse map mesh index -> leaf slot; 32-byte nodes. About 48 bytes a
-/// triangle on a shared-vertex track mesh. NormalizedTriangle frames are not stored: they
-/// are 120 bytes each in double, no query here needs them, and the mid phase builds the
-/// few hundred it culls per update with normalized_triangle().
+/// order and without unused ones (24 bytes each, ~12 a triangle on a shared-vertex mesh);
+/// per triangle, in leaf order, its three vertex indices (12) and mesh index (4); the
+/// inverse map mesh index -> leaf slot (4); ~0.45 32-byte nodes (~14). About 47 bytes a
+/// triangle on a track mesh, ~107 on a soup of unshared vertices. NormalizedTriangle frames
+/// are not stored: 120 bytes in double would break the 80-byte budget, every exact
+/// predicate needs the double vertices anyway, and a measured float per-slot box (24 bytes,
+/// to test leaves without reading vertices) did not speed up box queries and slowed rays
+/// (bench_collision_bvh). The mid phase builds the few hundred frames it culls per update
+/// with normalized_triangle().
 class TRACKPHYS_API StaticCollider {
 public:
     /// Largest accepted |coordinate| (m): node bounds are float, and 1e18 m keeps every
