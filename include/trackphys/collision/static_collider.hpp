@@ -53,7 +53,7 @@ struct TriangleRef {
 /// order and without unused ones (24 bytes each, ~12 a triangle on a shared-vertex mesh);
 /// per triangle, in leaf order, its three vertex indices (12) and mesh index (4); the
 /// inverse map mesh index -> leaf slot (4); ~0.45 32-byte nodes (~14). About 47 bytes a
-/// triangle on a track mesh, ~107 on a soup of unshared vertices. NormalizedTriangle frames
+/// triangle on a track mesh, ~111 on a soup of unshared vertices. NormalizedTriangle frames
 /// are not stored: 120 bytes in double would break the 80-byte budget, every exact
 /// predicate needs the double vertices anyway, and a measured float per-slot box (24 bytes,
 /// to test leaves without reading vertices) did not speed up box queries and slowed rays
