@@ -28,3 +28,8 @@
 #include "trackphys/track/track.hpp"
 #include "trackphys/track/track_params.hpp"
 #include "trackphys/track/track_stats.hpp"
+
+#include "trackphys/collision/brute_force_collider.hpp"
+#include "trackphys/collision/bvh_node.hpp"
+#include "trackphys/collision/static_collider.hpp"
+#include "trackphys/collision/static_world.hpp"
