@@ -13,3 +13,6 @@
 #include "trackphys/geometry/sphere_cull_variants.hpp"
 #include "trackphys/geometry/triangle.hpp"
 #include "trackphys/geometry/triangle_mesh.hpp"
+#include "trackphys/geometry/contact.hpp"
+#include "trackphys/geometry/point_ellipse.hpp"
+#include "trackphys/geometry/point_ellipsoid.hpp"
