@@ -1,6 +1,8 @@
 #include "trackphys/geometry/contact.hpp"
 
 #include <algorithm>
+#include <array>
+#include <utility>
 #include <cmath>
 #include <limits>
 
@@ -302,6 +304,22 @@ bool finite_triangle(const Triangle& t) {
     return is_finite(t[0]) && is_finite(t[1]) && is_finite(t[2]);
 }
 
+bool lexicographic_less(const glm::dvec3& a, const glm::dvec3& b) {
+    if (a.x != b.x) return a.x < b.x;
+    if (a.y != b.y) return a.y < b.y;
+    return a.z < b.z;
+}
+
+/// The vertices in lexicographic order: sigma does not depend on the order or winding, and
+/// a canonical order makes the rounded result bit-identical for every permutation.
+std::array<glm::dvec3, 3> canonical_vertices(const Triangle& t) {
+    std::array<glm::dvec3, 3> v = t.vertices;
+    if (lexicographic_less(v[1], v[0])) std::swap(v[0], v[1]);
+    if (lexicographic_less(v[2], v[1])) std::swap(v[1], v[2]);
+    if (lexicographic_less(v[1], v[0])) std::swap(v[0], v[1]);
+    return v;
+}
+
 }  // namespace
 
 Contact ellipsoid_triangle_contact(const Ellipsoid& ellipsoid, const Triangle& triangle) {
@@ -311,9 +329,10 @@ Contact ellipsoid_triangle_contact(const Ellipsoid& ellipsoid, const Triangle& t
     const glm::dmat3& axes = ellipsoid.sorted_axes();
     // Work at a power-of-two scale (exact) when coordinates or radii are extreme, so that
     // squares and products stay normal numbers; every quantity is homogeneous in length.
+    const std::array<glm::dvec3, 3> v = canonical_vertices(triangle);
     double extent = ellipsoid.sorted_radii().x;
     for (int i = 0; i < 3; ++i) {
-        const glm::dvec3 d = glm::abs(triangle[i]) + glm::abs(c);
+        const glm::dvec3 d = glm::abs(v[i]) + glm::abs(c);
         extent = std::max({extent, d.x, d.y, d.z});
     }
     double scale = 1.0;
@@ -322,8 +341,8 @@ Contact ellipsoid_triangle_contact(const Ellipsoid& ellipsoid, const Triangle& t
     const glm::dvec3 center = c / scale;
     detail::LocalTriangle local;
     for (int i = 0; i < 3; ++i) {
-        local.q[i] = (triangle[i] / scale - center) * axes;
-        local.edge[i] = (triangle[(i + 1) % 3] / scale - triangle[i] / scale) * axes;
+        local.q[i] = (v[i] / scale - center) * axes;
+        local.edge[i] = (v[(i + 1) % 3] / scale - v[i] / scale) * axes;
     }
     const glm::dvec3 radii = ellipsoid.sorted_radii() / scale;
     const detail::LocalContact solved = detail::contact_in_sorted_frame(radii, local);

@@ -153,10 +153,11 @@ public:
                     climb_from(poles[k], +1, out, which);
                     climb_from(poles[k + 1], -1, out, which);
                 }
-            } else if (which != CriticalSet::closest) {
-                // Only a root with at most one negative factor can be a minimum: the
-                // interval left of the last pole is the only candidate.
-                if (pole_count >= 2) climb_from(last, -1, out, which);
+            } else if (which != CriticalSet::closest && group_[N - 1] == last) {
+                // Only a root with at most one negative factor can be a minimum, so only the
+                // first root left of the smallest radius' pole (f' > 0 there) can be one
+                // besides the closest point; left of any other pole two factors are < 0.
+                climb_from(last, -1, out, which);
             }
         }
         for (int g = 0; g < N; ++g) {
