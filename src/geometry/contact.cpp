@@ -49,6 +49,7 @@ struct Problem {
     dvec3 r;   // radii
     dvec3 r2;  // squared radii
     double r_min2;
+    std::array<double, 3> pole;  // (r_i - r_z)(r_i + r_z): offsets of the poles of f from -r_z^2
     const LocalTriangle* tri;
 
     double support(const dvec3& u) const { return std::sqrt(glm::dot(r2 * u, u)); }
@@ -132,6 +133,7 @@ public:
         pb_.r = radii;
         pb_.r2 = radii * radii;
         pb_.r_min2 = pb_.r2.z;
+        for (int i = 0; i < 3; ++i) pb_.pole[i] = (radii[i] - radii.z) * (radii[i] + radii.z);
         pb_.tri = &tri;
     }
 
@@ -155,8 +157,8 @@ public:
             // The vertices must lie on the face plane to rounding: a sliver's normal may be
             // too inaccurate for the certificate, and then the edges decide.
             const double spread = std::max({d0, d1, d2}) - std::min({d0, d1, d2});
-            const double scale = pb_.r.x + std::max({glm::length(tri.q[0]), glm::length(tri.q[1]),
-                                                     glm::length(tri.q[2])});
+            const double scale = pb_.r.x + max_abs(tri.q[0]) + max_abs(tri.q[1]) + max_abs(tri.q[2]);
+            face_touch_ = z;
             if (side_[0] >= 0.0 && side_[1] >= 0.0 && side_[2] >= 0.0 &&
                 spread <= 1e-14 * scale && pb_.closest_regime(g, h))
                 return finish(ContactPath::face_certified);
@@ -181,10 +183,16 @@ public:
     }
 
 private:
-    LocalContact finish(ContactPath path) const { return {best_.g, best_.u, path}; }
+    LocalContact finish(ContactPath path) const {
+        // The ellipsoid's extreme point towards the triangle, x(-u), moved by half the depth.
+        const double h = pb_.support(best_.u);
+        const dvec3 point = 0.5 * best_.g * best_.u - pb_.support_point(best_.u, h);
+        return {best_.g, best_.u, point, path, iterations_};
+    }
 
     void feature_order(int (&order)[6]) const {
-        // side_[k] < 0: the face's touching point is beyond edge k (from q_k to q_{k+1}).
+        // side_[k] < 0: the face's touching point is beyond edge k (from q_k to q_{k+1}); beyond
+        // one of its ends, the vertex there is the likely winner.
         int n = 0;
         int outside = -1;
         int count_outside = 0;
@@ -194,9 +202,21 @@ private:
                 outside = k;
             }
         if (count_outside == 1) {
-            order[n++] = outside;
-            order[n++] = 3 + outside;
-            order[n++] = 3 + (outside + 1) % 3;
+            const dvec3& e = pb_.tri->edge[outside];
+            const double along = glm::dot(face_touch_ - pb_.tri->q[outside], e);
+            const int start = 3 + outside;
+            const int end = 3 + (outside + 1) % 3;
+            if (along < 0.0) {
+                order[n++] = start;
+                order[n++] = outside;
+            } else if (along > glm::dot(e, e)) {
+                order[n++] = end;
+                order[n++] = outside;
+            } else {
+                order[n++] = outside;
+                order[n++] = start;
+                order[n++] = end;
+            }
         } else if (count_outside == 2) {
             // Beyond two edges: the vertex they share first.
             const int inside = side_[0] >= 0.0 ? 0 : side_[1] >= 0.0 ? 1 : 2;
@@ -214,12 +234,19 @@ private:
         EdgeShadow& s = shadow_[i];
         s.closest_value = kInfinity;
         if (!s.valid || s.lower_bound >= best_.g) return false;
-        CriticalSolver<2> solver({s.s1, s.s2}, {s.px, s.py});
-        CriticalPoints<2> found;
-        solver.solve(CriticalSet::closest, found);
-        const CriticalPoint<2>& cp = found.points[0];
-        s.closest_value = -cp.offset;
-        const dvec3 u = -(cp.n[0] * s.axis1 + cp.n[1] * s.axis2);
+        std::array<double, 2> n;
+        if (s.py != 0.0) {
+            const double pole = (s.s1 - s.s2) * (s.s1 + s.s2);
+            s.closest_value = -closest_normal_fast<2>({s.s1, s.s2}, {pole, 0.0}, {s.px, s.py}, n,
+                                                      iterations_);
+        } else {
+            CriticalSolver<2> solver({s.s1, s.s2}, {s.px, s.py});
+            CriticalPoints<2> found;
+            solver.solve(CriticalSet::closest, found);
+            n = found.points[0].n;
+            s.closest_value = -found.points[0].offset;
+        }
+        const dvec3 u = -(n[0] * s.axis1 + n[1] * s.axis2);
         const double h = pb_.support(u);
         const LocalTriangle& tri = *pb_.tri;
         const int j = (i + 1) % 3;
@@ -241,12 +268,18 @@ private:
         const double level = glm::length(level_vector);
         vertex_closest_[i] = kInfinity;
         if ((1.0 - level) * (level < 1.0 ? pb_.r.z : pb_.r.x) >= best_.g) return false;
-        CriticalSolver<3> solver({pb_.r.x, pb_.r.y, pb_.r.z}, {q.x, q.y, q.z});
-        CriticalPoints<3> found;
-        solver.solve(CriticalSet::closest, found);
-        const CriticalPoint<3>& cp = found.points[0];
-        vertex_closest_[i] = -cp.offset;
-        const dvec3 u(-cp.n[0], -cp.n[1], -cp.n[2]);
+        std::array<double, 3> n;
+        if (q.z != 0.0) {
+            vertex_closest_[i] = -closest_normal_fast<3>({pb_.r.x, pb_.r.y, pb_.r.z}, pb_.pole,
+                                                         {q.x, q.y, q.z}, n, iterations_);
+        } else {
+            CriticalSolver<3> solver({pb_.r.x, pb_.r.y, pb_.r.z}, {q.x, q.y, q.z});
+            CriticalPoints<3> found;
+            solver.solve(CriticalSet::closest, found);
+            n = found.points[0].n;
+            vertex_closest_[i] = -found.points[0].offset;
+        }
+        const dvec3 u(-n[0], -n[1], -n[2]);
         const double h = pb_.support(u);
         const double di = glm::dot(u, q);
         const double others = std::max(glm::dot(u, pb_.tri->q[(i + 1) % 3]),
@@ -283,8 +316,14 @@ private:
         }
     }
 
+    static double max_abs(const dvec3& v) {
+        return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+    }
+
     Problem pb_;
     Best best_;
+    int iterations_ = 0;
+    dvec3 face_touch_{0.0};
     double side_[3] = {0.0, 0.0, 0.0};
     EdgeShadow shadow_[3];
     double vertex_closest_[3] = {kInfinity, kInfinity, kInfinity};
@@ -299,6 +338,32 @@ LocalContact contact_in_sorted_frame(const glm::dvec3& radii, const LocalTriangl
 }  // namespace detail
 
 namespace {
+
+/// Closest point of triangle (a, b, c) to p by its Voronoi regions (Ericson, "Real-Time
+/// Collision Detection", 5.1.5), every division guarded so that degenerate triangles give a
+/// point of their hull.
+glm::dvec3 closest_point_on_triangle(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b,
+                                     const glm::dvec3& c) {
+    const glm::dvec3 ab = b - a, ac = c - a, ap = p - a;
+    const double d1 = glm::dot(ab, ap), d2 = glm::dot(ac, ap);
+    if (d1 <= 0.0 && d2 <= 0.0) return a;
+    const glm::dvec3 bp = p - b;
+    const double d3 = glm::dot(ab, bp), d4 = glm::dot(ac, bp);
+    if (d3 >= 0.0 && d4 <= d3) return b;
+    const double vc = d1 * d4 - d3 * d2;
+    if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 && d1 - d3 > 0.0) return a + ab * (d1 / (d1 - d3));
+    const glm::dvec3 cp = p - c;
+    const double d5 = glm::dot(ab, cp), d6 = glm::dot(ac, cp);
+    if (d6 >= 0.0 && d5 <= d6) return c;
+    const double vb = d5 * d2 - d1 * d6;
+    if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 && d2 - d6 > 0.0) return a + ac * (d2 / (d2 - d6));
+    const double va = d3 * d6 - d5 * d4;
+    if (va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0 && (d4 - d3) + (d5 - d6) > 0.0)
+        return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+    const double sum = va + vb + vc;
+    if (!(sum > 0.0)) return a;
+    return a + ab * (vb / sum) + ac * (vc / sum);
+}
 
 bool finite_triangle(const Triangle& t) {
     return is_finite(t[0]) && is_finite(t[1]) && is_finite(t[2]);
@@ -320,39 +385,82 @@ std::array<glm::dvec3, 3> canonical_vertices(const Triangle& t) {
     return v;
 }
 
-}  // namespace
+/// For configurations whose lengths span more than double's squares can hold (the ellipsoid
+/// smaller than 1e-60 of the triangle's distance or size): the ellipsoid acts as its center
+/// point, sigma = h(u) - |c - z| with z the triangle's closest point and u = (c - z) / |c - z|.
+/// The neglected terms are far below one ulp of the distances involved.
+Contact point_like_contact(const Ellipsoid& ellipsoid, const std::array<glm::dvec3, 3>& v,
+                           double scale) {
+    const glm::dvec3 c = ellipsoid.center() / scale;
+    std::array<glm::dvec3, 3> w;
+    for (int i = 0; i < 3; ++i) w[i] = v[i] / scale;
+    const glm::dvec3 z = closest_point_on_triangle(c, w[0], w[1], w[2]);
+    glm::dvec3 u = c - z;
+    const double distance = glm::length(u);
+    if (distance > 0.0) {
+        u /= distance;
+    } else {
+        const glm::dvec3 n = glm::cross(w[1] - w[0], w[2] - w[0]);
+        const double length = glm::length(n);
+        u = length > 0.0 ? n / length : glm::dvec3(0.0, 1.0, 0.0);
+    }
+    const glm::dvec3 local = u * ellipsoid.sorted_axes();
+    const glm::dvec3 r = ellipsoid.sorted_radii();
+    const double h = r.x * glm::length(r / r.x * local);
+    const double depth = h - distance * scale;
+    return {depth, u, z * scale + 0.5 * depth * u};
+}
 
-Contact ellipsoid_triangle_contact(const Ellipsoid& ellipsoid, const Triangle& triangle) {
+/// Extreme configurations: solve at a power-of-two scale (exact) that brings the largest
+/// length near 1. Radii below 2^-200 of the largest are raised to it (sigma moves by less
+/// than that, far below one ulp of the largest radius), and an ellipsoid that is still below
+/// 2^-200 of the configuration acts as a point.
+Contact rescaled_contact(const Ellipsoid& ellipsoid, const std::array<glm::dvec3, 3>& v) {
     const glm::dvec3& c = ellipsoid.center();
-    if (!finite_triangle(triangle))
-        return {-std::numeric_limits<double>::infinity(), glm::dvec3(0.0, 1.0, 0.0), c};
     const glm::dmat3& axes = ellipsoid.sorted_axes();
-    // Work at a power-of-two scale (exact) when coordinates or radii are extreme, so that
-    // squares and products stay normal numbers; every quantity is homogeneous in length.
-    const std::array<glm::dvec3, 3> v = canonical_vertices(triangle);
-    double extent = ellipsoid.sorted_radii().x;
+    const glm::dvec3 radii = glm::max(ellipsoid.sorted_radii(), glm::dvec3(ellipsoid.sorted_radii().x * 0x1p-200));
+    double raw_extent = radii.x;
     for (int i = 0; i < 3; ++i) {
         const glm::dvec3 d = glm::abs(v[i]) + glm::abs(c);
-        extent = std::max({extent, d.x, d.y, d.z});
+        raw_extent = std::max({raw_extent, d.x, d.y, d.z});
     }
-    double scale = 1.0;
-    if (extent > 0x1p300 || ellipsoid.sorted_radii().z < 0x1p-300)
-        scale = std::ldexp(1.0, std::ilogb(extent));
+    const double scale = std::ldexp(1.0, std::ilogb(raw_extent));
+    if (radii.z / scale < 0x1p-200) return point_like_contact(ellipsoid, v, scale);
     const glm::dvec3 center = c / scale;
     detail::LocalTriangle local;
     for (int i = 0; i < 3; ++i) {
         local.q[i] = (v[i] / scale - center) * axes;
         local.edge[i] = (v[(i + 1) % 3] / scale - v[i] / scale) * axes;
     }
-    const glm::dvec3 radii = ellipsoid.sorted_radii() / scale;
-    const detail::LocalContact solved = detail::contact_in_sorted_frame(radii, local);
+    const detail::LocalContact solved = detail::contact_in_sorted_frame(radii / scale, local);
+    return {solved.depth * scale, axes * solved.u, c + axes * (solved.point * scale)};
+}
 
-    // The ellipsoid's extreme point towards the triangle, x(-u), moved by half the depth.
-    const glm::dvec3 u = solved.u;
-    const glm::dvec3 r2u = radii * radii * u;
-    const glm::dvec3 extreme = -r2u / std::sqrt(glm::dot(r2u, u));
-    const glm::dvec3 point_local = extreme + 0.5 * solved.depth * u;
-    return {solved.depth * scale, axes * u, c + axes * (point_local * scale)};
+}  // namespace
+
+Contact ellipsoid_triangle_contact(const Ellipsoid& ellipsoid, const Triangle& triangle) {
+    const glm::dvec3& c = ellipsoid.center();
+    if (!finite_triangle(triangle))
+        return {-std::numeric_limits<double>::infinity(), glm::dvec3(0.0, 1.0, 0.0), c};
+    const std::array<glm::dvec3, 3> v = canonical_vertices(triangle);
+    const glm::dmat3& axes = ellipsoid.sorted_axes();
+    const glm::dvec3& radii = ellipsoid.sorted_radii();
+    detail::LocalTriangle local;
+    for (int i = 0; i < 3; ++i) {
+        local.q[i] = (v[i] - c) * axes;  // row vector times M = M^T * column
+        local.edge[i] = (v[(i + 1) % 3] - v[i]) * axes;
+    }
+    // Lengths must keep their squares and cubes normal numbers: within [2^-300, 2^300] of
+    // each other and of 1, as every car and track does. Otherwise solve at a power-of-two
+    // scale (exact), or treat a vanishing ellipsoid as a point.
+    double extent = radii.x;
+    for (int i = 0; i < 3; ++i)
+        extent = std::max({extent, std::abs(local.q[i].x), std::abs(local.q[i].y),
+                           std::abs(local.q[i].z), std::abs(local.edge[i].x),
+                           std::abs(local.edge[i].y), std::abs(local.edge[i].z)});
+    if (!(extent < 0x1p300) || radii.z < 0x1p-300) return rescaled_contact(ellipsoid, v);
+    const detail::LocalContact solved = detail::contact_in_sorted_frame(radii, local);
+    return {solved.depth, axes * solved.u, c + axes * solved.point};
 }
 
 }  // namespace trackphys

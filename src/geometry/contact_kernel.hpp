@@ -19,9 +19,11 @@ enum class ContactPath {
 };
 
 struct LocalContact {
-    double depth;  ///< sigma (m)
-    glm::dvec3 u;  ///< unit push direction, sorted frame
+    double depth;      ///< sigma (m)
+    glm::dvec3 u;      ///< unit push direction, sorted frame
+    glm::dvec3 point;  ///< contact point (Contact::point) relative to the center, sorted frame
     ContactPath path;
+    int iterations;  ///< Newton steps over every root found
 };
 
 /// The triangle in the sorted frame: q[i] its vertices, edge[i] = q[i+1] - q[i] (formed

@@ -85,6 +85,39 @@ inline ClimbResult climb(const std::array<double, N>& a, const std::array<double
     return {eta, kClimbCap, true};
 }
 
+/// The closest point's normal when p's last coordinate is not 0 (the smallest radius' pole
+/// is active, so the closest point is the rightward root from it and nothing else can be):
+/// the hot path of the contact kernel, without the general solver's bookkeeping. pole[i] =
+/// (r_i - r_last)(r_i + r_last); inputs of moderate size (no rescaling here). Writes the
+/// outward unit normal and returns the offset n . (p - x); adds Newton steps to iterations.
+template <int N>
+inline double closest_normal_fast(const std::array<double, N>& r, const std::array<double, N>& pole,
+                                  const std::array<double, N>& p, std::array<double, N>& normal,
+                                  int& iterations) {
+    std::array<double, N> a;
+    double eta0 = 0.0;
+    for (int i = 0; i < N; ++i) {
+        a[i] = r[i] * std::abs(p[i]);
+        eta0 = std::max(eta0, a[i] - pole[i]);
+    }
+    const ClimbResult root = climb<N>(a, pole, eta0, std::numeric_limits<double>::infinity());
+    iterations += root.iterations;
+    // x_i = r_i^2 p_i / w_i and n ~ p_i / w_i with w_i = pole_i + eta.
+    double norm2 = 0.0;
+    double x_dot_n = 0.0;
+    double p_dot_n = 0.0;
+    for (int i = 0; i < N; ++i) {
+        const double w = pole[i] + root.eta;
+        normal[i] = p[i] / w;
+        norm2 += normal[i] * normal[i];
+        x_dot_n += r[i] * r[i] * normal[i] * normal[i];
+        p_dot_n += p[i] * normal[i];
+    }
+    const double inv = 1.0 / std::sqrt(norm2);
+    for (int i = 0; i < N; ++i) normal[i] *= inv;
+    return (p_dot_n - x_dot_n) * inv;
+}
+
 template <int N>
 struct CriticalPoint {
     std::array<double, N> x;  ///< surface point (sorted frame, input scale)

@@ -49,7 +49,9 @@ struct ContactCase {
 
 class ContactCaseGenerator {
 public:
-    explicit ContactCaseGenerator(std::uint64_t seed) : rng_(seed) {}
+    /// wheel_and_body: only the car's two shapes (the benchmark); else also random radii.
+    explicit ContactCaseGenerator(std::uint64_t seed, bool wheel_and_body = false)
+        : rng_(seed), wheel_and_body_(wheel_and_body) {}
 
     /// A case of the given kind with a wheel, a body or a random ellipsoid.
     ContactCase make(ContactKind kind) {
@@ -90,7 +92,7 @@ public:
 private:
     Ellipsoid ellipsoid() {
         glm::dvec3 axes;
-        switch (pick(4)) {
+        switch (pick(wheel_and_body_ ? 2 : 4)) {
             case 0: axes = {0.15, 0.35, 0.35}; break;  // wheel, axle along local x
             case 1: axes = {1.0, 0.5, 2.0}; break;     // body
             case 2: axes = glm::dvec3(uniform(0.05, 3.0)); axes.y *= 1 + uniform(-1e-9, 1e-9); break;
@@ -217,6 +219,7 @@ private:
 
     std::mt19937_64 rng_;
     std::normal_distribution<double> normal_;
+    bool wheel_and_body_;
     bool overlapping_ = false;
 };
 
