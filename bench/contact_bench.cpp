@@ -2,11 +2,14 @@
 //
 // Each benchmark runs over a fixed set of 4096 deterministic cases (tests/support), so the
 // time per call is the mean over that mix; the counters give root-finder steps per call.
+// The */latency benchmarks time every case on its own (32 back-to-back calls, so warm
+// caches and predictors) and report the median, 90th percentile and maximum over cases.
 //   build/release/bench/bench_contact --benchmark_min_time=0.5
 
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <chrono>
 #include <vector>
 
 #include "support/contact_cases.hpp"
@@ -54,6 +57,33 @@ void BM_ClosestPoint(benchmark::State& state, RootFinder finder, test::PointClas
     state.counters["max_steps"] = worst;
 }
 
+/// Median, 90th percentile and maximum over cases of the time of one call (ns), each case
+/// timed over 32 consecutive calls.
+template <typename Call>
+void latency(benchmark::State& state, std::size_t count, Call call) {
+    constexpr int kRepeat = 32;
+    std::vector<double> ns(count);
+    for (auto _ : state) {
+        for (std::size_t i = 0; i < count; ++i) {
+            const auto start = std::chrono::steady_clock::now();
+            for (int k = 0; k < kRepeat; ++k) call(i);
+            const auto stop = std::chrono::steady_clock::now();
+            ns[i] = std::chrono::duration<double, std::nano>(stop - start).count() / kRepeat;
+        }
+    }
+    std::sort(ns.begin(), ns.end());
+    state.counters["median_ns"] = ns[count / 2];
+    state.counters["p90_ns"] = ns[count * 9 / 10];
+    state.counters["max_ns"] = ns.back();
+}
+
+void BM_ClosestPointLatency(benchmark::State& state, RootFinder finder) {
+    const std::vector<PointQuery> queries = point_queries(test::PointClass::count);
+    latency(state, queries.size(), [&](std::size_t i) {
+        benchmark::DoNotOptimize(closest_point_on_sorted_ellipsoid(queries[i].radii, queries[i].p, finder));
+    });
+}
+
 void register_points() {
     const std::pair<const char*, RootFinder> finders[] = {{"robust", RootFinder::robust},
                                                           {"writeup_newton5", RootFinder::writeup_newton},
@@ -61,6 +91,9 @@ void register_points() {
     for (const auto& [name, finder] : finders) {
         benchmark::RegisterBenchmark((std::string("ClosestPoint/") + name + "/mix").c_str(), BM_ClosestPoint,
                                      finder, test::PointClass::count);
+        benchmark::RegisterBenchmark((std::string("ClosestPoint/") + name + "/mix/latency").c_str(),
+                                     BM_ClosestPointLatency, finder)
+            ->Iterations(1);
         for (int k = 0; k < int(test::PointClass::count); ++k) {
             const auto kind = static_cast<test::PointClass>(k);
             benchmark::RegisterBenchmark(
@@ -103,12 +136,22 @@ void BM_Contact(benchmark::State& state, ContactSet set) {
     state.counters["overlapping"] = double(overlapping) / double(calls);
 }
 
+void BM_ContactLatency(benchmark::State& state, ContactSet set) {
+    const std::vector<test::ContactCase> cases = contact_cases(set);
+    latency(state, cases.size(), [&](std::size_t i) {
+        benchmark::DoNotOptimize(ellipsoid_triangle_contact(cases[i].ellipsoid, cases[i].triangle));
+    });
+}
+
 void register_contacts() {
     const std::pair<const char*, ContactSet> sets[] = {
         {"road_shallow", ContactSet::road}, {"edge", ContactSet::edge},   {"vertex", ContactSet::vertex},
         {"deep", ContactSet::deep},         {"miss", ContactSet::miss},   {"hard_mix", ContactSet::hard_mix}};
-    for (const auto& [name, set] : sets)
+    for (const auto& [name, set] : sets) {
         benchmark::RegisterBenchmark((std::string("Contact/") + name).c_str(), BM_Contact, set);
+        benchmark::RegisterBenchmark((std::string("Contact/") + name + "/latency").c_str(), BM_ContactLatency, set)
+            ->Iterations(1);
+    }
 }
 
 const int registered = (register_points(), register_contacts(), 0);
