@@ -33,3 +33,7 @@
 #include "trackphys/collision/bvh_node.hpp"
 #include "trackphys/collision/static_collider.hpp"
 #include "trackphys/collision/static_world.hpp"
+
+#include "trackphys/geometry/contact.hpp"
+#include "trackphys/geometry/point_ellipse.hpp"
+#include "trackphys/geometry/point_ellipsoid.hpp"

@@ -1,0 +1,466 @@
+#include "trackphys/geometry/contact.hpp"
+
+#include <algorithm>
+#include <array>
+#include <utility>
+#include <cmath>
+#include <limits>
+
+#include <glm/geometric.hpp>
+
+#include "geometry/contact_kernel.hpp"
+#include "geometry/ellipsoid_roots.hpp"
+#include "trackphys/math/types.hpp"
+
+// The candidates and the certificate (DESIGN.md, "Exact ellipsoid-triangle contact").
+//
+// In the sorted frame, E = {x : sum x_i^2 / r_i^2 <= 1} with support h(u) = ||D u|| and
+// support point x(u) = D^2 u / h(u); sigma = min over unit u of g(u) = max_i u.q_i + h(u).
+//
+// Certificate. For any unit u let z(u) = x(-u) + g(u) u. Then u.z = max_i u.q_i, and z lies
+// on the normal line of the surface point x(-u) (outward normal -u) at signed depth g(u).
+// For every point z' of the triangle, g(u') >= u'.z' + h(u') for all u', whose minimum over
+// u' is the signed depth of z' in E; so sigma >= depth(z'). If z(u) lies in the triangle and
+// the critical point -u of z's distance is its closest point, i.e. the root t = -g h(u) of
+// f is the largest one, which holds when t > -r_min^2, then depth(z) = g(u) and therefore
+// sigma = g(u). Shallow contacts (depth < r_min^2 / h, 6 cm for a wheel) and every
+// separated configuration are certified by the first candidate that passes; only deeper
+// ones enumerate every local minimum.
+//
+// Candidates (the minimiser of g has 3, 2 or 1 active vertices):
+// - face: u = +-n; only the side facing the center can win, g(-n) >= g(n) when n.q <= 0;
+// - edge (i, j): u on the circle orthogonal to e = q_j - q_i, where u.q_i = u.q_j and
+//   h(B w) = sqrt(w^T B^T D^2 B w) for an orthonormal basis B of e's orthogonal plane: E's
+//   shadow there is the ellipse with matrix M = B^T D^2 B, and the candidates are the
+//   local minima of the 2-D problem for the point B^T q_i (point_ellipse);
+// - vertex i: the local minima of u.q_i + h(u), i.e. of the offset from q_i to the surface
+//   along the normal (point_ellipsoid), u = -normal.
+// Each candidate's true g is >= sigma and the minimiser is among them.
+
+namespace trackphys {
+namespace detail {
+namespace {
+
+using glm::dvec3;
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+struct Problem {
+    dvec3 r;   // radii
+    dvec3 r2;  // squared radii
+    double r_min2;
+    std::array<double, 3> pole;  // (r_i - r_z)(r_i + r_z): offsets of the poles of f from -r_z^2
+    const LocalTriangle* tri;
+
+    double support(const dvec3& u) const { return std::sqrt(glm::dot(r2 * u, u)); }
+    dvec3 support_point(const dvec3& u, double h) const { return r2 * u / h; }
+    double top(const dvec3& u) const {
+        return std::max({glm::dot(u, tri->q[0]), glm::dot(u, tri->q[1]), glm::dot(u, tri->q[2])});
+    }
+    /// True when the largest root condition t = -g h > -r_min^2 holds.
+    bool closest_regime(double g, double h) const { return g * h < r_min2; }
+};
+
+struct Best {
+    double g = kInfinity;
+    dvec3 u{0.0, 1.0, 0.0};
+    void offer(double value, const dvec3& u_candidate) {
+        if (value < g) {
+            g = value;
+            u = u_candidate;
+        }
+    }
+};
+
+/// Edge (i, i+1) and its shadow ellipse: basis (b1, b2) of the plane orthogonal to the edge
+/// rotated onto the shadow's axes, radii s1 >= s2, and the edge's 2-D point.
+struct EdgeShadow {
+    bool valid = false;
+    dvec3 axis1, axis2;  // 3-D directions of the shadow's axes
+    double s1, s2;
+    double px, py;        // the edge line's point in the shadow frame
+    double lower_bound;   // no direction orthogonal to the edge gives g below this
+    double closest_value;  // the closest candidate's edge value, once computed
+};
+
+EdgeShadow make_shadow(const Problem& pb, int i) {
+    EdgeShadow s;
+    const dvec3& e = pb.tri->edge[i];
+    const double length2 = glm::dot(e, e);
+    if (!(length2 > 0.0)) return s;
+    const dvec3 dir = e / std::sqrt(length2);
+    // b1: orthogonal to the edge, from the coordinate axis least aligned with it.
+    const dvec3 a = glm::abs(dir);
+    const dvec3 helper = a.x <= a.y && a.x <= a.z ? dvec3(1, 0, 0)
+                         : a.y <= a.z            ? dvec3(0, 1, 0)
+                                                 : dvec3(0, 0, 1);
+    const dvec3 b1 = glm::normalize(glm::cross(dir, helper));
+    const dvec3 b2 = glm::cross(dir, b1);
+    // M = B^T D^2 B and its eigenvectors (closed form for a symmetric 2x2).
+    const double m00 = glm::dot(pb.r2 * b1, b1);
+    const double m01 = glm::dot(pb.r2 * b1, b2);
+    const double m11 = glm::dot(pb.r2 * b2, b2);
+    const double mean = 0.5 * (m00 + m11);
+    const double half_diff = 0.5 * (m00 - m11);
+    const double radius = std::sqrt(half_diff * half_diff + m01 * m01);
+    double vx = half_diff >= 0.0 ? half_diff + radius : m01;
+    double vy = half_diff >= 0.0 ? m01 : radius - half_diff;
+    const double vlen = std::sqrt(vx * vx + vy * vy);
+    if (vlen > 0.0) {
+        vx /= vlen;
+        vy /= vlen;
+    } else {
+        vx = 1.0;
+        vy = 0.0;
+    }
+    s.axis1 = vx * b1 + vy * b2;
+    s.axis2 = -vy * b1 + vx * b2;
+    s.s1 = std::sqrt(mean + radius);
+    s.s2 = std::sqrt(std::max(mean - radius, 0.0));
+    if (!(s.s2 > 0.0)) return s;
+    s.px = glm::dot(s.axis1, pb.tri->q[i]);
+    s.py = glm::dot(s.axis2, pb.tri->q[i]);
+    // 2-D depth of the point >= (1 - l) * (l < 1 ? s2 : s1) with l its level.
+    const double level = std::sqrt((s.px / s.s1) * (s.px / s.s1) + (s.py / s.s2) * (s.py / s.s2));
+    s.lower_bound = (1.0 - level) * (level < 1.0 ? s.s2 : s.s1);
+    s.valid = true;
+    return s;
+}
+
+class Solver {
+public:
+    Solver(const dvec3& radii, const LocalTriangle& tri) {
+        pb_.r = radii;
+        pb_.r2 = radii * radii;
+        pb_.r_min2 = pb_.r2.z;
+        for (int i = 0; i < 3; ++i) pb_.pole[i] = (radii[i] - radii.z) * (radii[i] + radii.z);
+        pb_.tri = &tri;
+    }
+
+    LocalContact run() {
+        const LocalTriangle& tri = *pb_.tri;
+        // Face.
+        const dvec3 area_normal = glm::cross(tri.edge[0], -tri.edge[2]);
+        const double area_length = glm::length(area_normal);
+        if (area_length > 0.0 && std::isfinite(area_length)) {
+            dvec3 u = area_normal / area_length;
+            if (glm::dot(u, tri.q[0] + tri.q[1] + tri.q[2]) > 0.0) u = -u;
+            const double h = pb_.support(u);
+            const double d0 = glm::dot(u, tri.q[0]);
+            const double d1 = glm::dot(u, tri.q[1]);
+            const double d2 = glm::dot(u, tri.q[2]);
+            const double g = std::max({d0, d1, d2}) + h;
+            best_.offer(g, u);
+            const dvec3 z = g * u - pb_.support_point(u, h);
+            for (int k = 0; k < 3; ++k)
+                side_[k] = glm::dot(glm::cross(tri.edge[k], z - tri.q[k]), area_normal);
+            // The vertices must lie on the face plane to rounding: a sliver's normal may be
+            // too inaccurate for the certificate, and then the edges decide.
+            const double spread = std::max({d0, d1, d2}) - std::min({d0, d1, d2});
+            const double scale = pb_.r.x + max_abs(tri.q[0]) + max_abs(tri.q[1]) + max_abs(tri.q[2]);
+            face_touch_ = z;
+            if (side_[0] >= 0.0 && side_[1] >= 0.0 && side_[2] >= 0.0 &&
+                spread <= 1e-14 * scale && pb_.closest_regime(g, h))
+                return finish(ContactPath::face_certified);
+        } else {
+            side_[0] = side_[1] = side_[2] = 0.0;
+        }
+
+        // Edges and vertices by their closest-point candidates, the ones the face's touching
+        // point fell beyond first.
+        int order[6];
+        feature_order(order);
+        for (const int feature : order) {
+            if (feature < 3 ? try_edge(feature) : try_vertex(feature - 3))
+                return finish(feature < 3 ? ContactPath::edge_certified
+                                          : ContactPath::vertex_certified);
+        }
+
+        // Deep: every other local minimum of every edge and vertex that can still win.
+        for (int i = 0; i < 3; ++i) other_edge_minima(i);
+        for (int i = 0; i < 3; ++i) other_vertex_minima(i);
+        return finish(ContactPath::enumerated);
+    }
+
+private:
+    LocalContact finish(ContactPath path) const {
+        // The ellipsoid's extreme point towards the triangle, x(-u), moved by half the depth.
+        const double h = pb_.support(best_.u);
+        const dvec3 point = 0.5 * best_.g * best_.u - pb_.support_point(best_.u, h);
+        return {best_.g, best_.u, point, path, iterations_};
+    }
+
+    void feature_order(int (&order)[6]) const {
+        // side_[k] < 0: the face's touching point is beyond edge k (from q_k to q_{k+1}); beyond
+        // one of its ends, the vertex there is the likely winner.
+        int n = 0;
+        int outside = -1;
+        int count_outside = 0;
+        for (int k = 0; k < 3; ++k)
+            if (side_[k] < 0.0) {
+                ++count_outside;
+                outside = k;
+            }
+        if (count_outside == 1) {
+            const dvec3& e = pb_.tri->edge[outside];
+            const double along = glm::dot(face_touch_ - pb_.tri->q[outside], e);
+            const int start = 3 + outside;
+            const int end = 3 + (outside + 1) % 3;
+            if (along < 0.0) {
+                order[n++] = start;
+                order[n++] = outside;
+            } else if (along > glm::dot(e, e)) {
+                order[n++] = end;
+                order[n++] = outside;
+            } else {
+                order[n++] = outside;
+                order[n++] = start;
+                order[n++] = end;
+            }
+        } else if (count_outside == 2) {
+            // Beyond two edges: the vertex they share first.
+            const int inside = side_[0] >= 0.0 ? 0 : side_[1] >= 0.0 ? 1 : 2;
+            const int vertex = (inside + 2) % 3;
+            order[n++] = 3 + vertex;
+            order[n++] = vertex;
+            order[n++] = (vertex + 2) % 3;
+        }
+        for (int f = 0; f < 6; ++f)
+            if (std::find(order, order + n, f) == order + n) order[n++] = f;
+    }
+
+    bool try_edge(int i) {
+        shadow_[i] = make_shadow(pb_, i);
+        EdgeShadow& s = shadow_[i];
+        s.closest_value = kInfinity;
+        if (!s.valid || s.lower_bound >= best_.g) return false;
+        std::array<double, 2> n;
+        if (s.py != 0.0) {
+            const double pole = (s.s1 - s.s2) * (s.s1 + s.s2);
+            s.closest_value = -closest_normal_fast<2>({s.s1, s.s2}, {pole, 0.0}, {s.px, s.py}, n,
+                                                      iterations_);
+        } else {
+            CriticalSolver<2> solver({s.s1, s.s2}, {s.px, s.py});
+            CriticalPoints<2> found;
+            solver.solve(CriticalSet::closest, found);
+            n = found.points[0].n;
+            s.closest_value = -found.points[0].offset;
+        }
+        const dvec3 u = -(n[0] * s.axis1 + n[1] * s.axis2);
+        const double h = pb_.support(u);
+        const LocalTriangle& tri = *pb_.tri;
+        const int j = (i + 1) % 3;
+        const int k = (i + 2) % 3;
+        const double di = glm::dot(u, tri.q[i]);
+        const double dj = glm::dot(u, tri.q[j]);
+        const double dk = glm::dot(u, tri.q[k]);
+        const double g = std::max({di, dj, dk}) + h;
+        best_.offer(g, u);
+        if (dk > std::max(di, dj) || !pb_.closest_regime(g, h)) return false;
+        const dvec3 z = g * u - pb_.support_point(u, h);
+        const double along = glm::dot(z - tri.q[i], tri.edge[i]);
+        return along >= 0.0 && along <= glm::dot(tri.edge[i], tri.edge[i]);
+    }
+
+    bool try_vertex(int i) {
+        const dvec3& q = pb_.tri->q[i];
+        const dvec3 level_vector = q / pb_.r;
+        const double level = glm::length(level_vector);
+        vertex_closest_[i] = kInfinity;
+        if ((1.0 - level) * (level < 1.0 ? pb_.r.z : pb_.r.x) >= best_.g) return false;
+        std::array<double, 3> n;
+        if (q.z != 0.0) {
+            vertex_closest_[i] = -closest_normal_fast<3>({pb_.r.x, pb_.r.y, pb_.r.z}, pb_.pole,
+                                                         {q.x, q.y, q.z}, n, iterations_);
+        } else {
+            CriticalSolver<3> solver({pb_.r.x, pb_.r.y, pb_.r.z}, {q.x, q.y, q.z});
+            CriticalPoints<3> found;
+            solver.solve(CriticalSet::closest, found);
+            n = found.points[0].n;
+            vertex_closest_[i] = -found.points[0].offset;
+        }
+        const dvec3 u(-n[0], -n[1], -n[2]);
+        const double h = pb_.support(u);
+        const double di = glm::dot(u, q);
+        const double others = std::max(glm::dot(u, pb_.tri->q[(i + 1) % 3]),
+                                       glm::dot(u, pb_.tri->q[(i + 2) % 3]));
+        const double g = std::max(di, others) + h;
+        best_.offer(g, u);
+        return di >= others && pb_.closest_regime(g, h);
+    }
+
+    void other_edge_minima(int i) {
+        const EdgeShadow& s = shadow_[i];
+        // Every local minimum of the edge's function is >= its global one.
+        if (!s.valid || s.lower_bound >= best_.g || s.closest_value >= best_.g) return;
+        CriticalSolver<2> solver({s.s1, s.s2}, {s.px, s.py});
+        CriticalPoints<2> found;
+        solver.solve(CriticalSet::other_minima, found);
+        for (int k = 0; k < found.count; ++k) {
+            const CriticalPoint<2>& cp = found.points[k];
+            const dvec3 u = -(cp.n[0] * s.axis1 + cp.n[1] * s.axis2);
+            best_.offer(pb_.top(u) + pb_.support(u), u);
+        }
+    }
+
+    void other_vertex_minima(int i) {
+        if (vertex_closest_[i] >= best_.g) return;
+        const dvec3& q = pb_.tri->q[i];
+        CriticalSolver<3> solver({pb_.r.x, pb_.r.y, pb_.r.z}, {q.x, q.y, q.z});
+        CriticalPoints<3> found;
+        solver.solve(CriticalSet::other_minima, found);
+        for (int k = 0; k < found.count; ++k) {
+            const CriticalPoint<3>& cp = found.points[k];
+            const dvec3 u(-cp.n[0], -cp.n[1], -cp.n[2]);
+            best_.offer(pb_.top(u) + pb_.support(u), u);
+        }
+    }
+
+    static double max_abs(const dvec3& v) {
+        return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+    }
+
+    Problem pb_;
+    Best best_;
+    int iterations_ = 0;
+    dvec3 face_touch_{0.0};
+    double side_[3] = {0.0, 0.0, 0.0};
+    EdgeShadow shadow_[3];
+    double vertex_closest_[3] = {kInfinity, kInfinity, kInfinity};
+};
+
+}  // namespace
+
+LocalContact contact_in_sorted_frame(const glm::dvec3& radii, const LocalTriangle& triangle) {
+    return Solver(radii, triangle).run();
+}
+
+}  // namespace detail
+
+namespace {
+
+/// Closest point of triangle (a, b, c) to p by its Voronoi regions (Ericson, "Real-Time
+/// Collision Detection", 5.1.5), every division guarded so that degenerate triangles give a
+/// point of their hull.
+glm::dvec3 closest_point_on_triangle(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b,
+                                     const glm::dvec3& c) {
+    const glm::dvec3 ab = b - a, ac = c - a, ap = p - a;
+    const double d1 = glm::dot(ab, ap), d2 = glm::dot(ac, ap);
+    if (d1 <= 0.0 && d2 <= 0.0) return a;
+    const glm::dvec3 bp = p - b;
+    const double d3 = glm::dot(ab, bp), d4 = glm::dot(ac, bp);
+    if (d3 >= 0.0 && d4 <= d3) return b;
+    const double vc = d1 * d4 - d3 * d2;
+    if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 && d1 - d3 > 0.0) return a + ab * (d1 / (d1 - d3));
+    const glm::dvec3 cp = p - c;
+    const double d5 = glm::dot(ab, cp), d6 = glm::dot(ac, cp);
+    if (d6 >= 0.0 && d5 <= d6) return c;
+    const double vb = d5 * d2 - d1 * d6;
+    if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 && d2 - d6 > 0.0) return a + ac * (d2 / (d2 - d6));
+    const double va = d3 * d6 - d5 * d4;
+    if (va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0 && (d4 - d3) + (d5 - d6) > 0.0)
+        return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+    const double sum = va + vb + vc;
+    if (!(sum > 0.0)) return a;
+    return a + ab * (vb / sum) + ac * (vc / sum);
+}
+
+bool finite_triangle(const Triangle& t) {
+    return is_finite(t[0]) && is_finite(t[1]) && is_finite(t[2]);
+}
+
+bool lexicographic_less(const glm::dvec3& a, const glm::dvec3& b) {
+    if (a.x != b.x) return a.x < b.x;
+    if (a.y != b.y) return a.y < b.y;
+    return a.z < b.z;
+}
+
+/// The vertices in lexicographic order: sigma does not depend on the order or winding, and
+/// a canonical order makes the rounded result bit-identical for every permutation.
+std::array<glm::dvec3, 3> canonical_vertices(const Triangle& t) {
+    std::array<glm::dvec3, 3> v = t.vertices;
+    if (lexicographic_less(v[1], v[0])) std::swap(v[0], v[1]);
+    if (lexicographic_less(v[2], v[1])) std::swap(v[1], v[2]);
+    if (lexicographic_less(v[1], v[0])) std::swap(v[0], v[1]);
+    return v;
+}
+
+/// For configurations whose lengths span more than double's squares can hold (the ellipsoid
+/// smaller than 1e-60 of the triangle's distance or size): the ellipsoid acts as its center
+/// point, sigma = h(u) - |c - z| with z the triangle's closest point and u = (c - z) / |c - z|.
+/// The neglected terms are far below one ulp of the distances involved.
+Contact point_like_contact(const Ellipsoid& ellipsoid, const std::array<glm::dvec3, 3>& v,
+                           double scale) {
+    const glm::dvec3 c = ellipsoid.center() / scale;
+    std::array<glm::dvec3, 3> w;
+    for (int i = 0; i < 3; ++i) w[i] = v[i] / scale;
+    const glm::dvec3 z = closest_point_on_triangle(c, w[0], w[1], w[2]);
+    glm::dvec3 u = c - z;
+    const double distance = glm::length(u);
+    if (distance > 0.0) {
+        u /= distance;
+    } else {
+        const glm::dvec3 n = glm::cross(w[1] - w[0], w[2] - w[0]);
+        const double length = glm::length(n);
+        u = length > 0.0 ? n / length : glm::dvec3(0.0, 1.0, 0.0);
+    }
+    const glm::dvec3 local = u * ellipsoid.sorted_axes();
+    const glm::dvec3 r = ellipsoid.sorted_radii();
+    const double h = r.x * glm::length(r / r.x * local);
+    const double depth = h - distance * scale;
+    return {depth, u, z * scale + 0.5 * depth * u};
+}
+
+/// Extreme configurations: solve at a power-of-two scale (exact) that brings the largest
+/// length near 1. Radii below 2^-200 of the largest are raised to it (sigma moves by less
+/// than that, far below one ulp of the largest radius), and an ellipsoid that is still below
+/// 2^-200 of the configuration acts as a point.
+Contact rescaled_contact(const Ellipsoid& ellipsoid, const std::array<glm::dvec3, 3>& v) {
+    const glm::dvec3& c = ellipsoid.center();
+    const glm::dmat3& axes = ellipsoid.sorted_axes();
+    const glm::dvec3 radii = glm::max(ellipsoid.sorted_radii(), glm::dvec3(ellipsoid.sorted_radii().x * 0x1p-200));
+    double raw_extent = radii.x;
+    for (int i = 0; i < 3; ++i) {
+        const glm::dvec3 d = glm::abs(v[i]) + glm::abs(c);
+        raw_extent = std::max({raw_extent, d.x, d.y, d.z});
+    }
+    const double scale = std::ldexp(1.0, std::ilogb(raw_extent));
+    if (radii.z / scale < 0x1p-200) return point_like_contact(ellipsoid, v, scale);
+    const glm::dvec3 center = c / scale;
+    detail::LocalTriangle local;
+    for (int i = 0; i < 3; ++i) {
+        local.q[i] = (v[i] / scale - center) * axes;
+        local.edge[i] = (v[(i + 1) % 3] / scale - v[i] / scale) * axes;
+    }
+    const detail::LocalContact solved = detail::contact_in_sorted_frame(radii / scale, local);
+    return {solved.depth * scale, axes * solved.u, c + axes * (solved.point * scale)};
+}
+
+}  // namespace
+
+Contact ellipsoid_triangle_contact(const Ellipsoid& ellipsoid, const Triangle& triangle) {
+    const glm::dvec3& c = ellipsoid.center();
+    if (!finite_triangle(triangle))
+        return {-std::numeric_limits<double>::infinity(), glm::dvec3(0.0, 1.0, 0.0), c};
+    const std::array<glm::dvec3, 3> v = canonical_vertices(triangle);
+    const glm::dmat3& axes = ellipsoid.sorted_axes();
+    const glm::dvec3& radii = ellipsoid.sorted_radii();
+    detail::LocalTriangle local;
+    for (int i = 0; i < 3; ++i) {
+        local.q[i] = (v[i] - c) * axes;  // row vector times M = M^T * column
+        local.edge[i] = (v[(i + 1) % 3] - v[i]) * axes;
+    }
+    // Lengths must keep their squares and cubes normal numbers: within [2^-300, 2^300] of
+    // each other and of 1, as every car and track does. Otherwise solve at a power-of-two
+    // scale (exact), or treat a vanishing ellipsoid as a point.
+    double extent = radii.x;
+    for (int i = 0; i < 3; ++i)
+        extent = std::max({extent, std::abs(local.q[i].x), std::abs(local.q[i].y),
+                           std::abs(local.q[i].z), std::abs(local.edge[i].x),
+                           std::abs(local.edge[i].y), std::abs(local.edge[i].z)});
+    if (!(extent < 0x1p300) || radii.z < 0x1p-300) return rescaled_contact(ellipsoid, v);
+    const detail::LocalContact solved = detail::contact_in_sorted_frame(radii, local);
+    return {solved.depth, axes * solved.u, c + axes * solved.point};
+}
+
+}  // namespace trackphys
