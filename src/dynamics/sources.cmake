@@ -1,4 +1,5 @@
 target_sources(trackphys PRIVATE
+  dynamics/car.cpp
   dynamics/car_spec.cpp
   dynamics/contact_force.cpp
   dynamics/rigid_body.cpp)

@@ -78,6 +78,16 @@ Ellipsoid::Ellipsoid(Unchecked, const glm::dvec3& center, const glm::dquat& orie
         sorted_axes_[2] = -sorted_axes_[2];
 }
 
+Ellipsoid Ellipsoid::transformed(const glm::dquat& rotation,
+                                  const glm::dvec3& translation) const {
+    Ellipsoid moved = *this;
+    const glm::dmat3 matrix = glm::mat3_cast(rotation);
+    moved.center_ = matrix * center_ + translation;
+    moved.orientation_ = rotation * orientation_;
+    moved.sorted_axes_ = matrix * sorted_axes_;
+    return moved;
+}
+
 glm::dvec3 Ellipsoid::to_sorted_local(const glm::dvec3& world_point) const {
     return (world_point - center_) * sorted_axes_;  // row vector times M = M^T * column
 }

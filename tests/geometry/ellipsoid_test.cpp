@@ -63,6 +63,27 @@ TEST(Ellipsoid, NormalisesTheOrientation) {
     EXPECT_EQ(e.sorted_radii(), glm::dvec3(3, 2, 1));
 }
 
+TEST(Ellipsoid, TransformedEqualsBuildingTheMovedEllipsoid) {
+    std::mt19937_64 rng(7);
+    std::normal_distribution<double> normal;
+    for (int i = 0; i < 1000; ++i) {
+        const glm::dquat local = glm::normalize(glm::dquat(normal(rng), normal(rng), normal(rng), normal(rng)));
+        const glm::dquat motion = glm::normalize(glm::dquat(normal(rng), normal(rng), normal(rng), normal(rng)));
+        const glm::dvec3 center(normal(rng), normal(rng), normal(rng));
+        const glm::dvec3 translation(normal(rng) * 100.0, normal(rng), normal(rng));
+        const glm::dvec3 axes(0.35, 0.15, 0.35);
+        const Ellipsoid body(center, local, axes);
+        const Ellipsoid moved = body.transformed(motion, translation);
+        const Ellipsoid rebuilt(motion * center + translation, motion * local, axes);
+        ASSERT_LE(glm::length(moved.center() - rebuilt.center()), 1e-12);
+        ASSERT_EQ(moved.sorted_radii(), rebuilt.sorted_radii());
+        for (int k = 0; k < 3; ++k)
+            ASSERT_LE(glm::length(moved.sorted_axes()[k] - rebuilt.sorted_axes()[k]), 1e-14);
+        const glm::dvec3 p(normal(rng), normal(rng), normal(rng));
+        ASSERT_LE(glm::length(moved.to_sorted_local(p) - rebuilt.to_sorted_local(p)), 1e-12);
+    }
+}
+
 TEST(Ellipsoid, RejectsInvalidInputWithAMessage) {
     const double nan = std::numeric_limits<double>::quiet_NaN();
     const double inf = std::numeric_limits<double>::infinity();

@@ -51,6 +51,12 @@ public:
     /// A sorted-frame direction in world space: sorted_axes() * v.
     glm::dvec3 sorted_direction_to_world(const glm::dvec3& v) const { return sorted_axes_ * v; }
 
+    /// This ellipsoid carried by the rigid motion x -> rotation * x + translation (a car's
+    /// body frame to the world): the radii stay sorted, nothing is validated again, so it
+    /// is cheap enough for every ellipsoid of every sub-step. rotation must be a unit
+    /// quaternion.
+    Ellipsoid transformed(const glm::dquat& rotation, const glm::dvec3& translation) const;
+
     /// Radius of the smallest sphere about center() that holds the ellipsoid (m).
     double bounding_radius() const { return sorted_radii_.x; }
     /// The tight axis-aligned world box.

@@ -1,0 +1,79 @@
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "trackphys/dynamics/car_spec.hpp"
+#include "trackphys/dynamics/contact_force.hpp"
+#include "trackphys/dynamics/rigid_body.hpp"
+#include "trackphys/export.hpp"
+#include "trackphys/geometry/aabb.hpp"
+#include "trackphys/geometry/contact.hpp"
+#include "trackphys/geometry/ellipsoid.hpp"
+
+namespace trackphys {
+
+/// The driver's controls. Out-of-range values are clamped by Car::set_inputs.
+struct CarInputs {
+    double throttle = 0.0;  ///< 0..1, fraction of the available drive force
+    double brake = 0.0;     ///< 0..1, fraction of the brake force
+    double steer = 0.0;     ///< -1..1, +1 = full left
+};
+
+/// A car: its spec (validated), its rigid-body state and its inputs, and the force laws
+/// that turn the contacts of its ellipsoids into a wrench on the body.
+class TRACKPHYS_API Car {
+public:
+    /// Throws trackphys::Error with CarSpec::validate()'s message for an invalid spec, or
+    /// naming the field of a non-finite initial state.
+    Car(CarSpec spec, const RigidBodyState& initial_state);
+
+    const CarSpec& spec() const { return spec_; }
+    const RigidBodyState& state() const { return state_; }
+    /// Replaces the state (teleport, restore). Throws trackphys::Error if not finite.
+    void set_state(const RigidBodyState& state);
+    const CarInputs& inputs() const { return inputs_; }
+    /// Sets the inputs, clamped to their ranges; NaN counts as 0 (no input).
+    void set_inputs(const CarInputs& inputs);
+
+    std::size_t ellipsoid_count() const { return body_ellipsoids_.size(); }
+    /// Ellipsoid i in the body frame (relative to the centre of mass).
+    const Ellipsoid& body_ellipsoid(std::size_t i) const { return body_ellipsoids_[i]; }
+    /// Ellipsoid i placed in the world by the current state.
+    Ellipsoid world_ellipsoid(std::size_t i) const {
+        return body_ellipsoids_[i].transformed(state_.orientation, state_.position);
+    }
+    /// Radius about the centre of mass of a sphere holding every ellipsoid (m).
+    double bounding_radius() const { return bounding_radius_; }
+    /// World box of the car's bounding sphere at the current state.
+    Aabb world_bounds() const { return Aabb{state_.position, state_.position}.padded(bounding_radius_); }
+
+    /// Speed of the centre of mass (m/s).
+    double speed() const;
+
+    /// The world force of ellipsoid i's deepest contact, applied at the contact point
+    /// (nothing unless the contact overlaps).
+    void add_contact_force(std::size_t i, const Contact& contact, Wrench& wrench) const;
+    /// Aerodynamic drag and downforce at the centre of mass.
+    void add_aero_force(Wrench& wrench) const;
+
+    /// Advances the state by h seconds under wrench and gravity.
+    void integrate(const Wrench& wrench, const glm::dvec3& gravity, double h) {
+        trackphys::integrate(state_, spec_.mass, wrench, gravity, h);
+    }
+
+private:
+    WheelCommand wheel_command(std::size_t i) const;
+
+    CarSpec spec_;
+    RigidBodyState state_;
+    CarInputs inputs_;
+    std::vector<Ellipsoid> body_ellipsoids_;
+    double bounding_radius_ = 0.0;
+    int driven_wheels_ = 0;
+    int wheels_ = 0;
+};
+
+}  // namespace trackphys

@@ -1,0 +1,82 @@
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "trackphys/collision/static_world.hpp"
+#include "trackphys/dynamics/car.hpp"
+#include "trackphys/export.hpp"
+#include "trackphys/geometry/normalized_triangle.hpp"
+#include "trackphys/geometry/triangle.hpp"
+#include "trackphys/profile/trace_recorder.hpp"
+#include "trackphys/profile/update_profile.hpp"
+#include "trackphys/world/world_settings.hpp"
+
+namespace trackphys {
+
+/// Static colliders (shared, immutable) and the cars that drive on them. update() runs
+/// DESIGN.md's loop for every car: broad phase over the whole update, then steps x
+/// sub-steps of cull, exact contact, deepest contact per ellipsoid, forces and integration.
+///
+/// Cars do not interact yet, so each car's update reads only the static world and its
+/// own state: the result does not depend on the order of the cars. Same inputs, same
+/// build -> bit-identical states (state_hash()).
+class TRACKPHYS_API World {
+public:
+    /// Throws trackphys::Error on a null static world or invalid settings.
+    explicit World(std::shared_ptr<const StaticWorld> statics, WorldSettings settings = {});
+
+    const WorldSettings& settings() const { return settings_; }
+    const StaticWorld& statics() const { return *statics_; }
+
+    /// Adds a car; returns its index (0, 1, 2... in order). Throws trackphys::Error for an
+    /// invalid spec or state (see Car).
+    std::size_t add_car(const CarSpec& spec, const RigidBodyState& state);
+    std::size_t car_count() const { return cars_.size(); }
+    Car& car(std::size_t i) { return cars_.at(i).car; }
+    const Car& car(std::size_t i) const { return cars_.at(i).car; }
+
+    /// Advances every car by settings().dt_update.
+    void update();
+
+    /// Simulated time (s) and number of updates run.
+    double time() const { return static_cast<double>(updates_) * settings_.dt_update; }
+    std::uint64_t update_count() const { return updates_; }
+
+    /// What the last update did: per-phase times (if settings().profile) and counts.
+    const UpdateProfile& last_profile() const { return profile_; }
+
+    /// FNV-1a hash of the bits of the update count and of every car's state and inputs:
+    /// equal hashes mean bit-identical simulations.
+    std::uint64_t state_hash() const;
+
+    /// Records every update's phases into trace (or stops, for nullptr). The recorder must
+    /// outlive its use here.
+    void set_trace(TraceRecorder* trace) { trace_ = trace; }
+
+private:
+    // Per-car working memory, kept between updates so a steady state allocates nothing.
+    struct CarSlot {
+        Car car;
+        std::vector<TriangleRef> candidates;           // broad phase, this update
+        std::vector<Triangle> triangles;               // the candidates' world triangles
+        std::vector<NormalizedTriangle> normalized;    // and their cull frames
+        std::vector<std::vector<std::uint32_t>> kept;  // per ellipsoid: culled survivors
+        std::vector<Contact> deepest;                  // per ellipsoid, this sub-step
+    };
+
+    void update_car(CarSlot& slot, PhaseStopwatch& watch);
+    void gather_candidates(CarSlot& slot);
+    void substep(CarSlot& slot, PhaseStopwatch& watch);
+
+    std::shared_ptr<const StaticWorld> statics_;
+    WorldSettings settings_;
+    std::vector<CarSlot> cars_;
+    std::uint64_t updates_ = 0;
+    UpdateProfile profile_;
+    TraceRecorder* trace_ = nullptr;
+};
+
+}  // namespace trackphys

@@ -1,0 +1,31 @@
+#pragma once
+
+#include <string>
+
+#include <glm/vec3.hpp>
+
+#include "trackphys/export.hpp"
+
+namespace trackphys {
+
+/// How a World steps (DESIGN.md, "The system in one picture"). The defaults are the
+/// write-up's: 100 updates a second, 10 steps of 4 sub-steps, so h = 0.25 ms.
+struct TRACKPHYS_API WorldSettings {
+    double dt_update = 0.01;                    ///< seconds per update()
+    int steps = 10;                             ///< steps per update
+    int substeps = 4;                           ///< sub-steps per step (integration steps)
+    glm::dvec3 gravity{0.0, -9.81, 0.0};        ///< m/s^2, world +Y is up
+    /// Extra broad-phase padding (m) beyond what the car can move in one update.
+    double broad_phase_margin = 0.05;
+    /// Measure per-phase times in the UpdateProfile (reads the clock a few times per
+    /// sub-step); counts are kept either way.
+    bool profile = true;
+
+    /// The sub-step (integration) time h = dt_update / (steps * substeps), seconds.
+    double substep_dt() const { return dt_update / (steps * substeps); }
+
+    /// Empty when every field is in range; otherwise the problem, naming the field.
+    std::string validate() const;
+};
+
+}  // namespace trackphys

@@ -1,0 +1,101 @@
+#include "trackphys/dynamics/car.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include "trackphys/error.hpp"
+#include "trackphys/math/types.hpp"
+
+namespace trackphys {
+namespace {
+
+void check_state(const RigidBodyState& state) {
+    if (!is_finite(state.position)) throw Error("car state: position is not finite");
+    if (!is_finite(state.orientation) || !(glm::length(state.orientation) > 0.5))
+        throw Error("car state: orientation must be a finite unit quaternion");
+    if (!is_finite(state.linear_velocity)) throw Error("car state: linear_velocity is not finite");
+    if (!is_finite(state.angular_velocity))
+        throw Error("car state: angular_velocity is not finite");
+}
+
+double clamp_input(double value, double low, double high) {
+    return std::isnan(value) ? 0.0 : std::clamp(value, low, high);
+}
+
+}  // namespace
+
+Car::Car(CarSpec spec, const RigidBodyState& initial_state) : spec_(std::move(spec)) {
+    if (std::string why = spec_.validate(); !why.empty()) throw Error(why);
+    set_state(initial_state);
+    for (const CarEllipsoid& e : spec_.ellipsoids) {
+        body_ellipsoids_.emplace_back(e.center, e.orientation, e.semi_axes);
+        bounding_radius_ = std::max(bounding_radius_, glm::length(e.center) +
+                                                          body_ellipsoids_.back().bounding_radius());
+        wheels_ += e.role != EllipsoidRole::body;
+        driven_wheels_ += e.role == EllipsoidRole::rear_wheel;
+    }
+}
+
+void Car::set_state(const RigidBodyState& state) {
+    check_state(state);
+    state_ = state;
+    state_.orientation = glm::normalize(state.orientation);
+}
+
+void Car::set_inputs(const CarInputs& inputs) {
+    inputs_ = {clamp_input(inputs.throttle, 0.0, 1.0), clamp_input(inputs.brake, 0.0, 1.0),
+               clamp_input(inputs.steer, -1.0, 1.0)};
+}
+
+double Car::speed() const { return glm::length(state_.linear_velocity); }
+
+WheelCommand Car::wheel_command(std::size_t i) const {
+    const CarEllipsoid& wheel = spec_.ellipsoids[i];
+    // Body +Z is forward; front wheels turn about body +Y (positive steer = left).
+    glm::dvec3 heading(0.0, 0.0, 1.0);
+    if (wheel.role == EllipsoidRole::front_wheel) {
+        const double angle = inputs_.steer * spec_.max_steer_angle;
+        heading = glm::dvec3(std::sin(angle), 0.0, std::cos(angle));
+    }
+    WheelCommand command;
+    command.heading = state_.orientation * heading;
+    if (wheel.role == EllipsoidRole::rear_wheel && driven_wheels_ > 0) {
+        // Constant force up to the speed where the power limit takes over: F = P / v.
+        const double available =
+            std::min(spec_.max_drive_force, spec_.max_drive_power / std::max(speed(), 1.0));
+        command.drive_force = inputs_.throttle * available / driven_wheels_;
+    }
+    command.brake_force = inputs_.brake * spec_.max_brake_force / std::max(wheels_, 1);
+    return command;
+}
+
+void Car::add_contact_force(std::size_t i, const Contact& contact, Wrench& wrench) const {
+    if (!(contact.depth > 0.0)) return;
+    const glm::dvec3 velocity = point_velocity(state_, contact.point);
+    const CarEllipsoid& e = spec_.ellipsoids[i];
+    const glm::dvec3 force =
+        e.role == EllipsoidRole::body
+            ? body_contact_force(spec_.body_contact, contact.depth, contact.normal, velocity)
+            : wheel_contact_force(spec_.wheel_contact, contact.depth, contact.normal, velocity,
+                                  wheel_command(i));
+    wrench.add_at_point(force, contact.point, state_.position);
+}
+
+void Car::add_aero_force(Wrench& wrench) const {
+    const glm::dvec3& v = state_.linear_velocity;
+    const double dynamic_pressure = 0.5 * spec_.air_density * glm::dot(v, v);
+    const double speed_now = std::sqrt(glm::dot(v, v));
+    if (speed_now > 0.0) wrench.force -= v * (dynamic_pressure * spec_.drag_area / speed_now);
+    // Downforce pushes along the body's down axis, in proportion to the forward speed.
+    const glm::dvec3 forward = state_.orientation * glm::dvec3(0.0, 0.0, 1.0);
+    const double forward_speed = glm::dot(v, forward);
+    const glm::dvec3 down = state_.orientation * glm::dvec3(0.0, -1.0, 0.0);
+    wrench.force += down * (0.5 * spec_.air_density * forward_speed * forward_speed *
+                            spec_.downforce_area);
+}
+
+}  // namespace trackphys

@@ -1,0 +1,3 @@
+target_sources(trackphys PRIVATE
+  world/world.cpp
+  world/world_settings.cpp)
