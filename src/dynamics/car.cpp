@@ -36,7 +36,7 @@ Car::Car(CarSpec spec, const RigidBodyState& initial_state) : spec_(std::move(sp
         bounding_radius_ = std::max(bounding_radius_, glm::length(e.center) +
                                                           body_ellipsoids_.back().bounding_radius());
         wheels_ += e.role != EllipsoidRole::body;
-        driven_wheels_ += e.role == EllipsoidRole::rear_wheel;
+        front_wheels_ += e.role == EllipsoidRole::front_wheel;
     }
 }
 
@@ -63,12 +63,17 @@ WheelCommand Car::wheel_command(std::size_t i) const {
     }
     WheelCommand command;
     command.heading = state_.orientation * heading;
-    if (wheel.role == EllipsoidRole::rear_wheel && driven_wheels_ > 0) {
-        // Constant force up to the speed where the power limit takes over: F = P / v.
+    if (wheel.role != EllipsoidRole::body) {
+        // Constant force up to the speed where the power limit takes over: F = P / v,
+        // split between the axles and then evenly between each axle's wheels.
         const double available =
             std::min(spec_.max_drive_force, spec_.max_drive_power / std::max(speed(), 1.0));
-        command.drive_force = inputs_.throttle * available / driven_wheels_;
+        const bool front = wheel.role == EllipsoidRole::front_wheel;
+        const double share = front ? spec_.front_drive_share : 1.0 - spec_.front_drive_share;
+        const int axle_wheels = front ? front_wheels_ : wheels_ - front_wheels_;
+        command.drive_force = inputs_.throttle * available * share / std::max(axle_wheels, 1);
     }
+    command.traction_limit = spec_.traction_limit;
     command.brake_force = inputs_.brake * spec_.max_brake_force / std::max(wheels_, 1);
     return command;
 }

@@ -15,11 +15,14 @@ CarSpec CarSpec::default_car() {
 
     // Wheels: the rolling radius is in the car's y-z plane, the width along x.
     const glm::dvec3 wheel_axes(0.15, 0.35, 0.35);
-    const double wheel_y = -0.30;  // wheel centres below the centre of mass
+    // A low centre of mass (0.5 m above the ground) and a wide track keep the static
+    // stability factor mu h / (track / 2) = 1.2 * 0.5 / 0.9 = 0.67 below 1: a car sliding
+    // sideways with full grip slides instead of tripping over its outer wheels.
+    const double wheel_y = -0.15;
     for (double side : {1.0, -1.0}) {
-        spec.ellipsoids.push_back({{0.85 * side, wheel_y, 1.45}, wheel_axes, {1, 0, 0, 0},
+        spec.ellipsoids.push_back({{0.9 * side, wheel_y, 1.45}, wheel_axes, {1, 0, 0, 0},
                                    EllipsoidRole::front_wheel});
-        spec.ellipsoids.push_back({{0.85 * side, wheel_y, -1.35}, wheel_axes, {1, 0, 0, 0},
+        spec.ellipsoids.push_back({{0.9 * side, wheel_y, -1.35}, wheel_axes, {1, 0, 0, 0},
                                    EllipsoidRole::rear_wheel});
     }
     // Body: nose, cabin, tail and a wide floor pan, all clear of the road at rest.
@@ -30,7 +33,7 @@ CarSpec CarSpec::default_car() {
 
     // Per wheel load m g / 4 = 2943 N; k = 2e5 N/m sags 1.5 cm; critical damping for a
     // quarter car is 2 sqrt(k m / 4) = 1.5e4 N s/m.
-    spec.wheel_contact = {2.0e5, 1.5e4, 1.4, 0.05};
+    spec.wheel_contact = {2.0e5, 1.5e4, 1.2, 0.05};
     // The body rarely touches; stiffer so a scrape does not sink it.
     spec.body_contact = {8.0e5, 3.0e4, 0.6, 0.05};
     return spec;
@@ -81,6 +84,10 @@ std::string CarSpec::validate() const {
     check_material(why, "wheel_contact", wheel_contact);
     check_non_negative(why, "max_drive_force", max_drive_force);
     check_non_negative(why, "max_drive_power", max_drive_power);
+    if (why.tellp() == 0 && !(front_drive_share >= 0.0 && front_drive_share <= 1.0))
+        why << "CarSpec.front_drive_share must be in [0, 1], got " << front_drive_share;
+    if (why.tellp() == 0 && !(traction_limit >= 0.0 && traction_limit <= 1.0))
+        why << "CarSpec.traction_limit must be in [0, 1], got " << traction_limit;
     check_non_negative(why, "max_brake_force", max_brake_force);
     check_non_negative(why, "max_steer_angle", max_steer_angle);
     if (why.tellp() == 0 && !(max_steer_angle < 1.5))

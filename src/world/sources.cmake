@@ -1,3 +1,4 @@
 target_sources(trackphys PRIVATE
+  world/autopilot.cpp
   world/world.cpp
   world/world_settings.cpp)

@@ -72,7 +72,7 @@ private:
     CarInputs inputs_;
     std::vector<Ellipsoid> body_ellipsoids_;
     double bounding_radius_ = 0.0;
-    int driven_wheels_ = 0;
+    int front_wheels_ = 0;
     int wheels_ = 0;
 };
 

@@ -14,8 +14,8 @@ namespace trackphys {
 /// What one of the car's ellipsoids does when it touches the road.
 enum class EllipsoidRole {
     body,        ///< chassis: spring-damper contact with plain Coulomb friction
-    front_wheel, ///< steered wheel: rolls along its heading, lateral grip
-    rear_wheel,  ///< driven wheel: rolls, takes drive and brake, lateral grip
+    front_wheel, ///< steered wheel: rolls along its heading, drive, brake, lateral grip
+    rear_wheel,  ///< fixed wheel: rolls, drive, brake, lateral grip
 };
 
 /// One ellipsoid of the car, fixed in the body frame (+Z forward, +Y up, +X left), relative
@@ -44,7 +44,13 @@ struct TRACKPHYS_API CarSpec {
     std::vector<CarEllipsoid> ellipsoids;
     ContactMaterial body_contact;
     ContactMaterial wheel_contact;
-    double max_drive_force = 2.0e4;     ///< N at the driven wheels, below the power limit
+    double max_drive_force = 2.0e4;     ///< N over all wheels, below the power limit
+    /// Share of the drive force at the front wheels (0 = rear-wheel drive, 1 = front).
+    double front_drive_share = 0.4;
+    /// Traction control and anti-lock brakes: a wheel's drive or brake force is at most
+    /// this share of its grip mu F_n, so that a spinning or locked wheel never uses up the
+    /// lateral grip that keeps the car on its line.
+    double traction_limit = 0.8;
     double max_drive_power = 6.0e6;     ///< W: drive force is min(max_drive_force, P / v)
     double max_brake_force = 3.0e4;     ///< N over all wheels, bounded by grip
     double max_steer_angle = 0.6;       ///< rad at full steer, at low speed

@@ -1,0 +1,59 @@
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "trackphys/dynamics/car.hpp"
+#include "trackphys/export.hpp"
+#include "trackphys/track/track.hpp"
+
+namespace trackphys {
+
+/// How the autopilot drives.
+struct AutopilotSettings {
+    double target_speed = 600.0 / 3.6;  ///< m/s on straights
+    /// Share of the tyres' friction the speed profile plans to use in turns (the rest is
+    /// margin for steering corrections and bumps).
+    double grip_use = 0.75;
+    /// Deceleration the profile plans for braking into turns (m/s^2, before downforce).
+    double braking = 9.0;
+    double lookahead_min = 10.0;        ///< m ahead of the car at low speed
+    double lookahead_time = 0.45;       ///< s of travel added to the look-ahead distance
+};
+
+/// Drives a car around a generated track unattended: a speed profile computed from the
+/// centreline (the fastest each turn's radius, bank, grip and downforce allow, with
+/// braking distance before it), throttle and brake to follow it, and pure-pursuit steering
+/// towards a point on the centreline ahead.
+class TRACKPHYS_API Autopilot {
+public:
+    Autopilot(const Track& track, const CarSpec& car, AutopilotSettings settings = {});
+
+    /// Inputs for the car's current state; also advances the progress along the track.
+    CarInputs drive(const Car& car);
+
+    /// The planned speed (m/s) at centreline sample i.
+    double planned_speed(std::size_t i) const { return planned_speed_[i]; }
+    /// The centreline sample nearest the car at the last drive() call.
+    std::size_t nearest_sample() const { return nearest_; }
+    /// Distance driven along the centreline since the start (m), laps included.
+    double distance_along() const { return laps_ * length_ + centerline_[nearest_].distance; }
+    /// Completed laps: times the car crossed the start line going forward.
+    int laps() const { return laps_; }
+
+private:
+    std::size_t find_nearest(const glm::dvec3& position) const;
+    std::size_t sample_ahead(std::size_t from, double distance) const;
+
+    std::vector<CenterlineSample> centerline_;
+    std::vector<double> planned_speed_;
+    double length_;
+    AutopilotSettings settings_;
+    double wheelbase_;
+    double max_steer_angle_;
+    std::size_t nearest_ = 0;
+    int laps_ = 0;
+    bool located_ = false;
+};
+
+}  // namespace trackphys

@@ -1,0 +1,139 @@
+#include "trackphys/world/autopilot.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include "trackphys/error.hpp"
+
+namespace trackphys {
+namespace {
+
+constexpr double g = 9.81;
+
+// The fastest steady speed through a banked turn of radius r and bank theta with friction
+// mu and aerodynamic downforce coefficient k = rho C_l A / 2 per unit mass (1/m). In the
+// road plane the tyres must supply m v^2/r cos(theta) - m g sin(theta), at most mu times
+// the normal load m g cos(theta) + m v^2/r sin(theta) + m k v^2, so
+//   v^2 (cos(theta)/r - mu sin(theta)/r - mu k) <= g (sin(theta) + mu cos(theta)).
+// A non-positive bracket means grip grows faster than the demand: no limit.
+double cornering_speed_limit(double radius, double bank, double mu, double k) {
+    const double demand = std::cos(bank) / radius - mu * std::sin(bank) / radius - mu * k;
+    if (demand <= 0.0) return std::numeric_limits<double>::infinity();
+    return std::sqrt(g * (std::sin(bank) + mu * std::cos(bank)) / demand);
+}
+
+}  // namespace
+
+Autopilot::Autopilot(const Track& track, const CarSpec& car, AutopilotSettings settings)
+    : centerline_(track.centerline), length_(track.length_m), settings_(settings) {
+    if (centerline_.size() < 3) throw Error("Autopilot: the track has no centreline");
+    if (!(settings_.target_speed > 0.0)) throw Error("Autopilot: target_speed must be > 0");
+
+    double front = -std::numeric_limits<double>::infinity();
+    double rear = std::numeric_limits<double>::infinity();
+    for (const CarEllipsoid& e : car.ellipsoids) {
+        if (e.role == EllipsoidRole::front_wheel) front = std::max(front, e.center.z);
+        if (e.role == EllipsoidRole::rear_wheel) rear = std::min(rear, e.center.z);
+    }
+    wheelbase_ = std::isfinite(front - rear) && front > rear ? front - rear : 2.5;
+    max_steer_angle_ = car.max_steer_angle;
+
+    // Speed profile: each sample's cornering limit (the bank helps only when it leans into
+    // the turn), then a backward pass so the car can brake down to every limit in time.
+    const double mu = settings_.grip_use * car.wheel_contact.friction;
+    const double k = 0.5 * car.air_density * car.downforce_area / car.mass.mass;
+    const std::size_t n = centerline_.size();
+    planned_speed_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        const CenterlineSample& s = centerline_[i];
+        const double radius = 1.0 / std::max(std::abs(s.curvature), 1e-9);
+        const double bank_into_turn = s.curvature >= 0.0 ? s.bank : -s.bank;
+        planned_speed_[i] =
+            std::min(settings_.target_speed, cornering_speed_limit(radius, bank_into_turn, mu, k));
+    }
+    // Two laps backwards so the limit carries across the start line.
+    for (std::size_t step = 0; step < 2 * n; ++step) {
+        const std::size_t i = (2 * n - 1 - step) % n;
+        const std::size_t next = (i + 1) % n;
+        double gap = centerline_[next].distance - centerline_[i].distance;
+        if (gap <= 0.0) gap += length_;
+        const double v_next = planned_speed_[next];
+        const double decel = settings_.braking + k * v_next * v_next * mu;
+        planned_speed_[i] = std::min(planned_speed_[i], std::sqrt(v_next * v_next + 2.0 * decel * gap));
+    }
+}
+
+std::size_t Autopilot::find_nearest(const glm::dvec3& position) const {
+    const std::size_t n = centerline_.size();
+    auto distance2 = [&](std::size_t i) {
+        const glm::dvec3 d = centerline_[i].position - position;
+        return glm::dot(d, d);
+    };
+    if (!located_) {  // first call: search everything
+        std::size_t best = 0;
+        for (std::size_t i = 1; i < n; ++i)
+            if (distance2(i) < distance2(best)) best = i;
+        return best;
+    }
+    // Afterwards the car is near where it was: search a window around the last sample.
+    constexpr std::size_t window = 400;
+    std::size_t best = nearest_;
+    for (std::size_t k = 1; k <= window; ++k) {
+        const std::size_t ahead = (nearest_ + k) % n;
+        const std::size_t behind = (nearest_ + n - (k % n)) % n;
+        if (distance2(ahead) < distance2(best)) best = ahead;
+        if (distance2(behind) < distance2(best)) best = behind;
+    }
+    return best;
+}
+
+std::size_t Autopilot::sample_ahead(std::size_t from, double distance) const {
+    const std::size_t n = centerline_.size();
+    std::size_t i = from;
+    double travelled = 0.0;
+    while (travelled < distance) {
+        const std::size_t next = (i + 1) % n;
+        double gap = centerline_[next].distance - centerline_[i].distance;
+        if (gap <= 0.0) gap += length_;
+        travelled += gap;
+        i = next;
+        if (i == from) break;
+    }
+    return i;
+}
+
+CarInputs Autopilot::drive(const Car& car) {
+    const RigidBodyState& state = car.state();
+    const std::size_t previous = nearest_;
+    nearest_ = find_nearest(state.position);
+    // Crossing the start line forwards: the index wraps from the last samples to the first.
+    const std::size_t n = centerline_.size();
+    if (located_ && previous > nearest_ && previous - nearest_ > n / 2) ++laps_;
+    if (located_ && nearest_ > previous && nearest_ - previous > n / 2 && laps_ > 0) --laps_;
+    located_ = true;
+
+    const double speed = car.speed();
+    CarInputs inputs;
+
+    // Speed: aim for the plan a little ahead (the car needs time to react).
+    const double target = planned_speed_[sample_ahead(nearest_, speed * 0.3 + 2.0)];
+    const double error = target - speed;
+    inputs.throttle = std::clamp(0.5 * error, 0.0, 1.0);
+    inputs.brake = std::clamp(-0.3 * error, 0.0, 1.0);
+
+    // Pure pursuit: steer onto the arc through the look-ahead point.
+    const double lookahead = settings_.lookahead_min + settings_.lookahead_time * speed;
+    const glm::dvec3 goal = centerline_[sample_ahead(nearest_, lookahead)].position;
+    const glm::dvec3 local = glm::conjugate(state.orientation) * (goal - state.position);
+    const double planar2 = local.x * local.x + local.z * local.z;
+    const double curvature = planar2 > 1e-6 ? 2.0 * local.x / planar2 : 0.0;
+    const double angle = std::atan(curvature * wheelbase_);
+    inputs.steer = std::clamp(angle / max_steer_angle_, -1.0, 1.0);
+    return inputs;
+}
+
+}  // namespace trackphys
