@@ -38,7 +38,7 @@ const StaticCollider& StaticWorld::collider(std::uint32_t id) const {
 void StaticWorld::query_aabb(const Aabb& box, std::vector<TriangleRef>& out) const {
     for (std::size_t i = 0; i < colliders_.size(); ++i)
         if (bounds_[i].overlaps(box))
-            colliders_[i]->query_aabb(box, static_cast<std::uint32_t>(i), out);
+            colliders_[i]->query_aabb_refs(box, static_cast<std::uint32_t>(i), out);
 }
 
 std::optional<WorldRayHit> StaticWorld::raycast(const glm::dvec3& origin,
