@@ -5,6 +5,7 @@
 #include "trackphys/assert.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/export.hpp"
+
 #include "trackphys/math/symmetric_eigen.hpp"
 #include "trackphys/math/types.hpp"
 
@@ -15,6 +16,11 @@
 #include "trackphys/geometry/triangle.hpp"
 #include "trackphys/geometry/triangle_mesh.hpp"
 
+#include "trackphys/collision/brute_force_collider.hpp"
+#include "trackphys/collision/bvh_node.hpp"
+#include "trackphys/collision/static_collider.hpp"
+#include "trackphys/collision/static_world.hpp"
+
 #include "trackphys/dynamics/car_spec.hpp"
 #include "trackphys/dynamics/contact_force.hpp"
 #include "trackphys/dynamics/rigid_body.hpp"
@@ -23,8 +29,8 @@
 #include "trackphys/profile/trace_recorder.hpp"
 #include "trackphys/profile/update_profile.hpp"
 
-#include "trackphys/io/mesh_io.hpp"
-
 #include "trackphys/track/track.hpp"
 #include "trackphys/track/track_params.hpp"
 #include "trackphys/track/track_stats.hpp"
+
+#include "trackphys/io/mesh_io.hpp"

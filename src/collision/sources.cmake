@@ -1,1 +1,7 @@
 # The collision part's sources: target_sources(trackphys PRIVATE collision/...).
+target_sources(trackphys PRIVATE
+  collision/brute_force_collider.cpp
+  collision/bvh_builder.cpp
+  collision/static_collider.cpp
+  collision/static_world.cpp
+  collision/triangle_predicates.cpp)

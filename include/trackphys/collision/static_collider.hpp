@@ -1,0 +1,134 @@
+#pragma once
+
+#include <array>
+#include <compare>
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "trackphys/collision/bvh_node.hpp"
+#include "trackphys/export.hpp"
+#include "trackphys/geometry/aabb.hpp"
+#include "trackphys/geometry/normalized_triangle.hpp"
+#include "trackphys/geometry/triangle.hpp"
+#include "trackphys/geometry/triangle_mesh.hpp"
+
+namespace trackphys {
+
+/// The closest hit of a ray cast.
+struct RayHit {
+    double distance;         ///< along the unit direction from the origin (m), in [0, max]
+    std::uint32_t triangle;  ///< index into the mesh's triangle list as given
+    glm::dvec3 normal;       ///< the triangle's unit CCW normal (not flipped toward the ray)
+};
+
+/// One triangle of one collider, as the world-level queries report it.
+struct TriangleRef {
+    std::uint32_t collider;  ///< id given by StaticWorld::add
+    std::uint32_t triangle;  ///< index into that collider's mesh triangle list
+
+    /// Ordered by collider, then triangle (sort candidates for a deterministic order).
+    auto operator<=>(const TriangleRef&) const = default;
+};
+
+/// A static triangle mesh ready for queries: validated, degenerate triangles dropped and
+/// counted, and a binned-SAH BVH over the rest (DESIGN.md, "Broad phase and mid phase").
+/// Immutable after construction, so one collider can be shared by any number of threads.
+///
+/// Every query has the exact meaning of its BruteForceCollider twin and returns exactly
+/// the same triangles: the BVH only skips what the predicate provably rejects.
+/// - query_aabb: the triangle's box (min/max of its double vertices) overlaps the query
+///   box, closed intervals as Aabb::overlaps.
+/// - query_sphere / query_capsule: the triangle's box overlaps the query shape's box, and
+///   its distance to the center (or segment), computed in double, is <= radius.
+/// - raycast: the closest two-sided hit (Moller-Trumbore in double), the distance clamped
+///   into the ray's span through the triangle's box; equal distances go to the lower index.
+/// Queries append to caller-owned vectors and use a fixed stack: no allocation once the
+/// vectors have grown to their working size.
+///
+/// Layout (bytes_used() counts it all): vertices in double, re-ordered by first use in leaf
+/// order and without unused ones (24 bytes each, ~12 a triangle on a shared-vertex mesh);
+/// per triangle, in leaf order, its three vertex indices (12) and mesh index (4); the
+/// inverse map mesh index -> leaf slot (4); ~0.45 32-byte nodes (~14). About 47 bytes a
+/// triangle on a track mesh, ~111 on a soup of unshared vertices. NormalizedTriangle frames
+/// are not stored: 120 bytes in double would break the 80-byte budget, every exact
+/// predicate needs the double vertices anyway, and a measured float per-slot box (24 bytes,
+/// to test leaves without reading vertices) did not speed up box queries and slowed rays
+/// (bench_collision_bvh). The mid phase builds the few hundred frames it culls per update
+/// with normalized_triangle().
+class TRACKPHYS_API StaticCollider {
+public:
+    /// Largest accepted |coordinate| (m): node bounds are float, and 1e18 m keeps every
+    /// bound, area and SAH cost finite.
+    static constexpr double kMaxCoordinate = 1e18;
+    /// Largest number of mesh triangles (leaf counts use 31 bits).
+    static constexpr std::size_t kMaxTriangles = 0x7fff'ffffu;
+
+    /// Validates the mesh and builds the BVH. Throws trackphys::Error naming the vertex or
+    /// triangle when a coordinate is not finite (or beyond kMaxCoordinate), an index is out
+    /// of range, or there are more than kMaxTriangles triangles.
+    explicit StaticCollider(const TriangleMesh& mesh);
+
+    /// Appends to `out` the mesh index of every kept triangle whose box overlaps `box`.
+    void query_aabb(const Aabb& box, std::vector<std::uint32_t>& out) const;
+    /// query_aabb appending (collider_id, triangle) pairs instead (the world's broad phase;
+    /// a separate name keeps query_aabb a single, pinned signature).
+    void query_aabb_refs(const Aabb& box, std::uint32_t collider_id,
+                         std::vector<TriangleRef>& out) const;
+    /// Appends every kept triangle within `radius` (m, finite, >= 0) of `center`.
+    /// Throws trackphys::Error on a non-finite center or a bad radius.
+    void query_sphere(const glm::dvec3& center, double radius,
+                      std::vector<std::uint32_t>& out) const;
+    /// Appends every kept triangle within `radius` of the segment [start, end]: the triangles a
+    /// sphere of that radius touches while it moves from start to end (a swept sphere).
+    void query_capsule(const glm::dvec3& start, const glm::dvec3& end, double radius,
+                       std::vector<std::uint32_t>& out) const;
+    /// The closest triangle hit by the ray origin + t * unit_dir, t in [0, max_distance].
+    /// Throws trackphys::Error if unit_dir is not unit length (within 1e-6), or an input is
+    /// not finite (max_distance may be +infinity) or max_distance is negative.
+    std::optional<RayHit> raycast(const glm::dvec3& origin, const glm::dvec3& unit_dir,
+                                  double max_distance) const;
+
+    /// Number of triangles in the mesh as given (valid triangle indices are below it).
+    std::size_t mesh_triangle_count() const { return triangle_to_slot_.size(); }
+    /// Number of triangles kept (the mesh's minus the degenerate ones).
+    std::size_t triangle_count() const { return slot_vertices_.size(); }
+    /// Number of degenerate triangles dropped at build (Triangle::is_degenerate()).
+    std::size_t degenerate_count() const { return mesh_triangle_count() - triangle_count(); }
+    /// True when mesh triangle `index` was kept (in range and not degenerate).
+    bool has_triangle(std::uint32_t index) const;
+    /// The kept mesh triangle `index` with its vertices exactly as given. Throws
+    /// trackphys::Error when the index is out of range or the triangle was dropped.
+    Triangle triangle(std::uint32_t index) const;
+    /// The NormalizedTriangle of kept triangle `index`, built on demand (see class notes).
+    NormalizedTriangle normalized_triangle(std::uint32_t index) const;
+
+    /// Box around every kept triangle (empty when none was kept).
+    const Aabb& bounds() const { return bounds_; }
+    /// The BVH nodes: root at 0 (when there is a triangle), node 1 unused.
+    const std::vector<BvhNode, CacheLineAllocator<BvhNode>>& nodes() const { return nodes_; }
+    /// Bytes of every structure the collider keeps (vector capacities included).
+    std::size_t bytes_used() const;
+
+private:
+    // Leaf slot s holds mesh triangle slot_to_triangle_[s]; its vertices are
+    // vertices_[slot_vertices_[s][k]], in the mesh's order (winding kept).
+    template <class Sink>
+    void visit_aabb(const Aabb& box, Sink&& sink) const;
+    template <class Predicate>
+    void visit_box_filtered(const Aabb& box, Predicate&& keep,
+                            std::vector<std::uint32_t>& out) const;
+    bool triangle_box_overlaps(std::uint32_t slot, const Aabb& box) const;
+
+    std::vector<glm::dvec3> vertices_;
+    std::vector<std::array<std::uint32_t, 3>> slot_vertices_;
+    std::vector<std::uint32_t> slot_to_triangle_;
+    std::vector<std::uint32_t> triangle_to_slot_;
+    std::vector<BvhNode, CacheLineAllocator<BvhNode>> nodes_;
+    Aabb bounds_;
+};
+
+}  // namespace trackphys

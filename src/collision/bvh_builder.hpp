@@ -1,0 +1,61 @@
+#pragma once
+
+// The binned-SAH builder behind StaticCollider (private). It only sees boxes: the collider
+// turns triangles into outward-rounded float boxes, the builder returns the nodes and the
+// leaf order, and the collider permutes its triangle data into that order.
+
+#include <cstdint>
+#include <vector>
+
+#include "trackphys/collision/bvh_node.hpp"
+#include "trackphys/geometry/aabb.hpp"
+
+namespace trackphys::collision_detail {
+
+/// A box in float, 24 bytes.
+struct FloatBox {
+    float min[3];
+    float max[3];
+};
+static_assert(sizeof(FloatBox) == 24);
+
+/// The float box that contains `box` exactly: each bound rounded outward (down for min, up
+/// for max), so double tests against it never reject what the double box would accept.
+FloatBox outward_float_box(const Aabb& box);
+
+/// A float box padded to four lanes (lane 3 is 0), so that box unions compile to
+/// four-wide min/max. 32 bytes.
+struct Box4 {
+    float lo[4];
+    float hi[4];
+};
+static_assert(sizeof(Box4) == 32);
+
+/// One primitive to build over: its box and its index in the caller's list. 36 bytes.
+struct BuildPrimitive {
+    Box4 box;
+    std::uint32_t index;
+
+    BuildPrimitive() = default;
+    BuildPrimitive(const FloatBox& b, std::uint32_t i)
+        : box{{b.min[0], b.min[1], b.min[2], 0.0f}, {b.max[0], b.max[1], b.max[2], 0.0f}},
+          index(i) {}
+};
+static_assert(sizeof(BuildPrimitive) == 36);
+
+/// Deepest a built tree gets: SAH splits up to kMaxSahDepth, then median splits that halve
+/// the count (at most 31 more levels); queries size their fixed stacks from this.
+inline constexpr int kMaxSahDepth = 48;
+inline constexpr int kMaxTreeDepth = kMaxSahDepth + 32;
+
+struct BuiltBvh {
+    std::vector<BvhNode, CacheLineAllocator<BvhNode>> nodes;  ///< root 0, node 1 unused
+    std::vector<std::uint32_t> order;  ///< leaf slot -> index of the primitive given
+};
+
+/// Builds the tree: binned SAH on centroids, all three axes, up to 16 bins (nodes above
+/// ~16k primitives bin a strided sample), leaves of up to 8 primitives, single-threaded.
+/// Deterministic: the same primitives give the same tree. Empty input -> no nodes.
+BuiltBvh build_bvh(std::vector<BuildPrimitive> primitives);
+
+}  // namespace trackphys::collision_detail

@@ -1,0 +1,240 @@
+#include "trackphys/collision/static_collider.hpp"
+
+#include <algorithm>
+#include <cstring>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "collision/collision_meshes.hpp"
+#include "trackphys/error.hpp"
+
+namespace trackphys {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+TriangleMesh single_triangle() {
+    TriangleMesh mesh;
+    mesh.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 0, -1}};  // CCW seen from +y: normal +y
+    mesh.triangles = {{0, 1, 2}};
+    return mesh;
+}
+
+std::string error_of(const TriangleMesh& mesh) {
+    try {
+        StaticCollider collider(mesh);
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "";
+}
+
+TEST(StaticCollider, RejectsInvalidMeshesWithMessages) {
+    TriangleMesh mesh = single_triangle();
+    mesh.vertices.push_back({0, 0, 0});
+    mesh.vertices[3].y = std::numeric_limits<double>::quiet_NaN();
+    EXPECT_NE(error_of(mesh).find("vertex 3 is not finite"), std::string::npos) << error_of(mesh);
+
+    mesh = single_triangle();
+    mesh.vertices[1].x = kInf;
+    EXPECT_NE(error_of(mesh).find("vertex 1"), std::string::npos);
+
+    mesh = single_triangle();
+    mesh.vertices[2].z = 2e18;
+    EXPECT_NE(error_of(mesh).find("vertex 2"), std::string::npos);
+
+    mesh = single_triangle();
+    mesh.triangles.push_back({0, 1, 7});
+    const std::string message = error_of(mesh);
+    EXPECT_NE(message.find("triangle 1"), std::string::npos) << message;
+    EXPECT_NE(message.find("vertex 7"), std::string::npos) << message;
+}
+
+TEST(StaticCollider, EmptyColliderAnswersNothing) {
+    const StaticCollider collider{TriangleMesh{}};
+    std::vector<std::uint32_t> out;
+    collider.query_aabb({glm::dvec3(-1e9), glm::dvec3(1e9)}, out);
+    collider.query_sphere(glm::dvec3(0.0), 1e9, out);
+    collider.query_capsule(glm::dvec3(0.0), glm::dvec3(1.0), 1e9, out);
+    EXPECT_TRUE(out.empty());
+    EXPECT_FALSE(collider.raycast(glm::dvec3(0.0), {0, -1, 0}, kInf));
+    EXPECT_TRUE(collider.bounds().empty());
+    EXPECT_EQ(collider.triangle_count(), 0u);
+}
+
+TEST(StaticCollider, SingleTriangle) {
+    const StaticCollider collider(single_triangle());
+    std::vector<std::uint32_t> out;
+    collider.query_aabb({{0.5, -1, -0.5}, {2, 1, 2}}, out);
+    EXPECT_EQ(out, std::vector<std::uint32_t>{0});
+    out.clear();
+    collider.query_aabb({{1.0, 0.0, 0.0}, {2, 1, 2}}, out);  // touches at the vertex (1, 0, 0)
+    EXPECT_EQ(out, std::vector<std::uint32_t>{0});
+    out.clear();
+    collider.query_aabb({{1.0 + 1e-12, 0.0, 0.0}, {2, 1, 2}}, out);
+    EXPECT_TRUE(out.empty());
+
+    collider.query_sphere({0.25, 0.5, -0.25}, 0.5, out);  // plane distance exactly 0.5
+    EXPECT_EQ(out, std::vector<std::uint32_t>{0});
+    out.clear();
+    collider.query_sphere({0.25, 0.5, -0.25}, 0.49, out);
+    EXPECT_TRUE(out.empty());
+    // The segment passes the edge z = 0 at 0.3 * sqrt(2) = 0.42426 m.
+    collider.query_capsule({-1, 0.3, 0.3}, {1, 0.3, 0.3}, 0.424, out);
+    EXPECT_TRUE(out.empty());
+    collider.query_capsule({-1, 0.3, 0.3}, {1, 0.3, 0.3}, 0.425, out);
+    EXPECT_EQ(out, std::vector<std::uint32_t>{0});
+    out.clear();
+    collider.query_capsule({0.2, 1, -0.2}, {0.2, -1, -0.2}, 0.0, out);  // pierces it
+    EXPECT_EQ(out, std::vector<std::uint32_t>{0});
+
+    const auto hit = collider.raycast({0.25, 2.0, -0.25}, {0, -1, 0}, kInf);
+    ASSERT_TRUE(hit);
+    EXPECT_EQ(hit->triangle, 0u);
+    EXPECT_DOUBLE_EQ(hit->distance, 2.0);
+    EXPECT_EQ(hit->normal, glm::dvec3(0, 1, 0));
+    EXPECT_FALSE(collider.raycast({0.25, 2.0, -0.25}, {0, -1, 0}, 1.999));
+    EXPECT_TRUE(collider.raycast({0.25, 2.0, -0.25}, {0, -1, 0}, 2.0));
+    EXPECT_FALSE(collider.raycast({0.25, 2.0, -0.25}, {0, 1, 0}, kInf));  // pointing away
+    EXPECT_FALSE(collider.raycast({0.75, 2.0, -0.75}, {0, -1, 0}, kInf));  // beside it
+}
+
+TEST(StaticCollider, QueriesFarOutsideFindNothing) {
+    const StaticCollider collider(test::BankedLoop{}.mesh(100));
+    std::vector<std::uint32_t> out;
+    collider.query_aabb({glm::dvec3(1e6), glm::dvec3(1e6 + 10)}, out);
+    collider.query_sphere(glm::dvec3(-1e7), 100.0, out);
+    collider.query_capsule(glm::dvec3(0, 1e5, 0), glm::dvec3(0, 1e5, 10), 50.0, out);
+    EXPECT_TRUE(out.empty());
+    EXPECT_FALSE(collider.raycast(glm::dvec3(0, 1e6, 0), {0, 1, 0}, kInf));
+    EXPECT_FALSE(collider.raycast(glm::dvec3(0, 1e6, 0), {0, -1, 0}, 1e5));
+    // ...and a box around everything finds every triangle.
+    collider.query_aabb(collider.bounds(), out);
+    EXPECT_EQ(out.size(), collider.triangle_count());
+}
+
+TEST(StaticCollider, RejectsBadQueries) {
+    const StaticCollider collider(single_triangle());
+    std::vector<std::uint32_t> out;
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    EXPECT_THROW(collider.query_sphere({0, 0, 0}, -1.0, out), Error);
+    EXPECT_THROW(collider.query_sphere({nan, 0, 0}, 1.0, out), Error);
+    EXPECT_THROW(collider.query_capsule({0, 0, 0}, {0, 0, 0}, kInf, out), Error);
+    EXPECT_THROW(collider.raycast({0, 0, 0}, {0, 2, 0}, 1.0), Error);
+    EXPECT_THROW(collider.raycast({0, 0, 0}, {0, 1, 0}, -1.0), Error);
+    EXPECT_THROW(collider.raycast({0, 0, 0}, {0, 1, 0}, nan), Error);
+}
+
+TEST(StaticCollider, KeepsTrianglesAsGivenAndDropsDegenerateOnes) {
+    std::size_t degenerate = 0;
+    const TriangleMesh mesh = test::nasty_mesh(5, &degenerate);
+    const StaticCollider collider(mesh);
+    EXPECT_EQ(collider.degenerate_count(), degenerate);
+    EXPECT_EQ(collider.mesh_triangle_count(), mesh.triangles.size());
+    std::size_t kept = 0;
+    for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t) {
+        const Triangle given(mesh.vertices[mesh.triangles[t][0]], mesh.vertices[mesh.triangles[t][1]],
+                             mesh.vertices[mesh.triangles[t][2]]);
+        ASSERT_EQ(collider.has_triangle(t), !given.is_degenerate()) << "triangle " << t;
+        if (!collider.has_triangle(t)) {
+            EXPECT_THROW(collider.triangle(t), Error);
+            continue;
+        }
+        ++kept;
+        EXPECT_EQ(collider.triangle(t).vertices, given.vertices) << "triangle " << t;
+    }
+    EXPECT_EQ(kept, collider.triangle_count());
+    EXPECT_THROW(collider.triangle(static_cast<std::uint32_t>(mesh.triangles.size())), Error);
+
+    // A box around everything returns each kept triangle exactly once, never a dropped one.
+    std::vector<std::uint32_t> all;
+    collider.query_aabb(collider.bounds(), all);
+    std::sort(all.begin(), all.end());
+    EXPECT_EQ(std::adjacent_find(all.begin(), all.end()), all.end());
+    EXPECT_EQ(all.size(), kept);
+}
+
+// The tree's own contract, checked on its nodes: every triangle slot in exactly one leaf,
+// each node's box holding its children's boxes, subtree counts adding up.
+TEST(StaticCollider, TreeInvariants) {
+    const TriangleMesh mesh = test::random_soup(3000, 9);
+    const StaticCollider collider(mesh);
+    const auto& nodes = collider.nodes();
+    ASSERT_GE(nodes.size(), 3u);
+    std::vector<int> seen(collider.triangle_count(), 0);
+    struct Item {
+        std::uint32_t node, first;
+    };
+    std::vector<Item> stack{{0, 0}};
+    std::size_t leaves = 0;
+    while (!stack.empty()) {
+        const Item item = stack.back();
+        stack.pop_back();
+        const BvhNode& n = nodes[item.node];
+        if (n.is_leaf()) {
+            ++leaves;
+            ASSERT_EQ(n.first, item.first);
+            ASSERT_GE(n.count(), 1u);
+            ASSERT_LE(n.count(), 8u);
+            for (std::uint32_t s = n.first; s < n.first + n.count(); ++s) ++seen[s];
+            continue;
+        }
+        const BvhNode& l = nodes[n.first];
+        const BvhNode& r = nodes[n.first + 1];
+        ASSERT_EQ(l.count() + r.count(), n.count());
+        for (int a = 0; a < 3; ++a) {
+            ASSERT_LE(n.min[a], std::min(l.min[a], r.min[a]));
+            ASSERT_GE(n.max[a], std::max(l.max[a], r.max[a]));
+        }
+        stack.push_back({n.first, item.first});
+        stack.push_back({n.first + 1, item.first + l.count()});
+    }
+    EXPECT_TRUE(std::all_of(seen.begin(), seen.end(), [](int k) { return k == 1; }));
+    EXPECT_EQ(nodes.size(), 2 * leaves);  // 2 leaves - 1 nodes, plus the unused node 1
+    EXPECT_LE(collider.bytes_used(), 200 * mesh.triangles.size());
+}
+
+}  // namespace
+}  // namespace trackphys
+
+namespace trackphys {
+namespace {
+
+// Same mesh, same tree, same answers in the same order (DESIGN.md: determinism).
+TEST(StaticCollider, BuildsAreDeterministic) {
+    const TriangleMesh mesh = test::random_soup(5000, 77);
+    const StaticCollider a(mesh), b(mesh);
+    ASSERT_EQ(a.nodes().size(), b.nodes().size());
+    EXPECT_EQ(std::memcmp(a.nodes().data(), b.nodes().data(), a.nodes().size() * sizeof(BvhNode)), 0);
+    std::vector<std::uint32_t> out_a, out_b;
+    a.query_aabb({glm::dvec3(-50.0), glm::dvec3(20.0)}, out_a);
+    b.query_aabb({glm::dvec3(-50.0), glm::dvec3(20.0)}, out_b);
+    EXPECT_EQ(out_a, out_b);
+    EXPECT_FALSE(out_a.empty());
+}
+
+// Queries append into the caller's vector and nothing else grows: once it has the
+// capacity, repeated queries keep the same storage.
+TEST(StaticCollider, ReusedBuffersDoNotReallocate) {
+    const test::BankedLoop loop;
+    const StaticCollider collider(loop.mesh(400));
+    std::vector<std::uint32_t> out;
+    out.reserve(4096);
+    const std::uint32_t* storage = out.data();
+    for (int i = 0; i < 200; ++i) {
+        out.clear();
+        collider.query_aabb(loop.car_box(i / 200.0, 2.8, 0.5), out);
+        ASSERT_FALSE(out.empty());
+        collider.query_capsule(loop.frame(i / 200.0).center, loop.frame(i / 200.0).center + 0.3, 0.5,
+                               out);
+        ASSERT_EQ(out.data(), storage);
+    }
+}
+
+}  // namespace
+}  // namespace trackphys
