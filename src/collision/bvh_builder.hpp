@@ -53,8 +53,8 @@ struct BuiltBvh {
     std::vector<std::uint32_t> order;  ///< leaf slot -> index of the primitive given
 };
 
-/// Builds the tree (binned SAH on centroids, all three axes, up to 16 bins; leaves of up to
-/// 8 primitives).
+/// Builds the tree: binned SAH on centroids, all three axes, up to 16 bins (nodes above
+/// ~16k primitives bin a strided sample), leaves of up to 8 primitives, single-threaded.
 /// Deterministic: the same primitives give the same tree. Empty input -> no nodes.
 BuiltBvh build_bvh(std::vector<BuildPrimitive> primitives);
 

@@ -137,8 +137,8 @@ void StaticCollider::query_aabb(const Aabb& box, std::vector<std::uint32_t>& out
     visit_aabb(box, Sink{*this, out});
 }
 
-void StaticCollider::query_aabb(const Aabb& box, std::uint32_t collider_id,
-                                std::vector<TriangleRef>& out) const {
+void StaticCollider::query_aabb_refs(const Aabb& box, std::uint32_t collider_id,
+                                     std::vector<TriangleRef>& out) const {
     struct Sink {
         const StaticCollider& self;
         std::uint32_t collider;

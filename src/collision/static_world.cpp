@@ -28,10 +28,17 @@ std::uint32_t StaticWorld::add(std::shared_ptr<const StaticCollider> collider) {
     return static_cast<std::uint32_t>(colliders_.size() - 1);
 }
 
+const StaticCollider& StaticWorld::collider(std::uint32_t id) const {
+    if (id >= colliders_.size())
+        throw Error("StaticWorld: no collider " + std::to_string(id) + " (the world has " +
+                    std::to_string(colliders_.size()) + ")");
+    return *colliders_[id];
+}
+
 void StaticWorld::query_aabb(const Aabb& box, std::vector<TriangleRef>& out) const {
     for (std::size_t i = 0; i < colliders_.size(); ++i)
         if (bounds_[i].overlaps(box))
-            colliders_[i]->query_aabb(box, static_cast<std::uint32_t>(i), out);
+            colliders_[i]->query_aabb_refs(box, static_cast<std::uint32_t>(i), out);
 }
 
 std::optional<WorldRayHit> StaticWorld::raycast(const glm::dvec3& origin,

@@ -36,6 +36,9 @@ TEST(StaticWorld, MatchesBruteForceOverColliders) {
         brute.emplace_back(mesh);
     }
     EXPECT_THROW(world.add(nullptr), Error);
+    EXPECT_EQ(world.size(), 3u);
+    EXPECT_EQ(world.collider(1).triangle_count(), brute[1].triangle_count());
+    EXPECT_THROW(world.collider(3), Error);
 
     std::mt19937_64 rng(99);
     std::uniform_real_distribution<double> u01(0.0, 1.0), unit(-1.0, 1.0);

@@ -74,9 +74,10 @@ public:
 
     /// Appends to `out` the mesh index of every kept triangle whose box overlaps `box`.
     void query_aabb(const Aabb& box, std::vector<std::uint32_t>& out) const;
-    /// The same, appending (collider_id, triangle) pairs (the world's broad phase).
-    void query_aabb(const Aabb& box, std::uint32_t collider_id,
-                    std::vector<TriangleRef>& out) const;
+    /// query_aabb appending (collider_id, triangle) pairs instead (the world's broad phase;
+    /// a separate name keeps query_aabb a single, pinned signature).
+    void query_aabb_refs(const Aabb& box, std::uint32_t collider_id,
+                         std::vector<TriangleRef>& out) const;
     /// Appends every kept triangle within `radius` (m, finite, >= 0) of `center`.
     /// Throws trackphys::Error on a non-finite center or a bad radius.
     void query_sphere(const glm::dvec3& center, double radius,

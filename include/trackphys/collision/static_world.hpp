@@ -34,8 +34,10 @@ public:
     /// trackphys::Error on a null pointer.
     std::uint32_t add(std::shared_ptr<const StaticCollider> collider);
 
+    /// Number of colliders (ids are 0 .. size() - 1).
     std::size_t size() const { return colliders_.size(); }
-    const StaticCollider& collider(std::uint32_t id) const { return *colliders_.at(id); }
+    /// Collider `id`; throws trackphys::Error for an id never returned by add().
+    const StaticCollider& collider(std::uint32_t id) const;
 
     /// Appends (collider, triangle) for every kept triangle whose box overlaps `box`,
     /// colliders in id order (StaticCollider::query_aabb within each).
