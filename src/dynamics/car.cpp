@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <utility>
 
 #include <glm/geometric.hpp>
@@ -53,7 +54,7 @@ void Car::set_inputs(const CarInputs& inputs) {
 
 double Car::speed() const { return glm::length(state_.linear_velocity); }
 
-WheelCommand Car::wheel_command(std::size_t i) const {
+WheelCommand Car::wheel_command(std::size_t i, double axle_normal_force) const {
     const CarEllipsoid& wheel = spec_.ellipsoids[i];
     // Body +Z is forward; front wheels turn about body +Y (positive steer = left).
     glm::dvec3 heading(0.0, 0.0, 1.0);
@@ -63,31 +64,50 @@ WheelCommand Car::wheel_command(std::size_t i) const {
     }
     WheelCommand command;
     command.heading = state_.orientation * heading;
-    if (wheel.role != EllipsoidRole::body) {
-        // Constant force up to the speed where the power limit takes over: F = P / v,
-        // split between the axles and then evenly between each axle's wheels.
-        const double available =
-            std::min(spec_.max_drive_force, spec_.max_drive_power / std::max(speed(), 1.0));
-        const bool front = wheel.role == EllipsoidRole::front_wheel;
-        const double share = front ? spec_.front_drive_share : 1.0 - spec_.front_drive_share;
-        const int axle_wheels = front ? front_wheels_ : wheels_ - front_wheels_;
-        command.drive_force = inputs_.throttle * available * share / std::max(axle_wheels, 1);
-    }
-    command.traction_limit = spec_.traction_limit;
-    command.brake_force = inputs_.brake * spec_.max_brake_force / std::max(wheels_, 1);
+    // Drive and brake are split between the axles, then evenly between an axle's wheels.
+    // Drive is a constant force up to the speed where the power limit takes over: F = P / v.
+    const bool front = wheel.role == EllipsoidRole::front_wheel;
+    const int axle_wheels = std::max(front ? front_wheels_ : wheels_ - front_wheels_, 1);
+    const double drive_share = front ? spec_.front_drive_share : 1.0 - spec_.front_drive_share;
+    const double brake_share = front ? spec_.front_brake_share : 1.0 - spec_.front_brake_share;
+    const double available =
+        std::min(spec_.max_drive_force, spec_.max_drive_power / std::max(speed(), 1.0));
+    command.drive_force = inputs_.throttle * available * drive_share / axle_wheels;
+    command.brake_force = inputs_.brake * spec_.max_brake_force * brake_share / axle_wheels;
+    command.max_along_force =
+        spec_.traction_limit * spec_.wheel_contact.friction * axle_normal_force;
     return command;
 }
 
-void Car::add_contact_force(std::size_t i, const Contact& contact, Wrench& wrench) const {
-    if (!(contact.depth > 0.0)) return;
-    const glm::dvec3 velocity = point_velocity(state_, contact.point);
-    const CarEllipsoid& e = spec_.ellipsoids[i];
-    const glm::dvec3 force =
-        e.role == EllipsoidRole::body
-            ? body_contact_force(spec_.body_contact, contact.depth, contact.normal, velocity)
-            : wheel_contact_force(spec_.wheel_contact, contact.depth, contact.normal, velocity,
-                                  wheel_command(i));
-    wrench.add_at_point(force, contact.point, state_.position);
+Wrench Car::contact_wrench(std::span<const Contact> deepest) const {
+    // Normal loads first: the least loaded wheel of each axle bounds its drive and brake.
+    double front_load = std::numeric_limits<double>::infinity();
+    double rear_load = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < deepest.size(); ++i) {
+        const EllipsoidRole role = spec_.ellipsoids[i].role;
+        if (role == EllipsoidRole::body) continue;
+        const double load = normal_force(spec_.wheel_contact, deepest[i].depth, deepest[i].normal,
+                                         point_velocity(state_, deepest[i].point));
+        double& axle = role == EllipsoidRole::front_wheel ? front_load : rear_load;
+        axle = std::min(axle, load);
+    }
+
+    Wrench wrench;
+    for (std::size_t i = 0; i < deepest.size(); ++i) {
+        const Contact& contact = deepest[i];
+        if (!(contact.depth > 0.0)) continue;
+        const glm::dvec3 velocity = point_velocity(state_, contact.point);
+        const EllipsoidRole role = spec_.ellipsoids[i].role;
+        const glm::dvec3 force =
+            role == EllipsoidRole::body
+                ? body_contact_force(spec_.body_contact, contact.depth, contact.normal, velocity)
+                : wheel_contact_force(
+                      spec_.wheel_contact, contact.depth, contact.normal, velocity,
+                      wheel_command(i, role == EllipsoidRole::front_wheel ? front_load : rear_load));
+        wrench.add_at_point(force, contact.point, state_.position);
+    }
+    add_aero_force(wrench);
+    return wrench;
 }
 
 void Car::add_aero_force(Wrench& wrench) const {

@@ -86,6 +86,8 @@ std::string CarSpec::validate() const {
     check_non_negative(why, "max_drive_power", max_drive_power);
     if (why.tellp() == 0 && !(front_drive_share >= 0.0 && front_drive_share <= 1.0))
         why << "CarSpec.front_drive_share must be in [0, 1], got " << front_drive_share;
+    if (why.tellp() == 0 && !(front_brake_share >= 0.0 && front_brake_share <= 1.0))
+        why << "CarSpec.front_brake_share must be in [0, 1], got " << front_brake_share;
     if (why.tellp() == 0 && !(traction_limit >= 0.0 && traction_limit <= 1.0))
         why << "CarSpec.traction_limit must be in [0, 1], got " << traction_limit;
     check_non_negative(why, "max_brake_force", max_brake_force);

@@ -55,10 +55,8 @@ glm::dvec3 wheel_contact_force(const ContactMaterial& material, double depth,
     const double sideways_speed = glm::dot(slip, lateral);
     const double brake = command.brake_force *
                          std::clamp(rolling_speed / material.slip_speed, -1.0, 1.0);
-    // Traction control and anti-lock braking: the along-track force never takes more than
-    // traction_limit of the grip, so some lateral grip is always left to steer with.
-    const double along_limit = command.traction_limit * grip;
-    double along = std::clamp(command.drive_force - brake, -along_limit, along_limit);
+    double along = std::clamp(command.drive_force - brake, -command.max_along_force,
+                              command.max_along_force);
     double across = -grip * std::clamp(sideways_speed / material.slip_speed, -1.0, 1.0);
 
     // Friction circle: the tyre cannot transmit more than mu F_n in total.

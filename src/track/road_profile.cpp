@@ -15,6 +15,11 @@ constexpr double kGridSpacing = 0.5;
 // Half-width of each of the two box filters that smooth the curvature for banking (m);
 // together a triangle window of +-40 m, about the length of a tight hairpin.
 constexpr double kBankSmoothingHalfWidth = 20.0;
+// Half-width of the box filter over the bank itself (m): the bank saturates at its maximum
+// in every turn tighter than full_bank_radius_m, so between two opposite turns it would
+// swing from one side to the other within a few metres. Spreading each swing over 120 m
+// keeps the road's twist gentle enough for a car's four wheels to stay on it.
+constexpr double kBankTransitionHalfWidth = 60.0;
 
 // Periodic moving average over 2 * half + 1 grid points.
 std::vector<double> box_filter(const std::vector<double>& in, std::size_t half) {
@@ -56,9 +61,12 @@ RoadProfile make_road_profile(const BezierLoop& loop, const TrackParams& params)
     const std::vector<double> smooth = box_filter(box_filter(curvature, half), half);
 
     const double max_bank = params.max_bank_deg * std::numbers::pi / 180.0;
-    profile.bank.resize(n);
+    std::vector<double> saturated(n);
     for (std::size_t k = 0; k < n; ++k)
-        profile.bank[k] = max_bank * std::clamp(smooth[k] * params.full_bank_radius_m, -1.0, 1.0);
+        saturated[k] = max_bank * std::clamp(smooth[k] * params.full_bank_radius_m, -1.0, 1.0);
+    const auto transition =
+        static_cast<std::size_t>(std::lround(kBankTransitionHalfWidth / profile.grid_spacing));
+    profile.bank = box_filter(saturated, transition);
 
     // Row density (rows per metre) at each grid point, then its running integral
     // (trapezoids) over the closed loop.

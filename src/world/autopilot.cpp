@@ -131,7 +131,14 @@ CarInputs Autopilot::drive(const Car& car) {
     const glm::dvec3 local = glm::conjugate(state.orientation) * (goal - state.position);
     const double planar2 = local.x * local.x + local.z * local.z;
     const double curvature = planar2 > 1e-6 ? 2.0 * local.x / planar2 : 0.0;
-    const double angle = std::atan(curvature * wheelbase_);
+    // Yaw damping, like a stability control: steer against the difference between the
+    // yaw rate the arc asks for (v kappa) and the car's, which catches a sliding or
+    // spinning car long before the look-ahead point would.
+    const glm::dvec3 up = state.orientation * glm::dvec3(0.0, 1.0, 0.0);
+    const double yaw_rate = glm::dot(state.angular_velocity, up);
+    const double yaw_error = speed * curvature - yaw_rate;
+    const double angle = std::atan(curvature * wheelbase_) +
+                         settings_.yaw_damping * wheelbase_ * yaw_error / std::max(speed, 5.0);
     inputs.steer = std::clamp(angle / max_steer_angle_, -1.0, 1.0);
     return inputs;
 }

@@ -106,10 +106,7 @@ void World::substep(CarSlot& slot, PhaseStopwatch& watch) {
     }
     watch.lap(Phase::exact);
 
-    Wrench wrench;
-    for (std::size_t i = 0; i < ellipsoids; ++i) car.add_contact_force(i, slot.deepest[i], wrench);
-    car.add_aero_force(wrench);
-    car.integrate(wrench, settings_.gravity, settings_.substep_dt());
+    car.integrate(car.contact_wrench(slot.deepest), settings_.gravity, settings_.substep_dt());
     watch.lap(Phase::integrate);
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstddef>
+#include <span>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -53,11 +54,15 @@ public:
     /// Speed of the centre of mass (m/s).
     double speed() const;
 
-    /// The world force of ellipsoid i's deepest contact, applied at the contact point
-    /// (nothing unless the contact overlaps).
-    void add_contact_force(std::size_t i, const Contact& contact, Wrench& wrench) const;
-    /// Aerodynamic drag and downforce at the centre of mass.
-    void add_aero_force(Wrench& wrench) const;
+    /// The wrench on the car this sub-step: each ellipsoid's deepest contact (one per
+    /// ellipsoid, in order; depth <= 0 for none) turned into a force at its point, plus
+    /// aerodynamic drag and downforce at the centre of mass.
+    ///
+    /// Drive and brake act per axle like an open differential with anti-lock brakes:
+    /// each wheel of an axle gets the same share, at most traction_limit of the grip of the
+    /// axle's least loaded wheel, so a wheel in the air never leaves its partner pulling
+    /// the car sideways.
+    Wrench contact_wrench(std::span<const Contact> deepest) const;
 
     /// Advances the state by h seconds under wrench and gravity.
     void integrate(const Wrench& wrench, const glm::dvec3& gravity, double h) {
@@ -65,7 +70,8 @@ public:
     }
 
 private:
-    WheelCommand wheel_command(std::size_t i) const;
+    WheelCommand wheel_command(std::size_t i, double axle_normal_force) const;
+    void add_aero_force(Wrench& wrench) const;
 
     CarSpec spec_;
     RigidBodyState state_;

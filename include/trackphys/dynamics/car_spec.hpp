@@ -53,6 +53,9 @@ struct TRACKPHYS_API CarSpec {
     double traction_limit = 0.8;
     double max_drive_power = 6.0e6;     ///< W: drive force is min(max_drive_force, P / v)
     double max_brake_force = 3.0e4;     ///< N over all wheels, bounded by grip
+    /// Share of the brake force at the front wheels: more than half, so that the rear
+    /// keeps its grip under braking and the car stays straight.
+    double front_brake_share = 0.6;
     double max_steer_angle = 0.6;       ///< rad at full steer, at low speed
     double drag_area = 0.35;            ///< C_d A (m^2): drag 1/2 rho C_d A v^2
     double downforce_area = 0.9;        ///< C_l A (m^2): downforce 1/2 rho C_l A v^2

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <limits>
+
 #include <glm/vec3.hpp>
 
 #include "trackphys/dynamics/car_spec.hpp"
@@ -28,12 +30,12 @@ struct WheelCommand {
     glm::dvec3 heading{0.0, 0.0, 1.0};  ///< world direction the wheel rolls in (steered)
     double drive_force = 0.0;           ///< N forward along the heading (>= 0)
     double brake_force = 0.0;           ///< N against the rolling velocity (>= 0)
-    /// Drive minus brake is at most this share of the wheel's grip mu F_n either way
-    /// (traction control and anti-lock brakes).
-    double traction_limit = 1.0;
+    /// Drive minus brake is at most this force either way (N): traction control and
+    /// anti-lock brakes set it from the grip of the axle's least loaded wheel.
+    double max_along_force = std::numeric_limits<double>::infinity();
 };
 
-/// A wheel: normal force; drive and brake (together up to traction_limit of the grip) along the
+/// A wheel: normal force; drive and brake (together up to max_along_force) along the
 /// heading projected onto the contact plane; lateral grip as regularised Coulomb friction against sideways slip; the
 /// tangential total limited to the friction circle mu F_n.
 TRACKPHYS_API glm::dvec3 wheel_contact_force(const ContactMaterial& material, double depth,

@@ -16,9 +16,11 @@ struct AutopilotSettings {
     /// margin for steering corrections and bumps).
     double grip_use = 0.75;
     /// Deceleration the profile plans for braking into turns (m/s^2, before downforce).
-    double braking = 9.0;
+    double braking = 6.0;
     double lookahead_min = 10.0;        ///< m ahead of the car at low speed
     double lookahead_time = 0.45;       ///< s of travel added to the look-ahead distance
+    /// Gain of the yaw-rate feedback in the steering (0 = pure pursuit only).
+    double yaw_damping = 0.5;
 };
 
 /// Drives a car around a generated track unattended: a speed profile computed from the
