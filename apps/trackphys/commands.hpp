@@ -9,6 +9,7 @@ namespace trackphys::cli {
 // reports failure by throwing (trackphys::Error or CLI::Error); main turns that into a
 // message on stderr and a non-zero exit.
 
+void add_drive_command(CLI::App& app);
 void add_track_command(CLI::App& app);
 void add_info_command(CLI::App& app);
 

@@ -10,6 +10,7 @@ int main(int argc, char** argv) {
     CLI::App app{"trackphys: racing-game physics, ellipsoid cars on triangle-mesh tracks",
                  "trackphys"};
     app.require_subcommand(1);
+    trackphys::cli::add_drive_command(app);
     trackphys::cli::add_track_command(app);
     trackphys::cli::add_info_command(app);
 

@@ -42,3 +42,4 @@
 #include "trackphys/track/track_stats.hpp"
 
 #include "trackphys/io/mesh_io.hpp"
+#include "trackphys/io/recording.hpp"

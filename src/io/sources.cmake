@@ -1,4 +1,5 @@
 # The io part's sources: target_sources(trackphys PRIVATE io/...).
 target_sources(trackphys PRIVATE
   io/mesh_export.cpp
-  io/mesh_import.cpp)
+  io/mesh_import.cpp
+  io/recording.cpp)

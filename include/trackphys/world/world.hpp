@@ -3,6 +3,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "trackphys/collision/static_world.hpp"
@@ -37,6 +38,10 @@ public:
     std::size_t car_count() const { return cars_.size(); }
     Car& car(std::size_t i) { return cars_.at(i).car; }
     const Car& car(std::size_t i) const { return cars_.at(i).car; }
+
+    /// Car i's deepest contact per ellipsoid (in CarSpec order) at the last sub-step of
+    /// the last update; depth <= 0 where an ellipsoid touched nothing.
+    std::span<const Contact> contacts(std::size_t i) const { return cars_.at(i).deepest; }
 
     /// Advances every car by settings().dt_update.
     void update();

@@ -1,0 +1,38 @@
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "trackphys/profile/profile_statistics.hpp"
+
+namespace trackphys::cli {
+
+/// Everything `trackphys drive` reports about a run.
+struct DriveReport {
+    std::string scene;
+    std::size_t triangles = 0;
+    std::uint64_t updates = 0;
+    double simulated_s = 0.0;
+    double wall_s = 0.0;
+    int laps_completed = 0;
+    std::vector<double> lap_times_s;
+    double top_speed_kmh = 0.0;
+    double distance_m = 0.0;
+    glm::dvec3 final_position{0.0};
+    std::uint64_t state_hash = 0;
+    ProfileStatistics profile;
+};
+
+/// The human-readable table (stdout).
+void print_drive_report(const DriveReport& report);
+
+/// The same figures as JSON (keys pinned by issue 6), written atomically to path.
+void write_drive_json(const DriveReport& report, const std::filesystem::path& path);
+
+/// Hex form of a state hash, as printed and stored.
+std::string hash_hex(std::uint64_t hash);
+
+}  // namespace trackphys::cli

@@ -1,0 +1,84 @@
+#include "drive_scene.hpp"
+
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <sstream>
+
+#include <glm/gtc/quaternion.hpp>
+
+#include "trackphys/error.hpp"
+#include "trackphys/geometry/ellipsoid.hpp"
+#include "trackphys/io/mesh_io.hpp"
+
+namespace trackphys::cli {
+namespace {
+
+// How far the car's lowest point sits below its centre of mass (m), plus a millimetre so
+// that it starts just clear of the surface and settles onto it.
+double ride_height(const CarSpec& car) {
+    double lowest = std::numeric_limits<double>::infinity();
+    for (const CarEllipsoid& e : car.ellipsoids)
+        lowest = std::min(lowest, Ellipsoid(e.center, e.orientation, e.semi_axes).bounds().min.y);
+    return -lowest + 0.001;
+}
+
+}  // namespace
+
+DriveScene make_track_scene(std::uint64_t seed) {
+    TrackParams params;
+    params.seed = seed;
+    DriveScene scene;
+    scene.track = generate_track(params);
+    auto statics = std::make_shared<StaticWorld>();
+    for (const TrackChunk& chunk : scene.track->chunks) {
+        statics->add(std::make_shared<StaticCollider>(chunk.mesh));
+        scene.triangle_count += chunk.mesh.triangles.size();
+    }
+    scene.statics = std::move(statics);
+    std::ostringstream what;
+    what << "generated track, seed " << seed << ", " << scene.track->length_m << " m";
+    scene.description = what.str();
+    return scene;
+}
+
+DriveScene make_mesh_scene(const std::filesystem::path& mesh) {
+    DriveScene scene;
+    auto statics = std::make_shared<StaticWorld>();
+    const TriangleMesh loaded = load_mesh(mesh);
+    scene.triangle_count = loaded.triangles.size();
+    statics->add(std::make_shared<StaticCollider>(loaded));
+    scene.statics = std::move(statics);
+    scene.description = "mesh " + mesh.string();
+    return scene;
+}
+
+RigidBodyState start_on_track(const Track& track, const CarSpec& car) {
+    const CenterlineSample& start = track.centerline.front();
+    RigidBodyState state;
+    state.position = start.position + start.up * ride_height(car);
+    // Body axes +X left, +Y up, +Z forward onto the road frame at the start line.
+    state.orientation = glm::normalize(glm::quat_cast(glm::dmat3(start.left, start.up, start.tangent)));
+    return state;
+}
+
+RigidBodyState spawn_on_surface(const StaticWorld& statics, const CarSpec& car,
+                                const glm::dvec3& spawn, double heading_deg) {
+    const auto hit = statics.raycast(spawn, glm::dvec3(0.0, -1.0, 0.0),
+                                     std::numeric_limits<double>::infinity());
+    if (!hit) {
+        std::ostringstream why;
+        why << "--spawn " << spawn.x << ',' << spawn.y << ',' << spawn.z
+            << ": no surface below it (a ray cast straight down hits nothing)";
+        throw Error(why.str());
+    }
+    RigidBodyState state;
+    state.position = spawn - glm::dvec3(0.0, hit->hit.distance - ride_height(car), 0.0);
+    // Rotating about +Y by a maps body +Z to (sin a, 0, cos a); heading h wants
+    // (cos h, 0, -sin h), so a = h + 90 degrees.
+    const double a = (heading_deg + 90.0) * std::numbers::pi / 180.0;
+    state.orientation = glm::angleAxis(a, glm::dvec3(0.0, 1.0, 0.0));
+    return state;
+}
+
+}  // namespace trackphys::cli

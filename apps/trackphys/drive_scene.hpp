@@ -1,0 +1,40 @@
+#pragma once
+
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include <glm/vec3.hpp>
+
+#include "trackphys/collision/static_world.hpp"
+#include "trackphys/dynamics/rigid_body.hpp"
+#include "trackphys/dynamics/car_spec.hpp"
+#include "trackphys/track/track.hpp"
+
+namespace trackphys::cli {
+
+/// Where `trackphys drive` drives: a generated track (with its centreline, for the
+/// autopilot) or any mesh file (free mode), as static colliders.
+struct DriveScene {
+    std::optional<Track> track;                ///< set for a generated track
+    std::shared_ptr<const StaticWorld> statics;
+    std::size_t triangle_count = 0;
+    std::string description;                   ///< for the report
+};
+
+/// The generated track of that seed, one collider per chunk.
+DriveScene make_track_scene(std::uint64_t seed);
+/// A mesh file (any format load_mesh reads) as one collider.
+DriveScene make_mesh_scene(const std::filesystem::path& mesh);
+
+/// The car at rest on the track's start line, facing along the track.
+RigidBodyState start_on_track(const Track& track, const CarSpec& car);
+
+/// The car upright, facing `heading_deg` (about +Y, counter-clockwise from above, 0 = +X,
+/// 90 = -Z), its wheels on the surface found by a ray cast straight down from spawn.
+/// Throws trackphys::Error when nothing is below the spawn point.
+RigidBodyState spawn_on_surface(const StaticWorld& statics, const CarSpec& car,
+                                const glm::dvec3& spawn, double heading_deg);
+
+}  // namespace trackphys::cli
