@@ -110,6 +110,33 @@ Wrench Car::contact_wrench(std::span<const Contact> deepest) const {
     return wrench;
 }
 
+int Car::resolve_deep_contacts(std::span<const Contact> deepest) {
+    int impulses = 0;
+    for (std::size_t i = 0; i < deepest.size(); ++i) {
+        const Contact& contact = deepest[i];
+        if (!(contact.depth > 0.0)) continue;
+        // The ellipsoid's half-extent along the contact normal (its support h(n)).
+        const Ellipsoid& e = body_ellipsoids_[i];
+        const glm::dvec3 n_local = glm::conjugate(state_.orientation) * contact.normal * e.sorted_axes();
+        const double extent = glm::length(e.sorted_radii() * n_local);
+        if (!(contact.depth > spec_.deep_contact_fraction * extent)) continue;
+        const glm::dvec3 lever = contact.point - state_.position;
+        const double approach = glm::dot(point_velocity(state_, contact.point), contact.normal);
+        if (approach >= 0.0) continue;
+        // Impulse j n with the point's normal velocity brought to zero:
+        // j = -v_n / (1/m + n . ((I^-1 (r x n)) x r)).
+        const glm::dvec3 body_axis = glm::conjugate(state_.orientation) * glm::cross(lever, contact.normal);
+        const glm::dvec3 turn = state_.orientation * (body_axis / spec_.mass.principal_inertia);
+        const double inverse_mass =
+            1.0 / spec_.mass.mass + glm::dot(contact.normal, glm::cross(turn, lever));
+        const double j = -approach / inverse_mass;
+        state_.linear_velocity += contact.normal * (j / spec_.mass.mass);
+        state_.angular_velocity += turn * j;
+        ++impulses;
+    }
+    return impulses;
+}
+
 void Car::add_aero_force(Wrench& wrench) const {
     const glm::dvec3& v = state_.linear_velocity;
     const double dynamic_pressure = 0.5 * spec_.air_density * glm::dot(v, v);

@@ -94,6 +94,8 @@ std::string CarSpec::validate() const {
     check_non_negative(why, "max_steer_angle", max_steer_angle);
     if (why.tellp() == 0 && !(max_steer_angle < 1.5))
         why << "CarSpec.max_steer_angle must be below 1.5 rad, got " << max_steer_angle;
+    if (why.tellp() == 0 && !(deep_contact_fraction > 0.0 && deep_contact_fraction <= 1.0))
+        why << "CarSpec.deep_contact_fraction must be in (0, 1], got " << deep_contact_fraction;
     check_non_negative(why, "drag_area", drag_area);
     check_non_negative(why, "downforce_area", downforce_area);
     check_non_negative(why, "air_density", air_density);

@@ -106,6 +106,7 @@ void World::substep(CarSlot& slot, PhaseStopwatch& watch) {
     }
     watch.lap(Phase::exact);
 
+    car.resolve_deep_contacts(slot.deepest);
     car.integrate(car.contact_wrench(slot.deepest), settings_.gravity, settings_.substep_dt());
     watch.lap(Phase::integrate);
 }

@@ -64,6 +64,14 @@ public:
     /// the car sideways.
     Wrench contact_wrench(std::span<const Contact> deepest) const;
 
+    /// Catches contacts the springs cannot hold: an ellipsoid deeper than
+    /// CarSpec::deep_contact_fraction of its half-extent along the contact normal that still
+    /// approaches the surface gets an impulse that removes the approaching velocity at its
+    /// contact point (a plastic impact). A crash at 1000 km/h or a fall from 100 m stops at the surface
+    /// instead of tunnelling through it; ordinary driving never reaches that depth.
+    /// Returns the number of impulses applied.
+    int resolve_deep_contacts(std::span<const Contact> deepest);
+
     /// Advances the state by h seconds under wrench and gravity.
     void integrate(const Wrench& wrench, const glm::dvec3& gravity, double h) {
         trackphys::integrate(state_, spec_.mass, wrench, gravity, h);

@@ -57,6 +57,10 @@ struct TRACKPHYS_API CarSpec {
     /// keeps its grip under braking and the car stays straight.
     double front_brake_share = 0.6;
     double max_steer_angle = 0.6;       ///< rad at full steer, at low speed
+    /// A contact deeper than this share of the ellipsoid's half-extent along the contact
+    /// normal, still approaching, is stopped by an impulse (see Car::resolve_deep_contacts).
+    /// Half of a wheel's radius is 17 cm, twice its compression under 5 g of cornering.
+    double deep_contact_fraction = 0.5;
     double drag_area = 0.35;            ///< C_d A (m^2): drag 1/2 rho C_d A v^2
     double downforce_area = 0.9;        ///< C_l A (m^2): downforce 1/2 rho C_l A v^2
     double air_density = 1.2;           ///< kg/m^3
