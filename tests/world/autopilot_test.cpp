@@ -1,0 +1,123 @@
+// The autopilot drives whole laps of the default track, and a car reaches 1000 km/h on a
+// long straight and brakes to a stop, all without leaving the road.
+#include <cmath>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <gtest/gtest.h>
+
+#include "trackphys/track/track.hpp"
+#include "trackphys/world/autopilot.hpp"
+#include "trackphys/world/world.hpp"
+#include "world/world_scenes.hpp"
+
+namespace trackphys {
+namespace {
+
+struct TrackWorld {
+    Track track;
+    std::shared_ptr<const StaticWorld> statics;
+};
+
+const TrackWorld& default_track() {
+    static const TrackWorld instance = [] {
+        TrackParams params;
+        params.seed = 7;
+        TrackWorld tw{generate_track(params), nullptr};
+        auto statics = std::make_shared<StaticWorld>();
+        for (const TrackChunk& chunk : tw.track.chunks) statics->add(std::make_shared<StaticCollider>(chunk.mesh));
+        tw.statics = std::move(statics);
+        return tw;
+    }();
+    return instance;
+}
+
+RigidBodyState on_start_line(const Track& track) {
+    const CenterlineSample& s = track.centerline.front();
+    RigidBodyState state;
+    state.position = s.position + s.up * 0.501;
+    state.orientation = glm::normalize(glm::quat_cast(glm::dmat3(s.left, s.up, s.tangent)));
+    return state;
+}
+
+void drive_a_lap(double target_kmh) {
+    const TrackWorld& tw = default_track();
+    const CarSpec spec = CarSpec::default_car();
+    World world(tw.statics);
+    world.add_car(spec, on_start_line(tw.track));
+    AutopilotSettings settings;
+    settings.target_speed = target_kmh / 3.6;
+    Autopilot pilot(tw.track, spec, settings);
+
+    const double half_width = 0.5 * tw.track.params.width_m;
+    double top = 0.0, worst_overshoot = 0.0;
+    for (int i = 0; i < 30000 && pilot.laps() < 1; ++i) {
+        Car& car = world.car(0);
+        car.set_inputs(pilot.drive(car));
+        world.update();
+        // Within the walls and above the road: every ellipsoid centre stays between the
+        // road edges and above the surface of the nearest centreline sample.
+        const CenterlineSample& s = tw.track.centerline[pilot.nearest_sample()];
+        for (std::size_t e = 0; e < car.ellipsoid_count(); ++e) {
+            const glm::dvec3 offset = car.world_ellipsoid(e).center() - s.position;
+            ASSERT_LT(std::abs(glm::dot(offset, s.left)), half_width) << "ellipsoid " << e << " at " << s.distance << " m";
+            ASSERT_GT(glm::dot(offset, s.up), 0.0) << "ellipsoid " << e << " below the road at " << s.distance << " m";
+        }
+        top = std::max(top, car.speed());
+        worst_overshoot = std::max(worst_overshoot, car.speed() - pilot.planned_speed(pilot.nearest_sample()));
+    }
+    EXPECT_EQ(pilot.laps(), 1) << "the lap did not finish";
+    // It follows the computed profile: never much faster than planned, and fast where it may.
+    EXPECT_LT(worst_overshoot, 0.1 * target_kmh / 3.6);
+    EXPECT_GT(top, 0.8 * std::min(target_kmh / 3.6, 70.0));
+}
+
+TEST(Autopilot, CompletesALapAt300KmH) { drive_a_lap(300.0); }
+TEST(Autopilot, CompletesALapAt600KmH) { drive_a_lap(600.0); }
+
+TEST(Autopilot, PlannedSpeedFallsInTightTurnsAndRespectsTheTarget) {
+    const TrackWorld& tw = default_track();
+    AutopilotSettings settings;
+    settings.target_speed = 600.0 / 3.6;
+    const Autopilot pilot(tw.track, CarSpec::default_car(), settings);
+    std::size_t tightest = 0;
+    double fastest = 0.0;
+    for (std::size_t i = 0; i < tw.track.centerline.size(); ++i) {
+        if (std::abs(tw.track.centerline[i].curvature) > std::abs(tw.track.centerline[tightest].curvature))
+            tightest = i;
+        fastest = std::max(fastest, pilot.planned_speed(i));
+        ASSERT_LE(pilot.planned_speed(i), settings.target_speed);
+        ASSERT_GT(pilot.planned_speed(i), 0.0);
+    }
+    EXPECT_LT(pilot.planned_speed(tightest), 0.5 * fastest);
+}
+
+// A 7 km straight: full throttle to 1000 km/h, then full brakes to a stop, steering only
+// to hold the centre line.
+TEST(Autopilot, ReachesThousandKmHOnAStraightAndBrakesToAStop) {
+    const double width = 14.0;
+    World world(test::static_world_of(test::straight_road(7000.0, width, 2.0)));
+    RigidBodyState start;
+    start.position = {0.0, 0.501, 5.0};
+    world.add_car(CarSpec::default_car(), start);
+    bool braking = false;
+    double top = 0.0;
+    for (int i = 0; i < 20000; ++i) {
+        Car& car = world.car(0);
+        const RigidBodyState& s = car.state();
+        const glm::dvec3 forward = s.orientation * glm::dvec3(0.0, 0.0, 1.0);
+        const double steer = -0.5 * s.position.x - 2.0 * forward.x;  // back to x = 0, heading +Z
+        braking = braking || car.speed() >= 1000.0 / 3.6;
+        car.set_inputs({braking ? 0.0 : 1.0, braking ? 1.0 : 0.0, steer});
+        world.update();
+        top = std::max(top, car.speed());
+        ASSERT_LT(std::abs(s.position.x), 0.5 * width) << "left the road at z = " << s.position.z;
+        ASSERT_LT(s.position.z, 7000.0) << "ran off the end of the straight";
+        if (braking && car.speed() < 0.1) break;
+    }
+    EXPECT_GE(top, 1000.0 / 3.6);
+    EXPECT_LT(world.car(0).speed(), 0.1) << "stopped";
+}
+
+}  // namespace
+}  // namespace trackphys
