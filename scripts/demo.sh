@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # The README's main command: installs what is missing, builds Release and runs the main
-# job, writing its files to out/.
+# job: the default car drives a lap of the default track by autopilot and prints its
+# profile. Files go to out/ (the track mesh and picture, the drive's JSON, trace,
+# recording and plot). Extra arguments go to `trackphys drive`.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -8,5 +10,6 @@ scripts/setup.sh
 cmake --preset release
 cmake --build --preset release --parallel "$(nproc)" --target trackphys_app
 mkdir -p out
-build/release/trackphys track --seed 7 --out out/track.glb --svg out/track.svg "$@"
-build/release/trackphys info out/track.glb
+build/release/trackphys track --seed 7 --out out/track.glb --svg out/track.svg
+build/release/trackphys drive --seed 7 --laps 1 --target-speed 600 \
+  --json out/drive.json --trace out/drive.trace.json --record out/drive.jsonl --svg out/drive.svg "$@"
