@@ -8,6 +8,7 @@
 
 #include "trackphys/error.hpp"
 #include "trackphys/geometry/contact.hpp"
+#include "trackphys/geometry/ellipsoid_cull.hpp"
 
 namespace trackphys {
 
@@ -18,7 +19,7 @@ World::World(std::shared_ptr<const StaticWorld> statics, WorldSettings settings)
 }
 
 std::size_t World::add_car(const CarSpec& spec, const RigidBodyState& state) {
-    CarSlot slot{Car(spec, state), {}, {}, {}, {}, {}};
+    CarSlot slot{Car(spec, state), {}, {}, {}, {}, {}, {}};
     slot.kept.resize(slot.car.ellipsoid_count());
     slot.deepest.resize(slot.car.ellipsoid_count());
     cars_.push_back(std::move(slot));
@@ -77,15 +78,19 @@ void World::substep(CarSlot& slot, PhaseStopwatch& watch) {
     const std::size_t ellipsoids = car.ellipsoid_count();
     const std::size_t candidates = slot.normalized.size();
 
-    // Cull: each ellipsoid's bounding sphere against every candidate's cheap frame test.
+    // Cull: each ellipsoid's bounding sphere against every candidate's cheap frame test,
+    // then the ellipsoid's own extent along the survivors' frame axes.
+    slot.placed.clear();
     for (std::size_t i = 0; i < ellipsoids; ++i) {
-        const Ellipsoid& body = car.body_ellipsoid(i);
-        const glm::dvec3 center = car.state().position + car.state().orientation * body.center();
-        const double radius = body.bounding_radius();
+        slot.placed.push_back(car.world_ellipsoid(i));
+        const Ellipsoid& ellipsoid = slot.placed.back();
+        const double radius = ellipsoid.bounding_radius();
         std::vector<std::uint32_t>& kept = slot.kept[i];
         kept.clear();
         for (std::uint32_t c = 0; c < candidates; ++c)
-            if (slot.normalized[c].may_touch_sphere(center, radius)) kept.push_back(c);
+            if (slot.normalized[c].may_touch_sphere(ellipsoid.center(), radius) &&
+                ellipsoid_may_touch(slot.normalized[c], ellipsoid))
+                kept.push_back(c);
         profile_.exact_tests += kept.size();
     }
     profile_.culled_tests += ellipsoids * candidates;
@@ -96,10 +101,8 @@ void World::substep(CarSlot& slot, PhaseStopwatch& watch) {
     for (std::size_t i = 0; i < ellipsoids; ++i) {
         Contact& deepest = slot.deepest[i];
         deepest.depth = -std::numeric_limits<double>::infinity();
-        if (slot.kept[i].empty()) continue;
-        const Ellipsoid ellipsoid = car.world_ellipsoid(i);
         for (std::uint32_t c : slot.kept[i]) {
-            const Contact contact = ellipsoid_triangle_contact(ellipsoid, slot.triangles[c]);
+            const Contact contact = ellipsoid_triangle_contact(slot.placed[i], slot.triangles[c]);
             if (contact.depth > deepest.depth) deepest = contact;
         }
         profile_.contacts += deepest.depth > 0.0;

@@ -68,6 +68,7 @@ private:
         std::vector<TriangleRef> candidates;           // broad phase, this update
         std::vector<Triangle> triangles;               // the candidates' world triangles
         std::vector<NormalizedTriangle> normalized;    // and their cull frames
+        std::vector<Ellipsoid> placed;                 // the ellipsoids in the world, this sub-step
         std::vector<std::vector<std::uint32_t>> kept;  // per ellipsoid: culled survivors
         std::vector<Contact> deepest;                  // per ellipsoid, this sub-step
     };
