@@ -60,7 +60,7 @@ void print_summary(const Track& track, double seconds) {
     std::printf("elevation    %.2f .. %.2f m\n", stats.min_elevation_m, stats.max_elevation_m);
     std::printf("road edges   %.3f .. %.3f m along the track\n", stats.min_road_edge_m, stats.max_road_edge_m);
     std::printf("tightest     radius %.1f m at %.1f m along\n", stats.min_turn_radius_m, tightest.distance);
-    std::printf("update box   %zu road + %zu wall triangles overlap a %.1f x %.1f x %.1f m car's box padded "
+    std::printf("update box   %zu road + %zu wall triangles overlap a %.1f x %.1f x %.1f m car's box swept "
                 "for %.0f km/h over %.0f ms, in the tightest turn\n",
                 in_box.road, in_box.wall, box_spec.car_size.z, box_spec.car_size.x, box_spec.car_size.y,
                 box_spec.speed_mps * 3.6, box_spec.update_dt_s * 1000.0);

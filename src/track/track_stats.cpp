@@ -88,8 +88,11 @@ Aabb car_update_box(const CenterlineSample& sample, const UpdateBoxSpec& spec) {
     const glm::dvec3 center = sample.position + half.y * sample.up;
     const glm::dvec3 extent = glm::abs(sample.left) * half.x + glm::abs(sample.up) * half.y +
                               glm::abs(sample.tangent) * half.z;
-    const Aabb car{center - extent, center + extent};
-    return car.padded(spec.speed_mps * spec.update_dt_s + spec.margin_m);
+    // Swept along the road for one update: the box at the start, at the end and between.
+    const glm::dvec3 travel = sample.tangent * (spec.speed_mps * spec.update_dt_s);
+    Aabb swept{center - extent, center + extent};
+    swept.expand(Aabb{center + travel - extent, center + travel + extent});
+    return swept.padded(spec.margin_m);
 }
 
 BoxTriangleCount count_triangles_in_box(const Track& track, const Aabb& box) {

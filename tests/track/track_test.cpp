@@ -333,7 +333,7 @@ TEST(TrackStats, UpdateBoxInTheTightestTurnHoldsAFewHundredTriangles) {
     EXPECT_LT(count.road, 500u);
 }
 
-TEST(TrackStats, CarUpdateBoxIsTheOrientedCarPaddedByOneUpdateOfTravel) {
+TEST(TrackStats, CarUpdateBoxIsTheOrientedCarSweptByOneUpdateOfTravel) {
     CenterlineSample s;
     s.position = {10.0, 2.0, -3.0};
     s.tangent = {0.0, 0.0, 1.0};
@@ -345,11 +345,14 @@ TEST(TrackStats, CarUpdateBoxIsTheOrientedCarPaddedByOneUpdateOfTravel) {
     spec.update_dt_s = 0.01;
     spec.margin_m = 0.5;
     const Aabb box = car_update_box(s, spec);
-    // Half extents 1, 0.6, 2.25 grown by 1 m of travel plus 0.5 m; centre 0.6 m above the road.
-    EXPECT_NEAR(box.min.x, 10.0 - 2.5, 1e-12);
-    EXPECT_NEAR(box.max.y, 2.0 + 1.2 + 1.5, 1e-12);
-    EXPECT_NEAR(box.min.y, 2.0 - 1.5, 1e-12);
-    EXPECT_NEAR(box.max.z, -3.0 + 2.25 + 1.5, 1e-12);
+    // Half extents 1, 0.6, 2.25 about a centre 0.6 m above the road, swept 1 m along +z,
+    // plus 0.5 m on every side.
+    EXPECT_NEAR(box.min.x, 10.0 - 1.5, 1e-12);
+    EXPECT_NEAR(box.max.x, 10.0 + 1.5, 1e-12);
+    EXPECT_NEAR(box.max.y, 2.0 + 1.2 + 0.5, 1e-12);
+    EXPECT_NEAR(box.min.y, 2.0 - 0.5, 1e-12);
+    EXPECT_NEAR(box.min.z, -3.0 - 2.25 - 0.5, 1e-12);
+    EXPECT_NEAR(box.max.z, -3.0 + 2.25 + 1.0 + 0.5, 1e-12);
 }
 
 }  // namespace

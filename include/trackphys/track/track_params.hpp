@@ -8,10 +8,10 @@ namespace trackphys {
 
 /// Everything that shapes a generated track. The defaults give the demo track: a closed
 /// loop of 5 km, 14 m wide, banked up to 35 degrees, with 1 m walls, road edges of 0.5 m
-/// in the tight turns and 6 strips across (about 200k triangles in 50 collider chunks of
-/// ~100 m), so that a car's box padded for 1000 km/h over a 10 ms update meets ~300 road
-/// triangles in the tightest banked turn. Same parameters (seed included) -> the same
-/// track, bit for bit.
+/// in the tight turns and 10 strips across (about 300k triangles in 50 collider chunks of
+/// ~100 m), so that a car's box swept for 1000 km/h over a 10 ms update meets a couple of
+/// hundred road triangles in the tightest banked turn. Same parameters (seed included) ->
+/// the same track, bit for bit.
 struct TrackParams {
     /// Seeds the control-point generator (std::mt19937_64).
     std::uint64_t seed = 1;
@@ -41,13 +41,13 @@ struct TrackParams {
     /// of tight_radius_m and tighter.
     double edge_tight_m = 0.5;
     /// Length of the along-track edges on straights (m): the coarsest spacing.
-    double edge_straight_m = 0.6;
+    double edge_straight_m = 0.55;
     /// Turn radius (m) that gets edge_tight_m. In between, the edge length follows a
     /// constant chord error: edge = edge_tight_m * sqrt(radius / tight_radius_m), capped
     /// at edge_straight_m.
     double tight_radius_m = 60.0;
     /// Number of road strips across the width (so strips + 1 vertices per road row).
-    int strips = 6;
+    int strips = 10;
     /// Target length of one collider chunk along the centreline (m).
     double chunk_length_m = 100.0;
 };

@@ -35,8 +35,9 @@ struct TrackStats {
 TRACKPHYS_API TrackStats compute_track_stats(const Track& track);
 
 /// A car's broad-phase box for one physics update: the car's oriented box sitting on the
-/// road at a centreline sample, as an axis-aligned world box, grown on every side by the
-/// distance it can travel in one update plus a margin.
+/// road at a centreline sample, as an axis-aligned world box, swept along the road by the
+/// distance it travels in one update (the box at the start, at the end and everything
+/// between), plus a margin on every side: the box the world's broad phase queries.
 struct UpdateBoxSpec {
     /// Car box size (m): x = width (along left), y = height (along up), z = length (along
     /// the tangent).
