@@ -34,6 +34,7 @@ Car::Car(CarSpec spec, const RigidBodyState& initial_state) : spec_(std::move(sp
     set_state(initial_state);
     for (const CarEllipsoid& e : spec_.ellipsoids) {
         body_ellipsoids_.emplace_back(e.center, e.orientation, e.semi_axes);
+        suspension_.push_back(0.0);
         bounding_radius_ = std::max(bounding_radius_, glm::length(e.center) +
                                                           body_ellipsoids_.back().bounding_radius());
         wheels_ += e.role != EllipsoidRole::body;
@@ -108,6 +109,21 @@ Wrench Car::contact_wrench(std::span<const Contact> deepest) const {
     }
     add_aero_force(wrench);
     return wrench;
+}
+
+void Car::update_suspension(std::span<const Contact> deepest, double h) {
+    const Suspension& spring = spec_.suspension;
+    const glm::dvec3 up = state_.orientation * glm::dvec3(0.0, 1.0, 0.0);
+    for (std::size_t i = 0; i < deepest.size(); ++i) {
+        if (spec_.ellipsoids[i].role == EllipsoidRole::body) continue;
+        const Contact& c = deepest[i];
+        const double load = normal_force(spec_.wheel_contact, c.depth, c.normal,
+                                         point_velocity(state_, c.point));
+        const double lift = load * glm::dot(c.normal, up);
+        // Massless wheel: the damper passes what the spring does not hold.
+        const double rate = (lift - spring.stiffness * suspension_[i]) / spring.damping;
+        suspension_[i] = std::clamp(suspension_[i] + h * rate, 0.0, spring.travel);
+    }
 }
 
 int Car::resolve_deep_contacts(std::span<const Contact> deepest) {

@@ -82,6 +82,9 @@ std::string CarSpec::validate() const {
     }
     check_material(why, "body_contact", body_contact);
     check_material(why, "wheel_contact", wheel_contact);
+    check_positive(why, "suspension.stiffness", suspension.stiffness);
+    check_positive(why, "suspension.damping", suspension.damping);
+    check_non_negative(why, "suspension.travel", suspension.travel);
     check_non_negative(why, "max_drive_force", max_drive_force);
     check_non_negative(why, "max_drive_power", max_drive_power);
     if (why.tellp() == 0 && !(front_drive_share >= 0.0 && front_drive_share <= 1.0))

@@ -110,7 +110,9 @@ void World::substep(CarSlot& slot, PhaseStopwatch& watch) {
     watch.lap(Phase::exact);
 
     car.resolve_deep_contacts(slot.deepest);
-    car.integrate(car.contact_wrench(slot.deepest), settings_.gravity, settings_.substep_dt());
+    const Wrench wrench = car.contact_wrench(slot.deepest);
+    car.update_suspension(slot.deepest, settings_.substep_dt());
+    car.integrate(wrench, settings_.gravity, settings_.substep_dt());
     watch.lap(Phase::integrate);
 }
 
@@ -139,6 +141,7 @@ std::uint64_t World::state_hash() const {
             hash.add(s.orientation.z);
         hash.add(s.linear_velocity);
         hash.add(s.angular_velocity);
+        for (std::size_t i = 0; i < slot.car.ellipsoid_count(); ++i) hash.add(slot.car.suspension(i));
         const CarInputs& in = slot.car.inputs();
         hash.add(in.throttle), hash.add(in.brake), hash.add(in.steer);
     }

@@ -42,10 +42,14 @@ public:
     std::size_t ellipsoid_count() const { return body_ellipsoids_.size(); }
     /// Ellipsoid i in the body frame (relative to the centre of mass).
     const Ellipsoid& body_ellipsoid(std::size_t i) const { return body_ellipsoids_[i]; }
-    /// Ellipsoid i placed in the world by the current state.
+    /// Ellipsoid i placed in the world by the current state (wheels moved up by their
+    /// suspension travel).
     Ellipsoid world_ellipsoid(std::size_t i) const {
-        return body_ellipsoids_[i].transformed(state_.orientation, state_.position);
+        const glm::dvec3 lift = state_.orientation * glm::dvec3(0.0, suspension_[i], 0.0);
+        return body_ellipsoids_[i].transformed(state_.orientation, state_.position + lift);
     }
+    /// Suspension compression of ellipsoid i from full droop (m; always 0 for the body).
+    double suspension(std::size_t i) const { return suspension_[i]; }
     /// Radius about the centre of mass of a sphere holding every ellipsoid (m).
     double bounding_radius() const { return bounding_radius_; }
     /// World box of the car's bounding sphere at the current state.
@@ -72,6 +76,10 @@ public:
     /// Returns the number of impulses applied.
     int resolve_deep_contacts(std::span<const Contact> deepest);
 
+    /// Moves each wheel along its suspension for h seconds under the tyre's normal load
+    /// from this sub-step's deepest contacts (see Suspension).
+    void update_suspension(std::span<const Contact> deepest, double h);
+
     /// Advances the state by h seconds under wrench and gravity.
     void integrate(const Wrench& wrench, const glm::dvec3& gravity, double h) {
         trackphys::integrate(state_, spec_.mass, wrench, gravity, h);
@@ -85,6 +93,7 @@ private:
     RigidBodyState state_;
     CarInputs inputs_;
     std::vector<Ellipsoid> body_ellipsoids_;
+    std::vector<double> suspension_;
     double bounding_radius_ = 0.0;
     int front_wheels_ = 0;
     int wheels_ = 0;

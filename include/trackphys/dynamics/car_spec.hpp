@@ -37,6 +37,16 @@ struct ContactMaterial {
     double slip_speed = 0.05;   ///< m/s of slip at which friction reaches mu F_n
 };
 
+/// Each wheel hangs on a spring-damper that lets it move along the body's up axis, so that
+/// all four stay on a road that twists under the car. The wheel is massless: its travel s
+/// (compression from full droop, m) follows c ds/dt = F_up - k s, where F_up is the tyre's
+/// normal force along the body's up axis, and the body feels the tyre force itself.
+struct Suspension {
+    double stiffness = 6.0e4;  ///< k, N/m per wheel: about 5 cm of sag under the default car
+    double damping = 6.0e3;    ///< c, N s/m per wheel
+    double travel = 0.12;      ///< m from full droop to the bump stop
+};
+
 /// Everything that defines a car. Start from CarSpec::default_car() and change fields;
 /// validate() (or Car's constructor) names any field that is out of range.
 struct TRACKPHYS_API CarSpec {
@@ -44,6 +54,7 @@ struct TRACKPHYS_API CarSpec {
     std::vector<CarEllipsoid> ellipsoids;
     ContactMaterial body_contact;
     ContactMaterial wheel_contact;
+    Suspension suspension;
     double max_drive_force = 2.0e4;     ///< N over all wheels, below the power limit
     /// Share of the drive force at the front wheels (0 = rear-wheel drive, 1 = front).
     double front_drive_share = 0.4;
