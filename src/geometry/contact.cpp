@@ -75,7 +75,7 @@ struct Best {
 /// Edge (i, i+1) and its shadow ellipse: basis (b1, b2) of the plane orthogonal to the edge
 /// rotated onto the shadow's axes, radii s1 >= s2, and the edge's 2-D point.
 struct EdgeShadow {
-    bool valid = false;
+    bool valid;
     dvec3 axis1, axis2;  // 3-D directions of the shadow's axes
     double s1, s2;
     double px, py;        // the edge line's point in the shadow frame
@@ -85,6 +85,7 @@ struct EdgeShadow {
 
 EdgeShadow make_shadow(const Problem& pb, int i) {
     EdgeShadow s;
+    s.valid = false;
     const dvec3& e = pb.tri->edge[i];
     const double length2 = glm::dot(e, e);
     if (!(length2 > 0.0)) return s;
@@ -137,35 +138,51 @@ public:
         pb_.tri = &tri;
     }
 
-    LocalContact run() {
+    [[gnu::always_inline]] LocalContact run() {
         const LocalTriangle& tri = *pb_.tri;
-        // Face.
+        // Face, from the unnormalised area normal N: |N| and h(N) = |N| h(n) are independent
+        // square roots, and u = sign N / |N| faces the center (g(-u) >= g(u)).
         const dvec3 area_normal = glm::cross(tri.edge[0], -tri.edge[2]);
-        const double area_length = glm::length(area_normal);
-        if (area_length > 0.0 && std::isfinite(area_length)) {
-            dvec3 u = area_normal / area_length;
-            if (glm::dot(u, tri.q[0] + tri.q[1] + tri.q[2]) > 0.0) u = -u;
-            const double h = pb_.support(u);
-            const double d0 = glm::dot(u, tri.q[0]);
-            const double d1 = glm::dot(u, tri.q[1]);
-            const double d2 = glm::dot(u, tri.q[2]);
-            const double g = std::max({d0, d1, d2}) + h;
-            best_.offer(g, u);
-            const dvec3 z = g * u - pb_.support_point(u, h);
-            for (int k = 0; k < 3; ++k)
-                side_[k] = glm::dot(glm::cross(tri.edge[k], z - tri.q[k]), area_normal);
+        const double n2 = glm::dot(area_normal, area_normal);
+        if (n2 > 0.0 && n2 < kInfinity) {
+            const dvec3 r2n = pb_.r2 * area_normal;
+            const double inv_length = 1.0 / std::sqrt(n2);
+            const double hn = std::sqrt(glm::dot(r2n, area_normal));
+            const double e0 = glm::dot(area_normal, tri.q[0]);
+            const double e1 = glm::dot(area_normal, tri.q[1]);
+            const double e2 = glm::dot(area_normal, tri.q[2]);
+            const double sign = e0 + e1 + e2 > 0.0 ? -1.0 : 1.0;
+            const double top = sign > 0.0 ? std::max({e0, e1, e2}) : -std::min({e0, e1, e2});
+            const double spread = std::max({e0, e1, e2}) - std::min({e0, e1, e2});
+            const dvec3 u = (sign * inv_length) * area_normal;
+            const double g = (top + hn) * inv_length;
+            const double h = hn * inv_length;
+            const dvec3 extreme = (-sign / hn) * r2n;  // x(-u) = -D^2 u / h(u)
+            const dvec3 z = extreme + g * u;
+            // det(e_k, z - q_k, N) for the three edges; they sum to |N|^2 for any z.
+            const double side0 = glm::dot(glm::cross(tri.edge[0], z - tri.q[0]), area_normal);
+            const double side1 = glm::dot(glm::cross(tri.edge[1], z - tri.q[1]), area_normal);
+            const double side2 = n2 - side0 - side1;
             // The vertices must lie on the face plane to rounding: a sliver's normal may be
             // too inaccurate for the certificate, and then the edges decide.
-            const double spread = std::max({d0, d1, d2}) - std::min({d0, d1, d2});
             const double scale = pb_.r.x + max_abs(tri.q[0]) + max_abs(tri.q[1]) + max_abs(tri.q[2]);
+            if (side0 >= 0.0 && side1 >= 0.0 && side2 >= 0.0 &&
+                spread * inv_length <= 1e-14 * scale && pb_.closest_regime(g, h))
+                return {g, u, extreme + 0.5 * g * u, ContactPath::face_certified, 0};
+            // Kept only now: stores on the certified path would cost more than the math.
+            best_.offer(g, u);
+            side_[0] = side0;
+            side_[1] = side1;
+            side_[2] = side2;
             face_touch_ = z;
-            if (side_[0] >= 0.0 && side_[1] >= 0.0 && side_[2] >= 0.0 &&
-                spread <= 1e-14 * scale && pb_.closest_regime(g, h))
-                return finish(ContactPath::face_certified);
-        } else {
-            side_[0] = side_[1] = side_[2] = 0.0;
         }
 
+        return edges_and_vertices();
+    }
+
+private:
+    /// Everything after the face, out of line so that the face path stays small and inlined.
+    [[gnu::noinline]] LocalContact edges_and_vertices() {
         // Edges and vertices by their closest-point candidates, the ones the face's touching
         // point fell beyond first.
         int order[6];
@@ -182,7 +199,6 @@ public:
         return finish(ContactPath::enumerated);
     }
 
-private:
     LocalContact finish(ContactPath path) const {
         // The ellipsoid's extreme point towards the triangle, x(-u), moved by half the depth.
         const double h = pb_.support(best_.u);
@@ -325,8 +341,9 @@ private:
     int iterations_ = 0;
     dvec3 face_touch_{0.0};
     double side_[3] = {0.0, 0.0, 0.0};
+    // Filled by try_edge and try_vertex for every feature before the deep enumeration reads them.
     EdgeShadow shadow_[3];
-    double vertex_closest_[3] = {kInfinity, kInfinity, kInfinity};
+    double vertex_closest_[3];
 };
 
 }  // namespace
@@ -334,6 +351,17 @@ private:
 LocalContact contact_in_sorted_frame(const glm::dvec3& radii, const LocalTriangle& triangle) {
     return Solver(radii, triangle).run();
 }
+
+namespace {
+
+/// The same, inlined into the public entry so that the shallow face path keeps the triangle
+/// in registers.
+[[gnu::always_inline]] inline LocalContact solve_inline(const glm::dvec3& radii,
+                                                        const LocalTriangle& triangle) {
+    return Solver(radii, triangle).run();
+}
+
+}  // namespace
 
 }  // namespace detail
 
@@ -369,20 +397,28 @@ bool finite_triangle(const Triangle& t) {
     return is_finite(t[0]) && is_finite(t[1]) && is_finite(t[2]);
 }
 
+/// a < b in lexicographic order, without branches (the order of road triangles' vertices is
+/// random, so branches here would mispredict).
 bool lexicographic_less(const glm::dvec3& a, const glm::dvec3& b) {
-    if (a.x != b.x) return a.x < b.x;
-    if (a.y != b.y) return a.y < b.y;
-    return a.z < b.z;
+    return (a.x < b.x) | ((a.x == b.x) & ((a.y < b.y) | ((a.y == b.y) & (a.z < b.z))));
 }
 
-/// The vertices in lexicographic order: sigma does not depend on the order or winding, and
-/// a canonical order makes the rounded result bit-identical for every permutation.
-std::array<glm::dvec3, 3> canonical_vertices(const Triangle& t) {
-    std::array<glm::dvec3, 3> v = t.vertices;
-    if (lexicographic_less(v[1], v[0])) std::swap(v[0], v[1]);
-    if (lexicographic_less(v[2], v[1])) std::swap(v[1], v[2]);
-    if (lexicographic_less(v[1], v[0])) std::swap(v[0], v[1]);
-    return v;
+/// The vertex ranks in lexicographic order (ties keep the given order): sigma does not
+/// depend on the order or winding, and solving in a canonical order makes the rounded result
+/// bit-identical for every permutation.
+std::array<int, 3> vertex_ranks(const Triangle& t) {
+    const bool l10 = lexicographic_less(t[1], t[0]);
+    const bool l20 = lexicographic_less(t[2], t[0]);
+    const bool l21 = lexicographic_less(t[2], t[1]);
+    return {int(l10) + int(l20), int(!l10) + int(l21), int(!l20) + int(!l21)};
+}
+
+/// The triangle's vertices in canonical order: slot k holds the vertex of rank k, read
+/// through a computed index (indexed stores would stall the vector loads that follow).
+std::array<glm::dvec3, 3> canonical_vertices(const Triangle& t, const std::array<int, 3>& rank) {
+    std::array<glm::dvec3, 3> out;
+    for (int k = 0; k < 3; ++k) out[static_cast<std::size_t>(k)] = t[int(rank[1] == k) + 2 * int(rank[2] == k)];
+    return out;
 }
 
 /// For configurations whose lengths span more than double's squares can hold (the ellipsoid
@@ -430,8 +466,8 @@ Contact rescaled_contact(const Ellipsoid& ellipsoid, const std::array<glm::dvec3
     detail::LocalTriangle local;
     for (int i = 0; i < 3; ++i) {
         local.q[i] = (v[i] / scale - center) * axes;
-        local.edge[i] = (v[(i + 1) % 3] / scale - v[i] / scale) * axes;
     }
+    for (int i = 0; i < 3; ++i) local.edge[i] = local.q[(i + 1) % 3] - local.q[i];
     const detail::LocalContact solved = detail::contact_in_sorted_frame(radii / scale, local);
     return {solved.depth * scale, axes * solved.u, c + axes * (solved.point * scale)};
 }
@@ -440,26 +476,23 @@ Contact rescaled_contact(const Ellipsoid& ellipsoid, const std::array<glm::dvec3
 
 Contact ellipsoid_triangle_contact(const Ellipsoid& ellipsoid, const Triangle& triangle) {
     const glm::dvec3& c = ellipsoid.center();
-    if (!finite_triangle(triangle))
-        return {-std::numeric_limits<double>::infinity(), glm::dvec3(0.0, 1.0, 0.0), c};
-    const std::array<glm::dvec3, 3> v = canonical_vertices(triangle);
     const glm::dmat3& axes = ellipsoid.sorted_axes();
     const glm::dvec3& radii = ellipsoid.sorted_radii();
+    const std::array<int, 3> rank = vertex_ranks(triangle);
     detail::LocalTriangle local;
-    for (int i = 0; i < 3; ++i) {
-        local.q[i] = (v[i] - c) * axes;  // row vector times M = M^T * column
-        local.edge[i] = (v[(i + 1) % 3] - v[i]) * axes;
+    for (int k = 0; k < 3; ++k)  // row vector * M = M^T * column
+        local.q[k] = (triangle[int(rank[1] == k) + 2 * int(rank[2] == k)] - c) * axes;
+    // Lengths must keep their squares and cubes normal numbers: within [2^-300, 2^300], as
+    // every car and track does (edges are at most twice the largest |q|). The sum also catches
+    // non-finite input (NaN and infinity propagate). Anything else takes the careful path.
+    const glm::dvec3 sum = glm::abs(local.q[0]) + glm::abs(local.q[1]) + glm::abs(local.q[2]);
+    if (!(sum.x + sum.y + sum.z < 0x1p299) || radii.z < 0x1p-300) {
+        if (!finite_triangle(triangle))
+            return {-std::numeric_limits<double>::infinity(), glm::dvec3(0.0, 1.0, 0.0), c};
+        return rescaled_contact(ellipsoid, canonical_vertices(triangle, rank));
     }
-    // Lengths must keep their squares and cubes normal numbers: within [2^-300, 2^300] of
-    // each other and of 1, as every car and track does. Otherwise solve at a power-of-two
-    // scale (exact), or treat a vanishing ellipsoid as a point.
-    double extent = radii.x;
-    for (int i = 0; i < 3; ++i)
-        extent = std::max({extent, std::abs(local.q[i].x), std::abs(local.q[i].y),
-                           std::abs(local.q[i].z), std::abs(local.edge[i].x),
-                           std::abs(local.edge[i].y), std::abs(local.edge[i].z)});
-    if (!(extent < 0x1p300) || radii.z < 0x1p-300) return rescaled_contact(ellipsoid, v);
-    const detail::LocalContact solved = detail::contact_in_sorted_frame(radii, local);
+    for (int i = 0; i < 3; ++i) local.edge[i] = local.q[(i + 1) % 3] - local.q[i];
+    const detail::LocalContact solved = detail::solve_inline(radii, local);
     return {solved.depth, axes * solved.u, c + axes * solved.point};
 }
 

@@ -26,8 +26,7 @@ struct LocalContact {
     int iterations;  ///< Newton steps over every root found
 };
 
-/// The triangle in the sorted frame: q[i] its vertices, edge[i] = q[i+1] - q[i] (formed
-/// from world differences, which are exact to one rounding of the edge itself).
+/// The triangle in the sorted frame: q[i] its vertices, edge[i] = q[i+1] - q[i].
 struct LocalTriangle {
     std::array<glm::dvec3, 3> q;
     std::array<glm::dvec3, 3> edge;

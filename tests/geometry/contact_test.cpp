@@ -142,11 +142,10 @@ TEST(Contact, ShallowRoadContactsTakeTheCertifiedFaceExit) {
         const glm::dvec3 r = c.ellipsoid.sorted_radii();
         if (ellipsoid_triangle_contact(c.ellipsoid, c.triangle).depth * r.x >= r.z * r.z) continue;
         ++count;
-        const glm::dmat3& m = c.ellipsoid.sorted_axes();
         detail::LocalTriangle local;
         for (int i = 0; i < 3; ++i) {
             local.q[i] = c.ellipsoid.to_sorted_local(c.triangle[i]);
-            local.edge[i] = (c.triangle[(i + 1) % 3] - c.triangle[i]) * m;
+            local.edge[i] = c.ellipsoid.to_sorted_local(c.triangle[(i + 1) % 3]) - local.q[i];
         }
         face += detail::contact_in_sorted_frame(c.ellipsoid.sorted_radii(), local).path ==
                 detail::ContactPath::face_certified;
