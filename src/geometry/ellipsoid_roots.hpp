@@ -48,7 +48,7 @@ namespace trackphys::detail {
 inline constexpr int kClimbCap = 64;
 /// A climb stops once a Newton step is below this fraction of the offset: with quadratic
 /// convergence the remaining error is then far below one ulp.
-inline constexpr double kClimbRelativeStep = 1e-13;
+inline constexpr double kClimbRelativeStep = 1e-8;
 
 struct ClimbResult {
     double eta;
@@ -67,11 +67,11 @@ inline ClimbResult climb(const std::array<double, N>& a, const std::array<double
         double s = 0.0;
         double t = 0.0;
         for (int i = 0; i < N; ++i) {
-            const double w = c[i] + eta;
-            const double v = a[i] / w;
+            const double inv_w = 1.0 / (c[i] + eta);  // one division per term
+            const double v = a[i] * inv_w;
             const double v2 = v * v;
             s += v2;
-            t += v2 / w;
+            t += v2 * inv_w;
         }
         if (s <= 1.0) return {eta, k, true};  // h >= 0: at the root up to rounding
         if (!(t > 0.0)) return {eta, k, false};  // past the top of h while h < 0
