@@ -25,8 +25,8 @@
 // zero passes the next pole, or h' <= 0 while h < 0, concavity proves the interval holds
 // no root in that direction. Each loop is capped.
 //
-// Which roots are local minima of the signed distance along the normal (the only ones a
-// contact can rest on): the Lagrangian Hessian I + t D^-2 restricted to the tangent plane
+// Which roots are local minima of u . p + ||D u|| at u = -n (the only ones a contact can
+// rest on; for p inside, the local minima of the distance |p - x|): the Lagrangian Hessian I + t D^-2 restricted to the tangent plane
 // is positive definite iff no factor w_i = r_i^2 + t is negative, or exactly one is and
 // f'(t) > 0 (its determinant is det(I + t D^-2) * (-f'(t)/2) / |D^-2 x|^2, and interlacing
 // allows at most one negative eigenvalue then). f' > 0 holds exactly for roots reached by a
@@ -123,7 +123,7 @@ struct CriticalPoint {
     std::array<double, N> x;  ///< surface point (sorted frame, input scale)
     std::array<double, N> n;  ///< outward unit normal at x
     double offset;            ///< n . (p - x): the signed distance along the normal
-    bool local_min;           ///< local minimum of the offset over the surface
+    bool local_min;           ///< u = -n locally minimises u . p + ||D u|| over unit u
 };
 
 template <int N>

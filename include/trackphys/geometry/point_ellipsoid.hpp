@@ -48,7 +48,9 @@ struct EllipsoidCriticalPoint {
     glm::dvec3 point;   ///< surface point (m, sorted frame)
     glm::dvec3 normal;  ///< outward unit normal at point
     double offset;      ///< normal . (p - point) (m): > 0 when p is outside along the normal
-    bool local_min;     ///< a local minimum of the offset over the surface
+    /// u = -normal is a local minimum of u . p + ||D u|| over unit u (D = diag(radii)): a
+    /// contact candidate of the vertex p (for p inside: a local minimum of |p - point|)
+    bool local_min;
 };
 
 /// Every critical point of the distance from p to an ellipsoid surface: one per real root
