@@ -24,8 +24,10 @@
 // the critical point -u of z's distance is its closest point, i.e. the root t = -g h(u) of
 // f is the largest one, which holds when t > -r_min^2, then depth(z) = g(u) and therefore
 // sigma = g(u). Shallow contacts (depth < r_min^2 / h, 6 cm for a wheel) and every
-// separated configuration are certified by the first candidate that passes; only deeper
-// ones enumerate every local minimum.
+// separated configuration are certified by the first candidate that passes; a vertex whose
+// closest-point direction keeps it the top vertex is certified at any depth (z = q_i and
+// the direction is its closest point by construction). Only the rest enumerate every local
+// minimum.
 //
 // Candidates (the minimiser of g has 3, 2 or 1 active vertices):
 // - face: u = +-n; only the side facing the center can win, g(-n) >= g(n) when n.q <= 0;
@@ -272,10 +274,22 @@ private:
         const double dk = glm::dot(u, tri.q[k]);
         const double g = std::max({di, dj, dk}) + h;
         best_.offer(g, u);
-        if (dk > std::max(di, dj) || !pb_.closest_regime(g, h)) return false;
+        if (dk > std::max(di, dj)) return false;
         const dvec3 z = g * u - pb_.support_point(u, h);
         const double along = glm::dot(z - tri.q[i], tri.edge[i]);
-        return along >= 0.0 && along <= glm::dot(tri.edge[i], tri.edge[i]);
+        return along >= 0.0 && along <= glm::dot(tri.edge[i], tri.edge[i]) && pb_.closest_regime(g, h);
+    }
+
+    /// The outward normal of q's closest surface point; returns the signed distance.
+    double closest_normal(const dvec3& q, std::array<double, 3>& n) {
+        if (q.z != 0.0)
+            return closest_normal_fast<3>({pb_.r.x, pb_.r.y, pb_.r.z}, pb_.pole, {q.x, q.y, q.z}, n,
+                                          iterations_);
+        CriticalSolver<3> solver({pb_.r.x, pb_.r.y, pb_.r.z}, {q.x, q.y, q.z});
+        CriticalPoints<3> found;
+        solver.solve(CriticalSet::closest, found);
+        n = found.points[0].n;
+        return found.points[0].offset;
     }
 
     bool try_vertex(int i) {
@@ -285,16 +299,7 @@ private:
         vertex_closest_[i] = kInfinity;
         if ((1.0 - level) * (level < 1.0 ? pb_.r.z : pb_.r.x) >= best_.g) return false;
         std::array<double, 3> n;
-        if (q.z != 0.0) {
-            vertex_closest_[i] = -closest_normal_fast<3>({pb_.r.x, pb_.r.y, pb_.r.z}, pb_.pole,
-                                                         {q.x, q.y, q.z}, n, iterations_);
-        } else {
-            CriticalSolver<3> solver({pb_.r.x, pb_.r.y, pb_.r.z}, {q.x, q.y, q.z});
-            CriticalPoints<3> found;
-            solver.solve(CriticalSet::closest, found);
-            n = found.points[0].n;
-            vertex_closest_[i] = -found.points[0].offset;
-        }
+        vertex_closest_[i] = -closest_normal(q, n);
         const dvec3 u(-n[0], -n[1], -n[2]);
         const double h = pb_.support(u);
         const double di = glm::dot(u, q);
@@ -302,7 +307,9 @@ private:
                                        glm::dot(u, pb_.tri->q[(i + 2) % 3]));
         const double g = std::max(di, others) + h;
         best_.offer(g, u);
-        return di >= others && pb_.closest_regime(g, h);
+        // u comes from q's closest point, so g = depth(q) when the vertex is active: q is the
+        // deepest point of the triangle and sigma = g at any depth.
+        return di >= others;
     }
 
     void other_edge_minima(int i) {
