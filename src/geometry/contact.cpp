@@ -316,6 +316,15 @@ private:
         const EdgeShadow& s = shadow_[i];
         // Every local minimum of the edge's function is >= its global one.
         if (!s.valid || s.lower_bound >= best_.g || s.closest_value >= best_.g) return;
+        if (s.py != 0.0) {
+            std::array<double, 2> n;
+            const double pole = (s.s1 - s.s2) * (s.s1 + s.s2);
+            if (other_minimum_normal_fast<2>({s.s1, s.s2}, {pole, 0.0}, {s.px, s.py}, n, iterations_)) {
+                const dvec3 u = -(n[0] * s.axis1 + n[1] * s.axis2);
+                best_.offer(pb_.top(u) + pb_.support(u), u);
+            }
+            return;
+        }
         CriticalSolver<2> solver({s.s1, s.s2}, {s.px, s.py});
         CriticalPoints<2> found;
         solver.solve(CriticalSet::other_minima, found);
@@ -329,6 +338,15 @@ private:
     void other_vertex_minima(int i) {
         if (vertex_closest_[i] >= best_.g) return;
         const dvec3& q = pb_.tri->q[i];
+        if (q.z != 0.0) {
+            std::array<double, 3> n;
+            if (other_minimum_normal_fast<3>({pb_.r.x, pb_.r.y, pb_.r.z}, pb_.pole, {q.x, q.y, q.z}, n,
+                                             iterations_)) {
+                const dvec3 u(-n[0], -n[1], -n[2]);
+                best_.offer(pb_.top(u) + pb_.support(u), u);
+            }
+            return;
+        }
         CriticalSolver<3> solver({pb_.r.x, pb_.r.y, pb_.r.z}, {q.x, q.y, q.z});
         CriticalPoints<3> found;
         solver.solve(CriticalSet::other_minima, found);

@@ -118,6 +118,41 @@ inline double closest_normal_fast(const std::array<double, N>& r, const std::arr
     return (p_dot_n - x_dot_n) * inv;
 }
 
+/// The other local minimum, if any, when p's last coordinate is not 0: the first root left
+/// of the smallest radius' pole (climbing towards smaller t, so f' > 0 there), a minimum when
+/// exactly one factor r_i^2 + t = pole_i - eta is negative. Same inputs as
+/// closest_normal_fast; writes the outward unit normal and returns whether it exists.
+template <int N>
+inline bool other_minimum_normal_fast(const std::array<double, N>& r, const std::array<double, N>& pole,
+                                      const std::array<double, N>& p, std::array<double, N>& normal,
+                                      int& iterations) {
+    std::array<double, N> a;
+    std::array<double, N> c;
+    double eta0 = 0.0;
+    double eta_max = std::numeric_limits<double>::infinity();
+    for (int i = 0; i < N; ++i) {
+        a[i] = r[i] * std::abs(p[i]);
+        c[i] = a[i] > 0.0 ? -pole[i] : 1.0;  // inactive terms add exactly 0
+        if (a[i] > 0.0 && pole[i] > 0.0) eta_max = std::min(eta_max, pole[i]);
+        if (pole[i] == 0.0) eta0 = std::max(eta0, a[i]);
+    }
+    const ClimbResult root = climb<N>(a, c, eta0, eta_max);
+    iterations += root.iterations;
+    if (!root.found) return false;
+    int negative = 0;
+    double norm2 = 0.0;
+    for (int i = 0; i < N; ++i) {
+        const double w = pole[i] - root.eta;  // r_i^2 + t
+        negative += w < 0.0;
+        normal[i] = a[i] > 0.0 ? p[i] / w : 0.0;
+        norm2 += normal[i] * normal[i];
+    }
+    if (negative != 1) return false;
+    const double inv = 1.0 / std::sqrt(norm2);
+    for (int i = 0; i < N; ++i) normal[i] *= inv;
+    return true;
+}
+
 template <int N>
 struct CriticalPoint {
     std::array<double, N> x;  ///< surface point (sorted frame, input scale)
