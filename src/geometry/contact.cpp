@@ -80,8 +80,8 @@ struct EdgeShadow {
     bool valid;
     dvec3 axis1, axis2;  // 3-D directions of the shadow's axes
     double s1, s2;
-    double px, py;        // the edge line's point in the shadow frame
-    double lower_bound;   // no direction orthogonal to the edge gives g below this
+    double px, py;         // the edge line's point in the shadow frame
+    double lower_bound;    // no direction orthogonal to the edge gives g below this
     double closest_value;  // the closest candidate's edge value, once computed
 };
 
@@ -95,8 +95,8 @@ EdgeShadow make_shadow(const Problem& pb, int i) {
     // b1: orthogonal to the edge, from the coordinate axis least aligned with it.
     const dvec3 a = glm::abs(dir);
     const dvec3 helper = a.x <= a.y && a.x <= a.z ? dvec3(1, 0, 0)
-                         : a.y <= a.z            ? dvec3(0, 1, 0)
-                                                 : dvec3(0, 0, 1);
+                         : a.y <= a.z             ? dvec3(0, 1, 0)
+                                                  : dvec3(0, 0, 1);
     const dvec3 b1 = glm::normalize(glm::cross(dir, helper));
     const dvec3 b2 = glm::cross(dir, b1);
     // M = B^T D^2 B and its eigenvectors (closed form for a symmetric 2x2).
@@ -167,7 +167,8 @@ public:
             const double side2 = n2 - side0 - side1;
             // The vertices must lie on the face plane to rounding: a sliver's normal may be
             // too inaccurate for the certificate, and then the edges decide.
-            const double scale = pb_.r.x + max_abs(tri.q[0]) + max_abs(tri.q[1]) + max_abs(tri.q[2]);
+            const double scale =
+                pb_.r.x + max_abs(tri.q[0]) + max_abs(tri.q[1]) + max_abs(tri.q[2]);
             if (side0 >= 0.0 && side1 >= 0.0 && side2 >= 0.0 &&
                 spread * inv_length <= 1e-14 * scale && pb_.closest_regime(g, h))
                 return {g, u, extreme + 0.5 * g * u, ContactPath::face_certified, 0};
@@ -255,8 +256,8 @@ private:
         std::array<double, 2> n;
         if (s.py != 0.0) {
             const double pole = (s.s1 - s.s2) * (s.s1 + s.s2);
-            s.closest_value = -closest_normal_fast<2>({s.s1, s.s2}, {pole, 0.0}, {s.px, s.py}, n,
-                                                      iterations_);
+            s.closest_value =
+                -closest_normal_fast<2>({s.s1, s.s2}, {pole, 0.0}, {s.px, s.py}, n, iterations_);
         } else {
             CriticalSolver<2> solver({s.s1, s.s2}, {s.px, s.py});
             CriticalPoints<2> found;
@@ -277,7 +278,8 @@ private:
         if (dk > std::max(di, dj)) return false;
         const dvec3 z = g * u - pb_.support_point(u, h);
         const double along = glm::dot(z - tri.q[i], tri.edge[i]);
-        return along >= 0.0 && along <= glm::dot(tri.edge[i], tri.edge[i]) && pb_.closest_regime(g, h);
+        return along >= 0.0 && along <= glm::dot(tri.edge[i], tri.edge[i]) &&
+               pb_.closest_regime(g, h);
     }
 
     /// The outward normal of q's closest surface point; returns the signed distance.
@@ -303,8 +305,8 @@ private:
         const dvec3 u(-n[0], -n[1], -n[2]);
         const double h = pb_.support(u);
         const double di = glm::dot(u, q);
-        const double others = std::max(glm::dot(u, pb_.tri->q[(i + 1) % 3]),
-                                       glm::dot(u, pb_.tri->q[(i + 2) % 3]));
+        const double others =
+            std::max(glm::dot(u, pb_.tri->q[(i + 1) % 3]), glm::dot(u, pb_.tri->q[(i + 2) % 3]));
         const double g = std::max(di, others) + h;
         best_.offer(g, u);
         // u comes from q's closest point, so g = depth(q) when the vertex is active: q is the
@@ -319,7 +321,8 @@ private:
         if (s.py != 0.0) {
             std::array<double, 2> n;
             const double pole = (s.s1 - s.s2) * (s.s1 + s.s2);
-            if (other_minimum_normal_fast<2>({s.s1, s.s2}, {pole, 0.0}, {s.px, s.py}, n, iterations_)) {
+            if (other_minimum_normal_fast<2>({s.s1, s.s2}, {pole, 0.0}, {s.px, s.py}, n,
+                                             iterations_)) {
                 const dvec3 u = -(n[0] * s.axis1 + n[1] * s.axis2);
                 best_.offer(pb_.top(u) + pb_.support(u), u);
             }
@@ -340,8 +343,8 @@ private:
         const dvec3& q = pb_.tri->q[i];
         if (q.z != 0.0) {
             std::array<double, 3> n;
-            if (other_minimum_normal_fast<3>({pb_.r.x, pb_.r.y, pb_.r.z}, pb_.pole, {q.x, q.y, q.z}, n,
-                                             iterations_)) {
+            if (other_minimum_normal_fast<3>({pb_.r.x, pb_.r.y, pb_.r.z}, pb_.pole, {q.x, q.y, q.z},
+                                             n, iterations_)) {
                 const dvec3 u(-n[0], -n[1], -n[2]);
                 best_.offer(pb_.top(u) + pb_.support(u), u);
             }
@@ -442,7 +445,8 @@ std::array<int, 3> vertex_ranks(const Triangle& t) {
 /// through a computed index (indexed stores would stall the vector loads that follow).
 std::array<glm::dvec3, 3> canonical_vertices(const Triangle& t, const std::array<int, 3>& rank) {
     std::array<glm::dvec3, 3> out;
-    for (int k = 0; k < 3; ++k) out[static_cast<std::size_t>(k)] = t[int(rank[1] == k) + 2 * int(rank[2] == k)];
+    for (int k = 0; k < 3; ++k)
+        out[static_cast<std::size_t>(k)] = t[int(rank[1] == k) + 2 * int(rank[2] == k)];
     return out;
 }
 
@@ -479,7 +483,8 @@ Contact point_like_contact(const Ellipsoid& ellipsoid, const std::array<glm::dve
 Contact rescaled_contact(const Ellipsoid& ellipsoid, const std::array<glm::dvec3, 3>& v) {
     const glm::dvec3& c = ellipsoid.center();
     const glm::dmat3& axes = ellipsoid.sorted_axes();
-    const glm::dvec3 radii = glm::max(ellipsoid.sorted_radii(), glm::dvec3(ellipsoid.sorted_radii().x * 0x1p-200));
+    const glm::dvec3 radii =
+        glm::max(ellipsoid.sorted_radii(), glm::dvec3(ellipsoid.sorted_radii().x * 0x1p-200));
     double raw_extent = radii.x;
     for (int i = 0; i < 3; ++i) {
         const glm::dvec3 d = glm::abs(v[i]) + glm::abs(c);

@@ -26,11 +26,12 @@
 // no root in that direction. Each loop is capped.
 //
 // Which roots are local minima of u . p + ||D u|| at u = -n (the only ones a contact can
-// rest on; for p inside, the local minima of the distance |p - x|): the Lagrangian Hessian I + t D^-2 restricted to the tangent plane
-// is positive definite iff no factor w_i = r_i^2 + t is negative, or exactly one is and
-// f'(t) > 0 (its determinant is det(I + t D^-2) * (-f'(t)/2) / |D^-2 x|^2, and interlacing
-// allows at most one negative eigenvalue then). f' > 0 holds exactly for roots reached by a
-// climb towards smaller t (f rises to +inf at the pole it started from).
+// rest on; for p inside, the local minima of the distance |p - x|): the Lagrangian Hessian
+// I + t D^-2 restricted to the tangent plane is positive definite iff no factor
+// w_i = r_i^2 + t is negative, or exactly one is and f'(t) > 0 (its determinant is
+// det(I + t D^-2) * (-f'(t)/2) / |D^-2 x|^2, and interlacing allows at most one negative
+// eigenvalue then). f' > 0 holds exactly for roots reached by a climb towards smaller t (f
+// rises to +inf at the pole it started from).
 //
 // Coordinates with p_i = 0 exactly add the closed-form solutions at t = -r_i^2 (Eberly):
 // the other coordinates are fixed, x_j = r_j^2 p_j / (r_j^2 - r_i^2), and x_i takes the
@@ -73,7 +74,7 @@ inline ClimbResult climb(const std::array<double, N>& a, const std::array<double
             s += v2;
             t += v2 * inv_w;
         }
-        if (s <= 1.0) return {eta, k, true};  // h >= 0: at the root up to rounding
+        if (s <= 1.0) return {eta, k, true};     // h >= 0: at the root up to rounding
         if (!(t > 0.0)) return {eta, k, false};  // past the top of h while h < 0
         // Newton on h = S^-1/2 - 1 with h' = S^-3/2 T: step = S (sqrt(S) - 1) / T.
         const double step = s * (std::sqrt(s) - 1.0) / t;
@@ -123,7 +124,8 @@ inline double closest_normal_fast(const std::array<double, N>& r, const std::arr
 /// exactly one factor r_i^2 + t = pole_i - eta is negative. Same inputs as
 /// closest_normal_fast; writes the outward unit normal and returns whether it exists.
 template <int N>
-inline bool other_minimum_normal_fast(const std::array<double, N>& r, const std::array<double, N>& pole,
+inline bool other_minimum_normal_fast(const std::array<double, N>& r,
+                                      const std::array<double, N>& pole,
                                       const std::array<double, N>& p, std::array<double, N>& normal,
                                       int& iterations) {
     std::array<double, N> a;
@@ -172,7 +174,6 @@ struct CriticalPoints {
 enum class CriticalSet {
     closest,       ///< the closest surface point only (one entry)
     other_minima,  ///< the local minima except the closest point's root
-    minima,        ///< every local minimum
     all,           ///< every critical point
 };
 
@@ -271,8 +272,7 @@ private:
         if (!root.found) return;
         const int neg = negatives(s, pole, root.eta);
         const bool local_min = neg == 0 || (neg == 1 && direction < 0);
-        if ((which == CriticalSet::minima || which == CriticalSet::other_minima) && !local_min)
-            return;
+        if (which == CriticalSet::other_minima && !local_min) return;
         CriticalPoint<N>& cp = out.points[out.count++];
         double norm2 = 0.0;
         for (int i = 0; i < N; ++i) {
@@ -309,8 +309,7 @@ private:
         const double remaining = 1.0 - used;
         if (!(remaining > 0.0)) return;
         const bool local_min = neg == 0;
-        if ((which == CriticalSet::minima || which == CriticalSet::other_minima) && !local_min)
-            return;
+        if (which == CriticalSet::other_minima && !local_min) return;
         const double rho = r_[g] * std::sqrt(remaining);
         for (int m = g; m < g + members; ++m) {
             for (const double side : {1.0, -1.0}) {

@@ -83,9 +83,9 @@ void check_against_reference(std::uint64_t seed, Closest closest, All all, Stats
 
         const auto [point, distance, iterations] = closest(c);
         const double distance_error = static_cast<double>(std::fabs(distance - best.offset));
-        ASSERT_LE(distance_error, 1e-9) << "case " << k << " class " << point_class_name(c.kind)
-                                        << describe<N>(c) << " got " << distance << " want "
-                                        << double(best.offset);
+        ASSERT_LE(distance_error, 1e-9)
+            << "case " << k << " class " << point_class_name(c.kind) << describe<N>(c) << " got "
+            << distance << " want " << double(best.offset);
         stats.max_distance_error = std::max(stats.max_distance_error, distance_error);
         if (closest_gap<N>(ref) > 1e-6) {
             const double point_error = static_cast<double>(point_distance<N>(best.x, point));
@@ -131,14 +131,16 @@ TEST(PointEllipsoid, ClosestAndAllCriticalPointsMatchTheLongDoubleBisection) {
                 {c.radii[0], c.radii[1], c.radii[2]}, {c.p[0], c.p[1], c.p[2]});
             std::vector<std::array<double, 3>> points;
             for (int i = 0; i < all.count; ++i)
-                points.push_back({all.points[i].point.x, all.points[i].point.y, all.points[i].point.z});
+                points.push_back(
+                    {all.points[i].point.x, all.points[i].point.y, all.points[i].point.z});
             return points;
         },
         stats);
-    std::printf("3-D: %ld cases, max |distance error| %.3g m, max point error %.3g m, "
-                "iterations mean %.2f max %d\n",
-                stats.cases, stats.max_distance_error, stats.max_point_error,
-                double(stats.total_iterations) / double(stats.cases), stats.max_iterations);
+    std::printf(
+        "3-D: %ld cases, max |distance error| %.3g m, max point error %.3g m, "
+        "iterations mean %.2f max %d\n",
+        stats.cases, stats.max_distance_error, stats.max_point_error,
+        double(stats.total_iterations) / double(stats.cases), stats.max_iterations);
     EXPECT_LE(stats.max_iterations, 25);
 }
 
@@ -147,19 +149,22 @@ TEST(PointEllipse, ClosestAndAllCriticalPointsMatchTheLongDoubleBisection) {
     check_against_reference<2>(
         77,
         [](const PointCase<2>& c) {
-            const EllipseCriticalPoint r = closest_point_on_ellipse({c.radii[0], c.radii[1]}, {c.p[0], c.p[1]});
+            const EllipseCriticalPoint r =
+                closest_point_on_ellipse({c.radii[0], c.radii[1]}, {c.p[0], c.p[1]});
             return std::tuple{std::array<double, 2>{r.point.x, r.point.y}, r.offset, 0};
         },
         [](const PointCase<2>& c) {
-            const EllipseCriticalPoints all = ellipse_critical_points({c.radii[0], c.radii[1]}, {c.p[0], c.p[1]});
+            const EllipseCriticalPoints all =
+                ellipse_critical_points({c.radii[0], c.radii[1]}, {c.p[0], c.p[1]});
             EXPECT_LE(all.count, 4);
             std::vector<std::array<double, 2>> points;
-            for (int i = 0; i < all.count; ++i) points.push_back({all.points[i].point.x, all.points[i].point.y});
+            for (int i = 0; i < all.count; ++i)
+                points.push_back({all.points[i].point.x, all.points[i].point.y});
             return points;
         },
         stats);
-    std::printf("2-D: %ld cases, max |distance error| %.3g m, max point error %.3g m\n", stats.cases,
-                stats.max_distance_error, stats.max_point_error);
+    std::printf("2-D: %ld cases, max |distance error| %.3g m, max point error %.3g m\n",
+                stats.cases, stats.max_distance_error, stats.max_point_error);
 }
 
 TEST(PointEllipsoid, CriticalPointsAreOnTheSurfaceWithPOnTheirNormalLine) {
@@ -201,7 +206,8 @@ TEST(PointEllipsoid, LocalMinimaFlagsMatchTheSupportFunction) {
         for (int i = 0; i < all.count; ++i) {
             if (!all.points[i].local_min) continue;
             const glm::dvec3 u = -all.points[i].normal;
-            const glm::dvec3 a = glm::normalize(glm::cross(u, std::abs(u.x) < 0.6 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0)));
+            const glm::dvec3 a = glm::normalize(
+                glm::cross(u, std::abs(u.x) < 0.6 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0)));
             const glm::dvec3 b = glm::cross(u, a);
             for (int j = 0; j < 8; ++j) {
                 const double t = 0.7853981633974483 * j;
@@ -214,7 +220,8 @@ TEST(PointEllipsoid, LocalMinimaFlagsMatchTheSupportFunction) {
         glm::dvec3 lowest_u;
         for (int j = 0; j < 400; ++j) {
             const double z = 1.0 - (2.0 * j + 1.0) / 400.0, rho = std::sqrt(1.0 - z * z);
-            const glm::dvec3 u(rho * std::cos(2.399963229728653 * j), rho * std::sin(2.399963229728653 * j), z);
+            const glm::dvec3 u(rho * std::cos(2.399963229728653 * j),
+                               rho * std::sin(2.399963229728653 * j), z);
             if (phi(u) < lowest) {
                 lowest = phi(u);
                 lowest_u = u;
@@ -222,17 +229,20 @@ TEST(PointEllipsoid, LocalMinimaFlagsMatchTheSupportFunction) {
         }
         double best_flagged = INFINITY;
         for (int i = 0; i < all.count; ++i)
-            if (all.points[i].local_min) best_flagged = std::min(best_flagged, phi(-all.points[i].normal));
+            if (all.points[i].local_min)
+                best_flagged = std::min(best_flagged, phi(-all.points[i].normal));
         ASSERT_LE(best_flagged, lowest + 1e-12) << "case " << k;
     }
     EXPECT_GT(checked, 20000);
 }
 
 TEST(PointEllipsoid, WorldFrameWrapperMatchesTheSortedFrame) {
-    const Ellipsoid e({1, 2, 3}, glm::normalize(glm::dquat(0.9, 0.1, -0.3, 0.2)), {0.15, 0.35, 0.35});
+    const Ellipsoid e({1, 2, 3}, glm::normalize(glm::dquat(0.9, 0.1, -0.3, 0.2)),
+                      {0.15, 0.35, 0.35});
     const glm::dvec3 p(1.2, 2.4, 2.9);
     const PointEllipsoid world = closest_point_on_ellipsoid(e, p);
-    const PointEllipsoid local = closest_point_on_sorted_ellipsoid(e.sorted_radii(), e.to_sorted_local(p));
+    const PointEllipsoid local =
+        closest_point_on_sorted_ellipsoid(e.sorted_radii(), e.to_sorted_local(p));
     EXPECT_NEAR(world.distance, local.distance, 1e-15);
     EXPECT_LE(glm::distance(e.to_sorted_local(world.point), local.point), 1e-14);
     EXPECT_NEAR(glm::distance(p, world.point), std::abs(world.distance), 1e-14);
@@ -263,7 +273,8 @@ TEST(PointEllipsoid, WriteupSolversHoldOnlyInTheMedian) {
         const auto miss = [&](const PointEllipsoid& r2) {
             return !(std::abs(r2.distance - reference) <= 1e-5);
         };
-        const PointEllipsoid newton = closest_point_on_sorted_ellipsoid(r, p, RootFinder::writeup_newton);
+        const PointEllipsoid newton =
+            closest_point_on_sorted_ellipsoid(r, p, RootFinder::writeup_newton);
         t.newton_fail += miss(newton);
         t.newton_nan += std::isnan(newton.distance);
         t.bisection_fail += miss(closest_point_on_sorted_ellipsoid(r, p, RootFinder::bisection));
@@ -290,7 +301,8 @@ TEST(PointEllipsoid, WriteupSolversHoldOnlyInTheMedian) {
     long newton_total = 0;
     for (const auto& [kind, t] : tally) {
         std::printf("%-13s %6ld  %5.1f%%      %5.1f%%  %5.1f%%\n", point_class_name(kind), t.cases,
-                    100.0 * double(t.newton_fail) / double(t.cases), 100.0 * double(t.newton_nan) / double(t.cases),
+                    100.0 * double(t.newton_fail) / double(t.cases),
+                    100.0 * double(t.newton_nan) / double(t.cases),
                     100.0 * double(t.bisection_fail) / double(t.cases));
         newton_total += t.newton_fail;
     }

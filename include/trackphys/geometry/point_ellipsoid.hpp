@@ -38,9 +38,8 @@ TRACKPHYS_API PointEllipsoid closest_point_on_ellipsoid(const Ellipsoid& ellipso
                                                         const glm::dvec3& p, RootFinder finder);
 
 /// The same in the sorted frame: radii x >= y >= z > 0 (m), p in that frame.
-TRACKPHYS_API PointEllipsoid closest_point_on_sorted_ellipsoid(const glm::dvec3& sorted_radii,
-                                                               const glm::dvec3& p,
-                                                               RootFinder finder = RootFinder::robust);
+TRACKPHYS_API PointEllipsoid closest_point_on_sorted_ellipsoid(
+    const glm::dvec3& sorted_radii, const glm::dvec3& p, RootFinder finder = RootFinder::robust);
 
 /// A critical point of the distance from a point p to the surface: p lies on the normal
 /// line of point, p = point + offset * normal.
