@@ -76,12 +76,22 @@ struct Best {
 
 /// Edge (i, i+1) and its shadow ellipse: basis (b1, b2) of the plane orthogonal to the edge
 /// rotated onto the shadow's axes, radii s1 >= s2, and the edge's 2-D point.
+/// Whether a point at level l = ||p / r|| (radii r, smallest r_small, largest r_large)
+/// certainly has signed depth >= best, so that no candidate of it can win: its depth is at
+/// least (1 - l) * (l < 1 ? r_small : r_large), which never exceeds r_small (so the level
+/// is only computed when best is below that).
+bool depth_at_least(double best, double x, double y, double z, double rx, double ry, double rz,
+                    double r_small, double r_large) {
+    if (best > r_small) return false;
+    const double level = std::sqrt((x / rx) * (x / rx) + (y / ry) * (y / ry) + (z / rz) * (z / rz));
+    return (1.0 - level) * (level < 1.0 ? r_small : r_large) >= best;
+}
+
 struct EdgeShadow {
     bool valid;
     dvec3 axis1, axis2;  // 3-D directions of the shadow's axes
     double s1, s2;
     double px, py;         // the edge line's point in the shadow frame
-    double lower_bound;    // no direction orthogonal to the edge gives g below this
     double closest_value;  // the closest candidate's edge value, once computed
 };
 
@@ -91,14 +101,14 @@ EdgeShadow make_shadow(const Problem& pb, int i) {
     const dvec3& e = pb.tri->edge[i];
     const double length2 = glm::dot(e, e);
     if (!(length2 > 0.0)) return s;
-    const dvec3 dir = e / std::sqrt(length2);
-    // b1: orthogonal to the edge, from the coordinate axis least aligned with it.
-    const dvec3 a = glm::abs(dir);
-    const dvec3 helper = a.x <= a.y && a.x <= a.z ? dvec3(1, 0, 0)
-                         : a.y <= a.z             ? dvec3(0, 1, 0)
-                                                  : dvec3(0, 0, 1);
-    const dvec3 b1 = glm::normalize(glm::cross(dir, helper));
-    const dvec3 b2 = glm::cross(dir, b1);
+    // b1: orthogonal to the edge and to the coordinate axis least aligned with it; b2 = e x b1
+    // / |e|. The two square roots are independent.
+    const dvec3 a = glm::abs(e);
+    const dvec3 b1_raw = a.x <= a.y && a.x <= a.z ? dvec3(0.0, e.z, -e.y)
+                         : a.y <= a.z             ? dvec3(-e.z, 0.0, e.x)
+                                                  : dvec3(e.y, -e.x, 0.0);
+    const dvec3 b1 = b1_raw / std::sqrt(glm::dot(b1_raw, b1_raw));
+    const dvec3 b2 = glm::cross(e, b1) / std::sqrt(length2);
     // M = B^T D^2 B and its eigenvectors (closed form for a symmetric 2x2).
     const double m00 = glm::dot(pb.r2 * b1, b1);
     const double m01 = glm::dot(pb.r2 * b1, b2);
@@ -123,9 +133,6 @@ EdgeShadow make_shadow(const Problem& pb, int i) {
     if (!(s.s2 > 0.0)) return s;
     s.px = glm::dot(s.axis1, pb.tri->q[i]);
     s.py = glm::dot(s.axis2, pb.tri->q[i]);
-    // 2-D depth of the point >= (1 - l) * (l < 1 ? s2 : s1) with l its level.
-    const double level = std::sqrt((s.px / s.s1) * (s.px / s.s1) + (s.py / s.s2) * (s.py / s.s2));
-    s.lower_bound = (1.0 - level) * (level < 1.0 ? s.s2 : s.s1);
     s.valid = true;
     return s;
 }
@@ -252,7 +259,7 @@ private:
         shadow_[i] = make_shadow(pb_, i);
         EdgeShadow& s = shadow_[i];
         s.closest_value = kInfinity;
-        if (!s.valid || s.lower_bound >= best_.g) return false;
+        if (!s.valid || cannot_win(s)) return false;
         std::array<double, 2> n;
         if (s.py != 0.0) {
             const double pole = (s.s1 - s.s2) * (s.s1 + s.s2);
@@ -282,6 +289,11 @@ private:
                pb_.closest_regime(g, h);
     }
 
+    /// No direction orthogonal to the edge gives g below the 2-D depth of its point.
+    bool cannot_win(const EdgeShadow& s) const {
+        return depth_at_least(best_.g, s.px, s.py, 0.0, s.s1, s.s2, 1.0, s.s2, s.s1);
+    }
+
     /// The outward normal of q's closest surface point; returns the signed distance.
     double closest_normal(const dvec3& q, std::array<double, 3>& n) {
         if (q.z != 0.0)
@@ -296,10 +308,9 @@ private:
 
     bool try_vertex(int i) {
         const dvec3& q = pb_.tri->q[i];
-        const dvec3 level_vector = q / pb_.r;
-        const double level = glm::length(level_vector);
         vertex_closest_[i] = kInfinity;
-        if ((1.0 - level) * (level < 1.0 ? pb_.r.z : pb_.r.x) >= best_.g) return false;
+        if (depth_at_least(best_.g, q.x, q.y, q.z, pb_.r.x, pb_.r.y, pb_.r.z, pb_.r.z, pb_.r.x))
+            return false;
         std::array<double, 3> n;
         vertex_closest_[i] = -closest_normal(q, n);
         const dvec3 u(-n[0], -n[1], -n[2]);
@@ -317,7 +328,7 @@ private:
     void other_edge_minima(int i) {
         const EdgeShadow& s = shadow_[i];
         // Every local minimum of the edge's function is >= its global one.
-        if (!s.valid || s.lower_bound >= best_.g || s.closest_value >= best_.g) return;
+        if (!s.valid || s.closest_value >= best_.g || cannot_win(s)) return;
         if (s.py != 0.0) {
             std::array<double, 2> n;
             const double pole = (s.s1 - s.s2) * (s.s1 + s.s2);
