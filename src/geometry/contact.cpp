@@ -174,10 +174,10 @@ public:
             const double side2 = n2 - side0 - side1;
             // The vertices must lie on the face plane to rounding: a sliver's normal may be
             // too inaccurate for the certificate, and then the edges decide.
-            const double scale =
-                pb_.r.x + max_abs(tri.q[0]) + max_abs(tri.q[1]) + max_abs(tri.q[2]);
-            if (side0 >= 0.0 && side1 >= 0.0 && side2 >= 0.0 &&
-                spread * inv_length <= 1e-14 * scale && pb_.closest_regime(g, h))
+            const double scale = pb_.r.x + tri.extent;
+            const bool inside = side0 >= 0.0 && side1 >= 0.0 && side2 >= 0.0 &&
+                                spread * inv_length <= 1e-14 * scale;
+            if (inside & pb_.closest_regime(g, h))
                 return {g, u, extreme + 0.5 * g * u, ContactPath::face_certified, 0};
             // Kept only now: stores on the certified path would cost more than the math.
             best_.offer(g, u);
@@ -185,6 +185,7 @@ public:
             side_[1] = side1;
             side_[2] = side2;
             face_touch_ = z;
+            if (inside && big_face(n2)) return finish(ContactPath::face_certified);
         }
 
         return edges_and_vertices();
@@ -289,6 +290,26 @@ private:
                pb_.closest_regime(g, h);
     }
 
+    /// The deep face certificate: the face's touching point z lies at least
+    /// R = g + |z| + r_max from every edge line. Then for u = c n + s t (t tangent, s >= 0),
+    /// g(u) >= u.z + R s + h(u) over the disk of radius R around z. For c >= 0, u.z + h(u) is
+    /// convex and 1-homogeneous with gradient x(n) + z = g n at n, so g(u) >= g c + R s >= g
+    /// (1 - c <= s, R >= g). For c < 0, the plane offset n.z <= 0 and h(u) >= |c| h(n) -
+    /// s r_max give g(u) >= (1 - s)(h(n) - n.z) + s (R - |z| - r_max) >= h(n) + n.z = g. So n
+    /// minimises g at any depth: a wheel pressed deep into a large road triangle.
+    /// side_k = |N| |e_k| times z's distance from edge line k.
+    /// Reads the face's stored best_, face_touch_ and side_; n2 = |N|^2.
+    [[gnu::noinline]] bool big_face(double n2) const {
+        const double g = best_.g;
+        if (!(g > 0.0)) return false;
+        const double r = g + glm::length(face_touch_) + pb_.r.x;
+        const double limit = r * r * n2;
+        const LocalTriangle& tri = *pb_.tri;
+        for (int k = 0; k < 3; ++k)
+            if (side_[k] * side_[k] < limit * glm::dot(tri.edge[k], tri.edge[k])) return false;
+        return true;
+    }
+
     /// No direction orthogonal to the edge gives g below the 2-D depth of its point.
     bool cannot_win(const EdgeShadow& s) const {
         return depth_at_least(best_.g, s.px, s.py, 0.0, s.s1, s.s2, 1.0, s.s2, s.s1);
@@ -369,10 +390,6 @@ private:
             const dvec3 u(-cp.n[0], -cp.n[1], -cp.n[2]);
             best_.offer(pb_.top(u) + pb_.support(u), u);
         }
-    }
-
-    static double max_abs(const dvec3& v) {
-        return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
     }
 
     Problem pb_;
@@ -509,6 +526,8 @@ Contact rescaled_contact(const Ellipsoid& ellipsoid, const std::array<glm::dvec3
         local.q[i] = (v[i] / scale - center) * axes;
     }
     for (int i = 0; i < 3; ++i) local.edge[i] = local.q[(i + 1) % 3] - local.q[i];
+    const glm::dvec3 sum = glm::abs(local.q[0]) + glm::abs(local.q[1]) + glm::abs(local.q[2]);
+    local.extent = sum.x + sum.y + sum.z;
     const detail::LocalContact solved = detail::contact_in_sorted_frame(radii / scale, local);
     return {solved.depth * scale, axes * solved.u, c + axes * (solved.point * scale)};
 }
@@ -527,7 +546,8 @@ Contact ellipsoid_triangle_contact(const Ellipsoid& ellipsoid, const Triangle& t
     // every car and track does (edges are at most twice the largest |q|). The sum also catches
     // non-finite input (NaN and infinity propagate). Anything else takes the careful path.
     const glm::dvec3 sum = glm::abs(local.q[0]) + glm::abs(local.q[1]) + glm::abs(local.q[2]);
-    if (!(sum.x + sum.y + sum.z < 0x1p299) || radii.z < 0x1p-300) {
+    local.extent = sum.x + sum.y + sum.z;
+    if (!(local.extent < 0x1p299) || radii.z < 0x1p-300) {
         if (!finite_triangle(triangle))
             return {-std::numeric_limits<double>::infinity(), glm::dvec3(0.0, 1.0, 0.0), c};
         return rescaled_contact(ellipsoid, canonical_vertices(triangle, rank));

@@ -146,9 +146,11 @@ TEST(Contact, ShallowRoadContactsTakeTheCertifiedFaceExit) {
         if (ellipsoid_triangle_contact(c.ellipsoid, c.triangle).depth * r.x >= r.z * r.z) continue;
         ++count;
         detail::LocalTriangle local;
+        local.extent = 0.0;
         for (int i = 0; i < 3; ++i) {
             local.q[i] = c.ellipsoid.to_sorted_local(c.triangle[i]);
             local.edge[i] = c.ellipsoid.to_sorted_local(c.triangle[(i + 1) % 3]) - local.q[i];
+            local.extent += std::abs(local.q[i].x) + std::abs(local.q[i].y) + std::abs(local.q[i].z);
         }
         face += detail::contact_in_sorted_frame(c.ellipsoid.sorted_radii(), local).path ==
                 detail::ContactPath::face_certified;
