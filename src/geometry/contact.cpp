@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <array>
-#include <utility>
 #include <cmath>
 #include <limits>
 
@@ -26,8 +25,10 @@
 // sigma = g(u). Shallow contacts (depth < r_min^2 / h, 6 cm for a wheel) and every
 // separated configuration are certified by the first candidate that passes; a vertex whose
 // closest-point direction keeps it the top vertex is certified at any depth (z = q_i and
-// the direction is its closest point by construction). Only the rest enumerate every local
-// minimum.
+// the direction is its closest point by construction), and so is a face whose touching point
+// lies far enough inside the triangle (big_face). Only the rest enumerate every local
+// minimum. The order of the tries follows where the face's touching point fell: beyond an
+// edge, that edge (or the vertex past whose end it fell) comes first.
 //
 // Candidates (the minimiser of g has 3, 2 or 1 active vertices):
 // - face: u = +-n; only the side facing the center can win, g(-n) >= g(n) when n.q <= 0;
@@ -74,8 +75,6 @@ struct Best {
     }
 };
 
-/// Edge (i, i+1) and its shadow ellipse: basis (b1, b2) of the plane orthogonal to the edge
-/// rotated onto the shadow's axes, radii s1 >= s2, and the edge's 2-D point.
 /// Whether a point at level l = ||p / r|| (radii r, smallest r_small, largest r_large)
 /// certainly has signed depth >= best, so that no candidate of it can win: its depth is at
 /// least (1 - l) * (l < 1 ? r_small : r_large), which never exceeds r_small (so the level
@@ -87,6 +86,8 @@ bool depth_at_least(double best, double x, double y, double z, double rx, double
     return (1.0 - level) * (level < 1.0 ? r_small : r_large) >= best;
 }
 
+/// Edge (i, i+1) and its shadow ellipse: basis (b1, b2) of the plane orthogonal to the edge
+/// rotated onto the shadow's axes, radii s1 >= s2, and the edge's 2-D point.
 struct EdgeShadow {
     bool valid;
     dvec3 axis1, axis2;  // 3-D directions of the shadow's axes
