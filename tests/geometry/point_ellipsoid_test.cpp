@@ -64,6 +64,7 @@ std::string describe(const PointCase<N>& c) {
 
 struct Stats {
     double max_distance_error = 0;
+    double max_relative_error = 0;  // distance error / max(1 m, |p|)
     double max_point_error = 0;
     int max_iterations = 0;
     long total_iterations = 0;
@@ -87,6 +88,10 @@ void check_against_reference(std::uint64_t seed, Closest closest, All all, Stats
             << "case " << k << " class " << point_class_name(c.kind) << describe<N>(c) << " got "
             << distance << " want " << double(best.offset);
         stats.max_distance_error = std::max(stats.max_distance_error, distance_error);
+        double norm2 = 0;
+        for (double x : c.p) norm2 += x * x;
+        stats.max_relative_error =
+            std::max(stats.max_relative_error, distance_error / std::max(1.0, std::sqrt(norm2)));
         if (closest_gap<N>(ref) > 1e-6) {
             const double point_error = static_cast<double>(point_distance<N>(best.x, point));
             ASSERT_LE(point_error, 1e-6) << "case " << k << " class " << point_class_name(c.kind);
@@ -137,9 +142,9 @@ TEST(PointEllipsoid, ClosestAndAllCriticalPointsMatchTheLongDoubleBisection) {
         },
         stats);
     std::printf(
-        "3-D: %ld cases, max |distance error| %.3g m, max point error %.3g m, "
-        "iterations mean %.2f max %d\n",
-        stats.cases, stats.max_distance_error, stats.max_point_error,
+        "3-D: %ld cases, max |distance error| %.3g m (%.3g of max(1 m, |p|)), max point error "
+        "%.3g m, iterations mean %.2f max %d\n",
+        stats.cases, stats.max_distance_error, stats.max_relative_error, stats.max_point_error,
         double(stats.total_iterations) / double(stats.cases), stats.max_iterations);
     EXPECT_LE(stats.max_iterations, 25);
 }
@@ -163,8 +168,10 @@ TEST(PointEllipse, ClosestAndAllCriticalPointsMatchTheLongDoubleBisection) {
             return points;
         },
         stats);
-    std::printf("2-D: %ld cases, max |distance error| %.3g m, max point error %.3g m\n",
-                stats.cases, stats.max_distance_error, stats.max_point_error);
+    std::printf(
+        "2-D: %ld cases, max |distance error| %.3g m (%.3g of max(1 m, |p|)), max point error "
+        "%.3g m\n",
+        stats.cases, stats.max_distance_error, stats.max_relative_error, stats.max_point_error);
 }
 
 TEST(PointEllipsoid, CriticalPointsAreOnTheSurfaceWithPOnTheirNormalLine) {
