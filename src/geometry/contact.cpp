@@ -144,7 +144,6 @@ public:
         pb_.r = radii;
         pb_.r2 = radii * radii;
         pb_.r_min2 = pb_.r2.z;
-        for (int i = 0; i < 3; ++i) pb_.pole[i] = (radii[i] - radii.z) * (radii[i] + radii.z);
         pb_.tri = &tri;
     }
 
@@ -181,18 +180,30 @@ public:
             if (inside & pb_.closest_regime(g, h))
                 return {g, u, extreme + 0.5 * g * u, ContactPath::face_certified, 0};
             // Kept only now: stores on the certified path would cost more than the math.
+            begin_search();
             best_.offer(g, u);
             side_[0] = side0;
             side_[1] = side1;
             side_[2] = side2;
             face_touch_ = z;
             if (inside && big_face(n2)) return finish(ContactPath::face_certified);
+        } else {
+            begin_search();
         }
-
         return edges_and_vertices();
     }
 
 private:
+    /// The state of the search past the face, set up only when the face did not answer.
+    void begin_search() {
+        const dvec3& r = pb_.r;
+        for (int i = 0; i < 3; ++i) pb_.pole[i] = (r[i] - r.z) * (r[i] + r.z);
+        best_ = Best{};
+        iterations_ = 0;
+        face_touch_ = dvec3(0.0);
+        side_[0] = side_[1] = side_[2] = 0.0;
+    }
+
     /// Everything after the face, out of line so that the face path stays small and inlined.
     [[gnu::noinline]] LocalContact edges_and_vertices() {
         // Edges and vertices by their closest-point candidates, the ones the face's touching
@@ -394,10 +405,11 @@ private:
     }
 
     Problem pb_;
+    // Set by begin_search().
     Best best_;
-    int iterations_ = 0;
-    dvec3 face_touch_{0.0};
-    double side_[3] = {0.0, 0.0, 0.0};
+    int iterations_;
+    dvec3 face_touch_;
+    double side_[3];
     // Filled by try_edge and try_vertex for every feature before the deep enumeration reads them.
     EdgeShadow shadow_[3];
     double vertex_closest_[3];
