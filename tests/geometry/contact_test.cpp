@@ -165,8 +165,9 @@ TEST(Contact, RigidMotionsChangeTheDepthByAtMostANanometre) {
     for (int k = 0; k < 20000; ++k) {
         const ContactCase c = generator.any();
         const glm::dquat rotation = generator.rotation();
-        const glm::dvec3 shift(generator.uniform(-1e3, 1e3), generator.uniform(-1e2, 1e2),
-                               generator.uniform(-1e3, 1e3));
+        const glm::dvec3 shift(generator.uniform(-2e4, 2e4), generator.uniform(-1e3, 1e3),
+                               generator.uniform(-2e4, 2e4));
+        // Anywhere in a 20 km world.
         const auto move = [&](const glm::dvec3& p) { return rotation * p + shift; };
         const Ellipsoid& e = c.ellipsoid;
         const Ellipsoid moved(move(e.center()), rotation * e.orientation(), e.semi_axes());
