@@ -40,6 +40,9 @@ struct ReferenceContact {
     V3 u;           ///< the minimising direction (ellipsoid frame)
     R runner_up;    ///< smallest g among candidates more than 1e-4 rad away from u
     R sampled_min;  ///< min of g over the dense sampling (>= depth)
+    /// The least rise of g 1e-4 rad away from u (8 directions): a minimum flat to second
+    /// order (a vertex at a center of curvature) fixes its direction only to ~eps^(1/4).
+    R rise;
     int candidates;
 };
 
@@ -72,6 +75,15 @@ public:
         for (const auto& [value, u] : candidates_)
             if (dot(u, result.u) < std::cos(R(1e-4)))
                 result.runner_up = std::min(result.runner_up, value);
+        const V3 helper = std::fabs(result.u.x) < 0.6L ? V3{1, 0, 0} : V3{0, 1, 0};
+        const V3 t1 = unit(cross(result.u, helper));
+        const V3 t2 = cross(result.u, t1);
+        result.rise = INFINITY;
+        for (int k = 0; k < 8; ++k) {
+            const R angle = R(0.78539816339744830962L) * k;
+            const V3 v = unit(result.u + (t1 * std::cos(angle) + t2 * std::sin(angle)) * R(1e-4));
+            result.rise = std::min(result.rise, g(v) - result.depth);
+        }
         result.sampled_min = INFINITY;
         const int samples = 600;
         for (int k = 0; k < samples; ++k)
