@@ -360,8 +360,10 @@ private:
 
     void other_edge_minima(int i) {
         const EdgeShadow& s = shadow_[i];
-        // Every local minimum of the edge's function is >= its global one.
-        if (!s.valid || s.closest_value >= best_.g || cannot_win(s)) return;
+        // Every local minimum of the edge's function is >= its global one, and >= |p_y| (see
+        // other_vertex_minima).
+        if (!s.valid || std::max(s.closest_value, std::abs(s.py)) >= best_.g || cannot_win(s))
+            return;
         if (s.py != 0.0) {
             std::array<double, 2> n;
             const double pole = (s.s1 - s.s2) * (s.s1 + s.s2);
@@ -383,8 +385,11 @@ private:
     }
 
     void other_vertex_minima(int i) {
-        if (vertex_closest_[i] >= best_.g) return;
+        // The other minima lie left of the smallest radius' pole, t < -r_z^2, where
+        // x_z = r_z^2 q_z / (r_z^2 + t) has the sign opposite to q_z and lambda = -t |D^-2 x| > 0
+        // is |x - q| >= |x_z - q_z| >= |q_z|; and every local minimum is >= the global one.
         const dvec3& q = pb_.tri->q[i];
+        if (std::max(vertex_closest_[i], std::abs(q.z)) >= best_.g) return;
         if (q.z != 0.0) {
             std::array<double, 3> n;
             if (other_minimum_normal_fast<3>({pb_.r.x, pb_.r.y, pb_.r.z}, pb_.pole, {q.x, q.y, q.z},
