@@ -10,8 +10,11 @@
 #include "trackphys/math/types.hpp"
 
 #include "trackphys/geometry/aabb.hpp"
+#include "trackphys/geometry/contact.hpp"
 #include "trackphys/geometry/ellipsoid.hpp"
 #include "trackphys/geometry/normalized_triangle.hpp"
+#include "trackphys/geometry/point_ellipse.hpp"
+#include "trackphys/geometry/point_ellipsoid.hpp"
 #include "trackphys/geometry/sphere_cull_variants.hpp"
 #include "trackphys/geometry/triangle.hpp"
 #include "trackphys/geometry/triangle_mesh.hpp"

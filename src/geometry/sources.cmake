@@ -3,3 +3,8 @@ target_sources(trackphys PRIVATE
   geometry/normalized_triangle.cpp
   geometry/sphere_cull_variants.cpp
   geometry/triangle.cpp)
+target_sources(trackphys PRIVATE
+  geometry/contact.cpp
+  geometry/point_ellipse.cpp
+  geometry/point_ellipsoid.cpp
+  geometry/writeup_root_finders.cpp)

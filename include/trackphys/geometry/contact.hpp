@@ -1,0 +1,33 @@
+#pragma once
+
+#include <glm/vec3.hpp>
+
+#include "trackphys/export.hpp"
+#include "trackphys/geometry/ellipsoid.hpp"
+#include "trackphys/geometry/triangle.hpp"
+
+namespace trackphys {
+
+/// The exact contact between a solid ellipsoid and a triangle (DESIGN.md, "Exact
+/// ellipsoid-triangle contact").
+struct Contact {
+    /// Signed penetration (m): > 0 they overlap and depth is the minimum translation
+    /// distance; < 0 they are apart by -depth. -infinity for a triangle with a non-finite
+    /// coordinate (out of reach).
+    double depth;
+    /// Unit world direction in which to move the ellipsoid to separate (when apart: away
+    /// from the triangle).
+    glm::dvec3 normal;
+    /// Midpoint between the ellipsoid's extreme point towards the triangle and the
+    /// triangle's touching point (m, world).
+    glm::dvec3 point;
+};
+
+/// sigma = min over unit u of max_i (u . q_i) + ||D u|| in the ellipsoid's frame, found
+/// among the face, edge and vertex candidates (every local minimum of each), with exact
+/// early exits for shallow contacts. Depth is exact to ~1e-12 m; degenerate triangles
+/// (collinear or coincident vertices) act as the segment or point they are. Never NaN.
+TRACKPHYS_API Contact ellipsoid_triangle_contact(const Ellipsoid& ellipsoid,
+                                                 const Triangle& triangle);
+
+}  // namespace trackphys

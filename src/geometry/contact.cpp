@@ -1,0 +1,578 @@
+#include "trackphys/geometry/contact.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include <glm/geometric.hpp>
+
+#include "geometry/contact_kernel.hpp"
+#include "geometry/ellipsoid_roots.hpp"
+#include "trackphys/math/types.hpp"
+
+// The candidates and the certificate (DESIGN.md, "Exact ellipsoid-triangle contact").
+//
+// In the sorted frame, E = {x : sum x_i^2 / r_i^2 <= 1} with support h(u) = ||D u|| and
+// support point x(u) = D^2 u / h(u); sigma = min over unit u of g(u) = max_i u.q_i + h(u).
+//
+// Certificate. For any unit u let z(u) = x(-u) + g(u) u. Then u.z = max_i u.q_i, and z lies
+// on the normal line of the surface point x(-u) (outward normal -u) at signed depth g(u).
+// For every point z' of the triangle, g(u') >= u'.z' + h(u') for all u', whose minimum over
+// u' is the signed depth of z' in E; so sigma >= depth(z'). If z(u) lies in the triangle and
+// the critical point -u of z's distance is its closest point, i.e. the root t = -g h(u) of
+// f is the largest one, which holds when t > -r_min^2, then depth(z) = g(u) and therefore
+// sigma = g(u). Shallow contacts (depth < r_min^2 / h, 6 cm for a wheel) and every
+// separated configuration are certified by the first candidate that passes; a vertex whose
+// closest-point direction keeps it the top vertex is certified at any depth (z = q_i and
+// the direction is its closest point by construction), and so is a face whose touching point
+// lies far enough inside the triangle (big_face). Only the rest enumerate every local
+// minimum. The order of the tries follows where the face's touching point fell: beyond an
+// edge, that edge (or the vertex past whose end it fell) comes first.
+//
+// Candidates (the minimiser of g has 3, 2 or 1 active vertices):
+// - face: u = +-n; only the side facing the center can win, g(-n) >= g(n) when n.q <= 0;
+// - edge (i, j): u on the circle orthogonal to e = q_j - q_i, where u.q_i = u.q_j and
+//   h(B w) = sqrt(w^T B^T D^2 B w) for an orthonormal basis B of e's orthogonal plane: E's
+//   shadow there is the ellipse with matrix M = B^T D^2 B, and the candidates are the
+//   local minima of the 2-D problem for the point B^T q_i (point_ellipse);
+// - vertex i: the local minima of u.q_i + h(u), i.e. of the offset from q_i to the surface
+//   along the normal (point_ellipsoid), u = -normal.
+// Each candidate's true g is >= sigma and the minimiser is among them.
+
+namespace trackphys {
+namespace detail {
+namespace {
+
+using glm::dvec3;
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+struct Problem {
+    dvec3 r;   // radii
+    dvec3 r2;  // squared radii
+    double r_min2;
+    std::array<double, 3> pole;  // (r_i - r_z)(r_i + r_z): offsets of the poles of f from -r_z^2
+    const LocalTriangle* tri;
+
+    double support(const dvec3& u) const { return std::sqrt(glm::dot(r2 * u, u)); }
+    dvec3 support_point(const dvec3& u, double h) const { return r2 * u / h; }
+    double top(const dvec3& u) const {
+        return std::max({glm::dot(u, tri->q[0]), glm::dot(u, tri->q[1]), glm::dot(u, tri->q[2])});
+    }
+    /// True when the largest root condition t = -g h > -r_min^2 holds.
+    bool closest_regime(double g, double h) const { return g * h < r_min2; }
+};
+
+struct Best {
+    double g = kInfinity;
+    dvec3 u{0.0, 1.0, 0.0};
+    void offer(double value, const dvec3& u_candidate) {
+        if (value < g) {
+            g = value;
+            u = u_candidate;
+        }
+    }
+};
+
+/// Whether a point at level l = ||p / r|| (radii r, smallest r_small, largest r_large)
+/// certainly has signed depth >= best, so that no candidate of it can win: its depth is at
+/// least (1 - l) * (l < 1 ? r_small : r_large), which never exceeds r_small (so the level
+/// is only computed when best is below that).
+bool depth_at_least(double best, double x, double y, double z, double rx, double ry, double rz,
+                    double r_small, double r_large) {
+    if (best > r_small) return false;
+    const double level = std::sqrt((x / rx) * (x / rx) + (y / ry) * (y / ry) + (z / rz) * (z / rz));
+    return (1.0 - level) * (level < 1.0 ? r_small : r_large) >= best;
+}
+
+/// Edge (i, i+1) and its shadow ellipse: basis (b1, b2) of the plane orthogonal to the edge
+/// rotated onto the shadow's axes, radii s1 >= s2, and the edge's 2-D point.
+struct EdgeShadow {
+    bool valid;
+    dvec3 axis1, axis2;  // 3-D directions of the shadow's axes
+    double s1, s2;
+    double px, py;         // the edge line's point in the shadow frame
+    double closest_value;  // the closest candidate's edge value, once computed
+};
+
+EdgeShadow make_shadow(const Problem& pb, int i) {
+    EdgeShadow s;
+    s.valid = false;
+    const dvec3& e = pb.tri->edge[i];
+    const double length2 = glm::dot(e, e);
+    if (!(length2 > 0.0)) return s;
+    // b1: orthogonal to the edge and to the coordinate axis least aligned with it; b2 = e x b1
+    // / |e|. The two square roots are independent.
+    const dvec3 a = glm::abs(e);
+    const dvec3 b1_raw = a.x <= a.y && a.x <= a.z ? dvec3(0.0, e.z, -e.y)
+                         : a.y <= a.z             ? dvec3(-e.z, 0.0, e.x)
+                                                  : dvec3(e.y, -e.x, 0.0);
+    const dvec3 b1 = b1_raw / std::sqrt(glm::dot(b1_raw, b1_raw));
+    const dvec3 b2 = glm::cross(e, b1) / std::sqrt(length2);
+    // M = B^T D^2 B and its eigenvectors (closed form for a symmetric 2x2).
+    const double m00 = glm::dot(pb.r2 * b1, b1);
+    const double m01 = glm::dot(pb.r2 * b1, b2);
+    const double m11 = glm::dot(pb.r2 * b2, b2);
+    const double mean = 0.5 * (m00 + m11);
+    const double half_diff = 0.5 * (m00 - m11);
+    const double radius = std::sqrt(half_diff * half_diff + m01 * m01);
+    double vx = half_diff >= 0.0 ? half_diff + radius : m01;
+    double vy = half_diff >= 0.0 ? m01 : radius - half_diff;
+    const double vlen = std::sqrt(vx * vx + vy * vy);
+    if (vlen > 0.0) {
+        vx /= vlen;
+        vy /= vlen;
+    } else {
+        vx = 1.0;
+        vy = 0.0;
+    }
+    s.axis1 = vx * b1 + vy * b2;
+    s.axis2 = -vy * b1 + vx * b2;
+    s.s1 = std::sqrt(mean + radius);
+    s.s2 = std::sqrt(std::max(mean - radius, 0.0));
+    if (!(s.s2 > 0.0)) return s;
+    s.px = glm::dot(s.axis1, pb.tri->q[i]);
+    s.py = glm::dot(s.axis2, pb.tri->q[i]);
+    s.valid = true;
+    return s;
+}
+
+class Solver {
+public:
+    Solver(const dvec3& radii, const LocalTriangle& tri) {
+        pb_.r = radii;
+        pb_.r2 = radii * radii;
+        pb_.r_min2 = pb_.r2.z;
+        pb_.tri = &tri;
+    }
+
+    [[gnu::always_inline]] LocalContact run() {
+        const LocalTriangle& tri = *pb_.tri;
+        // Face, from the unnormalised area normal N: |N| and h(N) = |N| h(n) are independent
+        // square roots, and u = sign N / |N| faces the center (g(-u) >= g(u)).
+        const dvec3 area_normal = glm::cross(tri.edge[0], -tri.edge[2]);
+        const double n2 = glm::dot(area_normal, area_normal);
+        if (n2 > 0.0 && n2 < kInfinity) {
+            const dvec3 r2n = pb_.r2 * area_normal;
+            const double inv_length = 1.0 / std::sqrt(n2);
+            const double hn = std::sqrt(glm::dot(r2n, area_normal));
+            const double e0 = glm::dot(area_normal, tri.q[0]);
+            const double e1 = glm::dot(area_normal, tri.q[1]);
+            const double e2 = glm::dot(area_normal, tri.q[2]);
+            const double sign = e0 + e1 + e2 > 0.0 ? -1.0 : 1.0;
+            const double top = sign > 0.0 ? std::max({e0, e1, e2}) : -std::min({e0, e1, e2});
+            const double spread = std::max({e0, e1, e2}) - std::min({e0, e1, e2});
+            const dvec3 u = (sign * inv_length) * area_normal;
+            const double g = (top + hn) * inv_length;
+            const double h = hn * inv_length;
+            const dvec3 extreme = (-sign / hn) * r2n;  // x(-u) = -D^2 u / h(u)
+            const dvec3 z = extreme + g * u;
+            // det(e_k, z - q_k, N) for the three edges; they sum to |N|^2 for any z.
+            const double side0 = glm::dot(glm::cross(tri.edge[0], z - tri.q[0]), area_normal);
+            const double side1 = glm::dot(glm::cross(tri.edge[1], z - tri.q[1]), area_normal);
+            const double side2 = n2 - side0 - side1;
+            // The vertices must lie on the face plane to rounding: a sliver's normal may be
+            // too inaccurate for the certificate, and then the edges decide.
+            const double scale = pb_.r.x + tri.extent;
+            const bool inside = side0 >= 0.0 && side1 >= 0.0 && side2 >= 0.0 &&
+                                spread * inv_length <= 1e-14 * scale;
+            if (inside & pb_.closest_regime(g, h))
+                return {g, u, extreme + 0.5 * g * u, ContactPath::face_certified, 0};
+            // Kept only now: stores on the certified path would cost more than the math.
+            begin_search();
+            best_.offer(g, u);
+            side_[0] = side0;
+            side_[1] = side1;
+            side_[2] = side2;
+            face_touch_ = z;
+            if (inside && big_face(n2)) return finish(ContactPath::face_certified);
+        } else {
+            begin_search();
+        }
+        return edges_and_vertices();
+    }
+
+private:
+    /// The state of the search past the face, set up only when the face did not answer.
+    void begin_search() {
+        const dvec3& r = pb_.r;
+        for (int i = 0; i < 3; ++i) pb_.pole[i] = (r[i] - r.z) * (r[i] + r.z);
+        best_ = Best{};
+        iterations_ = 0;
+        face_touch_ = dvec3(0.0);
+        side_[0] = side_[1] = side_[2] = 0.0;
+    }
+
+    /// Everything after the face, out of line so that the face path stays small and inlined.
+    [[gnu::noinline]] LocalContact edges_and_vertices() {
+        // Edges and vertices by their closest-point candidates, the ones the face's touching
+        // point fell beyond first.
+        int order[6];
+        feature_order(order);
+        for (const int feature : order) {
+            if (feature < 3 ? try_edge(feature) : try_vertex(feature - 3))
+                return finish(feature < 3 ? ContactPath::edge_certified
+                                          : ContactPath::vertex_certified);
+        }
+
+        // Deep: every other local minimum of every edge and vertex that can still win.
+        for (int i = 0; i < 3; ++i) other_edge_minima(i);
+        for (int i = 0; i < 3; ++i) other_vertex_minima(i);
+        return finish(ContactPath::enumerated);
+    }
+
+    LocalContact finish(ContactPath path) const {
+        // The ellipsoid's extreme point towards the triangle, x(-u), moved by half the depth.
+        const double h = pb_.support(best_.u);
+        const dvec3 point = 0.5 * best_.g * best_.u - pb_.support_point(best_.u, h);
+        return {best_.g, best_.u, point, path, iterations_};
+    }
+
+    void feature_order(int (&order)[6]) const {
+        // side_[k] < 0: the face's touching point is beyond edge k (from q_k to q_{k+1}); beyond
+        // one of its ends, the vertex there is the likely winner.
+        int n = 0;
+        int outside = -1;
+        int count_outside = 0;
+        for (int k = 0; k < 3; ++k)
+            if (side_[k] < 0.0) {
+                ++count_outside;
+                outside = k;
+            }
+        if (count_outside == 1) {
+            const dvec3& e = pb_.tri->edge[outside];
+            const double along = glm::dot(face_touch_ - pb_.tri->q[outside], e);
+            const int start = 3 + outside;
+            const int end = 3 + (outside + 1) % 3;
+            if (along < 0.0) {
+                order[n++] = start;
+                order[n++] = outside;
+            } else if (along > glm::dot(e, e)) {
+                order[n++] = end;
+                order[n++] = outside;
+            } else {
+                order[n++] = outside;
+                order[n++] = start;
+                order[n++] = end;
+            }
+        } else if (count_outside == 2) {
+            // Beyond two edges: the vertex they share first.
+            const int inside = side_[0] >= 0.0 ? 0 : side_[1] >= 0.0 ? 1 : 2;
+            const int vertex = (inside + 2) % 3;
+            order[n++] = 3 + vertex;
+            order[n++] = vertex;
+            order[n++] = (vertex + 2) % 3;
+        }
+        for (int f = 0; f < 6; ++f)
+            if (std::find(order, order + n, f) == order + n) order[n++] = f;
+    }
+
+    bool try_edge(int i) {
+        shadow_[i] = make_shadow(pb_, i);
+        EdgeShadow& s = shadow_[i];
+        s.closest_value = kInfinity;
+        if (!s.valid || cannot_win(s)) return false;
+        std::array<double, 2> n;
+        if (s.py != 0.0) {
+            const double pole = (s.s1 - s.s2) * (s.s1 + s.s2);
+            s.closest_value =
+                -closest_normal_fast<2>({s.s1, s.s2}, {pole, 0.0}, {s.px, s.py}, n, iterations_);
+        } else {
+            CriticalSolver<2> solver({s.s1, s.s2}, {s.px, s.py});
+            CriticalPoints<2> found;
+            solver.solve(CriticalSet::closest, found);
+            n = found.points[0].n;
+            s.closest_value = -found.points[0].offset;
+        }
+        const dvec3 u = -(n[0] * s.axis1 + n[1] * s.axis2);
+        const double h = pb_.support(u);
+        const LocalTriangle& tri = *pb_.tri;
+        const int j = (i + 1) % 3;
+        const int k = (i + 2) % 3;
+        const double di = glm::dot(u, tri.q[i]);
+        const double dj = glm::dot(u, tri.q[j]);
+        const double dk = glm::dot(u, tri.q[k]);
+        const double g = std::max({di, dj, dk}) + h;
+        best_.offer(g, u);
+        if (dk > std::max(di, dj)) return false;
+        const dvec3 z = g * u - pb_.support_point(u, h);
+        const double along = glm::dot(z - tri.q[i], tri.edge[i]);
+        return along >= 0.0 && along <= glm::dot(tri.edge[i], tri.edge[i]) &&
+               pb_.closest_regime(g, h);
+    }
+
+    /// The deep face certificate: the face's touching point z lies at least
+    /// R = g + |z| + r_max from every edge line. Then for u = c n + s t (t tangent, s >= 0),
+    /// g(u) >= u.z + R s + h(u) over the disk of radius R around z. For c >= 0, u.z + h(u) is
+    /// convex and 1-homogeneous with gradient x(n) + z = g n at n, so g(u) >= g c + R s >= g
+    /// (1 - c <= s, R >= g). For c < 0, the plane offset n.z <= 0 and h(u) >= |c| h(n) -
+    /// s r_max give g(u) >= (1 - s)(h(n) - n.z) + s (R - |z| - r_max) >= h(n) + n.z = g. So n
+    /// minimises g at any depth: a wheel pressed deep into a large road triangle.
+    /// side_k = |N| |e_k| times z's distance from edge line k.
+    /// Reads the face's stored best_, face_touch_ and side_; n2 = |N|^2.
+    [[gnu::noinline]] bool big_face(double n2) const {
+        const double g = best_.g;
+        if (!(g > 0.0)) return false;
+        const double r = g + glm::length(face_touch_) + pb_.r.x;
+        const double limit = r * r * n2;
+        const LocalTriangle& tri = *pb_.tri;
+        for (int k = 0; k < 3; ++k)
+            if (side_[k] * side_[k] < limit * glm::dot(tri.edge[k], tri.edge[k])) return false;
+        return true;
+    }
+
+    /// No direction orthogonal to the edge gives g below the 2-D depth of its point.
+    bool cannot_win(const EdgeShadow& s) const {
+        return depth_at_least(best_.g, s.px, s.py, 0.0, s.s1, s.s2, 1.0, s.s2, s.s1);
+    }
+
+    /// The outward normal of q's closest surface point; returns the signed distance.
+    double closest_normal(const dvec3& q, std::array<double, 3>& n) {
+        if (q.z != 0.0)
+            return closest_normal_fast<3>({pb_.r.x, pb_.r.y, pb_.r.z}, pb_.pole, {q.x, q.y, q.z}, n,
+                                          iterations_);
+        CriticalSolver<3> solver({pb_.r.x, pb_.r.y, pb_.r.z}, {q.x, q.y, q.z});
+        CriticalPoints<3> found;
+        solver.solve(CriticalSet::closest, found);
+        n = found.points[0].n;
+        return found.points[0].offset;
+    }
+
+    bool try_vertex(int i) {
+        const dvec3& q = pb_.tri->q[i];
+        vertex_closest_[i] = kInfinity;
+        if (depth_at_least(best_.g, q.x, q.y, q.z, pb_.r.x, pb_.r.y, pb_.r.z, pb_.r.z, pb_.r.x))
+            return false;
+        std::array<double, 3> n;
+        vertex_closest_[i] = -closest_normal(q, n);
+        const dvec3 u(-n[0], -n[1], -n[2]);
+        const double h = pb_.support(u);
+        const double di = glm::dot(u, q);
+        const double others =
+            std::max(glm::dot(u, pb_.tri->q[(i + 1) % 3]), glm::dot(u, pb_.tri->q[(i + 2) % 3]));
+        const double g = std::max(di, others) + h;
+        best_.offer(g, u);
+        // u comes from q's closest point, so g = depth(q) when the vertex is active: q is the
+        // deepest point of the triangle and sigma = g at any depth.
+        return di >= others;
+    }
+
+    void other_edge_minima(int i) {
+        const EdgeShadow& s = shadow_[i];
+        // Every local minimum of the edge's function is >= its global one, and >= |p_y| (see
+        // other_vertex_minima).
+        if (!s.valid || std::max(s.closest_value, std::abs(s.py)) >= best_.g || cannot_win(s))
+            return;
+        if (s.py != 0.0) {
+            std::array<double, 2> n;
+            const double pole = (s.s1 - s.s2) * (s.s1 + s.s2);
+            if (other_minimum_normal_fast<2>({s.s1, s.s2}, {pole, 0.0}, {s.px, s.py}, n,
+                                             iterations_)) {
+                const dvec3 u = -(n[0] * s.axis1 + n[1] * s.axis2);
+                best_.offer(pb_.top(u) + pb_.support(u), u);
+            }
+            return;
+        }
+        CriticalSolver<2> solver({s.s1, s.s2}, {s.px, s.py});
+        CriticalPoints<2> found;
+        solver.solve(CriticalSet::other_minima, found);
+        for (int k = 0; k < found.count; ++k) {
+            const CriticalPoint<2>& cp = found.points[k];
+            const dvec3 u = -(cp.n[0] * s.axis1 + cp.n[1] * s.axis2);
+            best_.offer(pb_.top(u) + pb_.support(u), u);
+        }
+    }
+
+    void other_vertex_minima(int i) {
+        // The other minima lie left of the smallest radius' pole, t < -r_z^2, where
+        // x_z = r_z^2 q_z / (r_z^2 + t) has the sign opposite to q_z and lambda = -t |D^-2 x| > 0
+        // is |x - q| >= |x_z - q_z| >= |q_z|; and every local minimum is >= the global one.
+        const dvec3& q = pb_.tri->q[i];
+        if (std::max(vertex_closest_[i], std::abs(q.z)) >= best_.g) return;
+        if (q.z != 0.0) {
+            std::array<double, 3> n;
+            if (other_minimum_normal_fast<3>({pb_.r.x, pb_.r.y, pb_.r.z}, pb_.pole, {q.x, q.y, q.z},
+                                             n, iterations_)) {
+                const dvec3 u(-n[0], -n[1], -n[2]);
+                best_.offer(pb_.top(u) + pb_.support(u), u);
+            }
+            return;
+        }
+        CriticalSolver<3> solver({pb_.r.x, pb_.r.y, pb_.r.z}, {q.x, q.y, q.z});
+        CriticalPoints<3> found;
+        solver.solve(CriticalSet::other_minima, found);
+        for (int k = 0; k < found.count; ++k) {
+            const CriticalPoint<3>& cp = found.points[k];
+            const dvec3 u(-cp.n[0], -cp.n[1], -cp.n[2]);
+            best_.offer(pb_.top(u) + pb_.support(u), u);
+        }
+    }
+
+    Problem pb_;
+    // Set by begin_search().
+    Best best_;
+    int iterations_;
+    dvec3 face_touch_;
+    double side_[3];
+    // Filled by try_edge and try_vertex for every feature before the deep enumeration reads them.
+    EdgeShadow shadow_[3];
+    double vertex_closest_[3];
+};
+
+}  // namespace
+
+LocalContact contact_in_sorted_frame(const glm::dvec3& radii, const LocalTriangle& triangle) {
+    return Solver(radii, triangle).run();
+}
+
+namespace {
+
+/// The same, inlined into the public entry so that the shallow face path keeps the triangle
+/// in registers.
+[[gnu::always_inline]] inline LocalContact solve_inline(const glm::dvec3& radii,
+                                                        const LocalTriangle& triangle) {
+    return Solver(radii, triangle).run();
+}
+
+}  // namespace
+
+}  // namespace detail
+
+namespace {
+
+/// Closest point of triangle (a, b, c) to p by its Voronoi regions (Ericson, "Real-Time
+/// Collision Detection", 5.1.5), every division guarded so that degenerate triangles give a
+/// point of their hull.
+glm::dvec3 closest_point_on_triangle(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b,
+                                     const glm::dvec3& c) {
+    const glm::dvec3 ab = b - a, ac = c - a, ap = p - a;
+    const double d1 = glm::dot(ab, ap), d2 = glm::dot(ac, ap);
+    if (d1 <= 0.0 && d2 <= 0.0) return a;
+    const glm::dvec3 bp = p - b;
+    const double d3 = glm::dot(ab, bp), d4 = glm::dot(ac, bp);
+    if (d3 >= 0.0 && d4 <= d3) return b;
+    const double vc = d1 * d4 - d3 * d2;
+    if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 && d1 - d3 > 0.0) return a + ab * (d1 / (d1 - d3));
+    const glm::dvec3 cp = p - c;
+    const double d5 = glm::dot(ab, cp), d6 = glm::dot(ac, cp);
+    if (d6 >= 0.0 && d5 <= d6) return c;
+    const double vb = d5 * d2 - d1 * d6;
+    if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 && d2 - d6 > 0.0) return a + ac * (d2 / (d2 - d6));
+    const double va = d3 * d6 - d5 * d4;
+    if (va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0 && (d4 - d3) + (d5 - d6) > 0.0)
+        return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+    const double sum = va + vb + vc;
+    if (!(sum > 0.0)) return a;
+    return a + ab * (vb / sum) + ac * (vc / sum);
+}
+
+bool finite_triangle(const Triangle& t) {
+    return is_finite(t[0]) && is_finite(t[1]) && is_finite(t[2]);
+}
+
+/// a < b in lexicographic order, without branches (the order of road triangles' vertices is
+/// random, so branches here would mispredict).
+bool lexicographic_less(const glm::dvec3& a, const glm::dvec3& b) {
+    return (a.x < b.x) | ((a.x == b.x) & ((a.y < b.y) | ((a.y == b.y) & (a.z < b.z))));
+}
+
+/// The vertex ranks in lexicographic order (ties keep the given order): sigma does not
+/// depend on the order or winding, and solving in a canonical order makes the rounded result
+/// bit-identical for every permutation.
+std::array<int, 3> vertex_ranks(const Triangle& t) {
+    const bool l10 = lexicographic_less(t[1], t[0]);
+    const bool l20 = lexicographic_less(t[2], t[0]);
+    const bool l21 = lexicographic_less(t[2], t[1]);
+    return {int(l10) + int(l20), int(!l10) + int(l21), int(!l20) + int(!l21)};
+}
+
+/// The triangle's vertices in canonical order: slot k holds the vertex of rank k, read
+/// through a computed index (indexed stores would stall the vector loads that follow).
+std::array<glm::dvec3, 3> canonical_vertices(const Triangle& t, const std::array<int, 3>& rank) {
+    std::array<glm::dvec3, 3> out;
+    for (int k = 0; k < 3; ++k)
+        out[static_cast<std::size_t>(k)] = t[int(rank[1] == k) + 2 * int(rank[2] == k)];
+    return out;
+}
+
+/// For configurations whose lengths span more than double's squares can hold (the ellipsoid
+/// smaller than 1e-60 of the triangle's distance or size): the ellipsoid acts as its center
+/// point, sigma = h(u) - |c - z| with z the triangle's closest point and u = (c - z) / |c - z|.
+/// The neglected terms are far below one ulp of the distances involved.
+Contact point_like_contact(const Ellipsoid& ellipsoid, const std::array<glm::dvec3, 3>& v,
+                           double scale) {
+    const glm::dvec3 c = ellipsoid.center() / scale;
+    std::array<glm::dvec3, 3> w;
+    for (int i = 0; i < 3; ++i) w[i] = v[i] / scale;
+    const glm::dvec3 z = closest_point_on_triangle(c, w[0], w[1], w[2]);
+    glm::dvec3 u = c - z;
+    const double distance = glm::length(u);
+    if (distance > 0.0) {
+        u /= distance;
+    } else {
+        const glm::dvec3 n = glm::cross(w[1] - w[0], w[2] - w[0]);
+        const double length = glm::length(n);
+        u = length > 0.0 ? n / length : glm::dvec3(0.0, 1.0, 0.0);
+    }
+    const glm::dvec3 local = u * ellipsoid.sorted_axes();
+    const glm::dvec3 r = ellipsoid.sorted_radii();
+    const double h = r.x * glm::length(r / r.x * local);
+    const double depth = h - distance * scale;
+    return {depth, u, z * scale + 0.5 * depth * u};
+}
+
+/// Extreme configurations: solve at a power-of-two scale (exact) that brings the largest
+/// length near 1. Radii below 2^-200 of the largest are raised to it (sigma moves by less
+/// than that, far below one ulp of the largest radius), and an ellipsoid that is still below
+/// 2^-200 of the configuration acts as a point.
+Contact rescaled_contact(const Ellipsoid& ellipsoid, const std::array<glm::dvec3, 3>& v) {
+    const glm::dvec3& c = ellipsoid.center();
+    const glm::dmat3& axes = ellipsoid.sorted_axes();
+    const glm::dvec3 radii =
+        glm::max(ellipsoid.sorted_radii(), glm::dvec3(ellipsoid.sorted_radii().x * 0x1p-200));
+    double raw_extent = radii.x;
+    for (int i = 0; i < 3; ++i) {
+        const glm::dvec3 d = glm::abs(v[i]) + glm::abs(c);
+        raw_extent = std::max({raw_extent, d.x, d.y, d.z});
+    }
+    const double scale = std::ldexp(1.0, std::ilogb(raw_extent));
+    if (radii.z / scale < 0x1p-200) return point_like_contact(ellipsoid, v, scale);
+    const glm::dvec3 center = c / scale;
+    detail::LocalTriangle local;
+    for (int i = 0; i < 3; ++i) {
+        local.q[i] = (v[i] / scale - center) * axes;
+    }
+    for (int i = 0; i < 3; ++i) local.edge[i] = local.q[(i + 1) % 3] - local.q[i];
+    const glm::dvec3 sum = glm::abs(local.q[0]) + glm::abs(local.q[1]) + glm::abs(local.q[2]);
+    local.extent = sum.x + sum.y + sum.z;
+    const detail::LocalContact solved = detail::contact_in_sorted_frame(radii / scale, local);
+    return {solved.depth * scale, axes * solved.u, c + axes * (solved.point * scale)};
+}
+
+}  // namespace
+
+Contact ellipsoid_triangle_contact(const Ellipsoid& ellipsoid, const Triangle& triangle) {
+    const glm::dvec3& c = ellipsoid.center();
+    const glm::dmat3& axes = ellipsoid.sorted_axes();
+    const glm::dvec3& radii = ellipsoid.sorted_radii();
+    const std::array<int, 3> rank = vertex_ranks(triangle);
+    detail::LocalTriangle local;
+    for (int k = 0; k < 3; ++k)  // row vector * M = M^T * column
+        local.q[k] = (triangle[int(rank[1] == k) + 2 * int(rank[2] == k)] - c) * axes;
+    // Lengths must keep their squares and cubes normal numbers: within [2^-300, 2^300], as
+    // every car and track does (edges are at most twice the largest |q|). The sum also catches
+    // non-finite input (NaN and infinity propagate). Anything else takes the careful path.
+    const glm::dvec3 sum = glm::abs(local.q[0]) + glm::abs(local.q[1]) + glm::abs(local.q[2]);
+    local.extent = sum.x + sum.y + sum.z;
+    if (!(local.extent < 0x1p299) || radii.z < 0x1p-300) {
+        if (!finite_triangle(triangle))
+            return {-std::numeric_limits<double>::infinity(), glm::dvec3(0.0, 1.0, 0.0), c};
+        return rescaled_contact(ellipsoid, canonical_vertices(triangle, rank));
+    }
+    for (int i = 0; i < 3; ++i) local.edge[i] = local.q[(i + 1) % 3] - local.q[i];
+    const detail::LocalContact solved = detail::solve_inline(radii, local);
+    return {solved.depth, axes * solved.u, c + axes * solved.point};
+}
+
+}  // namespace trackphys
