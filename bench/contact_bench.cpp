@@ -80,17 +80,19 @@ void latency(benchmark::State& state, std::size_t count, Call call) {
 void BM_ClosestPointLatency(benchmark::State& state, RootFinder finder) {
     const std::vector<PointQuery> queries = point_queries(test::PointClass::count);
     latency(state, queries.size(), [&](std::size_t i) {
-        benchmark::DoNotOptimize(closest_point_on_sorted_ellipsoid(queries[i].radii, queries[i].p, finder));
+        benchmark::DoNotOptimize(
+            closest_point_on_sorted_ellipsoid(queries[i].radii, queries[i].p, finder));
     });
 }
 
 void register_points() {
-    const std::pair<const char*, RootFinder> finders[] = {{"robust", RootFinder::robust},
-                                                          {"writeup_newton5", RootFinder::writeup_newton},
-                                                          {"bisection", RootFinder::bisection}};
+    const std::pair<const char*, RootFinder> finders[] = {
+        {"robust", RootFinder::robust},
+        {"writeup_newton5", RootFinder::writeup_newton},
+        {"bisection", RootFinder::bisection}};
     for (const auto& [name, finder] : finders) {
-        benchmark::RegisterBenchmark((std::string("ClosestPoint/") + name + "/mix").c_str(), BM_ClosestPoint,
-                                     finder, test::PointClass::count);
+        benchmark::RegisterBenchmark((std::string("ClosestPoint/") + name + "/mix").c_str(),
+                                     BM_ClosestPoint, finder, test::PointClass::count);
         benchmark::RegisterBenchmark((std::string("ClosestPoint/") + name + "/mix/latency").c_str(),
                                      BM_ClosestPointLatency, finder)
             ->Iterations(1);
@@ -110,12 +112,24 @@ std::vector<test::ContactCase> contact_cases(ContactSet set) {
     std::vector<test::ContactCase> cases;
     while (cases.size() < kCases) {
         switch (set) {
-            case ContactSet::road: cases.push_back(generator.make(test::ContactKind::road)); break;
-            case ContactSet::edge: cases.push_back(generator.make(test::ContactKind::edge)); break;
-            case ContactSet::vertex: cases.push_back(generator.make(test::ContactKind::vertex)); break;
-            case ContactSet::deep: cases.push_back(generator.make(test::ContactKind::deep)); break;
-            case ContactSet::miss: cases.push_back(generator.make(test::ContactKind::miss)); break;
-            case ContactSet::hard_mix: cases.push_back(generator.hard_mix()); break;
+            case ContactSet::road:
+                cases.push_back(generator.make(test::ContactKind::road));
+                break;
+            case ContactSet::edge:
+                cases.push_back(generator.make(test::ContactKind::edge));
+                break;
+            case ContactSet::vertex:
+                cases.push_back(generator.make(test::ContactKind::vertex));
+                break;
+            case ContactSet::deep:
+                cases.push_back(generator.make(test::ContactKind::deep));
+                break;
+            case ContactSet::miss:
+                cases.push_back(generator.make(test::ContactKind::miss));
+                break;
+            case ContactSet::hard_mix:
+                cases.push_back(generator.hard_mix());
+                break;
         }
     }
     return cases;
@@ -145,11 +159,13 @@ void BM_ContactLatency(benchmark::State& state, ContactSet set) {
 
 void register_contacts() {
     const std::pair<const char*, ContactSet> sets[] = {
-        {"road_shallow", ContactSet::road}, {"edge", ContactSet::edge},   {"vertex", ContactSet::vertex},
-        {"deep", ContactSet::deep},         {"miss", ContactSet::miss},   {"hard_mix", ContactSet::hard_mix}};
+        {"road_shallow", ContactSet::road}, {"edge", ContactSet::edge},
+        {"vertex", ContactSet::vertex},     {"deep", ContactSet::deep},
+        {"miss", ContactSet::miss},         {"hard_mix", ContactSet::hard_mix}};
     for (const auto& [name, set] : sets) {
         benchmark::RegisterBenchmark((std::string("Contact/") + name).c_str(), BM_Contact, set);
-        benchmark::RegisterBenchmark((std::string("Contact/") + name + "/latency").c_str(), BM_ContactLatency, set)
+        benchmark::RegisterBenchmark((std::string("Contact/") + name + "/latency").c_str(),
+                                     BM_ContactLatency, set)
             ->Iterations(1);
     }
 }

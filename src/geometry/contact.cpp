@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <array>
-#include <utility>
 #include <cmath>
 #include <limits>
 
@@ -24,8 +23,12 @@
 // the critical point -u of z's distance is its closest point, i.e. the root t = -g h(u) of
 // f is the largest one, which holds when t > -r_min^2, then depth(z) = g(u) and therefore
 // sigma = g(u). Shallow contacts (depth < r_min^2 / h, 6 cm for a wheel) and every
-// separated configuration are certified by the first candidate that passes; only deeper
-// ones enumerate every local minimum.
+// separated configuration are certified by the first candidate that passes; a vertex whose
+// closest-point direction keeps it the top vertex is certified at any depth (z = q_i and
+// the direction is its closest point by construction), and so is a face whose touching point
+// lies far enough inside the triangle (big_face). Only the rest enumerate every local
+// minimum. The order of the tries follows where the face's touching point fell: beyond an
+// edge, that edge (or the vertex past whose end it fell) comes first.
 //
 // Candidates (the minimiser of g has 3, 2 or 1 active vertices):
 // - face: u = +-n; only the side facing the center can win, g(-n) >= g(n) when n.q <= 0;
@@ -72,30 +75,41 @@ struct Best {
     }
 };
 
+/// Whether a point at level l = ||p / r|| (radii r, smallest r_small, largest r_large)
+/// certainly has signed depth >= best, so that no candidate of it can win: its depth is at
+/// least (1 - l) * (l < 1 ? r_small : r_large), which never exceeds r_small (so the level
+/// is only computed when best is below that).
+bool depth_at_least(double best, double x, double y, double z, double rx, double ry, double rz,
+                    double r_small, double r_large) {
+    if (best > r_small) return false;
+    const double level = std::sqrt((x / rx) * (x / rx) + (y / ry) * (y / ry) + (z / rz) * (z / rz));
+    return (1.0 - level) * (level < 1.0 ? r_small : r_large) >= best;
+}
+
 /// Edge (i, i+1) and its shadow ellipse: basis (b1, b2) of the plane orthogonal to the edge
 /// rotated onto the shadow's axes, radii s1 >= s2, and the edge's 2-D point.
 struct EdgeShadow {
-    bool valid = false;
+    bool valid;
     dvec3 axis1, axis2;  // 3-D directions of the shadow's axes
     double s1, s2;
-    double px, py;        // the edge line's point in the shadow frame
-    double lower_bound;   // no direction orthogonal to the edge gives g below this
+    double px, py;         // the edge line's point in the shadow frame
     double closest_value;  // the closest candidate's edge value, once computed
 };
 
 EdgeShadow make_shadow(const Problem& pb, int i) {
     EdgeShadow s;
+    s.valid = false;
     const dvec3& e = pb.tri->edge[i];
     const double length2 = glm::dot(e, e);
     if (!(length2 > 0.0)) return s;
-    const dvec3 dir = e / std::sqrt(length2);
-    // b1: orthogonal to the edge, from the coordinate axis least aligned with it.
-    const dvec3 a = glm::abs(dir);
-    const dvec3 helper = a.x <= a.y && a.x <= a.z ? dvec3(1, 0, 0)
-                         : a.y <= a.z            ? dvec3(0, 1, 0)
-                                                 : dvec3(0, 0, 1);
-    const dvec3 b1 = glm::normalize(glm::cross(dir, helper));
-    const dvec3 b2 = glm::cross(dir, b1);
+    // b1: orthogonal to the edge and to the coordinate axis least aligned with it; b2 = e x b1
+    // / |e|. The two square roots are independent.
+    const dvec3 a = glm::abs(e);
+    const dvec3 b1_raw = a.x <= a.y && a.x <= a.z ? dvec3(0.0, e.z, -e.y)
+                         : a.y <= a.z             ? dvec3(-e.z, 0.0, e.x)
+                                                  : dvec3(e.y, -e.x, 0.0);
+    const dvec3 b1 = b1_raw / std::sqrt(glm::dot(b1_raw, b1_raw));
+    const dvec3 b2 = glm::cross(e, b1) / std::sqrt(length2);
     // M = B^T D^2 B and its eigenvectors (closed form for a symmetric 2x2).
     const double m00 = glm::dot(pb.r2 * b1, b1);
     const double m01 = glm::dot(pb.r2 * b1, b2);
@@ -120,9 +134,6 @@ EdgeShadow make_shadow(const Problem& pb, int i) {
     if (!(s.s2 > 0.0)) return s;
     s.px = glm::dot(s.axis1, pb.tri->q[i]);
     s.py = glm::dot(s.axis2, pb.tri->q[i]);
-    // 2-D depth of the point >= (1 - l) * (l < 1 ? s2 : s1) with l its level.
-    const double level = std::sqrt((s.px / s.s1) * (s.px / s.s1) + (s.py / s.s2) * (s.py / s.s2));
-    s.lower_bound = (1.0 - level) * (level < 1.0 ? s.s2 : s.s1);
     s.valid = true;
     return s;
 }
@@ -133,39 +144,68 @@ public:
         pb_.r = radii;
         pb_.r2 = radii * radii;
         pb_.r_min2 = pb_.r2.z;
-        for (int i = 0; i < 3; ++i) pb_.pole[i] = (radii[i] - radii.z) * (radii[i] + radii.z);
         pb_.tri = &tri;
     }
 
-    LocalContact run() {
+    [[gnu::always_inline]] LocalContact run() {
         const LocalTriangle& tri = *pb_.tri;
-        // Face.
+        // Face, from the unnormalised area normal N: |N| and h(N) = |N| h(n) are independent
+        // square roots, and u = sign N / |N| faces the center (g(-u) >= g(u)).
         const dvec3 area_normal = glm::cross(tri.edge[0], -tri.edge[2]);
-        const double area_length = glm::length(area_normal);
-        if (area_length > 0.0 && std::isfinite(area_length)) {
-            dvec3 u = area_normal / area_length;
-            if (glm::dot(u, tri.q[0] + tri.q[1] + tri.q[2]) > 0.0) u = -u;
-            const double h = pb_.support(u);
-            const double d0 = glm::dot(u, tri.q[0]);
-            const double d1 = glm::dot(u, tri.q[1]);
-            const double d2 = glm::dot(u, tri.q[2]);
-            const double g = std::max({d0, d1, d2}) + h;
-            best_.offer(g, u);
-            const dvec3 z = g * u - pb_.support_point(u, h);
-            for (int k = 0; k < 3; ++k)
-                side_[k] = glm::dot(glm::cross(tri.edge[k], z - tri.q[k]), area_normal);
+        const double n2 = glm::dot(area_normal, area_normal);
+        if (n2 > 0.0 && n2 < kInfinity) {
+            const dvec3 r2n = pb_.r2 * area_normal;
+            const double inv_length = 1.0 / std::sqrt(n2);
+            const double hn = std::sqrt(glm::dot(r2n, area_normal));
+            const double e0 = glm::dot(area_normal, tri.q[0]);
+            const double e1 = glm::dot(area_normal, tri.q[1]);
+            const double e2 = glm::dot(area_normal, tri.q[2]);
+            const double sign = e0 + e1 + e2 > 0.0 ? -1.0 : 1.0;
+            const double top = sign > 0.0 ? std::max({e0, e1, e2}) : -std::min({e0, e1, e2});
+            const double spread = std::max({e0, e1, e2}) - std::min({e0, e1, e2});
+            const dvec3 u = (sign * inv_length) * area_normal;
+            const double g = (top + hn) * inv_length;
+            const double h = hn * inv_length;
+            const dvec3 extreme = (-sign / hn) * r2n;  // x(-u) = -D^2 u / h(u)
+            const dvec3 z = extreme + g * u;
+            // det(e_k, z - q_k, N) for the three edges; they sum to |N|^2 for any z.
+            const double side0 = glm::dot(glm::cross(tri.edge[0], z - tri.q[0]), area_normal);
+            const double side1 = glm::dot(glm::cross(tri.edge[1], z - tri.q[1]), area_normal);
+            const double side2 = n2 - side0 - side1;
             // The vertices must lie on the face plane to rounding: a sliver's normal may be
             // too inaccurate for the certificate, and then the edges decide.
-            const double spread = std::max({d0, d1, d2}) - std::min({d0, d1, d2});
-            const double scale = pb_.r.x + max_abs(tri.q[0]) + max_abs(tri.q[1]) + max_abs(tri.q[2]);
+            const double scale = pb_.r.x + tri.extent;
+            const bool inside = side0 >= 0.0 && side1 >= 0.0 && side2 >= 0.0 &&
+                                spread * inv_length <= 1e-14 * scale;
+            if (inside & pb_.closest_regime(g, h))
+                return {g, u, extreme + 0.5 * g * u, ContactPath::face_certified, 0};
+            // Kept only now: stores on the certified path would cost more than the math.
+            begin_search();
+            best_.offer(g, u);
+            side_[0] = side0;
+            side_[1] = side1;
+            side_[2] = side2;
             face_touch_ = z;
-            if (side_[0] >= 0.0 && side_[1] >= 0.0 && side_[2] >= 0.0 &&
-                spread <= 1e-14 * scale && pb_.closest_regime(g, h))
-                return finish(ContactPath::face_certified);
+            if (inside && big_face(n2)) return finish(ContactPath::face_certified);
         } else {
-            side_[0] = side_[1] = side_[2] = 0.0;
+            begin_search();
         }
+        return edges_and_vertices();
+    }
 
+private:
+    /// The state of the search past the face, set up only when the face did not answer.
+    void begin_search() {
+        const dvec3& r = pb_.r;
+        for (int i = 0; i < 3; ++i) pb_.pole[i] = (r[i] - r.z) * (r[i] + r.z);
+        best_ = Best{};
+        iterations_ = 0;
+        face_touch_ = dvec3(0.0);
+        side_[0] = side_[1] = side_[2] = 0.0;
+    }
+
+    /// Everything after the face, out of line so that the face path stays small and inlined.
+    [[gnu::noinline]] LocalContact edges_and_vertices() {
         // Edges and vertices by their closest-point candidates, the ones the face's touching
         // point fell beyond first.
         int order[6];
@@ -182,7 +222,6 @@ public:
         return finish(ContactPath::enumerated);
     }
 
-private:
     LocalContact finish(ContactPath path) const {
         // The ellipsoid's extreme point towards the triangle, x(-u), moved by half the depth.
         const double h = pb_.support(best_.u);
@@ -233,12 +272,12 @@ private:
         shadow_[i] = make_shadow(pb_, i);
         EdgeShadow& s = shadow_[i];
         s.closest_value = kInfinity;
-        if (!s.valid || s.lower_bound >= best_.g) return false;
+        if (!s.valid || cannot_win(s)) return false;
         std::array<double, 2> n;
         if (s.py != 0.0) {
             const double pole = (s.s1 - s.s2) * (s.s1 + s.s2);
-            s.closest_value = -closest_normal_fast<2>({s.s1, s.s2}, {pole, 0.0}, {s.px, s.py}, n,
-                                                      iterations_);
+            s.closest_value =
+                -closest_normal_fast<2>({s.s1, s.s2}, {pole, 0.0}, {s.px, s.py}, n, iterations_);
         } else {
             CriticalSolver<2> solver({s.s1, s.s2}, {s.px, s.py});
             CriticalPoints<2> found;
@@ -256,43 +295,85 @@ private:
         const double dk = glm::dot(u, tri.q[k]);
         const double g = std::max({di, dj, dk}) + h;
         best_.offer(g, u);
-        if (dk > std::max(di, dj) || !pb_.closest_regime(g, h)) return false;
+        if (dk > std::max(di, dj)) return false;
         const dvec3 z = g * u - pb_.support_point(u, h);
         const double along = glm::dot(z - tri.q[i], tri.edge[i]);
-        return along >= 0.0 && along <= glm::dot(tri.edge[i], tri.edge[i]);
+        return along >= 0.0 && along <= glm::dot(tri.edge[i], tri.edge[i]) &&
+               pb_.closest_regime(g, h);
+    }
+
+    /// The deep face certificate: the face's touching point z lies at least
+    /// R = g + |z| + r_max from every edge line. Then for u = c n + s t (t tangent, s >= 0),
+    /// g(u) >= u.z + R s + h(u) over the disk of radius R around z. For c >= 0, u.z + h(u) is
+    /// convex and 1-homogeneous with gradient x(n) + z = g n at n, so g(u) >= g c + R s >= g
+    /// (1 - c <= s, R >= g). For c < 0, the plane offset n.z <= 0 and h(u) >= |c| h(n) -
+    /// s r_max give g(u) >= (1 - s)(h(n) - n.z) + s (R - |z| - r_max) >= h(n) + n.z = g. So n
+    /// minimises g at any depth: a wheel pressed deep into a large road triangle.
+    /// side_k = |N| |e_k| times z's distance from edge line k.
+    /// Reads the face's stored best_, face_touch_ and side_; n2 = |N|^2.
+    [[gnu::noinline]] bool big_face(double n2) const {
+        const double g = best_.g;
+        if (!(g > 0.0)) return false;
+        const double r = g + glm::length(face_touch_) + pb_.r.x;
+        const double limit = r * r * n2;
+        const LocalTriangle& tri = *pb_.tri;
+        for (int k = 0; k < 3; ++k)
+            if (side_[k] * side_[k] < limit * glm::dot(tri.edge[k], tri.edge[k])) return false;
+        return true;
+    }
+
+    /// No direction orthogonal to the edge gives g below the 2-D depth of its point.
+    bool cannot_win(const EdgeShadow& s) const {
+        return depth_at_least(best_.g, s.px, s.py, 0.0, s.s1, s.s2, 1.0, s.s2, s.s1);
+    }
+
+    /// The outward normal of q's closest surface point; returns the signed distance.
+    double closest_normal(const dvec3& q, std::array<double, 3>& n) {
+        if (q.z != 0.0)
+            return closest_normal_fast<3>({pb_.r.x, pb_.r.y, pb_.r.z}, pb_.pole, {q.x, q.y, q.z}, n,
+                                          iterations_);
+        CriticalSolver<3> solver({pb_.r.x, pb_.r.y, pb_.r.z}, {q.x, q.y, q.z});
+        CriticalPoints<3> found;
+        solver.solve(CriticalSet::closest, found);
+        n = found.points[0].n;
+        return found.points[0].offset;
     }
 
     bool try_vertex(int i) {
         const dvec3& q = pb_.tri->q[i];
-        const dvec3 level_vector = q / pb_.r;
-        const double level = glm::length(level_vector);
         vertex_closest_[i] = kInfinity;
-        if ((1.0 - level) * (level < 1.0 ? pb_.r.z : pb_.r.x) >= best_.g) return false;
+        if (depth_at_least(best_.g, q.x, q.y, q.z, pb_.r.x, pb_.r.y, pb_.r.z, pb_.r.z, pb_.r.x))
+            return false;
         std::array<double, 3> n;
-        if (q.z != 0.0) {
-            vertex_closest_[i] = -closest_normal_fast<3>({pb_.r.x, pb_.r.y, pb_.r.z}, pb_.pole,
-                                                         {q.x, q.y, q.z}, n, iterations_);
-        } else {
-            CriticalSolver<3> solver({pb_.r.x, pb_.r.y, pb_.r.z}, {q.x, q.y, q.z});
-            CriticalPoints<3> found;
-            solver.solve(CriticalSet::closest, found);
-            n = found.points[0].n;
-            vertex_closest_[i] = -found.points[0].offset;
-        }
+        vertex_closest_[i] = -closest_normal(q, n);
         const dvec3 u(-n[0], -n[1], -n[2]);
         const double h = pb_.support(u);
         const double di = glm::dot(u, q);
-        const double others = std::max(glm::dot(u, pb_.tri->q[(i + 1) % 3]),
-                                       glm::dot(u, pb_.tri->q[(i + 2) % 3]));
+        const double others =
+            std::max(glm::dot(u, pb_.tri->q[(i + 1) % 3]), glm::dot(u, pb_.tri->q[(i + 2) % 3]));
         const double g = std::max(di, others) + h;
         best_.offer(g, u);
-        return di >= others && pb_.closest_regime(g, h);
+        // u comes from q's closest point, so g = depth(q) when the vertex is active: q is the
+        // deepest point of the triangle and sigma = g at any depth.
+        return di >= others;
     }
 
     void other_edge_minima(int i) {
         const EdgeShadow& s = shadow_[i];
-        // Every local minimum of the edge's function is >= its global one.
-        if (!s.valid || s.lower_bound >= best_.g || s.closest_value >= best_.g) return;
+        // Every local minimum of the edge's function is >= its global one, and >= |p_y| (see
+        // other_vertex_minima).
+        if (!s.valid || std::max(s.closest_value, std::abs(s.py)) >= best_.g || cannot_win(s))
+            return;
+        if (s.py != 0.0) {
+            std::array<double, 2> n;
+            const double pole = (s.s1 - s.s2) * (s.s1 + s.s2);
+            if (other_minimum_normal_fast<2>({s.s1, s.s2}, {pole, 0.0}, {s.px, s.py}, n,
+                                             iterations_)) {
+                const dvec3 u = -(n[0] * s.axis1 + n[1] * s.axis2);
+                best_.offer(pb_.top(u) + pb_.support(u), u);
+            }
+            return;
+        }
         CriticalSolver<2> solver({s.s1, s.s2}, {s.px, s.py});
         CriticalPoints<2> found;
         solver.solve(CriticalSet::other_minima, found);
@@ -304,8 +385,20 @@ private:
     }
 
     void other_vertex_minima(int i) {
-        if (vertex_closest_[i] >= best_.g) return;
+        // The other minima lie left of the smallest radius' pole, t < -r_z^2, where
+        // x_z = r_z^2 q_z / (r_z^2 + t) has the sign opposite to q_z and lambda = -t |D^-2 x| > 0
+        // is |x - q| >= |x_z - q_z| >= |q_z|; and every local minimum is >= the global one.
         const dvec3& q = pb_.tri->q[i];
+        if (std::max(vertex_closest_[i], std::abs(q.z)) >= best_.g) return;
+        if (q.z != 0.0) {
+            std::array<double, 3> n;
+            if (other_minimum_normal_fast<3>({pb_.r.x, pb_.r.y, pb_.r.z}, pb_.pole, {q.x, q.y, q.z},
+                                             n, iterations_)) {
+                const dvec3 u(-n[0], -n[1], -n[2]);
+                best_.offer(pb_.top(u) + pb_.support(u), u);
+            }
+            return;
+        }
         CriticalSolver<3> solver({pb_.r.x, pb_.r.y, pb_.r.z}, {q.x, q.y, q.z});
         CriticalPoints<3> found;
         solver.solve(CriticalSet::other_minima, found);
@@ -316,17 +409,15 @@ private:
         }
     }
 
-    static double max_abs(const dvec3& v) {
-        return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
-    }
-
     Problem pb_;
+    // Set by begin_search().
     Best best_;
-    int iterations_ = 0;
-    dvec3 face_touch_{0.0};
-    double side_[3] = {0.0, 0.0, 0.0};
+    int iterations_;
+    dvec3 face_touch_;
+    double side_[3];
+    // Filled by try_edge and try_vertex for every feature before the deep enumeration reads them.
     EdgeShadow shadow_[3];
-    double vertex_closest_[3] = {kInfinity, kInfinity, kInfinity};
+    double vertex_closest_[3];
 };
 
 }  // namespace
@@ -334,6 +425,17 @@ private:
 LocalContact contact_in_sorted_frame(const glm::dvec3& radii, const LocalTriangle& triangle) {
     return Solver(radii, triangle).run();
 }
+
+namespace {
+
+/// The same, inlined into the public entry so that the shallow face path keeps the triangle
+/// in registers.
+[[gnu::always_inline]] inline LocalContact solve_inline(const glm::dvec3& radii,
+                                                        const LocalTriangle& triangle) {
+    return Solver(radii, triangle).run();
+}
+
+}  // namespace
 
 }  // namespace detail
 
@@ -369,20 +471,29 @@ bool finite_triangle(const Triangle& t) {
     return is_finite(t[0]) && is_finite(t[1]) && is_finite(t[2]);
 }
 
+/// a < b in lexicographic order, without branches (the order of road triangles' vertices is
+/// random, so branches here would mispredict).
 bool lexicographic_less(const glm::dvec3& a, const glm::dvec3& b) {
-    if (a.x != b.x) return a.x < b.x;
-    if (a.y != b.y) return a.y < b.y;
-    return a.z < b.z;
+    return (a.x < b.x) | ((a.x == b.x) & ((a.y < b.y) | ((a.y == b.y) & (a.z < b.z))));
 }
 
-/// The vertices in lexicographic order: sigma does not depend on the order or winding, and
-/// a canonical order makes the rounded result bit-identical for every permutation.
-std::array<glm::dvec3, 3> canonical_vertices(const Triangle& t) {
-    std::array<glm::dvec3, 3> v = t.vertices;
-    if (lexicographic_less(v[1], v[0])) std::swap(v[0], v[1]);
-    if (lexicographic_less(v[2], v[1])) std::swap(v[1], v[2]);
-    if (lexicographic_less(v[1], v[0])) std::swap(v[0], v[1]);
-    return v;
+/// The vertex ranks in lexicographic order (ties keep the given order): sigma does not
+/// depend on the order or winding, and solving in a canonical order makes the rounded result
+/// bit-identical for every permutation.
+std::array<int, 3> vertex_ranks(const Triangle& t) {
+    const bool l10 = lexicographic_less(t[1], t[0]);
+    const bool l20 = lexicographic_less(t[2], t[0]);
+    const bool l21 = lexicographic_less(t[2], t[1]);
+    return {int(l10) + int(l20), int(!l10) + int(l21), int(!l20) + int(!l21)};
+}
+
+/// The triangle's vertices in canonical order: slot k holds the vertex of rank k, read
+/// through a computed index (indexed stores would stall the vector loads that follow).
+std::array<glm::dvec3, 3> canonical_vertices(const Triangle& t, const std::array<int, 3>& rank) {
+    std::array<glm::dvec3, 3> out;
+    for (int k = 0; k < 3; ++k)
+        out[static_cast<std::size_t>(k)] = t[int(rank[1] == k) + 2 * int(rank[2] == k)];
+    return out;
 }
 
 /// For configurations whose lengths span more than double's squares can hold (the ellipsoid
@@ -418,7 +529,8 @@ Contact point_like_contact(const Ellipsoid& ellipsoid, const std::array<glm::dve
 Contact rescaled_contact(const Ellipsoid& ellipsoid, const std::array<glm::dvec3, 3>& v) {
     const glm::dvec3& c = ellipsoid.center();
     const glm::dmat3& axes = ellipsoid.sorted_axes();
-    const glm::dvec3 radii = glm::max(ellipsoid.sorted_radii(), glm::dvec3(ellipsoid.sorted_radii().x * 0x1p-200));
+    const glm::dvec3 radii =
+        glm::max(ellipsoid.sorted_radii(), glm::dvec3(ellipsoid.sorted_radii().x * 0x1p-200));
     double raw_extent = radii.x;
     for (int i = 0; i < 3; ++i) {
         const glm::dvec3 d = glm::abs(v[i]) + glm::abs(c);
@@ -430,8 +542,10 @@ Contact rescaled_contact(const Ellipsoid& ellipsoid, const std::array<glm::dvec3
     detail::LocalTriangle local;
     for (int i = 0; i < 3; ++i) {
         local.q[i] = (v[i] / scale - center) * axes;
-        local.edge[i] = (v[(i + 1) % 3] / scale - v[i] / scale) * axes;
     }
+    for (int i = 0; i < 3; ++i) local.edge[i] = local.q[(i + 1) % 3] - local.q[i];
+    const glm::dvec3 sum = glm::abs(local.q[0]) + glm::abs(local.q[1]) + glm::abs(local.q[2]);
+    local.extent = sum.x + sum.y + sum.z;
     const detail::LocalContact solved = detail::contact_in_sorted_frame(radii / scale, local);
     return {solved.depth * scale, axes * solved.u, c + axes * (solved.point * scale)};
 }
@@ -440,26 +554,24 @@ Contact rescaled_contact(const Ellipsoid& ellipsoid, const std::array<glm::dvec3
 
 Contact ellipsoid_triangle_contact(const Ellipsoid& ellipsoid, const Triangle& triangle) {
     const glm::dvec3& c = ellipsoid.center();
-    if (!finite_triangle(triangle))
-        return {-std::numeric_limits<double>::infinity(), glm::dvec3(0.0, 1.0, 0.0), c};
-    const std::array<glm::dvec3, 3> v = canonical_vertices(triangle);
     const glm::dmat3& axes = ellipsoid.sorted_axes();
     const glm::dvec3& radii = ellipsoid.sorted_radii();
+    const std::array<int, 3> rank = vertex_ranks(triangle);
     detail::LocalTriangle local;
-    for (int i = 0; i < 3; ++i) {
-        local.q[i] = (v[i] - c) * axes;  // row vector times M = M^T * column
-        local.edge[i] = (v[(i + 1) % 3] - v[i]) * axes;
+    for (int k = 0; k < 3; ++k)  // row vector * M = M^T * column
+        local.q[k] = (triangle[int(rank[1] == k) + 2 * int(rank[2] == k)] - c) * axes;
+    // Lengths must keep their squares and cubes normal numbers: within [2^-300, 2^300], as
+    // every car and track does (edges are at most twice the largest |q|). The sum also catches
+    // non-finite input (NaN and infinity propagate). Anything else takes the careful path.
+    const glm::dvec3 sum = glm::abs(local.q[0]) + glm::abs(local.q[1]) + glm::abs(local.q[2]);
+    local.extent = sum.x + sum.y + sum.z;
+    if (!(local.extent < 0x1p299) || radii.z < 0x1p-300) {
+        if (!finite_triangle(triangle))
+            return {-std::numeric_limits<double>::infinity(), glm::dvec3(0.0, 1.0, 0.0), c};
+        return rescaled_contact(ellipsoid, canonical_vertices(triangle, rank));
     }
-    // Lengths must keep their squares and cubes normal numbers: within [2^-300, 2^300] of
-    // each other and of 1, as every car and track does. Otherwise solve at a power-of-two
-    // scale (exact), or treat a vanishing ellipsoid as a point.
-    double extent = radii.x;
-    for (int i = 0; i < 3; ++i)
-        extent = std::max({extent, std::abs(local.q[i].x), std::abs(local.q[i].y),
-                           std::abs(local.q[i].z), std::abs(local.edge[i].x),
-                           std::abs(local.edge[i].y), std::abs(local.edge[i].z)});
-    if (!(extent < 0x1p300) || radii.z < 0x1p-300) return rescaled_contact(ellipsoid, v);
-    const detail::LocalContact solved = detail::contact_in_sorted_frame(radii, local);
+    for (int i = 0; i < 3; ++i) local.edge[i] = local.q[(i + 1) % 3] - local.q[i];
+    const detail::LocalContact solved = detail::solve_inline(radii, local);
     return {solved.depth, axes * solved.u, c + axes * solved.point};
 }
 

@@ -26,11 +26,12 @@ struct LocalContact {
     int iterations;  ///< Newton steps over every root found
 };
 
-/// The triangle in the sorted frame: q[i] its vertices, edge[i] = q[i+1] - q[i] (formed
-/// from world differences, which are exact to one rounding of the edge itself).
+/// The triangle in the sorted frame: q[i] its vertices, edge[i] = q[i+1] - q[i], and
+/// extent = the sum of |q[i][j]| over all coordinates (the size of its rounding errors).
 struct LocalTriangle {
     std::array<glm::dvec3, 3> q;
     std::array<glm::dvec3, 3> edge;
+    double extent;
 };
 
 /// sigma and its direction for radii x >= y >= z > 0; all inputs finite and of moderate

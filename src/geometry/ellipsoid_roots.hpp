@@ -25,12 +25,13 @@
 // zero passes the next pole, or h' <= 0 while h < 0, concavity proves the interval holds
 // no root in that direction. Each loop is capped.
 //
-// Which roots are local minima of the signed distance along the normal (the only ones a
-// contact can rest on): the Lagrangian Hessian I + t D^-2 restricted to the tangent plane
-// is positive definite iff no factor w_i = r_i^2 + t is negative, or exactly one is and
-// f'(t) > 0 (its determinant is det(I + t D^-2) * (-f'(t)/2) / |D^-2 x|^2, and interlacing
-// allows at most one negative eigenvalue then). f' > 0 holds exactly for roots reached by a
-// climb towards smaller t (f rises to +inf at the pole it started from).
+// Which roots are local minima of u . p + ||D u|| at u = -n (the only ones a contact can
+// rest on; for p inside, the local minima of the distance |p - x|): the Lagrangian Hessian
+// I + t D^-2 restricted to the tangent plane is positive definite iff no factor
+// w_i = r_i^2 + t is negative, or exactly one is and f'(t) > 0 (its determinant is
+// det(I + t D^-2) * (-f'(t)/2) / |D^-2 x|^2, and interlacing allows at most one negative
+// eigenvalue then). f' > 0 holds exactly for roots reached by a climb towards smaller t (f
+// rises to +inf at the pole it started from).
 //
 // Coordinates with p_i = 0 exactly add the closed-form solutions at t = -r_i^2 (Eberly):
 // the other coordinates are fixed, x_j = r_j^2 p_j / (r_j^2 - r_i^2), and x_i takes the
@@ -48,7 +49,7 @@ namespace trackphys::detail {
 inline constexpr int kClimbCap = 64;
 /// A climb stops once a Newton step is below this fraction of the offset: with quadratic
 /// convergence the remaining error is then far below one ulp.
-inline constexpr double kClimbRelativeStep = 1e-13;
+inline constexpr double kClimbRelativeStep = 1e-8;
 
 struct ClimbResult {
     double eta;
@@ -67,13 +68,13 @@ inline ClimbResult climb(const std::array<double, N>& a, const std::array<double
         double s = 0.0;
         double t = 0.0;
         for (int i = 0; i < N; ++i) {
-            const double w = c[i] + eta;
-            const double v = a[i] / w;
+            const double inv_w = 1.0 / (c[i] + eta);  // one division per term
+            const double v = a[i] * inv_w;
             const double v2 = v * v;
             s += v2;
-            t += v2 / w;
+            t += v2 * inv_w;
         }
-        if (s <= 1.0) return {eta, k, true};  // h >= 0: at the root up to rounding
+        if (s <= 1.0) return {eta, k, true};     // h >= 0: at the root up to rounding
         if (!(t > 0.0)) return {eta, k, false};  // past the top of h while h < 0
         // Newton on h = S^-1/2 - 1 with h' = S^-3/2 T: step = S (sqrt(S) - 1) / T.
         const double step = s * (std::sqrt(s) - 1.0) / t;
@@ -118,12 +119,48 @@ inline double closest_normal_fast(const std::array<double, N>& r, const std::arr
     return (p_dot_n - x_dot_n) * inv;
 }
 
+/// The other local minimum, if any, when p's last coordinate is not 0: the first root left
+/// of the smallest radius' pole (climbing towards smaller t, so f' > 0 there), a minimum when
+/// exactly one factor r_i^2 + t = pole_i - eta is negative. Same inputs as
+/// closest_normal_fast; writes the outward unit normal and returns whether it exists.
+template <int N>
+inline bool other_minimum_normal_fast(const std::array<double, N>& r,
+                                      const std::array<double, N>& pole,
+                                      const std::array<double, N>& p, std::array<double, N>& normal,
+                                      int& iterations) {
+    std::array<double, N> a;
+    std::array<double, N> c;
+    double eta0 = 0.0;
+    double eta_max = std::numeric_limits<double>::infinity();
+    for (int i = 0; i < N; ++i) {
+        a[i] = r[i] * std::abs(p[i]);
+        c[i] = a[i] > 0.0 ? -pole[i] : 1.0;  // inactive terms add exactly 0
+        if (a[i] > 0.0 && pole[i] > 0.0) eta_max = std::min(eta_max, pole[i]);
+        if (pole[i] == 0.0) eta0 = std::max(eta0, a[i]);
+    }
+    const ClimbResult root = climb<N>(a, c, eta0, eta_max);
+    iterations += root.iterations;
+    if (!root.found) return false;
+    int negative = 0;
+    double norm2 = 0.0;
+    for (int i = 0; i < N; ++i) {
+        const double w = pole[i] - root.eta;  // r_i^2 + t
+        negative += w < 0.0;
+        normal[i] = a[i] > 0.0 ? p[i] / w : 0.0;
+        norm2 += normal[i] * normal[i];
+    }
+    if (negative != 1) return false;
+    const double inv = 1.0 / std::sqrt(norm2);
+    for (int i = 0; i < N; ++i) normal[i] *= inv;
+    return true;
+}
+
 template <int N>
 struct CriticalPoint {
     std::array<double, N> x;  ///< surface point (sorted frame, input scale)
     std::array<double, N> n;  ///< outward unit normal at x
     double offset;            ///< n . (p - x): the signed distance along the normal
-    bool local_min;           ///< local minimum of the offset over the surface
+    bool local_min;           ///< u = -n locally minimises u . p + ||D u|| over unit u
 };
 
 template <int N>
@@ -137,7 +174,6 @@ struct CriticalPoints {
 enum class CriticalSet {
     closest,       ///< the closest surface point only (one entry)
     other_minima,  ///< the local minima except the closest point's root
-    minima,        ///< every local minimum
     all,           ///< every critical point
 };
 
@@ -236,8 +272,7 @@ private:
         if (!root.found) return;
         const int neg = negatives(s, pole, root.eta);
         const bool local_min = neg == 0 || (neg == 1 && direction < 0);
-        if ((which == CriticalSet::minima || which == CriticalSet::other_minima) && !local_min)
-            return;
+        if (which == CriticalSet::other_minima && !local_min) return;
         CriticalPoint<N>& cp = out.points[out.count++];
         double norm2 = 0.0;
         for (int i = 0; i < N; ++i) {
@@ -274,8 +309,7 @@ private:
         const double remaining = 1.0 - used;
         if (!(remaining > 0.0)) return;
         const bool local_min = neg == 0;
-        if ((which == CriticalSet::minima || which == CriticalSet::other_minima) && !local_min)
-            return;
+        if (which == CriticalSet::other_minima && !local_min) return;
         const double rho = r_[g] * std::sqrt(remaining);
         for (int m = g; m < g + members; ++m) {
             for (const double side : {1.0, -1.0}) {

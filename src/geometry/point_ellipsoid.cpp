@@ -39,7 +39,8 @@ PointEllipsoid closest_point_on_sorted_ellipsoid(const glm::dvec3& r, const glm:
             return from_largest_root(r, p, detail::writeup_bisection_largest_root(r, p));
         case RootFinder::writeup_newton:
             return from_largest_root(r, p, detail::writeup_newton_largest_root(r, p));
-        case RootFinder::robust: break;
+        case RootFinder::robust:
+            break;
     }
     detail::CriticalSolver<3> solver({r.x, r.y, r.z}, {p.x, p.y, p.z});
     detail::CriticalPoints<3> found;

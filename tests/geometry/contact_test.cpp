@@ -35,8 +35,10 @@ Referenced reference(const Ellipsoid& e, const Triangle& t) {
     const glm::dmat3& m = e.sorted_axes();
     std::array<V3, 3> q;
     for (int i = 0; i < 3; ++i) {
-        const V3 d{R(t[i].x) - R(e.center().x), R(t[i].y) - R(e.center().y), R(t[i].z) - R(e.center().z)};
-        q[i] = {d.x * m[0][0] + d.y * m[0][1] + d.z * m[0][2], d.x * m[1][0] + d.y * m[1][1] + d.z * m[1][2],
+        const V3 d{R(t[i].x) - R(e.center().x), R(t[i].y) - R(e.center().y),
+                   R(t[i].z) - R(e.center().z)};
+        q[i] = {d.x * m[0][0] + d.y * m[0][1] + d.z * m[0][2],
+                d.x * m[1][0] + d.y * m[1][1] + d.z * m[1][2],
                 d.x * m[2][0] + d.y * m[2][1] + d.z * m[2][2]};
     }
     const glm::dvec3 r = e.sorted_radii();
@@ -66,13 +68,14 @@ std::string describe(const ContactCase& c) {
     char buffer[512];
     const Ellipsoid& e = c.ellipsoid;
     const Triangle& t = c.triangle;
-    std::snprintf(buffer, sizeof buffer,
-                  "%s: center (%.17g %.17g %.17g) q (%.17g %.17g %.17g %.17g) axes (%.17g %.17g %.17g) "
-                  "tri (%.17g %.17g %.17g) (%.17g %.17g %.17g) (%.17g %.17g %.17g)",
-                  test::contact_kind_name(c.kind), e.center().x, e.center().y, e.center().z,
-                  e.orientation().w, e.orientation().x, e.orientation().y, e.orientation().z,
-                  e.semi_axes().x, e.semi_axes().y, e.semi_axes().z, t[0].x, t[0].y, t[0].z, t[1].x,
-                  t[1].y, t[1].z, t[2].x, t[2].y, t[2].z);
+    std::snprintf(
+        buffer, sizeof buffer,
+        "%s: center (%.17g %.17g %.17g) q (%.17g %.17g %.17g %.17g) axes (%.17g %.17g %.17g) "
+        "tri (%.17g %.17g %.17g) (%.17g %.17g %.17g) (%.17g %.17g %.17g)",
+        test::contact_kind_name(c.kind), e.center().x, e.center().y, e.center().z,
+        e.orientation().w, e.orientation().x, e.orientation().y, e.orientation().z, e.semi_axes().x,
+        e.semi_axes().y, e.semi_axes().z, t[0].x, t[0].y, t[0].z, t[1].x, t[1].y, t[1].z, t[2].x,
+        t[2].y, t[2].z);
     return buffer;
 }
 
@@ -92,7 +95,9 @@ void check_case(const ContactCase& c, KindStats& stats) {
                                  << double(ref.contact.depth);
     ++stats.cases;
     stats.depth_error = std::max(stats.depth_error, depth_error);
-    if (ref.contact.runner_up - ref.contact.depth >= 1e-6) {
+    // Unique: the runner-up is 1e-6 m worse and g curves up by >= 1e-2 m/rad^2 around the
+    // minimiser (else no double computation fixes the direction to 1e-6 rad).
+    if (ref.contact.runner_up - ref.contact.depth >= 1e-6 && ref.contact.rise >= 5e-11) {
         ++stats.unique;
         const double angle = std::atan2(glm::length(glm::cross(got.normal, ref.normal)),
                                         glm::dot(got.normal, ref.normal));
@@ -106,8 +111,8 @@ void check_case(const ContactCase& c, KindStats& stats) {
 void print(const std::map<ContactKind, KindStats>& stats) {
     std::printf("kind             cases  unique  max|depth err|  max angle  max point err\n");
     for (const auto& [kind, s] : stats)
-        std::printf("%-15s %6ld  %6ld  %13.3g  %9.3g  %13.3g\n", test::contact_kind_name(kind), s.cases,
-                    s.unique, s.depth_error, s.angle_error, s.point_error);
+        std::printf("%-15s %6ld  %6ld  %13.3g  %9.3g  %13.3g\n", test::contact_kind_name(kind),
+                    s.cases, s.unique, s.depth_error, s.angle_error, s.point_error);
 }
 
 TEST(Contact, MatchesTheLongDoubleReferenceOnEveryKind) {
@@ -132,6 +137,27 @@ TEST(Contact, MatchesTheLongDoubleReferenceOnTheHardMix) {
     print(stats);
 }
 
+/// Axis-aligned ellipsoids and vertices on a coarse grid: exact zeros in the local
+/// coordinates (the closed-form branches of the root finders), symmetric configurations
+/// with several minimisers, vertices on axes, at the center and on the surface.
+TEST(Contact, MatchesTheReferenceOnAxisAlignedGrids) {
+    ContactCaseGenerator generator(17);
+    const glm::dvec3 shapes[] = {{0.15, 0.35, 0.35}, {1.0, 0.5, 2.0}, {0.5, 0.5, 0.5}, {0.3, 0.2, 0.1}};
+    const double grid[] = {-0.5, -0.35, -0.15, 0.0, 0.0, 0.1, 0.15, 0.35, 0.5, 1.0};
+    KindStats stats;
+    for (int k = 0; k < 3000; ++k) {
+        const glm::dvec3 axes = shapes[k % 4];
+        const Ellipsoid e({0, 0, 0}, glm::dquat(1, 0, 0, 0), axes);
+        std::array<glm::dvec3, 3> v;
+        for (auto& x : v)
+            x = {grid[generator.pick(10)], grid[generator.pick(10)], grid[generator.pick(10)]};
+        check_case({e, Triangle(v[0], v[1], v[2]), ContactKind::random}, stats);
+        if (HasFatalFailure()) return;
+    }
+    std::printf("axis-aligned grids: %ld cases, %ld unique, max depth error %.3g m\n", stats.cases,
+                stats.unique, stats.depth_error);
+}
+
 TEST(Contact, ShallowRoadContactsTakeTheCertifiedFaceExit) {
     ContactCaseGenerator generator(13);
     int face = 0;
@@ -142,11 +168,12 @@ TEST(Contact, ShallowRoadContactsTakeTheCertifiedFaceExit) {
         const glm::dvec3 r = c.ellipsoid.sorted_radii();
         if (ellipsoid_triangle_contact(c.ellipsoid, c.triangle).depth * r.x >= r.z * r.z) continue;
         ++count;
-        const glm::dmat3& m = c.ellipsoid.sorted_axes();
         detail::LocalTriangle local;
+        local.extent = 0.0;
         for (int i = 0; i < 3; ++i) {
             local.q[i] = c.ellipsoid.to_sorted_local(c.triangle[i]);
-            local.edge[i] = (c.triangle[(i + 1) % 3] - c.triangle[i]) * m;
+            local.edge[i] = c.ellipsoid.to_sorted_local(c.triangle[(i + 1) % 3]) - local.q[i];
+            local.extent += std::abs(local.q[i].x) + std::abs(local.q[i].y) + std::abs(local.q[i].z);
         }
         face += detail::contact_in_sorted_frame(c.ellipsoid.sorted_radii(), local).path ==
                 detail::ContactPath::face_certified;
@@ -161,8 +188,9 @@ TEST(Contact, RigidMotionsChangeTheDepthByAtMostANanometre) {
     for (int k = 0; k < 20000; ++k) {
         const ContactCase c = generator.any();
         const glm::dquat rotation = generator.rotation();
-        const glm::dvec3 shift(generator.uniform(-1e3, 1e3), generator.uniform(-1e2, 1e2),
-                               generator.uniform(-1e3, 1e3));
+        const glm::dvec3 shift(generator.uniform(-2e4, 2e4), generator.uniform(-1e3, 1e3),
+                               generator.uniform(-2e4, 2e4));
+        // Anywhere in a 20 km world.
         const auto move = [&](const glm::dvec3& p) { return rotation * p + shift; };
         const Ellipsoid& e = c.ellipsoid;
         const Ellipsoid moved(move(e.center()), rotation * e.orientation(), e.semi_axes());
@@ -170,7 +198,8 @@ TEST(Contact, RigidMotionsChangeTheDepthByAtMostANanometre) {
         const Contact a = ellipsoid_triangle_contact(e, c.triangle);
         const Contact b = ellipsoid_triangle_contact(moved, t);
         ASSERT_TRUE(finite(b));
-        if (c.kind == ContactKind::huge) continue;  // 1e6 m triangles: 1e-9 m is below their rounding
+        if (c.kind == ContactKind::huge)
+            continue;  // 1e6 m triangles: 1e-9 m is below their rounding
         ASSERT_LE(std::abs(a.depth - b.depth), 1e-9) << describe(c);
         worst = std::max(worst, std::abs(a.depth - b.depth));
     }
@@ -185,7 +214,8 @@ TEST(Contact, VertexOrderChangesNothing) {
         const Contact first = ellipsoid_triangle_contact(c.ellipsoid, c.triangle);
         while (std::next_permutation(order.begin(), order.end())) {
             const Contact other = ellipsoid_triangle_contact(
-                c.ellipsoid, Triangle(c.triangle[order[0]], c.triangle[order[1]], c.triangle[order[2]]));
+                c.ellipsoid,
+                Triangle(c.triangle[order[0]], c.triangle[order[1]], c.triangle[order[2]]));
             ASSERT_EQ(first.depth, other.depth) << describe(c);
             ASSERT_EQ(first.normal, other.normal) << describe(c);
             ASSERT_EQ(first.point, other.point) << describe(c);
@@ -196,12 +226,14 @@ TEST(Contact, VertexOrderChangesNothing) {
 TEST(Contact, InvalidEllipsoidsAreRejectedWithAMessage) {
     const double nan = std::numeric_limits<double>::quiet_NaN();
     const glm::dquat identity(1, 0, 0, 0);
-    for (const glm::dvec3& axes : {glm::dvec3(0, 1, 1), glm::dvec3(1, -1, 1), glm::dvec3(1, 1, nan)}) {
+    for (const glm::dvec3& axes :
+         {glm::dvec3(0, 1, 1), glm::dvec3(1, -1, 1), glm::dvec3(1, 1, nan)}) {
         try {
             const Ellipsoid e({0, 0, 0}, identity, axes);
             ADD_FAILURE() << "accepted semi-axes " << axes.x << " " << axes.y << " " << axes.z;
         } catch (const Error& error) {
-            EXPECT_NE(std::string(error.what()).find("semi-axis"), std::string::npos) << error.what();
+            EXPECT_NE(std::string(error.what()).find("semi-axis"), std::string::npos)
+                << error.what();
         }
     }
     std::string why;
@@ -215,27 +247,32 @@ TEST(Contact, NoInputMakesNaN) {
     const double big = std::numeric_limits<double>::max();
     const double tiny = std::numeric_limits<double>::denorm_min();
     ContactCaseGenerator generator(16);
-    const std::array<double, 10> scales = {0.0, tiny, 1e-300, 1e-150, 1e-9, 1.0, 1e9, 1e150, 1e300, big};
+    const std::array<double, 10> scales = {0.0, tiny, 1e-300, 1e-150, 1e-9,
+                                           1.0, 1e9,  1e150,  1e300,  big};
     for (int k = 0; k < 20000; ++k) {
         const ContactCase c = generator.any();
         const double s = scales[k % scales.size()];
         const glm::dvec3 o = c.ellipsoid.center();
-        const Triangle t(o + s * (c.triangle[0] - o), o + s * (c.triangle[1] - o), s * c.triangle[2]);
+        const Triangle t(o + s * (c.triangle[0] - o), o + s * (c.triangle[1] - o),
+                         s * c.triangle[2]);
         const Contact got = ellipsoid_triangle_contact(c.ellipsoid, t);
         ASSERT_TRUE(finite(got)) << describe(c) << " scale " << s;
         ASSERT_NEAR(glm::length(got.normal), 1.0, 1e-12) << describe(c) << " scale " << s;
     }
     for (const double bad : {inf, -inf, nan}) {
         const Ellipsoid e({0, 0, 0}, glm::dquat(1, 0, 0, 0), {1, 2, 3});
-        const Contact got = ellipsoid_triangle_contact(e, Triangle({0, 0, 0}, {bad, 0, 0}, {0, 1, 0}));
+        const Contact got =
+            ellipsoid_triangle_contact(e, Triangle({0, 0, 0}, {bad, 0, 0}, {0, 1, 0}));
         EXPECT_TRUE(finite(got));
         EXPECT_EQ(got.depth, -inf);
     }
     // Extreme ellipsoids: huge and tiny radii far from the origin.
-    for (const glm::dvec3& axes : {glm::dvec3(1e300, 1e-300, 1), glm::dvec3(1e-300), glm::dvec3(1e300)}) {
+    for (const glm::dvec3& axes :
+         {glm::dvec3(1e300, 1e-300, 1), glm::dvec3(1e-300), glm::dvec3(1e300)}) {
         const Ellipsoid e({1e300, -1e300, 5}, generator.rotation(), axes);
         for (int k = 0; k < 100; ++k) {
-            const Triangle t(e.center() + 1e300 * generator.direction(), e.center() + generator.direction(),
+            const Triangle t(e.center() + 1e300 * generator.direction(),
+                             e.center() + generator.direction(),
                              glm::dvec3(generator.uniform(-1, 1)));
             ASSERT_TRUE(finite(ellipsoid_triangle_contact(e, t)));
         }
@@ -246,16 +283,20 @@ TEST(Contact, KnownAnswers) {
     const glm::dquat identity(1, 0, 0, 0);
     // A unit sphere 0.9 above the plane y = 0: depth 0.1 upwards, point halfway into it.
     const Ellipsoid sphere({0, 0.9, 0}, identity, {1, 1, 1});
-    const Contact road = ellipsoid_triangle_contact(sphere, Triangle({-5, 0, -5}, {0, 0, 5}, {5, 0, -5}));
+    const Contact road =
+        ellipsoid_triangle_contact(sphere, Triangle({-5, 0, -5}, {0, 0, 5}, {5, 0, -5}));
     EXPECT_NEAR(road.depth, 0.1, 1e-15);
     EXPECT_NEAR(glm::distance(road.normal, glm::dvec3(0, 1, 0)), 0.0, 1e-15);
     EXPECT_NEAR(glm::distance(road.point, glm::dvec3(0, -0.05, 0)), 0.0, 1e-15);
     // The wheel resting on its rim (radius 0.35) 2 cm into the road, axle along x.
     const Ellipsoid wheel({0, 0.33, 0}, identity, {0.15, 0.35, 0.35});
-    EXPECT_NEAR(ellipsoid_triangle_contact(wheel, Triangle({-5, 0, -5}, {0, 0, 5}, {5, 0, -5})).depth, 0.02, 1e-15);
+    EXPECT_NEAR(
+        ellipsoid_triangle_contact(wheel, Triangle({-5, 0, -5}, {0, 0, 5}, {5, 0, -5})).depth, 0.02,
+        1e-15);
     // A sphere 2 m above a vertex: apart by 1 m, pushed straight up.
     const Ellipsoid high({0, 2, 0}, identity, {1, 1, 1});
-    const Contact apart = ellipsoid_triangle_contact(high, Triangle({0, 0, 0}, {1, -1, 0}, {-1, -1, 0.5}));
+    const Contact apart =
+        ellipsoid_triangle_contact(high, Triangle({0, 0, 0}, {1, -1, 0}, {-1, -1, 0.5}));
     EXPECT_NEAR(apart.depth, -1.0, 1e-15);
     EXPECT_NEAR(glm::distance(apart.normal, glm::dvec3(0, 1, 0)), 0.0, 1e-15);
     EXPECT_NEAR(glm::distance(apart.point, glm::dvec3(0, 0.5, 0)), 0.0, 1e-15);

@@ -64,6 +64,7 @@ std::string describe(const PointCase<N>& c) {
 
 struct Stats {
     double max_distance_error = 0;
+    double max_relative_error = 0;  // distance error / max(1 m, |p|)
     double max_point_error = 0;
     int max_iterations = 0;
     long total_iterations = 0;
@@ -83,10 +84,14 @@ void check_against_reference(std::uint64_t seed, Closest closest, All all, Stats
 
         const auto [point, distance, iterations] = closest(c);
         const double distance_error = static_cast<double>(std::fabs(distance - best.offset));
-        ASSERT_LE(distance_error, 1e-9) << "case " << k << " class " << point_class_name(c.kind)
-                                        << describe<N>(c) << " got " << distance << " want "
-                                        << double(best.offset);
+        ASSERT_LE(distance_error, 1e-9)
+            << "case " << k << " class " << point_class_name(c.kind) << describe<N>(c) << " got "
+            << distance << " want " << double(best.offset);
         stats.max_distance_error = std::max(stats.max_distance_error, distance_error);
+        double norm2 = 0;
+        for (double x : c.p) norm2 += x * x;
+        stats.max_relative_error =
+            std::max(stats.max_relative_error, distance_error / std::max(1.0, std::sqrt(norm2)));
         if (closest_gap<N>(ref) > 1e-6) {
             const double point_error = static_cast<double>(point_distance<N>(best.x, point));
             ASSERT_LE(point_error, 1e-6) << "case " << k << " class " << point_class_name(c.kind);
@@ -131,14 +136,16 @@ TEST(PointEllipsoid, ClosestAndAllCriticalPointsMatchTheLongDoubleBisection) {
                 {c.radii[0], c.radii[1], c.radii[2]}, {c.p[0], c.p[1], c.p[2]});
             std::vector<std::array<double, 3>> points;
             for (int i = 0; i < all.count; ++i)
-                points.push_back({all.points[i].point.x, all.points[i].point.y, all.points[i].point.z});
+                points.push_back(
+                    {all.points[i].point.x, all.points[i].point.y, all.points[i].point.z});
             return points;
         },
         stats);
-    std::printf("3-D: %ld cases, max |distance error| %.3g m, max point error %.3g m, "
-                "iterations mean %.2f max %d\n",
-                stats.cases, stats.max_distance_error, stats.max_point_error,
-                double(stats.total_iterations) / double(stats.cases), stats.max_iterations);
+    std::printf(
+        "3-D: %ld cases, max |distance error| %.3g m (%.3g of max(1 m, |p|)), max point error "
+        "%.3g m, iterations mean %.2f max %d\n",
+        stats.cases, stats.max_distance_error, stats.max_relative_error, stats.max_point_error,
+        double(stats.total_iterations) / double(stats.cases), stats.max_iterations);
     EXPECT_LE(stats.max_iterations, 25);
 }
 
@@ -147,19 +154,24 @@ TEST(PointEllipse, ClosestAndAllCriticalPointsMatchTheLongDoubleBisection) {
     check_against_reference<2>(
         77,
         [](const PointCase<2>& c) {
-            const EllipseCriticalPoint r = closest_point_on_ellipse({c.radii[0], c.radii[1]}, {c.p[0], c.p[1]});
+            const EllipseCriticalPoint r =
+                closest_point_on_ellipse({c.radii[0], c.radii[1]}, {c.p[0], c.p[1]});
             return std::tuple{std::array<double, 2>{r.point.x, r.point.y}, r.offset, 0};
         },
         [](const PointCase<2>& c) {
-            const EllipseCriticalPoints all = ellipse_critical_points({c.radii[0], c.radii[1]}, {c.p[0], c.p[1]});
+            const EllipseCriticalPoints all =
+                ellipse_critical_points({c.radii[0], c.radii[1]}, {c.p[0], c.p[1]});
             EXPECT_LE(all.count, 4);
             std::vector<std::array<double, 2>> points;
-            for (int i = 0; i < all.count; ++i) points.push_back({all.points[i].point.x, all.points[i].point.y});
+            for (int i = 0; i < all.count; ++i)
+                points.push_back({all.points[i].point.x, all.points[i].point.y});
             return points;
         },
         stats);
-    std::printf("2-D: %ld cases, max |distance error| %.3g m, max point error %.3g m\n", stats.cases,
-                stats.max_distance_error, stats.max_point_error);
+    std::printf(
+        "2-D: %ld cases, max |distance error| %.3g m (%.3g of max(1 m, |p|)), max point error "
+        "%.3g m\n",
+        stats.cases, stats.max_distance_error, stats.max_relative_error, stats.max_point_error);
 }
 
 TEST(PointEllipsoid, CriticalPointsAreOnTheSurfaceWithPOnTheirNormalLine) {
@@ -185,11 +197,59 @@ TEST(PointEllipsoid, CriticalPointsAreOnTheSurfaceWithPOnTheirNormalLine) {
     }
 }
 
+/// The local_min flags: u = -normal of a flagged point is a local minimum of
+/// phi(u) = u . p + ||D u|| (checked on a ring of nearby directions), and the lowest of a
+/// dense sampling of phi is near a flagged point.
+TEST(PointEllipsoid, LocalMinimaFlagsMatchTheSupportFunction) {
+    test::PointCaseGenerator<3> generator(8);
+    int checked = 0;
+    for (int k = 0; k < 20000; ++k) {
+        const PointCase<3> c = generator.next();
+        if (c.kind == PointClass::far) continue;
+        const glm::dvec3 r(c.radii[0], c.radii[1], c.radii[2]);
+        const glm::dvec3 p(c.p[0], c.p[1], c.p[2]);
+        const auto phi = [&](const glm::dvec3& u) { return glm::dot(u, p) + glm::length(r * u); };
+        const EllipsoidCriticalPoints all = ellipsoid_critical_points(r, p);
+        for (int i = 0; i < all.count; ++i) {
+            if (!all.points[i].local_min) continue;
+            const glm::dvec3 u = -all.points[i].normal;
+            const glm::dvec3 a = glm::normalize(
+                glm::cross(u, std::abs(u.x) < 0.6 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0)));
+            const glm::dvec3 b = glm::cross(u, a);
+            for (int j = 0; j < 8; ++j) {
+                const double t = 0.7853981633974483 * j;
+                const glm::dvec3 v = glm::normalize(u + 1e-3 * (std::cos(t) * a + std::sin(t) * b));
+                ASSERT_GE(phi(v), phi(u) - 1e-12) << "case " << k << " point " << i;
+            }
+            ++checked;
+        }
+        double lowest = INFINITY;
+        glm::dvec3 lowest_u;
+        for (int j = 0; j < 400; ++j) {
+            const double z = 1.0 - (2.0 * j + 1.0) / 400.0, rho = std::sqrt(1.0 - z * z);
+            const glm::dvec3 u(rho * std::cos(2.399963229728653 * j),
+                               rho * std::sin(2.399963229728653 * j), z);
+            if (phi(u) < lowest) {
+                lowest = phi(u);
+                lowest_u = u;
+            }
+        }
+        double best_flagged = INFINITY;
+        for (int i = 0; i < all.count; ++i)
+            if (all.points[i].local_min)
+                best_flagged = std::min(best_flagged, phi(-all.points[i].normal));
+        ASSERT_LE(best_flagged, lowest + 1e-12) << "case " << k;
+    }
+    EXPECT_GT(checked, 20000);
+}
+
 TEST(PointEllipsoid, WorldFrameWrapperMatchesTheSortedFrame) {
-    const Ellipsoid e({1, 2, 3}, glm::normalize(glm::dquat(0.9, 0.1, -0.3, 0.2)), {0.15, 0.35, 0.35});
+    const Ellipsoid e({1, 2, 3}, glm::normalize(glm::dquat(0.9, 0.1, -0.3, 0.2)),
+                      {0.15, 0.35, 0.35});
     const glm::dvec3 p(1.2, 2.4, 2.9);
     const PointEllipsoid world = closest_point_on_ellipsoid(e, p);
-    const PointEllipsoid local = closest_point_on_sorted_ellipsoid(e.sorted_radii(), e.to_sorted_local(p));
+    const PointEllipsoid local =
+        closest_point_on_sorted_ellipsoid(e.sorted_radii(), e.to_sorted_local(p));
     EXPECT_NEAR(world.distance, local.distance, 1e-15);
     EXPECT_LE(glm::distance(e.to_sorted_local(world.point), local.point), 1e-14);
     EXPECT_NEAR(glm::distance(p, world.point), std::abs(world.distance), 1e-14);
@@ -204,6 +264,10 @@ TEST(PointEllipsoid, WriteupSolversHoldOnlyInTheMedian) {
         long cases = 0, newton_fail = 0, newton_nan = 0, bisection_fail = 0;
     };
     std::map<PointClass, Tally> tally;
+    // By the distance of p from the smallest axis' plane, |p_z| / r_z (the pole Newton starts
+    // next to), in decades: 0 exactly, then <= 1e-12, 1e-9, 1e-6, 1e-3, 1e-1, larger.
+    const double edges[] = {0.0, 1e-12, 1e-9, 1e-6, 1e-3, 1e-1, INFINITY};
+    Tally by_plane[7];
     long robust_fail = 0;
     for (int k = 0; k < 100000; ++k) {
         const PointCase<3> c = generator.next();
@@ -216,17 +280,36 @@ TEST(PointEllipsoid, WriteupSolversHoldOnlyInTheMedian) {
         const auto miss = [&](const PointEllipsoid& r2) {
             return !(std::abs(r2.distance - reference) <= 1e-5);
         };
-        const PointEllipsoid newton = closest_point_on_sorted_ellipsoid(r, p, RootFinder::writeup_newton);
+        const PointEllipsoid newton =
+            closest_point_on_sorted_ellipsoid(r, p, RootFinder::writeup_newton);
         t.newton_fail += miss(newton);
         t.newton_nan += std::isnan(newton.distance);
         t.bisection_fail += miss(closest_point_on_sorted_ellipsoid(r, p, RootFinder::bisection));
         robust_fail += miss(closest_point_on_sorted_ellipsoid(r, p));
+        const double closeness = std::abs(p.z) / r.z;
+        int bin = 0;
+        while (closeness > edges[bin]) ++bin;
+        Tally& b = by_plane[bin];
+        ++b.cases;
+        b.newton_fail += miss(newton);
+        b.newton_nan += std::isnan(newton.distance);
+        b.bisection_fail += miss(closest_point_on_sorted_ellipsoid(r, p, RootFinder::bisection));
+    }
+    std::printf("|p_z|/r_z <=    cases  newton5>1e-5  (NaN)  bisection>1e-5\n");
+    for (int bin = 0; bin < 7; ++bin) {
+        const Tally& t = by_plane[bin];
+        if (t.cases == 0) continue;
+        std::printf("%-13.0e %6ld  %5.1f%%      %5.1f%%  %5.1f%%\n", edges[bin], t.cases,
+                    100.0 * double(t.newton_fail) / double(t.cases),
+                    100.0 * double(t.newton_nan) / double(t.cases),
+                    100.0 * double(t.bisection_fail) / double(t.cases));
     }
     std::printf("class          cases  newton5>1e-5  (NaN)  bisection>1e-5\n");
     long newton_total = 0;
     for (const auto& [kind, t] : tally) {
         std::printf("%-13s %6ld  %5.1f%%      %5.1f%%  %5.1f%%\n", point_class_name(kind), t.cases,
-                    100.0 * double(t.newton_fail) / double(t.cases), 100.0 * double(t.newton_nan) / double(t.cases),
+                    100.0 * double(t.newton_fail) / double(t.cases),
+                    100.0 * double(t.newton_nan) / double(t.cases),
                     100.0 * double(t.bisection_fail) / double(t.cases));
         newton_total += t.newton_fail;
     }

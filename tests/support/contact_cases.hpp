@@ -18,26 +18,26 @@
 namespace trackphys::test {
 
 enum class ContactKind {
-    road,          ///< face-dominant road contact, depth in (0, 5 cm)
-    edge,          ///< an edge touches, depth in (-5 cm, 5 cm)
-    vertex,        ///< a vertex touches, depth in (-5 cm, 5 cm)
-    deep,          ///< triangle deep inside or through the ellipsoid
-    miss,          ///< apart by 1 mm to 20 m
-    random,        ///< vertices anywhere within 2 radii of the center
-    sliver,        ///< one vertex 1e-9..1e-3 of the length off the opposite edge
-    huge,          ///< 1e3..1e6 m triangle near the ellipsoid
-    tiny,          ///< 1e-9..1e-4 m triangle near the surface
-    segment,       ///< collinear vertices
-    point,         ///< coincident vertices (two or three)
+    road,     ///< face-dominant road contact, depth in (0, 5 cm)
+    edge,     ///< an edge touches, depth in (-5 cm, 5 cm)
+    vertex,   ///< a vertex touches, depth in (-5 cm, 5 cm)
+    deep,     ///< triangle deep inside or through the ellipsoid
+    miss,     ///< apart by 1 mm to 20 m
+    random,   ///< vertices anywhere within 2 radii of the center
+    sliver,   ///< one vertex 1e-9..1e-3 of the length off the opposite edge
+    huge,     ///< 1e3..1e6 m triangle near the ellipsoid
+    tiny,     ///< 1e-9..1e-4 m triangle near the surface
+    segment,  ///< collinear vertices
+    point,    ///< coincident vertices (two or three)
     through_center,
-    edge_on,       ///< the triangle's plane contains the push direction
+    edge_on,  ///< the triangle's plane contains the push direction
     count
 };
 
 inline const char* contact_kind_name(ContactKind k) {
-    static const char* names[] = {"road", "edge",  "vertex",  "deep",  "miss",
-                                  "random", "sliver", "huge", "tiny", "segment",
-                                  "point", "through_center", "edge_on"};
+    static const char* names[] = {"road",   "edge",           "vertex", "deep", "miss",
+                                  "random", "sliver",         "huge",   "tiny", "segment",
+                                  "point",  "through_center", "edge_on"};
     return names[static_cast<int>(k)];
 }
 
@@ -60,7 +60,9 @@ public:
     }
 
     /// Any kind, adversarial ones included.
-    ContactCase any() { return make(static_cast<ContactKind>(pick(static_cast<int>(ContactKind::count)))); }
+    ContactCase any() {
+        return make(static_cast<ContactKind>(pick(static_cast<int>(ContactKind::count))));
+    }
 
     /// The benchmark's hard mix: 75% overlapping (road, edge, vertex, deep), 25% apart.
     ContactCase hard_mix() {
@@ -79,24 +81,36 @@ public:
         return c;
     }
 
-    double uniform(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng_); }
+    double uniform(double lo, double hi) {
+        return std::uniform_real_distribution<double>(lo, hi)(rng_);
+    }
     int pick(int n) { return std::uniform_int_distribution<int>(0, n - 1)(rng_); }
     glm::dvec3 direction() {
         glm::dvec3 d(normal_(rng_), normal_(rng_), normal_(rng_));
         return glm::normalize(d);
     }
     glm::dquat rotation() {
-        return glm::normalize(glm::dquat(normal_(rng_), normal_(rng_), normal_(rng_), normal_(rng_)));
+        return glm::normalize(
+            glm::dquat(normal_(rng_), normal_(rng_), normal_(rng_), normal_(rng_)));
     }
 
 private:
     Ellipsoid ellipsoid() {
         glm::dvec3 axes;
         switch (pick(wheel_and_body_ ? 2 : 4)) {
-            case 0: axes = {0.15, 0.35, 0.35}; break;  // wheel, axle along local x
-            case 1: axes = {1.0, 0.5, 2.0}; break;     // body
-            case 2: axes = glm::dvec3(uniform(0.05, 3.0)); axes.y *= 1 + uniform(-1e-9, 1e-9); break;
-            default: axes = {uniform(0.05, 3.0), uniform(0.05, 3.0), uniform(0.05, 3.0)}; break;
+            case 0:
+                axes = {0.15, 0.35, 0.35};
+                break;  // wheel, axle along local x
+            case 1:
+                axes = {1.0, 0.5, 2.0};
+                break;  // body
+            case 2:
+                axes = glm::dvec3(uniform(0.05, 3.0));
+                axes.y *= 1 + uniform(-1e-9, 1e-9);
+                break;
+            default:
+                axes = {uniform(0.05, 3.0), uniform(0.05, 3.0), uniform(0.05, 3.0)};
+                break;
         }
         const glm::dvec3 center(uniform(-50, 50), uniform(-5, 5), uniform(-50, 50));
         return Ellipsoid(center, rotation(), axes);
@@ -141,7 +155,8 @@ private:
             return Triangle(v[0], v[1], v[2]);
         };
         switch (kind) {
-            case ContactKind::road: return around(touch(uniform(0.0, 0.05)), uniform(1.0, 10.0));
+            case ContactKind::road:
+                return around(touch(uniform(0.0, 0.05)), uniform(1.0, 10.0));
             case ContactKind::edge: {
                 const glm::dvec3 z = touch(shallow_depth());
                 const double l = uniform(0.5, 5.0);
@@ -158,7 +173,9 @@ private:
                                 z + uniform(0.5, 3) * w2 - uniform(0.3, 2) * u);
             }
             case ContactKind::deep: {
-                if (pick(2)) return around(touch(uniform(0.3, 1.5) * e.sorted_radii().z + 0.05), uniform(0.5, 5.0));
+                if (pick(2))
+                    return around(touch(uniform(0.3, 1.5) * e.sorted_radii().z + 0.05),
+                                  uniform(0.5, 5.0));
                 std::array<glm::dvec3, 3> v;
                 for (auto& x : v) x = c + r0 * uniform(0.0, 0.8) * direction();
                 return Triangle(v[0], v[1], v[2]);
@@ -182,8 +199,10 @@ private:
                 const double off = l * std::pow(10.0, uniform(-9, -3));
                 return Triangle(p0, p1, p0 + uniform(-0.5, 1.5) * l * a + off * (pick(2) ? b : u));
             }
-            case ContactKind::huge: return around(touch(uniform(-0.1, 0.3)), std::pow(10.0, uniform(3, 6)));
-            case ContactKind::tiny: return around(touch(uniform(-0.01, 0.01)), std::pow(10.0, uniform(-9, -4)));
+            case ContactKind::huge:
+                return around(touch(uniform(-0.1, 0.3)), std::pow(10.0, uniform(3, 6)));
+            case ContactKind::tiny:
+                return around(touch(uniform(-0.01, 0.01)), std::pow(10.0, uniform(-9, -4)));
             case ContactKind::segment: {
                 const glm::dvec3 z = touch(uniform(-0.1, 0.5));
                 const glm::dvec3 d = direction();
@@ -191,7 +210,8 @@ private:
                 return Triangle(z + s0 * d, z + s1 * d, z + uniform(s0, s1) * d);
             }
             case ContactKind::point: {
-                const glm::dvec3 z = pick(2) ? touch(uniform(-0.1, 0.5)) : c + r0 * uniform(0, 1) * direction();
+                const glm::dvec3 z =
+                    pick(2) ? touch(uniform(-0.1, 0.5)) : c + r0 * uniform(0, 1) * direction();
                 if (pick(2)) return Triangle(z, z, z);
                 const glm::dvec3 w = z + uniform(0.1, 2) * direction();
                 return pick(2) ? Triangle(z, w, z) : Triangle(z, z, w);
@@ -212,7 +232,8 @@ private:
                 return Triangle(z, z - uniform(0.2, 3) * u + uniform(-1, 1) * a,
                                 z - uniform(0.2, 3) * u + uniform(-1, 1) * a);
             }
-            case ContactKind::count: break;
+            case ContactKind::count:
+                break;
         }
         return Triangle(c, c, c);
     }

@@ -36,10 +36,13 @@ inline R norm(V3 a) { return std::sqrt(dot(a, a)); }
 inline V3 unit(V3 a) { return a * (1 / norm(a)); }
 
 struct ReferenceContact {
-    R depth;           ///< sigma
-    V3 u;              ///< the minimising direction (ellipsoid frame)
-    R runner_up;       ///< smallest g among candidates more than 1e-4 rad away from u
-    R sampled_min;     ///< min of g over the dense sampling (>= depth)
+    R depth;        ///< sigma
+    V3 u;           ///< the minimising direction (ellipsoid frame)
+    R runner_up;    ///< smallest g among candidates more than 1e-4 rad away from u
+    R sampled_min;  ///< min of g over the dense sampling (>= depth)
+    /// The least rise of g 1e-4 rad away from u (8 directions): a minimum flat to second
+    /// order (a vertex at a center of curvature) fixes its direction only to ~eps^(1/4).
+    R rise;
     int candidates;
 };
 
@@ -70,10 +73,21 @@ public:
             }
         result.runner_up = INFINITY;
         for (const auto& [value, u] : candidates_)
-            if (dot(u, result.u) < std::cos(R(1e-4))) result.runner_up = std::min(result.runner_up, value);
+            if (dot(u, result.u) < std::cos(R(1e-4)))
+                result.runner_up = std::min(result.runner_up, value);
+        const V3 helper = std::fabs(result.u.x) < 0.6L ? V3{1, 0, 0} : V3{0, 1, 0};
+        const V3 t1 = unit(cross(result.u, helper));
+        const V3 t2 = cross(result.u, t1);
+        result.rise = INFINITY;
+        for (int k = 0; k < 8; ++k) {
+            const R angle = R(0.78539816339744830962L) * k;
+            const V3 v = unit(result.u + (t1 * std::cos(angle) + t2 * std::sin(angle)) * R(1e-4));
+            result.rise = std::min(result.rise, g(v) - result.depth);
+        }
         result.sampled_min = INFINITY;
         const int samples = 600;
-        for (int k = 0; k < samples; ++k) result.sampled_min = std::min(result.sampled_min, g(fibonacci(k, samples)));
+        for (int k = 0; k < samples; ++k)
+            result.sampled_min = std::min(result.sampled_min, g(fibonacci(k, samples)));
         result.candidates = static_cast<int>(candidates_.size());
         return result;
     }
@@ -143,7 +157,8 @@ private:
                 for (int c = -1; c <= 1; c += 2) starts.push_back(unit(V3{R(a), R(b), R(c)}));
         for (int axis = 0; axis < 3; ++axis)
             for (const R side : {R(1), R(-1)})
-                starts.push_back({axis == 0 ? side : 0, axis == 1 ? side : 0, axis == 2 ? side : 0});
+                starts.push_back(
+                    {axis == 0 ? side : 0, axis == 1 ? side : 0, axis == 2 ? side : 0});
         std::vector<std::pair<R, V3>> sampled;
         for (int k = 0; k < 100; ++k) {
             const V3 u = fibonacci(k, 100);

@@ -48,7 +48,8 @@ public:
         if (!poles.empty()) {
             add_root(poles.back(), +1, outer_root(poles.back(), +1), out);
             add_root(poles.front(), -1, outer_root(poles.front(), -1), out);
-            for (std::size_t k = 0; k + 1 < poles.size(); ++k) middle_roots(poles[k], poles[k + 1], out);
+            for (std::size_t k = 0; k + 1 < poles.size(); ++k)
+                middle_roots(poles[k], poles[k + 1], out);
         }
         for (int g = 0; g < N; ++g) {
             if (g > 0 && r_[g] == r_[g - 1]) continue;
@@ -100,7 +101,10 @@ private:
             const Real mid = lo + (hi - lo) / 2;
             if (mid <= lo || mid >= hi) break;
             const bool above = S(pole, s, mid) > 1;
-            if (above == decreasing) lo = mid; else hi = mid;
+            if (above == decreasing)
+                lo = mid;
+            else
+                hi = mid;
         }
         return lo + (hi - lo) / 2;
     }

@@ -18,7 +18,7 @@ namespace trackphys::test {
 enum class PointClass { random, near_surface, on_plane, near_plane, on_axis, center, far, count };
 
 inline const char* point_class_name(PointClass c) {
-    static const char* names[] = {"random", "near_surface", "on_plane", "near_plane",
+    static const char* names[] = {"random",  "near_surface", "on_plane", "near_plane",
                                   "on_axis", "center",       "far"};
     return names[static_cast<int>(c)];
 }
@@ -63,7 +63,8 @@ public:
                 for (double& x : c.p) x = uniform(-1.5, 1.5) * r0;
                 for (int i = 0; i < N; ++i)
                     if (pick(2) == 0 || i == N - 1)
-                        c.p[i] *= c.kind == PointClass::on_plane ? 0.0 : std::pow(10.0, uniform(-16, -3));
+                        c.p[i] *=
+                            c.kind == PointClass::on_plane ? 0.0 : std::pow(10.0, uniform(-16, -3));
                 break;
             case PointClass::on_axis: {
                 c.p.fill(0.0);
@@ -71,12 +72,15 @@ public:
                 break;
             }
             case PointClass::center:
-                for (double& x : c.p) x = pick(3) == 0 ? 0.0 : uniform(-1, 1) * r0 * std::pow(10.0, uniform(-300, -2));
+                for (double& x : c.p)
+                    x = pick(3) == 0 ? 0.0
+                                     : uniform(-1, 1) * r0 * std::pow(10.0, uniform(-300, -2));
                 break;
             case PointClass::far:
                 for (double& x : c.p) x = uniform(-1, 1) * r0 * std::pow(10.0, uniform(1, 6));
                 break;
-            case PointClass::count: break;
+            case PointClass::count:
+                break;
         }
         return c;
     }
@@ -86,9 +90,11 @@ private:
         std::array<double, N> r;
         switch (pick(6)) {
             case 0:  // wheel- and body-like
-                if constexpr (N == 3) r = pick(2) ? std::array<double, N>{0.35, 0.35, 0.15}
-                                                  : std::array<double, N>{2.0, 1.0, 0.5};
-                else r = {0.35, 0.15};
+                if constexpr (N == 3)
+                    r = pick(2) ? std::array<double, N>{0.35, 0.35, 0.15}
+                                : std::array<double, N>{2.0, 1.0, 0.5};
+                else
+                    r = {0.35, 0.15};
                 break;
             case 1:  // all equal
                 r.fill(uniform(0.05, 3.0));
@@ -126,7 +132,9 @@ private:
         return d;
     }
 
-    double uniform(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng_); }
+    double uniform(double lo, double hi) {
+        return std::uniform_real_distribution<double>(lo, hi)(rng_);
+    }
     int pick(int n) { return std::uniform_int_distribution<int>(0, n - 1)(rng_); }
 
     std::mt19937_64 rng_;

@@ -16,7 +16,9 @@ struct EllipseCriticalPoint {
     glm::dvec2 point;   ///< point on the ellipse (m)
     glm::dvec2 normal;  ///< outward unit normal at point
     double offset;      ///< normal . (p - point) (m), > 0 outside along the normal
-    bool local_min;     ///< a local minimum of the offset along the ellipse
+    /// u = -normal is a local minimum of u . p + ||D u|| over unit u (D = diag(radii)): an
+    /// edge candidate of the contact kernel
+    bool local_min;
 };
 
 /// Up to 4 critical points: the real roots of f(t) = sum (r_i p_i / (r_i^2 + t))^2 - 1, plus

@@ -38,9 +38,8 @@ TRACKPHYS_API PointEllipsoid closest_point_on_ellipsoid(const Ellipsoid& ellipso
                                                         const glm::dvec3& p, RootFinder finder);
 
 /// The same in the sorted frame: radii x >= y >= z > 0 (m), p in that frame.
-TRACKPHYS_API PointEllipsoid closest_point_on_sorted_ellipsoid(const glm::dvec3& sorted_radii,
-                                                               const glm::dvec3& p,
-                                                               RootFinder finder = RootFinder::robust);
+TRACKPHYS_API PointEllipsoid closest_point_on_sorted_ellipsoid(
+    const glm::dvec3& sorted_radii, const glm::dvec3& p, RootFinder finder = RootFinder::robust);
 
 /// A critical point of the distance from a point p to the surface: p lies on the normal
 /// line of point, p = point + offset * normal.
@@ -48,7 +47,9 @@ struct EllipsoidCriticalPoint {
     glm::dvec3 point;   ///< surface point (m, sorted frame)
     glm::dvec3 normal;  ///< outward unit normal at point
     double offset;      ///< normal . (p - point) (m): > 0 when p is outside along the normal
-    bool local_min;     ///< a local minimum of the offset over the surface
+    /// u = -normal is a local minimum of u . p + ||D u|| over unit u (D = diag(radii)): a
+    /// contact candidate of the vertex p (for p inside: a local minimum of |p - point|)
+    bool local_min;
 };
 
 /// Every critical point of the distance from p to an ellipsoid surface: one per real root
