@@ -55,6 +55,12 @@ void Car::set_inputs(const CarInputs& inputs) {
 
 double Car::speed() const { return glm::length(state_.linear_velocity); }
 
+ContactMaterial Car::wheel_material(std::size_t i) const {
+    ContactMaterial material = spec_.wheel_contact;
+    if (spec_.ellipsoids[i].role == EllipsoidRole::rear_wheel) material.friction *= spec_.rear_grip_factor;
+    return material;
+}
+
 WheelCommand Car::wheel_command(std::size_t i, double axle_normal_force) const {
     const CarEllipsoid& wheel = spec_.ellipsoids[i];
     // Body +Z is forward; front wheels turn about body +Y (positive steer = left).
@@ -76,7 +82,7 @@ WheelCommand Car::wheel_command(std::size_t i, double axle_normal_force) const {
     command.drive_force = inputs_.throttle * available * drive_share / axle_wheels;
     command.brake_force = inputs_.brake * spec_.max_brake_force * brake_share / axle_wheels;
     command.max_along_force =
-        spec_.traction_limit * spec_.wheel_contact.friction * axle_normal_force;
+        spec_.traction_limit * wheel_material(i).friction * axle_normal_force;
     return command;
 }
 
@@ -103,7 +109,7 @@ Wrench Car::contact_wrench(std::span<const Contact> deepest) const {
             role == EllipsoidRole::body
                 ? body_contact_force(spec_.body_contact, contact.depth, contact.normal, velocity)
                 : wheel_contact_force(
-                      spec_.wheel_contact, contact.depth, contact.normal, velocity,
+                      wheel_material(i), contact.depth, contact.normal, velocity,
                       wheel_command(i, role == EllipsoidRole::front_wheel ? front_load : rear_load));
         wrench.add_at_point(force, contact.point, state_.position);
     }

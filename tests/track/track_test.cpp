@@ -102,8 +102,9 @@ TEST(Track, WidthAndBankStayWithinBounds) {
             ASSERT_GT(s.bank * s.curvature, 0.0);
         }
     }
-    // The tight turns of this track reach the full bank.
-    EXPECT_NEAR(largest, max_bank, 1e-9);
+    // The tight turns of this track reach the full bank, but for the 120 m over which the
+    // bank swings between turns (road_profile.cpp), which rounds off the shortest plateaus.
+    EXPECT_GT(largest, 0.98 * max_bank);
 
     // Each row's road spans exactly the width between its edge vertices, and the bank of
     // the road surface is the sample's bank.

@@ -87,6 +87,8 @@ public:
 
 private:
     WheelCommand wheel_command(std::size_t i, double axle_normal_force) const;
+    /// The contact material of wheel i (rear tyres with their extra grip).
+    ContactMaterial wheel_material(std::size_t i) const;
     void add_aero_force(Wrench& wrench) const;
 
     CarSpec spec_;

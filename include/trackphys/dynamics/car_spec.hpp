@@ -54,6 +54,11 @@ struct TRACKPHYS_API CarSpec {
     std::vector<CarEllipsoid> ellipsoids;
     ContactMaterial body_contact;
     ContactMaterial wheel_contact;
+    /// The rear tyres are wider: their friction is wheel_contact.friction times this. With
+    /// tyres whose grip is proportional to load, both axles would saturate together and the
+    /// car would be on the edge of a spin at every limit; more grip at the rear makes it
+    /// understeer instead, as road cars are set up to.
+    double rear_grip_factor = 1.15;
     Suspension suspension;
     double max_drive_force = 2.0e4;     ///< N over all wheels, below the power limit
     /// Share of the drive force at the front wheels (0 = rear-wheel drive, 1 = front).
