@@ -1,5 +1,6 @@
 #include "trackphys/world/world.hpp"
 
+#include <algorithm>
 #include <cstring>
 #include <limits>
 #include <utility>
@@ -79,30 +80,41 @@ void World::substep(CarSlot& slot, PhaseStopwatch& watch) {
     const std::size_t candidates = slot.normalized.size();
 
     // Cull: each ellipsoid's bounding sphere against every candidate's cheap frame test,
-    // then the ellipsoid's own extent along the survivors' frame axes.
+    // then the ellipsoid's own extent along the survivors' frame axes, which also bounds
+    // how deep each survivor can be.
     slot.placed.clear();
     for (std::size_t i = 0; i < ellipsoids; ++i) {
         slot.placed.push_back(car.world_ellipsoid(i));
         const Ellipsoid& ellipsoid = slot.placed.back();
         const double radius = ellipsoid.bounding_radius();
-        std::vector<std::uint32_t>& kept = slot.kept[i];
+        std::vector<Survivor>& kept = slot.kept[i];
         kept.clear();
-        for (std::uint32_t c = 0; c < candidates; ++c)
-            if (slot.normalized[c].may_touch_sphere(ellipsoid.center(), radius) &&
-                ellipsoid_may_touch(slot.normalized[c], ellipsoid))
-                kept.push_back(c);
-        profile_.exact_tests += kept.size();
+        for (std::uint32_t c = 0; c < candidates; ++c) {
+            if (!slot.normalized[c].may_touch_sphere(ellipsoid.center(), radius)) continue;
+            const double bound = ellipsoid_depth_bound(slot.normalized[c], ellipsoid);
+            if (bound > 0.0) kept.push_back({c, bound});
+        }
     }
     profile_.culled_tests += ellipsoids * candidates;
     profile_.ellipsoid_substeps += ellipsoids;
     watch.lap(Phase::cull);
 
-    // Exact contact: the deepest over each ellipsoid's survivors.
+    // Exact contact: the deepest over each ellipsoid's survivors. The survivor with the
+    // deepest bound goes first; after it, only survivors whose bound beats the deepest
+    // contact found so far can change the answer.
     for (std::size_t i = 0; i < ellipsoids; ++i) {
         Contact& deepest = slot.deepest[i];
         deepest.depth = -std::numeric_limits<double>::infinity();
-        for (std::uint32_t c : slot.kept[i]) {
-            const Contact contact = ellipsoid_triangle_contact(slot.placed[i], slot.triangles[c]);
+        std::vector<Survivor>& kept = slot.kept[i];
+        if (kept.empty()) continue;
+        std::iter_swap(kept.begin(), std::max_element(kept.begin(), kept.end(),
+                                                      [](const Survivor& a, const Survivor& b) {
+                                                          return a.depth_bound < b.depth_bound;
+                                                      }));
+        for (const Survivor& s : kept) {
+            if (!(s.depth_bound > deepest.depth)) continue;
+            const Contact contact = ellipsoid_triangle_contact(slot.placed[i], slot.triangles[s.candidate]);
+            ++profile_.exact_tests;
             if (contact.depth > deepest.depth) deepest = contact;
         }
         profile_.contacts += deepest.depth > 0.0;

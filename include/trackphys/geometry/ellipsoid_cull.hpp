@@ -1,5 +1,8 @@
 #pragma once
 
+#include <cmath>
+#include <limits>
+
 #include <glm/geometric.hpp>
 
 #include "trackphys/geometry/ellipsoid.hpp"
@@ -17,19 +20,31 @@ inline double support_extent(const Ellipsoid& e, const glm::dvec3& u) {
 /// on the triangle's own frame axes, normal first. Along each axis the triangle spans
 /// [0, 0] (normal), [0, x1] (dir_x) or [0, y2] (dir_y) from its origin, and the ellipsoid
 /// spans its centre's coordinate +- h(axis); disjoint spans on any axis prove the two apart.
-/// false only if the ellipsoid cannot touch the triangle. A flat wheel is judged by its
-/// width sideways, not by its radius, so far fewer neighbours of its footprint survive.
-inline bool ellipsoid_may_touch(const NormalizedTriangle& t, const Ellipsoid& e) {
+/// A flat wheel is judged by its width sideways, not by its radius, so far fewer
+/// neighbours of its footprint survive.
+///
+/// Returns -infinity when the ellipsoid cannot touch the triangle, else an upper bound of
+/// their penetration depth: sigma is the minimum of g over all directions, so it is at most
+/// min(g(n), g(-n)) = h(n) - |n . (c - p)|, the depth along the triangle's normal. A
+/// triangle whose bound is no deeper than a contact already found cannot be the deepest.
+inline double ellipsoid_depth_bound(const NormalizedTriangle& t, const Ellipsoid& e) {
+    constexpr double apart = -std::numeric_limits<double>::infinity();
     const glm::dvec3 local = e.center() - t.origin;
     const double z = glm::dot(t.normal, local);
     const double hz = support_extent(e, t.normal);
-    if (z > hz || z < -hz) return false;
+    if (z > hz || z < -hz) return apart;
     const double x = glm::dot(t.dir_x, local);
     const double hx = support_extent(e, t.dir_x);
-    if (x < -hx || x > t.x1 + hx) return false;
+    if (x < -hx || x > t.x1 + hx) return apart;
     const double y = glm::dot(t.dir_y, local);
     const double hy = support_extent(e, t.dir_y);
-    return y >= -hy && y <= t.y2 + hy;
+    if (y < -hy || y > t.y2 + hy) return apart;
+    return hz - std::abs(z);
+}
+
+/// false only if the ellipsoid cannot touch the triangle (see ellipsoid_depth_bound).
+inline bool ellipsoid_may_touch(const NormalizedTriangle& t, const Ellipsoid& e) {
+    return ellipsoid_depth_bound(t, e) > -std::numeric_limits<double>::infinity();
 }
 
 }  // namespace trackphys

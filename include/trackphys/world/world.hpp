@@ -62,6 +62,12 @@ public:
     void set_trace(TraceRecorder* trace) { trace_ = trace; }
 
 private:
+    // A candidate that passed the cull, with an upper bound of its penetration depth.
+    struct Survivor {
+        std::uint32_t candidate;
+        double depth_bound;
+    };
+
     // Per-car working memory, kept between updates so a steady state allocates nothing.
     struct CarSlot {
         Car car;
@@ -69,7 +75,7 @@ private:
         std::vector<Triangle> triangles;               // the candidates' world triangles
         std::vector<NormalizedTriangle> normalized;    // and their cull frames
         std::vector<Ellipsoid> placed;                 // the ellipsoids in the world, this sub-step
-        std::vector<std::vector<std::uint32_t>> kept;  // per ellipsoid: culled survivors
+        std::vector<std::vector<Survivor>> kept;       // per ellipsoid: culled survivors
         std::vector<Contact> deepest;                  // per ellipsoid, this sub-step
     };
 
