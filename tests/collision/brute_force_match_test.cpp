@@ -12,6 +12,8 @@
 #include "collision/collision_meshes.hpp"
 #include "trackphys/collision/brute_force_collider.hpp"
 #include "trackphys/collision/static_collider.hpp"
+#include "trackphys/track/track.hpp"
+#include "trackphys/track/track_stats.hpp"
 
 namespace trackphys {
 namespace {
@@ -186,6 +188,25 @@ TEST(BruteForceMatch, DegenerateHugeAndDuplicateTriangles) {
 
 TEST(BruteForceMatch, TrackLikeBankedLoop) {
     expect_same_everywhere(test::BankedLoop{}.mesh(200), 33);
+}
+
+// The default generated track (seed 7): the two collider chunks around its tightest banked
+// turn, road and walls, as one mesh.
+TEST(BruteForceMatch, DefaultTrackTightestTurn) {
+    TrackParams params;
+    params.seed = 7;
+    const Track track = generate_track(params);
+    const std::size_t tightest = compute_track_stats(track).tightest_sample;
+    std::size_t chunk = 0;
+    while (chunk + 1 < track.chunks.size() && track.chunks[chunk + 1].first_sample <= tightest) ++chunk;
+    TriangleMesh mesh;
+    for (std::size_t c : {chunk, (chunk + 1) % track.chunks.size()}) {
+        const TriangleMesh& part = track.chunks[c].mesh;
+        const auto base = static_cast<std::uint32_t>(mesh.vertices.size());
+        mesh.vertices.insert(mesh.vertices.end(), part.vertices.begin(), part.vertices.end());
+        for (const auto& t : part.triangles) mesh.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+    }
+    expect_same_everywhere(mesh, 55);
 }
 
 }  // namespace
