@@ -12,6 +12,9 @@ required=(
   libbenchmark-dev # benchmarks
   libglm-dev # vector, quaternion and matrix types in double (public headers)
   libassimp-dev # mesh import and export: OBJ, glTF/GLB, PLY, AC3D, FBX...
+  zlib1g-dev # libassimp-dev's CMake target links /usr/lib/x86_64-linux-gnu/libz.so by path
+             # but does not depend on the package that holds it: without it every link
+             # against assimp::assimp fails ("No rule to make target .../libz.so")
   nlohmann-json3-dev # JSON output of the command line tool
   libcli11-dev # command line parsing of the trackphys tool
 )

@@ -1,9 +1,84 @@
+// `trackphys info MESHFILE`: what a static collider would get from a mesh file.
+
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
 #include "commands.hpp"
+#include "trackphys/io/mesh_io.hpp"
 
 namespace trackphys::cli {
+namespace {
+
+struct InfoOptions {
+    std::string file;
+    bool json = false;
+};
+
+nlohmann::json to_json(const glm::dvec3& v) { return nlohmann::json::array({v.x, v.y, v.z}); }
+
+void print_json(const InfoOptions& options, const MeshLoadReport& r) {
+    const nlohmann::json out = {
+        {"file", options.file},
+        {"triangles", r.triangles},
+        {"vertices", r.vertices},
+        {"mesh_instances", r.mesh_instances},
+        {"bounds", {{"min", to_json(r.bounds.min)},
+                    {"max", to_json(r.bounds.max)},
+                    {"size", to_json(r.bounds.extent())}}},
+        {"area_m2", r.area},
+        {"degenerate_dropped", r.degenerate_dropped},
+        {"points_skipped", r.points_skipped},
+        {"lines_skipped", r.lines_skipped},
+        {"triangulation_lost", r.triangulation_lost},
+        {"mirrored_instances", r.mirrored_instances},
+    };
+    std::printf("%s\n", out.dump(2).c_str());
+}
+
+void print_vector(const char* label, const glm::dvec3& v) {
+    std::printf("%-20s %.6f %.6f %.6f m\n", label, v.x, v.y, v.z);
+}
+
+void print_text(const InfoOptions& options, const MeshLoadReport& r) {
+    std::printf("%-20s %s\n", "file", options.file.c_str());
+    std::printf("%-20s %zu\n", "triangles", r.triangles);
+    std::printf("%-20s %zu\n", "vertices", r.vertices);
+    std::printf("%-20s %zu\n", "mesh instances", r.mesh_instances);
+    print_vector("bounds min", r.bounds.min);
+    print_vector("bounds max", r.bounds.max);
+    print_vector("size", r.bounds.extent());
+    std::printf("%-20s %.3f m^2\n", "area", r.area);
+    std::printf("%-20s %zu\n", "degenerate dropped", r.degenerate_dropped);
+    std::printf("%-20s %zu\n", "points skipped", r.points_skipped);
+    std::printf("%-20s %zu\n", "lines skipped", r.lines_skipped);
+    std::printf("%-20s %zu\n", "triangulation lost", r.triangulation_lost);
+    std::printf("%-20s %zu\n", "mirrored instances", r.mirrored_instances);
+}
+
+void run_info(const InfoOptions& options) {
+    MeshLoadReport report;
+    load_mesh(options.file, report);  // throws trackphys::Error on bad input: main reports it
+    if (options.json)
+        print_json(options, report);
+    else
+        print_text(options, report);
+}
+
+}  // namespace
 
 void add_info_command(CLI::App& app) {
-    app.add_subcommand("info", "(under construction)");
+    CLI::App* command = app.add_subcommand(
+        "info",
+        "Read a mesh file (any format assimp reads: glTF/GLB, OBJ, PLY, STL, FBX, AC3D...) "
+        "the way a static collider would, and print its triangle and vertex counts, bounds, "
+        "area and what was dropped (degenerate triangles, points, lines)");
+    auto options = std::make_shared<InfoOptions>();
+    command->add_option("MESHFILE", options->file, "the mesh file to read")->required();
+    command->add_flag("--json", options->json, "print the figures as one JSON object");
+    command->callback([options] { run_info(*options); });
 }
 
 }  // namespace trackphys::cli

@@ -5,6 +5,7 @@
 #include "trackphys/assert.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/export.hpp"
+#include "trackphys/math/symmetric_eigen.hpp"
 #include "trackphys/math/types.hpp"
 
 #include "trackphys/geometry/aabb.hpp"
@@ -18,3 +19,17 @@
 #include "trackphys/collision/bvh_node.hpp"
 #include "trackphys/collision/static_collider.hpp"
 #include "trackphys/collision/static_world.hpp"
+
+#include "trackphys/dynamics/car_spec.hpp"
+#include "trackphys/dynamics/contact_force.hpp"
+#include "trackphys/dynamics/rigid_body.hpp"
+
+#include "trackphys/profile/profile_statistics.hpp"
+#include "trackphys/profile/trace_recorder.hpp"
+#include "trackphys/profile/update_profile.hpp"
+
+#include "trackphys/io/mesh_io.hpp"
+
+#include "trackphys/track/track.hpp"
+#include "trackphys/track/track_params.hpp"
+#include "trackphys/track/track_stats.hpp"

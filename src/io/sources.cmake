@@ -1,1 +1,4 @@
 # The io part's sources: target_sources(trackphys PRIVATE io/...).
+target_sources(trackphys PRIVATE
+  io/mesh_export.cpp
+  io/mesh_import.cpp)

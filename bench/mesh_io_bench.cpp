@@ -1,0 +1,79 @@
+// save_mesh and load_mesh on a track-sized mesh (500k triangles), per format.
+//   build/release/bench/bench_mesh_io
+// Writes into the system temporary folder and removes the files afterwards.
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+#include <benchmark/benchmark.h>
+
+#include "trackphys/io/mesh_io.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// A 500 x 500 quad height field (250,000 vertices, 500,000 triangles), 0.5 m spacing, with
+// gentle waves so that no triangle is degenerate.
+const trackphys::TriangleMesh& track_sized_mesh() {
+    static const trackphys::TriangleMesh mesh = [] {
+        constexpr int n = 500;
+        trackphys::TriangleMesh m;
+        for (int k = 0; k <= n; ++k)
+            for (int i = 0; i <= n; ++i)
+                m.vertices.push_back({0.5 * i, 0.1 * ((i * 7 + k * 3) % 11), -0.5 * k});
+        const auto id = [](int i, int k) { return static_cast<std::uint32_t>(k * (n + 1) + i); };
+        for (int k = 0; k < n; ++k)
+            for (int i = 0; i < n; ++i) {
+                m.triangles.push_back({id(i, k), id(i + 1, k), id(i + 1, k + 1)});
+                m.triangles.push_back({id(i, k), id(i + 1, k + 1), id(i, k + 1)});
+            }
+        return m;
+    }();
+    return mesh;
+}
+
+fs::path bench_file(const std::string& extension) {
+    return fs::temp_directory_path() / ("trackphys-bench-mesh-io" + extension);
+}
+
+void remove_bench_files(const std::string& extension) {
+    fs::remove(bench_file(extension));
+    if (extension == ".gltf") fs::remove(bench_file(".bin"));
+}
+
+void BM_SaveMesh(benchmark::State& state, const std::string& extension) {
+    const trackphys::TriangleMesh& mesh = track_sized_mesh();
+    for (auto _ : state) trackphys::save_mesh(mesh, bench_file(extension));
+    state.counters["MB"] = static_cast<double>(fs::file_size(bench_file(extension))) / 1e6;
+    state.counters["triangles"] = static_cast<double>(mesh.triangles.size());
+    remove_bench_files(extension);
+}
+
+void BM_LoadMesh(benchmark::State& state, const std::string& extension) {
+    trackphys::save_mesh(track_sized_mesh(), bench_file(extension));
+    for (auto _ : state) benchmark::DoNotOptimize(trackphys::load_mesh(bench_file(extension)));
+    remove_bench_files(extension);
+}
+
+}  // namespace
+
+BENCHMARK_CAPTURE(BM_SaveMesh, glb, std::string(".glb"))
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3);
+BENCHMARK_CAPTURE(BM_SaveMesh, obj, std::string(".obj"))
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3);
+BENCHMARK_CAPTURE(BM_SaveMesh, ply, std::string(".ply"))
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3);
+BENCHMARK_CAPTURE(BM_LoadMesh, glb, std::string(".glb"))
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3);
+BENCHMARK_CAPTURE(BM_LoadMesh, obj, std::string(".obj"))
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3);
+BENCHMARK_CAPTURE(BM_LoadMesh, ply, std::string(".ply"))
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3);

@@ -1,0 +1,84 @@
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+
+#include "trackphys/export.hpp"
+#include "trackphys/geometry/aabb.hpp"
+#include "trackphys/geometry/triangle_mesh.hpp"
+
+/// Mesh files in and out, through assimp.
+///
+/// Precision: assimp (as packaged by Debian) stores positions and node transforms in float32,
+/// so every coordinate read or written rounds through float32 (24-bit mantissa): about 0.5 mm
+/// at 5 km from the origin, 1e-7 relative. Import converts to double before composing the node
+/// transforms and applying them, so no further error accumulates beyond that of the file.
+/// Export rounds each double coordinate to the nearest float32; coordinates that float32
+/// represents exactly (small integers, multiples of powers of two) round-trip exactly.
+
+namespace trackphys {
+
+/// What load_mesh found in a file besides the mesh itself. Counts are over mesh instances:
+/// a mesh that two nodes of the file place twice counts twice.
+struct MeshLoadReport {
+    std::size_t mesh_instances = 0;      ///< meshes merged, one per (node, mesh) reference
+    std::size_t triangles = 0;           ///< triangles kept: the result's triangles.size()
+    std::size_t vertices = 0;            ///< vertices kept: the result's vertices.size()
+    std::size_t degenerate_dropped = 0;  ///< zero or near-zero area (Triangle::is_degenerate)
+    std::size_t points_skipped = 0;      ///< point primitives (not collision geometry)
+    std::size_t lines_skipped = 0;       ///< line primitives (not collision geometry)
+    /// Triangles that assimp's polygon triangulation should have produced but did not: it
+    /// gives up on polygons it cannot ear-clip (self-intersecting, or collinear runs), and
+    /// this is the only trace of that loss.
+    std::size_t triangulation_lost = 0;
+    /// Mesh instances placed by a mirroring node transform (negative determinant); their
+    /// triangles were re-wound so that their normals keep facing the same side of the
+    /// surface, as glTF specifies.
+    std::size_t mirrored_instances = 0;
+    Aabb bounds;        ///< world box of the kept triangles (m)
+    double area = 0.0;  ///< total area of the kept triangles (m^2)
+};
+
+/// Reads any format assimp reads (OBJ, glTF/GLB, PLY, AC3D, FBX, STL, ...) into one
+/// triangle mesh in world space (metres, +Y up, coordinates as written in the file; no
+/// axis conversion). Every mesh of the file is placed by its nodes' composed transforms
+/// and merged; polygons are triangulated; points and lines are skipped; degenerate
+/// triangles are dropped; vertices with bit-identical world positions are welded into one
+/// and vertices no kept triangle uses are left out. All of this is counted in report.
+///
+/// Throws trackphys::Error, with a message naming the file, when the file is missing,
+/// unreadable, empty, not a mesh format assimp recognises, corrupt or truncated; when a
+/// vertex coordinate or node transform is NaN or infinite (the message also names the mesh
+/// or node and the vertex, e.g. "mesh 'road', vertex 17 has a non-finite coordinate (0, nan,
+/// 1)"; vertices are numbered as assimp numbers them within the mesh, which for OBJ counts
+/// face corners, not `v` lines); or when no triangle is left.
+///
+/// assimp sizes some buffers from the file's header before it can check them, so a small
+/// corrupt file can make it allocate what the header claims (a 200-byte PLY claiming 1e8
+/// vertices allocates 1.2 GB) before the import fails.
+TRACKPHYS_API TriangleMesh load_mesh(const std::filesystem::path& path, MeshLoadReport& report);
+
+/// load_mesh without the report.
+TRACKPHYS_API TriangleMesh load_mesh(const std::filesystem::path& path);
+
+/// Writes mesh (world space, one mesh, one node, no materials beyond assimp's default) in
+/// the format named by the extension, case-insensitive: .glb (binary glTF 2), .gltf (glTF 2
+/// JSON with its buffer in a .bin file of the same stem beside it), .obj (Wavefront, no
+/// material file), .ply (binary PLY), .stl (binary STL, unindexed). Positions are stored as
+/// float32 in every one of them (see the precision note above).
+///
+/// The files are first written into a fresh temporary folder beside the destination and
+/// then renamed into place, so a failure never leaves a partial file and never disturbs an
+/// existing file of that name. Throws trackphys::Error naming the path when the extension is
+/// unknown, the mesh is invalid (no triangles, an index out of range, a non-finite
+/// coordinate or one beyond float32's range), or writing fails.
+TRACKPHYS_API void save_mesh(const TriangleMesh& mesh, const std::filesystem::path& path);
+
+/// The extensions save_mesh writes, for messages: ".glb, .gltf, .obj, .ply or .stl".
+inline constexpr const char* saved_mesh_extensions = ".glb, .gltf, .obj, .ply or .stl";
+
+/// True when save_mesh knows the format of path's extension (a check to run before long
+/// work whose result would go there).
+TRACKPHYS_API bool can_save_mesh_as(const std::filesystem::path& path);
+
+}  // namespace trackphys

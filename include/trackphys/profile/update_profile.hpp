@@ -1,0 +1,68 @@
+#pragma once
+
+#include <array>
+#include <chrono>
+#include <cstddef>
+#include <cstdint>
+
+namespace trackphys {
+
+/// The phases of one physics update (DESIGN.md, "The system in one picture").
+enum class Phase : std::uint8_t {
+    broad,      ///< swept car box vs collider boxes and BVHs
+    mid,        ///< per-step candidate lists (plane tree build and queries)
+    cull,       ///< bounding sphere vs NormalizedTriangle
+    exact,      ///< exact ellipsoid-triangle contact
+    integrate,  ///< contact forces and integration
+};
+inline constexpr std::size_t phase_count = 5;
+
+/// Lower-case name of a phase, as used in tables, JSON keys and traces.
+constexpr const char* phase_name(Phase phase) {
+    constexpr const char* names[phase_count] = {"broad", "mid", "cull", "exact", "integrate"};
+    return names[static_cast<std::size_t>(phase)];
+}
+
+/// What one update did: time per phase (microseconds) and how much work it saw.
+struct UpdateProfile {
+    std::array<double, phase_count> phase_us{};
+    double update_us = 0.0;              ///< the whole update, wall clock
+    std::uint64_t candidates = 0;        ///< broad-phase triangles, summed over cars
+    std::uint64_t culled_tests = 0;      ///< sphere culls run (per ellipsoid per sub-step)
+    std::uint64_t exact_tests = 0;       ///< exact contacts computed
+    std::uint64_t contacts = 0;          ///< ellipsoids in contact, summed over sub-steps
+    std::uint64_t ellipsoid_substeps = 0;///< ellipsoids x sub-steps, to average per ellipsoid
+
+    double& operator[](Phase phase) { return phase_us[static_cast<std::size_t>(phase)]; }
+    double operator[](Phase phase) const { return phase_us[static_cast<std::size_t>(phase)]; }
+};
+
+/// Splits elapsed wall-clock time between phases: each lap(phase) charges the time since
+/// the previous lap to that phase. Disabled, it never reads the clock, so profiling costs
+/// nothing when it is off.
+class PhaseStopwatch {
+public:
+    using Clock = std::chrono::steady_clock;
+
+    PhaseStopwatch(UpdateProfile& profile, bool enabled)
+        : profile_(profile), enabled_(enabled), last_(enabled ? Clock::now() : Clock::time_point{}) {}
+
+    void lap(Phase phase) {
+        if (!enabled_) return;
+        const Clock::time_point now = Clock::now();
+        profile_[phase] += std::chrono::duration<double, std::micro>(now - last_).count();
+        last_ = now;
+    }
+
+    /// Forgets the time since the last lap (work that belongs to no phase).
+    void skip() {
+        if (enabled_) last_ = Clock::now();
+    }
+
+private:
+    UpdateProfile& profile_;
+    bool enabled_;
+    Clock::time_point last_;
+};
+
+}  // namespace trackphys

@@ -1,0 +1,94 @@
+#include "trackphys/dynamics/car_spec.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include <glm/geometric.hpp>
+
+#include "trackphys/math/types.hpp"
+
+namespace trackphys {
+
+CarSpec CarSpec::default_car() {
+    CarSpec spec;
+    spec.mass = MassProperties::solid_box(1200.0, {1.9, 0.9, 4.3});
+
+    // Wheels: the rolling radius is in the car's y-z plane, the width along x.
+    const glm::dvec3 wheel_axes(0.15, 0.35, 0.35);
+    const double wheel_y = -0.30;  // wheel centres below the centre of mass
+    for (double side : {1.0, -1.0}) {
+        spec.ellipsoids.push_back({{0.85 * side, wheel_y, 1.45}, wheel_axes, {1, 0, 0, 0},
+                                   EllipsoidRole::front_wheel});
+        spec.ellipsoids.push_back({{0.85 * side, wheel_y, -1.35}, wheel_axes, {1, 0, 0, 0},
+                                   EllipsoidRole::rear_wheel});
+    }
+    // Body: nose, cabin, tail and a wide floor pan, all clear of the road at rest.
+    spec.ellipsoids.push_back({{0.0, 0.05, 1.70}, {0.80, 0.25, 0.60}, {1, 0, 0, 0}, EllipsoidRole::body});
+    spec.ellipsoids.push_back({{0.0, 0.35, 0.00}, {0.75, 0.40, 1.20}, {1, 0, 0, 0}, EllipsoidRole::body});
+    spec.ellipsoids.push_back({{0.0, 0.10, -1.70}, {0.85, 0.30, 0.55}, {1, 0, 0, 0}, EllipsoidRole::body});
+    spec.ellipsoids.push_back({{0.0, -0.05, 0.00}, {0.95, 0.20, 1.90}, {1, 0, 0, 0}, EllipsoidRole::body});
+
+    // Per wheel load m g / 4 = 2943 N; k = 2e5 N/m sags 1.5 cm; critical damping for a
+    // quarter car is 2 sqrt(k m / 4) = 1.5e4 N s/m.
+    spec.wheel_contact = {2.0e5, 1.5e4, 1.4, 0.05};
+    // The body rarely touches; stiffer so a scrape does not sink it.
+    spec.body_contact = {8.0e5, 3.0e4, 0.6, 0.05};
+    return spec;
+}
+
+namespace {
+
+void check_positive(std::ostringstream& why, const char* field, double value) {
+    if (why.tellp() == 0 && !(std::isfinite(value) && value > 0.0))
+        why << "CarSpec." << field << " must be finite and > 0, got " << value;
+}
+
+void check_non_negative(std::ostringstream& why, const char* field, double value) {
+    if (why.tellp() == 0 && !(std::isfinite(value) && value >= 0.0))
+        why << "CarSpec." << field << " must be finite and >= 0, got " << value;
+}
+
+void check_material(std::ostringstream& why, const char* name, const ContactMaterial& m) {
+    const std::string prefix = std::string(name) + ".";
+    check_positive(why, (prefix + "stiffness").c_str(), m.stiffness);
+    check_non_negative(why, (prefix + "damping").c_str(), m.damping);
+    check_non_negative(why, (prefix + "friction").c_str(), m.friction);
+    check_positive(why, (prefix + "slip_speed").c_str(), m.slip_speed);
+}
+
+}  // namespace
+
+std::string CarSpec::validate() const {
+    std::ostringstream why;
+    check_positive(why, "mass.mass", mass.mass);
+    check_positive(why, "mass.principal_inertia.x", mass.principal_inertia.x);
+    check_positive(why, "mass.principal_inertia.y", mass.principal_inertia.y);
+    check_positive(why, "mass.principal_inertia.z", mass.principal_inertia.z);
+    if (why.tellp() == 0 && (ellipsoids.empty() || ellipsoids.size() > 64))
+        why << "CarSpec.ellipsoids must hold 1 to 64 ellipsoids, got " << ellipsoids.size();
+    for (std::size_t i = 0; i < ellipsoids.size() && why.tellp() == 0; ++i) {
+        const CarEllipsoid& e = ellipsoids[i];
+        const std::string prefix = "ellipsoids[" + std::to_string(i) + "].";
+        static constexpr const char* axis[3] = {"x", "y", "z"};
+        if (!is_finite(e.center))
+            why << "CarSpec." << prefix << "center is not finite";
+        for (int k = 0; k < 3; ++k)
+            check_positive(why, (prefix + "semi_axes." + axis[k]).c_str(), e.semi_axes[k]);
+        if (why.tellp() == 0 && !(is_finite(e.orientation) && glm::length(e.orientation) > 0.5))
+            why << "CarSpec." << prefix << "orientation must be a finite unit quaternion";
+    }
+    check_material(why, "body_contact", body_contact);
+    check_material(why, "wheel_contact", wheel_contact);
+    check_non_negative(why, "max_drive_force", max_drive_force);
+    check_non_negative(why, "max_drive_power", max_drive_power);
+    check_non_negative(why, "max_brake_force", max_brake_force);
+    check_non_negative(why, "max_steer_angle", max_steer_angle);
+    if (why.tellp() == 0 && !(max_steer_angle < 1.5))
+        why << "CarSpec.max_steer_angle must be below 1.5 rad, got " << max_steer_angle;
+    check_non_negative(why, "drag_area", drag_area);
+    check_non_negative(why, "downforce_area", downforce_area);
+    check_non_negative(why, "air_density", air_density);
+    return why.str();
+}
+
+}  // namespace trackphys

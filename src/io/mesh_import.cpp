@@ -1,0 +1,290 @@
+#include "trackphys/io/mesh_io.hpp"
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <exception>
+#include <functional>
+#include <limits>
+#include <string>
+#include <system_error>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+#include <assimp/Importer.hpp>
+#include <assimp/config.h>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+#include <glm/mat4x4.hpp>
+#include <glm/matrix.hpp>
+
+#include "trackphys/error.hpp"
+#include "trackphys/geometry/triangle.hpp"
+#include "trackphys/math/types.hpp"
+
+namespace trackphys {
+namespace {
+
+namespace fs = std::filesystem;
+
+[[noreturn]] void fail(const fs::path& path, const std::string& reason) {
+    throw Error("mesh file '" + path.string() + "': " + reason);
+}
+
+std::string format_point(const glm::dvec3& p) {
+    char text[96];
+    std::snprintf(text, sizeof text, "(%.9g, %.9g, %.9g)", p.x, p.y, p.z);
+    return text;
+}
+
+std::string mesh_label(const aiMesh& mesh, unsigned index) {
+    if (mesh.mName.length > 0) return "mesh '" + std::string(mesh.mName.C_Str()) + "'";
+    return "mesh #" + std::to_string(index);
+}
+
+std::string node_label(const aiNode& node) {
+    return "node '" + std::string(node.mName.C_Str()) + "'";
+}
+
+// assimp answers a missing or empty file with messages that depend on the format it guesses
+// from the extension ("OBJ-file is too small"); these checks give the plain reason first.
+void check_is_nonempty_file(const fs::path& path) {
+    std::error_code ec;
+    const fs::file_status status = fs::status(path, ec);
+    if (status.type() == fs::file_type::not_found) fail(path, "no such file");
+    if (ec) fail(path, "cannot access it: " + ec.message());
+    if (!fs::is_regular_file(status)) fail(path, "not a regular file");
+    const std::uintmax_t size = fs::file_size(path, ec);
+    if (ec) fail(path, "cannot read its size: " + ec.message());
+    if (size == 0) fail(path, "the file is empty");
+}
+
+// aiMatrix4x4 is row-major (a4, b4, c4 hold the translation); glm is column-major.
+glm::dmat4 to_dmat4(const aiMatrix4x4& m) {
+    glm::dmat4 out(1.0);
+    for (unsigned row = 0; row < 4; ++row)
+        for (unsigned col = 0; col < 4; ++col) out[col][row] = static_cast<double>(m[row][col]);
+    return out;
+}
+
+bool is_finite(const glm::dmat4& m) {
+    for (int col = 0; col < 4; ++col)
+        for (int row = 0; row < 4; ++row)
+            if (!std::isfinite(m[col][row])) return false;
+    return true;
+}
+
+// Welds vertices whose world positions are bit-identical (+0 and -0 taken as equal), so
+// that a format which stores one vertex per face corner (OBJ through assimp, STL) still
+// gives a connected mesh. Exact equality only: welding near-equal points would move
+// geometry. Indices are handed out in first-use order, so the result is deterministic.
+class VertexWelder {
+public:
+    explicit VertexWelder(std::vector<glm::dvec3>& vertices) : vertices_(vertices) {}
+
+    /// The index of p in vertices, appending it on first use; false when the index would
+    /// not fit the mesh's 32-bit indices.
+    bool index_of(const glm::dvec3& p, std::uint32_t& index) {
+        const Key key{glm::dvec3(p.x + 0.0, p.y + 0.0, p.z + 0.0)};  // -0.0 + 0.0 = +0.0
+        const auto [it, inserted] = ids_.try_emplace(key, 0u);
+        if (inserted) {
+            if (vertices_.size() > std::numeric_limits<std::uint32_t>::max()) return false;
+            it->second = static_cast<std::uint32_t>(vertices_.size());
+            vertices_.push_back(key.p);
+        }
+        index = it->second;
+        return true;
+    }
+
+private:
+    struct Key {
+        glm::dvec3 p;
+        bool operator==(const Key& other) const { return p == other.p; }
+    };
+    struct KeyHash {
+        std::size_t operator()(const Key& k) const {
+            const std::hash<double> h;
+            std::size_t seed = h(k.p.x);
+            seed ^= h(k.p.y) + 0x9e3779b97f4a7c15ULL + (seed << 6) + (seed >> 2);
+            seed ^= h(k.p.z) + 0x9e3779b97f4a7c15ULL + (seed << 6) + (seed >> 2);
+            return seed;
+        }
+    };
+
+    std::vector<glm::dvec3>& vertices_;
+    std::unordered_map<Key, std::uint32_t, KeyHash> ids_;
+};
+
+// Everything about one file's import: the scene is read in two passes (validation before
+// triangulation, so that a NaN is reported against the file's own vertex numbering, and
+// merging after it).
+class SceneMerger {
+public:
+    SceneMerger(const fs::path& path, MeshLoadReport& report)
+        : path_(path), report_(report), welder_(mesh_.vertices) {}
+
+    // Checks every vertex coordinate and counts, per mesh, the triangles its faces should
+    // give once triangulated (n - 2 for an n-gon).
+    void inspect_before_triangulation(const aiScene& scene) {
+        expected_triangles_.assign(scene.mNumMeshes, 0);
+        for (unsigned m = 0; m < scene.mNumMeshes; ++m) {
+            const aiMesh& mesh = *scene.mMeshes[m];
+            for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
+                const aiVector3D& p = mesh.mVertices[v];
+                const glm::dvec3 q(p.x, p.y, p.z);
+                if (!trackphys::is_finite(q))
+                    fail(path_, mesh_label(mesh, m) + ", vertex " + std::to_string(v) +
+                                    " has a non-finite coordinate " + format_point(q));
+            }
+            for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
+                const unsigned n = mesh.mFaces[f].mNumIndices;
+                if (n >= 3) expected_triangles_[m] += n - 2;
+            }
+        }
+    }
+
+    // Walks the node tree depth-first (iteratively: a hostile file can nest deeply) and
+    // merges every mesh each node places.
+    TriangleMesh merge(const aiScene& scene) {
+        struct Pending {
+            const aiNode* node;
+            glm::dmat4 parent_to_world;
+        };
+        std::vector<Pending> stack;
+        if (scene.mRootNode != nullptr) stack.push_back({scene.mRootNode, glm::dmat4(1.0)});
+        while (!stack.empty()) {
+            const Pending item = stack.back();
+            stack.pop_back();
+            const aiNode& node = *item.node;
+            const glm::dmat4 local = to_dmat4(node.mTransformation);
+            if (!is_finite(local)) fail(path_, node_label(node) + " has a non-finite transform");
+            const glm::dmat4 world = item.parent_to_world * local;
+            for (unsigned i = 0; i < node.mNumMeshes; ++i) {
+                const unsigned m = node.mMeshes[i];
+                if (m >= scene.mNumMeshes)
+                    fail(path_, node_label(node) + " refers to missing mesh #" +
+                                    std::to_string(m));
+                add_instance(*scene.mMeshes[m], m, world, node);
+            }
+            // Children in reverse so that they pop in file order: deterministic output.
+            for (unsigned c = node.mNumChildren; c-- > 0;)
+                stack.push_back({node.mChildren[c], world});
+        }
+        report_.triangles = mesh_.triangles.size();
+        report_.vertices = mesh_.vertices.size();
+        return std::move(mesh_);
+    }
+
+private:
+    void add_instance(const aiMesh& mesh, unsigned m, const glm::dmat4& to_world,
+                      const aiNode& node) {
+        ++report_.mesh_instances;
+        // A mirroring transform turns counter-clockwise triangles clockwise; swapping two
+        // corners restores the winding, so normals still face the side the file meant.
+        const bool mirrored = glm::determinant(glm::dmat3(to_world)) < 0.0;
+        if (mirrored) ++report_.mirrored_instances;
+
+        world_.resize(mesh.mNumVertices);
+        for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
+            const aiVector3D& p = mesh.mVertices[v];
+            world_[v] = glm::dvec3(to_world * glm::dvec4(p.x, p.y, p.z, 1.0));
+        }
+
+        std::size_t triangles_found = 0;
+        for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
+            const aiFace& face = mesh.mFaces[f];
+            if (face.mNumIndices == 1) {
+                ++report_.points_skipped;
+                continue;
+            }
+            if (face.mNumIndices == 2) {
+                ++report_.lines_skipped;
+                continue;
+            }
+            if (face.mNumIndices != 3)
+                fail(path_, mesh_label(mesh, m) + ", face " + std::to_string(f) + " has " +
+                                std::to_string(face.mNumIndices) +
+                                " indices after triangulation");
+            ++triangles_found;
+            std::array<unsigned, 3> corner{face.mIndices[0], face.mIndices[1], face.mIndices[2]};
+            if (mirrored) std::swap(corner[1], corner[2]);
+            for (const unsigned v : corner) {
+                if (v >= mesh.mNumVertices)
+                    fail(path_, mesh_label(mesh, m) + ", face " + std::to_string(f) +
+                                    " refers to missing vertex " + std::to_string(v));
+                if (!trackphys::is_finite(world_[v]))
+                    fail(path_, mesh_label(mesh, m) + ", vertex " + std::to_string(v) +
+                                    " is non-finite once placed by " + node_label(node));
+            }
+            const Triangle triangle(world_[corner[0]], world_[corner[1]], world_[corner[2]]);
+            if (triangle.is_degenerate()) {
+                ++report_.degenerate_dropped;
+                continue;
+            }
+            std::array<std::uint32_t, 3> indices{};
+            for (std::size_t k = 0; k < 3; ++k)
+                if (!welder_.index_of(world_[corner[k]], indices[k]))
+                    fail(path_, "more than 2^32 vertices");
+            mesh_.triangles.push_back(indices);
+            report_.bounds.expand(triangle.bounds());
+            report_.area += triangle.area();
+        }
+        if (triangles_found < expected_triangles_[m])
+            report_.triangulation_lost += expected_triangles_[m] - triangles_found;
+    }
+
+    const fs::path& path_;
+    MeshLoadReport& report_;
+    TriangleMesh mesh_;
+    VertexWelder welder_;
+    std::vector<std::size_t> expected_triangles_;
+    std::vector<glm::dvec3> world_;  // scratch: the current instance's vertices in world space
+};
+
+}  // namespace
+
+TriangleMesh load_mesh(const fs::path& path, MeshLoadReport& report) {
+    report = MeshLoadReport{};
+    check_is_nonempty_file(path);
+
+    Assimp::Importer importer;
+    // Some importers invent a mesh to visualise a skeleton when a file has bones but no
+    // mesh; that would be phantom collision geometry.
+    importer.SetPropertyBool(AI_CONFIG_IMPORT_NO_SKELETON_MESHES, true);
+
+    // Deliberately few post-processing steps. aiProcess_FindDegenerates and
+    // aiProcess_FindInvalidData would drop or patch bad data before we can count or report
+    // it; aiProcess_PreTransformVertices would apply the node transforms in float; and
+    // aiProcess_JoinIdenticalVertices compares normals and UVs too, so VertexWelder welds
+    // by position instead. Triangulation runs as a second pass, after the validation below.
+    SceneMerger merger(path, report);
+    try {
+        const aiScene* scene = importer.ReadFile(path.string(), aiProcess_ValidateDataStructure);
+        if (scene == nullptr) fail(path, importer.GetErrorString());
+        merger.inspect_before_triangulation(*scene);
+        scene = importer.ApplyPostProcessing(aiProcess_Triangulate);
+        if (scene == nullptr) fail(path, importer.GetErrorString());
+        TriangleMesh mesh = merger.merge(*scene);
+        if (mesh.triangles.empty())
+            fail(path, "contains no triangles (" + std::to_string(report.degenerate_dropped) +
+                           " degenerate dropped, " + std::to_string(report.points_skipped) +
+                           " points and " + std::to_string(report.lines_skipped) +
+                           " lines skipped)");
+        return mesh;
+    } catch (const Error&) {
+        throw;
+    } catch (const std::exception& e) {
+        // assimp is built to catch its own exceptions, but an allocation failure on a
+        // corrupt size field can still escape; it is bad input like any other.
+        fail(path, std::string("import failed: ") + e.what());
+    }
+}
+
+TriangleMesh load_mesh(const fs::path& path) {
+    MeshLoadReport report;
+    return load_mesh(path, report);
+}
+
+}  // namespace trackphys

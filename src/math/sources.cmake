@@ -1,0 +1,2 @@
+target_sources(trackphys PRIVATE
+  math/symmetric_eigen.cpp)

@@ -1,0 +1,84 @@
+#include "trackphys/dynamics/contact_force.hpp"
+
+#include <cmath>
+#include <random>
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+
+namespace trackphys {
+namespace {
+
+const glm::dvec3 up(0.0, 1.0, 0.0);
+const ContactMaterial material{2.0e5, 1.5e4, 1.2, 0.05};
+
+TEST(ContactForce, SpringAndDamperNeverPull) {
+    EXPECT_DOUBLE_EQ(normal_force(material, 0.01, up, glm::dvec3(0.0)), 2000.0);
+    EXPECT_DOUBLE_EQ(normal_force(material, 0.01, up, {0, -0.1, 0}), 2000.0 + 1500.0);
+    EXPECT_EQ(normal_force(material, 0.01, up, {0, 1.0, 0}), 0.0);  // separating fast
+    EXPECT_EQ(normal_force(material, -0.01, up, {0, -1.0, 0}), 0.0); // not touching
+    EXPECT_EQ(normal_force(material, 0.0, up, {0, -1.0, 0}), 0.0);
+}
+
+TEST(ContactForce, BodyFrictionOpposesSlipAndIsBoundedByCoulomb) {
+    std::mt19937 rng(5);
+    std::normal_distribution<double> normal;
+    for (int i = 0; i < 10000; ++i) {
+        const glm::dvec3 n = glm::normalize(glm::dvec3(normal(rng), normal(rng), normal(rng)));
+        const glm::dvec3 v(normal(rng), normal(rng), normal(rng));
+        const double depth = 0.02 * std::abs(normal(rng));
+        const glm::dvec3 f = body_contact_force(material, depth, n, v);
+        const double pressing = normal_force(material, depth, n, v);
+        const glm::dvec3 tangential = f - n * glm::dot(f, n);
+        const glm::dvec3 slip = v - n * glm::dot(v, n);
+        ASSERT_NEAR(glm::dot(f, n), pressing, 1e-9 * (1.0 + pressing));
+        ASSERT_LE(glm::length(tangential), material.friction * pressing * (1.0 + 1e-12) + 1e-12);
+        ASSERT_LE(glm::dot(tangential, slip), 1e-9);
+        if (glm::length(slip) > material.slip_speed) {
+            ASSERT_NEAR(glm::length(tangential), material.friction * pressing,
+                        1e-6 * (1.0 + pressing));
+        }
+    }
+}
+
+TEST(ContactForce, WheelDrivesBrakesAndGripsWithinTheFrictionCircle) {
+    WheelCommand command;
+    command.heading = {0.0, 0.0, 1.0};
+    const double depth = 0.015;  // 3000 N of spring, grip 3600 N
+    // Driving at rest: pushes forward with the drive force.
+    command.drive_force = 1000.0;
+    glm::dvec3 f = wheel_contact_force(material, depth, up, glm::dvec3(0.0), command);
+    EXPECT_NEAR(f.z, 1000.0, 1e-9);
+    EXPECT_NEAR(f.y, 3000.0, 1e-9);
+    // Too much drive: limited to mu F_n.
+    command.drive_force = 1e5;
+    f = wheel_contact_force(material, depth, up, glm::dvec3(0.0), command);
+    EXPECT_NEAR(f.z, 3600.0, 1e-9);
+    // Braking while rolling forward: force backwards.
+    command.drive_force = 0.0;
+    command.brake_force = 2000.0;
+    f = wheel_contact_force(material, depth, up, {0.0, 0.0, 30.0}, command);
+    EXPECT_NEAR(f.z, -2000.0, 1e-9);
+    // Sliding sideways at speed: full lateral grip against the slide, nothing along.
+    command.brake_force = 0.0;
+    f = wheel_contact_force(material, depth, up, {5.0, 0.0, 30.0}, command);
+    EXPECT_NEAR(f.x, -3600.0, 1e-9);
+    EXPECT_NEAR(f.z, 0.0, 1e-9);
+    // Rolling straight without drive or brake: no tangential force at all.
+    f = wheel_contact_force(material, depth, up, {0.0, 0.0, 30.0}, command);
+    EXPECT_EQ(f.x, 0.0);
+    EXPECT_EQ(f.z, 0.0);
+}
+
+TEST(ContactForce, WheelOnABankUsesTheHeadingProjectedIntoTheContactPlane) {
+    const glm::dvec3 banked = glm::normalize(glm::dvec3(0.5, 1.0, 0.0));
+    WheelCommand command;
+    command.heading = {0.0, 0.0, 1.0};
+    command.drive_force = 500.0;
+    const glm::dvec3 f = wheel_contact_force(material, 0.01, banked, glm::dvec3(0.0), command);
+    EXPECT_NEAR(f.z, 500.0, 1e-9);
+    EXPECT_NEAR(glm::dot(f, banked), 2000.0, 1e-9);
+}
+
+}  // namespace
+}  // namespace trackphys

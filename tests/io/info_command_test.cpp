@@ -1,0 +1,109 @@
+// `trackphys info MESHFILE`, run as a user would: the real executable in a shell.
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <sys/wait.h>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "io_test_support.hpp"
+#include "trackphys/io/mesh_io.hpp"
+
+namespace trackphys {
+namespace {
+
+struct CommandResult {
+    int exit_code = -1;
+    std::string out;
+    std::string err;
+};
+
+class InfoCommand : public test::ScratchFolderTest {
+protected:
+    // Runs `trackphys <arguments>` (TRACKPHYS_CLI is the executable's path, from CMake).
+    CommandResult run(const std::string& arguments) const {
+        const std::string err_path = file("stderr.txt").string();
+        const std::string command =
+            std::string("'") + TRACKPHYS_CLI + "' " + arguments + " 2>'" + err_path + "'";
+        CommandResult result;
+        FILE* pipe = ::popen(command.c_str(), "r");
+        if (pipe == nullptr) return result;
+        char buffer[4096];
+        std::size_t n = 0;
+        while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) result.out.append(buffer, n);
+        const int status = ::pclose(pipe);
+        result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+        result.err = test::read_file(err_path);
+        return result;
+    }
+
+    // Appended piecewise: GCC 12 warns falsely (-Wrestrict) on "'" + std::string.
+    std::string quoted(const std::string& name) const {
+        std::string text = "'";
+        text += file(name).string();
+        text += "'";
+        return text;
+    }
+};
+
+TEST_F(InfoCommand, PrintsCountsBoundsAndDrops) {
+    // Two good triangles, one degenerate, a line and a point.
+    test::write_file(file("m.obj"),
+                     "v 0 0 0\nv 2 0 0\nv 2 1 -3\nv 0 1 -3\nv 4 0 0\n"
+                     "f 1 2 3\nf 1 3 4\nf 1 2 5\nl 1 5\np 4\n");
+    const CommandResult text = run("info " + quoted("m.obj"));
+    ASSERT_EQ(text.exit_code, 0) << text.err;
+    EXPECT_TRUE(text.err.empty()) << text.err;
+    EXPECT_NE(text.out.find("triangles            2\n"), std::string::npos) << text.out;
+    EXPECT_NE(text.out.find("vertices             4\n"), std::string::npos) << text.out;
+    EXPECT_NE(text.out.find("degenerate dropped   1\n"), std::string::npos) << text.out;
+
+    const CommandResult json = run("info --json " + quoted("m.obj"));
+    ASSERT_EQ(json.exit_code, 0) << json.err;
+    const nlohmann::json info = nlohmann::json::parse(json.out);
+    EXPECT_EQ(info["triangles"], 2);
+    EXPECT_EQ(info["vertices"], 4);
+    EXPECT_EQ(info["degenerate_dropped"], 1);
+    EXPECT_EQ(info["lines_skipped"], 1);
+    EXPECT_EQ(info["points_skipped"], 1);
+    EXPECT_EQ(info["bounds"]["min"], nlohmann::json::array({0.0, 0.0, -3.0}));
+    EXPECT_EQ(info["bounds"]["max"], nlohmann::json::array({2.0, 1.0, 0.0}));
+    EXPECT_EQ(info["bounds"]["size"], nlohmann::json::array({2.0, 1.0, 3.0}));
+    EXPECT_DOUBLE_EQ(info["area_m2"].get<double>(), 2.0 * std::sqrt(10.0));
+}
+
+TEST_F(InfoCommand, ReadsWhatSaveMeshWrites) {
+    save_mesh({{{0, 0, 0}, {1, 0, 0}, {0, 0, -1}}, {{0, 1, 2}}}, file("t.glb"));
+    const CommandResult result = run("info --json " + quoted("t.glb"));
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    EXPECT_EQ(nlohmann::json::parse(result.out)["triangles"], 1);
+}
+
+TEST_F(InfoCommand, BadFileIsAnErrorOnStderr) {
+    test::write_file(file("nan.obj"), "o road\nv 0 0 0\nv 1 0 0\nv 0 nan -1\nf 1 2 3\n");
+    for (const char* name : {"missing.glb", "nan.obj"}) {
+        const CommandResult result = run("info " + quoted(name));
+        EXPECT_EQ(result.exit_code, 1) << name;
+        EXPECT_TRUE(result.out.empty()) << result.out;
+        EXPECT_NE(result.err.find("trackphys: error: mesh file '"), std::string::npos)
+            << result.err;
+        EXPECT_NE(result.err.find(name), std::string::npos) << result.err;
+    }
+}
+
+TEST_F(InfoCommand, UsageErrorsAndHelp) {
+    const CommandResult missing_argument = run("info");
+    EXPECT_NE(missing_argument.exit_code, 0);
+    EXPECT_NE(missing_argument.err.find("MESHFILE is required"), std::string::npos)
+        << missing_argument.err;
+
+    const CommandResult help = run("info --help");
+    EXPECT_EQ(help.exit_code, 0);
+    EXPECT_NE(help.out.find("MESHFILE"), std::string::npos) << help.out;
+    EXPECT_NE(help.out.find("--json"), std::string::npos) << help.out;
+}
+
+}  // namespace
+}  // namespace trackphys

@@ -1,0 +1,220 @@
+// load_mesh on hand-written files: what it keeps, drops, counts and where it puts things.
+
+#include <string>
+#include <vector>
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+
+#include "io_test_support.hpp"
+#include "trackphys/geometry/triangle.hpp"
+#include "trackphys/io/mesh_io.hpp"
+
+namespace trackphys {
+namespace {
+
+namespace fs = std::filesystem;
+
+Triangle triangle(const TriangleMesh& mesh, std::size_t t) {
+    const auto& i = mesh.triangles[t];
+    return Triangle(mesh.vertices[i[0]], mesh.vertices[i[1]], mesh.vertices[i[2]]);
+}
+
+class MeshImport : public test::ScratchFolderTest {};
+
+TEST_F(MeshImport, ObjKeepsCoordinatesAndWindingAsWritten) {
+    // No axis conversion: a triangle in the XZ plane, counter-clockwise seen from +Y.
+    test::write_file(file("t.obj"), "v 1.5 2.25 -3\nv 2.5 2.25 -3\nv 1.5 2.25 -4\nf 1 2 3\n");
+    MeshLoadReport report;
+    const TriangleMesh mesh = load_mesh(file("t.obj"), report);
+    ASSERT_EQ(mesh.triangles.size(), 1u);
+    EXPECT_EQ(triangle(mesh, 0).vertices,
+              (std::array<glm::dvec3, 3>{glm::dvec3(1.5, 2.25, -3), glm::dvec3(2.5, 2.25, -3),
+                                         glm::dvec3(1.5, 2.25, -4)}));
+    EXPECT_EQ(triangle(mesh, 0).normal(), glm::dvec3(0, 1, 0));
+    EXPECT_EQ(report.mesh_instances, 1u);
+    EXPECT_EQ(report.area, 0.5);
+    EXPECT_EQ(report.bounds.min, glm::dvec3(1.5, 2.25, -4));
+    EXPECT_EQ(report.bounds.max, glm::dvec3(2.5, 2.25, -3));
+}
+
+TEST_F(MeshImport, PolygonsAreTriangulated) {
+    // A unit quad and a convex pentagon: 2 + 3 triangles covering their whole area.
+    test::write_file(file("p.obj"),
+                     "v 0 0 0\nv 1 0 0\nv 1 0 -1\nv 0 0 -1\n"
+                     "v 3 0 0\nv 5 0 0\nv 5 0 -2\nv 4 0 -3\nv 3 0 -2\n"
+                     "f 1 2 3 4\nf 5 6 7 8 9\n");
+    MeshLoadReport report;
+    const TriangleMesh mesh = load_mesh(file("p.obj"), report);
+    EXPECT_EQ(report.triangles, 5u);
+    EXPECT_EQ(report.triangulation_lost, 0u);
+    EXPECT_DOUBLE_EQ(report.area, 1.0 + 4.0 + 1.0);
+    for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
+        EXPECT_EQ(triangle(mesh, t).normal(), glm::dvec3(0, 1, 0)) << "triangle " << t;
+}
+
+TEST_F(MeshImport, TrianglesAssimpFailsToTriangulateAreCounted) {
+    // A self-intersecting 7-gon (found by a seeded search): assimp's ear clipping finds no
+    // ear after two triangles and silently drops the other three of its n - 2 = 5.
+    test::write_file(file("knot.obj"),
+                     "v 2 0 -3\nv 1 0 -4\nv 2 0 -1\nv 1 0 -1\nv 4 0 -2\nv 3 0 -4\nv 1 0 0\n"
+                     "f 1 2 3 4 5 6 7\n");
+    MeshLoadReport report;
+    load_mesh(file("knot.obj"), report);
+    EXPECT_EQ(report.triangles, 2u);
+    EXPECT_EQ(report.degenerate_dropped, 0u);
+    EXPECT_EQ(report.triangulation_lost, 3u);
+}
+
+TEST_F(MeshImport, DegenerateTrianglesAreDroppedAndCounted) {
+    test::write_file(file("d.obj"),
+                     "v 0 0 0\nv 1 0 0\nv 0 0 -1\nv 1 0 -1\n"  // 1-4: two good triangles
+                     "v 2 0 0\nv 3 0 0\nv 4 0 0\n"             // 5-7: collinear
+                     "v 0.5 1e-14 0\n"                          // 8: 1e-14 off the edge 1-2
+                     "v 7 7 7\n"                                // 9: only in dropped triangles
+                     "f 1 2 3\nf 2 4 3\n"
+                     "f 5 6 7\n"    // collinear
+                     "f 1 1 3\n"    // repeated corner
+                     "f 9 9 9\n"    // a point as a triangle
+                     "f 1 8 2\n");  // sliver: height 1e-14 over a 1 m edge
+    MeshLoadReport report;
+    const TriangleMesh mesh = load_mesh(file("d.obj"), report);
+    EXPECT_EQ(report.triangles, 2u);
+    EXPECT_EQ(report.degenerate_dropped, 4u);
+    // Vertices only dropped triangles use are left out.
+    EXPECT_EQ(mesh.vertices.size(), 4u);
+    EXPECT_EQ(report.vertices, 4u);
+    EXPECT_EQ(report.bounds.max, glm::dvec3(1, 0, 0));
+    EXPECT_DOUBLE_EQ(report.area, 1.0);
+}
+
+TEST_F(MeshImport, PointsAndLinesAreSkippedAndCounted) {
+    test::write_file(file("pl.obj"),
+                     "v 0 0 0\nv 1 0 0\nv 0 0 -1\nv 2 2 2\n"
+                     "p 1 2\n"     // two points
+                     "l 1 2 4\n"   // a polyline: two segments
+                     "f 1 2 3\n");
+    MeshLoadReport report;
+    const TriangleMesh mesh = load_mesh(file("pl.obj"), report);
+    EXPECT_EQ(report.triangles, 1u);
+    EXPECT_EQ(report.points_skipped, 2u);
+    EXPECT_EQ(report.lines_skipped, 2u);
+    EXPECT_EQ(report.degenerate_dropped, 0u);
+    EXPECT_EQ(mesh.vertices.size(), 3u);  // (2, 2, 2) belongs to a line only
+}
+
+TEST_F(MeshImport, IdenticalPositionsAreWelded) {
+    // Two triangles sharing an edge, the shared corners written twice (as STL would).
+    test::write_file(file("w.obj"),
+                     "v 0 0 0\nv 1 0 0\nv 0 0 -1\n"
+                     "v 1 0 0\nv 1 0 -1\nv 0 0 -1\n"
+                     "f 1 2 3\nf 4 5 6\n");
+    const TriangleMesh mesh = load_mesh(file("w.obj"));
+    ASSERT_EQ(mesh.triangles.size(), 2u);
+    EXPECT_EQ(mesh.vertices.size(), 4u);
+    EXPECT_EQ(mesh.triangles[0][1], mesh.triangles[1][0]);  // (1, 0, 0)
+    EXPECT_EQ(mesh.triangles[0][2], mesh.triangles[1][2]);  // (0, 0, -1)
+}
+
+TEST_F(MeshImport, AllObjectsOfAFileAreMerged) {
+    test::write_file(file("two.obj"),
+                     "o first\nv 0 0 0\nv 1 0 0\nv 0 0 -1\nf 1 2 3\n"
+                     "o second\nv 10 0 0\nv 11 0 0\nv 10 0 -1\nf 4 5 6\n");
+    MeshLoadReport report;
+    const TriangleMesh mesh = load_mesh(file("two.obj"), report);
+    EXPECT_EQ(report.mesh_instances, 2u);
+    EXPECT_EQ(mesh.triangles.size(), 2u);
+    EXPECT_EQ(report.bounds.min, glm::dvec3(0, 0, -1));
+    EXPECT_EQ(report.bounds.max, glm::dvec3(11, 0, 0));
+}
+
+// One triangle in the XZ plane facing +Y, placed by a three-level hierarchy:
+//   parent: translation (10, 0, 0)
+//     child: rotation 90 degrees about +Y, uniform scale 2  -> places the mesh
+//     mirror: scale (-1, 1, 1)                              -> places the mesh again
+//   other root: the identity, with the mesh
+// A 90 degree turn about +Y maps (x, y, z) to (z, y, -x).
+TEST_F(MeshImport, GltfNodeTransformsAreComposedAndApplied) {
+    const std::vector<float> positions{0, 0, 0, 1, 0, 0, 0, 0, -1};
+    const std::vector<std::uint32_t> indices{0, 1, 2};
+    const std::string nodes =
+        R"({"name":"parent","translation":[10,0,0],"children":[1,2]},)"
+        R"({"name":"child","rotation":[0,0.70710678118654752,0,0.70710678118654752],)"
+        R"("scale":[2,2,2],"mesh":0},)"
+        R"({"name":"mirror","scale":[-1,1,1],"mesh":0},)"
+        R"({"name":"plain","mesh":0})";
+    test::write_gltf(file("h.gltf"), positions, indices, nodes, "0,3");
+
+    MeshLoadReport report;
+    const TriangleMesh mesh = load_mesh(file("h.gltf"), report);
+    EXPECT_EQ(report.mesh_instances, 3u);
+    EXPECT_EQ(report.mirrored_instances, 1u);
+    ASSERT_EQ(mesh.triangles.size(), 3u);
+
+    // Triangles come out in node order: child, mirror, plain.
+    const std::array<std::array<glm::dvec3, 3>, 3> expected{{
+        {glm::dvec3(10, 0, 0), glm::dvec3(10, 0, -2), glm::dvec3(8, 0, 0)},
+        // mirrored: corners 1 and 2 swapped so the triangle keeps facing +Y
+        {glm::dvec3(10, 0, 0), glm::dvec3(10, 0, -1), glm::dvec3(9, 0, 0)},
+        {glm::dvec3(0, 0, 0), glm::dvec3(1, 0, 0), glm::dvec3(0, 0, -1)},
+    }};
+    for (std::size_t t = 0; t < 3; ++t) {
+        const Triangle got = triangle(mesh, t);
+        for (std::size_t k = 0; k < 3; ++k)
+            EXPECT_LT(glm::distance(got.vertices[k], expected[t][k]), 1e-6)
+                << "triangle " << t << " corner " << k;
+        // glTF is +Y up like trackphys: no axis conversion, and mirroring keeps the facing.
+        EXPECT_NEAR(got.normal().y, 1.0, 1e-12) << "triangle " << t;
+    }
+    EXPECT_NEAR(report.area, 0.5 * (4.0 + 1.0 + 1.0), 1e-6);
+}
+
+TEST_F(MeshImport, GltfTriangleStripsBecomeTriangles) {
+    // mode 5: a strip of 4 vertices is 2 triangles; the repeated index makes a degenerate.
+    const std::vector<float> positions{0, 0, 0, 0, 0, -1, 1, 0, 0, 1, 0, -1};
+    const std::vector<std::uint32_t> indices{0, 1, 2, 3, 3};
+    test::write_gltf(file("s.gltf"), positions, indices, R"({"mesh":0})", "0", 5);
+    MeshLoadReport report;
+    load_mesh(file("s.gltf"), report);
+    EXPECT_EQ(report.triangles, 2u);
+    EXPECT_EQ(report.degenerate_dropped, 1u);
+}
+
+TEST_F(MeshImport, OtherFormatsLoadToo) {
+    // ASCII STL, ASCII PLY and AC3D (the format of many racing-game tracks), one triangle each.
+    test::write_file(file("a.stl"),
+                     "solid t\nfacet normal 0 1 0\nouter loop\n"
+                     "vertex 0 0 0\nvertex 1 0 0\nvertex 0 0 -1\n"
+                     "endloop\nendfacet\nendsolid t\n");
+    test::write_file(file("a.ply"),
+                     "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+                     "property float y\nproperty float z\nelement face 1\n"
+                     "property list uchar int vertex_indices\nend_header\n"
+                     "0 0 0\n1 0 0\n0 0 -1\n3 0 1 2\n");
+    test::write_file(file("a.ac"),
+                     "AC3Db\nMATERIAL \"\" rgb 1 1 1 amb 0.2 0.2 0.2 emis 0 0 0 spec 0.5 0.5 0.5 "
+                     "shi 10 trans 0\nOBJECT world\nkids 1\nOBJECT poly\nname \"road\"\n"
+                     "numvert 3\n0 0 0\n1 0 0\n0 0 -1\nnumsurf 1\nSURF 0x10\nmat 0\nrefs 3\n"
+                     "0 0 0\n1 0 0\n2 0 0\nkids 0\n");
+    for (const char* name : {"a.stl", "a.ply", "a.ac"}) {
+        MeshLoadReport report;
+        const TriangleMesh mesh = load_mesh(file(name), report);
+        ASSERT_EQ(mesh.triangles.size(), 1u) << name;
+        EXPECT_DOUBLE_EQ(report.area, 0.5) << name;
+        EXPECT_EQ(report.bounds.min, glm::dvec3(0, 0, -1)) << name;
+        EXPECT_EQ(report.bounds.max, glm::dvec3(1, 0, 0)) << name;
+    }
+}
+
+TEST_F(MeshImport, LoadingIsDeterministic) {
+    test::write_file(file("r.obj"),
+                     "v 0 0 0\nv 1 0 0\nv 0 0 -1\nv 1 0 -1\nv 2 0 0\n"
+                     "f 1 2 3\nf 2 4 3\nf 2 5 4\n");
+    const TriangleMesh a = load_mesh(file("r.obj"));
+    const TriangleMesh b = load_mesh(file("r.obj"));
+    EXPECT_EQ(a.vertices, b.vertices);
+    EXPECT_EQ(a.triangles, b.triangles);
+}
+
+}  // namespace
+}  // namespace trackphys
