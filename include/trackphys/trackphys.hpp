@@ -19,6 +19,9 @@
 #include "trackphys/collision/bvh_node.hpp"
 #include "trackphys/collision/static_collider.hpp"
 #include "trackphys/collision/static_world.hpp"
+#include "trackphys/collision/plane_tree.hpp"
+#include "trackphys/collision/plane_tree_builder.hpp"
+#include "trackphys/collision/mid_phase.hpp"
 
 #include "trackphys/dynamics/car_spec.hpp"
 #include "trackphys/dynamics/contact_force.hpp"
