@@ -18,7 +18,12 @@ PlaneTreeQueryCounts PlaneTree::visit(const Shape& shape, std::vector<std::uint3
     int top = 0;
     stack[top++] = 0;
     while (top > 0) {
-        const PlaneTreeNode& node = nodes_[stack[--top]];
+        const std::uint32_t index = stack[--top];
+        const PlaneTreeNode& node = nodes_[index];
+        if (node.has_slab()) {
+            ++counts.planes_tested;
+            if (!shape.reaches_slab(slabs_[index])) continue;
+        }
         if (node.is_leaf()) {
             const std::uint32_t end = node.first + node.count();
             counts.triangles_filtered += node.count();
@@ -69,12 +74,14 @@ std::uint32_t PlaneTree::id(std::uint32_t slot) const {
 
 std::size_t PlaneTree::bytes_used() const {
     return nodes_.capacity() * sizeof(PlaneTreeNode) +
+           slabs_.capacity() * sizeof(PlaneTreeSlab) +
            triangles_.capacity() * sizeof(NormalizedTriangle) +
            ids_.capacity() * sizeof(std::uint32_t);
 }
 
 void PlaneTree::shrink_to_fit() {
     nodes_.shrink_to_fit();
+    slabs_.shrink_to_fit();
     triangles_.shrink_to_fit();
     ids_.shrink_to_fit();
 }

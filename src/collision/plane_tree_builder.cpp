@@ -22,6 +22,13 @@ float float_toward_zero(double x) {
     return f;
 }
 
+// A float at or below x.
+float float_down(double x) {
+    float f = static_cast<float>(x);
+    if (double(f) > x) f = std::nextafter(f, -std::numeric_limits<float>::infinity());
+    return f;
+}
+
 // A float at or above x.
 float float_up(double x) {
     float f = static_cast<float>(x);
@@ -56,6 +63,9 @@ void check_settings(const PlaneTreeSettings& s) {
     if (!std::isfinite(s.node_cost) || !(s.node_cost > 0.0))
         throw Error("PlaneTreeSettings.node_cost must be finite and > 0, got " +
                     std::to_string(s.node_cost));
+    if (!std::isfinite(s.slab_thickness) || !(s.slab_thickness >= 0.0))
+        throw Error("PlaneTreeSettings.slab_thickness must be finite and >= 0, got " +
+                    std::to_string(s.slab_thickness));
 }
 
 }  // namespace
@@ -66,9 +76,9 @@ void PlaneTreeBuilder::build(std::span<const NormalizedTriangle> triangles,
     if (triangles.size() != ids.size())
         throw Error("PlaneTreeBuilder::build: " + std::to_string(triangles.size()) +
                     " triangles but " + std::to_string(ids.size()) + " ids");
-    if (triangles.size() >= PlaneTreeNode::kLeafBit)
+    if (triangles.size() > PlaneTreeNode::kCountMask)
         throw Error("PlaneTreeBuilder::build: too many triangles (" +
-                    std::to_string(triangles.size()) + "), at most 2^31 - 1");
+                    std::to_string(triangles.size()) + "), at most 2^30 - 1");
     check_settings(settings);
     settings_ = settings;
     tree_ = &tree;
@@ -91,6 +101,11 @@ void PlaneTreeBuilder::build(std::span<const NormalizedTriangle> triangles,
         constexpr float kInf = std::numeric_limits<float>::infinity();
         tree.nodes_.push_back({{0.0f, 0.0f, 0.0f}, kInf, 0, 0});
         build_node(0, 0, n, 0);
+    }
+    tree.slabs_.clear();
+    if (n > 0 && settings.slab_thickness > 0.0) {
+        tree.slabs_.resize(tree.nodes_.size());
+        mark_slabs(0, 0, n);
     }
     tree.triangles_.clear();
     tree.ids_.clear();
@@ -121,6 +136,35 @@ void PlaneTreeBuilder::build_node(std::uint32_t node, std::size_t begin, std::si
     tree_->nodes_[node].packed = static_cast<std::uint32_t>(count);
     build_node(child, begin, mid, depth + 1);
     build_node(child + 1, mid, end, depth + 1);
+}
+
+void PlaneTreeBuilder::mark_slabs(std::uint32_t node, std::size_t begin, std::size_t end) {
+    glm::dvec3 area_sum(0.0);
+    for (std::size_t i = begin; i < end; ++i) area_sum += items_[order_[i]].area_normal;
+    const glm::dvec3 normal = float_direction(area_sum);
+    PlaneTreeNode& n = tree_->nodes_[node];
+    if (normal != glm::dvec3(0.0)) {
+        double low = std::numeric_limits<double>::infinity(), high = -low;
+        for (std::size_t i = begin; i < end; ++i)
+            for (const glm::dvec3& v : items_[order_[i]].vertices) {
+                const double d = glm::dot(normal, v);
+                low = std::min(low, d);
+                high = std::max(high, d);
+            }
+        if (high - low <= settings_.slab_thickness) {
+            PlaneTreeSlab& slab = tree_->slabs_[node];
+            for (int k = 0; k < 3; ++k) slab.normal[k] = static_cast<float>(normal[k]);
+            slab.low = float_down(low);
+            slab.high = float_up(high);
+            n.packed |= PlaneTreeNode::kSlabBit;
+            return;  // one slab a path: the slabs below are barely thinner
+        }
+    }
+    if (n.is_leaf()) return;
+    const std::size_t mid = begin + tree_->nodes_[n.first].count();
+    const std::uint32_t left = n.first;
+    mark_slabs(left, begin, mid);
+    mark_slabs(left + 1, mid, end);
 }
 
 bool PlaneTreeBuilder::choose_split(std::size_t begin, std::size_t end, Split& split) {

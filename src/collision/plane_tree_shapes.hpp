@@ -36,6 +36,12 @@ inline glm::dvec3 node_normal(const PlaneTreeNode& node) {
     return {node.normal[0], node.normal[1], node.normal[2]};
 }
 
+/// True when the interval [lo, hi] of a shape along a slab's normal, grown by `reach`,
+/// meets the slab.
+inline bool meets_slab(double lo, double hi, double reach, const PlaneTreeSlab& slab) {
+    return lo - reach <= double(slab.high) && hi + reach >= double(slab.low);
+}
+
 /// A point in the triangle's own frame (x along dir_x, y along dir_y, z along the normal),
 /// where the triangle is (0,0,0), (x1,0,0), (x2,y2,0).
 inline glm::dvec3 to_local(const NormalizedTriangle& t, const glm::dvec3& p) {
@@ -81,6 +87,13 @@ struct SphereShape {
         double low = glm::dot(n, start);
         if constexpr (Swept) low = std::min(low, glm::dot(n, end));
         return low - node_radius <= double(node.offset);
+    }
+
+    bool reaches_slab(const PlaneTreeSlab& slab) const {
+        const glm::dvec3 n(slab.normal[0], slab.normal[1], slab.normal[2]);
+        const double a = glm::dot(n, start);
+        const double b = Swept ? glm::dot(n, end) : a;
+        return meets_slab(std::min(a, b), std::max(a, b), node_radius, slab);
     }
 
     /// The filter. Rejections first, each a lower bound of the distance over a convex set
@@ -166,6 +179,12 @@ struct EllipsoidShape {
         const glm::dvec3 n = node_normal(node);
         const double low = std::min(glm::dot(n, start), glm::dot(n, end));
         return low - support(n) - slack <= double(node.offset);
+    }
+
+    bool reaches_slab(const PlaneTreeSlab& slab) const {
+        const glm::dvec3 n(slab.normal[0], slab.normal[1], slab.normal[2]);
+        const double a = glm::dot(n, start), b = glm::dot(n, end);
+        return meets_slab(std::min(a, b), std::max(a, b), support(n) + slack, slab);
     }
 
     bool touches(const NormalizedTriangle& t) const {

@@ -218,11 +218,23 @@ const TrackChunkCase& track_chunk_case() {
     return instance;
 }
 
+std::pair<std::uint32_t, std::uint32_t> check_subtree(const PlaneTree& tree, std::uint32_t node,
+                                                      int depth, int& max_depth);
+
 TEST(PlaneTree, TrackChunkQueriesAreExactAndMatchBruteForce) {
     const TrackChunkCase& c = track_chunk_case();
     for (const PlaneTreeSettings& settings :
          {PlaneTreeSettings::per_update(), PlaneTreeSettings::precomputed()}) {
         const PlaneTree tree = build(c.soup, settings);
+        int max_depth = 0;
+        check_subtree(tree, 0, 0, max_depth);
+        const auto slabs = std::count_if(tree.nodes().begin(), tree.nodes().end(),
+                                         [](const PlaneTreeNode& n) { return n.has_slab(); });
+        // The precomputed tree puts slabs over the road; the per-update one has none.
+        if (settings.slab_thickness > 0.0)
+            EXPECT_GT(slabs, 20);
+        else
+            EXPECT_EQ(slabs, 0);
         Tally tally;
         for (const Query& q : c.queries) check(tree, q, tally);
         EXPECT_GT(tally.reported, 2 * tally.queries);
@@ -244,6 +256,17 @@ std::pair<std::uint32_t, std::uint32_t> check_subtree(const PlaneTree& tree, std
         EXPECT_EQ(left.second, right.first) << "children must cover adjacent slot ranges";
         range = {left.first, right.second};
         EXPECT_EQ(n.count(), range.second - range.first);
+    }
+    if (n.has_slab()) {
+        const PlaneTreeSlab& slab = tree.slabs().at(node);
+        const glm::dvec3 normal(slab.normal[0], slab.normal[1], slab.normal[2]);
+        EXPECT_LE(glm::length(normal), 1.0);
+        for (std::uint32_t slot = range.first; slot < range.second; ++slot)
+            for (int k = 0; k < 3; ++k) {
+                const double d = glm::dot(normal, tree.triangle(slot).vertex(k));
+                EXPECT_TRUE(double(slab.low) <= d && d <= double(slab.high))
+                    << "node " << node << " slab misses slot " << slot;
+            }
     }
     if (node != 0) {
         const glm::dvec3 normal(n.normal[0], n.normal[1], n.normal[2]);
@@ -351,6 +374,9 @@ TEST(PlaneTree, RejectsBadSettingsAndInput) {
     bad.query_radius = -1.0;
     EXPECT_THROW(builder.build(soup.triangles, soup.ids, bad, tree), Error);
     bad = PlaneTreeSettings::precomputed();
+    bad.slab_thickness = -0.1;
+    EXPECT_THROW(builder.build(soup.triangles, soup.ids, bad, tree), Error);
+    bad = PlaneTreeSettings::precomputed();
     bad.node_cost = std::nan("");
     EXPECT_THROW(builder.build(soup.triangles, soup.ids, bad, tree), Error);
     EXPECT_THROW(builder.build(soup.triangles, std::span(soup.ids).first(3),
@@ -385,8 +411,9 @@ TEST(PlaneTree, ColliderTreeIdsAreMeshIndicesOfKeptTriangles) {
     }
     std::sort(ids.begin(), ids.end());
     EXPECT_EQ(std::adjacent_find(ids.begin(), ids.end()), ids.end());
-    // 24-byte nodes, 120-byte frames and a 4-byte id: about 150 bytes a triangle.
-    EXPECT_LT(tree.bytes_used(), 170 * tree.triangle_count());
+    // 24-byte nodes with 20-byte slabs, 120-byte frames and a 4-byte id: ~160 bytes a
+    // triangle with leaves of a few triangles.
+    EXPECT_LT(tree.bytes_used(), 180 * tree.triangle_count());
 }
 
 }  // namespace

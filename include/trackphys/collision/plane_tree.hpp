@@ -23,17 +23,31 @@ namespace trackphys {
 /// cuts into its triangles, only grows outward by at most one float ulp of the offset.
 struct PlaneTreeNode {
     static constexpr std::uint32_t kLeafBit = 0x8000'0000u;
+    static constexpr std::uint32_t kSlabBit = 0x4000'0000u;
+    static constexpr std::uint32_t kCountMask = 0x3fff'ffffu;
 
     float normal[3];       ///< 12 bytes: unit normal of the bounding plane (outward)
     float offset;          ///<  4 bytes: dot(normal, x) <= offset on every triangle (m)
     std::uint32_t first;   ///<  4 bytes: leaf: first triangle slot; inner: left child index
-    std::uint32_t packed;  ///<  4 bytes: kLeafBit for a leaf | triangles in the subtree
+    std::uint32_t packed;  ///<  4 bytes: kLeafBit | kSlabBit | triangles in the subtree
 
     bool is_leaf() const { return (packed & kLeafBit) != 0; }
+    /// True when PlaneTree::slabs()[this node] holds a slab to test (see PlaneTreeSettings).
+    bool has_slab() const { return (packed & kSlabBit) != 0; }
     /// Number of triangles in the subtree (a leaf's own triangles).
-    std::uint32_t count() const { return packed & ~kLeafBit; }
+    std::uint32_t count() const { return packed & kCountMask; }
 };
 static_assert(sizeof(PlaneTreeNode) == 24, "PlaneTreeNode is 24 bytes: a sibling pair is 48");
+
+/// The slab {low <= dot(normal, x) <= high} that holds every triangle of a node's subtree,
+/// for nodes whose triangles are nearly coplanar (a stretch of road, a wall face). Same
+/// rounding as the node planes: normal in float (length <= 1), bounds rounded outward.
+struct PlaneTreeSlab {
+    float normal[3];  ///< 12 bytes: the subtree's mean surface normal
+    float low;        ///<  4 bytes (m), rounded down
+    float high;       ///<  4 bytes (m), rounded up
+};
+static_assert(sizeof(PlaneTreeSlab) == 20, "PlaneTreeSlab is 20 bytes");
 
 /// How a PlaneTree chooses its splitting planes.
 enum class PlaneSplitRule {
@@ -72,13 +86,22 @@ struct PlaneTreeSettings {
     /// cost_based only: cost of testing one child plane relative to one triangle filter
     /// (> 0).
     double node_cost = 0.5;
+    /// Slabs (m, finite, >= 0; 0 = none): the first node on each path from the root whose
+    /// triangles lie within a slab this thick along their mean surface normal (the
+    /// normalised sum of their area normals) keeps that slab, and a query that misses it
+    /// skips the node. Split planes alone cannot exclude a shape that hovers over a surface
+    /// (every split runs across the road), so without slabs a car body above the road
+    /// descends to the leaves; with them it stops at the first flat stretch.
+    double slab_thickness = 0.0;
 
     /// The write-up's per-update tree: PCA median splits, leaves of up to 4 triangles.
     static PlaneTreeSettings per_update() { return {}; }
-    /// The precomputed per-collider tree: cost-based splits, leaves of up to 4 triangles.
+    /// The precomputed per-collider tree: cost-based splits, leaves of up to 4 triangles,
+    /// slabs 0.2 m thick (a body ellipsoid rides ~0.4 m above the road).
     static PlaneTreeSettings precomputed() {
         PlaneTreeSettings s;
         s.rule = PlaneSplitRule::cost_based;
+        s.slab_thickness = 0.2;
         return s;
     }
 };
@@ -99,7 +122,7 @@ struct PlaneTreeQueryCounts {
 ///
 /// Storage: two vectors as the BVH, nodes (24 bytes) and the triangles in leaf order as
 /// NormalizedTriangle (120 bytes, what the sub-step cull reads), plus each slot's caller id
-/// (4 bytes). Queries append leaf slots to a caller-owned vector and use a fixed stack: no
+/// (4 bytes) and, when built with slabs, a 20-byte slab per node. Queries append leaf slots to a caller-owned vector and use a fixed stack: no
 /// allocation once the vector has grown.
 ///
 /// The per-triangle filter, and why the tree is exact with it. A query shape S (sphere,
@@ -109,6 +132,7 @@ struct PlaneTreeQueryCounts {
 /// - swept ellipsoid: the triangle mapped into the ellipsoid's unit-ball frame
 ///   (x -> D^-1 Q^T (x - start)) lies within 1 of the mapped segment, which is exactly
 ///   "the ellipsoid moving along the segment touches the triangle".
+/// Slabs, like planes, hold their subtree's triangles, so they prune only untouched ones.
 /// Each is computed in double in the triangle's own frame after cheap rejections by
 /// half-spaces that contain the triangle (its plane, and its local box along dir_x and
 /// dir_y), which can only reject what the exact test would reject too. Because a node's
@@ -149,6 +173,9 @@ public:
     std::uint32_t id(std::uint32_t slot) const;
     /// The nodes, root at 0.
     const std::vector<PlaneTreeNode>& nodes() const { return nodes_; }
+    /// One slab per node when the tree was built with slabs (read where has_slab()), else
+    /// empty.
+    const std::vector<PlaneTreeSlab>& slabs() const { return slabs_; }
     /// Depth of the deepest leaf (0 for a single leaf).
     int depth() const { return depth_; }
     /// Bytes of every structure the tree keeps (vector capacities included).
@@ -163,6 +190,7 @@ private:
     PlaneTreeQueryCounts visit(const Shape& shape, std::vector<std::uint32_t>& out) const;
 
     std::vector<PlaneTreeNode> nodes_;
+    std::vector<PlaneTreeSlab> slabs_;           ///< per node, or empty
     std::vector<NormalizedTriangle> triangles_;  ///< leaf order
     std::vector<std::uint32_t> ids_;             ///< leaf order
     int depth_ = 0;

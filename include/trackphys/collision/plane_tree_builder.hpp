@@ -22,7 +22,7 @@ class TRACKPHYS_API PlaneTreeBuilder {
 public:
     /// Rebuilds `tree` over `triangles` (non-degenerate, finite), each tagged with the
     /// matching entry of `ids` (reported back by PlaneTree::id). Throws trackphys::Error when
-    /// the spans differ in size, there are 2^31 triangles or more, or a setting is out of
+    /// the spans differ in size, there are 2^30 triangles or more, or a setting is out of
     /// range (naming it).
     void build(std::span<const NormalizedTriangle> triangles, std::span<const std::uint32_t> ids,
                const PlaneTreeSettings& settings, PlaneTree& tree);
@@ -43,6 +43,7 @@ private:
     };
 
     void build_node(std::uint32_t node, std::size_t begin, std::size_t end, int depth);
+    void mark_slabs(std::uint32_t node, std::size_t begin, std::size_t end);
     bool choose_split(std::size_t begin, std::size_t end, Split& split);
     Split pca_median_split(std::size_t begin, std::size_t end);
     bool cost_based_split(std::size_t begin, std::size_t end, Split& split);
