@@ -27,6 +27,19 @@ using bench::TightestTurnScene;
 
 enum class Shape { sphere, ellipsoid };
 
+/// The tree variants compared: the write-up's rule, cost-based splits, and cost-based
+/// splits with slabs (PlaneTreeSettings::precomputed(), the default).
+PlaneTreeSettings variant_settings(std::int64_t variant) {
+    PlaneTreeSettings settings = PlaneTreeSettings::precomputed();
+    if (variant == 0) settings = PlaneTreeSettings::per_update();
+    if (variant == 1) settings.slab_thickness = 0.0;
+    return settings;
+}
+
+const char* variant_name(std::int64_t variant) {
+    return variant == 0 ? "pca_median" : variant == 1 ? "cost_based" : "cost_based+slabs";
+}
+
 /// How far a point of the car can move beyond the translation in one 1 ms step: the car
 /// turns at v / R = 278 / 26 = 10.7 rad/s, 0.011 rad a step, times the 1.9 m floor pan.
 constexpr double kRotationMargin = 0.02;
@@ -142,19 +155,28 @@ void BM_MidPhaseUpdate(benchmark::State& state) {
     state.counters["filtered_per_query"] = double(c.triangles_filtered) / double(c.queries);
 }
 
-/// The three modes side by side in one run: min over repeats of the per-update time (mid
-/// phase only, and with the sub-step cull), their ratios, and the candidates per sub-step.
+/// The three modes side by side in one run: min over repeats of begin_update alone (the
+/// per-update stage), of the whole update's mid phase (begin_update + 80 step queries), and
+/// of that plus the sub-step cull; their ratios; the candidates per ellipsoid per sub-step.
 void BM_ModeRatios(benchmark::State& state) {
     const auto shape = static_cast<Shape>(state.range(0));
     const MidPhaseMode modes[] = {MidPhaseMode::none, MidPhaseMode::per_update_tree,
                                   MidPhaseMode::precomputed_tree};
     const char* names[] = {"none", "per_update", "precomputed"};
-    double best_us[3][2], tested[3];
+    double best_us[3][2], begin_us[3], tested[3];
     std::vector<MidPhaseCandidate> list;
     std::size_t kept = 0;
     for (auto _ : state) {
         for (int m = 0; m < 3; ++m) {
             auto mid = make_mid_phase(modes[m]);
+            begin_us[m] = 1e300;
+            for (int repeat = 0; repeat < 200; ++repeat) {
+                const auto t0 = std::chrono::steady_clock::now();
+                mid->begin_update(bench::tightest_turn_scene().update_box);
+                begin_us[m] = std::min(begin_us[m], std::chrono::duration<double, std::micro>(
+                                                        std::chrono::steady_clock::now() - t0)
+                                                        .count());
+            }
             for (int cull = 0; cull < 2; ++cull) {
                 best_us[m][cull] = 1e300;
                 for (int repeat = 0; repeat < 200; ++repeat) {
@@ -173,19 +195,20 @@ void BM_ModeRatios(benchmark::State& state) {
     state.SetLabel(shape == Shape::sphere ? "swept bounding spheres" : "swept ellipsoids");
     for (int m = 0; m < 3; ++m) {
         state.counters[std::string(names[m]) + "_tested"] = tested[m];
+        state.counters[std::string(names[m]) + "_begin_us"] = begin_us[m];
         state.counters[std::string(names[m]) + "_mid_us"] = best_us[m][0];
         state.counters[std::string(names[m]) + "_cull_us"] = best_us[m][1];
     }
+    state.counters["begin_per_update/precomputed"] = begin_us[1] / begin_us[2];
     state.counters["mid_per_update/precomputed"] = best_us[1][0] / best_us[2][0];
     state.counters["mid_none/precomputed"] = best_us[0][0] / best_us[2][0];
     state.counters["total_none/precomputed"] = best_us[0][1] / best_us[2][1];
 }
 
-/// Precomputed tree of the turn's collider with each split rule: build time, size, depth.
+/// The turn's collider's tree in each variant: build time, size, depth.
 void BM_BuildColliderTree(benchmark::State& state) {
     const MidScene& m = mid_scene();
-    PlaneTreeSettings settings = PlaneTreeSettings::precomputed();
-    settings.rule = static_cast<PlaneSplitRule>(state.range(0));
+    const PlaneTreeSettings settings = variant_settings(state.range(0));
     const StaticCollider& collider = m.world.collider(m.turn_collider);
     PlaneTree tree;
     for (auto _ : state) {
@@ -193,7 +216,7 @@ void BM_BuildColliderTree(benchmark::State& state) {
         benchmark::DoNotOptimize(tree.nodes().data());
     }
     const double n = double(tree.triangle_count());
-    state.SetLabel(settings.rule == PlaneSplitRule::pca_median ? "pca_median" : "cost_based");
+    state.SetLabel(variant_name(state.range(0)));
     state.counters["triangles"] = n;
     state.counters["bytes_per_triangle"] = double(tree.bytes_used()) / n;
     state.counters["nodes"] = double(tree.nodes().size());
@@ -210,8 +233,7 @@ void BM_BuildColliderTree(benchmark::State& state) {
 void BM_SplitQuality(benchmark::State& state) {
     const MidScene& m = mid_scene();
     const TightestTurnScene& s = bench::tightest_turn_scene();
-    PlaneTreeSettings settings = PlaneTreeSettings::precomputed();
-    settings.rule = static_cast<PlaneSplitRule>(state.range(0));
+    const PlaneTreeSettings settings = variant_settings(state.range(0));
     const auto shape = static_cast<Shape>(state.range(1));
     const PlaneTree tree = make_collider_plane_tree(m.world.collider(m.turn_collider), settings);
 
@@ -253,8 +275,7 @@ void BM_SplitQuality(benchmark::State& state) {
         benchmark::DoNotOptimize(out.data());
     }
     const double nq = double(queries.size());
-    state.SetLabel(std::string(settings.rule == PlaneSplitRule::pca_median ? "pca_median"
-                                                                            : "cost_based") +
+    state.SetLabel(std::string(variant_name(state.range(0))) +
                    (shape == Shape::sphere ? " sphere" : " ellipsoid"));
     state.counters["reported_per_query"] = double(sum.triangles_reported) / nq;
     state.counters["filtered_per_query"] = double(sum.triangles_filtered) / nq;
@@ -271,7 +292,7 @@ void mode_shape_cull_args(benchmark::internal::Benchmark* b) {
 
 BENCHMARK(BM_ModeRatios)->Arg(0)->Arg(1)->Iterations(1)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_MidPhaseUpdate)->Apply(mode_shape_cull_args)->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_BuildColliderTree)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_SplitQuality)->ArgsProduct({{0, 1}, {0, 1}})->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_BuildColliderTree)->DenseRange(0, 2)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_SplitQuality)->ArgsProduct({{0, 1, 2}, {0, 1}})->Unit(benchmark::kMicrosecond);
 
 }  // namespace

@@ -57,10 +57,14 @@ void MidPhase::begin_update(const Aabb& update_box) {
     refs_.clear();
     triangles_.clear();
     active_colliders_.clear();
+    entry_nodes_.clear();
     if (mode_ == MidPhaseMode::precomputed_tree) {
         check_trees();
-        for (std::uint32_t id = 0; id < world_->size(); ++id)
-            if (world_->collider(id).bounds().overlaps(update_box)) active_colliders_.push_back(id);
+        for (std::uint32_t id = 0; id < world_->size(); ++id) {
+            if (!world_->collider(id).bounds().overlaps(update_box)) continue;
+            active_colliders_.push_back(id);
+            entry_nodes_.push_back(trees_[id]->entry_node(update_box));
+        }
         return;
     }
     world_->query_aabb(update_box, refs_);
@@ -88,15 +92,16 @@ void MidPhase::query(Query&& query_tree, std::vector<MidPhaseCandidate>& out) {
             break;
         case MidPhaseMode::per_update_tree:
             slots_.clear();
-            add_counts(query_tree(update_tree_, slots_));
+            add_counts(query_tree(update_tree_, slots_, 0u));
             for (const std::uint32_t slot : slots_)
                 out.push_back({refs_[update_tree_.id(slot)], &update_tree_.triangle(slot)});
             break;
         case MidPhaseMode::precomputed_tree:
-            for (const std::uint32_t id : active_colliders_) {
+            for (std::size_t i = 0; i < active_colliders_.size(); ++i) {
+                const std::uint32_t id = active_colliders_[i];
                 const PlaneTree& tree = *trees_[id];
                 slots_.clear();
-                add_counts(query_tree(tree, slots_));
+                add_counts(query_tree(tree, slots_, entry_nodes_[i]));
                 for (const std::uint32_t slot : slots_)
                     out.push_back({{id, tree.id(slot)}, &tree.triangle(slot)});
             }
@@ -110,8 +115,8 @@ void MidPhase::query_swept_sphere(const glm::dvec3& start, const glm::dvec3& end
     // Validated here too, so that mode none rejects what the tree modes reject.
     static_cast<void>(collision_detail::make_capsule_query(start, end, radius));
     query(
-        [&](const PlaneTree& tree, std::vector<std::uint32_t>& slots) {
-            return tree.query_swept_sphere(start, end, radius, slots);
+        [&](const PlaneTree& tree, std::vector<std::uint32_t>& slots, std::uint32_t from) {
+            return tree.query_swept_sphere(start, end, radius, slots, from);
         },
         out);
 }
@@ -122,8 +127,8 @@ void MidPhase::query_swept_ellipsoid(const Ellipsoid& ellipsoid, const glm::dvec
         throw Error("MidPhase::query_swept_ellipsoid: end must be finite and margin finite and "
                     ">= 0");
     query(
-        [&](const PlaneTree& tree, std::vector<std::uint32_t>& slots) {
-            return tree.query_swept_ellipsoid(ellipsoid, end, margin, slots);
+        [&](const PlaneTree& tree, std::vector<std::uint32_t>& slots, std::uint32_t from) {
+            return tree.query_swept_ellipsoid(ellipsoid, end, margin, slots, from);
         },
         out);
 }
@@ -131,7 +136,8 @@ void MidPhase::query_swept_ellipsoid(const Ellipsoid& ellipsoid, const glm::dvec
 std::size_t MidPhase::bytes_used() const {
     return refs_.capacity() * sizeof(TriangleRef) +
            triangles_.capacity() * sizeof(NormalizedTriangle) +
-           (ids_.capacity() + active_colliders_.capacity() + slots_.capacity()) *
+           (ids_.capacity() + active_colliders_.capacity() + entry_nodes_.capacity() +
+            slots_.capacity()) *
                sizeof(std::uint32_t) +
            update_tree_.bytes_used() + builder_.bytes_used();
 }

@@ -49,11 +49,6 @@ inline glm::dvec3 to_local(const NormalizedTriangle& t, const glm::dvec3& p) {
     return {glm::dot(t.dir_x, d), glm::dot(t.dir_y, d), glm::dot(t.normal, d)};
 }
 
-/// True when the interval [lo, hi] grown by `reach` misses [0, extent].
-inline bool misses(double lo, double hi, double reach, double extent) {
-    return lo > extent + reach || hi < -reach;
-}
-
 /// Exact test of segment [a, b] against triangle (v0, v1, v2): distance <= sqrt(limit_sq).
 /// A vertex that close settles it cheaply (the triangle is at least as close as its
 /// vertices); only the rest pay for the full segment-triangle distance.
@@ -154,15 +149,22 @@ struct EllipsoidShape {
             throw Error("plane tree swept-ellipsoid query: margin must be finite and >= 0, got " +
                         std::to_string(margin));
         const glm::dvec3 radii = e.sorted_radii() * (1.0 + margin / e.sorted_radii().z);
+        // M = sum_k r_k^2 q_k q_k^T over the sorted axes q_k (columns); the unit-ball map's
+        // rows are q_k / r_k.
         const glm::dmat3& q = e.sorted_axes();
-        glm::dmat3 d2(0.0), d_inv(0.0);
+        m00 = m11 = m22 = m01 = m02 = m12 = 0.0;
         for (int k = 0; k < 3; ++k) {
-            d2[k][k] = radii[k] * radii[k];
-            d_inv[k][k] = 1.0 / radii[k];
+            const glm::dvec3& axis = q[k];
+            const double r2 = radii[k] * radii[k];
+            m00 += r2 * axis.x * axis.x;
+            m11 += r2 * axis.y * axis.y;
+            m22 += r2 * axis.z * axis.z;
+            m01 += r2 * axis.x * axis.y;
+            m02 += r2 * axis.x * axis.z;
+            m12 += r2 * axis.y * axis.z;
+            const glm::dvec3 row = axis / radii[k];
+            for (int c = 0; c < 3; ++c) to_unit[c][k] = row[c];
         }
-        const glm::dmat3 m = q * d2 * glm::transpose(q);
-        m00 = m[0][0], m11 = m[1][1], m22 = m[2][2], m01 = m[0][1], m02 = m[0][2], m12 = m[1][2];
-        to_unit = d_inv * glm::transpose(q);
         unit_end = to_unit * (end - start);
         // Rounding in the unit-ball frame is relative to that frame's coordinates, which
         // stretch world lengths by up to 1 / (smallest radius): the slack scales with it.
@@ -170,15 +172,19 @@ struct EllipsoidShape {
                 (radii.x / radii.z);
     }
 
-    double support(const glm::dvec3& u) const {
-        return std::sqrt(m00 * u.x * u.x + m11 * u.y * u.y + m22 * u.z * u.z +
-                         2.0 * (m01 * u.x * u.y + m02 * u.x * u.z + m12 * u.y * u.z));
+    double support_squared(const glm::dvec3& u) const {
+        return m00 * u.x * u.x + m11 * u.y * u.y + m22 * u.z * u.z +
+               2.0 * (m01 * u.x * u.y + m02 * u.x * u.z + m12 * u.y * u.z);
     }
+    double support(const glm::dvec3& u) const { return std::sqrt(support_squared(u)); }
 
+    /// low - h(n) - slack <= offset, without the square root: a shape whose lowest center
+    /// is already inside passes at once, otherwise compare squares of non-negative sides.
     bool reaches(const PlaneTreeNode& node) const {
         const glm::dvec3 n = node_normal(node);
-        const double low = std::min(glm::dot(n, start), glm::dot(n, end));
-        return low - support(n) - slack <= double(node.offset);
+        const double gap = std::min(glm::dot(n, start), glm::dot(n, end)) - slack -
+                           double(node.offset);
+        return gap <= 0.0 || gap * gap <= support_squared(n);
     }
 
     bool reaches_slab(const PlaneTreeSlab& slab) const {
@@ -187,12 +193,18 @@ struct EllipsoidShape {
         return meets_slab(std::min(a, b), std::max(a, b), support(n) + slack, slab);
     }
 
+    /// The filter: the triangle's plane and local box first (the ellipsoid's reach along
+    /// each frame axis is its support there; squares compared only for positive gaps), then
+    /// the exact test in the unit-ball frame.
     bool touches(const NormalizedTriangle& t) const {
         const glm::dvec3 a = to_local(t, start), b = to_local(t, end);
         const glm::dvec3 lo = glm::min(a, b), hi = glm::max(a, b);
-        if (misses(lo.z, hi.z, support(t.normal), 0.0) ||
-            misses(lo.x, hi.x, support(t.dir_x), t.x1) ||
-            misses(lo.y, hi.y, support(t.dir_y), t.y2))
+        const double z_gap = std::max({lo.z, -hi.z, 0.0});
+        const double x_gap = std::max({lo.x - t.x1, -hi.x, 0.0});
+        const double y_gap = std::max({lo.y - t.y2, -hi.y, 0.0});
+        if ((z_gap > 0.0 && z_gap * z_gap > support_squared(t.normal)) ||
+            (x_gap > 0.0 && x_gap * x_gap > support_squared(t.dir_x)) ||
+            (y_gap > 0.0 && y_gap * y_gap > support_squared(t.dir_y)))
             return false;
         return segment_within(glm::dvec3(0.0), unit_end, to_unit * (t.vertex(0) - start),
                               to_unit * (t.vertex(1) - start), to_unit * (t.vertex(2) - start),

@@ -90,7 +90,8 @@ public:
 
     /// Starts an update whose shapes all lie in `update_box` (the car's swept, padded box):
     /// gathers the broad-phase candidates (none, per_update_tree; the latter also builds its
-    /// tree over them) or selects the colliders whose bounds meet the box (precomputed_tree).
+    /// tree over them) or selects the colliders whose bounds meet the box and the node of
+    /// each tree where the update's queries start (precomputed_tree).
     void begin_update(const Aabb& update_box);
 
     /// Appends the candidates for a sphere of `radius` (m) moving from start to end during
@@ -126,8 +127,10 @@ private:
     std::vector<std::uint32_t> ids_;
     PlaneTree update_tree_;
     PlaneTreeBuilder builder_;
-    // precomputed_tree: the colliders this update can touch.
+    // precomputed_tree: the colliders this update can touch and where in each tree the
+    // update's queries start (PlaneTree::entry_node of the update box).
     std::vector<std::uint32_t> active_colliders_;
+    std::vector<std::uint32_t> entry_nodes_;
     std::vector<std::uint32_t> slots_;
     MidPhaseCounters counters_;
 };

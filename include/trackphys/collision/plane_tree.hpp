@@ -150,20 +150,31 @@ public:
 
     /// Appends every slot whose triangle is within `radius` (m, finite, >= 0) of `center`.
     /// Throws trackphys::Error on a non-finite center or a bad radius.
+    /// Every query can start at `from_node` instead of the root: pass entry_node(box) for a
+    /// box that holds the query's shape and the result is the same with fewer planes tested.
     PlaneTreeQueryCounts query_sphere(const glm::dvec3& center, double radius,
-                                      std::vector<std::uint32_t>& out) const;
+                                      std::vector<std::uint32_t>& out,
+                                      std::uint32_t from_node = 0) const;
     /// Appends every slot whose triangle is within `radius` of the segment [start, end]: the
     /// triangles a sphere of that radius touches while it moves from start to end.
     PlaneTreeQueryCounts query_swept_sphere(const glm::dvec3& start, const glm::dvec3& end,
-                                            double radius, std::vector<std::uint32_t>& out) const;
+                                            double radius, std::vector<std::uint32_t>& out,
+                                            std::uint32_t from_node = 0) const;
     /// Appends every slot whose triangle the ellipsoid touches while its center moves from
     /// ellipsoid.center() to `end` with its orientation fixed. A car's ellipsoid also turns
     /// during a step: pass a `margin` (m, finite, >= 0) that bounds how far any of its points
     /// moves beyond the translation; the query then uses the ellipsoid scaled about its center
     /// by 1 + margin / (smallest semi-axis), which holds the ellipsoid grown by margin.
     PlaneTreeQueryCounts query_swept_ellipsoid(const Ellipsoid& ellipsoid, const glm::dvec3& end,
-                                               double margin,
-                                               std::vector<std::uint32_t>& out) const;
+                                               double margin, std::vector<std::uint32_t>& out,
+                                               std::uint32_t from_node = 0) const;
+
+    /// Where queries inside `box` can start (a car's update box, once per update): the
+    /// first node on the path from the root at which the box reaches both children. The
+    /// sibling subtrees left behind lie beyond planes the box does not reach, so no shape
+    /// inside the box touches their triangles; starting below the root skips only tests,
+    /// never a result. 0 (the root) for an empty tree or an empty box.
+    std::uint32_t entry_node(const Aabb& box) const;
 
     /// Number of triangles (slots are 0 .. triangle_count() - 1).
     std::size_t triangle_count() const { return triangles_.size(); }
@@ -187,7 +198,8 @@ private:
     friend class PlaneTreeBuilder;
 
     template <class Shape>
-    PlaneTreeQueryCounts visit(const Shape& shape, std::vector<std::uint32_t>& out) const;
+    PlaneTreeQueryCounts visit(const Shape& shape, std::vector<std::uint32_t>& out,
+                               std::uint32_t from_node) const;
 
     std::vector<PlaneTreeNode> nodes_;
     std::vector<PlaneTreeSlab> slabs_;           ///< per node, or empty
