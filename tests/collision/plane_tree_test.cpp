@@ -241,6 +241,36 @@ TEST(PlaneTree, TrackChunkQueriesAreExactAndMatchBruteForce) {
     }
 }
 
+TEST(PlaneTree, QueriesFromTheEntryNodeOfABoxMatchQueriesFromTheRoot) {
+    const TrackChunkCase& c = track_chunk_case();
+    const PlaneTree tree = build(c.soup, PlaneTreeSettings::precomputed());
+    std::size_t below_root = 0, reported = 0;
+    std::vector<std::uint32_t> from_root, from_entry;
+    for (const Query& q : c.queries) {
+        // A car-update-sized box around the query (which it holds).
+        Aabb box;
+        box.expand(q.start);
+        box.expand(q.end);
+        box = box.padded(q.ellipsoid ? q.ellipsoid->bounding_radius() * 1.2 + 3.0 : q.radius + 3.0);
+        const std::uint32_t entry = tree.entry_node(box);
+        below_root += entry != 0 ? 1 : 0;
+        from_root.clear();
+        from_entry.clear();
+        if (q.ellipsoid) {
+            tree.query_swept_ellipsoid(*q.ellipsoid, q.end, q.margin, from_root);
+            tree.query_swept_ellipsoid(*q.ellipsoid, q.end, q.margin, from_entry, entry);
+        } else {
+            tree.query_swept_sphere(q.start, q.end, q.radius, from_root);
+            tree.query_swept_sphere(q.start, q.end, q.radius, from_entry, entry);
+        }
+        EXPECT_EQ(from_entry, from_root);
+        reported += from_root.size();
+    }
+    EXPECT_GT(below_root, c.queries.size() / 2);
+    EXPECT_GT(reported, c.queries.size());
+    EXPECT_EQ(tree.entry_node(Aabb{}), 0u);
+}
+
 /// Slot range [begin, end) of the subtree at `node`, checking on the way that every node's
 /// plane holds every vertex of its subtree and that depth stays within the cap.
 std::pair<std::uint32_t, std::uint32_t> check_subtree(const PlaneTree& tree, std::uint32_t node,
