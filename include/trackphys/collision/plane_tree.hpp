@@ -122,8 +122,9 @@ struct PlaneTreeQueryCounts {
 ///
 /// Storage: two vectors as the BVH, nodes (24 bytes) and the triangles in leaf order as
 /// NormalizedTriangle (120 bytes, what the sub-step cull reads), plus each slot's caller id
-/// (4 bytes) and, when built with slabs, a 20-byte slab per node. Queries append leaf slots to a caller-owned vector and use a fixed stack: no
-/// allocation once the vector has grown.
+/// (4 bytes) and, when built with slabs, a 20-byte slab per node (~160 bytes a triangle for
+/// a track collider). Queries append leaf slots in ascending order to a caller-owned vector
+/// and use a fixed stack: no allocation once the vector has grown.
 ///
 /// The per-triangle filter, and why the tree is exact with it. A query shape S (sphere,
 /// swept sphere, swept ellipsoid) reports slot s if and only if S touches the triangle:
@@ -132,17 +133,18 @@ struct PlaneTreeQueryCounts {
 /// - swept ellipsoid: the triangle mapped into the ellipsoid's unit-ball frame
 ///   (x -> D^-1 Q^T (x - start)) lies within 1 of the mapped segment, which is exactly
 ///   "the ellipsoid moving along the segment touches the triangle".
-/// Slabs, like planes, hold their subtree's triangles, so they prune only untouched ones.
-/// Each is computed in double in the triangle's own frame after cheap rejections by
-/// half-spaces that contain the triangle (its plane, and its local box along dir_x and
-/// dir_y), which can only reject what the exact test would reject too. Because a node's
-/// half-space contains each of its triangles, a shape that touches a triangle reaches every
-/// half-space above it: the tree never prunes a triangle the filter would report, so a query
-/// returns exactly the slots a brute-force scan with the same filter returns (plane tests
-/// are made with the shape grown by a slack of 1e-10 of its coordinate scale, which covers
-/// the rounding of both tests). A box-based cull such as NormalizedTriangle::may_touch_sphere
-/// would not give this equality: it keeps triangles whose box corner the sphere reaches while
-/// some node plane through the triangle's vertex already excludes the sphere.
+/// Each is computed in double in the triangle's own frame, after cheap rejections that are
+/// lower bounds of the distance to convex sets holding the triangle (its plane, its local
+/// box, its edges' half-planes), which can only reject what the exact test rejects too, and
+/// sure accepts (a vertex or an over-the-face endpoint within reach). Because a node's
+/// half-space (and slab) contains each of its triangles, a shape that touches a triangle
+/// reaches every half-space above it: the tree never prunes a triangle the filter would
+/// report, so a query returns exactly the slots a brute-force scan with the same filter
+/// returns (plane tests are made with the shape grown by a slack of 1e-10 of its coordinate
+/// scale, which covers the rounding of both tests). A box-based cull such as
+/// NormalizedTriangle::may_touch_sphere would not give this equality: it keeps triangles
+/// whose box corner the sphere reaches while some node plane through the triangle's vertex
+/// already excludes the sphere.
 class TRACKPHYS_API PlaneTree {
 public:
     /// An empty tree (every query reports nothing).
