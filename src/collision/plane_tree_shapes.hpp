@@ -206,6 +206,32 @@ struct EllipsoidShape {
             (x_gap > 0.0 && x_gap * x_gap > support_squared(t.dir_x)) ||
             (y_gap > 0.0 && y_gap * y_gap > support_squared(t.dir_y)))
             return false;
+        // The slanted edges' half-planes: e / |edge| is the in-plane distance beyond the
+        // edge's line along the world direction u = (x2 dir_y - y2 dir_x) / |edge| (and
+        // likewise for the other edge), where the ellipsoid reaches h(u).
+        const double ex = t.x2 - t.x1;
+        const double e1 = std::min(t.x2 * a.y - t.y2 * a.x, t.x2 * b.y - t.y2 * b.x);
+        const double e2 =
+            std::min((a.x - t.x1) * t.y2 - a.y * ex, (b.x - t.x1) * t.y2 - b.y * ex);
+        if ((e1 > 0.0 && e1 * e1 > support_squared(t.x2 * t.dir_y - t.y2 * t.dir_x)) ||
+            (e2 > 0.0 && e2 * e2 > support_squared(t.y2 * t.dir_x - ex * t.dir_y)))
+            return false;
+        // Sure accept, the common wheel-on-road case: from a center c at height z over the
+        // plane, the chord x = c - (z / n^T M n) M n stays in the ellipsoid while
+        // z^2 <= n^T M n (its M^-1 norm is |z| / h(n)) and ends on the plane; if it ends over
+        // the triangle, they touch.
+        const double h_sq = support_squared(t.normal);
+        const glm::dvec3 mn(m00 * t.normal.x + m01 * t.normal.y + m02 * t.normal.z,
+                            m01 * t.normal.x + m11 * t.normal.y + m12 * t.normal.z,
+                            m02 * t.normal.x + m12 * t.normal.y + m22 * t.normal.z);
+        const double mn_x = glm::dot(t.dir_x, mn), mn_y = glm::dot(t.dir_y, mn);
+        for (const glm::dvec3& p : {a, b}) {
+            if (p.z * p.z > h_sq) continue;
+            const double k = p.z / h_sq;
+            const double x = p.x - k * mn_x, y = p.y - k * mn_y;
+            if (y >= 0.0 && t.x2 * y - t.y2 * x <= 0.0 && (x - t.x1) * t.y2 - y * ex <= 0.0)
+                return true;
+        }
         return segment_within(glm::dvec3(0.0), unit_end, to_unit * (t.vertex(0) - start),
                               to_unit * (t.vertex(1) - start), to_unit * (t.vertex(2) - start),
                               1.0);
