@@ -216,6 +216,27 @@ struct EllipsoidShape {
         if ((e1 > 0.0 && e1 * e1 > support_squared(t.x2 * t.dir_y - t.y2 * t.dir_x)) ||
             (e2 > 0.0 && e2 * e2 > support_squared(t.y2 * t.dir_x - ex * t.dir_y)))
             return false;
+        // Tilted separating axes, for a shape on one side of the plane (sign s): along
+        // d = U + s lambda n, with U an edge's outward in-plane normal (times the edge's
+        // length, so f(p) = U.p - offset <= 0 on the triangle) and any lambda > 0 (about
+        // 45 degrees here), the triangle reaches at most offset while the shape reaches
+        // down to min over the ends of (U.p + s lambda z) - h(d). This separates a wheel
+        // from the triangle beside the one it stands on, which the plane and the edge
+        // alone do not.
+        if (lo.z > 0.0 || hi.z < 0.0) {
+            const double side = lo.z > 0.0 ? 1.0 : -1.0;
+            auto separated = [&](double ux, double uy, double offset, double lambda) {
+                const double sl = side * lambda;
+                const double m = std::min(ux * a.x + uy * a.y + sl * a.z,
+                                          ux * b.x + uy * b.y + sl * b.z) - offset;
+                return m > 0.0 && m * m > support_squared(ux * t.dir_x + uy * t.dir_y +
+                                                          sl * t.normal);
+            };
+            if (separated(0.0, -t.x1, 0.0, t.x1) ||
+                separated(-t.y2, t.x2, 0.0, std::abs(t.x2) + t.y2) ||
+                separated(t.y2, -ex, t.x1 * t.y2, std::abs(ex) + t.y2))
+                return false;
+        }
         // Sure accept, the common wheel-on-road case: from a center c at height z over the
         // plane, the chord x = c - (z / n^T M n) M n stays in the ellipsoid while
         // z^2 <= n^T M n (its M^-1 norm is |z| / h(n)) and ends on the plane; if it ends over
