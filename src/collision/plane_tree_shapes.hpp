@@ -50,13 +50,17 @@ inline glm::dvec3 to_local(const NormalizedTriangle& t, const glm::dvec3& p) {
 }
 
 /// Exact test of segment [a, b] against triangle (v0, v1, v2): distance <= sqrt(limit_sq).
-/// A vertex that close settles it cheaply (the triangle is at least as close as its
-/// vertices); only the rest pay for the full segment-triangle distance.
+/// A vertex or an edge that close settles it (the triangle is at least as close as any of
+/// its points), cheapest first; only what is left pays for the full segment-triangle
+/// distance (whose minimum is over these same features plus the face).
 inline bool segment_within(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& v0,
                            const glm::dvec3& v1, const glm::dvec3& v2, double limit_sq) {
     if (point_segment_distance_squared(v0, a, b) <= limit_sq ||
         point_segment_distance_squared(v1, a, b) <= limit_sq ||
-        point_segment_distance_squared(v2, a, b) <= limit_sq)
+        point_segment_distance_squared(v2, a, b) <= limit_sq ||
+        segment_segment_distance_squared(a, b, v0, v1) <= limit_sq ||
+        segment_segment_distance_squared(a, b, v1, v2) <= limit_sq ||
+        segment_segment_distance_squared(a, b, v2, v0) <= limit_sq)
         return true;
     return segment_triangle_distance_squared(a, b, v0, v1, v2) <= limit_sq;
 }
