@@ -10,11 +10,9 @@
 #include <benchmark/benchmark.h>
 #include <glm/geometric.hpp>
 
-#include "trackphys/dynamics/car_spec.hpp"
+#include "tightest_turn_scene.hpp"
 #include "trackphys/geometry/normalized_triangle.hpp"
 #include "trackphys/geometry/sphere_cull_variants.hpp"
-#include "trackphys/track/track.hpp"
-#include "trackphys/track/track_stats.hpp"
 
 namespace {
 
@@ -31,36 +29,12 @@ struct CullScene {
 };
 
 CullScene make_tightest_turn_scene() {
-    TrackParams params;
-    params.seed = 7;
-    const Track track = generate_track(params);
-    const TrackStats stats = compute_track_stats(track);
-    const CenterlineSample& turn = track.centerline[stats.tightest_sample];
-
+    const bench::TightestTurnScene& turn = bench::tightest_turn_scene();
     CullScene scene;
-    const Aabb box = car_update_box(turn);
-    for (const TrackChunk& chunk : track.chunks) {
-        if (!chunk.bounds.overlaps(box)) continue;
-        for (const auto& t : chunk.mesh.triangles) {
-            const Triangle triangle(chunk.mesh.vertices[t[0]], chunk.mesh.vertices[t[1]],
-                                    chunk.mesh.vertices[t[2]]);
-            if (triangle.bounds().overlaps(box)) scene.candidates.push_back(triangle);
-        }
-    }
-
-    // The car drives through the turn at 1000 km/h: 7 cm a sub-step, its wheels on the road.
-    const CarSpec car = CarSpec::default_car();
-    const double ride_height = 0.30 + 0.35 - 0.01;  // wheel centre depth + radius - sag
-    for (int substep = 0; substep < 40; ++substep) {
-        const glm::dvec3 origin = turn.position + turn.tangent * (0.0694 * substep) +
-                                  turn.up * ride_height;
-        for (const CarEllipsoid& e : car.ellipsoids) {
-            const glm::dvec3 center = origin + turn.left * e.center.x + turn.up * e.center.y +
-                                      turn.tangent * e.center.z;
-            const double radius = std::max({e.semi_axes.x, e.semi_axes.y, e.semi_axes.z});
-            scene.spheres.push_back({center, radius});
-        }
-    }
+    scene.candidates = turn.candidates();
+    for (int substep = 0; substep < bench::TightestTurnScene::kSubsteps; ++substep)
+        for (std::size_t e = 0; e < turn.car.ellipsoids.size(); ++e)
+            scene.spheres.push_back({turn.center(e, substep), turn.bounding_radius(e)});
     return scene;
 }
 

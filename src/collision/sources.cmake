@@ -4,4 +4,7 @@ target_sources(trackphys PRIVATE
   collision/bvh_builder.cpp
   collision/static_collider.cpp
   collision/static_world.cpp
-  collision/triangle_predicates.cpp)
+  collision/triangle_predicates.cpp
+  collision/plane_tree.cpp
+  collision/plane_tree_builder.cpp
+  collision/mid_phase.cpp)

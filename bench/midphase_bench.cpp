@@ -1,0 +1,298 @@
+// Mid phase on the default track's tightest banked turn at 1000 km/h (tightest_turn_scene.hpp):
+// per update, the triangles each ellipsoid tests per sub-step and the time for the three
+// MidPhaseModes, queried per step with each ellipsoid's swept bounding sphere or the swept
+// ellipsoid itself; the tree build per collider (time, bytes a triangle); and how well each
+// split rule copes with the road's thin triangles (filtered / reported per query).
+//
+//   cmake --build --preset release -j2 --target bench_midphase
+//   build/release/bench/bench_midphase
+#include <algorithm>
+#include <chrono>
+#include <cstddef>
+#include <memory>
+#include <random>
+#include <vector>
+
+#include <benchmark/benchmark.h>
+
+#include "tightest_turn_scene.hpp"
+#include "trackphys/collision/mid_phase.hpp"
+#include "trackphys/collision/plane_tree_builder.hpp"
+#include "trackphys/collision/static_world.hpp"
+
+namespace {
+
+using namespace trackphys;
+using bench::TightestTurnScene;
+
+enum class Shape { sphere, ellipsoid };
+
+/// The tree variants compared: the write-up's rule, cost-based splits, and cost-based
+/// splits with slabs (PlaneTreeSettings::precomputed(), the default).
+PlaneTreeSettings variant_settings(std::int64_t variant) {
+    PlaneTreeSettings settings = PlaneTreeSettings::precomputed();
+    if (variant == 0) settings = PlaneTreeSettings::per_update();
+    if (variant == 1) settings.slab_thickness = 0.0;
+    return settings;
+}
+
+const char* variant_name(std::int64_t variant) {
+    return variant == 0 ? "pca_median" : variant == 1 ? "cost_based" : "cost_based+slabs";
+}
+
+/// How far a point of the car can move beyond the translation in one 1 ms step: the car
+/// turns at v / R = 278 / 26 = 10.7 rad/s, 0.011 rad a step, times the 1.9 m floor pan.
+constexpr double kRotationMargin = 0.02;
+
+struct StepQuery {
+    glm::dvec3 start, end;
+    double radius;
+    Ellipsoid ellipsoid;
+};
+
+struct MidScene {
+    StaticWorld world;
+    ColliderPlaneTrees trees;             // cost_based (the precomputed default)
+    std::uint32_t turn_collider = 0;      // the collider with most candidates
+    std::vector<StepQuery> queries;       // 10 steps x 8 ellipsoids
+    double trees_build_ms = 0.0;
+    std::size_t trees_bytes = 0;
+
+    MidScene() {
+        const TightestTurnScene& s = bench::tightest_turn_scene();
+        for (const TrackChunk& chunk : s.track.chunks)
+            world.add(std::make_shared<const StaticCollider>(chunk.mesh));
+        const auto t0 = std::chrono::steady_clock::now();
+        trees = make_collider_plane_trees(world);
+        trees_build_ms =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        for (const auto& tree : trees) trees_bytes += tree->bytes_used();
+
+        std::vector<TriangleRef> refs;
+        world.query_aabb(s.update_box, refs);
+        std::vector<std::size_t> per_collider(world.size(), 0);
+        for (const TriangleRef& r : refs) ++per_collider[r.collider];
+        turn_collider = static_cast<std::uint32_t>(
+            std::max_element(per_collider.begin(), per_collider.end()) - per_collider.begin());
+
+        constexpr int kSteps = TightestTurnScene::kSubsteps / TightestTurnScene::kStepSubsteps;
+        for (int step = 0; step < kSteps; ++step) {
+            const int first = step * TightestTurnScene::kStepSubsteps;
+            for (std::size_t e = 0; e < s.car.ellipsoids.size(); ++e)
+                queries.push_back({s.center(e, first),
+                                   s.center(e, first + TightestTurnScene::kStepSubsteps),
+                                   s.bounding_radius(e), s.ellipsoid(e, first)});
+        }
+    }
+};
+
+const MidScene& mid_scene() {
+    static const MidScene instance;
+    return instance;
+}
+
+std::unique_ptr<MidPhase> make_mid_phase(MidPhaseMode mode) {
+    const MidScene& m = mid_scene();
+    return std::make_unique<MidPhase>(mode, m.world,
+                                      mode == MidPhaseMode::precomputed_tree ? m.trees
+                                                                             : ColliderPlaneTrees{});
+}
+
+/// One update's mid-phase work: begin_update, then each step's query per ellipsoid. With
+/// `cull`, also each sub-step's bounding-sphere cull over the step's list (the loop's next
+/// stage), so the time shows what the lists cost downstream. Returns the candidates summed.
+std::size_t run_update(MidPhase& mid, Shape shape, bool cull,
+                       std::vector<MidPhaseCandidate>& list, std::size_t& kept) {
+    const TightestTurnScene& s = bench::tightest_turn_scene();
+    const MidScene& m = mid_scene();
+    mid.begin_update(s.update_box);
+    std::size_t total = 0;
+    const std::size_t ellipsoids = s.car.ellipsoids.size();
+    for (std::size_t q = 0; q < m.queries.size(); ++q) {
+        const StepQuery& sq = m.queries[q];
+        list.clear();
+        if (shape == Shape::sphere)
+            mid.query_swept_sphere(sq.start, sq.end, sq.radius, list);
+        else
+            mid.query_swept_ellipsoid(sq.ellipsoid, sq.end, kRotationMargin, list);
+        total += list.size();
+        if (!cull) continue;
+        const std::size_t e = q % ellipsoids;
+        const int first = int(q / ellipsoids) * TightestTurnScene::kStepSubsteps;
+        for (int sub = first; sub < first + TightestTurnScene::kStepSubsteps; ++sub) {
+            const glm::dvec3 c = s.center(e, sub);
+            for (const MidPhaseCandidate& cand : list)
+                kept += cand.triangle->may_touch_sphere(c, sq.radius) ? 1 : 0;
+        }
+    }
+    return total;
+}
+
+double tested_per_ellipsoid_substep(std::size_t total_per_update) {
+    // Each step's list is tested in each of its 4 sub-steps: average list length.
+    return double(total_per_update) / double(mid_scene().queries.size());
+}
+
+void BM_MidPhaseUpdate(benchmark::State& state) {
+    const auto mode = static_cast<MidPhaseMode>(state.range(0));
+    const auto shape = static_cast<Shape>(state.range(1));
+    const bool cull = state.range(2) != 0;
+    auto mid = make_mid_phase(mode);
+    std::vector<MidPhaseCandidate> list;
+    std::size_t total = 0, kept = 0;
+    for (auto _ : state) {
+        total = run_update(*mid, shape, cull, list, kept);
+        benchmark::DoNotOptimize(kept);
+    }
+    mid->reset_counters();
+    total = run_update(*mid, shape, cull, list, kept);
+    const MidPhaseCounters& c = mid->counters();
+    state.SetLabel(std::string(to_string(mode)) + (shape == Shape::sphere ? " sphere" : " ellipsoid") +
+                   (cull ? " +cull" : ""));
+    state.counters["tested_per_ell_sub"] = tested_per_ellipsoid_substep(total);
+    state.counters["broad_candidates"] = double(c.broad_phase_candidates);
+    state.counters["planes_per_query"] = double(c.planes_tested) / double(c.queries);
+    state.counters["filtered_per_query"] = double(c.triangles_filtered) / double(c.queries);
+}
+
+/// The three modes side by side in one run: min over repeats of begin_update alone (the
+/// per-update stage), of the whole update's mid phase (begin_update + 80 step queries), and
+/// of that plus the sub-step cull; their ratios; the candidates per ellipsoid per sub-step.
+void BM_ModeRatios(benchmark::State& state) {
+    const auto shape = static_cast<Shape>(state.range(0));
+    const MidPhaseMode modes[] = {MidPhaseMode::none, MidPhaseMode::per_update_tree,
+                                  MidPhaseMode::precomputed_tree};
+    const char* names[] = {"none", "per_update", "precomputed"};
+    double best_us[3][2], begin_us[3], tested[3];
+    std::vector<MidPhaseCandidate> list;
+    std::size_t kept = 0;
+    for (auto _ : state) {
+        for (int m = 0; m < 3; ++m) {
+            auto mid = make_mid_phase(modes[m]);
+            begin_us[m] = 1e300;
+            for (int repeat = 0; repeat < 200; ++repeat) {
+                const auto t0 = std::chrono::steady_clock::now();
+                mid->begin_update(bench::tightest_turn_scene().update_box);
+                begin_us[m] = std::min(begin_us[m], std::chrono::duration<double, std::micro>(
+                                                        std::chrono::steady_clock::now() - t0)
+                                                        .count());
+            }
+            for (int cull = 0; cull < 2; ++cull) {
+                best_us[m][cull] = 1e300;
+                for (int repeat = 0; repeat < 200; ++repeat) {
+                    const auto t0 = std::chrono::steady_clock::now();
+                    const std::size_t total = run_update(*mid, shape, cull != 0, list, kept);
+                    const double us = std::chrono::duration<double, std::micro>(
+                                          std::chrono::steady_clock::now() - t0)
+                                          .count();
+                    best_us[m][cull] = std::min(best_us[m][cull], us);
+                    tested[m] = tested_per_ellipsoid_substep(total);
+                }
+            }
+        }
+        benchmark::DoNotOptimize(kept);
+    }
+    state.SetLabel(shape == Shape::sphere ? "swept bounding spheres" : "swept ellipsoids");
+    for (int m = 0; m < 3; ++m) {
+        state.counters[std::string(names[m]) + "_tested"] = tested[m];
+        state.counters[std::string(names[m]) + "_begin_us"] = begin_us[m];
+        state.counters[std::string(names[m]) + "_mid_us"] = best_us[m][0];
+        state.counters[std::string(names[m]) + "_cull_us"] = best_us[m][1];
+    }
+    state.counters["begin_per_update/precomputed"] = begin_us[1] / begin_us[2];
+    state.counters["mid_per_update/precomputed"] = best_us[1][0] / best_us[2][0];
+    state.counters["mid_none/precomputed"] = best_us[0][0] / best_us[2][0];
+    state.counters["total_none/precomputed"] = best_us[0][1] / best_us[2][1];
+}
+
+/// The turn's collider's tree in each variant: build time, size, depth.
+void BM_BuildColliderTree(benchmark::State& state) {
+    const MidScene& m = mid_scene();
+    const PlaneTreeSettings settings = variant_settings(state.range(0));
+    const StaticCollider& collider = m.world.collider(m.turn_collider);
+    PlaneTree tree;
+    for (auto _ : state) {
+        tree = make_collider_plane_tree(collider, settings);
+        benchmark::DoNotOptimize(tree.nodes().data());
+    }
+    const double n = double(tree.triangle_count());
+    state.SetLabel(variant_name(state.range(0)));
+    state.counters["triangles"] = n;
+    state.counters["bytes_per_triangle"] = double(tree.bytes_used()) / n;
+    state.counters["nodes"] = double(tree.nodes().size());
+    state.counters["depth"] = double(tree.depth());
+    state.counters["all_colliders_ms"] = m.trees_build_ms;
+    state.counters["all_colliders_bytes_per_tri"] =
+        double(m.trees_bytes) / double(bench::tightest_turn_scene().track.triangle_count());
+}
+
+/// The write-up's complaint, measured: thin road triangles spanning the width overlap the
+/// PCA median cuts, so queries filter many triangles they do not report. Random swept
+/// spheres and ellipsoids on the road of the turn's collider (the car's radii and step),
+/// per split rule: triangles filtered per reported, and planes tested per query.
+void BM_SplitQuality(benchmark::State& state) {
+    const MidScene& m = mid_scene();
+    const TightestTurnScene& s = bench::tightest_turn_scene();
+    const PlaneTreeSettings settings = variant_settings(state.range(0));
+    const auto shape = static_cast<Shape>(state.range(1));
+    const PlaneTree tree = make_collider_plane_tree(m.world.collider(m.turn_collider), settings);
+
+    // Query placements: the collider's centreline samples, random lateral offset and car
+    // ellipsoid, moving one step along the road.
+    const TrackChunk& chunk = s.track.chunks[m.turn_collider];
+    const std::size_t last = m.turn_collider + 1 < s.track.chunks.size()
+                                 ? s.track.chunks[m.turn_collider + 1].first_sample
+                                 : s.track.centerline.size();
+    std::mt19937_64 rng(5);
+    std::uniform_int_distribution<std::size_t> sample(chunk.first_sample, last - 1);
+    std::uniform_int_distribution<std::size_t> which(0, s.car.ellipsoids.size() - 1);
+    std::uniform_real_distribution<double> lateral(-6.0, 6.0);
+    std::vector<StepQuery> queries;
+    for (int i = 0; i < 512; ++i) {
+        const CenterlineSample& c = s.track.centerline[sample(rng)];
+        const std::size_t e = which(rng);
+        const CarEllipsoid& ce = s.car.ellipsoids[e];
+        const glm::dvec3 start = c.position + c.left * (lateral(rng) + ce.center.x) +
+                                 c.up * (TightestTurnScene::kRideHeight + ce.center.y);
+        const glm::dvec3 end = start + c.tangent * (TightestTurnScene::kSpeed * 0.001);
+        const glm::dquat q = glm::quat_cast(glm::dmat3(c.left, c.up, c.tangent));
+        queries.push_back({start, end, s.bounding_radius(e), Ellipsoid(start, q, ce.semi_axes)});
+    }
+    std::vector<std::uint32_t> out;
+    PlaneTreeQueryCounts sum;
+    for (auto _ : state) {
+        sum = {};
+        for (const StepQuery& q : queries) {
+            out.clear();
+            const PlaneTreeQueryCounts c =
+                shape == Shape::sphere
+                    ? tree.query_swept_sphere(q.start, q.end, q.radius, out)
+                    : tree.query_swept_ellipsoid(q.ellipsoid, q.end, kRotationMargin, out);
+            sum.planes_tested += c.planes_tested;
+            sum.triangles_filtered += c.triangles_filtered;
+            sum.triangles_reported += c.triangles_reported;
+        }
+        benchmark::DoNotOptimize(out.data());
+    }
+    const double nq = double(queries.size());
+    state.SetLabel(std::string(variant_name(state.range(0))) +
+                   (shape == Shape::sphere ? " sphere" : " ellipsoid"));
+    state.counters["reported_per_query"] = double(sum.triangles_reported) / nq;
+    state.counters["filtered_per_query"] = double(sum.triangles_filtered) / nq;
+    state.counters["planes_per_query"] = double(sum.planes_tested) / nq;
+    state.counters["ns_per_query"] = benchmark::Counter(
+        nq, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
+void mode_shape_cull_args(benchmark::internal::Benchmark* b) {
+    for (int mode = 0; mode < 3; ++mode)
+        for (int shape = 0; shape < 2; ++shape)
+            for (int cull = 0; cull < 2; ++cull) b->Args({mode, shape, cull});
+}
+
+BENCHMARK(BM_ModeRatios)->Arg(0)->Arg(1)->Iterations(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_MidPhaseUpdate)->Apply(mode_shape_cull_args)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_BuildColliderTree)->DenseRange(0, 2)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_SplitQuality)->ArgsProduct({{0, 1, 2}, {0, 1}})->Unit(benchmark::kMicrosecond);
+
+}  // namespace

@@ -1,0 +1,88 @@
+#pragma once
+
+// The benchmarks' shared scene: the default track (seed 7), its tightest banked turn, and
+// the default car driving through it at 1000 km/h for one update (40 sub-steps of 0.25 ms,
+// 7 cm each, in 10 steps of 4), its wheels on the road. Header-only.
+
+#include <algorithm>
+#include <cstddef>
+#include <vector>
+
+#include <glm/gtc/quaternion.hpp>
+#include <glm/mat3x3.hpp>
+#include <glm/vec3.hpp>
+
+#include "trackphys/dynamics/car_spec.hpp"
+#include "trackphys/geometry/aabb.hpp"
+#include "trackphys/geometry/ellipsoid.hpp"
+#include "trackphys/geometry/triangle.hpp"
+#include "trackphys/track/track.hpp"
+#include "trackphys/track/track_stats.hpp"
+
+namespace trackphys::bench {
+
+struct TightestTurnScene {
+    static constexpr int kSubsteps = 40;      ///< one 10 ms update
+    static constexpr int kStepSubsteps = 4;   ///< sub-steps per step (10 steps)
+    static constexpr double kSpeed = 1000.0 / 3.6;
+    static constexpr double kSubstepDt = 0.01 / kSubsteps;
+    /// wheel centre depth below the centre of mass + wheel radius - sag (m)
+    static constexpr double kRideHeight = 0.30 + 0.35 - 0.01;
+
+    Track track;
+    CenterlineSample turn;
+    Aabb update_box;   ///< car_update_box(turn): the broad-phase box of the update
+    CarSpec car = CarSpec::default_car();
+    glm::dquat car_orientation{1.0, 0.0, 0.0, 0.0};  ///< world from body
+
+    TightestTurnScene() {
+        TrackParams params;
+        params.seed = 7;
+        track = generate_track(params);
+        turn = track.centerline[compute_track_stats(track).tightest_sample];
+        update_box = car_update_box(turn);
+        // Body frame +X left, +Y up, +Z forward: the columns are the road frame there.
+        car_orientation = glm::quat_cast(glm::dmat3(turn.left, turn.up, turn.tangent));
+    }
+
+    /// World center of ellipsoid `e` at the start of sub-step `substep` (0..kSubsteps).
+    glm::dvec3 center(std::size_t e, int substep) const {
+        const CarEllipsoid& ce = car.ellipsoids[e];
+        const glm::dvec3 origin = turn.position + turn.tangent * (kSpeed * kSubstepDt * substep) +
+                                  turn.up * kRideHeight;
+        return origin + turn.left * ce.center.x + turn.up * ce.center.y +
+               turn.tangent * ce.center.z;
+    }
+    /// Ellipsoid `e` at the start of sub-step `substep`.
+    Ellipsoid ellipsoid(std::size_t e, int substep) const {
+        const CarEllipsoid& ce = car.ellipsoids[e];
+        return Ellipsoid(center(e, substep), car_orientation * ce.orientation, ce.semi_axes);
+    }
+    /// Radius of ellipsoid e's bounding sphere (m).
+    double bounding_radius(std::size_t e) const {
+        const glm::dvec3& a = car.ellipsoids[e].semi_axes;
+        return std::max({a.x, a.y, a.z});
+    }
+
+    /// The broad-phase candidates: every triangle whose box meets the update box.
+    std::vector<Triangle> candidates() const {
+        std::vector<Triangle> out;
+        for (const TrackChunk& chunk : track.chunks) {
+            if (!chunk.bounds.overlaps(update_box)) continue;
+            for (const auto& t : chunk.mesh.triangles) {
+                const Triangle triangle(chunk.mesh.vertices[t[0]], chunk.mesh.vertices[t[1]],
+                                        chunk.mesh.vertices[t[2]]);
+                if (triangle.bounds().overlaps(update_box)) out.push_back(triangle);
+            }
+        }
+        return out;
+    }
+};
+
+/// Built once per benchmark program (generating the track takes ~0.1 s).
+inline const TightestTurnScene& tightest_turn_scene() {
+    static const TightestTurnScene instance;
+    return instance;
+}
+
+}  // namespace trackphys::bench

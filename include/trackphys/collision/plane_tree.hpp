@@ -1,0 +1,213 @@
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include <glm/gtc/quaternion.hpp>
+#include <glm/vec3.hpp>
+
+#include "trackphys/export.hpp"
+#include "trackphys/geometry/ellipsoid.hpp"
+#include "trackphys/geometry/normalized_triangle.hpp"
+
+namespace trackphys {
+
+/// One node of a PlaneTree: the half-space {x : dot(normal, x) <= offset} that holds every
+/// triangle of its subtree. Nodes live in one vector, root at 0, the two children of an
+/// inner node adjacent at `first` and `first + 1` (the BVH layout, DESIGN.md "Broad phase
+/// and mid phase"). The root's half-space is all of space (normal 0, offset +inf).
+///
+/// The normal is stored in float and the offset is computed in double over the triangles'
+/// vertices with exactly that float normal, then rounded up to float: the stored plane never
+/// cuts into its triangles, only grows outward by at most one float ulp of the offset.
+struct PlaneTreeNode {
+    static constexpr std::uint32_t kLeafBit = 0x8000'0000u;
+    static constexpr std::uint32_t kSlabBit = 0x4000'0000u;
+    static constexpr std::uint32_t kCountMask = 0x3fff'ffffu;
+
+    float normal[3];       ///< 12 bytes: unit normal of the bounding plane (outward)
+    float offset;          ///<  4 bytes: dot(normal, x) <= offset on every triangle (m)
+    std::uint32_t first;   ///<  4 bytes: leaf: first triangle slot; inner: left child index
+    std::uint32_t packed;  ///<  4 bytes: kLeafBit | kSlabBit | triangles in the subtree
+
+    bool is_leaf() const { return (packed & kLeafBit) != 0; }
+    /// True when PlaneTree::slabs()[this node] holds a slab to test (see PlaneTreeSettings).
+    bool has_slab() const { return (packed & kSlabBit) != 0; }
+    /// Number of triangles in the subtree (a leaf's own triangles).
+    std::uint32_t count() const { return packed & kCountMask; }
+};
+static_assert(sizeof(PlaneTreeNode) == 24, "PlaneTreeNode is 24 bytes: a sibling pair is 48");
+
+/// The slab {low <= dot(normal, x) <= high} that holds every triangle of a node's subtree,
+/// for nodes whose triangles are nearly coplanar (a stretch of road, a wall face). Same
+/// rounding as the node planes: normal in float (length <= 1), bounds rounded outward.
+struct PlaneTreeSlab {
+    float normal[3];  ///< 12 bytes: the subtree's mean surface normal
+    float low;        ///<  4 bytes (m), rounded down
+    float high;       ///<  4 bytes (m), rounded up
+};
+static_assert(sizeof(PlaneTreeSlab) == 20, "PlaneTreeSlab is 20 bytes");
+
+/// How a PlaneTree chooses its splitting planes.
+enum class PlaneSplitRule {
+    /// The write-up's rule: the primary eigenvector n of the triangle centroids' covariance
+    /// (PCA), triangles ordered along n and cut in half at the median centroid. Fast enough
+    /// to run per update over a few hundred broad-phase candidates.
+    pca_median,
+    /// For trees built once per collider: the cut that minimises the expected query work
+    /// (see PlaneTreeSettings::query_radius) over candidate directions (the three PCA axes
+    /// of the centroids, the three coordinate axes, the dominant surface normal from the PCA
+    /// of the area-weighted triangle normals, and the centroids' two principal directions
+    /// within that surface, i.e. the road's local tangent and width direction) and every
+    /// cut position along each.
+    cost_based,
+};
+
+/// Build settings of a PlaneTree. Use the named presets; the builder validates them.
+struct PlaneTreeSettings {
+    /// The deepest a node can sit (root depth 0); a node there becomes a leaf whatever its
+    /// size. Queries use a fixed stack of kMaxDepth + 1 entries.
+    static constexpr int kMaxDepth = 48;
+
+    PlaneSplitRule rule = PlaneSplitRule::pca_median;
+    /// pca_median: nodes with at most this many triangles are leaves. cost_based: nodes
+    /// with more are always split; smaller ones are split only when that is predicted to
+    /// be cheaper. In [1, 64].
+    int max_leaf_size = 4;
+    /// cost_based only: the typical query sphere radius (m, > 0). A query that reaches a node
+    /// is assumed uniformly placed along the split direction over the node's extent grown
+    /// by this radius on both sides, so a child is reached with probability
+    /// (child extent + 2 r) / (node extent + 2 r) along that direction; the cost of a split
+    /// is 2 node_cost (the two child planes) + sum(child triangles * that probability), in
+    /// units of one triangle filter: the SAH with the plane test's own geometry. A node is
+    /// a leaf when that is not below its triangle count.
+    double query_radius = 0.5;
+    /// cost_based only: cost of testing one child plane relative to one triangle filter
+    /// (> 0).
+    double node_cost = 0.5;
+    /// Slabs (m, finite, >= 0; 0 = none): the first node on each path from the root whose
+    /// triangles lie within a slab this thick along their mean surface normal (the
+    /// normalised sum of their area normals) keeps that slab, and a query that misses it
+    /// skips the node. Split planes alone cannot exclude a shape that hovers over a surface
+    /// (every split runs across the road), so without slabs a car body above the road
+    /// descends to the leaves; with them it stops at the first flat stretch.
+    double slab_thickness = 0.0;
+
+    /// The write-up's per-update tree: PCA median splits, leaves of up to 4 triangles.
+    static PlaneTreeSettings per_update() { return {}; }
+    /// The precomputed per-collider tree: cost-based splits, leaves of up to 4 triangles,
+    /// slabs 0.2 m thick (a body ellipsoid rides ~0.4 m above the road).
+    static PlaneTreeSettings precomputed() {
+        PlaneTreeSettings s;
+        s.rule = PlaneSplitRule::cost_based;
+        s.slab_thickness = 0.2;
+        return s;
+    }
+};
+
+/// What one query did: nodes whose plane was tested and triangles run through the
+/// per-triangle filter (the work), and triangles reported.
+struct PlaneTreeQueryCounts {
+    std::size_t planes_tested = 0;
+    std::size_t triangles_filtered = 0;
+    std::size_t triangles_reported = 0;
+};
+
+/// A plane tree over a set of triangles (DESIGN.md, "Broad phase and mid phase"): each inner
+/// node splits its triangles in two and each child keeps the plane that bounds its side,
+/// so a query visits a child only if its shape reaches that child's half-space. Built by
+/// PlaneTreeBuilder (per update, reusing storage) or make_collider_plane_tree (once per
+/// collider). Immutable between builds; queries are const and thread-safe.
+///
+/// Storage: two vectors as the BVH, nodes (24 bytes) and the triangles in leaf order as
+/// NormalizedTriangle (120 bytes, what the sub-step cull reads), plus each slot's caller id
+/// (4 bytes) and, when built with slabs, a 20-byte slab per node (~160 bytes a triangle for
+/// a track collider). Queries append leaf slots in ascending order to a caller-owned vector
+/// and use a fixed stack: no allocation once the vector has grown.
+///
+/// The per-triangle filter, and why the tree is exact with it. A query shape S (sphere,
+/// swept sphere, swept ellipsoid) reports slot s if and only if S touches the triangle:
+/// - sphere: the distance from the center to the triangle is <= radius;
+/// - swept sphere: the distance from the segment to the triangle is <= radius;
+/// - swept ellipsoid: the triangle mapped into the ellipsoid's unit-ball frame
+///   (x -> D^-1 Q^T (x - start)) lies within 1 of the mapped segment, which is exactly
+///   "the ellipsoid moving along the segment touches the triangle".
+/// Each is computed in double in the triangle's own frame, after cheap rejections that are
+/// lower bounds of the distance to convex sets holding the triangle (its plane, its local
+/// box, its edges' half-planes), which can only reject what the exact test rejects too, and
+/// sure accepts (a vertex or an over-the-face endpoint within reach). Because a node's
+/// half-space (and slab) contains each of its triangles, a shape that touches a triangle
+/// reaches every half-space above it: the tree never prunes a triangle the filter would
+/// report, so a query returns exactly the slots a brute-force scan with the same filter
+/// returns (plane tests are made with the shape grown by a slack of 1e-10 of its coordinate
+/// scale, which covers the rounding of both tests). A box-based cull such as
+/// NormalizedTriangle::may_touch_sphere would not give this equality: it keeps triangles
+/// whose box corner the sphere reaches while some node plane through the triangle's vertex
+/// already excludes the sphere.
+class TRACKPHYS_API PlaneTree {
+public:
+    /// An empty tree (every query reports nothing).
+    PlaneTree() = default;
+
+    /// Appends every slot whose triangle is within `radius` (m, finite, >= 0) of `center`.
+    /// Throws trackphys::Error on a non-finite center or a bad radius.
+    /// Every query can start at `from_node` instead of the root: pass entry_node(box) for a
+    /// box that holds the query's shape and the result is the same with fewer planes tested.
+    PlaneTreeQueryCounts query_sphere(const glm::dvec3& center, double radius,
+                                      std::vector<std::uint32_t>& out,
+                                      std::uint32_t from_node = 0) const;
+    /// Appends every slot whose triangle is within `radius` of the segment [start, end]: the
+    /// triangles a sphere of that radius touches while it moves from start to end.
+    PlaneTreeQueryCounts query_swept_sphere(const glm::dvec3& start, const glm::dvec3& end,
+                                            double radius, std::vector<std::uint32_t>& out,
+                                            std::uint32_t from_node = 0) const;
+    /// Appends every slot whose triangle the ellipsoid touches while its center moves from
+    /// ellipsoid.center() to `end` with its orientation fixed. A car's ellipsoid also turns
+    /// during a step: pass a `margin` (m, finite, >= 0) that bounds how far any of its points
+    /// moves beyond the translation; the query then uses the ellipsoid scaled about its center
+    /// by 1 + margin / (smallest semi-axis), which holds the ellipsoid grown by margin.
+    PlaneTreeQueryCounts query_swept_ellipsoid(const Ellipsoid& ellipsoid, const glm::dvec3& end,
+                                               double margin, std::vector<std::uint32_t>& out,
+                                               std::uint32_t from_node = 0) const;
+
+    /// Where queries inside `box` can start (a car's update box, once per update): the
+    /// first node on the path from the root at which the box reaches both children. The
+    /// sibling subtrees left behind lie beyond planes the box does not reach, so no shape
+    /// inside the box touches their triangles; starting below the root skips only tests,
+    /// never a result. 0 (the root) for an empty tree or an empty box.
+    std::uint32_t entry_node(const Aabb& box) const;
+
+    /// Number of triangles (slots are 0 .. triangle_count() - 1).
+    std::size_t triangle_count() const { return triangles_.size(); }
+    /// The triangle in leaf slot `slot` (TP_ASSERT on range).
+    const NormalizedTriangle& triangle(std::uint32_t slot) const;
+    /// The caller's id of the triangle in slot `slot`, as given to the builder.
+    std::uint32_t id(std::uint32_t slot) const;
+    /// The nodes, root at 0.
+    const std::vector<PlaneTreeNode>& nodes() const { return nodes_; }
+    /// One slab per node when the tree was built with slabs (read where has_slab()), else
+    /// empty.
+    const std::vector<PlaneTreeSlab>& slabs() const { return slabs_; }
+    /// Depth of the deepest leaf (0 for a single leaf).
+    int depth() const { return depth_; }
+    /// Bytes of every structure the tree keeps (vector capacities included).
+    std::size_t bytes_used() const;
+    /// Releases spare capacity (for a tree kept for long; per-update trees keep it).
+    void shrink_to_fit();
+
+private:
+    friend class PlaneTreeBuilder;
+
+    template <class Shape>
+    PlaneTreeQueryCounts visit(const Shape& shape, std::vector<std::uint32_t>& out,
+                               std::uint32_t from_node) const;
+
+    std::vector<PlaneTreeNode> nodes_;
+    std::vector<PlaneTreeSlab> slabs_;           ///< per node, or empty
+    std::vector<NormalizedTriangle> triangles_;  ///< leaf order
+    std::vector<std::uint32_t> ids_;             ///< leaf order
+    int depth_ = 0;
+};
+
+}  // namespace trackphys

@@ -1,0 +1,77 @@
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "trackphys/collision/plane_tree.hpp"
+#include "trackphys/collision/static_collider.hpp"
+#include "trackphys/export.hpp"
+#include "trackphys/geometry/normalized_triangle.hpp"
+
+namespace trackphys {
+
+/// Builds PlaneTrees. Keeps its scratch between builds, and the target tree keeps its
+/// storage, so rebuilding per update over a similar number of triangles does not allocate.
+/// Deterministic: same triangles, ids and settings -> the same tree, bit for bit.
+class TRACKPHYS_API PlaneTreeBuilder {
+public:
+    /// Rebuilds `tree` over `triangles` (non-degenerate, finite), each tagged with the
+    /// matching entry of `ids` (reported back by PlaneTree::id). Throws trackphys::Error when
+    /// the spans differ in size, there are 2^30 triangles or more, or a setting is out of
+    /// range (naming it).
+    void build(std::span<const NormalizedTriangle> triangles, std::span<const std::uint32_t> ids,
+               const PlaneTreeSettings& settings, PlaneTree& tree);
+
+    /// Bytes of scratch held between builds.
+    std::size_t bytes_used() const;
+
+private:
+    struct Item {
+        std::array<glm::dvec3, 3> vertices;
+        glm::dvec3 centroid;
+        glm::dvec3 area_normal;  ///< cross(b - a, c - a)
+    };
+    struct Split {
+        glm::dvec3 normal{0.0};   ///< float-exact direction
+        std::size_t left_count = 0;
+        double cost = 0.0;
+    };
+
+    void build_node(std::uint32_t node, std::size_t begin, std::size_t end, int depth);
+    void mark_slabs(std::uint32_t node, std::size_t begin, std::size_t end);
+    bool choose_split(std::size_t begin, std::size_t end, Split& split);
+    Split pca_median_split(std::size_t begin, std::size_t end);
+    bool cost_based_split(std::size_t begin, std::size_t end, Split& split);
+    void evaluate_direction(std::size_t begin, std::size_t end, const glm::dvec3& direction,
+                            Split& best);
+    void order_along(std::size_t begin, std::size_t end, const glm::dvec3& normal,
+                     std::size_t left_count);
+    void set_plane(PlaneTreeNode& node, std::size_t begin, std::size_t end,
+                   const glm::dvec3& normal) const;
+
+    PlaneTreeSettings settings_;
+    PlaneTree* tree_ = nullptr;
+    std::vector<Item> items_;
+    std::vector<std::uint32_t> order_;  ///< item indices; each node owns a range
+    // cost_based sweep scratch
+    std::vector<std::uint32_t> sorted_;
+    std::vector<double> keys_;
+    std::vector<double> lows_, highs_;
+    std::vector<double> suffix_low_;
+};
+
+/// The precomputed plane tree of a collider: every kept triangle, cost-based splits
+/// (PlaneTreeSettings::precomputed() unless given), ids = mesh triangle indices, so that
+/// PlaneTree::id(slot) is what StaticCollider::triangle() takes. Built from the collider
+/// rather than stored in it: StaticCollider stays the broad phase's compact structure
+/// (~48 bytes a triangle) and worlds that use no precomputed mid phase pay nothing.
+TRACKPHYS_API PlaneTree make_collider_plane_tree(
+    const StaticCollider& collider,
+    const PlaneTreeSettings& settings = PlaneTreeSettings::precomputed());
+
+}  // namespace trackphys

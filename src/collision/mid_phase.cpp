@@ -1,0 +1,145 @@
+#include "trackphys/collision/mid_phase.hpp"
+
+#include <cmath>
+#include <numeric>
+#include <string>
+
+#include "collision/triangle_predicates.hpp"
+#include "trackphys/error.hpp"
+#include "trackphys/math/types.hpp"
+
+namespace trackphys {
+
+std::string_view to_string(MidPhaseMode mode) {
+    switch (mode) {
+        case MidPhaseMode::none: return "none";
+        case MidPhaseMode::per_update_tree: return "per_update_tree";
+        case MidPhaseMode::precomputed_tree: return "precomputed_tree";
+    }
+    return "unknown";
+}
+
+std::optional<MidPhaseMode> parse_mid_phase_mode(std::string_view name) {
+    for (const MidPhaseMode mode :
+         {MidPhaseMode::none, MidPhaseMode::per_update_tree, MidPhaseMode::precomputed_tree})
+        if (name == to_string(mode)) return mode;
+    return std::nullopt;
+}
+
+ColliderPlaneTrees make_collider_plane_trees(const StaticWorld& world,
+                                             const PlaneTreeSettings& settings) {
+    ColliderPlaneTrees trees;
+    trees.reserve(world.size());
+    for (std::uint32_t id = 0; id < world.size(); ++id)
+        trees.push_back(
+            std::make_shared<const PlaneTree>(make_collider_plane_tree(world.collider(id), settings)));
+    return trees;
+}
+
+MidPhase::MidPhase(MidPhaseMode mode, const StaticWorld& world, ColliderPlaneTrees trees)
+    : mode_(mode), world_(&world), trees_(std::move(trees)) {
+    check_trees();
+}
+
+void MidPhase::check_trees() const {
+    if (mode_ != MidPhaseMode::precomputed_tree) return;
+    if (trees_.size() != world_->size())
+        throw Error("MidPhase (precomputed_tree): " + std::to_string(trees_.size()) +
+                    " plane trees for " + std::to_string(world_->size()) + " colliders");
+    for (std::size_t id = 0; id < trees_.size(); ++id)
+        if (!trees_[id])
+            throw Error("MidPhase (precomputed_tree): no plane tree for collider " +
+                        std::to_string(id));
+}
+
+void MidPhase::begin_update(const Aabb& update_box) {
+    ++counters_.updates;
+    refs_.clear();
+    triangles_.clear();
+    active_colliders_.clear();
+    entry_nodes_.clear();
+    if (mode_ == MidPhaseMode::precomputed_tree) {
+        check_trees();
+        for (std::uint32_t id = 0; id < world_->size(); ++id) {
+            if (!world_->collider(id).bounds().overlaps(update_box)) continue;
+            active_colliders_.push_back(id);
+            entry_nodes_.push_back(trees_[id]->entry_node(update_box));
+        }
+        return;
+    }
+    world_->query_aabb(update_box, refs_);
+    counters_.broad_phase_candidates += refs_.size();
+    for (const TriangleRef& ref : refs_)
+        triangles_.push_back(world_->collider(ref.collider).normalized_triangle(ref.triangle));
+    if (mode_ == MidPhaseMode::per_update_tree) {
+        ids_.resize(refs_.size());
+        std::iota(ids_.begin(), ids_.end(), 0u);
+        builder_.build(triangles_, ids_, PlaneTreeSettings::per_update(), update_tree_);
+    }
+}
+
+template <class Query>
+void MidPhase::query(Query&& query_tree, std::vector<MidPhaseCandidate>& out) {
+    ++counters_.queries;
+    const std::size_t before = out.size();
+    auto add_counts = [this](const PlaneTreeQueryCounts& c) {
+        counters_.planes_tested += c.planes_tested;
+        counters_.triangles_filtered += c.triangles_filtered;
+    };
+    switch (mode_) {
+        case MidPhaseMode::none:
+            for (std::size_t i = 0; i < refs_.size(); ++i) out.push_back({refs_[i], &triangles_[i]});
+            break;
+        case MidPhaseMode::per_update_tree:
+            slots_.clear();
+            add_counts(query_tree(update_tree_, slots_, 0u));
+            for (const std::uint32_t slot : slots_)
+                out.push_back({refs_[update_tree_.id(slot)], &update_tree_.triangle(slot)});
+            break;
+        case MidPhaseMode::precomputed_tree:
+            for (std::size_t i = 0; i < active_colliders_.size(); ++i) {
+                const std::uint32_t id = active_colliders_[i];
+                const PlaneTree& tree = *trees_[id];
+                slots_.clear();
+                add_counts(query_tree(tree, slots_, entry_nodes_[i]));
+                for (const std::uint32_t slot : slots_)
+                    out.push_back({{id, tree.id(slot)}, &tree.triangle(slot)});
+            }
+            break;
+    }
+    counters_.candidates += out.size() - before;
+}
+
+void MidPhase::query_swept_sphere(const glm::dvec3& start, const glm::dvec3& end, double radius,
+                                  std::vector<MidPhaseCandidate>& out) {
+    // Validated here too, so that mode none rejects what the tree modes reject.
+    static_cast<void>(collision_detail::make_capsule_query(start, end, radius));
+    query(
+        [&](const PlaneTree& tree, std::vector<std::uint32_t>& slots, std::uint32_t from) {
+            return tree.query_swept_sphere(start, end, radius, slots, from);
+        },
+        out);
+}
+
+void MidPhase::query_swept_ellipsoid(const Ellipsoid& ellipsoid, const glm::dvec3& end,
+                                     double margin, std::vector<MidPhaseCandidate>& out) {
+    if (!is_finite(end) || !std::isfinite(margin) || !(margin >= 0.0))
+        throw Error("MidPhase::query_swept_ellipsoid: end must be finite and margin finite and "
+                    ">= 0");
+    query(
+        [&](const PlaneTree& tree, std::vector<std::uint32_t>& slots, std::uint32_t from) {
+            return tree.query_swept_ellipsoid(ellipsoid, end, margin, slots, from);
+        },
+        out);
+}
+
+std::size_t MidPhase::bytes_used() const {
+    return refs_.capacity() * sizeof(TriangleRef) +
+           triangles_.capacity() * sizeof(NormalizedTriangle) +
+           (ids_.capacity() + active_colliders_.capacity() + entry_nodes_.capacity() +
+            slots_.capacity()) *
+               sizeof(std::uint32_t) +
+           update_tree_.bytes_used() + builder_.bytes_used();
+}
+
+}  // namespace trackphys

@@ -1,0 +1,118 @@
+#include "trackphys/collision/plane_tree.hpp"
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+#include "collision/plane_tree_shapes.hpp"
+#include "trackphys/assert.hpp"
+
+namespace trackphys {
+
+using collision_detail::EllipsoidShape;
+using collision_detail::SphereShape;
+
+template <class Shape>
+PlaneTreeQueryCounts PlaneTree::visit(const Shape& shape, std::vector<std::uint32_t>& out,
+                                      std::uint32_t from_node) const {
+    PlaneTreeQueryCounts counts;
+    if (nodes_.empty()) return counts;
+    TP_ASSERT(from_node < nodes_.size(), "plane tree query: start node out of range");
+    // A popped node at depth k leaves at most one pending sibling per level above it, and
+    // pushes two children of depth k + 1 <= kMaxDepth: never more than kMaxDepth + 1 entries.
+    std::uint32_t stack[PlaneTreeSettings::kMaxDepth + 1];
+    int top = 0;
+    stack[top++] = from_node;
+    while (top > 0) {
+        const std::uint32_t index = stack[--top];
+        const PlaneTreeNode& node = nodes_[index];
+        if (node.has_slab()) {
+            ++counts.planes_tested;
+            if (!shape.reaches_slab(slabs_[index])) continue;
+        }
+        if (node.is_leaf()) {
+            const std::uint32_t end = node.first + node.count();
+            counts.triangles_filtered += node.count();
+            for (std::uint32_t slot = node.first; slot < end; ++slot) {
+                if (shape.touches(triangles_[slot])) {
+                    out.push_back(slot);
+                    ++counts.triangles_reported;
+                }
+            }
+            continue;
+        }
+        counts.planes_tested += 2;
+        // Right first onto the stack so the left subtree (lower slots) comes out first and
+        // the output is in ascending slot order.
+        if (shape.reaches(nodes_[node.first + 1])) stack[top++] = node.first + 1;
+        if (shape.reaches(nodes_[node.first])) stack[top++] = node.first;
+        TP_ASSERT(top <= PlaneTreeSettings::kMaxDepth + 1, "plane tree deeper than kMaxDepth");
+    }
+    return counts;
+}
+
+PlaneTreeQueryCounts PlaneTree::query_sphere(const glm::dvec3& center, double radius,
+                                             std::vector<std::uint32_t>& out,
+                                             std::uint32_t from_node) const {
+    return visit(SphereShape<false>(center, center, radius), out, from_node);
+}
+
+PlaneTreeQueryCounts PlaneTree::query_swept_sphere(const glm::dvec3& start, const glm::dvec3& end,
+                                                   double radius,
+                                                   std::vector<std::uint32_t>& out,
+                                                   std::uint32_t from_node) const {
+    return visit(SphereShape<true>(start, end, radius), out, from_node);
+}
+
+PlaneTreeQueryCounts PlaneTree::query_swept_ellipsoid(const Ellipsoid& ellipsoid,
+                                                      const glm::dvec3& end, double margin,
+                                                      std::vector<std::uint32_t>& out,
+                                                      std::uint32_t from_node) const {
+    return visit(EllipsoidShape(ellipsoid, end, margin), out, from_node);
+}
+
+std::uint32_t PlaneTree::entry_node(const Aabb& box) const {
+    if (nodes_.empty() || box.empty()) return 0;
+    const glm::dvec3 center = box.center(), half = 0.5 * box.extent();
+    const double slack = collision_detail::kPlaneSlack *
+                         (1.0 + collision_detail::max_abs(center) + collision_detail::max_abs(half));
+    // The box reaches {n.x <= offset} when its lowest corner along n does.
+    auto reaches = [&](const PlaneTreeNode& node) {
+        const glm::dvec3 n = collision_detail::node_normal(node);
+        return glm::dot(n, center) - glm::dot(glm::abs(n), half) - slack <= double(node.offset);
+    };
+    std::uint32_t index = 0;
+    for (int depth = 0; depth < PlaneTreeSettings::kMaxDepth; ++depth) {
+        const PlaneTreeNode& node = nodes_[index];
+        if (node.is_leaf()) break;
+        const bool left = reaches(nodes_[node.first]), right = reaches(nodes_[node.first + 1]);
+        if (left == right) break;  // both reached (or, for a box off the tree, neither)
+        index = left ? node.first : node.first + 1;
+    }
+    return index;
+}
+
+const NormalizedTriangle& PlaneTree::triangle(std::uint32_t slot) const {
+    TP_ASSERT(slot < triangles_.size(), "plane tree slot out of range");
+    return triangles_[slot];
+}
+
+std::uint32_t PlaneTree::id(std::uint32_t slot) const {
+    TP_ASSERT(slot < ids_.size(), "plane tree slot out of range");
+    return ids_[slot];
+}
+
+std::size_t PlaneTree::bytes_used() const {
+    return nodes_.capacity() * sizeof(PlaneTreeNode) +
+           slabs_.capacity() * sizeof(PlaneTreeSlab) +
+           triangles_.capacity() * sizeof(NormalizedTriangle) +
+           ids_.capacity() * sizeof(std::uint32_t);
+}
+
+void PlaneTree::shrink_to_fit() {
+    nodes_.shrink_to_fit();
+    slabs_.shrink_to_fit();
+    triangles_.shrink_to_fit();
+    ids_.shrink_to_fit();
+}
+
+}  // namespace trackphys

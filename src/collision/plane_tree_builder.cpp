@@ -1,0 +1,347 @@
+#include "trackphys/collision/plane_tree_builder.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <string>
+
+#include <glm/geometric.hpp>
+#include <glm/mat3x3.hpp>
+
+#include "trackphys/error.hpp"
+#include "trackphys/math/symmetric_eigen.hpp"
+
+namespace trackphys {
+namespace {
+
+// A float toward zero: |result| <= |x|.
+float float_toward_zero(double x) {
+    float f = static_cast<float>(x);
+    if (std::abs(double(f)) > std::abs(x)) f = std::nextafter(f, 0.0f);
+    return f;
+}
+
+// A float at or below x.
+float float_down(double x) {
+    float f = static_cast<float>(x);
+    if (double(f) > x) f = std::nextafter(f, -std::numeric_limits<float>::infinity());
+    return f;
+}
+
+// A float at or above x.
+float float_up(double x) {
+    float f = static_cast<float>(x);
+    if (double(f) < x) f = std::nextafter(f, std::numeric_limits<float>::infinity());
+    return f;
+}
+
+// The unit direction of v rounded to float toward zero, so that its length is at most 1:
+// a sphere test that treats it as unit (n.c - r) is then conservative. Zero when v is.
+glm::dvec3 float_direction(const glm::dvec3& v) {
+    const double length = glm::length(v);
+    if (!(length > 0.0) || !std::isfinite(length)) return glm::dvec3(0.0);
+    const glm::dvec3 u = v / length;
+    return {float_toward_zero(u.x), float_toward_zero(u.y), float_toward_zero(u.z)};
+}
+
+// sum (x - mean)(x - mean)^T over the centroids, lower triangle enough for symmetric_eigen.
+glm::dmat3 outer(const glm::dvec3& a, const glm::dvec3& b) {
+    glm::dmat3 m;
+    for (int c = 0; c < 3; ++c)
+        for (int r = 0; r < 3; ++r) m[c][r] = a[r] * b[c];
+    return m;
+}
+
+void check_settings(const PlaneTreeSettings& s) {
+    if (s.max_leaf_size < 1 || s.max_leaf_size > 64)
+        throw Error("PlaneTreeSettings.max_leaf_size must be in [1, 64], got " +
+                    std::to_string(s.max_leaf_size));
+    if (!std::isfinite(s.query_radius) || !(s.query_radius > 0.0))
+        throw Error("PlaneTreeSettings.query_radius must be finite and > 0, got " +
+                    std::to_string(s.query_radius));
+    if (!std::isfinite(s.node_cost) || !(s.node_cost > 0.0))
+        throw Error("PlaneTreeSettings.node_cost must be finite and > 0, got " +
+                    std::to_string(s.node_cost));
+    if (!std::isfinite(s.slab_thickness) || !(s.slab_thickness >= 0.0))
+        throw Error("PlaneTreeSettings.slab_thickness must be finite and >= 0, got " +
+                    std::to_string(s.slab_thickness));
+}
+
+}  // namespace
+
+void PlaneTreeBuilder::build(std::span<const NormalizedTriangle> triangles,
+                             std::span<const std::uint32_t> ids,
+                             const PlaneTreeSettings& settings, PlaneTree& tree) {
+    if (triangles.size() != ids.size())
+        throw Error("PlaneTreeBuilder::build: " + std::to_string(triangles.size()) +
+                    " triangles but " + std::to_string(ids.size()) + " ids");
+    if (triangles.size() > PlaneTreeNode::kCountMask)
+        throw Error("PlaneTreeBuilder::build: too many triangles (" +
+                    std::to_string(triangles.size()) + "), at most 2^30 - 1");
+    check_settings(settings);
+    settings_ = settings;
+    tree_ = &tree;
+
+    const std::size_t n = triangles.size();
+    items_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        Item& item = items_[i];
+        for (int k = 0; k < 3; ++k) item.vertices[std::size_t(k)] = triangles[i].vertex(k);
+        const auto& v = item.vertices;
+        item.centroid = (v[0] + v[1] + v[2]) / 3.0;
+        item.area_normal = glm::cross(v[1] - v[0], v[2] - v[0]);
+    }
+    order_.resize(n);
+    std::iota(order_.begin(), order_.end(), 0u);
+
+    tree.nodes_.clear();
+    tree.depth_ = 0;
+    if (n > 0) {
+        constexpr float kInf = std::numeric_limits<float>::infinity();
+        tree.nodes_.push_back({{0.0f, 0.0f, 0.0f}, kInf, 0, 0});
+        build_node(0, 0, n, 0);
+    }
+    tree.slabs_.clear();
+    if (n > 0 && settings.slab_thickness > 0.0) {
+        tree.slabs_.resize(tree.nodes_.size());
+        mark_slabs(0, 0, n);
+    }
+    tree.triangles_.clear();
+    tree.ids_.clear();
+    for (const std::uint32_t item : order_) {
+        tree.triangles_.push_back(triangles[item]);
+        tree.ids_.push_back(ids[item]);
+    }
+    tree_ = nullptr;
+}
+
+void PlaneTreeBuilder::build_node(std::uint32_t node, std::size_t begin, std::size_t end,
+                                  int depth) {
+    const std::size_t count = end - begin;
+    tree_->depth_ = std::max(tree_->depth_, depth);
+    Split split;
+    if (depth >= PlaneTreeSettings::kMaxDepth || !choose_split(begin, end, split)) {
+        tree_->nodes_[node].first = static_cast<std::uint32_t>(begin);
+        tree_->nodes_[node].packed = PlaneTreeNode::kLeafBit | static_cast<std::uint32_t>(count);
+        return;
+    }
+    order_along(begin, end, split.normal, split.left_count);
+    const std::size_t mid = begin + split.left_count;
+    const auto child = static_cast<std::uint32_t>(tree_->nodes_.size());
+    tree_->nodes_.resize(tree_->nodes_.size() + 2);
+    set_plane(tree_->nodes_[child], begin, mid, split.normal);
+    set_plane(tree_->nodes_[child + 1], mid, end, -split.normal);
+    tree_->nodes_[node].first = child;
+    tree_->nodes_[node].packed = static_cast<std::uint32_t>(count);
+    build_node(child, begin, mid, depth + 1);
+    build_node(child + 1, mid, end, depth + 1);
+}
+
+void PlaneTreeBuilder::mark_slabs(std::uint32_t node, std::size_t begin, std::size_t end) {
+    glm::dvec3 area_sum(0.0);
+    for (std::size_t i = begin; i < end; ++i) area_sum += items_[order_[i]].area_normal;
+    const glm::dvec3 normal = float_direction(area_sum);
+    PlaneTreeNode& n = tree_->nodes_[node];
+    if (normal != glm::dvec3(0.0)) {
+        double low = std::numeric_limits<double>::infinity(), high = -low;
+        for (std::size_t i = begin; i < end; ++i)
+            for (const glm::dvec3& v : items_[order_[i]].vertices) {
+                const double d = glm::dot(normal, v);
+                low = std::min(low, d);
+                high = std::max(high, d);
+            }
+        if (high - low <= settings_.slab_thickness) {
+            PlaneTreeSlab& slab = tree_->slabs_[node];
+            for (int k = 0; k < 3; ++k) slab.normal[k] = static_cast<float>(normal[k]);
+            slab.low = float_down(low);
+            slab.high = float_up(high);
+            n.packed |= PlaneTreeNode::kSlabBit;
+            return;  // one slab a path: the slabs below are barely thinner
+        }
+    }
+    if (n.is_leaf()) return;
+    const std::size_t mid = begin + tree_->nodes_[n.first].count();
+    const std::uint32_t left = n.first;
+    mark_slabs(left, begin, mid);
+    mark_slabs(left + 1, mid, end);
+}
+
+bool PlaneTreeBuilder::choose_split(std::size_t begin, std::size_t end, Split& split) {
+    const std::size_t count = end - begin;
+    if (count <= 1) return false;
+    if (settings_.rule == PlaneSplitRule::pca_median) {
+        if (count <= std::size_t(settings_.max_leaf_size)) return false;
+        split = pca_median_split(begin, end);
+        return true;
+    }
+    return cost_based_split(begin, end, split);
+}
+
+PlaneTreeBuilder::Split PlaneTreeBuilder::pca_median_split(std::size_t begin, std::size_t end) {
+    // The write-up's rule: n = primary eigenvector of the centroids' covariance.
+    const double count = double(end - begin);
+    glm::dvec3 mean(0.0);
+    for (std::size_t i = begin; i < end; ++i) mean += items_[order_[i]].centroid;
+    mean /= count;
+    glm::dmat3 covariance(0.0);
+    for (std::size_t i = begin; i < end; ++i) {
+        const glm::dvec3 d = items_[order_[i]].centroid - mean;
+        covariance += outer(d, d);
+    }
+    const SymmetricEigen3 eigen = symmetric_eigen(covariance);
+    Split split;
+    split.normal = float_direction(eigen.vectors[0]);
+    // All centroids equal gives the identity basis, so the normal is never zero here; a cut
+    // in half is valid whatever the direction (the planes bound whatever lands on each side).
+    if (split.normal == glm::dvec3(0.0)) split.normal = {1.0, 0.0, 0.0};
+    split.left_count = (end - begin) / 2;
+    return split;
+}
+
+bool PlaneTreeBuilder::cost_based_split(std::size_t begin, std::size_t end, Split& split) {
+    const std::size_t count = end - begin;
+    glm::dvec3 mean(0.0);
+    glm::dvec3 normal_sum(0.0);
+    for (std::size_t i = begin; i < end; ++i) mean += items_[order_[i]].centroid;
+    mean /= double(count);
+    glm::dmat3 covariance(0.0), normals(0.0);
+    for (std::size_t i = begin; i < end; ++i) {
+        const Item& item = items_[order_[i]];
+        const glm::dvec3 d = item.centroid - mean;
+        covariance += outer(d, d);
+        // area * n n^T: the dominant surface normal is its primary eigenvector, whichever
+        // way the triangles face (a road and the tops of its walls agree on it).
+        const double area2 = glm::length(item.area_normal);
+        if (area2 > 0.0) normals += outer(item.area_normal, item.area_normal) * (1.0 / area2);
+    }
+    const SymmetricEigen3 centroid_axes = symmetric_eigen(covariance);
+    const glm::dvec3 surface_normal = glm::normalize(symmetric_eigen(normals).vectors[0]);
+    // The centroids' spread within the surface: P C P with P = I - N N^T. For a road patch
+    // its two principal directions are the road's local tangent and width direction.
+    const glm::dmat3 project = glm::dmat3(1.0) - outer(surface_normal, surface_normal);
+    const SymmetricEigen3 surface_axes = symmetric_eigen(project * covariance * project);
+
+    const glm::dvec3 candidates[] = {
+        centroid_axes.vectors[0], centroid_axes.vectors[1], centroid_axes.vectors[2],
+        {1.0, 0.0, 0.0},          {0.0, 1.0, 0.0},          {0.0, 0.0, 1.0},
+        surface_normal,           surface_axes.vectors[0],  surface_axes.vectors[1],
+    };
+    Split best;
+    best.cost = std::numeric_limits<double>::infinity();
+    for (const glm::dvec3& direction : candidates) evaluate_direction(begin, end, direction, best);
+    if (!(best.cost < std::numeric_limits<double>::infinity())) return false;
+    // Small nodes split only when the model predicts less work than testing them all.
+    if (count <= std::size_t(settings_.max_leaf_size) && !(best.cost < double(count)))
+        return false;
+    split = best;
+    return true;
+}
+
+void PlaneTreeBuilder::evaluate_direction(std::size_t begin, std::size_t end,
+                                          const glm::dvec3& direction, Split& best) {
+    const glm::dvec3 n = float_direction(direction);
+    if (n == glm::dvec3(0.0)) return;
+    const std::size_t count = end - begin;
+    keys_.resize(count);
+    lows_.resize(count);
+    highs_.resize(count);
+    sorted_.resize(count);
+    suffix_low_.resize(count + 1);
+    double node_low = std::numeric_limits<double>::infinity();
+    double node_high = -node_low;
+    for (std::size_t i = 0; i < count; ++i) {
+        const Item& item = items_[order_[begin + i]];
+        keys_[i] = glm::dot(n, item.centroid);
+        double lo = glm::dot(n, item.vertices[0]), hi = lo;
+        for (int k = 1; k < 3; ++k) {
+            const double d = glm::dot(n, item.vertices[std::size_t(k)]);
+            lo = std::min(lo, d);
+            hi = std::max(hi, d);
+        }
+        lows_[i] = lo;
+        highs_[i] = hi;
+        node_low = std::min(node_low, lo);
+        node_high = std::max(node_high, hi);
+        sorted_[i] = static_cast<std::uint32_t>(i);
+    }
+    // Order by centroid along n, ties by item index (order_along uses the same order).
+    std::sort(sorted_.begin(), sorted_.end(), [&](std::uint32_t a, std::uint32_t b) {
+        if (keys_[a] != keys_[b]) return keys_[a] < keys_[b];
+        return order_[begin + a] < order_[begin + b];
+    });
+    suffix_low_[count] = std::numeric_limits<double>::infinity();
+    for (std::size_t k = count; k-- > 0;) suffix_low_[k] = std::min(suffix_low_[k + 1], lows_[sorted_[k]]);
+
+    // A query that reaches this node is taken as uniform along n over [low - r, high + r];
+    // it reaches the left half-space (n.x <= left_high) with probability
+    // (left_high - low + 2r) / (high - low + 2r), the right one likewise.
+    const double r2 = 2.0 * settings_.query_radius;
+    const double span = node_high - node_low + r2;
+    double left_high = -std::numeric_limits<double>::infinity();
+    for (std::size_t k = 1; k < count; ++k) {
+        left_high = std::max(left_high, highs_[sorted_[k - 1]]);
+        const double p_left = std::min(1.0, (left_high - node_low + r2) / span);
+        const double p_right = std::min(1.0, (node_high - suffix_low_[k] + r2) / span);
+        // Equal costs (triangles that all overlap, duplicates) go to the most balanced cut,
+        // which keeps such nodes from degenerating into a chain.
+        const double imbalance = std::abs(2.0 * double(k) - double(count));
+        const double cost = 2.0 * settings_.node_cost + double(k) * p_left +
+                            double(count - k) * p_right + 1e-9 * imbalance;
+        if (cost < best.cost) {
+            best.cost = cost;
+            best.normal = n;
+            best.left_count = k;
+        }
+    }
+}
+
+void PlaneTreeBuilder::order_along(std::size_t begin, std::size_t end, const glm::dvec3& normal,
+                                   std::size_t left_count) {
+    auto less = [&](std::uint32_t a, std::uint32_t b) {
+        const double ka = glm::dot(normal, items_[a].centroid);
+        const double kb = glm::dot(normal, items_[b].centroid);
+        if (ka != kb) return ka < kb;
+        return a < b;
+    };
+    const auto first = order_.begin() + std::ptrdiff_t(begin);
+    // Only the cut matters: the smallest left_count items along n go left.
+    std::nth_element(first, first + std::ptrdiff_t(left_count), order_.begin() + std::ptrdiff_t(end),
+                     less);
+}
+
+void PlaneTreeBuilder::set_plane(PlaneTreeNode& node, std::size_t begin, std::size_t end,
+                                 const glm::dvec3& normal) const {
+    double high = -std::numeric_limits<double>::infinity();
+    for (std::size_t i = begin; i < end; ++i)
+        for (const glm::dvec3& v : items_[order_[i]].vertices) high = std::max(high, glm::dot(normal, v));
+    for (int k = 0; k < 3; ++k) node.normal[k] = static_cast<float>(normal[k]);
+    node.offset = float_up(high);
+}
+
+std::size_t PlaneTreeBuilder::bytes_used() const {
+    return items_.capacity() * sizeof(Item) +
+           (order_.capacity() + sorted_.capacity()) * sizeof(std::uint32_t) +
+           (keys_.capacity() + lows_.capacity() + highs_.capacity() + suffix_low_.capacity()) *
+               sizeof(double);
+}
+
+PlaneTree make_collider_plane_tree(const StaticCollider& collider,
+                                   const PlaneTreeSettings& settings) {
+    std::vector<NormalizedTriangle> triangles;
+    std::vector<std::uint32_t> ids;
+    triangles.reserve(collider.triangle_count());
+    ids.reserve(collider.triangle_count());
+    for (std::size_t i = 0; i < collider.mesh_triangle_count(); ++i) {
+        const auto index = static_cast<std::uint32_t>(i);
+        if (!collider.has_triangle(index)) continue;
+        triangles.push_back(collider.normalized_triangle(index));
+        ids.push_back(index);
+    }
+    PlaneTree tree;
+    PlaneTreeBuilder().build(triangles, ids, settings, tree);
+    tree.shrink_to_fit();
+    return tree;
+}
+
+}  // namespace trackphys
