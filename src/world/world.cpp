@@ -13,16 +13,23 @@
 
 namespace trackphys {
 
-World::World(std::shared_ptr<const StaticWorld> statics, WorldSettings settings)
-    : statics_(std::move(statics)), settings_(std::move(settings)) {
+World::World(std::shared_ptr<const StaticWorld> statics, WorldSettings settings,
+             ColliderPlaneTrees trees)
+    : statics_(std::move(statics)), settings_(std::move(settings)), trees_(std::move(trees)) {
     if (!statics_) throw Error("World: the static world is null");
     if (std::string why = settings_.validate(); !why.empty()) throw Error(why);
+    if (settings_.mid_phase == MidPhaseMode::precomputed_tree && trees_.empty())
+        trees_ = make_collider_plane_trees(*statics_);
+    if (settings_.mid_phase != MidPhaseMode::precomputed_tree) trees_.clear();
 }
 
 std::size_t World::add_car(const CarSpec& spec, const RigidBodyState& state) {
-    CarSlot slot{Car(spec, state), {}, {}, {}, {}, {}, {}};
-    slot.kept.resize(slot.car.ellipsoid_count());
-    slot.deepest.resize(slot.car.ellipsoid_count());
+    Car car(spec, state);
+    const std::size_t ellipsoids = car.ellipsoid_count();
+    CarSlot slot{std::move(car), MidPhase(settings_.mid_phase, *statics_, trees_), Aabb{}, {}, {}, {}, {}};
+    slot.listed.resize(ellipsoids);
+    slot.kept.resize(ellipsoids);
+    slot.deepest.resize(ellipsoids);
     cars_.push_back(std::move(slot));
     return cars_.size() - 1;
 }
@@ -40,17 +47,10 @@ void World::update() {
     }
 }
 
+// The broad phase covers every triangle the car can touch during the update: the union of
+// its ellipsoids' boxes, swept by its velocity over the update and padded by what rotation
+// and a changing velocity can add. Then steps of sub-steps, each step with its own lists.
 void World::update_car(CarSlot& slot, PhaseStopwatch& watch) {
-    gather_candidates(slot);
-    watch.lap(Phase::broad);
-    const int substeps = settings_.steps * settings_.substeps;
-    for (int s = 0; s < substeps; ++s) substep(slot, watch);
-}
-
-// The broad phase: every triangle a car can touch during this update. The car's box is the
-// union of its ellipsoids' boxes, swept by its velocity over the update and padded by what
-// rotation and a changing velocity can add.
-void World::gather_candidates(CarSlot& slot) {
     const Car& car = slot.car;
     Aabb box;
     for (std::size_t i = 0; i < car.ellipsoid_count(); ++i) box.expand(car.world_ellipsoid(i).bounds());
@@ -61,27 +61,61 @@ void World::gather_candidates(CarSlot& slot) {
     const double margin = settings_.broad_phase_margin +
                           glm::length(state.angular_velocity) * car.bounding_radius() * dt +
                           0.5 * glm::length(settings_.gravity) * dt * dt;
-    slot.candidates.clear();
-    statics_->query_aabb(swept_box(box, state.linear_velocity * dt, margin), slot.candidates);
+    begin_update(slot, swept_box(box, state.linear_velocity * dt, margin), watch);
 
-    slot.triangles.clear();
-    slot.normalized.clear();
-    for (const TriangleRef& ref : slot.candidates) {
-        const StaticCollider& collider = statics_->collider(ref.collider);
-        slot.triangles.push_back(collider.triangle(ref.triangle));
-        slot.normalized.push_back(collider.normalized_triangle(ref.triangle));
+    for (int step = 0; step < settings_.steps; ++step) {
+        list_step_candidates(slot, watch);
+        for (int s = 0; s < settings_.substeps; ++s) substep(slot, watch);
     }
-    profile_.candidates += slot.candidates.size();
+}
+
+// Gathering the broad-phase list is the broad phase; building a tree over it is the
+// write-up's per-update mid phase.
+void World::begin_update(CarSlot& slot, const Aabb& box, PhaseStopwatch& watch) {
+    slot.update_box = box;
+    slot.mid.begin_update(box);
+    profile_.candidates += slot.mid.broad_phase_candidate_count();
+    watch.lap(settings_.mid_phase == MidPhaseMode::per_update_tree ? Phase::mid : Phase::broad);
+}
+
+// The mid phase, once per step: each ellipsoid's triangles for the step's sub-steps, from
+// the ellipsoid swept by its velocity over the step and grown for rotation and for up to
+// 10 m/s of velocity change.
+void World::list_step_candidates(CarSlot& slot, PhaseStopwatch& watch) {
+    const Car& car = slot.car;
+    const RigidBodyState& state = car.state();
+    const double step_dt = settings_.dt_update / settings_.steps;
+    const double spin = glm::length(state.angular_velocity);
+    for (std::size_t i = 0; i < car.ellipsoid_count(); ++i) {
+        const Ellipsoid ellipsoid = car.world_ellipsoid(i);
+        const glm::dvec3 end = ellipsoid.center() + point_velocity(state, ellipsoid.center()) * step_dt;
+        const double margin = spin * ellipsoid.bounding_radius() * step_dt + 10.0 * step_dt;
+        // A step that leaves the update's box (a car thrown off its course by an impact)
+        // widens the box first: the mid phase only knows the triangles inside it.
+        Aabb reach = ellipsoid.bounds();
+        reach.expand(Aabb{reach.min + (end - ellipsoid.center()), reach.max + (end - ellipsoid.center())});
+        reach = reach.padded(margin);
+        if (!(slot.update_box.contains(reach.min) && slot.update_box.contains(reach.max))) {
+            Aabb wider = slot.update_box;
+            wider.expand(reach.padded(settings_.broad_phase_margin));
+            watch.lap(Phase::mid);
+            begin_update(slot, wider, watch);
+        }
+        std::vector<MidPhaseCandidate>& listed = slot.listed[i];
+        listed.clear();
+        slot.mid.query_swept_ellipsoid(ellipsoid, end, margin, listed);
+        if (settings_.mid_phase == MidPhaseMode::precomputed_tree) profile_.candidates += listed.size();
+    }
+    watch.lap(Phase::mid);
 }
 
 void World::substep(CarSlot& slot, PhaseStopwatch& watch) {
     Car& car = slot.car;
     const std::size_t ellipsoids = car.ellipsoid_count();
-    const std::size_t candidates = slot.normalized.size();
 
-    // Cull: each ellipsoid's bounding sphere against every candidate's cheap frame test,
-    // then the ellipsoid's own extent along the survivors' frame axes, which also bounds
-    // how deep each survivor can be.
+    // Cull: each ellipsoid's bounding sphere against its listed triangles' cheap frame
+    // test, then the ellipsoid's own extent along the survivors' frame axes, which also
+    // bounds how deep each survivor can be.
     slot.placed.clear();
     for (std::size_t i = 0; i < ellipsoids; ++i) {
         slot.placed.push_back(car.world_ellipsoid(i));
@@ -89,13 +123,13 @@ void World::substep(CarSlot& slot, PhaseStopwatch& watch) {
         const double radius = ellipsoid.bounding_radius();
         std::vector<Survivor>& kept = slot.kept[i];
         kept.clear();
-        for (std::uint32_t c = 0; c < candidates; ++c) {
-            if (!slot.normalized[c].may_touch_sphere(ellipsoid.center(), radius)) continue;
-            const double bound = ellipsoid_depth_bound(slot.normalized[c], ellipsoid);
-            if (bound > 0.0) kept.push_back({c, bound});
+        for (const MidPhaseCandidate& c : slot.listed[i]) {
+            if (!c.triangle->may_touch_sphere(ellipsoid.center(), radius)) continue;
+            const double bound = ellipsoid_depth_bound(*c.triangle, ellipsoid);
+            if (bound > 0.0) kept.push_back({c.ref, bound});
         }
+        profile_.culled_tests += slot.listed[i].size();
     }
-    profile_.culled_tests += ellipsoids * candidates;
     profile_.ellipsoid_substeps += ellipsoids;
     watch.lap(Phase::cull);
 
@@ -113,7 +147,8 @@ void World::substep(CarSlot& slot, PhaseStopwatch& watch) {
                                                       }));
         for (const Survivor& s : kept) {
             if (!(s.depth_bound > deepest.depth)) continue;
-            const Contact contact = ellipsoid_triangle_contact(slot.placed[i], slot.triangles[s.candidate]);
+            const Triangle triangle = statics_->collider(s.ref.collider).triangle(s.ref.triangle);
+            const Contact contact = ellipsoid_triangle_contact(slot.placed[i], triangle);
             ++profile_.exact_tests;
             if (contact.depth > deepest.depth) deepest = contact;
         }

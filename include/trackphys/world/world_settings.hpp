@@ -4,6 +4,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "trackphys/collision/mid_phase.hpp"
 #include "trackphys/export.hpp"
 
 namespace trackphys {
@@ -17,6 +18,9 @@ struct TRACKPHYS_API WorldSettings {
     glm::dvec3 gravity{0.0, -9.81, 0.0};        ///< m/s^2, world +Y is up
     /// Extra broad-phase padding (m) beyond what the car can move in one update.
     double broad_phase_margin = 0.05;
+    /// How each step's candidates are found (see MidPhaseMode; the default was measured
+    /// fastest by bench_midphase).
+    MidPhaseMode mid_phase = kDefaultMidPhaseMode;
     /// Measure per-phase times in the UpdateProfile (reads the clock a few times per
     /// sub-step); counts are kept either way.
     bool profile = true;
