@@ -28,11 +28,13 @@
 
 namespace trackphys::peers {
 
-/// One case: the ellipsoid, the triangle and the reference depth (m, > 0 overlapping).
+/// One case: the ellipsoid, the triangle, the reference depth (m, > 0 overlapping) and the
+/// generator's kind (road, edge, vertex, deep, miss).
 struct PeerCase {
     Ellipsoid ellipsoid;
     Triangle triangle;
     double reference_depth;
+    test::ContactKind kind;
 };
 
 /// A named case set: "hard_mix" (the benchmark's mix, 75% overlapping) or "road_shallow".
@@ -65,12 +67,19 @@ inline std::vector<CaseSet> make_case_sets(std::size_t hard, std::size_t road) {
     test::ContactCaseGenerator hard_generator(777, /*wheel_and_body=*/true);
     test::ContactCaseGenerator road_generator(777, /*wheel_and_body=*/true);
     const auto add = [](CaseSet& set, const test::ContactCase& c) {
-        set.cases.push_back({c.ellipsoid, c.triangle, reference_depth(c.ellipsoid, c.triangle)});
+        set.cases.push_back(
+            {c.ellipsoid, c.triangle, reference_depth(c.ellipsoid, c.triangle), c.kind});
     };
     for (std::size_t i = 0; i < hard; ++i) add(sets[0], hard_generator.hard_mix());
     for (std::size_t i = 0; i < road; ++i) add(sets[1], road_generator.make(test::ContactKind::road));
     return sets;
 }
+
+/// A method's depth errors on the cases of one kind.
+struct KindErrors {
+    std::size_t cases = 0, over_1mm = 0;
+    double max = 0;  ///< m
+};
 
 /// One method's figures on one set.
 struct MethodResult {
@@ -82,6 +91,7 @@ struct MethodResult {
     std::size_t touch_disagreements = 0;  ///< (depth > 0) != (reference > 0)
     std::size_t over_1mm = 0;  ///< cases whose depth is off by more than 1 mm
     std::size_t failures = 0;  ///< the peer reported a failure (its depth counted as 0)
+    std::array<KindErrors, std::size_t(test::ContactKind::count)> by_kind{};
 };
 
 /// What a method returns for one case: the signed depth (m) and whether it failed.
@@ -108,6 +118,10 @@ MethodResult measure(const std::string& method, const CaseSet& set, Query&& quer
         result.failures += got.failed || !std::isfinite(got.depth);
         error[i] = std::abs(depth - reference);
         result.over_1mm += error[i] > 1e-3;
+        KindErrors& kind = result.by_kind[std::size_t(set.cases[i].kind)];
+        ++kind.cases;
+        kind.over_1mm += error[i] > 1e-3;
+        kind.max = std::max(kind.max, error[i]);
         result.touch_disagreements += (depth > 0.0) != (reference > 0.0);
     }
     double sum = 0;
@@ -176,6 +190,15 @@ inline void print_table(const std::vector<MethodResult>& results) {
                     r.error_median, r.error_p99, r.error_max, r.over_1mm, r.touch_disagreements,
                     r.failures, slower, worse);
     }
+    std::printf("\nby kind: max |depth error| (m) / cases off by more than 1 mm / cases\n");
+    for (const MethodResult& r : results) {
+        std::printf("%-26s %-13s", r.method.c_str(), r.set.c_str());
+        for (std::size_t k = 0; k < r.by_kind.size(); ++k)
+            if (r.by_kind[k].cases > 0)
+                std::printf("  %s %.3g/%zu/%zu", test::contact_kind_name(test::ContactKind(k)),
+                            r.by_kind[k].max, r.by_kind[k].over_1mm, r.by_kind[k].cases);
+        std::printf("\n");
+    }
 }
 
 /// Writes {"program": ..., "repeat": ..., "results": [...]} (units: ns and metres).
@@ -196,11 +219,19 @@ inline bool write_json(const std::string& path, const char* program,
                      "\"median_ns\": %.6g, \"mean_ns\": %.6g, \"depth_error_median_m\": %.6g, "
                      "\"depth_error_p99_m\": %.6g, \"depth_error_max_m\": %.6g, "
                      "\"depth_error_over_1mm\": %zu, \"touch_disagreements\": %zu, "
-                     "\"failures\": %zu}%s\n",
+                     "\"failures\": %zu, \"by_kind\": {",
                      r.method.c_str(), r.set.c_str(), r.cases, r.median_ns, r.mean_ns,
                      r.error_median, r.error_p99, r.error_max, r.over_1mm,
-                     r.touch_disagreements, r.failures,
-                     i + 1 < results.size() ? "," : "");
+                     r.touch_disagreements, r.failures);
+        const char* separator = "";
+        for (std::size_t k = 0; k < r.by_kind.size(); ++k)
+            if (r.by_kind[k].cases > 0) {
+                std::fprintf(f, "%s\"%s\": {\"cases\": %zu, \"over_1mm\": %zu, \"max_m\": %.6g}",
+                             separator, test::contact_kind_name(test::ContactKind(k)),
+                             r.by_kind[k].cases, r.by_kind[k].over_1mm, r.by_kind[k].max);
+                separator = ", ";
+            }
+        std::fprintf(f, "}}%s\n", i + 1 < results.size() ? "," : "");
     }
     std::fprintf(f, "  ]\n}\n");
     return std::fclose(f) == 0;
