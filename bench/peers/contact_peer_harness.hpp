@@ -20,6 +20,7 @@
 #include <functional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "support/contact_cases.hpp"
@@ -241,10 +242,23 @@ inline bool write_json(const std::string& path, const char* program,
 /// everything ran, ours met its own contract (error <= 1e-9 m on every case) and every peer
 /// answered and agreed on touching or not on at least 90% of the cases (less means the
 /// adapter is broken - a sign convention, a margin left on - not that the peer is weak).
-inline int run_contact_peers(
-    int argc, char** argv, const char* program,
-    const std::vector<std::pair<std::string,
-                                std::function<PeerDepth(const PeerCase&)>>>& peers) {
+/// A peer method: its name and, per case set, the query for case i. prepare runs untimed,
+/// so a peer can build what a real user would keep between queries (FCL's convex shapes).
+struct Peer {
+    std::string name;
+    std::function<std::function<PeerDepth(std::size_t)>(const CaseSet&)> prepare;
+};
+
+/// A peer that needs nothing prepared: `query` answers one case.
+inline Peer per_case(std::string name, std::function<PeerDepth(const PeerCase&)> query) {
+    return {std::move(name), [query](const CaseSet& set) {
+                return std::function<PeerDepth(std::size_t)>(
+                    [&set, query](std::size_t i) { return query(set.cases[i]); });
+            }};
+}
+
+inline int run_contact_peers(int argc, char** argv, const char* program,
+                             const std::vector<Peer>& peers) {
     const Options options = parse_options(argc, argv, program);
     std::fprintf(stderr, "%s: generating cases and long-double references...\n", program);
     const std::vector<CaseSet> sets =
@@ -253,9 +267,10 @@ inline int run_contact_peers(
     for (const CaseSet& set : sets) {
         std::fprintf(stderr, "%s: %s (%zu cases)\n", program, set.name.c_str(), set.cases.size());
         results.push_back(measure_ours(set));
-        for (const auto& [name, peer] : peers)
-            results.push_back(
-                measure(name, set, [&](std::size_t i) { return peer(set.cases[i]); }));
+        for (const Peer& peer : peers) {
+            const std::function<PeerDepth(std::size_t)> query = peer.prepare(set);
+            results.push_back(measure(peer.name, set, query));
+        }
     }
     print_table(results);
     bool ok = true;

@@ -110,5 +110,6 @@ int main(int argc, char** argv) {
     const char* program = "bench_peers_contact_bullet_float";
     const char* method = "bullet_float_gjk_epa";
 #endif
-    return trackphys::peers::run_contact_peers(argc, argv, program, {{method, bullet_gjk_epa}});
+    return trackphys::peers::run_contact_peers(
+        argc, argv, program, {trackphys::peers::per_case(method, bullet_gjk_epa)});
 }
