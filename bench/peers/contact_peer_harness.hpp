@@ -9,7 +9,9 @@
 // (warm caches and predictors, as in a contact loop over a car's candidates); the case's
 // time is the mean of those calls. median_ns and mean_ns are over cases. The depth error
 // of a method is |its depth - the reference depth| in metres; "touch" counts the cases where
-// it disagrees with the reference on touching or not (depth > 0).
+// it disagrees with the reference on touching or not (depth > 0). Columns x_slower = median
+// / ours's median and x_err_max = err_max / max(ours's err_max, 1e-15 m), on the same set.
+// Sets: 20k hard-mix and 5k road cases (400 and 200 with --quick).
 
 #include <algorithm>
 #include <array>
