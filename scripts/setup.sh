@@ -17,6 +17,10 @@ required=(
              # against assimp::assimp fails ("No rule to make target .../libz.so")
   nlohmann-json3-dev # JSON output of the command line tool
   libcli11-dev # command line parsing of the trackphys tool
+  libbullet-dev # peer benchmarks (bench/peers): Bullet's GJK/EPA and quantized BVH, float
+                # and double builds; optional: without it those programs are not built
+  libfcl-dev # peer benchmarks (bench/peers): FCL's ellipsoid-triangle contact (libccd and
+             # its own GJK); optional like libbullet-dev
 )
 
 missing=()
