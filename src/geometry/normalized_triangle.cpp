@@ -4,6 +4,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "geometry/triangle_frame.hpp"
+
 namespace trackphys {
 
 NormalizedTriangle::NormalizedTriangle(const Triangle& triangle) {
@@ -19,20 +21,16 @@ NormalizedTriangle::NormalizedTriangle(const Triangle& triangle) {
         }
     }
     origin = triangle[start];
-    const glm::dvec3 edge = triangle[(start + 1) % 3] - origin;
-    const glm::dvec3 to_third = triangle[(start + 2) % 3] - origin;
-
-    x1 = glm::length(edge);
-    dir_x = x1 > 0.0 ? edge / x1 : glm::dvec3(1.0, 0.0, 0.0);
-    const glm::dvec3 area_normal = glm::cross(edge, to_third);
-    const double twice_area = glm::length(area_normal);
-    normal = twice_area > 0.0 ? area_normal / twice_area : glm::dvec3(0.0, 1.0, 0.0);
-    dir_y = glm::cross(normal, dir_x);
-
+    const geometry_detail::TriangleFrame frame = geometry_detail::make_triangle_frame(
+        origin, triangle[(start + 1) % 3], triangle[(start + 2) % 3]);
+    dir_x = frame.dir_x;
+    dir_y = frame.dir_y;
+    normal = frame.normal;
+    x1 = frame.x1;
     // Exact arithmetic puts x2 in [0, x1] and y2 > 0; clamp away the last-bit rounding so
     // the cull's box [0, x1] x [0, y2] is the contract the tests check.
-    x2 = std::clamp(glm::dot(to_third, dir_x), 0.0, x1);
-    y2 = std::max(glm::dot(to_third, dir_y), 0.0);
+    x2 = std::clamp(frame.x2, 0.0, x1);
+    y2 = std::max(frame.y2, 0.0);
 }
 
 glm::dvec3 NormalizedTriangle::vertex(int i) const {

@@ -4,20 +4,20 @@
 
 #include <glm/geometric.hpp>
 
+#include "geometry/triangle_frame.hpp"
+
 namespace trackphys {
 
 ArbitraryOriginTriangle::ArbitraryOriginTriangle(const Triangle& triangle) {
     origin = triangle[0];
-    const glm::dvec3 edge = triangle[1] - origin;
-    const glm::dvec3 to_third = triangle[2] - origin;
-    x1 = glm::length(edge);
-    dir_x = x1 > 0.0 ? edge / x1 : glm::dvec3(1.0, 0.0, 0.0);
-    const glm::dvec3 area_normal = glm::cross(edge, to_third);
-    const double twice_area = glm::length(area_normal);
-    normal = twice_area > 0.0 ? area_normal / twice_area : glm::dvec3(0.0, 1.0, 0.0);
-    dir_y = glm::cross(normal, dir_x);
-    x2 = glm::dot(to_third, dir_x);
-    y2 = std::max(glm::dot(to_third, dir_y), 0.0);
+    const geometry_detail::TriangleFrame frame =
+        geometry_detail::make_triangle_frame(origin, triangle[1], triangle[2]);
+    dir_x = frame.dir_x;
+    dir_y = frame.dir_y;
+    normal = frame.normal;
+    x1 = frame.x1;
+    x2 = frame.x2;
+    y2 = std::max(frame.y2, 0.0);
 }
 
 bool ArbitraryOriginTriangle::may_touch_sphere_xyz(const glm::dvec3& center,

@@ -10,40 +10,34 @@
 
 namespace trackphys::test {
 
-/// A flat square of ground at height y, centred on (0, y, 0), of cells x cells squares
-/// (two triangles each, normals up): the finer, the more seams a car crosses.
-inline TriangleMesh flat_grid(double size, int cells, double y = 0.0) {
+/// Flat ground at height y over [x0, x1] x [z0, z1], in nx x nz rectangles of two
+/// triangles each, normals up: the finer, the more seams a car crosses.
+inline TriangleMesh flat_grid(double x0, double x1, double z0, double z1, int nx, int nz,
+                              double y = 0.0) {
     TriangleMesh mesh;
-    const double step = size / cells;
-    for (int i = 0; i <= cells; ++i)
-        for (int j = 0; j <= cells; ++j)
-            mesh.vertices.push_back({-0.5 * size + i * step, y, -0.5 * size + j * step});
-    const auto at = [&](int i, int j) { return static_cast<std::uint32_t>(i * (cells + 1) + j); };
-    for (int i = 0; i < cells; ++i)
-        for (int j = 0; j < cells; ++j) {
-            // (x, z) counter-clockwise seen from above (+Y): x then -z.
+    for (int i = 0; i <= nx; ++i)
+        for (int j = 0; j <= nz; ++j)
+            mesh.vertices.push_back({x0 + (x1 - x0) * i / nx, y, z0 + (z1 - z0) * j / nz});
+    const auto at = [&](int i, int j) { return static_cast<std::uint32_t>(i * (nz + 1) + j); };
+    for (int i = 0; i < nx; ++i)
+        for (int j = 0; j < nz; ++j) {
+            // (x, z) counter-clockwise seen from above (+Y): +z first, then +x.
             mesh.triangles.push_back({at(i, j), at(i, j + 1), at(i + 1, j + 1)});
             mesh.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i + 1, j)});
         }
     return mesh;
 }
 
+/// A flat square of ground centred on (0, y, 0), size metres wide, in cells x cells squares.
+inline TriangleMesh flat_grid(double size, int cells, double y = 0.0) {
+    return flat_grid(-0.5 * size, 0.5 * size, -0.5 * size, 0.5 * size, cells, cells, y);
+}
+
 /// A long straight road along +Z from z = 0 to z = length, width wide, in cells of about
 /// cell metres, at height 0.
 inline TriangleMesh straight_road(double length, double width, double cell) {
-    TriangleMesh mesh;
-    const int along = static_cast<int>(length / cell);
-    const int across = static_cast<int>(width / cell);
-    for (int i = 0; i <= across; ++i)
-        for (int j = 0; j <= along; ++j)
-            mesh.vertices.push_back({-0.5 * width + width * i / across, 0.0, length * j / along});
-    const auto at = [&](int i, int j) { return static_cast<std::uint32_t>(i * (along + 1) + j); };
-    for (int i = 0; i < across; ++i)
-        for (int j = 0; j < along; ++j) {
-            mesh.triangles.push_back({at(i, j), at(i, j + 1), at(i + 1, j + 1)});
-            mesh.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i + 1, j)});
-        }
-    return mesh;
+    return flat_grid(-0.5 * width, 0.5 * width, 0.0, length, static_cast<int>(width / cell),
+                     static_cast<int>(length / cell));
 }
 
 /// A vertical wall across +Z at z = z0, facing -Z (towards a car coming from z < z0),
