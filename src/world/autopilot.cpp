@@ -26,6 +26,25 @@ double cornering_speed_limit(double radius, double bank, double mu, double k) {
     return std::sqrt(g * (std::sin(bank) + mu * std::cos(bank)) / demand);
 }
 
+// Curvature of the road over a crest (1/m, > 0 where the road falls away from the car):
+// minus the rate at which the tangent turns towards the road's up, from the neighbours.
+double vertical_curvature(const std::vector<CenterlineSample>& c, std::size_t i, double length) {
+    const std::size_t n = c.size();
+    const CenterlineSample& before = c[(i + n - 1) % n];
+    const CenterlineSample& after = c[(i + 1) % n];
+    double span = after.distance - before.distance;
+    if (span <= 0.0) span += length;
+    return -glm::dot(after.tangent - before.tangent, c[i].up) / span;
+}
+
+// Over a crest of curvature kappa the road's push may not fall to zero: the car needs
+// v^2 kappa <= g + k v^2 (gravity and downforce hold it down), with a third in reserve.
+double crest_speed_limit(double kappa, double k) {
+    const double demand = kappa - k;
+    if (demand <= 0.0) return std::numeric_limits<double>::infinity();
+    return std::sqrt(2.0 / 3.0 * g / demand);
+}
+
 }  // namespace
 
 Autopilot::Autopilot(const Track& track, const CarSpec& car, AutopilotSettings settings)
@@ -43,7 +62,8 @@ Autopilot::Autopilot(const Track& track, const CarSpec& car, AutopilotSettings s
     max_steer_angle_ = car.max_steer_angle;
 
     // Speed profile: each sample's cornering limit (the bank helps only when it leans into
-    // the turn), then a backward pass so the car can brake down to every limit in time.
+    // the turn) and crest limit, then a backward pass so the car can brake down to every
+    // limit in time.
     const double mu = settings_.grip_use * car.wheel_contact.friction;
     const double k = 0.5 * car.air_density * car.downforce_area / car.mass.mass;
     const std::size_t n = centerline_.size();
@@ -53,7 +73,8 @@ Autopilot::Autopilot(const Track& track, const CarSpec& car, AutopilotSettings s
         const double radius = 1.0 / std::max(std::abs(s.curvature), 1e-9);
         const double bank_into_turn = s.curvature >= 0.0 ? s.bank : -s.bank;
         planned_speed_[i] =
-            std::min(settings_.target_speed, cornering_speed_limit(radius, bank_into_turn, mu, k));
+            std::min({settings_.target_speed, cornering_speed_limit(radius, bank_into_turn, mu, k),
+                      crest_speed_limit(vertical_curvature(centerline_, i, length_), k)});
     }
     // Two laps backwards so the limit carries across the start line.
     for (std::size_t step = 0; step < 2 * n; ++step) {
