@@ -253,7 +253,7 @@ void BM_SplitQuality(benchmark::State& state) {
         const std::size_t e = which(rng);
         const CarEllipsoid& ce = s.car.ellipsoids[e];
         const glm::dvec3 start = c.position + c.left * (lateral(rng) + ce.center.x) +
-                                 c.up * (TightestTurnScene::kRideHeight + ce.center.y);
+                                 c.up * (s.ride_height + ce.center.y);
         const glm::dvec3 end = start + c.tangent * (TightestTurnScene::kSpeed * 0.001);
         const glm::dquat q = glm::quat_cast(glm::dmat3(c.left, c.up, c.tangent));
         queries.push_back({start, end, s.bounding_radius(e), Ellipsoid(start, q, ce.semi_axes)});

@@ -26,8 +26,9 @@ struct TightestTurnScene {
     static constexpr int kStepSubsteps = 4;   ///< sub-steps per step (10 steps)
     static constexpr double kSpeed = 1000.0 / 3.6;
     static constexpr double kSubstepDt = 0.01 / kSubsteps;
-    /// wheel centre depth below the centre of mass + wheel radius - sag (m)
-    static constexpr double kRideHeight = 0.30 + 0.35 - 0.01;
+    /// Height of the centre of mass above the road (m): the car's lowest point (its wheels,
+    /// at full droop) 1 cm into the road, as a loaded tyre sits.
+    double ride_height = 0.0;
 
     Track track;
     CenterlineSample turn;
@@ -41,6 +42,9 @@ struct TightestTurnScene {
         track = generate_track(params);
         turn = track.centerline[compute_track_stats(track).tightest_sample];
         update_box = car_update_box(turn);
+        for (const CarEllipsoid& e : car.ellipsoids)
+            ride_height = std::max(ride_height, -Ellipsoid(e.center, e.orientation, e.semi_axes).bounds().min.y);
+        ride_height -= 0.01;
         // Body frame +X left, +Y up, +Z forward: the columns are the road frame there.
         car_orientation = glm::quat_cast(glm::dmat3(turn.left, turn.up, turn.tangent));
     }
@@ -49,7 +53,7 @@ struct TightestTurnScene {
     glm::dvec3 center(std::size_t e, int substep) const {
         const CarEllipsoid& ce = car.ellipsoids[e];
         const glm::dvec3 origin = turn.position + turn.tangent * (kSpeed * kSubstepDt * substep) +
-                                  turn.up * kRideHeight;
+                                  turn.up * ride_height;
         return origin + turn.left * ce.center.x + turn.up * ce.center.y +
                turn.tangent * ce.center.z;
     }
