@@ -17,15 +17,17 @@ namespace {
 struct TrackWorld {
     Track track;
     std::shared_ptr<const StaticWorld> statics;
+    ColliderPlaneTrees trees;  ///< built once, shared by every world of a test
 };
 
 TrackWorld make_track_world(std::uint64_t seed) {
     TrackParams params;
     params.seed = seed;
-    TrackWorld tw{generate_track(params), nullptr};
+    TrackWorld tw{generate_track(params), nullptr, {}};
     auto statics = std::make_shared<StaticWorld>();
     for (const TrackChunk& chunk : tw.track.chunks) statics->add(std::make_shared<StaticCollider>(chunk.mesh));
     tw.statics = std::move(statics);
+    tw.trees = make_collider_plane_trees(*tw.statics);
     return tw;
 }
 
@@ -44,7 +46,7 @@ RigidBodyState on_start_line(const Track& track) {
 
 void drive_a_lap(double target_kmh, const TrackWorld& tw = default_track()) {
     const CarSpec spec = CarSpec::default_car();
-    World world(tw.statics);
+    World world(tw.statics, WorldSettings{}, tw.trees);
     world.add_car(spec, on_start_line(tw.track));
     AutopilotSettings settings;
     settings.target_speed = target_kmh / 3.6;
@@ -120,6 +122,35 @@ TEST(Autopilot, ReachesThousandKmHOnAStraightAndBrakesToAStop) {
     }
     EXPECT_GE(top, 1000.0 / 3.6);
     EXPECT_LT(world.car(0).speed(), 0.1) << "stopped";
+}
+
+}  // namespace
+}  // namespace trackphys
+
+namespace trackphys {
+namespace {
+
+// The mid phase only changes how triangles are found, never which contacts win: three
+// seconds of driving in every mode end in the same state.
+TEST(Autopilot, EveryMidPhaseModeDrivesTheSame) {
+    const TrackWorld& tw = default_track();
+    const CarSpec spec = CarSpec::default_car();
+    std::vector<glm::dvec3> finals;
+    for (const MidPhaseMode mode :
+         {MidPhaseMode::none, MidPhaseMode::per_update_tree, MidPhaseMode::precomputed_tree}) {
+        WorldSettings settings;
+        settings.mid_phase = mode;
+        World world(tw.statics, settings, tw.trees);
+        world.add_car(spec, on_start_line(tw.track));
+        Autopilot pilot(tw.track, spec);
+        for (int i = 0; i < 300; ++i) {
+            world.car(0).set_inputs(pilot.drive(world.car(0)));
+            world.update();
+        }
+        finals.push_back(world.car(0).state().position);
+    }
+    EXPECT_LE(glm::length(finals[1] - finals[0]), 1e-9);
+    EXPECT_LE(glm::length(finals[2] - finals[0]), 1e-9);
 }
 
 }  // namespace
