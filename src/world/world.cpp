@@ -26,10 +26,11 @@ World::World(std::shared_ptr<const StaticWorld> statics, WorldSettings settings,
 std::size_t World::add_car(const CarSpec& spec, const RigidBodyState& state) {
     Car car(spec, state);
     const std::size_t ellipsoids = car.ellipsoid_count();
-    CarSlot slot{std::move(car), MidPhase(settings_.mid_phase, *statics_, trees_), Aabb{}, {}, {}, {}, {}};
+    CarSlot slot{std::move(car), MidPhase(settings_.mid_phase, *statics_, trees_), Aabb{}, {}, {}, {}, {}, {}};
     slot.listed.resize(ellipsoids);
     slot.kept.resize(ellipsoids);
     slot.deepest.resize(ellipsoids);
+    slot.deepest_ref.resize(ellipsoids, TriangleRef{~0u, ~0u});
     cars_.push_back(std::move(slot));
     return cars_.size() - 1;
 }
@@ -141,16 +142,25 @@ void World::substep(CarSlot& slot, PhaseStopwatch& watch) {
         deepest.depth = -std::numeric_limits<double>::infinity();
         std::vector<Survivor>& kept = slot.kept[i];
         if (kept.empty()) continue;
-        std::iter_swap(kept.begin(), std::max_element(kept.begin(), kept.end(),
-                                                      [](const Survivor& a, const Survivor& b) {
-                                                          return a.depth_bound < b.depth_bound;
-                                                      }));
+        // Last sub-step's deepest triangle is most likely the deepest again; else the one
+        // with the deepest bound.
+        auto first = std::find_if(kept.begin(), kept.end(), [&](const Survivor& s) {
+            return s.ref.collider == slot.deepest_ref[i].collider && s.ref.triangle == slot.deepest_ref[i].triangle;
+        });
+        if (first == kept.end())
+            first = std::max_element(kept.begin(), kept.end(), [](const Survivor& a, const Survivor& b) {
+                return a.depth_bound < b.depth_bound;
+            });
+        std::iter_swap(kept.begin(), first);
         for (const Survivor& s : kept) {
             if (!(s.depth_bound > deepest.depth)) continue;
             const Triangle triangle = statics_->collider(s.ref.collider).triangle(s.ref.triangle);
             const Contact contact = ellipsoid_triangle_contact(slot.placed[i], triangle);
             ++profile_.exact_tests;
-            if (contact.depth > deepest.depth) deepest = contact;
+            if (contact.depth > deepest.depth) {
+                deepest = contact;
+                slot.deepest_ref[i] = s.ref;
+            }
         }
         profile_.contacts += deepest.depth > 0.0;
     }

@@ -86,6 +86,7 @@ private:
         std::vector<Ellipsoid> placed;                        // the ellipsoids, this sub-step
         std::vector<std::vector<Survivor>> kept;              // per ellipsoid: culled survivors
         std::vector<Contact> deepest;                         // per ellipsoid, this sub-step
+        std::vector<TriangleRef> deepest_ref;                 // its triangle, tried first next
     };
 
     void update_car(CarSlot& slot, PhaseStopwatch& watch);
