@@ -52,8 +52,6 @@ public:
     double suspension(std::size_t i) const { return suspension_[i]; }
     /// Radius about the centre of mass of a sphere holding every ellipsoid (m).
     double bounding_radius() const { return bounding_radius_; }
-    /// World box of the car's bounding sphere at the current state.
-    Aabb world_bounds() const { return Aabb{state_.position, state_.position}.padded(bounding_radius_); }
 
     /// Speed of the centre of mass (m/s).
     double speed() const;

@@ -31,8 +31,6 @@ public:
     Summary phase_us(Phase phase) const {
         return summarize(phase_us_[static_cast<std::size_t>(phase)]);
     }
-    /// The per-update time series, in order (for plots).
-    const std::vector<double>& update_series_us() const { return update_us_; }
 
     double mean_candidates() const;
     double mean_exact_tests() const;

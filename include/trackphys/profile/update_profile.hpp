@@ -58,10 +58,6 @@ public:
         last_ = now;
     }
 
-    /// Forgets the time since the last lap (work that belongs to no phase).
-    void skip() {
-        if (enabled_) last_ = Clock::now();
-    }
 
 private:
     UpdateProfile& profile_;
