@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include <glm/geometric.hpp>
 
@@ -477,23 +478,23 @@ bool lexicographic_less(const glm::dvec3& a, const glm::dvec3& b) {
     return (a.x < b.x) | ((a.x == b.x) & ((a.y < b.y) | ((a.y == b.y) & (a.z < b.z))));
 }
 
-/// The vertex ranks in lexicographic order (ties keep the given order): sigma does not
-/// depend on the order or winding, and solving in a canonical order makes the rounded result
-/// bit-identical for every permutation.
-std::array<int, 3> vertex_ranks(const Triangle& t) {
-    const bool l10 = lexicographic_less(t[1], t[0]);
-    const bool l20 = lexicographic_less(t[2], t[0]);
-    const bool l21 = lexicographic_less(t[2], t[1]);
-    return {int(l10) + int(l20), int(!l10) + int(l21), int(!l20) + int(!l21)};
+/// The vertex order that sorts the triangle lexicographically, ties keeping the given order
+/// (a stable three-element sorting network): sigma does not depend on the order or winding,
+/// and solving in a canonical order makes the rounded result bit-identical for every
+/// permutation. Built from swaps, it is a permutation even when a NaN makes the comparisons
+/// inconsistent (ranks counted from them could repeat and index past the triangle): the NaN
+/// vertex still reaches the extent check below, which sends it to the -infinity answer.
+std::array<int, 3> canonical_order(const Triangle& t) {
+    std::array<int, 3> order = {0, 1, 2};
+    if (lexicographic_less(t[order[1]], t[order[0]])) std::swap(order[0], order[1]);
+    if (lexicographic_less(t[order[2]], t[order[1]])) std::swap(order[1], order[2]);
+    if (lexicographic_less(t[order[1]], t[order[0]])) std::swap(order[0], order[1]);
+    return order;
 }
 
-/// The triangle's vertices in canonical order: slot k holds the vertex of rank k, read
-/// through a computed index (indexed stores would stall the vector loads that follow).
-std::array<glm::dvec3, 3> canonical_vertices(const Triangle& t, const std::array<int, 3>& rank) {
-    std::array<glm::dvec3, 3> out;
-    for (int k = 0; k < 3; ++k)
-        out[static_cast<std::size_t>(k)] = t[int(rank[1] == k) + 2 * int(rank[2] == k)];
-    return out;
+/// The triangle's vertices in canonical order.
+std::array<glm::dvec3, 3> canonical_vertices(const Triangle& t, const std::array<int, 3>& order) {
+    return {t[order[0]], t[order[1]], t[order[2]]};
 }
 
 /// For configurations whose lengths span more than double's squares can hold (the ellipsoid
@@ -507,9 +508,17 @@ Contact point_like_contact(const Ellipsoid& ellipsoid, const std::array<glm::dve
     for (int i = 0; i < 3; ++i) w[i] = v[i] / scale;
     const glm::dvec3 z = closest_point_on_triangle(c, w[0], w[1], w[2]);
     glm::dvec3 u = c - z;
-    const double distance = glm::length(u);
-    if (distance > 0.0) {
-        u /= distance;
+    // The center can sit far below the scale that brings the triangle near 1 (c ~ 1e-159 when
+    // the triangle spans 1e170 around a center at 1e11): squaring such components gives
+    // subnormals, whose lost bits left |u| 2e-7 off unit (found by fuzz_contact). Dividing
+    // by the largest component first keeps the squares in [0, 3].
+    const double largest = std::max({std::abs(u.x), std::abs(u.y), std::abs(u.z)});
+    double distance = 0.0;
+    if (largest > 0.0) {
+        u /= largest;
+        const double length = glm::length(u);
+        u /= length;
+        distance = largest * length;
     } else {
         const glm::dvec3 n = glm::cross(w[1] - w[0], w[2] - w[0]);
         const double length = glm::length(n);
@@ -556,10 +565,10 @@ Contact ellipsoid_triangle_contact(const Ellipsoid& ellipsoid, const Triangle& t
     const glm::dvec3& c = ellipsoid.center();
     const glm::dmat3& axes = ellipsoid.sorted_axes();
     const glm::dvec3& radii = ellipsoid.sorted_radii();
-    const std::array<int, 3> rank = vertex_ranks(triangle);
+    const std::array<int, 3> order = canonical_order(triangle);
     detail::LocalTriangle local;
     for (int k = 0; k < 3; ++k)  // row vector * M = M^T * column
-        local.q[k] = (triangle[int(rank[1] == k) + 2 * int(rank[2] == k)] - c) * axes;
+        local.q[k] = (triangle[order[static_cast<std::size_t>(k)]] - c) * axes;
     // Lengths must keep their squares and cubes normal numbers: within [2^-300, 2^300], as
     // every car and track does (edges are at most twice the largest |q|). The sum also catches
     // non-finite input (NaN and infinity propagate). Anything else takes the careful path.
@@ -568,7 +577,7 @@ Contact ellipsoid_triangle_contact(const Ellipsoid& ellipsoid, const Triangle& t
     if (!(local.extent < 0x1p299) || radii.z < 0x1p-300) {
         if (!finite_triangle(triangle))
             return {-std::numeric_limits<double>::infinity(), glm::dvec3(0.0, 1.0, 0.0), c};
-        return rescaled_contact(ellipsoid, canonical_vertices(triangle, rank));
+        return rescaled_contact(ellipsoid, canonical_vertices(triangle, order));
     }
     for (int i = 0; i < 3; ++i) local.edge[i] = local.q[(i + 1) % 3] - local.q[i];
     const detail::LocalContact solved = detail::solve_inline(radii, local);

@@ -1,6 +1,7 @@
 #include "trackphys/geometry/contact.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -277,6 +278,24 @@ TEST(Contact, NoInputMakesNaN) {
             ASSERT_TRUE(finite(ellipsoid_triangle_contact(e, t)));
         }
     }
+}
+
+// Found by fuzz_contact: with a NaN the lexicographic comparisons that order the vertices
+// can form a cycle (here v2 < v0 while v1 compares false both ways with each), and vertex
+// ranks counted from them repeated and indexed past the triangle. Every order must still
+// reach the -infinity answer.
+TEST(Contact, NaNVertexInAnyOrderGivesMinusInfinity) {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const Ellipsoid e({0, 0, 0}, glm::dquat(1, 0, 0, 0), {1, 2, 3});
+    const std::array<glm::dvec3, 3> v = {glm::dvec3(1, 0, 0), glm::dvec3(nan, 0, 0),
+                                         glm::dvec3(0, 0, 0)};
+    std::array<int, 3> order = {0, 1, 2};
+    do {
+        const Triangle t(v[order[0]], v[order[1]], v[order[2]]);
+        const Contact got = ellipsoid_triangle_contact(e, t);
+        EXPECT_TRUE(finite(got));
+        EXPECT_EQ(got.depth, -std::numeric_limits<double>::infinity());
+    } while (std::next_permutation(order.begin(), order.end()));
 }
 
 TEST(Contact, KnownAnswers) {
