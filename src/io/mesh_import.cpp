@@ -1,13 +1,16 @@
 #include "trackphys/io/mesh_io.hpp"
 
 #include <array>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <exception>
+#include <fstream>
 #include <functional>
 #include <limits>
 #include <string>
+#include <string_view>
 #include <system_error>
 #include <unordered_map>
 #include <utility>
@@ -59,6 +62,56 @@ void check_is_nonempty_file(const fs::path& path) {
     const std::uintmax_t size = fs::file_size(path, ec);
     if (ec) fail(path, "cannot read its size: " + ec.message());
     if (size == 0) fail(path, "the file is empty");
+}
+
+// True when text holds a line that is "end_header" (leading blanks allowed, then a blank, a
+// line end or the end of the text), as assimp's PLY header parser needs: it splits lines at
+// \n, \r, \0 and \f. Reads in blocks, so a huge binary body costs one pass and no memory.
+bool has_ply_end_header(std::istream& in) {
+    static constexpr std::string_view token = "end_header";
+    const auto is_line_end = [](char ch) {
+        return ch == '\n' || ch == '\r' || ch == '\0' || ch == '\f';
+    };
+    std::size_t matched = 0;  // characters of token matched on this line so far
+    bool in_token = true;     // still at the line's start or inside a matching prefix
+    std::array<char, 65536> block;
+    while (in) {
+        in.read(block.data(), block.size());
+        for (std::streamsize i = 0; i < in.gcount(); ++i) {
+            const char ch = block[static_cast<std::size_t>(i)];
+            if (in_token && matched == token.size()) {
+                if (ch == ' ' || ch == '\t' || is_line_end(ch)) return true;
+                in_token = false;
+            }
+            if (is_line_end(ch)) {
+                matched = 0;
+                in_token = true;
+            } else if (in_token && matched == 0 && (ch == ' ' || ch == '\t')) {
+                continue;
+            } else if (in_token && ch == token[matched]) {
+                ++matched;
+            } else {
+                in_token = false;
+            }
+        }
+    }
+    return in_token && matched == token.size();
+}
+
+// assimp 5.2.5's PLY reader loops forever on a file that starts with its magic "ply" but
+// whose header never ends (found by fuzz_mesh_import: "ply\nformat ascii 1.0\n" hangs), and
+// it reads such a file whatever its extension when the extension's own reader declines it
+// (.gltf, .glb, unknown extensions). Reject it before assimp sees it.
+void check_ply_header_ends(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) fail(path, "cannot open it");
+    std::array<char, 3> magic{};
+    in.read(magic.data(), magic.size());
+    const auto is = [&](std::size_t i, char letter) {
+        return std::tolower(static_cast<unsigned char>(magic[i])) == letter;
+    };
+    if (in.gcount() < 3 || !is(0, 'p') || !is(1, 'l') || !is(2, 'y')) return;
+    if (!has_ply_end_header(in)) fail(path, "a PLY file whose header has no end_header line");
 }
 
 // aiMatrix4x4 is row-major (a4, b4, c4 hold the translation); glm is column-major.
@@ -248,6 +301,7 @@ private:
 TriangleMesh load_mesh(const fs::path& path, MeshLoadReport& report) {
     report = MeshLoadReport{};
     check_is_nonempty_file(path);
+    check_ply_header_ends(path);
 
     Assimp::Importer importer;
     // Some importers invent a mesh to visualise a skeleton when a file has bones but no

@@ -110,6 +110,36 @@ TEST_F(MeshLoadErrors, GarbageAfterAValidLookingHeader) {
     }
 }
 
+TEST_F(MeshLoadErrors, PlyHeaderWithoutEndHeaderIsRejectedNotHung) {
+    // assimp 5.2.5's PLY reader never returns on these (found by fuzz_mesh_import); it takes
+    // them by content under .gltf, .glb and unknown extensions too. A timeout here is the bug.
+    const std::string body = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+                             "property float y\nproperty float z\n";
+    const std::vector<std::pair<std::string, std::string>> cases{
+        {"bare.ply", "ply\nformat ascii 1.0\n"},
+        {"upper.ply", "PLY\nformat ascii 1.0\n"},
+        {"no_end.ply", body + "0 0 0\n1 0 0\n0 0 1\n"},
+        {"in_comment.ply", body + "comment end_header\n0 0 0\n"},
+        {"longer_token.ply", body + "end_headerX\n0 0 0\n"},
+        {"as.gltf", body},
+        {"as.glb", body},
+        {"as.xyz", body},
+    };
+    for (const auto& [name, text] : cases) {
+        test::write_file(file(name), text);
+        const std::string message = load_error(file(name));
+        EXPECT_NE(message.find(name), std::string::npos) << message;
+        EXPECT_NE(message.find("no end_header line"), std::string::npos) << message;
+    }
+    // A header line with leading blanks or CR LF line ends still ends the header.
+    for (const char* end : {"  end_header\n", "end_header\r\n"}) {
+        test::write_file(file("ok.ply"), body + "element face 1\nproperty list uchar int "
+                                                "vertex_indices\n" + end +
+                                             "0 0 0\n1 0 0\n0 0 1\n3 0 1 2\n");
+        EXPECT_EQ(load_mesh(file("ok.ply")).triangles.size(), 1u) << end;
+    }
+}
+
 TEST_F(MeshLoadErrors, TruncatedGlb) {
     TriangleMesh mesh = unit_square();
     for (int i = 0; i < 50; ++i) {  // big enough that the binary chunk dominates the file
