@@ -17,6 +17,12 @@ required=(
              # against assimp::assimp fails ("No rule to make target .../libz.so")
   nlohmann-json3-dev # JSON output of the command line tool
   libcli11-dev # command line parsing of the trackphys tool
+  clang # the second compiler: scripts/determinism.sh checks that g++ and clang++ builds
+        # give the same state hash, and the fuzzers (fuzz preset) need clang's libFuzzer
+  libclang-rt-14-dev # clang's runtimes: libFuzzer (-fsanitize=fuzzer) and its sanitizers;
+                     # clang-14 only recommends it, and this script installs without
+                     # recommends
+  llvm # llvm-symbolizer: function names and lines in sanitizer and fuzzer reports
 )
 
 missing=()

@@ -549,8 +549,15 @@ Contact rescaled_contact(const Ellipsoid& ellipsoid, const std::array<glm::dvec3
     if (radii.z / scale < 0x1p-200) return point_like_contact(ellipsoid, v, scale);
     const glm::dvec3 center = c / scale;
     detail::LocalTriangle local;
+    // Components below 2^-200 of the scale are flushed to zero, as the radii are raised
+    // above: each vertex moves by less than 2^-199 of the largest length, and sigma with it
+    // (1-Lipschitz), while subnormal components (a center 1e-303 from the triangle beside
+    // a 1e9 m radius: found by fuzz_contact) would break the solver's squares into an
+    // infinite depth.
     for (int i = 0; i < 3; ++i) {
         local.q[i] = (v[i] / scale - center) * axes;
+        for (int k = 0; k < 3; ++k)
+            if (std::abs(local.q[i][k]) < 0x1p-200) local.q[i][k] = 0.0;
     }
     for (int i = 0; i < 3; ++i) local.edge[i] = local.q[(i + 1) % 3] - local.q[i];
     const glm::dvec3 sum = glm::abs(local.q[0]) + glm::abs(local.q[1]) + glm::abs(local.q[2]);
@@ -570,11 +577,12 @@ Contact ellipsoid_triangle_contact(const Ellipsoid& ellipsoid, const Triangle& t
     for (int k = 0; k < 3; ++k)  // row vector * M = M^T * column
         local.q[k] = (triangle[order[static_cast<std::size_t>(k)]] - c) * axes;
     // Lengths must keep their squares and cubes normal numbers: within [2^-300, 2^300], as
-    // every car and track does (edges are at most twice the largest |q|). The sum also catches
+    // every car and track does (edges are at most twice the largest |q|); the radii too (a
+    // 1e262 m radius made the depth infinite: found by fuzz_contact). The sum also catches
     // non-finite input (NaN and infinity propagate). Anything else takes the careful path.
     const glm::dvec3 sum = glm::abs(local.q[0]) + glm::abs(local.q[1]) + glm::abs(local.q[2]);
     local.extent = sum.x + sum.y + sum.z;
-    if (!(local.extent < 0x1p299) || radii.z < 0x1p-300) {
+    if (!(local.extent < 0x1p299) || radii.z < 0x1p-300 || !(radii.x < 0x1p299)) {
         if (!finite_triangle(triangle))
             return {-std::numeric_limits<double>::infinity(), glm::dvec3(0.0, 1.0, 0.0), c};
         return rescaled_contact(ellipsoid, canonical_vertices(triangle, order));

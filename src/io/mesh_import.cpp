@@ -114,6 +114,27 @@ void check_ply_header_ends(const fs::path& path) {
     if (!has_ply_end_header(in)) fail(path, "a PLY file whose header has no end_header line");
 }
 
+// assimp's triangulation trusts each mesh's mPrimitiveTypes: a mesh that claims polygons but
+// holds none fails an ai_assert that Debian's assimp 5.2.5 keeps on, and it aborts the whole
+// process (found by fuzz_mesh_import: a mangled ASCII PLY whose reader made faces of no
+// index and flagged the mesh polygonal). The validation pass checks neither, so faces of no
+// index are rejected (inspect_before_triangulation) and the claim is recomputed from the faces.
+void set_primitive_types_from_faces(aiScene& scene) {
+    for (unsigned m = 0; m < scene.mNumMeshes; ++m) {
+        aiMesh& mesh = *scene.mMeshes[m];
+        unsigned types = 0;
+        for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
+            const unsigned n = mesh.mFaces[f].mNumIndices;
+            const aiPrimitiveType type = n == 1   ? aiPrimitiveType_POINT
+                                         : n == 2 ? aiPrimitiveType_LINE
+                                         : n == 3 ? aiPrimitiveType_TRIANGLE
+                                                  : aiPrimitiveType_POLYGON;
+            types |= static_cast<unsigned>(type);
+        }
+        mesh.mPrimitiveTypes = types;
+    }
+}
+
 // aiMatrix4x4 is row-major (a4, b4, c4 hold the translation); glm is column-major.
 glm::dmat4 to_dmat4(const aiMatrix4x4& m) {
     glm::dmat4 out(1.0);
@@ -193,6 +214,9 @@ public:
             }
             for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
                 const unsigned n = mesh.mFaces[f].mNumIndices;
+                if (n == 0)
+                    fail(path_, mesh_label(mesh, m) + ", face " + std::to_string(f) +
+                                    " has no indices");
                 if (n >= 3) expected_triangles_[m] += n - 2;
             }
         }
@@ -318,6 +342,9 @@ TriangleMesh load_mesh(const fs::path& path, MeshLoadReport& report) {
         const aiScene* scene = importer.ReadFile(path.string(), aiProcess_ValidateDataStructure);
         if (scene == nullptr) fail(path, importer.GetErrorString());
         merger.inspect_before_triangulation(*scene);
+        // The importer owns the scene and hands it out const; it is ours to fix until the
+        // next call (the scene itself was never const).
+        set_primitive_types_from_faces(const_cast<aiScene&>(*scene));
         scene = importer.ApplyPostProcessing(aiProcess_Triangulate);
         if (scene == nullptr) fail(path, importer.GetErrorString());
         TriangleMesh mesh = merger.merge(*scene);

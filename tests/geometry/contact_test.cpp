@@ -298,6 +298,40 @@ TEST(Contact, NaNVertexInAnyOrderGivesMinusInfinity) {
     } while (std::next_permutation(order.begin(), order.end()));
 }
 
+// Extreme inputs fuzz_contact found making an infinite depth, a NaN point or a normal 2e-7
+// off unit: subnormal radii or offsets beside huge ones, and radii beyond 2^299.
+TEST(Contact, FuzzFoundExtremesStayFinite) {
+    struct Case {
+        glm::dvec3 center;
+        glm::dquat orientation;
+        glm::dvec3 semi_axes;
+        std::array<glm::dvec3, 3> vertices;
+    };
+    const std::array<Case, 3> cases = {{
+        {{2.4977757818599306e-308, 156842196603.99838, 156842099844.51764},
+         glm::dquat(0.5, 0.5, 0.5, 0.5),
+         {156842099844.51764, 4.9406564584124654e-323, 3.2285213693142097e-319},
+         {glm::dvec3(3.3957684451075383e-51, 1.9168343508855124e+170, 0), glm::dvec3(0),
+          glm::dvec3(0)}},
+        {{0, 1.8917286909320536e-307, 7.2911220195563975e-304},
+         glm::dquat(3.4148698114093743e-96, 6.1912347778923578e-313, 0, 1),
+         {7.2911220195563975e-304, 1.7383389519587511e-310, 3770908679.3887939},
+         {glm::dvec3(0), glm::dvec3(0), glm::dvec3(0)}},
+        {glm::dvec3(4.4759381595361623e-91), glm::dquat(0.5, 0.5, 0.5, 0.5),
+         {4.4207816532211201e+262, 4.4207816532211711e+262, 4.4207816532211711e+262},
+         {glm::dvec3(4.4759381595362021e-91, 7.9050503334599447e-323, 5.7326436886959837e-320),
+          glm::dvec3(0), glm::dvec3(0)}},
+    }};
+    for (const Case& c : cases) {
+        const Ellipsoid e(c.center, c.orientation, c.semi_axes);
+        const Contact got =
+            ellipsoid_triangle_contact(e, Triangle(c.vertices[0], c.vertices[1], c.vertices[2]));
+        EXPECT_TRUE(finite(got)) << got.depth;
+        EXPECT_TRUE(std::isfinite(got.depth));
+        EXPECT_NEAR(glm::length(got.normal), 1.0, 1e-12);
+    }
+}
+
 TEST(Contact, KnownAnswers) {
     const glm::dquat identity(1, 0, 0, 0);
     // A unit sphere 0.9 above the plane y = 0: depth 0.1 upwards, point halfway into it.

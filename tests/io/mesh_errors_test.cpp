@@ -140,6 +140,20 @@ TEST_F(MeshLoadErrors, PlyHeaderWithoutEndHeaderIsRejectedNotHung) {
     }
 }
 
+TEST_F(MeshLoadErrors, PlyFaceWithoutIndicesIsRejectedNotAborted) {
+    // assimp's PLY reader keeps the face "0" and flags the mesh polygonal; its triangulation
+    // then fails an ai_assert that aborts the process (assimp 5.2.5, found by
+    // fuzz_mesh_import). A crash here is the bug.
+    test::write_file(file("empty_face.ply"),
+                     "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+                     "property float y\nproperty float z\nelement face 2\n"
+                     "property list uchar int vertex_indices\nend_header\n"
+                     "0 0 0\n1 0 0\n0 0 1\n3 0 1 2\n0\n");
+    const std::string message = load_error(file("empty_face.ply"));
+    EXPECT_NE(message.find("empty_face.ply"), std::string::npos) << message;
+    EXPECT_NE(message.find("face 1 has no indices"), std::string::npos) << message;
+}
+
 TEST_F(MeshLoadErrors, TruncatedGlb) {
     TriangleMesh mesh = unit_square();
     for (int i = 0; i < 50; ++i) {  // big enough that the binary chunk dominates the file
