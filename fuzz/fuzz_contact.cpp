@@ -134,23 +134,23 @@ double segment_distance(const dvec3& a, const dvec3& b) {
     return glm::length(a + s * ab);
 }
 
-// Distance from the origin to triangle s: the nearest of the edges, or of the plane when the
-// origin projects inside. Used on the triangle scaled into the unit-ball frame.
+// Distance from the origin to triangle s: the nearest of the edges, or of the origin's
+// projection onto the plane when it falls inside. The projection is measured as the point
+// a + s ab + t ac rebuilt from its barycentric coordinates, a point of the triangle: on a
+// nearly degenerate triangle the rounded normal is meaningless, and the plane distance it
+// gives could be far below the true one, while a point of the triangle never is.
 double origin_distance(const std::array<dvec3, 3>& s) {
     double d = std::min({segment_distance(s[0], s[1]), segment_distance(s[1], s[2]),
                          segment_distance(s[2], s[0])});
-    const dvec3 n = glm::cross(s[1] - s[0], s[2] - s[0]);
+    const dvec3 ab = s[1] - s[0], ac = s[2] - s[0];
+    const dvec3 n = glm::cross(ab, ac);
     const double n2 = glm::dot(n, n);
     if (n2 > 0.0) {
-        const double h = glm::dot(s[0], n) / n2;
-        const dvec3 p = h * n;  // the origin's projection onto the plane
-        bool inside = true;
-        for (int i = 0; i < 3; ++i) {
-            const dvec3& a = s[static_cast<std::size_t>(i)];
-            const dvec3& b = s[static_cast<std::size_t>((i + 1) % 3)];
-            if (glm::dot(glm::cross(b - a, p - a), n) < 0.0) inside = false;
-        }
-        if (inside) d = std::min(d, std::abs(h) * std::sqrt(n2));
+        const dvec3 p = (glm::dot(s[0], n) / n2) * n - s[0];  // projection, relative to a
+        const double u = glm::dot(glm::cross(p, ac), n) / n2;
+        const double v = glm::dot(glm::cross(ab, p), n) / n2;
+        if (u >= 0.0 && v >= 0.0 && u + v <= 1.0)
+            d = std::min(d, glm::length(s[0] + u * ab + v * ac));
     }
     return d;
 }
