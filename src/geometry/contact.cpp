@@ -4,7 +4,6 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <utility>
 
 #include <glm/geometric.hpp>
 
@@ -484,12 +483,14 @@ bool lexicographic_less(const glm::dvec3& a, const glm::dvec3& b) {
 /// permutation. Built from swaps, it is a permutation even when a NaN makes the comparisons
 /// inconsistent (ranks counted from them could repeat and index past the triangle): the NaN
 /// vertex still reaches the extent check below, which sends it to the -infinity answer.
+/// Selects rather than branches (conditional moves), like lexicographic_less.
 std::array<int, 3> canonical_order(const Triangle& t) {
-    std::array<int, 3> order = {0, 1, 2};
-    if (lexicographic_less(t[order[1]], t[order[0]])) std::swap(order[0], order[1]);
-    if (lexicographic_less(t[order[2]], t[order[1]])) std::swap(order[1], order[2]);
-    if (lexicographic_less(t[order[1]], t[order[0]])) std::swap(order[0], order[1]);
-    return order;
+    const bool swap01 = lexicographic_less(t[1], t[0]);
+    const int low = swap01 ? 1 : 0, high = swap01 ? 0 : 1;
+    const bool swap12 = lexicographic_less(t[2], t[high]);
+    const int middle = swap12 ? 2 : high, top = swap12 ? high : 2;
+    const bool swap01_again = lexicographic_less(t[middle], t[low]);
+    return {swap01_again ? middle : low, swap01_again ? low : middle, top};
 }
 
 /// The triangle's vertices in canonical order.
@@ -578,11 +579,14 @@ Contact ellipsoid_triangle_contact(const Ellipsoid& ellipsoid, const Triangle& t
         local.q[k] = (triangle[order[static_cast<std::size_t>(k)]] - c) * axes;
     // Lengths must keep their squares and cubes normal numbers: within [2^-300, 2^300], as
     // every car and track does (edges are at most twice the largest |q|); the radii too (a
-    // 1e262 m radius made the depth infinite: found by fuzz_contact). The sum also catches
+    // 1e262 m radius made the depth infinite: found by fuzz_contact), and their ratios (the
+    // solver's powers of rx / rz overflowed at 1e114; the careful path raises rz to 2^-200
+    // rx, which moves sigma by less than that, as it explains). The sum also catches
     // non-finite input (NaN and infinity propagate). Anything else takes the careful path.
     const glm::dvec3 sum = glm::abs(local.q[0]) + glm::abs(local.q[1]) + glm::abs(local.q[2]);
     local.extent = sum.x + sum.y + sum.z;
-    if (!(local.extent < 0x1p299) || radii.z < 0x1p-300 || !(radii.x < 0x1p299)) {
+    if (!(local.extent < 0x1p299) || radii.z < 0x1p-300 || !(radii.x < 0x1p299) ||
+        radii.z < radii.x * 0x1p-200) {
         if (!finite_triangle(triangle))
             return {-std::numeric_limits<double>::infinity(), glm::dvec3(0.0, 1.0, 0.0), c};
         return rescaled_contact(ellipsoid, canonical_vertices(triangle, order));

@@ -299,7 +299,8 @@ TEST(Contact, NaNVertexInAnyOrderGivesMinusInfinity) {
 }
 
 // Extreme inputs fuzz_contact found making an infinite depth, a NaN point or a normal 2e-7
-// off unit: subnormal radii or offsets beside huge ones, and radii beyond 2^299.
+// off unit: subnormal radii or offsets beside huge ones, radii beyond 2^299, and radii
+// ratios of 1e114.
 TEST(Contact, FuzzFoundExtremesStayFinite) {
     struct Case {
         glm::dvec3 center;
@@ -307,7 +308,7 @@ TEST(Contact, FuzzFoundExtremesStayFinite) {
         glm::dvec3 semi_axes;
         std::array<glm::dvec3, 3> vertices;
     };
-    const std::array<Case, 3> cases = {{
+    const std::array<Case, 4> cases = {{
         {{2.4977757818599306e-308, 156842196603.99838, 156842099844.51764},
          glm::dquat(0.5, 0.5, 0.5, 0.5),
          {156842099844.51764, 4.9406564584124654e-323, 3.2285213693142097e-319},
@@ -321,6 +322,11 @@ TEST(Contact, FuzzFoundExtremesStayFinite) {
          {4.4207816532211201e+262, 4.4207816532211711e+262, 4.4207816532211711e+262},
          {glm::dvec3(4.4759381595362021e-91, 7.9050503334599447e-323, 5.7326436886959837e-320),
           glm::dvec3(0), glm::dvec3(0)}},
+        {{5.4216917988993756e-312, 6.1264140084314571e-322, 2.0527679361347504e-289},
+         glm::dquat(1, 0, 0, 0),
+         {1.02932062755738e-84, 3.5295363016240204e+30, 3.5295369653413445e+30},
+         {glm::dvec3(1.8913127797327678e-307, 2.1609092952369662e+30, 0), glm::dvec3(0),
+          glm::dvec3(0)}},
     }};
     for (const Case& c : cases) {
         const Ellipsoid e(c.center, c.orientation, c.semi_axes);
