@@ -1,7 +1,6 @@
 #include "trackphys/io/mesh_io.hpp"
 
 #include <array>
-#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -10,7 +9,6 @@
 #include <functional>
 #include <limits>
 #include <string>
-#include <string_view>
 #include <system_error>
 #include <unordered_map>
 #include <utility>
@@ -23,6 +21,7 @@
 #include <glm/mat4x4.hpp>
 #include <glm/matrix.hpp>
 
+#include "io/ply_header_check.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/geometry/triangle.hpp"
 #include "trackphys/math/types.hpp"
@@ -64,54 +63,13 @@ void check_is_nonempty_file(const fs::path& path) {
     if (size == 0) fail(path, "the file is empty");
 }
 
-// True when text holds a line that is "end_header" (leading blanks allowed, then a blank, a
-// line end or the end of the text), as assimp's PLY header parser needs: it splits lines at
-// \n, \r, \0 and \f. Reads in blocks, so a huge binary body costs one pass and no memory.
-bool has_ply_end_header(std::istream& in) {
-    static constexpr std::string_view token = "end_header";
-    const auto is_line_end = [](char ch) {
-        return ch == '\n' || ch == '\r' || ch == '\0' || ch == '\f';
-    };
-    std::size_t matched = 0;  // characters of token matched on this line so far
-    bool in_token = true;     // still at the line's start or inside a matching prefix
-    std::array<char, 65536> block;
-    while (in) {
-        in.read(block.data(), block.size());
-        for (std::streamsize i = 0; i < in.gcount(); ++i) {
-            const char ch = block[static_cast<std::size_t>(i)];
-            if (in_token && matched == token.size()) {
-                if (ch == ' ' || ch == '\t' || is_line_end(ch)) return true;
-                in_token = false;
-            }
-            if (is_line_end(ch)) {
-                matched = 0;
-                in_token = true;
-            } else if (in_token && matched == 0 && (ch == ' ' || ch == '\t')) {
-                continue;
-            } else if (in_token && ch == token[matched]) {
-                ++matched;
-            } else {
-                in_token = false;
-            }
-        }
-    }
-    return in_token && matched == token.size();
-}
-
-// assimp 5.2.5's PLY reader loops forever on a file that starts with its magic "ply" but
-// whose header never ends (found by fuzz_mesh_import: "ply\nformat ascii 1.0\n" hangs), and
-// it reads such a file whatever its extension when the extension's own reader declines it
-// (.gltf, .glb, unknown extensions). Reject it before assimp sees it.
-void check_ply_header_ends(const fs::path& path) {
+// See ply_header_check.hpp: files assimp's PLY reader would hang on or allocate without
+// bound for (both found by fuzz_mesh_import).
+void check_ply_header(const fs::path& path) {
     std::ifstream in(path, std::ios::binary);
     if (!in) fail(path, "cannot open it");
-    std::array<char, 3> magic{};
-    in.read(magic.data(), magic.size());
-    const auto is = [&](std::size_t i, char letter) {
-        return std::tolower(static_cast<unsigned char>(magic[i])) == letter;
-    };
-    if (in.gcount() < 3 || !is(0, 'p') || !is(1, 'l') || !is(2, 'y')) return;
-    if (!has_ply_end_header(in)) fail(path, "a PLY file whose header has no end_header line");
+    if (auto problem = detail::ply_header_problem(in, fs::file_size(path)))
+        fail(path, *problem);
 }
 
 // assimp's triangulation trusts each mesh's mPrimitiveTypes: a mesh that claims polygons but
@@ -325,7 +283,7 @@ private:
 TriangleMesh load_mesh(const fs::path& path, MeshLoadReport& report) {
     report = MeshLoadReport{};
     check_is_nonempty_file(path);
-    check_ply_header_ends(path);
+    check_ply_header(path);
 
     Assimp::Importer importer;
     // Some importers invent a mesh to visualise a skeleton when a file has bones but no

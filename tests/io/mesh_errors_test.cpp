@@ -140,6 +140,20 @@ TEST_F(MeshLoadErrors, PlyHeaderWithoutEndHeaderIsRejectedNotHung) {
     }
 }
 
+TEST_F(MeshLoadErrors, PlyElementCountBeyondTheFileIsRejectedBeforeAllocating) {
+    // assimp allocates what the count claims before reading (found by fuzz_mesh_import: 45 GB
+    // for a 400-byte file); each instance takes at least one byte of the file.
+    for (const std::string count : {"100000000000", "555555555555555555555555555554"}) {
+        const std::string name = "claim" + std::to_string(count.size()) + ".ply";
+        test::write_file(file(name), "ply\nformat ascii 1.0\nelement vertex " + count +
+                                         "\nproperty float x\nproperty float y\n"
+                                         "property float z\nend_header\n0 0 0\n");
+        const std::string message = load_error(file(name));
+        EXPECT_NE(message.find(name), std::string::npos) << message;
+        EXPECT_NE(message.find("PLY element 'vertex' claims"), std::string::npos) << message;
+    }
+}
+
 TEST_F(MeshLoadErrors, PlyFaceWithoutIndicesIsRejectedNotAborted) {
     // assimp's PLY reader keeps the face "0" and flags the mesh polygonal; its triangulation
     // then fails an ai_assert that aborts the process (assimp 5.2.5, found by

@@ -1,0 +1,73 @@
+#include "io/ply_header_check.hpp"
+
+#include <cctype>
+#include <cstddef>
+#include <iterator>
+#include <sstream>
+
+namespace trackphys::detail {
+namespace {
+
+// assimp's PLY reader splits lines at these.
+bool is_line_end(char ch) { return ch == '\n' || ch == '\r' || ch == '\0' || ch == '\f'; }
+
+// The next line of the header, at most kKept characters of it (only its first words
+// matter); false at the end of the stream with nothing read.
+constexpr std::size_t kKept = 256;
+bool next_line(std::istreambuf_iterator<char>& it, std::string& line) {
+    const std::istreambuf_iterator<char> end;
+    line.clear();
+    if (it == end) return false;
+    for (; it != end; ++it) {
+        const char ch = *it;
+        if (is_line_end(ch)) {
+            ++it;
+            return true;
+        }
+        if (line.size() < kKept) line.push_back(ch);
+    }
+    return true;
+}
+
+}  // namespace
+
+std::optional<std::string> ply_header_problem(std::istream& in, std::uintmax_t file_size) {
+    std::istreambuf_iterator<char> it(in);
+    std::string line;
+    if (!next_line(it, line) || line.size() < 3) return std::nullopt;
+    for (std::size_t i = 0; i < 3; ++i)
+        if (std::tolower(static_cast<unsigned char>(line[i])) != "ply"[i]) return std::nullopt;
+
+    std::string element;  // the element being declared, with its claimed count
+    std::string count;
+    bool has_properties = false;
+    // An element ends at the next element or at end_header: check its claim then.
+    const auto claim_problem = [&]() -> std::optional<std::string> {
+        if (element.empty() || !has_properties) return std::nullopt;
+        const std::size_t digits = count.find_first_not_of("0123456789");
+        if (count.empty() || digits != std::string::npos) return std::nullopt;  // assimp rejects
+        // More than 20 digits overflows any count; otherwise compare as numbers.
+        if (count.size() <= 19 && std::stoull(count) <= file_size) return std::nullopt;
+        return "PLY element '" + element + "' claims " + count +
+               " instances, more than the file's " + std::to_string(file_size) +
+               " bytes can hold";
+    };
+    while (next_line(it, line)) {
+        std::istringstream words(line);
+        std::string keyword;
+        words >> keyword;
+        if (keyword == "end_header") return claim_problem();
+        if (keyword == "element") {
+            if (auto problem = claim_problem()) return problem;
+            element.clear();
+            count.clear();
+            words >> element >> count;
+            has_properties = false;
+        } else if (keyword == "property") {
+            has_properties = true;
+        }
+    }
+    return "a PLY file whose header has no end_header line";
+}
+
+}  // namespace trackphys::detail
