@@ -11,22 +11,24 @@ namespace {
 // assimp's PLY reader splits lines at these.
 bool is_line_end(char ch) { return ch == '\n' || ch == '\r' || ch == '\0' || ch == '\f'; }
 
+enum class Line { none, ended, last };  // nothing left; a line and its end; a line at EOF
+
 // The next line of the header, at most kKept characters of it (only its first words
-// matter); false at the end of the stream with nothing read.
+// matter).
 constexpr std::size_t kKept = 256;
-bool next_line(std::istreambuf_iterator<char>& it, std::string& line) {
+Line next_line(std::istreambuf_iterator<char>& it, std::string& line) {
     const std::istreambuf_iterator<char> end;
     line.clear();
-    if (it == end) return false;
+    if (it == end) return Line::none;
     for (; it != end; ++it) {
         const char ch = *it;
         if (is_line_end(ch)) {
             ++it;
-            return true;
+            return Line::ended;
         }
         if (line.size() < kKept) line.push_back(ch);
     }
-    return true;
+    return Line::last;
 }
 
 }  // namespace
@@ -34,7 +36,7 @@ bool next_line(std::istreambuf_iterator<char>& it, std::string& line) {
 std::optional<std::string> ply_header_problem(std::istream& in, std::uintmax_t file_size) {
     std::istreambuf_iterator<char> it(in);
     std::string line;
-    if (!next_line(it, line) || line.size() < 3) return std::nullopt;
+    if (next_line(it, line) == Line::none || line.size() < 3) return std::nullopt;
     for (std::size_t i = 0; i < 3; ++i)
         if (std::tolower(static_cast<unsigned char>(line[i])) != "ply"[i]) return std::nullopt;
 
@@ -52,10 +54,14 @@ std::optional<std::string> ply_header_problem(std::istream& in, std::uintmax_t f
                " instances, more than the file's " + std::to_string(file_size) +
                " bytes can hold";
     };
-    while (next_line(it, line)) {
+    for (Line read = next_line(it, line); read != Line::none; read = next_line(it, line)) {
         std::istringstream words(line);
         std::string keyword;
         words >> keyword;
+        // assimp can also loop forever when end_header is the file's last bytes (after a
+        // stray line in the header; found by fuzz_mesh_import). Such a file holds no data.
+        if (keyword == "end_header" && read == Line::last)
+            return "a PLY file that ends at its end_header line (no data)";
         if (keyword == "end_header") return claim_problem();
         if (keyword == "element") {
             if (auto problem = claim_problem()) return problem;

@@ -11,7 +11,8 @@ namespace trackphys::detail {
 /// only files that start with PLY's magic ("ply", any case): assimp's PLY reader takes them
 /// by content whatever their extension when the extension's own reader declines them (.gltf,
 /// .glb, unknown ones), and then
-/// - loops forever when no header line is "end_header" (leading blanks allowed), and
+/// - loops forever when no header line is "end_header" (leading blanks allowed), or
+///   sometimes when that line ends the file (such a file holds no data: refused too), and
 /// - allocates what an element's count claims before it reads a single instance (a 100-byte
 ///   file claiming 1e11 vertices asks for 1.2 TB), so an element with properties that
 ///   claims more instances than the file has bytes (each instance takes at least one) is

@@ -125,6 +125,12 @@ TEST_F(MeshLoadErrors, PlyHeaderWithoutEndHeaderIsRejectedNotHung) {
         {"as.glb", body},
         {"as.xyz", body},
     };
+    // A stray line in the header and end_header as the last bytes: also a hang.
+    test::write_file(file("ends_at_header.ply"),
+                     "ply\nformat ascii 1.0\nelement vertex 3\n0 0 0\nproperty float x\n"
+                     "end_header");
+    EXPECT_NE(load_error(file("ends_at_header.ply")).find("ends at its end_header line"),
+              std::string::npos);
     for (const auto& [name, text] : cases) {
         test::write_file(file(name), text);
         const std::string message = load_error(file(name));
