@@ -299,8 +299,8 @@ TEST(Contact, NaNVertexInAnyOrderGivesMinusInfinity) {
 }
 
 // Extreme inputs fuzz_contact found making an infinite depth, a NaN point or a normal 2e-7
-// off unit: subnormal radii or offsets beside huge ones, radii beyond 2^299, and radii
-// ratios of 1e114.
+// off unit: subnormal radii or offsets beside huge ones, radii beyond 2^299, radii ratios
+// of 1e114, subnormal offsets beside 1e-76 m radii.
 TEST(Contact, FuzzFoundExtremesStayFinite) {
     struct Case {
         glm::dvec3 center;
@@ -308,7 +308,7 @@ TEST(Contact, FuzzFoundExtremesStayFinite) {
         glm::dvec3 semi_axes;
         std::array<glm::dvec3, 3> vertices;
     };
-    const std::array<Case, 4> cases = {{
+    const std::array<Case, 5> cases = {{
         {{2.4977757818599306e-308, 156842196603.99838, 156842099844.51764},
          glm::dquat(0.5, 0.5, 0.5, 0.5),
          {156842099844.51764, 4.9406564584124654e-323, 3.2285213693142097e-319},
@@ -327,6 +327,10 @@ TEST(Contact, FuzzFoundExtremesStayFinite) {
          {1.02932062755738e-84, 3.5295363016240204e+30, 3.5295369653413445e+30},
          {glm::dvec3(1.8913127797327678e-307, 2.1609092952369662e+30, 0), glm::dvec3(0),
           glm::dvec3(0)}},
+        {{5.3049894823538372e-315, 2.7161546091976399e-310, 1.657809211691619e-316},
+         glm::dquat(1, 0, 0, 0),
+         {6.3291261944158812e-76, 1.3980432860952889e-76, 1.3980432860952889e-76},
+         {glm::dvec3(1.3980432860952889e-76, 0, 0), glm::dvec3(0), glm::dvec3(0)}},
     }};
     for (const Case& c : cases) {
         const Ellipsoid e(c.center, c.orientation, c.semi_axes);
