@@ -498,6 +498,21 @@ std::array<glm::dvec3, 3> canonical_vertices(const Triangle& t, const std::array
     return {t[order[0]], t[order[1]], t[order[2]]};
 }
 
+/// Scales v to unit length and sets length to its former length; false (v unchanged) for
+/// the zero vector. The center can sit far below the scale that brings the triangle near 1
+/// (c ~ 1e-159 when the triangle spans 1e170 around a center at 1e11): squaring such
+/// components gives subnormals, whose lost bits left a direction 2e-7 off unit (found by
+/// fuzz_contact). Dividing by the largest component first keeps the squares in [0, 3].
+bool unit_and_length(glm::dvec3& v, double& length) {
+    const double largest = std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+    if (!(largest > 0.0)) return false;
+    v /= largest;
+    const double scaled = glm::length(v);
+    v /= scaled;
+    length = largest * scaled;
+    return true;
+}
+
 /// For configurations whose lengths span more than double's squares can hold (the ellipsoid
 /// smaller than 1e-60 of the triangle's distance or size): the ellipsoid acts as its center
 /// point, sigma = h(u) - |c - z| with z the triangle's closest point and u = (c - z) / |c - z|.
@@ -509,21 +524,11 @@ Contact point_like_contact(const Ellipsoid& ellipsoid, const std::array<glm::dve
     for (int i = 0; i < 3; ++i) w[i] = v[i] / scale;
     const glm::dvec3 z = closest_point_on_triangle(c, w[0], w[1], w[2]);
     glm::dvec3 u = c - z;
-    // The center can sit far below the scale that brings the triangle near 1 (c ~ 1e-159 when
-    // the triangle spans 1e170 around a center at 1e11): squaring such components gives
-    // subnormals, whose lost bits left |u| 2e-7 off unit (found by fuzz_contact). Dividing
-    // by the largest component first keeps the squares in [0, 3].
-    const double largest = std::max({std::abs(u.x), std::abs(u.y), std::abs(u.z)});
     double distance = 0.0;
-    if (largest > 0.0) {
-        u /= largest;
-        const double length = glm::length(u);
-        u /= length;
-        distance = largest * length;
-    } else {
-        const glm::dvec3 n = glm::cross(w[1] - w[0], w[2] - w[0]);
-        const double length = glm::length(n);
-        u = length > 0.0 ? n / length : glm::dvec3(0.0, 1.0, 0.0);
+    if (!unit_and_length(u, distance)) {
+        u = glm::cross(w[1] - w[0], w[2] - w[0]);
+        double length = 0.0;
+        if (!unit_and_length(u, length)) u = glm::dvec3(0.0, 1.0, 0.0);
     }
     const glm::dvec3 local = u * ellipsoid.sorted_axes();
     const glm::dvec3 r = ellipsoid.sorted_radii();
