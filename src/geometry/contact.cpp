@@ -582,17 +582,18 @@ Contact ellipsoid_triangle_contact(const Ellipsoid& ellipsoid, const Triangle& t
     detail::LocalTriangle local;
     for (int k = 0; k < 3; ++k)  // row vector * M = M^T * column
         local.q[k] = (triangle[order[static_cast<std::size_t>(k)]] - c) * axes;
-    // Lengths must keep their squares and cubes normal numbers: within [2^-300, 2^300], as
-    // every car and track does (edges are at most twice the largest |q|); the smallest radius
-    // at least 2^-200 (the solver's fourth powers of 1e-76 m radii were subnormal and left
-    // the normal 2e-8 off unit: found by fuzz_contact); the radii below 2^300 too (a
-    // 1e262 m radius made the depth infinite: found by fuzz_contact), and their ratios (the
-    // solver's powers of rx / rz overflowed at 1e114; the careful path raises rz to 2^-200
-    // rx, which moves sigma by less than that, as it explains). The sum also catches
-    // non-finite input (NaN and infinity propagate). Anything else takes the careful path.
+    // The fast solver needs every length's square, cube and fourth power to be a normal
+    // number: radii within [2^-200, 2^250] and ratios within 2^200, vertices within 2^250 of
+    // the center, as every car and track is (edges are at most twice the largest |q|); a
+    // non-finite answer from tiny vertex offsets is caught below. fuzz_contact found each bound
+    // the hard way: 1e262 m and 1e79 m radii gave an infinite depth or a NaN normal, 1e-76 m
+    // radii a normal 2e-8 off unit, a 1e114 ratio an infinite depth. The careful path
+    // rescales by a power of two and raises radii below 2^-200 of the largest to it, which
+    // moves sigma by less than that. The sum also catches non-finite input (NaN and
+    // infinity propagate).
     const glm::dvec3 sum = glm::abs(local.q[0]) + glm::abs(local.q[1]) + glm::abs(local.q[2]);
     local.extent = sum.x + sum.y + sum.z;
-    if (!(local.extent < 0x1p299) || radii.z < 0x1p-200 || !(radii.x < 0x1p299) ||
+    if (!(local.extent < 0x1p250) || radii.z < 0x1p-200 || !(radii.x < 0x1p250) ||
         radii.z < radii.x * 0x1p-200) {
         if (!finite_triangle(triangle))
             return {-std::numeric_limits<double>::infinity(), glm::dvec3(0.0, 1.0, 0.0), c};
