@@ -583,18 +583,20 @@ Contact ellipsoid_triangle_contact(const Ellipsoid& ellipsoid, const Triangle& t
     for (int k = 0; k < 3; ++k)  // row vector * M = M^T * column
         local.q[k] = (triangle[order[static_cast<std::size_t>(k)]] - c) * axes;
     // The fast solver needs every length's square, cube and fourth power to be a normal
-    // number: radii within [2^-200, 2^250] and ratios within 2^200, vertices within 2^250 of
-    // the center, as every car and track is (edges are at most twice the largest |q|); a
-    // non-finite answer from tiny vertex offsets is caught below. fuzz_contact found each bound
-    // the hard way: 1e262 m and 1e79 m radii gave an infinite depth or a NaN normal, 1e-76 m
-    // radii a normal 2e-8 off unit, a 1e114 ratio an infinite depth. The careful path
-    // rescales by a power of two and raises radii below 2^-200 of the largest to it, which
-    // moves sigma by less than that. The sum also catches non-finite input (NaN and
+    // number: radii within [2^-200, 2^250], the smallest radius within 2^200 of the largest
+    // and of the triangle's extent, vertices within 2^250 of the center, as every car and
+    // track is (edges are at most twice the largest |q|); a non-finite answer from tiny
+    // vertex offsets is caught below. fuzz_contact found each bound the hard way: 1e262 m
+    // and 1e79 m radii gave an infinite depth or a NaN normal, 1e-76 m radii a normal 2e-8
+    // off unit, a 1e114 radii ratio an infinite depth, a 1e-57 m sphere under a 1e5 m
+    // triangle a normal 5e-7 off unit. The careful path rescales by a power of two and
+    // raises radii below 2^-200 of the largest to it (or treats the ellipsoid as a point),
+    // which moves sigma by less than that. The sum also catches non-finite input (NaN and
     // infinity propagate).
     const glm::dvec3 sum = glm::abs(local.q[0]) + glm::abs(local.q[1]) + glm::abs(local.q[2]);
     local.extent = sum.x + sum.y + sum.z;
     if (!(local.extent < 0x1p250) || radii.z < 0x1p-200 || !(radii.x < 0x1p250) ||
-        radii.z < radii.x * 0x1p-200) {
+        radii.z < std::max(radii.x, local.extent) * 0x1p-200) {
         if (!finite_triangle(triangle))
             return {-std::numeric_limits<double>::infinity(), glm::dvec3(0.0, 1.0, 0.0), c};
         return rescaled_contact(ellipsoid, canonical_vertices(triangle, order));
