@@ -366,6 +366,22 @@ TEST(Contact, FuzzFoundExtremesStayFinite) {
     }
 }
 
+// Found by fuzz_contact: a center 1e-311 m (subnormal) off a triangle vertex made the solver
+// miss the minimum by 1.3 cm; the depth must match the same ellipsoid rebuilt from its
+// sorted axes, and the exact answer, the smallest radius (the triangle lies on one side of
+// that axis through the vertex at the center).
+TEST(Contact, SubnormalOffsetKeepsTheDepth) {
+    const glm::dquat q(3.3236003152765345e-21, 0.99643207332977257, 0.084398597380115195,
+                       2.0678640065606455e-309);
+    const Ellipsoid e({1.0848620590898777e-311, 0, 1.2670728489188315e-279}, q,
+                      {32, 32.501960784313724, 32.501960784313724});
+    const Ellipsoid sorted(e.center(), glm::quat_cast(e.sorted_axes()), e.sorted_radii());
+    const double s = 32.501960784313724;
+    const Triangle t({s, s, s}, {s, 0, 0}, {0, 0, 0});
+    EXPECT_NEAR(ellipsoid_triangle_contact(e, t).depth, 32.0, 1e-9);
+    EXPECT_NEAR(ellipsoid_triangle_contact(sorted, t).depth, 32.0, 1e-9);
+}
+
 TEST(Contact, KnownAnswers) {
     const glm::dquat identity(1, 0, 0, 0);
     // A unit sphere 0.9 above the plane y = 0: depth 0.1 upwards, point halfway into it.
