@@ -15,6 +15,7 @@
 #include "support/contact_cases.hpp"
 #include "support/contact_reference.hpp"
 #include "trackphys/error.hpp"
+#include "trackphys/geometry/point_ellipsoid.hpp"
 
 namespace trackphys {
 namespace {
@@ -380,6 +381,22 @@ TEST(Contact, SubnormalOffsetKeepsTheDepth) {
     const Triangle t({s, s, s}, {s, 0, 0}, {0, 0, 0});
     EXPECT_NEAR(ellipsoid_triangle_contact(e, t).depth, 32.0, 1e-9);
     EXPECT_NEAR(ellipsoid_triangle_contact(sorted, t).depth, 32.0, 1e-9);
+}
+
+// Found by fuzz_contact: collinear vertices under a flat ellipsoid certified a face whose
+// normal was rounding noise, 1.4e-4 m off; the segment's true separation is 0.877095 m
+// (checked by sampling the point-ellipsoid distance along it).
+TEST(Contact, CollinearTriangleIsNotCertifiedAsAFace) {
+    const Ellipsoid e({10.99609375, 0, 0.87890625},
+                      glm::dquat(0.0023343212240219168, 0, 0, -0.99999727546849992),
+                      {29.3662109375, 29.3662109375, 0.001953125});
+    const Triangle t({-107.4609375, 0, 0}, {-0.96875, 0, 0}, {0, 0, 0});
+    double separation = std::numeric_limits<double>::infinity();
+    for (int i = 0; i <= 20000; ++i) {
+        const glm::dvec3 p(-0.96875 * i / 20000.0, 0, 0);  // the part under the ellipsoid
+        separation = std::min(separation, closest_point_on_ellipsoid(e, p).distance);
+    }
+    EXPECT_NEAR(ellipsoid_triangle_contact(e, t).depth, -separation, 1e-9);
 }
 
 TEST(Contact, KnownAnswers) {
