@@ -554,7 +554,8 @@ Contact rescaled_contact(const Ellipsoid& ellipsoid, const std::array<glm::dvec3
         glm::max(ellipsoid.sorted_radii(), glm::dvec3(ellipsoid.sorted_radii().x * 0x1p-200));
     double raw_extent = radii.x;
     for (int i = 0; i < 3; ++i) {
-        const glm::dvec3 d = glm::abs(v[i]) + glm::abs(c);
+        // max, not sum: a sum of two coordinates near 1.8e308 overflows (found by fuzz_contact).
+        const glm::dvec3 d = glm::max(glm::abs(v[i]), glm::abs(c));
         raw_extent = std::max({raw_extent, d.x, d.y, d.z});
     }
     const double scale = std::ldexp(1.0, std::ilogb(raw_extent));

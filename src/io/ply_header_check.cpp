@@ -3,13 +3,27 @@
 #include <cctype>
 #include <cstddef>
 #include <iterator>
-#include <sstream>
+#include <vector>
 
 namespace trackphys::detail {
 namespace {
 
-// assimp's PLY reader splits lines at these.
+// assimp's PLY reader splits lines at these, and words at blanks only (a '\v' after
+// "end_header" keeps it from matching: found by fuzz_mesh_import as another hang).
 bool is_line_end(char ch) { return ch == '\n' || ch == '\r' || ch == '\0' || ch == '\f'; }
+bool is_blank(char ch) { return ch == ' ' || ch == '\t'; }
+
+// The words of a header line, split as assimp splits them.
+std::vector<std::string> words_of(const std::string& line) {
+    std::vector<std::string> words;
+    for (std::size_t i = 0; i < line.size();) {
+        while (i < line.size() && is_blank(line[i])) ++i;
+        const std::size_t start = i;
+        while (i < line.size() && !is_blank(line[i])) ++i;
+        if (i > start) words.push_back(line.substr(start, i - start));
+    }
+    return words;
+}
 
 enum class Line { none, ended, last };  // nothing left; a line and its end; a line at EOF
 
@@ -55,9 +69,8 @@ std::optional<std::string> ply_header_problem(std::istream& in, std::uintmax_t f
                " bytes can hold";
     };
     for (Line read = next_line(it, line); read != Line::none; read = next_line(it, line)) {
-        std::istringstream words(line);
-        std::string keyword;
-        words >> keyword;
+        const std::vector<std::string> words = words_of(line);
+        const std::string keyword = words.empty() ? std::string() : words[0];
         // assimp can also loop forever when end_header is the file's last bytes (after a
         // stray line in the header; found by fuzz_mesh_import). Such a file holds no data.
         if (keyword == "end_header" && read == Line::last)
@@ -65,9 +78,8 @@ std::optional<std::string> ply_header_problem(std::istream& in, std::uintmax_t f
         if (keyword == "end_header") return claim_problem();
         if (keyword == "element") {
             if (auto problem = claim_problem()) return problem;
-            element.clear();
-            count.clear();
-            words >> element >> count;
+            element = words.size() > 1 ? words[1] : std::string();
+            count = words.size() > 2 ? words[2] : std::string();
             has_properties = false;
         } else if (keyword == "property") {
             has_properties = true;

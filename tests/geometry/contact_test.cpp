@@ -309,7 +309,7 @@ TEST(Contact, FuzzFoundExtremesStayFinite) {
         glm::dvec3 semi_axes;
         std::array<glm::dvec3, 3> vertices;
     };
-    const std::array<Case, 9> cases = {{
+    const std::array<Case, 10> cases = {{
         {{2.4977757818599306e-308, 156842196603.99838, 156842099844.51764},
          glm::dquat(0.5, 0.5, 0.5, 0.5),
          {156842099844.51764, 4.9406564584124654e-323, 3.2285213693142097e-319},
@@ -356,6 +356,11 @@ TEST(Contact, FuzzFoundExtremesStayFinite) {
          glm::dvec3(3.2186704024134878e-57),
          {glm::dvec3(131059.26274509804, 32.501960784246037, 33.806648284313724),
           glm::dvec3(-3.4030000619567244e-161, 0, 0), glm::dvec3(0)}},
+        {{5.7840552864802584e+170, -1.797692724301187e+308, 5.8536405370189899e+170},
+         glm::dquat(1, 0, 0, 0),
+         {2.9357886262539132e-307, 1.740700265154975e-315, 5.8536377117013575e+170},
+         {glm::dvec3(1.8456128521100186e-317, -5.4861240892339001e+303, 0), glm::dvec3(0),
+          glm::dvec3(0)}},
     }};
     for (const Case& c : cases) {
         const Ellipsoid e(c.center, c.orientation, c.semi_axes);

@@ -121,6 +121,7 @@ TEST_F(MeshLoadErrors, PlyHeaderWithoutEndHeaderIsRejectedNotHung) {
         {"no_end.ply", body + "0 0 0\n1 0 0\n0 0 1\n"},
         {"in_comment.ply", body + "comment end_header\n0 0 0\n"},
         {"longer_token.ply", body + "end_headerX\n0 0 0\n"},
+        {"vertical_tab.ply", body + "end_header\v0 0 0\n"},
         {"as.gltf", body},
         {"as.glb", body},
         {"as.xyz", body},
