@@ -122,6 +122,7 @@ TEST_F(MeshLoadErrors, PlyHeaderWithoutEndHeaderIsRejectedNotHung) {
         {"in_comment.ply", body + "comment end_header\n0 0 0\n"},
         {"longer_token.ply", body + "end_headerX\n0 0 0\n"},
         {"vertical_tab.ply", body + "end_header\v0 0 0\n"},
+        {"swallowed.ply", body + "comment a" + std::string(2, '\0') + "end_header\n0 0 0\n"},
         {"as.gltf", body},
         {"as.glb", body},
         {"as.xyz", body},
