@@ -592,8 +592,8 @@ Contact ellipsoid_triangle_contact(const Ellipsoid& ellipsoid, const Triangle& t
     // The fast solver needs every length's square, cube and fourth power to be a normal
     // number: radii within [2^-200, 2^250], the smallest radius within 2^200 of the largest
     // and of the triangle's extent, vertices within 2^250 of the center, as every car and
-    // track is (edges are at most twice the largest |q|); a non-finite answer from tiny
-    // vertex offsets is caught below. fuzz_contact found each bound the hard way: 1e262 m
+    // track is (edges are at most twice the largest |q|); tiny vertex offsets are flushed
+    // below. fuzz_contact found each bound the hard way: 1e262 m
     // and 1e79 m radii gave an infinite depth or a NaN normal, 1e-76 m radii a normal 2e-8
     // off unit, a 1e114 radii ratio an infinite depth, a 1e-57 m sphere under a 1e5 m
     // triangle a normal 5e-7 off unit. The careful path rescales by a power of two and
@@ -610,19 +610,13 @@ Contact ellipsoid_triangle_contact(const Ellipsoid& ellipsoid, const Triangle& t
     }
     // Offsets below 2^-200 of the configuration are flushed to zero: moving a vertex by that
     // little moves sigma by less, while a subnormal one (1e-311 m from the center of a 32 m
-    // ellipsoid, found by fuzz_contact) made the solver miss the minimum by 1.3 cm. A 0/1
-    // mask multiplies without branches.
+    // ellipsoid, found by fuzz_contact) made the solver miss the minimum by 1.3 cm, and one
+    // beside 1e-76 m radii gave an infinite depth. A 0/1 mask multiplies without branches.
     const glm::dvec3 negligible(std::max(local.extent, radii.x) * 0x1p-200);
     for (glm::dvec3& q : local.q)
         q *= glm::dvec3(glm::greaterThanEqual(glm::abs(q), negligible));
     for (int i = 0; i < 3; ++i) local.edge[i] = local.q[(i + 1) % 3] - local.q[i];
     const detail::LocalContact solved = detail::solve_inline(radii, local);
-    // A component far below the others can still underflow the solver's squares: a
-    // subnormal one beside 1e-76 m radii gave an infinite depth (found by fuzz_contact). The
-    // careful path flushes such components (it moves sigma by less than 2^-199 of the size);
-    // testing the answer costs one compare where flushing here cost 10% of a road contact.
-    if (!std::isfinite(solved.depth))
-        return rescaled_contact(ellipsoid, canonical_vertices(triangle, order));
     return {solved.depth, axes * solved.u, c + axes * solved.point};
 }
 
