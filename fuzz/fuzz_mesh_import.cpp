@@ -20,6 +20,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <system_error>
 #include <vector>
 
 #include <unistd.h>
@@ -48,15 +49,23 @@ constexpr std::size_t kMaxInput = 64 * 1024;
 }
 
 // One folder per process (libFuzzer's -jobs/-fork run several): the input file and any
-// file a .gltf names beside it land there.
+// file a .gltf names beside it land there. Removed at exit (libFuzzer exits normally at the
+// end of a run; after a crash it stays, with the input that caused it).
+struct WorkFolder {
+    fs::path path;
+    WorkFolder()
+        : path(fs::temp_directory_path() / ("trackphys_fuzz_mesh_" + std::to_string(getpid()))) {
+        fs::create_directories(path);
+    }
+    ~WorkFolder() {
+        std::error_code ignored;
+        fs::remove_all(path, ignored);
+    }
+};
+
 const fs::path& work_folder() {
-    static const fs::path folder = [] {
-        fs::path f = fs::temp_directory_path() /
-                     ("trackphys_fuzz_mesh_" + std::to_string(getpid()));
-        fs::create_directories(f);
-        return f;
-    }();
-    return folder;
+    static const WorkFolder folder;
+    return folder.path;
 }
 
 void check_mesh(const trackphys::TriangleMesh& mesh, const trackphys::MeshLoadReport& report) {
