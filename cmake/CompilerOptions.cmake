@@ -13,3 +13,17 @@ if(TRACKPHYS_SANITIZE)
     -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer)
   target_link_options(trackphys_options INTERFACE -fsanitize=address,undefined)
 endif()
+
+# Fuzzers link libFuzzer (-fsanitize=fuzzer, fuzz/CMakeLists.txt); the library they test is
+# compiled with its coverage instrumentation so that the search is guided by our code.
+if(TRACKPHYS_BUILD_FUZZERS)
+  if(NOT CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
+    message(FATAL_ERROR "TRACKPHYS_BUILD_FUZZERS needs clang (libFuzzer), not "
+                        "${CMAKE_CXX_COMPILER_ID}: use the 'fuzz' preset")
+  endif()
+  if(NOT TRACKPHYS_SANITIZE)
+    message(FATAL_ERROR "TRACKPHYS_BUILD_FUZZERS needs TRACKPHYS_SANITIZE=ON: a fuzzer without "
+                        "AddressSanitizer misses most memory errors. Use the 'fuzz' preset")
+  endif()
+  target_compile_options(trackphys_options INTERFACE -fsanitize=fuzzer-no-link)
+endif()

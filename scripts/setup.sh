@@ -21,6 +21,12 @@ required=(
                 # and double builds; optional: without it those programs are not built
   libfcl-dev # peer benchmarks (bench/peers): FCL's ellipsoid-triangle contact (libccd and
              # its own GJK); optional like libbullet-dev
+  clang # the second compiler: scripts/determinism.sh checks that g++ and clang++ builds
+        # give the same state hash, and the fuzzers (fuzz preset) need clang's libFuzzer
+  libclang-rt-14-dev # clang's runtimes: libFuzzer (-fsanitize=fuzzer) and its sanitizers;
+                     # clang-14 only recommends it, and this script installs without
+                     # recommends
+  llvm # llvm-symbolizer: function names and lines in sanitizer and fuzzer reports
 )
 
 missing=()

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include <glm/geometric.hpp>
+#include <glm/vector_relational.hpp>
 
 #include "geometry/contact_kernel.hpp"
 #include "geometry/ellipsoid_roots.hpp"
@@ -173,10 +174,15 @@ public:
             const double side1 = glm::dot(glm::cross(tri.edge[1], z - tri.q[1]), area_normal);
             const double side2 = n2 - side0 - side1;
             // The vertices must lie on the face plane to rounding: a sliver's normal may be
-            // too inaccurate for the certificate, and then the edges decide.
+            // too inaccurate for the certificate, and then the edges decide. Collinear
+            // vertices pass that test with a normal of pure rounding noise (and certified a
+            // wrong face 1.4e-4 m off: found by fuzz_contact), so the angle between the edges
+            // must also be clear of rounding: sin > 1e-10, n2 = |e0|^2 |e2|^2 sin^2.
             const double scale = pb_.r.x + tri.extent;
+            const double sliver = 1e-20 * glm::dot(tri.edge[0], tri.edge[0]) *
+                                  glm::dot(tri.edge[2], tri.edge[2]);
             const bool inside = side0 >= 0.0 && side1 >= 0.0 && side2 >= 0.0 &&
-                                spread * inv_length <= 1e-14 * scale;
+                                spread * inv_length <= 1e-14 * scale && n2 > sliver;
             if (inside & pb_.closest_regime(g, h))
                 return {g, u, extreme + 0.5 * g * u, ContactPath::face_certified, 0};
             // Kept only now: stores on the certified path would cost more than the math.
@@ -477,23 +483,40 @@ bool lexicographic_less(const glm::dvec3& a, const glm::dvec3& b) {
     return (a.x < b.x) | ((a.x == b.x) & ((a.y < b.y) | ((a.y == b.y) & (a.z < b.z))));
 }
 
-/// The vertex ranks in lexicographic order (ties keep the given order): sigma does not
-/// depend on the order or winding, and solving in a canonical order makes the rounded result
-/// bit-identical for every permutation.
-std::array<int, 3> vertex_ranks(const Triangle& t) {
-    const bool l10 = lexicographic_less(t[1], t[0]);
-    const bool l20 = lexicographic_less(t[2], t[0]);
-    const bool l21 = lexicographic_less(t[2], t[1]);
-    return {int(l10) + int(l20), int(!l10) + int(l21), int(!l20) + int(!l21)};
+/// The vertex order that sorts the triangle lexicographically, ties keeping the given order
+/// (a stable three-element sorting network): sigma does not depend on the order or winding,
+/// and solving in a canonical order makes the rounded result bit-identical for every
+/// permutation. Built from swaps, it is a permutation even when a NaN makes the comparisons
+/// inconsistent (ranks counted from them could repeat and index past the triangle): the NaN
+/// vertex still reaches the extent check below, which sends it to the -infinity answer.
+/// Selects rather than branches (conditional moves), like lexicographic_less.
+std::array<int, 3> canonical_order(const Triangle& t) {
+    const bool swap01 = lexicographic_less(t[1], t[0]);
+    const int low = swap01 ? 1 : 0, high = swap01 ? 0 : 1;
+    const bool swap12 = lexicographic_less(t[2], t[high]);
+    const int middle = swap12 ? 2 : high, top = swap12 ? high : 2;
+    const bool swap01_again = lexicographic_less(t[middle], t[low]);
+    return {swap01_again ? middle : low, swap01_again ? low : middle, top};
 }
 
-/// The triangle's vertices in canonical order: slot k holds the vertex of rank k, read
-/// through a computed index (indexed stores would stall the vector loads that follow).
-std::array<glm::dvec3, 3> canonical_vertices(const Triangle& t, const std::array<int, 3>& rank) {
-    std::array<glm::dvec3, 3> out;
-    for (int k = 0; k < 3; ++k)
-        out[static_cast<std::size_t>(k)] = t[int(rank[1] == k) + 2 * int(rank[2] == k)];
-    return out;
+/// The triangle's vertices in canonical order.
+std::array<glm::dvec3, 3> canonical_vertices(const Triangle& t, const std::array<int, 3>& order) {
+    return {t[order[0]], t[order[1]], t[order[2]]};
+}
+
+/// Scales v to unit length and sets length to its former length; false (v unchanged) for
+/// the zero vector. The center can sit far below the scale that brings the triangle near 1
+/// (c ~ 1e-159 when the triangle spans 1e170 around a center at 1e11): squaring such
+/// components gives subnormals, whose lost bits left a direction 2e-7 off unit (found by
+/// fuzz_contact). Dividing by the largest component first keeps the squares in [0, 3].
+bool unit_and_length(glm::dvec3& v, double& length) {
+    const double largest = std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+    if (!(largest > 0.0)) return false;
+    v /= largest;
+    const double scaled = glm::length(v);
+    v /= scaled;
+    length = largest * scaled;
+    return true;
 }
 
 /// For configurations whose lengths span more than double's squares can hold (the ellipsoid
@@ -507,13 +530,11 @@ Contact point_like_contact(const Ellipsoid& ellipsoid, const std::array<glm::dve
     for (int i = 0; i < 3; ++i) w[i] = v[i] / scale;
     const glm::dvec3 z = closest_point_on_triangle(c, w[0], w[1], w[2]);
     glm::dvec3 u = c - z;
-    const double distance = glm::length(u);
-    if (distance > 0.0) {
-        u /= distance;
-    } else {
-        const glm::dvec3 n = glm::cross(w[1] - w[0], w[2] - w[0]);
-        const double length = glm::length(n);
-        u = length > 0.0 ? n / length : glm::dvec3(0.0, 1.0, 0.0);
+    double distance = 0.0;
+    if (!unit_and_length(u, distance)) {
+        u = glm::cross(w[1] - w[0], w[2] - w[0]);
+        double length = 0.0;
+        if (!unit_and_length(u, length)) u = glm::dvec3(0.0, 1.0, 0.0);
     }
     const glm::dvec3 local = u * ellipsoid.sorted_axes();
     const glm::dvec3 r = ellipsoid.sorted_radii();
@@ -533,15 +554,23 @@ Contact rescaled_contact(const Ellipsoid& ellipsoid, const std::array<glm::dvec3
         glm::max(ellipsoid.sorted_radii(), glm::dvec3(ellipsoid.sorted_radii().x * 0x1p-200));
     double raw_extent = radii.x;
     for (int i = 0; i < 3; ++i) {
-        const glm::dvec3 d = glm::abs(v[i]) + glm::abs(c);
+        // max, not sum: a sum of two coordinates near 1.8e308 overflows (found by fuzz_contact).
+        const glm::dvec3 d = glm::max(glm::abs(v[i]), glm::abs(c));
         raw_extent = std::max({raw_extent, d.x, d.y, d.z});
     }
     const double scale = std::ldexp(1.0, std::ilogb(raw_extent));
     if (radii.z / scale < 0x1p-200) return point_like_contact(ellipsoid, v, scale);
     const glm::dvec3 center = c / scale;
     detail::LocalTriangle local;
+    // Components below 2^-200 of the scale are flushed to zero, as the radii are raised
+    // above: each vertex moves by less than 2^-199 of the largest length, and sigma with it
+    // (1-Lipschitz), while subnormal components (a center 1e-303 from the triangle beside
+    // a 1e9 m radius: found by fuzz_contact) would break the solver's squares into an
+    // infinite depth.
     for (int i = 0; i < 3; ++i) {
         local.q[i] = (v[i] / scale - center) * axes;
+        for (int k = 0; k < 3; ++k)
+            if (std::abs(local.q[i][k]) < 0x1p-200) local.q[i][k] = 0.0;
     }
     for (int i = 0; i < 3; ++i) local.edge[i] = local.q[(i + 1) % 3] - local.q[i];
     const glm::dvec3 sum = glm::abs(local.q[0]) + glm::abs(local.q[1]) + glm::abs(local.q[2]);
@@ -556,20 +585,36 @@ Contact ellipsoid_triangle_contact(const Ellipsoid& ellipsoid, const Triangle& t
     const glm::dvec3& c = ellipsoid.center();
     const glm::dmat3& axes = ellipsoid.sorted_axes();
     const glm::dvec3& radii = ellipsoid.sorted_radii();
-    const std::array<int, 3> rank = vertex_ranks(triangle);
+    const std::array<int, 3> order = canonical_order(triangle);
     detail::LocalTriangle local;
     for (int k = 0; k < 3; ++k)  // row vector * M = M^T * column
-        local.q[k] = (triangle[int(rank[1] == k) + 2 * int(rank[2] == k)] - c) * axes;
-    // Lengths must keep their squares and cubes normal numbers: within [2^-300, 2^300], as
-    // every car and track does (edges are at most twice the largest |q|). The sum also catches
-    // non-finite input (NaN and infinity propagate). Anything else takes the careful path.
+        local.q[k] = (triangle[order[static_cast<std::size_t>(k)]] - c) * axes;
+    // The fast solver needs every length's square, cube and fourth power to be a normal
+    // number: radii within [2^-200, 2^250], the smallest radius within 2^200 of the largest
+    // and of the triangle's extent, vertices within 2^250 of the center, as every car and
+    // track is (edges are at most twice the largest |q|); tiny vertex offsets are flushed
+    // below. fuzz_contact found each bound the hard way: 1e262 m
+    // and 1e79 m radii gave an infinite depth or a NaN normal, 1e-76 m radii a normal 2e-8
+    // off unit, a 1e114 radii ratio an infinite depth, a 1e-57 m sphere under a 1e5 m
+    // triangle a normal 5e-7 off unit. The careful path rescales by a power of two and
+    // raises radii below 2^-200 of the largest to it (or treats the ellipsoid as a point),
+    // which moves sigma by less than that. The sum also catches non-finite input (NaN and
+    // infinity propagate).
     const glm::dvec3 sum = glm::abs(local.q[0]) + glm::abs(local.q[1]) + glm::abs(local.q[2]);
     local.extent = sum.x + sum.y + sum.z;
-    if (!(local.extent < 0x1p299) || radii.z < 0x1p-300) {
+    if (!(local.extent < 0x1p250) || radii.z < 0x1p-200 || !(radii.x < 0x1p250) ||
+        radii.z < std::max(radii.x, local.extent) * 0x1p-200) {
         if (!finite_triangle(triangle))
             return {-std::numeric_limits<double>::infinity(), glm::dvec3(0.0, 1.0, 0.0), c};
-        return rescaled_contact(ellipsoid, canonical_vertices(triangle, rank));
+        return rescaled_contact(ellipsoid, canonical_vertices(triangle, order));
     }
+    // Offsets below 2^-200 of the configuration are flushed to zero: moving a vertex by that
+    // little moves sigma by less, while a subnormal one (1e-311 m from the center of a 32 m
+    // ellipsoid, found by fuzz_contact) made the solver miss the minimum by 1.3 cm, and one
+    // beside 1e-76 m radii gave an infinite depth. A 0/1 mask multiplies without branches.
+    const glm::dvec3 negligible(std::max(local.extent, radii.x) * 0x1p-200);
+    for (glm::dvec3& q : local.q)
+        q *= glm::dvec3(glm::greaterThanEqual(glm::abs(q), negligible));
     for (int i = 0; i < 3; ++i) local.edge[i] = local.q[(i + 1) % 3] - local.q[i];
     const detail::LocalContact solved = detail::solve_inline(radii, local);
     return {solved.depth, axes * solved.u, c + axes * solved.point};

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <exception>
+#include <fstream>
 #include <functional>
 #include <limits>
 #include <string>
@@ -20,6 +21,7 @@
 #include <glm/mat4x4.hpp>
 #include <glm/matrix.hpp>
 
+#include "io/ply_header_check.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/geometry/triangle.hpp"
 #include "trackphys/math/types.hpp"
@@ -59,6 +61,36 @@ void check_is_nonempty_file(const fs::path& path) {
     const std::uintmax_t size = fs::file_size(path, ec);
     if (ec) fail(path, "cannot read its size: " + ec.message());
     if (size == 0) fail(path, "the file is empty");
+}
+
+// See ply_header_check.hpp: files assimp's PLY reader would hang on or allocate without
+// bound for (both found by fuzz_mesh_import).
+void check_ply_header(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) fail(path, "cannot open it");
+    if (auto problem = detail::ply_header_problem(in, fs::file_size(path)))
+        fail(path, *problem);
+}
+
+// assimp's triangulation trusts each mesh's mPrimitiveTypes: a mesh that claims polygons but
+// holds none fails an ai_assert that Debian's assimp 5.2.5 keeps on, and it aborts the whole
+// process (found by fuzz_mesh_import: a mangled ASCII PLY whose reader made faces of no
+// index and flagged the mesh polygonal). The validation pass checks neither, so faces of no
+// index are rejected (inspect_before_triangulation) and the claim is recomputed from the faces.
+void set_primitive_types_from_faces(aiScene& scene) {
+    for (unsigned m = 0; m < scene.mNumMeshes; ++m) {
+        aiMesh& mesh = *scene.mMeshes[m];
+        unsigned types = 0;
+        for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
+            const unsigned n = mesh.mFaces[f].mNumIndices;
+            const aiPrimitiveType type = n == 1   ? aiPrimitiveType_POINT
+                                         : n == 2 ? aiPrimitiveType_LINE
+                                         : n == 3 ? aiPrimitiveType_TRIANGLE
+                                                  : aiPrimitiveType_POLYGON;
+            types |= static_cast<unsigned>(type);
+        }
+        mesh.mPrimitiveTypes = types;
+    }
 }
 
 // aiMatrix4x4 is row-major (a4, b4, c4 hold the translation); glm is column-major.
@@ -140,6 +172,9 @@ public:
             }
             for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
                 const unsigned n = mesh.mFaces[f].mNumIndices;
+                if (n == 0)
+                    fail(path_, mesh_label(mesh, m) + ", face " + std::to_string(f) +
+                                    " has no indices");
                 if (n >= 3) expected_triangles_[m] += n - 2;
             }
         }
@@ -248,6 +283,7 @@ private:
 TriangleMesh load_mesh(const fs::path& path, MeshLoadReport& report) {
     report = MeshLoadReport{};
     check_is_nonempty_file(path);
+    check_ply_header(path);
 
     Assimp::Importer importer;
     // Some importers invent a mesh to visualise a skeleton when a file has bones but no
@@ -264,6 +300,9 @@ TriangleMesh load_mesh(const fs::path& path, MeshLoadReport& report) {
         const aiScene* scene = importer.ReadFile(path.string(), aiProcess_ValidateDataStructure);
         if (scene == nullptr) fail(path, importer.GetErrorString());
         merger.inspect_before_triangulation(*scene);
+        // The importer owns the scene and hands it out const; it is ours to fix until the
+        // next call (the scene itself was never const).
+        set_primitive_types_from_faces(const_cast<aiScene&>(*scene));
         scene = importer.ApplyPostProcessing(aiProcess_Triangulate);
         if (scene == nullptr) fail(path, importer.GetErrorString());
         TriangleMesh mesh = merger.merge(*scene);

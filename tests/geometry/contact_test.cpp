@@ -1,6 +1,7 @@
 #include "trackphys/geometry/contact.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -14,6 +15,7 @@
 #include "support/contact_cases.hpp"
 #include "support/contact_reference.hpp"
 #include "trackphys/error.hpp"
+#include "trackphys/geometry/point_ellipsoid.hpp"
 
 namespace trackphys {
 namespace {
@@ -277,6 +279,129 @@ TEST(Contact, NoInputMakesNaN) {
             ASSERT_TRUE(finite(ellipsoid_triangle_contact(e, t)));
         }
     }
+}
+
+// Found by fuzz_contact: with a NaN the lexicographic comparisons that order the vertices
+// can form a cycle (here v2 < v0 while v1 compares false both ways with each), and vertex
+// ranks counted from them repeated and indexed past the triangle. Every order must still
+// reach the -infinity answer.
+TEST(Contact, NaNVertexInAnyOrderGivesMinusInfinity) {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const Ellipsoid e({0, 0, 0}, glm::dquat(1, 0, 0, 0), {1, 2, 3});
+    const std::array<glm::dvec3, 3> v = {glm::dvec3(1, 0, 0), glm::dvec3(nan, 0, 0),
+                                         glm::dvec3(0, 0, 0)};
+    std::array<int, 3> order = {0, 1, 2};
+    do {
+        const Triangle t(v[order[0]], v[order[1]], v[order[2]]);
+        const Contact got = ellipsoid_triangle_contact(e, t);
+        EXPECT_TRUE(finite(got));
+        EXPECT_EQ(got.depth, -std::numeric_limits<double>::infinity());
+    } while (std::next_permutation(order.begin(), order.end()));
+}
+
+// Extreme inputs fuzz_contact found making an infinite depth, a NaN point or a normal 2e-7
+// off unit: subnormal radii or offsets beside huge ones, radii beyond 2^299, radii ratios
+// of 1e114, subnormal offsets beside 1e-76 m radii.
+TEST(Contact, FuzzFoundExtremesStayFinite) {
+    struct Case {
+        glm::dvec3 center;
+        glm::dquat orientation;
+        glm::dvec3 semi_axes;
+        std::array<glm::dvec3, 3> vertices;
+    };
+    const std::array<Case, 10> cases = {{
+        {{2.4977757818599306e-308, 156842196603.99838, 156842099844.51764},
+         glm::dquat(0.5, 0.5, 0.5, 0.5),
+         {156842099844.51764, 4.9406564584124654e-323, 3.2285213693142097e-319},
+         {glm::dvec3(3.3957684451075383e-51, 1.9168343508855124e+170, 0), glm::dvec3(0),
+          glm::dvec3(0)}},
+        {{0, 1.8917286909320536e-307, 7.2911220195563975e-304},
+         glm::dquat(3.4148698114093743e-96, 6.1912347778923578e-313, 0, 1),
+         {7.2911220195563975e-304, 1.7383389519587511e-310, 3770908679.3887939},
+         {glm::dvec3(0), glm::dvec3(0), glm::dvec3(0)}},
+        {glm::dvec3(4.4759381595361623e-91), glm::dquat(0.5, 0.5, 0.5, 0.5),
+         {4.4207816532211201e+262, 4.4207816532211711e+262, 4.4207816532211711e+262},
+         {glm::dvec3(4.4759381595362021e-91, 7.9050503334599447e-323, 5.7326436886959837e-320),
+          glm::dvec3(0), glm::dvec3(0)}},
+        {{5.4216917988993756e-312, 6.1264140084314571e-322, 2.0527679361347504e-289},
+         glm::dquat(1, 0, 0, 0),
+         {1.02932062755738e-84, 3.5295363016240204e+30, 3.5295369653413445e+30},
+         {glm::dvec3(1.8913127797327678e-307, 2.1609092952369662e+30, 0), glm::dvec3(0),
+          glm::dvec3(0)}},
+        {{5.3049894823538372e-315, 2.7161546091976399e-310, 1.657809211691619e-316},
+         glm::dquat(1, 0, 0, 0),
+         {6.3291261944158812e-76, 1.3980432860952889e-76, 1.3980432860952889e-76},
+         {glm::dvec3(1.3980432860952889e-76, 0, 0), glm::dvec3(0), glm::dvec3(0)}},
+        {{5.3049894823538372e-315, 2.7161546092098928e-310, 1.657809211691619e-316},
+         glm::dquat(0.70710678118654346, 0.70710678118655157, -2.4531075428175575e-20,
+                    3.1255763602712741e-49),
+         {1.0101878239620334e+87, 1.3980434617985879e-76, 1.3980432860952889e-76},
+         {glm::dvec3(1.3980432860952889e-76, 1.3980432860952889e-76, 1.1996589727594304e-71),
+          glm::dvec3(8.064444989222878e+87, 5.4218226102592659e-312, 8.9003575106947373e-308),
+          glm::dvec3(0)}},
+        {{5.3049894823538372e-315, 4.9406564584124654e-324, 2.7161546091976399e-310},
+         glm::dquat(0, 1.4996965992373291e-241, 1, 3.8359522688441898e-165),
+         {1.3980430386505869e-76, 1.3980432860952889e-76, 1.3980432860952889e-76},
+         {glm::dvec3(1.1996589727594304e-71, 1.1063139132779746e-47, 4.8925718272660245e-283),
+          glm::dvec3(2.117899457122876e-314, 7.2911220466653098e-304, 0), glm::dvec3(0)}},
+        {{7.5560014310154563e+78, 7.5560015138364125e+78, 7.5560014310154563e+78},
+         glm::dquat(1, 0, 0, 0),
+         {7.5560014310154563e+78, 7.55573287026161e+78, 7.5569060567126228e+78},
+         {glm::dvec3(-1.5862587963175458e-61, 7.5469551740439473e+78, 7.5560014310154563e+78),
+          glm::dvec3(7.5560014310154563e+78, 3.2452779034740585e+88, 7.5560014310154563e+78),
+          glm::dvec3(2.7776142677835984e-309, 0, 0)}},
+        {{7.0651114597135147e-304, 1.668805393880401e-308, 8.4742139574690607e-320},
+         glm::dquat(3.0551530542826517e-253, 1.5822739364005226e-256, 0.70710678115353565,
+                    0.7071067812195595),
+         glm::dvec3(3.2186704024134878e-57),
+         {glm::dvec3(131059.26274509804, 32.501960784246037, 33.806648284313724),
+          glm::dvec3(-3.4030000619567244e-161, 0, 0), glm::dvec3(0)}},
+        {{5.7840552864802584e+170, -1.797692724301187e+308, 5.8536405370189899e+170},
+         glm::dquat(1, 0, 0, 0),
+         {2.9357886262539132e-307, 1.740700265154975e-315, 5.8536377117013575e+170},
+         {glm::dvec3(1.8456128521100186e-317, -5.4861240892339001e+303, 0), glm::dvec3(0),
+          glm::dvec3(0)}},
+    }};
+    for (const Case& c : cases) {
+        const Ellipsoid e(c.center, c.orientation, c.semi_axes);
+        const Contact got =
+            ellipsoid_triangle_contact(e, Triangle(c.vertices[0], c.vertices[1], c.vertices[2]));
+        EXPECT_TRUE(finite(got)) << got.depth;
+        EXPECT_TRUE(std::isfinite(got.depth));
+        EXPECT_NEAR(glm::length(got.normal), 1.0, 1e-12);
+    }
+}
+
+// Found by fuzz_contact: a center 1e-311 m (subnormal) off a triangle vertex made the solver
+// miss the minimum by 1.3 cm; the depth must match the same ellipsoid rebuilt from its
+// sorted axes, and the exact answer, the smallest radius (the triangle lies on one side of
+// that axis through the vertex at the center).
+TEST(Contact, SubnormalOffsetKeepsTheDepth) {
+    const glm::dquat q(3.3236003152765345e-21, 0.99643207332977257, 0.084398597380115195,
+                       2.0678640065606455e-309);
+    const Ellipsoid e({1.0848620590898777e-311, 0, 1.2670728489188315e-279}, q,
+                      {32, 32.501960784313724, 32.501960784313724});
+    const Ellipsoid sorted(e.center(), glm::quat_cast(e.sorted_axes()), e.sorted_radii());
+    const double s = 32.501960784313724;
+    const Triangle t({s, s, s}, {s, 0, 0}, {0, 0, 0});
+    EXPECT_NEAR(ellipsoid_triangle_contact(e, t).depth, 32.0, 1e-9);
+    EXPECT_NEAR(ellipsoid_triangle_contact(sorted, t).depth, 32.0, 1e-9);
+}
+
+// Found by fuzz_contact: collinear vertices under a flat ellipsoid certified a face whose
+// normal was rounding noise, 1.4e-4 m off; the segment's true separation is 0.877095 m
+// (checked by sampling the point-ellipsoid distance along it).
+TEST(Contact, CollinearTriangleIsNotCertifiedAsAFace) {
+    const Ellipsoid e({10.99609375, 0, 0.87890625},
+                      glm::dquat(0.0023343212240219168, 0, 0, -0.99999727546849992),
+                      {29.3662109375, 29.3662109375, 0.001953125});
+    const Triangle t({-107.4609375, 0, 0}, {-0.96875, 0, 0}, {0, 0, 0});
+    double separation = std::numeric_limits<double>::infinity();
+    for (int i = 0; i <= 20000; ++i) {
+        const glm::dvec3 p(-0.96875 * i / 20000.0, 0, 0);  // the part under the ellipsoid
+        separation = std::min(separation, closest_point_on_ellipsoid(e, p).distance);
+    }
+    EXPECT_NEAR(ellipsoid_triangle_contact(e, t).depth, -separation, 1e-9);
 }
 
 TEST(Contact, KnownAnswers) {

@@ -110,6 +110,72 @@ TEST_F(MeshLoadErrors, GarbageAfterAValidLookingHeader) {
     }
 }
 
+TEST_F(MeshLoadErrors, PlyHeaderWithoutEndHeaderIsRejectedNotHung) {
+    // assimp 5.2.5's PLY reader never returns on these (found by fuzz_mesh_import); it takes
+    // them by content under .gltf, .glb and unknown extensions too. A timeout here is the bug.
+    const std::string body = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+                             "property float y\nproperty float z\n";
+    const std::vector<std::pair<std::string, std::string>> cases{
+        {"bare.ply", "ply\nformat ascii 1.0\n"},
+        {"upper.ply", "PLY\nformat ascii 1.0\n"},
+        {"no_end.ply", body + "0 0 0\n1 0 0\n0 0 1\n"},
+        {"in_comment.ply", body + "comment end_header\n0 0 0\n"},
+        {"longer_token.ply", body + "end_headerX\n0 0 0\n"},
+        {"vertical_tab.ply", body + "end_header\v0 0 0\n"},
+        {"swallowed.ply", body + "comment a" + std::string(2, '\0') + "end_header\n0 0 0\n"},
+        {"as.gltf", body},
+        {"as.glb", body},
+        {"as.xyz", body},
+    };
+    // A stray line in the header and end_header as the last bytes: also a hang.
+    test::write_file(file("ends_at_header.ply"),
+                     "ply\nformat ascii 1.0\nelement vertex 3\n0 0 0\nproperty float x\n"
+                     "end_header");
+    EXPECT_NE(load_error(file("ends_at_header.ply")).find("ends at its end_header line"),
+              std::string::npos);
+    for (const auto& [name, text] : cases) {
+        test::write_file(file(name), text);
+        const std::string message = load_error(file(name));
+        EXPECT_NE(message.find(name), std::string::npos) << message;
+        EXPECT_NE(message.find("no end_header line"), std::string::npos) << message;
+    }
+    // A header line with leading blanks or CR LF line ends still ends the header.
+    for (const char* end : {"  end_header\n", "end_header\r\n"}) {
+        test::write_file(file("ok.ply"), body + "element face 1\nproperty list uchar int "
+                                                "vertex_indices\n" + end +
+                                             "0 0 0\n1 0 0\n0 0 1\n3 0 1 2\n");
+        EXPECT_EQ(load_mesh(file("ok.ply")).triangles.size(), 1u) << end;
+    }
+}
+
+TEST_F(MeshLoadErrors, PlyElementCountBeyondTheFileIsRejectedBeforeAllocating) {
+    // assimp allocates what the count claims before reading (found by fuzz_mesh_import: 45 GB
+    // for a 400-byte file); each instance takes at least one byte of the file.
+    for (const std::string count : {"100000000000", "555555555555555555555555555554"}) {
+        const std::string name = "claim" + std::to_string(count.size()) + ".ply";
+        test::write_file(file(name), "ply\nformat ascii 1.0\nelement vertex " + count +
+                                         "\nproperty float x\nproperty float y\n"
+                                         "property float z\nend_header\n0 0 0\n");
+        const std::string message = load_error(file(name));
+        EXPECT_NE(message.find(name), std::string::npos) << message;
+        EXPECT_NE(message.find("PLY element 'vertex' claims"), std::string::npos) << message;
+    }
+}
+
+TEST_F(MeshLoadErrors, PlyFaceWithoutIndicesIsRejectedNotAborted) {
+    // assimp's PLY reader keeps the face "0" and flags the mesh polygonal; its triangulation
+    // then fails an ai_assert that aborts the process (assimp 5.2.5, found by
+    // fuzz_mesh_import). A crash here is the bug.
+    test::write_file(file("empty_face.ply"),
+                     "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+                     "property float y\nproperty float z\nelement face 2\n"
+                     "property list uchar int vertex_indices\nend_header\n"
+                     "0 0 0\n1 0 0\n0 0 1\n3 0 1 2\n0\n");
+    const std::string message = load_error(file("empty_face.ply"));
+    EXPECT_NE(message.find("empty_face.ply"), std::string::npos) << message;
+    EXPECT_NE(message.find("face 1 has no indices"), std::string::npos) << message;
+}
+
 TEST_F(MeshLoadErrors, TruncatedGlb) {
     TriangleMesh mesh = unit_square();
     for (int i = 0; i < 50; ++i) {  // big enough that the binary chunk dominates the file

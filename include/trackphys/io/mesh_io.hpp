@@ -54,8 +54,9 @@ struct MeshLoadReport {
 /// face corners, not `v` lines); or when no triangle is left.
 ///
 /// assimp sizes some buffers from the file's header before it can check them, so a small
-/// corrupt file can make it allocate what the header claims (a 200-byte PLY claiming 1e8
-/// vertices allocates 1.2 GB) before the import fails.
+/// corrupt file can make it allocate what the header claims before the import fails. For
+/// PLY (the worst case) a claim of more element instances than the file has bytes is
+/// rejected first; a 200-byte PLY can still claim 200 vertices of a hundred properties.
 TRACKPHYS_API TriangleMesh load_mesh(const std::filesystem::path& path, MeshLoadReport& report);
 
 /// load_mesh without the report.
