@@ -35,6 +35,7 @@ Car::Car(CarSpec spec, const RigidBodyState& initial_state) : spec_(std::move(sp
     for (const CarEllipsoid& e : spec_.ellipsoids) {
         body_ellipsoids_.emplace_back(e.center, e.orientation, e.semi_axes);
         suspension_.push_back(0.0);
+        wheel_loads_.push_back(0.0);
         bounding_radius_ = std::max(bounding_radius_, glm::length(e.center) +
                                                           body_ellipsoids_.back().bounding_radius());
         wheels_ += e.role != EllipsoidRole::body;
@@ -86,17 +87,31 @@ WheelCommand Car::wheel_command(std::size_t i, double axle_normal_force) const {
     return command;
 }
 
+void Car::advance(std::span<const Contact> deepest, const glm::dvec3& gravity, double h) {
+    resolve_deep_contacts(deepest);
+    measure_wheel_loads(deepest);
+    const Wrench wrench = contact_wrench(deepest);
+    update_suspension(deepest, h);
+    trackphys::integrate(state_, spec_.mass, wrench, gravity, h);
+}
+
+void Car::measure_wheel_loads(std::span<const Contact> deepest) {
+    for (std::size_t i = 0; i < deepest.size(); ++i)
+        wheel_loads_[i] = spec_.ellipsoids[i].role == EllipsoidRole::body
+                              ? 0.0
+                              : normal_force(spec_.wheel_contact, deepest[i].depth, deepest[i].normal,
+                                             point_velocity(state_, deepest[i].point));
+}
+
 Wrench Car::contact_wrench(std::span<const Contact> deepest) const {
-    // Normal loads first: the least loaded wheel of each axle bounds its drive and brake.
+    // The least loaded wheel of each axle bounds its drive and brake.
     double front_load = std::numeric_limits<double>::infinity();
     double rear_load = std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i < deepest.size(); ++i) {
         const EllipsoidRole role = spec_.ellipsoids[i].role;
         if (role == EllipsoidRole::body) continue;
-        const double load = normal_force(spec_.wheel_contact, deepest[i].depth, deepest[i].normal,
-                                         point_velocity(state_, deepest[i].point));
         double& axle = role == EllipsoidRole::front_wheel ? front_load : rear_load;
-        axle = std::min(axle, load);
+        axle = std::min(axle, wheel_loads_[i]);
     }
 
     Wrench wrench;
@@ -122,18 +137,14 @@ void Car::update_suspension(std::span<const Contact> deepest, double h) {
     const glm::dvec3 up = state_.orientation * glm::dvec3(0.0, 1.0, 0.0);
     for (std::size_t i = 0; i < deepest.size(); ++i) {
         if (spec_.ellipsoids[i].role == EllipsoidRole::body) continue;
-        const Contact& c = deepest[i];
-        const double load = normal_force(spec_.wheel_contact, c.depth, c.normal,
-                                         point_velocity(state_, c.point));
-        const double lift = load * glm::dot(c.normal, up);
+        const double lift = wheel_loads_[i] * glm::dot(deepest[i].normal, up);
         // Massless wheel: the damper passes what the spring does not hold.
         const double rate = (lift - spring.stiffness * suspension_[i]) / spring.damping;
         suspension_[i] = std::clamp(suspension_[i] + h * rate, 0.0, spring.travel);
     }
 }
 
-int Car::resolve_deep_contacts(std::span<const Contact> deepest) {
-    int impulses = 0;
+void Car::resolve_deep_contacts(std::span<const Contact> deepest) {
     for (std::size_t i = 0; i < deepest.size(); ++i) {
         const Contact& contact = deepest[i];
         if (!(contact.depth > 0.0)) continue;
@@ -154,9 +165,7 @@ int Car::resolve_deep_contacts(std::span<const Contact> deepest) {
         const double j = -approach / inverse_mass;
         state_.linear_velocity += contact.normal * (j / spec_.mass.mass);
         state_.angular_velocity += turn * j;
-        ++impulses;
     }
-    return impulses;
 }
 
 void Car::add_aero_force(Wrench& wrench) const {

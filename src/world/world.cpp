@@ -166,10 +166,7 @@ void World::substep(CarSlot& slot, PhaseStopwatch& watch) {
     }
     watch.lap(Phase::exact);
 
-    car.resolve_deep_contacts(slot.deepest);
-    const Wrench wrench = car.contact_wrench(slot.deepest);
-    car.update_suspension(slot.deepest, settings_.substep_dt());
-    car.integrate(wrench, settings_.gravity, settings_.substep_dt());
+    car.advance(slot.deepest, settings_.gravity, settings_.substep_dt());
     watch.lap(Phase::integrate);
 }
 

@@ -56,34 +56,32 @@ public:
     /// Speed of the centre of mass (m/s).
     double speed() const;
 
-    /// The wrench on the car this sub-step: each ellipsoid's deepest contact (one per
-    /// ellipsoid, in order; depth <= 0 for none) turned into a force at its point, plus
-    /// aerodynamic drag and downforce at the centre of mass.
+    /// One sub-step of h seconds from each ellipsoid's deepest contact (one per ellipsoid,
+    /// in order; depth <= 0 for none): impulses for contacts the springs cannot hold, the
+    /// contact and aerodynamic forces, the wheels' suspension travel, then integration
+    /// under those forces and gravity.
     ///
-    /// Drive and brake act per axle like an open differential with anti-lock brakes:
-    /// each wheel of an axle gets the same share, at most traction_limit of the grip of the
-    /// axle's least loaded wheel, so a wheel in the air never leaves its partner pulling
-    /// the car sideways.
-    Wrench contact_wrench(std::span<const Contact> deepest) const;
-
-    /// Catches contacts the springs cannot hold: an ellipsoid deeper than
-    /// CarSpec::deep_contact_fraction of its half-extent along the contact normal that still
-    /// approaches the surface gets an impulse that removes the approaching velocity at its
-    /// contact point (a plastic impact). A crash at 1000 km/h or a fall from 100 m stops at the surface
-    /// instead of tunnelling through it; ordinary driving never reaches that depth.
-    /// Returns the number of impulses applied.
-    int resolve_deep_contacts(std::span<const Contact> deepest);
-
-    /// Moves each wheel along its suspension for h seconds under the tyre's normal load
-    /// from this sub-step's deepest contacts (see Suspension).
-    void update_suspension(std::span<const Contact> deepest, double h);
-
-    /// Advances the state by h seconds under wrench and gravity.
-    void integrate(const Wrench& wrench, const glm::dvec3& gravity, double h) {
-        trackphys::integrate(state_, spec_.mass, wrench, gravity, h);
-    }
+    /// - Forces: each contact becomes a force at its point (body: spring, damper and
+    ///   friction; wheels: also drive, brake and lateral grip), plus drag and downforce at
+    ///   the centre of mass. Drive and brake act per axle like an open differential with
+    ///   anti-lock brakes: each wheel of an axle gets the same share, at most
+    ///   traction_limit of the grip of the axle's least loaded wheel, so a wheel in the air
+    ///   never leaves its partner pulling the car sideways.
+    /// - Deep contacts: an ellipsoid deeper than CarSpec::deep_contact_fraction of its
+    ///   half-extent along the contact normal that still approaches the surface gets an
+    ///   impulse removing the approaching velocity at its contact point (a plastic impact),
+    ///   so a crash at 1000 km/h or a fall from 100 m stops at the surface instead of
+    ///   tunnelling through it; ordinary driving never reaches that depth.
+    /// - Suspension: each wheel moves along the body's up axis under its tyre's normal load
+    ///   (see Suspension).
+    void advance(std::span<const Contact> deepest, const glm::dvec3& gravity, double h);
 
 private:
+    void resolve_deep_contacts(std::span<const Contact> deepest);
+    /// The tyre's normal force of each wheel (0 for the body) into wheel_loads_.
+    void measure_wheel_loads(std::span<const Contact> deepest);
+    Wrench contact_wrench(std::span<const Contact> deepest) const;
+    void update_suspension(std::span<const Contact> deepest, double h);
     WheelCommand wheel_command(std::size_t i, double axle_normal_force) const;
     /// The contact material of wheel i (rear tyres with their extra grip).
     ContactMaterial wheel_material(std::size_t i) const;
@@ -94,6 +92,7 @@ private:
     CarInputs inputs_;
     std::vector<Ellipsoid> body_ellipsoids_;
     std::vector<double> suspension_;
+    std::vector<double> wheel_loads_;  // this sub-step's tyre normal forces (N)
     double bounding_radius_ = 0.0;
     int front_wheels_ = 0;
     int wheels_ = 0;

@@ -74,7 +74,7 @@ struct TRACKPHYS_API CarSpec {
     double front_brake_share = 0.6;
     double max_steer_angle = 0.6;       ///< rad at full steer, at low speed
     /// A contact deeper than this share of the ellipsoid's half-extent along the contact
-    /// normal, still approaching, is stopped by an impulse (see Car::resolve_deep_contacts).
+    /// normal, still approaching, is stopped by an impulse (see Car::advance).
     /// Half of a wheel's radius is 17 cm, twice its compression under 5 g of cornering.
     double deep_contact_fraction = 0.5;
     double drag_area = 0.35;            ///< C_d A (m^2): drag 1/2 rho C_d A v^2
