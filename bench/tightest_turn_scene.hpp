@@ -42,9 +42,7 @@ struct TightestTurnScene {
         track = generate_track(params);
         turn = track.centerline[compute_track_stats(track).tightest_sample];
         update_box = car_update_box(turn);
-        for (const CarEllipsoid& e : car.ellipsoids)
-            ride_height = std::max(ride_height, -Ellipsoid(e.center, e.orientation, e.semi_axes).bounds().min.y);
-        ride_height -= 0.01;
+        ride_height = car.lowest_point_depth() - 0.01;
         // Body frame +X left, +Y up, +Z forward: the columns are the road frame there.
         car_orientation = glm::quat_cast(glm::dmat3(turn.left, turn.up, turn.tangent));
     }

@@ -14,14 +14,9 @@
 namespace trackphys::cli {
 namespace {
 
-// How far the car's lowest point sits below its centre of mass (m), plus a millimetre so
-// that it starts just clear of the surface and settles onto it.
-double ride_height(const CarSpec& car) {
-    double lowest = std::numeric_limits<double>::infinity();
-    for (const CarEllipsoid& e : car.ellipsoids)
-        lowest = std::min(lowest, Ellipsoid(e.center, e.orientation, e.semi_axes).bounds().min.y);
-    return -lowest + 0.001;
-}
+// The centre of mass's height for the car to start a millimetre clear of the surface and
+// settle onto it.
+double ride_height(const CarSpec& car) { return car.lowest_point_depth() + 0.001; }
 
 }  // namespace
 

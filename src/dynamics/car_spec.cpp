@@ -1,10 +1,12 @@
 #include "trackphys/dynamics/car_spec.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
 #include <glm/geometric.hpp>
 
+#include "trackphys/geometry/ellipsoid.hpp"
 #include "trackphys/math/types.hpp"
 
 namespace trackphys {
@@ -37,6 +39,13 @@ CarSpec CarSpec::default_car() {
     // The body rarely touches; stiffer so a scrape does not sink it.
     spec.body_contact = {8.0e5, 3.0e4, 0.6, 0.05};
     return spec;
+}
+
+double CarSpec::lowest_point_depth() const {
+    double lowest = 0.0;
+    for (const CarEllipsoid& e : ellipsoids)
+        lowest = std::min(lowest, Ellipsoid(e.center, e.orientation, e.semi_axes).bounds().min.y);
+    return -lowest;
 }
 
 namespace {

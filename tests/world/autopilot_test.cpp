@@ -39,7 +39,7 @@ const TrackWorld& default_track() {
 RigidBodyState on_start_line(const Track& track) {
     const CenterlineSample& s = track.centerline.front();
     RigidBodyState state;
-    state.position = s.position + s.up * 0.501;
+    state.position = s.position + s.up * (CarSpec::default_car().lowest_point_depth() + 0.001);
     state.orientation = glm::normalize(glm::quat_cast(glm::dmat3(s.left, s.up, s.tangent)));
     return state;
 }

@@ -86,6 +86,11 @@ struct TRACKPHYS_API CarSpec {
     /// critical, enough power and downforce to reach 1000 km/h.
     static CarSpec default_car();
 
+    /// How far the car's lowest point (at full suspension droop) sits below its centre of
+    /// mass when the car stands upright (m): the height at which to place the centre of
+    /// mass for the wheels to touch flat ground.
+    double lowest_point_depth() const;
+
     /// Empty when every field is in range; otherwise the first problem, naming the field
     /// (e.g. "CarSpec.ellipsoids[2].semi_axes.y must be finite and > 0, got 0").
     std::string validate() const;
