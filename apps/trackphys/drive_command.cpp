@@ -129,7 +129,7 @@ void run(const DriveOptions& o) {
         const int laps_before = autopilot ? autopilot->laps() : 0;
         world.update();
         if (autopilot) {
-            autopilot->drive(car);  // track progress to the new position
+            autopilot->locate(car);
             if (autopilot->laps() > laps_before) {
                 double previous_laps = 0.0;
                 for (double t : report.lap_times_s) previous_laps += t;

@@ -127,16 +127,19 @@ std::size_t Autopilot::sample_ahead(std::size_t from, double distance) const {
     return i;
 }
 
-CarInputs Autopilot::drive(const Car& car) {
-    const RigidBodyState& state = car.state();
+void Autopilot::locate(const Car& car) {
     const std::size_t previous = nearest_;
-    nearest_ = find_nearest(state.position);
+    nearest_ = find_nearest(car.state().position);
     // Crossing the start line forwards: the index wraps from the last samples to the first.
     const std::size_t n = centerline_.size();
     if (located_ && previous > nearest_ && previous - nearest_ > n / 2) ++laps_;
     if (located_ && nearest_ > previous && nearest_ - previous > n / 2 && laps_ > 0) --laps_;
     located_ = true;
+}
 
+CarInputs Autopilot::drive(const Car& car) {
+    locate(car);
+    const RigidBodyState& state = car.state();
     const double speed = car.speed();
     CarInputs inputs;
 

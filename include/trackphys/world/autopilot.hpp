@@ -33,6 +33,9 @@ public:
 
     /// Inputs for the car's current state; also advances the progress along the track.
     CarInputs drive(const Car& car);
+    /// Advances the progress along the track (nearest sample, laps) to the car's current
+    /// position, without computing inputs.
+    void locate(const Car& car);
 
     /// The planned speed (m/s) at centreline sample i.
     double planned_speed(std::size_t i) const { return planned_speed_[i]; }
