@@ -3,11 +3,13 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
 #include <vector>
 
 #include "trackphys/collision/mid_phase.hpp"
 #include "trackphys/collision/static_world.hpp"
+#include "trackphys/collision/swept_ellipsoid.hpp"
 #include "trackphys/dynamics/car.hpp"
 #include "trackphys/export.hpp"
 #include "trackphys/geometry/normalized_triangle.hpp"
@@ -83,6 +85,7 @@ private:
         MidPhase mid;
         Aabb update_box;                                      // what mid.begin_update covers
         std::vector<std::vector<MidPhaseCandidate>> listed;   // per ellipsoid, this step
+        std::vector<std::optional<SweptEllipsoid>> listed_for;  // the shape each list holds
         std::vector<Ellipsoid> placed;                        // the ellipsoids, this sub-step
         std::vector<std::vector<Survivor>> kept;              // per ellipsoid: culled survivors
         std::vector<Contact> deepest;                         // per ellipsoid, this sub-step
@@ -91,7 +94,7 @@ private:
 
     void update_car(CarSlot& slot, PhaseStopwatch& watch);
     void begin_update(CarSlot& slot, const Aabb& box, PhaseStopwatch& watch);
-    void list_step_candidates(CarSlot& slot, PhaseStopwatch& watch);
+    void list_step_candidates(CarSlot& slot, int steps_left, PhaseStopwatch& watch);
     void substep(CarSlot& slot, PhaseStopwatch& watch);
 
     std::shared_ptr<const StaticWorld> statics_;
