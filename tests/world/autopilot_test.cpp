@@ -153,5 +153,35 @@ TEST(Autopilot, EveryMidPhaseModeDrivesTheSame) {
     EXPECT_LE(glm::length(finals[2] - finals[0]), 1e-9);
 }
 
+// Reusing a look-ahead query's list while the step's shape stays inside it changes which
+// triangles are culled, never which contacts win: 1 (a query every step), the default and
+// the whole update ahead end in the same state. The reuse must also happen.
+TEST(Autopilot, LookingAheadInTheMidPhaseDrivesTheSame) {
+    const TrackWorld& tw = default_track();
+    const CarSpec spec = CarSpec::default_car();
+    std::vector<glm::dvec3> finals;
+    std::vector<std::uint64_t> queries;
+    for (const int look_ahead : {1, 3, 10}) {
+        WorldSettings settings;
+        settings.mid_phase_look_ahead = look_ahead;
+        World world(tw.statics, settings, tw.trees);
+        world.add_car(spec, on_start_line(tw.track));
+        Autopilot pilot(tw.track, spec);
+        std::uint64_t listed = 0;
+        for (int i = 0; i < 300; ++i) {
+            world.car(0).set_inputs(pilot.drive(world.car(0)));
+            world.update();
+            listed += world.last_profile().mid_queries;
+        }
+        finals.push_back(world.car(0).state().position);
+        queries.push_back(listed);
+    }
+    EXPECT_LE(glm::length(finals[1] - finals[0]), 1e-9);
+    EXPECT_LE(glm::length(finals[2] - finals[0]), 1e-9);
+    EXPECT_EQ(queries[0], 300u * 10u * spec.ellipsoids.size());
+    EXPECT_LT(queries[1], queries[0] * 6 / 10);
+    EXPECT_LT(queries[2], queries[1]);
+}
+
 }  // namespace
 }  // namespace trackphys
