@@ -85,12 +85,10 @@ void World::begin_update(CarSlot& slot, const Aabb& box, PhaseStopwatch& watch) 
 // The mid phase, once per step: each ellipsoid's triangles for the step's sub-steps, from
 // the ellipsoid swept by its velocity over the step and grown for rotation and for up to
 // 10 m/s of velocity change. A query costs far more than culling a few more triangles, so
-// each query looks up to kListAheadSteps steps ahead along the current velocity with
-// kListSlack more margin, and later steps of the update reuse its list while their own
-// swept ellipsoid stays inside it (a car that turns or bounces out of it queries again).
+// each query looks settings_.mid_phase_look_ahead steps ahead along the current velocity
+// with some slack, and later steps of the update reuse its list while their own swept
+// ellipsoid stays inside it (a car that turns or bounces out of it queries again).
 void World::list_step_candidates(CarSlot& slot, int steps_left, PhaseStopwatch& watch) {
-    constexpr int kListAheadSteps = 3;
-    constexpr double kListSlack = 0.005;  // m
     const Car& car = slot.car;
     const RigidBodyState& state = car.state();
     const double step_dt = settings_.dt_update / settings_.steps;
@@ -103,9 +101,10 @@ void World::list_step_candidates(CarSlot& slot, int steps_left, PhaseStopwatch& 
         std::vector<MidPhaseCandidate>& listed = slot.listed[i];
         std::optional<SweptEllipsoid>& listed_for = slot.listed_for[i];
         if (!listed_for || !listed_for->contains(step_shape)) {
-            const int ahead = std::min(kListAheadSteps, steps_left);
+            const int ahead = std::min(settings_.mid_phase_look_ahead, steps_left);
+            const double slack = ahead > 1 ? settings_.mid_phase_slack : 0.0;
             listed_for = SweptEllipsoid{ellipsoid, ellipsoid.center() + velocity * (step_dt * ahead),
-                                        margin + kListSlack};
+                                        margin + slack};
             // Looking ahead must not leave the update box; a step that leaves it (a car
             // thrown off its course by an impact) widens the box first: the mid phase only
             // knows the triangles inside it.
@@ -119,6 +118,7 @@ void World::list_step_candidates(CarSlot& slot, int steps_left, PhaseStopwatch& 
             }
             listed.clear();
             slot.mid.query_swept_ellipsoid(ellipsoid, listed_for->end, listed_for->margin, listed);
+            ++profile_.mid_queries;
         }
         if (settings_.mid_phase == MidPhaseMode::precomputed_tree) profile_.candidates += listed.size();
     }

@@ -20,6 +20,10 @@ std::string WorldSettings::validate() const {
     else if (!(std::isfinite(broad_phase_margin) && broad_phase_margin >= 0.0))
         why << "WorldSettings.broad_phase_margin must be finite and >= 0, got "
             << broad_phase_margin;
+    else if (mid_phase_look_ahead < 1)
+        why << "WorldSettings.mid_phase_look_ahead must be >= 1, got " << mid_phase_look_ahead;
+    else if (!(std::isfinite(mid_phase_slack) && mid_phase_slack >= 0.0))
+        why << "WorldSettings.mid_phase_slack must be finite and >= 0, got " << mid_phase_slack;
     return why.str();
 }
 
