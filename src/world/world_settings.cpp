@@ -20,6 +20,14 @@ std::string WorldSettings::validate() const {
     else if (!(std::isfinite(broad_phase_margin) && broad_phase_margin >= 0.0))
         why << "WorldSettings.broad_phase_margin must be finite and >= 0, got "
             << broad_phase_margin;
+    else if (!(std::isfinite(max_car_speed) && max_car_speed > 0.0))
+        why << "WorldSettings.max_car_speed must be finite and > 0, got " << max_car_speed;
+    else if (!(std::isfinite(max_car_angular_speed) && max_car_angular_speed > 0.0))
+        why << "WorldSettings.max_car_angular_speed must be finite and > 0, got "
+            << max_car_angular_speed;
+    else if (!(max_spawn_distance >= 0.0))
+        why << "WorldSettings.max_spawn_distance must be >= 0 (infinity for no limit), got "
+            << max_spawn_distance;
     return why.str();
 }
 

@@ -21,6 +21,16 @@ struct TRACKPHYS_API WorldSettings {
     /// How each step's candidates are found (see MidPhaseMode; the default was measured
     /// fastest by bench_midphase).
     MidPhaseMode mid_phase = kDefaultMidPhaseMode;
+    /// A car that ends an update faster than this (m/s; default twice the 1000 km/h design
+    /// speed) is in an impossible state and is reset (World::update).
+    double max_car_speed = 2000.0 / 3.6;
+    /// Likewise for its angular speed (rad/s; default 100, a car tumbling 16 times a second:
+    /// the hardest crash the tests make, 1000 km/h into a wall, stays below 20).
+    double max_car_angular_speed = 100.0;
+    /// World::add_car rejects a car whose centre of mass is farther than this (m) from the
+    /// box of every collider: a car placed far outside the map is a mistake (a wrong unit or
+    /// frame) and would fall forever.
+    double max_spawn_distance = 1000.0;
     /// Measure per-phase times in the UpdateProfile (reads the clock a few times per
     /// sub-step); counts are kept either way.
     bool profile = true;
