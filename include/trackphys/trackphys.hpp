@@ -36,6 +36,7 @@
 #include "trackphys/world/autopilot.hpp"
 #include "trackphys/world/world.hpp"
 #include "trackphys/world/world_settings.hpp"
+#include "trackphys/world/world_snapshot.hpp"
 
 #include "trackphys/profile/profile_statistics.hpp"
 #include "trackphys/profile/trace_recorder.hpp"
@@ -47,3 +48,4 @@
 
 #include "trackphys/io/mesh_io.hpp"
 #include "trackphys/io/recording.hpp"
+#include "trackphys/io/snapshot_file.hpp"
