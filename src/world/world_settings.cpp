@@ -3,6 +3,8 @@
 #include <cmath>
 #include <sstream>
 
+#include <glm/geometric.hpp>
+
 #include "trackphys/math/types.hpp"
 
 namespace trackphys {
@@ -15,8 +17,9 @@ std::string WorldSettings::validate() const {
         why << "WorldSettings.steps must be in [1, 10000], got " << steps;
     else if (substeps < 1 || substeps > 10000)
         why << "WorldSettings.substeps must be in [1, 10000], got " << substeps;
-    else if (!is_finite(gravity))
-        why << "WorldSettings.gravity is not finite";
+    else if (!(is_finite(gravity) && glm::length(gravity) <= kMaxGravity))
+        why << "WorldSettings.gravity must be finite and at most " << kMaxGravity
+            << " m/s^2 in magnitude, got (" << gravity.x << ", " << gravity.y << ", " << gravity.z << ")";
     else if (!(std::isfinite(broad_phase_margin) && broad_phase_margin >= 0.0))
         why << "WorldSettings.broad_phase_margin must be finite and >= 0, got "
             << broad_phase_margin;
