@@ -4,8 +4,10 @@
 // Bytes -> a start (centreline sample, height above the road, speed along the road up to
 // ~1100 km/h, a sideways slip and a spin) and up to 25 updates of controls. Byte 0 picks the
 // controls' decoding: even, one byte each for throttle, brake and steer in their ranges;
-// odd, raw doubles (NaN, infinities, out of range: Car::set_inputs clamps them and takes
-// NaN as no input). After every update the car's state must be finite.
+// odd, raw doubles (infinities and out of range: Car::set_inputs clamps them; NaN: it must
+// reject them with trackphys::Error). A start inside the road (the lowest starts sink the
+// wheels into it) must be rejected by World::add_car with trackphys::Error. After every
+// update the car's state must be finite.
 
 #include <algorithm>
 #include <cmath>
@@ -23,6 +25,7 @@
 #include "trackphys/collision/static_world.hpp"
 #include "trackphys/dynamics/car.hpp"
 #include "trackphys/dynamics/car_spec.hpp"
+#include "trackphys/error.hpp"
 #include "trackphys/math/types.hpp"
 #include "trackphys/track/track.hpp"
 #include "trackphys/track/track_params.hpp"
@@ -109,11 +112,25 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (size < 1 + kStartBytes || size > 1 + kStartBytes + kMaxUpdates * per_update) return -1;
     const Scene& s = scene();
     trackphys::World world(s.statics);
-    const std::size_t car = world.add_car(trackphys::CarSpec::default_car(),
-                                          decode_start(s.track, data, size));
+    std::size_t car = 0;
+    try {
+        car = world.add_car(trackphys::CarSpec::default_car(), decode_start(s.track, data, size));
+    } catch (const trackphys::Error&) {
+        return 0;  // a start inside the road
+    }
     const std::size_t updates = std::max<std::size_t>(1, (size - 1 - kStartBytes) / per_update);
     for (std::size_t u = 0; u < updates; ++u) {
-        world.car(car).set_inputs(decode_inputs(raw, data, size, 1 + kStartBytes + u * per_update));
+        const CarInputs in = decode_inputs(raw, data, size, 1 + kStartBytes + u * per_update);
+        const bool nan = std::isnan(in.throttle) || std::isnan(in.brake) || std::isnan(in.steer);
+        try {
+            world.car(car).set_inputs(in);
+            if (nan) {
+                std::fprintf(stderr, "fuzz_world: a NaN input was accepted\n");
+                std::abort();
+            }
+        } catch (const trackphys::Error&) {
+            if (!nan) throw;  // an error for finite inputs is a finding
+        }
         world.update();
         if (!finite(world.car(car).state())) {
             std::fprintf(stderr, "fuzz_world: non-finite car state after update %zu\n", u + 1);

@@ -60,6 +60,9 @@ std::string settings_difference(const WorldSettings& a, const WorldSettings& b) 
 std::string car_problem(const CarSnapshot& car) {
     const RigidBodyState& s = car.state;
     if (!is_finite(s.position)) return "position is not finite";
+    // As far as a collider may reach: beyond it the update's boxes lose their precision.
+    if (!(glm::length(s.position) <= StaticCollider::kMaxCoordinate))
+        return "position is farther than 1e18 m from the origin";
     if (!is_finite(s.orientation) || !(std::abs(glm::length(s.orientation) - 1.0) < 1e-6))
         return "orientation is not a finite unit quaternion";
     if (!is_finite(s.linear_velocity)) return "linear_velocity is not finite";

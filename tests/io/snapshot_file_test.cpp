@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/fnv1a.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/io/snapshot_file.hpp"
 #include "trackphys/world/world.hpp"
@@ -128,10 +129,9 @@ TEST(SnapshotFile, HugeCountsAreRejectedWithoutAllocating) {
     std::string bytes = encode_snapshot(snapshot);
     // The collider count is the payload's first field; re-seal the checksum.
     bytes = with_u32_at(bytes, 32, 0xffffffffu);
-    std::uint64_t hash = 0xcbf29ce484222325ull;
-    for (std::size_t i = 32; i < bytes.size(); ++i)
-        hash = (hash ^ static_cast<unsigned char>(bytes[i])) * 0x100000001b3ull;
-    for (int i = 0; i < 8; ++i) bytes[24 + static_cast<std::size_t>(i)] = static_cast<char>(hash >> (8 * i));
+    core::Fnv1a hash;
+    hash.add(bytes.data() + 32, bytes.size() - 32);
+    for (int i = 0; i < 8; ++i) bytes[24 + static_cast<std::size_t>(i)] = static_cast<char>(hash.value >> (8 * i));
     EXPECT_NE(error_of([&] { decode_snapshot(bytes); }).find("collider count 4294967295"), std::string::npos);
 }
 
