@@ -21,6 +21,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/mat3x3.hpp>
 
+#include "trackphys/collision/mid_phase.hpp"
 #include "trackphys/collision/static_collider.hpp"
 #include "trackphys/collision/static_world.hpp"
 #include "trackphys/dynamics/car.hpp"
@@ -42,18 +43,22 @@ constexpr std::size_t kMaxUpdates = 25;
 struct Scene {
     trackphys::Track track;
     std::shared_ptr<const trackphys::StaticWorld> statics;
+    trackphys::ColliderPlaneTrees trees;
 };
 
-// Built once per process: generating and indexing the track takes far longer than a run.
+// Built once per process: generating and indexing the track (and its plane trees, which a
+// World would otherwise build for every input: seconds under the sanitizers) takes far
+// longer than a run.
 const Scene& scene() {
     static const Scene built = [] {
         trackphys::TrackParams params;
         params.seed = 7;
-        Scene s{trackphys::generate_track(params), nullptr};
+        Scene s{trackphys::generate_track(params), nullptr, {}};
         auto statics = std::make_shared<trackphys::StaticWorld>();
         for (const trackphys::TrackChunk& chunk : s.track.chunks)
             statics->add(std::make_shared<trackphys::StaticCollider>(chunk.mesh));
         s.statics = std::move(statics);
+        s.trees = trackphys::make_collider_plane_trees(*s.statics);
         return s;
     }();
     return built;
@@ -106,12 +111,19 @@ bool finite(const RigidBodyState& s) {
 
 }  // namespace
 
+// The scene is built before the first input, outside libFuzzer's per-input timeout (it takes
+// longer than that under the sanitizers on a loaded machine).
+extern "C" int LLVMFuzzerInitialize(int*, char***) {
+    scene();
+    return 0;
+}
+
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     const bool raw = size > 0 && data[0] % 2 == 1;
     const std::size_t per_update = raw ? 24 : 3;
     if (size < 1 + kStartBytes || size > 1 + kStartBytes + kMaxUpdates * per_update) return -1;
     const Scene& s = scene();
-    trackphys::World world(s.statics);
+    trackphys::World world(s.statics, trackphys::WorldSettings{}, s.trees);
     std::size_t car = 0;
     try {
         car = world.add_car(trackphys::CarSpec::default_car(), decode_start(s.track, data, size));
