@@ -29,6 +29,12 @@ double clamp_input(const char* name, double value, double low, double high) {
     return std::clamp(value, low, high);
 }
 
+// The inputs clamped to their ranges; throws for NaN.
+CarInputs clamped(const CarInputs& in) {
+    return {clamp_input("throttle", in.throttle, 0.0, 1.0), clamp_input("brake", in.brake, 0.0, 1.0),
+            clamp_input("steer", in.steer, -1.0, 1.0)};
+}
+
 }  // namespace
 
 Car::Car(CarSpec spec, const RigidBodyState& initial_state) : spec_(std::move(spec)) {
@@ -52,9 +58,7 @@ void Car::set_state(const RigidBodyState& state) {
 }
 
 void Car::set_inputs(const CarInputs& inputs) {
-    inputs_ = {clamp_input("throttle", inputs.throttle, 0.0, 1.0),
-               clamp_input("brake", inputs.brake, 0.0, 1.0),
-               clamp_input("steer", inputs.steer, -1.0, 1.0)};
+    inputs_ = clamped(inputs);
 }
 
 void Car::restore(const RigidBodyState& state, const CarInputs& inputs,
@@ -62,11 +66,9 @@ void Car::restore(const RigidBodyState& state, const CarInputs& inputs,
     check_state(state);
     if (!(std::abs(glm::length(state.orientation) - 1.0) <= 1e-6))
         throw Error("car state: orientation is not a unit quaternion");
-    const CarInputs clamped = {clamp_input("throttle", inputs.throttle, 0.0, 1.0),
-                               clamp_input("brake", inputs.brake, 0.0, 1.0),
-                               clamp_input("steer", inputs.steer, -1.0, 1.0)};
-    if (clamped.throttle != inputs.throttle || clamped.brake != inputs.brake ||
-        clamped.steer != inputs.steer)
+    const CarInputs in_range = clamped(inputs);
+    if (in_range.throttle != inputs.throttle || in_range.brake != inputs.brake ||
+        in_range.steer != inputs.steer)
         throw Error("car inputs: out of range (throttle and brake 0..1, steer -1..1)");
     set_suspension(suspension);
     state_ = state;

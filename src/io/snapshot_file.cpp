@@ -90,6 +90,10 @@ private:
     std::size_t at_ = 0;
 };
 
+// Every field but `profile`, which does not change results. (A new field also needs a new
+// format version, and settings_difference in world_snapshot.cpp.)
+static_assert(sizeof(WorldSettings) == 88, "a new WorldSettings field must join the snapshot file");
+
 void write_settings(Writer& w, const WorldSettings& s) {
     w.f64(s.dt_update);
     w.u32(static_cast<std::uint32_t>(s.steps));

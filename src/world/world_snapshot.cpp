@@ -35,14 +35,18 @@ std::string describe(const ColliderFingerprint& f) {
     return text.str();
 }
 
+bool same(double x, double y) { return std::bit_cast<std::uint64_t>(x) == std::bit_cast<std::uint64_t>(y); }
+
 // The first stepping setting that differs, or empty. `profile` does not change results.
+static_assert(sizeof(WorldSettings) == 88,
+              "a new WorldSettings field must join settings_difference and the snapshot file");
 std::string settings_difference(const WorldSettings& a, const WorldSettings& b) {
     std::ostringstream why;
-    const auto same = [](double x, double y) { return std::bit_cast<std::uint64_t>(x) == std::bit_cast<std::uint64_t>(y); };
     if (!same(a.dt_update, b.dt_update)) why << "dt_update " << a.dt_update << " vs " << b.dt_update;
     else if (a.steps != b.steps) why << "steps " << a.steps << " vs " << b.steps;
     else if (a.substeps != b.substeps) why << "substeps " << a.substeps << " vs " << b.substeps;
-    else if (!same(a.gravity.x, b.gravity.x) || !same(a.gravity.y, b.gravity.y) || !same(a.gravity.z, b.gravity.z))
+    else if (!same(a.gravity.x, b.gravity.x) || !same(a.gravity.y, b.gravity.y) ||
+             !same(a.gravity.z, b.gravity.z))
         why << "gravity";
     else if (!same(a.broad_phase_margin, b.broad_phase_margin))
         why << "broad_phase_margin " << a.broad_phase_margin << " vs " << b.broad_phase_margin;
@@ -51,7 +55,8 @@ std::string settings_difference(const WorldSettings& a, const WorldSettings& b) 
     else if (!same(a.max_car_speed, b.max_car_speed))
         why << "max_car_speed " << a.max_car_speed << " vs " << b.max_car_speed;
     else if (!same(a.max_car_angular_speed, b.max_car_angular_speed))
-        why << "max_car_angular_speed " << a.max_car_angular_speed << " vs " << b.max_car_angular_speed;
+        why << "max_car_angular_speed " << a.max_car_angular_speed << " vs "
+            << b.max_car_angular_speed;
     else if (!same(a.max_spawn_distance, b.max_spawn_distance))
         why << "max_spawn_distance " << a.max_spawn_distance << " vs " << b.max_spawn_distance;
     return why.str();
