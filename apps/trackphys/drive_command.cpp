@@ -6,6 +6,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <unistd.h>
@@ -39,7 +40,7 @@ struct DriveOptions {
     double throttle = 0.5;
     double steer = 0.0;
     std::filesystem::path json, trace, record, svg;
-    std::vector<std::string> save_at;  // T FILE
+    std::pair<std::string, std::string> save_at;  // T FILE
     std::filesystem::path resume;
 };
 
@@ -85,19 +86,19 @@ private:
 };
 
 std::optional<SavePoint> parse_save_at(const DriveOptions& o) {
-    if (o.save_at.empty()) return std::nullopt;
-    SavePoint point{0.0, o.save_at.at(1)};
+    const auto& [time, file] = o.save_at;
+    if (file.empty()) return std::nullopt;
+    SavePoint point{0.0, file};
     std::size_t used = 0;
     try {
-        point.seconds = std::stod(o.save_at[0], &used);
+        point.seconds = std::stod(time, &used);
     } catch (const std::exception&) {
         used = 0;
     }
-    if (used != o.save_at[0].size() || !std::isfinite(point.seconds) || point.seconds < 0.0)
-        throw Error("--save-at '" + o.save_at[0] + "': the time must be a finite number of seconds >= 0");
+    if (used != time.size() || !std::isfinite(point.seconds) || point.seconds < 0.0)
+        throw Error("--save-at '" + time + "': the time must be a finite number of seconds >= 0");
     if (o.seconds > 0.0 && point.seconds > o.seconds + 1e-9)
-        throw Error("--save-at " + o.save_at[0] + " is after the drive's end (--seconds " +
-                    std::to_string(o.seconds) + ")");
+        throw Error("--save-at " + time + " is after the drive's end (--seconds " + std::to_string(o.seconds) + ")");
     check_output(point.file, "--save-at");
     return point;
 }
@@ -231,7 +232,7 @@ void run(const DriveOptions& o) {
     }
     if (recording) recording->finish();
     if (save_at && !saved)
-        throw Error("--save-at " + o.save_at[0] + ": the drive ended at " + std::to_string(world.time()) +
+        throw Error("--save-at " + o.save_at.first + ": the drive ended at " + std::to_string(world.time()) +
                     " s, before that time; no snapshot written");
     if (laps > 0 && report.laps_completed < laps)
         throw Error("the car completed " + std::to_string(report.laps_completed) + " of " +
@@ -265,11 +266,11 @@ void add_drive_command(CLI::App& app) {
     command->add_option("--svg", o->svg, "Plot the path over the track and the update times");
     command->add_option("--save-at", o->save_at,
                         "Save a snapshot to FILE when the simulated time reaches T seconds, and keep driving")
-        ->expected(2)
         ->type_name("T FILE");
     command->add_option("--resume", o->resume,
                         "Continue the drive saved in this snapshot (give the original drive's options; "
-                        "--seconds and --laps count from the original start)");
+                        "--seconds and --laps count from the original start)")
+        ->type_name("FILE");
     command->callback([o] { run(*o); });
 }
 
