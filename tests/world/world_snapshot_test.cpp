@@ -86,6 +86,16 @@ TEST(WorldSnapshot, RestoreThenUpdateIsBitIdentical) {
     from_file.world.restore_state(loaded.world);
     from_file.pilot.set_progress(progress);
     EXPECT_EQ(from_file.run(400), expected);
+
+    // Saved and restored before every update: restoring a live state changes no bit.
+    Drive cycled;
+    cycled.world.restore_state(saved);
+    cycled.pilot.set_progress(progress);
+    for (const std::uint64_t hash : expected) {
+        cycled.world.restore_state(cycled.world.save_state());
+        cycled.step();
+        ASSERT_EQ(cycled.world.state_hash(), hash) << "update " << cycled.world.update_count();
+    }
 }
 
 // Statics far smaller than the track, for the rejection cases.
