@@ -35,14 +35,21 @@ double distance_to(const Aabb& box, const glm::dvec3& p) {
 }  // namespace
 
 std::string World::impossible_state(const RigidBodyState& s) const {
+    // Once per car and update: the common case decides without building a message (a NaN or
+    // infinite velocity fails the comparisons too).
+    const double v = glm::length(s.linear_velocity);
+    const double w = glm::length(s.angular_velocity);
+    if (is_finite(s.position) && is_finite(s.orientation) && v <= settings_.max_car_speed &&
+        w <= settings_.max_car_angular_speed)
+        return {};
     std::ostringstream why;
     if (!is_finite(s.position)) why << "position is not finite";
     else if (!is_finite(s.orientation)) why << "orientation is not finite";
     else if (!is_finite(s.linear_velocity)) why << "linear velocity is not finite";
     else if (!is_finite(s.angular_velocity)) why << "angular velocity is not finite";
-    else if (const double v = glm::length(s.linear_velocity); !(v <= settings_.max_car_speed))
+    else if (!(v <= settings_.max_car_speed))
         why << "speed " << v << " m/s is above WorldSettings.max_car_speed " << settings_.max_car_speed;
-    else if (const double w = glm::length(s.angular_velocity); !(w <= settings_.max_car_angular_speed))
+    else
         why << "angular speed " << w << " rad/s is above WorldSettings.max_car_angular_speed "
             << settings_.max_car_angular_speed;
     return why.str();
