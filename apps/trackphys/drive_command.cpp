@@ -6,6 +6,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <unistd.h>
@@ -15,9 +16,11 @@
 #include "commands.hpp"
 #include "drive_report.hpp"
 #include "drive_scene.hpp"
+#include "drive_session.hpp"
 #include "drive_svg.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/io/recording.hpp"
+#include "trackphys/io/snapshot_file.hpp"
 #include "trackphys/profile/trace_recorder.hpp"
 #include "trackphys/world/autopilot.hpp"
 #include "trackphys/world/world.hpp"
@@ -37,6 +40,14 @@ struct DriveOptions {
     double throttle = 0.5;
     double steer = 0.0;
     std::filesystem::path json, trace, record, svg;
+    std::pair<std::string, std::string> save_at;  // T FILE
+    std::filesystem::path resume;
+};
+
+// --save-at T FILE, checked.
+struct SavePoint {
+    double seconds;
+    std::filesystem::path file;
 };
 
 // A lap that takes longer than this (simulated) means the car is stuck: give up.
@@ -74,6 +85,24 @@ private:
     int last_ = -1;
 };
 
+std::optional<SavePoint> parse_save_at(const DriveOptions& o) {
+    const auto& [time, file] = o.save_at;
+    if (file.empty()) return std::nullopt;
+    SavePoint point{0.0, file};
+    std::size_t used = 0;
+    try {
+        point.seconds = std::stod(time, &used);
+    } catch (const std::exception&) {
+        used = 0;
+    }
+    if (used != time.size() || !std::isfinite(point.seconds) || point.seconds < 0.0)
+        throw Error("--save-at '" + time + "': the time must be a finite number of seconds >= 0");
+    if (o.seconds > 0.0 && point.seconds > o.seconds + 1e-9)
+        throw Error("--save-at " + time + " is after the drive's end (--seconds " + std::to_string(o.seconds) + ")");
+    check_output(point.file, "--save-at");
+    return point;
+}
+
 void run(const DriveOptions& o) {
     const bool free_mode = !o.mesh.empty() || !o.spawn.empty();
     if (o.track != "default") throw Error("--track '" + o.track + "': the only generated track is 'default'");
@@ -87,6 +116,15 @@ void run(const DriveOptions& o) {
     for (const auto& [path, option] : {std::pair{o.json, "--json"}, {o.trace, "--trace"},
                                        {o.record, "--record"}, {o.svg, "--svg"}})
         check_output(path, option);
+    const std::optional<SavePoint> save_at = parse_save_at(o);
+    DriveSession session{free_mode, o.seed, o.target_speed_kmh, o.throttle, o.steer, {}, 0.0, 0.0, {}};
+    std::optional<SnapshotFile> resume;
+    if (!o.resume.empty()) {
+        resume = load_snapshot(o.resume);
+        const DriveSession saved = parse_session(resume->user_data);
+        check_same_drive(saved, session);
+        session = saved;
+    }
 
     const DriveScene scene = o.mesh.empty() ? make_track_scene(o.seed) : make_mesh_scene(o.mesh);
     const CarSpec spec = CarSpec::default_car();
@@ -95,12 +133,16 @@ void run(const DriveOptions& o) {
         free_mode ? spawn_on_surface(*scene.statics, spec, {o.spawn[0], o.spawn[1], o.spawn[2]}, o.heading_deg)
                   : start_on_track(*scene.track, spec);
     world.add_car(spec, start);
+    // Resuming: the same static world, settings and car (restore_state checks their
+    // fingerprints), then the snapshot's state, update count and time.
+    if (resume) world.restore_state(resume->world);
 
     std::optional<Autopilot> autopilot;
     if (!free_mode) {
         AutopilotSettings settings;
         settings.target_speed = o.target_speed_kmh / 3.6;
         autopilot.emplace(*scene.track, spec, settings);
+        if (session.autopilot) autopilot->set_progress(*session.autopilot);
     }
     const int laps = !free_mode && o.laps == 0 && o.seconds == 0.0 ? 1 : o.laps;
     const double seconds = o.seconds > 0.0 ? o.seconds : laps * kMaxSecondsPerLap;
@@ -117,11 +159,27 @@ void run(const DriveOptions& o) {
     DriveReport report;
     report.scene = scene.description;
     report.triangles = scene.triangle_count;
+    report.distance_m = session.distance_m;
+    report.top_speed_kmh = session.top_speed_kmh;
+    report.lap_times_s = session.lap_times_s;
     DrivePlot plot;
     plot.dt = world.settings().dt_update;
     Progress progress(laps > 0 ? static_cast<double>(laps) : seconds);
     const auto wall_start = std::chrono::steady_clock::now();
-    glm::dvec3 previous = start.position;
+    glm::dvec3 previous = world.car(0).state().position;
+    // Saves once, at the first moment the simulated time has reached --save-at's.
+    bool saved = false;
+    const auto save_if_due = [&] {
+        if (!save_at || saved || world.time() < save_at->seconds - 1e-9) return;
+        session.autopilot = autopilot ? std::optional(autopilot->progress()) : std::nullopt;
+        session.distance_m = report.distance_m;
+        session.top_speed_kmh = report.top_speed_kmh;
+        session.lap_times_s = report.lap_times_s;
+        save_snapshot(save_at->file, world.save_state(), session_json(session));
+        std::printf("snapshot     %s at %.2f s\n", save_at->file.string().c_str(), world.time());
+        saved = true;
+    };
+    save_if_due();
 
     while (world.time() < seconds - 1e-9 && (laps == 0 || autopilot->laps() < laps)) {
         Car& car = world.car(0);
@@ -153,6 +211,7 @@ void run(const DriveOptions& o) {
                                      autopilot->laps()
                                : world.time(),
                       car.speed() * 3.6);
+        save_if_due();
     }
     report.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
     report.updates = world.update_count();
@@ -160,6 +219,8 @@ void run(const DriveOptions& o) {
     report.laps_completed = autopilot ? autopilot->laps() : 0;
     report.final_position = world.car(0).state().position;
     report.state_hash = world.state_hash();
+    report.resets = world.car_resets(0);
+    report.last_reset = world.last_reset_reason(0);
 
     print_drive_report(report);
     if (!o.json.empty()) write_drive_json(report, o.json);
@@ -170,6 +231,9 @@ void run(const DriveOptions& o) {
         if (!out.flush()) throw Error("cannot write the trace '" + o.trace.string() + "'");
     }
     if (recording) recording->finish();
+    if (save_at && !saved)
+        throw Error("--save-at " + o.save_at.first + ": the drive ended at " + std::to_string(world.time()) +
+                    " s, before that time; no snapshot written");
     if (laps > 0 && report.laps_completed < laps)
         throw Error("the car completed " + std::to_string(report.laps_completed) + " of " +
                     std::to_string(laps) + " laps in " + std::to_string(seconds) + " simulated seconds");
@@ -200,6 +264,13 @@ void add_drive_command(CLI::App& app) {
     command->add_option("--trace", o->trace, "Write a Chrome trace (Perfetto) of every update's phases");
     command->add_option("--record", o->record, "Write car poses and contacts per update (JSON Lines) for a viewer");
     command->add_option("--svg", o->svg, "Plot the path over the track and the update times");
+    command->add_option("--save-at", o->save_at,
+                        "Save a snapshot to FILE when the simulated time reaches T seconds, and keep driving")
+        ->type_name("T FILE");
+    command->add_option("--resume", o->resume,
+                        "Continue the drive saved in this snapshot (give the original drive's options; "
+                        "--seconds and --laps count from the original start)")
+        ->type_name("FILE");
     command->callback([o] { run(*o); });
 }
 

@@ -37,6 +37,7 @@
 #include "trackphys/world/autopilot.hpp"
 #include "trackphys/world/world.hpp"
 #include "trackphys/world/world_settings.hpp"
+#include "trackphys/world/world_snapshot.hpp"
 
 #include "trackphys/profile/profile_statistics.hpp"
 #include "trackphys/profile/trace_recorder.hpp"
@@ -48,3 +49,4 @@
 
 #include "trackphys/io/mesh_io.hpp"
 #include "trackphys/io/recording.hpp"
+#include "trackphys/io/snapshot_file.hpp"

@@ -3,4 +3,5 @@ target_sources(trackphys PRIVATE
   io/mesh_export.cpp
   io/mesh_import.cpp
   io/ply_header_check.cpp
-  io/recording.cpp)
+  io/recording.cpp
+  io/snapshot_file.cpp)

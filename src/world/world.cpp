@@ -7,6 +7,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "core/fnv1a.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/geometry/contact.hpp"
 #include "trackphys/geometry/ellipsoid_cull.hpp"
@@ -25,8 +26,10 @@ World::World(std::shared_ptr<const StaticWorld> statics, WorldSettings settings,
 
 std::size_t World::add_car(const CarSpec& spec, const RigidBodyState& state) {
     Car car(spec, state);
+    check_placement(car);
     const std::size_t ellipsoids = car.ellipsoid_count();
-    CarSlot slot{std::move(car), MidPhase(settings_.mid_phase, *statics_, trees_), Aabb{}, {}, {}, {}, {}, {}, {}};
+    CarSlot slot{std::move(car), MidPhase(settings_.mid_phase, *statics_, trees_), Aabb{}, {}, {}, {},
+                 {}, {}, {}, RigidBodyState{}, {}, 0, {}};
     slot.listed.resize(ellipsoids);
     slot.listed_for.resize(ellipsoids);
     slot.kept.resize(ellipsoids);
@@ -40,7 +43,7 @@ void World::update() {
     profile_ = UpdateProfile{};
     const auto start = PhaseStopwatch::Clock::now();
     PhaseStopwatch watch(profile_, settings_.profile, trace_);
-    for (CarSlot& slot : cars_) update_car(slot, watch);
+    for (CarSlot& slot : cars_) update_car_or_reset(slot, watch);
     ++updates_;
     if (settings_.profile) {
         const auto end = PhaseStopwatch::Clock::now();
@@ -195,29 +198,13 @@ void World::substep(CarSlot& slot, PhaseStopwatch& watch) {
     watch.lap(Phase::integrate);
 }
 
-namespace {
-
-// FNV-1a over raw bytes: the hash sees every bit of every double.
-struct Fnv1a {
-    std::uint64_t value = 0xcbf29ce484222325ull;
-    void add(const void* data, std::size_t size) {
-        const auto* bytes = static_cast<const unsigned char*>(data);
-        for (std::size_t i = 0; i < size; ++i) value = (value ^ bytes[i]) * 0x100000001b3ull;
-    }
-    void add(double x) { add(&x, sizeof x); }
-    void add(const glm::dvec3& v) { add(v.x), add(v.y), add(v.z); }
-};
-
-}  // namespace
-
 std::uint64_t World::state_hash() const {
-    Fnv1a hash;
-    hash.add(&updates_, sizeof updates_);
+    core::Fnv1a hash;
+    hash.add(updates_);
     for (const CarSlot& slot : cars_) {
         const RigidBodyState& s = slot.car.state();
         hash.add(s.position);
-        hash.add(s.orientation.w), hash.add(s.orientation.x), hash.add(s.orientation.y),
-            hash.add(s.orientation.z);
+        hash.add(s.orientation);
         hash.add(s.linear_velocity);
         hash.add(s.angular_velocity);
         for (std::size_t i = 0; i < slot.car.ellipsoid_count(); ++i) hash.add(slot.car.suspension(i));

@@ -9,40 +9,16 @@
 #include "trackphys/track/track.hpp"
 #include "trackphys/world/autopilot.hpp"
 #include "trackphys/world/world.hpp"
+#include "world/track_world.hpp"
 #include "world/world_scenes.hpp"
 
 namespace trackphys {
 namespace {
 
-struct TrackWorld {
-    Track track;
-    std::shared_ptr<const StaticWorld> statics;
-    ColliderPlaneTrees trees;  ///< built once, shared by every world of a test
-};
-
-TrackWorld make_track_world(std::uint64_t seed) {
-    TrackParams params;
-    params.seed = seed;
-    TrackWorld tw{generate_track(params), nullptr, {}};
-    auto statics = std::make_shared<StaticWorld>();
-    for (const TrackChunk& chunk : tw.track.chunks) statics->add(std::make_shared<StaticCollider>(chunk.mesh));
-    tw.statics = std::move(statics);
-    tw.trees = make_collider_plane_trees(*tw.statics);
-    return tw;
-}
-
-const TrackWorld& default_track() {
-    static const TrackWorld instance = make_track_world(7);
-    return instance;
-}
-
-RigidBodyState on_start_line(const Track& track) {
-    const CenterlineSample& s = track.centerline.front();
-    RigidBodyState state;
-    state.position = s.position + s.up * (CarSpec::default_car().lowest_point_depth() + 0.001);
-    state.orientation = glm::normalize(glm::quat_cast(glm::dmat3(s.left, s.up, s.tangent)));
-    return state;
-}
+using test::TrackWorld;
+using test::default_track;
+using test::make_track_world;
+using test::on_start_line;
 
 void drive_a_lap(double target_kmh, const TrackWorld& tw = default_track()) {
     const CarSpec spec = CarSpec::default_car();
