@@ -52,12 +52,10 @@ struct BoxLanes {
         return {{_mm_load_ps(n.min[0]), _mm_load_ps(n.min[1]), _mm_load_ps(n.min[2])},
                 {_mm_load_ps(n.max[0]), _mm_load_ps(n.max[1]), _mm_load_ps(n.max[2])}};
     }
-    /// Slots [slot, slot + 4) of six float planes `stride` apart (min x, y, z, max x, y, z).
-    static BoxLanes of(const float* planes, std::size_t stride, std::size_t slot) {
-        const float* p = planes + slot;
-        return {{_mm_loadu_ps(p), _mm_loadu_ps(p + stride), _mm_loadu_ps(p + 2 * stride)},
-                {_mm_loadu_ps(p + 3 * stride), _mm_loadu_ps(p + 4 * stride),
-                 _mm_loadu_ps(p + 5 * stride)}};
+    /// One block of four slot boxes: 24 floats, min x, y, z, then max x, y, z, four lanes each.
+    static BoxLanes of(const float* block) {
+        return {{_mm_loadu_ps(block), _mm_loadu_ps(block + 4), _mm_loadu_ps(block + 8)},
+                {_mm_loadu_ps(block + 12), _mm_loadu_ps(block + 16), _mm_loadu_ps(block + 20)}};
     }
 };
 

@@ -19,9 +19,17 @@ using collision_detail::QueryLanes;
 namespace {
 
 constexpr std::uint32_t kNoSlot = std::numeric_limits<std::uint32_t>::max();
+// Floats in one block of four slot boxes (BoxLanes::of).
+constexpr std::size_t kBlockFloats = 24;
 
 // Lanes 0 .. n - 1 of four (n >= 4: all of them).
 unsigned first_lanes(std::uint32_t n) { return n >= 4 ? 0xfu : (1u << n) - 1u; }
+// The lanes of the block of four slots from `block_first` (a multiple of 4) that lie in
+// [first, end).
+unsigned lanes_in(std::uint32_t block_first, std::uint32_t first, std::uint32_t end) {
+    return first_lanes(end - block_first) &
+           ~first_lanes(first > block_first ? first - block_first : 0u);
+}
 int lowest_lane(unsigned mask) { return std::countr_zero(mask); }
 int highest_lane(unsigned mask) { return 31 - std::countl_zero(mask); }
 
@@ -53,7 +61,8 @@ StaticCollider::StaticCollider(const TriangleMesh& mesh) {
     // leaves first use them, so that neighbouring leaves read neighbouring memory.
     const std::size_t n = kept.size();
     slot_vertices_.resize(n);
-    slot_to_triangle_.resize(n);
+    // Three more slots, never reported: four-lane reads at any slot stay inside.
+    slot_to_triangle_.resize(n + 3, 0);
     triangle_to_slot_.assign(mesh.triangles.size(), kNoSlot);
     std::vector<std::uint32_t> vertex_remap(mesh.vertices.size(), kNoSlot);
     std::uint32_t used_vertices = 0;
@@ -71,18 +80,16 @@ StaticCollider::StaticCollider(const TriangleMesh& mesh) {
     for (std::size_t v = 0; v < vertex_remap.size(); ++v)
         if (vertex_remap[v] != kNoSlot) vertices_[vertex_remap[v]] = mesh.vertices[v];
 
-    // The slots' float boxes, plane by plane; the padding lanes are NaN (never hit).
-    if (n > 0) {
-        slot_boxes_.assign(6 * box_stride(), std::numeric_limits<float>::quiet_NaN());
-        for (std::size_t slot = 0; slot < n; ++slot) {
-            const auto& tri = slot_vertices_[slot];
-            const collision_detail::FloatBox box = collision_detail::outward_float_box(
-                collision_detail::triangle_box(vertices_[tri[0]], vertices_[tri[1]],
-                                               vertices_[tri[2]]));
-            for (int a = 0; a < 3; ++a) {
-                slot_boxes_[std::size_t(a) * box_stride() + slot] = box.min[a];
-                slot_boxes_[std::size_t(3 + a) * box_stride() + slot] = box.max[a];
-            }
+    // The slots' float boxes in blocks of four; the padding lanes are NaN (never hit).
+    slot_boxes_.assign(kBlockFloats * ((n + 3) / 4), std::numeric_limits<float>::quiet_NaN());
+    for (std::size_t slot = 0; slot < n; ++slot) {
+        const auto& tri = slot_vertices_[slot];
+        const collision_detail::FloatBox box = collision_detail::outward_float_box(
+            collision_detail::triangle_box(vertices_[tri[0]], vertices_[tri[1]], vertices_[tri[2]]));
+        float* block = &slot_boxes_[kBlockFloats * (slot / 4) + slot % 4];
+        for (int a = 0; a < 3; ++a) {
+            block[4 * a] = box.min[a];
+            block[4 * (3 + a)] = box.max[a];
         }
     }
 }
@@ -96,15 +103,15 @@ inline bool StaticCollider::triangle_box_overlaps(std::uint32_t slot, const Aabb
 // Depth-first traversal of the lanes whose boxes may overlap `box` (QueryLanes' outward
 // test: a superset). A lane surely inside the box goes to sink.range whole: its
 // triangles' boxes lie in the lane's box, so each of them overlaps. A leaf lane on the
-// boundary tests its slots' float boxes four at a time; a slot that may overlap but not
+// boundary tests its slots' float boxes a block of four at a time; a slot that may overlap but not
 // surely (a bound within a float step of the box's) gets the exact double test. Inner lanes
-// are stacked last to first, so that slots come out roughly in leaf order.
+// are stacked last to first, so that slots come out roughly in leaf order, and their nodes
+// are prefetched when stacked: the loads overlap the rest of this node's work.
 template <class Sink>
-void StaticCollider::visit_aabb(const Aabb& box, Sink&& sink) const {
+void StaticCollider::visit_aabb(const Aabb& box, Sink& sink) const {
     if (nodes_.empty()) return;
     const QueryLanes q(box);
-    const float* planes = slot_boxes_.data();
-    const std::size_t stride = box_stride();
+    const float* blocks = slot_boxes_.data();  // slot s's block starts at float 6 s (s % 4 = 0)
     struct Entry {
         std::uint32_t node, end;
     };
@@ -118,29 +125,36 @@ void StaticCollider::visit_aabb(const Aabb& box, Sink&& sink) const {
         if (hit != 0) {
             const unsigned inside = collision_detail::surely_inside(lanes, q) & hit;
             const unsigned leaves = collision_detail::leaf_lanes(n) & hit & ~inside;
+            const unsigned inner = hit & ~inside & ~leaves;
+            // Stacked without branches: every lane is written, only inner ones are kept.
+            for (int i = BvhNode::kWidth - 1; i >= 0; --i) {
+                stack[top] = {n.child[i], n.end(i, end)};
+                top += static_cast<int>((inner >> i) & 1u);
+            }
+            for (unsigned m = inner; m != 0; m &= m - 1) {
+                const char* child = reinterpret_cast<const char*>(&nodes_[n.child[lowest_lane(m)]]);
+                _mm_prefetch(child, _MM_HINT_T0);
+                _mm_prefetch(child + 64, _MM_HINT_T0);
+            }
             for (unsigned m = inside; m != 0; m &= m - 1) {
                 const int i = lowest_lane(m);
                 sink.range(n.first[i], n.end(i, end));
             }
             for (unsigned m = leaves; m != 0; m &= m - 1) {
                 const int i = lowest_lane(m);
-                const std::uint32_t leaf_end = n.end(i, end);
-                for (std::uint32_t s = n.first[i]; s < leaf_end; s += 4) {
-                    const BoxLanes slots = BoxLanes::of(planes, stride, s);
-                    const unsigned maybe =
-                        collision_detail::may_overlap(slots, q) & first_lanes(leaf_end - s);
-                    if (maybe == 0) continue;
-                    const unsigned sure = collision_detail::surely_overlaps(slots, q);
-                    for (unsigned k = maybe; k != 0; k &= k - 1) {
-                        const auto slot = s + static_cast<std::uint32_t>(lowest_lane(k));
-                        if (((sure >> (slot - s)) & 1u) != 0 || triangle_box_overlaps(slot, box))
-                            sink.one(slot);
+                const std::uint32_t leaf_first = n.first[i], leaf_end = n.end(i, end);
+                for (std::uint32_t s = leaf_first & ~3u; s < leaf_end; s += 4) {
+                    const BoxLanes slots = BoxLanes::of(blocks + std::size_t{s} * 6);
+                    const unsigned maybe = collision_detail::may_overlap(slots, q) &
+                                           lanes_in(s, leaf_first, leaf_end);
+                    unsigned keep = collision_detail::surely_overlaps(slots, q) & maybe;
+                    for (unsigned k = maybe & ~keep; k != 0; k &= k - 1) [[unlikely]] {
+                        const int lane = lowest_lane(k);
+                        if (triangle_box_overlaps(s + static_cast<std::uint32_t>(lane), box))
+                            keep |= 1u << lane;
                     }
+                    sink.slots(s, keep);
                 }
-            }
-            for (unsigned m = hit & ~inside & ~leaves; m != 0; m &= ~(1u << highest_lane(m))) {
-                const int i = highest_lane(m);
-                stack[top++] = {n.child[i], n.end(i, end)};
             }
         }
         if (top == 0) return;
@@ -150,31 +164,65 @@ void StaticCollider::visit_aabb(const Aabb& box, Sink&& sink) const {
     }
 }
 
-void StaticCollider::query_aabb(const Aabb& box, std::vector<std::uint32_t>& out) const {
-    struct Sink {
-        const StaticCollider& self;
-        std::vector<std::uint32_t>& out;
-        void one(std::uint32_t slot) { out.push_back(self.slot_to_triangle_[slot]); }
-        void range(std::uint32_t first, std::uint32_t end) {
-            const auto begin = self.slot_to_triangle_.begin();
-            out.insert(out.end(), begin + first, begin + end);
+namespace {
+
+// A query's output gathered in a fixed local buffer and appended to the caller's vector in
+// bulk: a reported triangle costs a store, not a push_back. make(triangle) is the element.
+template <class T, class Make>
+class BufferedOutput {
+public:
+    BufferedOutput(std::vector<T>& out, const std::uint32_t* slot_to_triangle, Make make)
+        : out_(out), slot_to_triangle_(slot_to_triangle), make_(make) {}
+    BufferedOutput(const BufferedOutput&) = delete;
+    BufferedOutput& operator=(const BufferedOutput&) = delete;
+    ~BufferedOutput() { flush(); }
+
+    /// Slots s + i for the set bits i of `mask` (four lanes; the slot array is padded, so
+    /// every lane is read and stored, and only the set ones are kept: no branches).
+    void slots(std::uint32_t s, unsigned mask) {
+        if (used_ > kSize - 4) flush();
+        for (unsigned i = 0; i < 4; ++i) {
+            buffer_[used_] = make_(slot_to_triangle_[s + i]);
+            used_ += (mask >> i) & 1u;
         }
-    };
-    visit_aabb(box, Sink{*this, out});
+    }
+    /// Slots [first, end).
+    void range(std::uint32_t first, std::uint32_t end) {
+        if (end - first > kSize - used_) {
+            flush();
+            for (std::uint32_t s = first; s < end; ++s) out_.push_back(make_(slot_to_triangle_[s]));
+            return;
+        }
+        for (std::uint32_t s = first; s < end; ++s) buffer_[used_++] = make_(slot_to_triangle_[s]);
+    }
+
+private:
+    static constexpr unsigned kSize = 256;
+    void flush() {
+        out_.insert(out_.end(), buffer_, buffer_ + used_);
+        used_ = 0;
+    }
+
+    std::vector<T>& out_;
+    const std::uint32_t* slot_to_triangle_;
+    Make make_;
+    unsigned used_ = 0;
+    T buffer_[kSize];
+};
+
+}  // namespace
+
+void StaticCollider::query_aabb(const Aabb& box, std::vector<std::uint32_t>& out) const {
+    BufferedOutput sink(out, slot_to_triangle_.data(), [](std::uint32_t t) { return t; });
+    visit_aabb(box, sink);
 }
 
 void StaticCollider::query_aabb_refs(const Aabb& box, std::uint32_t collider_id,
                                      std::vector<TriangleRef>& out) const {
-    struct Sink {
-        const StaticCollider& self;
-        std::uint32_t collider;
-        std::vector<TriangleRef>& out;
-        void one(std::uint32_t slot) { out.push_back({collider, self.slot_to_triangle_[slot]}); }
-        void range(std::uint32_t first, std::uint32_t end) {
-            for (std::uint32_t s = first; s < end; ++s) one(s);
-        }
-    };
-    visit_aabb(box, Sink{*this, collider_id, out});
+    BufferedOutput sink(out, slot_to_triangle_.data(), [collider_id](std::uint32_t t) {
+        return TriangleRef{collider_id, t};
+    });
+    visit_aabb(box, sink);
 }
 
 // The traversal of visit_aabb without the inside shortcut (being inside the query's box
@@ -185,8 +233,7 @@ void StaticCollider::visit_box_filtered(const Aabb& box, Predicate&& keep,
                                         std::vector<std::uint32_t>& out) const {
     if (nodes_.empty()) return;
     const QueryLanes q(box);
-    const float* planes = slot_boxes_.data();
-    const std::size_t stride = box_stride();
+    const float* blocks = slot_boxes_.data();  // slot s's block starts at float 6 s (s % 4 = 0)
     struct Entry {
         std::uint32_t node, end;
     };
@@ -199,11 +246,11 @@ void StaticCollider::visit_box_filtered(const Aabb& box, Predicate&& keep,
         const unsigned leaves = collision_detail::leaf_lanes(n) & hit;
         for (unsigned m = leaves; m != 0; m &= m - 1) {
             const int i = lowest_lane(m);
-            const std::uint32_t leaf_end = n.end(i, end);
-            for (std::uint32_t s = n.first[i]; s < leaf_end; s += 4) {
-                const unsigned maybe = collision_detail::may_overlap(
-                                           BoxLanes::of(planes, stride, s), q) &
-                                       first_lanes(leaf_end - s);
+            const std::uint32_t leaf_first = n.first[i], leaf_end = n.end(i, end);
+            for (std::uint32_t s = leaf_first & ~3u; s < leaf_end; s += 4) {
+                const unsigned maybe =
+                    collision_detail::may_overlap(BoxLanes::of(blocks + std::size_t{s} * 6), q) &
+                    lanes_in(s, leaf_first, leaf_end);
                 for (unsigned k = maybe; k != 0; k &= k - 1) {
                     const auto slot = s + static_cast<std::uint32_t>(lowest_lane(k));
                     const auto& tri = slot_vertices_[slot];
@@ -269,6 +316,13 @@ std::optional<RayHit> StaticCollider::raycast(const glm::dvec3& origin, const gl
     for (;;) {
         if ((entry.child & BvhNode::kLeaf) != 0) {
             for (std::uint32_t s = entry.first; s < entry.end; ++s) {
+                // The slot's float box holds the triangle's box, so its span holds the hit.
+                const float* box = &slot_boxes_[kBlockFloats * (s / 4) + s % 4];
+                double t_near, t_far;
+                if (!collision_detail::ray_box_span(ray, {box[0], box[4], box[8]},
+                                                    {box[12], box[16], box[20]}, best_t, t_near,
+                                                    t_far))
+                    continue;
                 const auto& tri = slot_vertices_[s];
                 const std::optional<double> t = collision_detail::ray_triangle(
                     ray, vertices_[tri[0]], vertices_[tri[1]], vertices_[tri[2]]);

@@ -52,7 +52,7 @@ struct TriangleRef {
 /// Layout (bytes_used() counts it all): vertices in double, re-ordered by first use in leaf
 /// order and without unused ones (24 bytes each, ~12 a triangle on a shared-vertex mesh);
 /// per triangle, in leaf order, its three vertex indices (12), mesh index (4) and box in
-/// float, rounded outward (24, six planes so that four boxes load as six SIMD vectors);
+/// float, rounded outward (24, in blocks of four that load as six SIMD vectors);
 /// the inverse map mesh index -> leaf slot (4); ~0.09 four-wide 128-byte nodes (~12).
 /// About 68 bytes a triangle on a track mesh, ~130 on a soup of unshared vertices. The box
 /// queries test the float boxes four at a time and read a triangle's vertices only when its
@@ -116,23 +116,21 @@ public:
     std::size_t bytes_used() const;
 
 private:
-    // Leaf slot s holds mesh triangle slot_to_triangle_[s]; its vertices are
-    // vertices_[slot_vertices_[s][k]], in the mesh's order (winding kept).
+    // Leaf slot s holds mesh triangle slot_to_triangle_[s] (padded by three unused slots);
+    // its vertices are vertices_[slot_vertices_[s][k]], in the mesh's order (winding kept).
     template <class Sink>
-    void visit_aabb(const Aabb& box, Sink&& sink) const;
+    void visit_aabb(const Aabb& box, Sink& sink) const;
     template <class Predicate>
     void visit_box_filtered(const Aabb& box, Predicate&& keep,
                             std::vector<std::uint32_t>& out) const;
     bool triangle_box_overlaps(std::uint32_t slot, const Aabb& box) const;
-    // Distance between the planes of slot_boxes_.
-    std::size_t box_stride() const { return slot_to_triangle_.size() + 3; }
 
     std::vector<glm::dvec3> vertices_;
     std::vector<std::array<std::uint32_t, 3>> slot_vertices_;
     std::vector<std::uint32_t> slot_to_triangle_;
     std::vector<std::uint32_t> triangle_to_slot_;
-    // Slot boxes in six planes (min x, y, z, max x, y, z), each box_stride() floats: a
-    // four-lane load at any slot stays inside (the three padding floats are NaN).
+    // Slot boxes in blocks of four slots (from a multiple of 4): 24 floats, min x, y, z,
+    // then max x, y, z, one lane per slot; lanes past the last slot are NaN.
     std::vector<float> slot_boxes_;
     std::vector<BvhNode> nodes_;
     Aabb bounds_;
