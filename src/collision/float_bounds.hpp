@@ -21,26 +21,37 @@ inline float nearest_float(double x) {
     return f;
 }
 
-/// The next float toward -infinity (f finite or +infinity, as nearest_float gives it above x).
+/// The next float toward -infinity (f finite or +infinity, as nearest_float gives it above
+/// x). Branch-free (a query rounds its six bounds both ways, each way a coin flip): on the
+/// bits, negative floats (and -0) step up, positive ones down, +0 goes to the negative
+/// denormal closest to 0.
 inline float float_below(float f) {
-    if (f == 0.0f) return -std::numeric_limits<float>::denorm_min();
     const auto bits = std::bit_cast<std::uint32_t>(f);
-    return std::bit_cast<float>(f > 0.0f ? bits - 1 : bits + 1);
+    std::uint32_t below = (bits >> 31) != 0 ? bits + 1 : bits - 1;
+    below = bits == 0 ? 0x8000'0001u : below;
+    return std::bit_cast<float>(below);
 }
 
 /// The next float toward +infinity (f finite or -infinity).
 inline float float_above(float f) { return -float_below(-f); }
 
+/// `then` where `condition` holds, else `otherwise`, on the bits (no branch).
+inline float select(bool condition, float then, float otherwise) {
+    const std::uint32_t mask = 0u - static_cast<std::uint32_t>(condition);
+    return std::bit_cast<float>((std::bit_cast<std::uint32_t>(then) & mask) |
+                                (std::bit_cast<std::uint32_t>(otherwise) & ~mask));
+}
+
 /// The largest float <= x (tight: x < float_above(result)); NaN stays NaN.
 inline float round_down(double x) {
     const float f = nearest_float(x);
-    return static_cast<double>(f) > x ? float_below(f) : f;
+    return select(static_cast<double>(f) > x, float_below(f), f);
 }
 
 /// The smallest float >= x (tight: float_below(result) < x); NaN stays NaN.
 inline float round_up(double x) {
     const float f = nearest_float(x);
-    return static_cast<double>(f) < x ? float_above(f) : f;
+    return select(static_cast<double>(f) < x, float_above(f), f);
 }
 
 /// A box in float, 24 bytes.

@@ -1,5 +1,6 @@
 #include "trackphys/collision/static_collider.hpp"
 
+#include <algorithm>
 #include <array>
 #include <bit>
 #include <limits>
@@ -23,12 +24,11 @@ constexpr std::uint32_t kNoSlot = std::numeric_limits<std::uint32_t>::max();
 constexpr std::size_t kBlockFloats = 24;
 
 // Lanes 0 .. n - 1 of four (n >= 4: all of them).
-unsigned first_lanes(std::uint32_t n) { return n >= 4 ? 0xfu : (1u << n) - 1u; }
+unsigned first_lanes(std::uint32_t n) { return (1u << std::min(n, 4u)) - 1u; }
 // The lanes of the block of four slots from `block_first` (a multiple of 4) that lie in
-// [first, end).
+// [first, end), first < block_first + 4.
 unsigned lanes_in(std::uint32_t block_first, std::uint32_t first, std::uint32_t end) {
-    return first_lanes(end - block_first) &
-           ~first_lanes(first > block_first ? first - block_first : 0u);
+    return first_lanes(end - block_first) & ~first_lanes(std::max(first, block_first) - block_first);
 }
 int lowest_lane(unsigned mask) { return std::countr_zero(mask); }
 int highest_lane(unsigned mask) { return 31 - std::countl_zero(mask); }
@@ -193,7 +193,9 @@ public:
             for (std::uint32_t s = first; s < end; ++s) out_.push_back(make_(slot_to_triangle_[s]));
             return;
         }
-        for (std::uint32_t s = first; s < end; ++s) buffer_[used_++] = make_(slot_to_triangle_[s]);
+        T* to = buffer_ + used_;
+        for (std::uint32_t s = first; s < end; ++s) *to++ = make_(slot_to_triangle_[s]);
+        used_ += end - first;
     }
 
 private:
