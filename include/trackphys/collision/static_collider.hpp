@@ -52,20 +52,21 @@ struct TriangleRef {
 /// Layout (bytes_used() counts it all): vertices in double, re-ordered by first use in leaf
 /// order and without unused ones (24 bytes each, ~12 a triangle on a shared-vertex mesh);
 /// per triangle, in leaf order, its three vertex indices (12), mesh index (4) and box in
-/// float, rounded outward (24, in blocks of four that load as six SIMD vectors);
-/// the inverse map mesh index -> leaf slot (4); ~0.09 four-wide 128-byte nodes (~12).
-/// About 68 bytes a triangle on a track mesh, ~130 on a soup of unshared vertices. The box
-/// queries test the float boxes four at a time and read a triangle's vertices only when its
-/// box lies within a float step of the query's (sphere and capsule: for the distance
-/// test). NormalizedTriangle frames are not stored: 120 bytes in double would break the
-/// 80-byte budget, and every exact predicate needs the double vertices anyway. The mid
-/// phase builds the few hundred frames it culls per update with normalized_triangle().
+/// float, rounded outward (24, in blocks of four that load as six SIMD vectors); the
+/// inverse map mesh index -> leaf slot (4); ~0.02 four-wide 128-byte nodes (~2.5, leaves
+/// of up to 32 triangles). About 59 bytes a triangle on a track mesh, ~119 on a soup of
+/// unshared vertices. The box queries test the float boxes four at a time and read a
+/// triangle's vertices only when its box lies within a float step of the query's (sphere
+/// and capsule: for the distance test). NormalizedTriangle frames are not stored: 120
+/// bytes in double would break the 80-byte budget, and every exact predicate needs the
+/// double vertices anyway. The mid phase builds the few hundred frames it culls per update
+/// with normalized_triangle().
 class TRACKPHYS_API StaticCollider {
 public:
     /// Largest accepted |coordinate| (m): node bounds are float, and 1e18 m keeps every
     /// bound, area and SAH cost finite.
     static constexpr double kMaxCoordinate = 1e18;
-    /// Largest number of mesh triangles (leaf counts use 31 bits).
+    /// Largest number of mesh triangles (slot and node indices use 31 bits).
     static constexpr std::size_t kMaxTriangles = 0x7fff'ffffu;
 
     /// Validates the mesh and builds the BVH. Throws trackphys::Error naming the vertex or
