@@ -61,7 +61,8 @@ struct BoxLanes {
 
 /// Bit i set: box i may overlap the query (closed intervals; never clear when it does).
 inline unsigned may_overlap(const BoxLanes& b, const QueryLanes& q) {
-    __m128 m = _mm_and_ps(_mm_cmple_ps(b.min[0], q.out_max[0]), _mm_cmple_ps(q.out_min[0], b.max[0]));
+    __m128 m =
+        _mm_and_ps(_mm_cmple_ps(b.min[0], q.out_max[0]), _mm_cmple_ps(q.out_min[0], b.max[0]));
     m = _mm_and_ps(m, _mm_and_ps(_mm_cmple_ps(b.min[1], q.out_max[1]),
                                  _mm_cmple_ps(q.out_min[1], b.max[1])));
     m = _mm_and_ps(m, _mm_and_ps(_mm_cmple_ps(b.min[2], q.out_max[2]),
@@ -71,7 +72,8 @@ inline unsigned may_overlap(const BoxLanes& b, const QueryLanes& q) {
 
 /// Bit i set: box i surely lies inside the query (never set when it does not).
 inline unsigned surely_inside(const BoxLanes& b, const QueryLanes& q) {
-    __m128 m = _mm_and_ps(_mm_cmple_ps(q.in_min[0], b.min[0]), _mm_cmple_ps(b.max[0], q.in_max[0]));
+    __m128 m =
+        _mm_and_ps(_mm_cmple_ps(q.in_min[0], b.min[0]), _mm_cmple_ps(b.max[0], q.in_max[0]));
     m = _mm_and_ps(m, _mm_and_ps(_mm_cmple_ps(q.in_min[1], b.min[1]),
                                  _mm_cmple_ps(b.max[1], q.in_max[1])));
     m = _mm_and_ps(m, _mm_and_ps(_mm_cmple_ps(q.in_min[2], b.min[2]),
@@ -82,7 +84,8 @@ inline unsigned surely_inside(const BoxLanes& b, const QueryLanes& q) {
 /// Bit i set: the double box that float box i was tightly rounded out from surely overlaps
 /// the query (never set when it does not; see the header comment).
 inline unsigned surely_overlaps(const BoxLanes& b, const QueryLanes& q) {
-    __m128 m = _mm_and_ps(_mm_cmplt_ps(b.min[0], q.in_max[0]), _mm_cmplt_ps(q.in_min[0], b.max[0]));
+    __m128 m =
+        _mm_and_ps(_mm_cmplt_ps(b.min[0], q.in_max[0]), _mm_cmplt_ps(q.in_min[0], b.max[0]));
     m = _mm_and_ps(m, _mm_and_ps(_mm_cmplt_ps(b.min[1], q.in_max[1]),
                                  _mm_cmplt_ps(q.in_min[1], b.max[1])));
     m = _mm_and_ps(m, _mm_and_ps(_mm_cmplt_ps(b.min[2], q.in_max[2]),
@@ -92,8 +95,8 @@ inline unsigned surely_overlaps(const BoxLanes& b, const QueryLanes& q) {
 
 /// Bit i set: lane i is a leaf or empty (BvhNode::kLeaf is the sign bit).
 inline unsigned leaf_lanes(const BvhNode& n) {
-    return static_cast<unsigned>(
-        _mm_movemask_ps(_mm_castsi128_ps(_mm_load_si128(reinterpret_cast<const __m128i*>(n.child)))));
+    const __m128i child = _mm_load_si128(reinterpret_cast<const __m128i*>(n.child));
+    return static_cast<unsigned>(_mm_movemask_ps(_mm_castsi128_ps(child)));
 }
 
 }  // namespace trackphys::collision_detail

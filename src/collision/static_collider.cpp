@@ -28,7 +28,8 @@ unsigned first_lanes(std::uint32_t n) { return (1u << std::min(n, 4u)) - 1u; }
 // The lanes of the block of four slots from `block_first` (a multiple of 4) that lie in
 // [first, end), first < block_first + 4.
 unsigned lanes_in(std::uint32_t block_first, std::uint32_t first, std::uint32_t end) {
-    return first_lanes(end - block_first) & ~first_lanes(std::max(first, block_first) - block_first);
+    return first_lanes(end - block_first) &
+           ~first_lanes(std::max(first, block_first) - block_first);
 }
 int lowest_lane(unsigned mask) { return std::countr_zero(mask); }
 int highest_lane(unsigned mask) { return 31 - std::countl_zero(mask); }
@@ -84,8 +85,9 @@ StaticCollider::StaticCollider(const TriangleMesh& mesh) {
     slot_boxes_.assign(kBlockFloats * ((n + 3) / 4), std::numeric_limits<float>::quiet_NaN());
     for (std::size_t slot = 0; slot < n; ++slot) {
         const auto& tri = slot_vertices_[slot];
-        const collision_detail::FloatBox box = collision_detail::outward_float_box(
-            collision_detail::triangle_box(vertices_[tri[0]], vertices_[tri[1]], vertices_[tri[2]]));
+        const collision_detail::FloatBox box =
+            collision_detail::outward_float_box(collision_detail::triangle_box(
+                vertices_[tri[0]], vertices_[tri[1]], vertices_[tri[2]]));
         float* block = &slot_boxes_[kBlockFloats * (slot / 4) + slot % 4];
         for (int a = 0; a < 3; ++a) {
             block[4 * a] = box.min[a];
@@ -103,10 +105,10 @@ inline bool StaticCollider::triangle_box_overlaps(std::uint32_t slot, const Aabb
 // Depth-first traversal of the lanes whose boxes may overlap `box` (QueryLanes' outward
 // test: a superset). A lane surely inside the box goes to sink.range whole: its
 // triangles' boxes lie in the lane's box, so each of them overlaps. A leaf lane on the
-// boundary tests its slots' float boxes a block of four at a time; a slot that may overlap but not
-// surely (a bound within a float step of the box's) gets the exact double test. Inner lanes
-// are stacked last to first, so that slots come out roughly in leaf order, and their nodes
-// are prefetched when stacked: the loads overlap the rest of this node's work.
+// boundary tests its slots' float boxes a block of four at a time; a slot that may overlap
+// but not surely (a bound within a float step of the box's) gets the exact double test.
+// Inner lanes are stacked last to first, so that slots come out roughly in leaf order, and
+// their nodes are prefetched when stacked: the loads overlap the rest of this node's work.
 template <class Sink>
 void StaticCollider::visit_aabb(const Aabb& box, Sink& sink) const {
     if (nodes_.empty()) return;

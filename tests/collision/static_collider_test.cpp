@@ -188,7 +188,8 @@ TEST(StaticCollider, TreeInvariants) {
             if (n.is_empty(i)) {
                 ASSERT_EQ(n.first[i], item.end);
                 ASSERT_TRUE(n.is_leaf(i));
-                for (int a = 0; a < 3; ++a) ASSERT_TRUE(std::isnan(n.min[a][i]) && std::isnan(n.max[a][i]));
+                for (int a = 0; a < 3; ++a)
+                    ASSERT_TRUE(std::isnan(n.min[a][i]) && std::isnan(n.max[a][i]));
                 continue;
             }
             ++lanes;
