@@ -12,15 +12,17 @@ namespace trackphys::collision_detail {
 namespace {
 
 constexpr int kBins = 16;
-constexpr std::uint32_t kMaxLeafSize = 8;
+// Leaves are tested a block of four slot boxes at a time (StaticCollider), so big leaves
+// are cheap. Car boxes on the default track (cycles a query, with the traversal cost
+// below): leaves of 8 and cost 3 +45%, 16 and 10 +10%, 32 and 20 best, 64 and 40 no faster.
+constexpr std::uint32_t kMaxLeafSize = 32;
 // Large nodes choose their split from an evenly strided sample of about this many
 // primitives: the SAH picks nearly the same plane, and binning stops dominating the
 // top levels of 10M-triangle builds (the partition still sees every primitive).
 constexpr std::uint32_t kSampleTarget = 8192;
-// SAH costs in units of one triangle test. Measured on the 300k banked loop
-// (bench_collision_bvh): traversal cost 1 -> 1.06 nodes and 66 bytes per triangle, 3 ->
-// 0.43 nodes and 46 bytes, car-box and ray query times unchanged; 5 slows rays by 60%.
-constexpr double kTraversalCost = 3.0;
+// SAH costs in units of one triangle test: a node visit (two cache lines, eight lane tests)
+// costs about as much as 20 triangles tested four at a time.
+constexpr double kTraversalCost = 20.0;
 constexpr double kTriangleCost = 1.0;
 
 constexpr float kInf = std::numeric_limits<float>::infinity();
@@ -207,35 +209,37 @@ std::uint32_t median_split(std::vector<BuildPrimitive>& prims, const WorkItem& i
     return middle;
 }
 
-void set_box(BvhNode& node, const VBox& box) {
-    for (int a = 0; a < 3; ++a) {
-        node.min[a] = box.lo[a];
-        node.max[a] = box.hi[a];
+// The binary tree the SAH builds (children adjacent at `first` and `first + 1`), collapsed
+// into four-wide nodes once complete. 32 bytes.
+struct BinaryNode {
+    static constexpr std::uint32_t kLeafBit = 0x8000'0000u;
+    float min[3], max[3];
+    std::uint32_t first;   // leaf: first primitive slot; inner: left child index
+    std::uint32_t packed;  // kLeafBit for a leaf | primitives in the subtree
+
+    bool is_leaf() const { return (packed & kLeafBit) != 0; }
+    std::uint32_t count() const { return packed & ~kLeafBit; }
+    void set_box(const VBox& box) {
+        for (int a = 0; a < 3; ++a) {
+            min[a] = box.lo[a];
+            max[a] = box.hi[a];
+        }
     }
-}
-
-}  // namespace
-
-FloatBox outward_float_box(const Aabb& box) {
-    FloatBox out;
-    for (int a = 0; a < 3; ++a) {
-        float lo = static_cast<float>(box.min[a]);
-        if (static_cast<double>(lo) > box.min[a]) lo = std::nextafter(lo, -kInf);
-        float hi = static_cast<float>(box.max[a]);
-        if (static_cast<double>(hi) < box.max[a]) hi = std::nextafter(hi, kInf);
-        out.min[a] = lo;
-        out.max[a] = hi;
+    double half_area() const {
+        const double x = double(max[0]) - min[0], y = double(max[1]) - min[1],
+                     z = double(max[2]) - min[2];
+        return x * y + y * z + z * x;
     }
-    return out;
-}
+};
+static_assert(sizeof(BinaryNode) == 32);
 
-BuiltBvh build_bvh(std::vector<BuildPrimitive> prims) {
-    BuiltBvh result;
+// The binned-SAH binary tree over prims (reordered into leaf order). Root at 0.
+std::vector<BinaryNode> build_binary(std::vector<BuildPrimitive>& prims) {
     const auto count = static_cast<std::uint32_t>(prims.size());
-    if (count == 0) return result;
-    // A binary tree over n primitives has at most 2n - 1 nodes, plus the unused node 1.
-    result.nodes.reserve(2 * std::size_t{count});
-    result.nodes.resize(2, BvhNode{});
+    std::vector<BinaryNode> nodes;
+    // A binary tree over n primitives has at most 2n - 1 nodes.
+    nodes.reserve(2 * std::size_t{count});
+    nodes.resize(1);
 
     std::vector<WorkItem> work;
     WorkItem root{0, 0, count, 0, {}, {}};
@@ -248,7 +252,7 @@ BuiltBvh build_bvh(std::vector<BuildPrimitive> prims) {
         work.pop_back();
         TP_ASSERT(item.depth < kMaxTreeDepth, "BVH deeper than the traversal stacks allow");
         const std::uint32_t n = item.end - item.begin;
-        set_box(result.nodes[item.node], item.box);
+        nodes[item.node].set_box(item.box);
 
         std::uint32_t middle = 0;
         VBox left[2], right[2];  // box, centroid bounds
@@ -278,21 +282,101 @@ BuiltBvh build_bvh(std::vector<BuildPrimitive> prims) {
             split = true;
         }
 
-        BvhNode& node = result.nodes[item.node];
+        BinaryNode& node = nodes[item.node];
         if (!split) {
             node.first = item.begin;
-            node.packed = n | BvhNode::kLeafBit;
+            node.packed = n | BinaryNode::kLeafBit;
             continue;
         }
-        const auto first_child = static_cast<std::uint32_t>(result.nodes.size());
+        const auto first_child = static_cast<std::uint32_t>(nodes.size());
         node.first = first_child;
         node.packed = n;
-        result.nodes.resize(result.nodes.size() + 2, BvhNode{});
+        nodes.resize(nodes.size() + 2);
         // Right pushed first so the left subtree is built (and laid out) first.
         work.push_back({first_child + 1, middle, item.end, item.depth + 1, right[0], right[1]});
         work.push_back({first_child, item.begin, middle, item.depth + 1, left[0], left[1]});
     }
+    return nodes;
+}
 
+// Four-wide nodes from the binary tree, depth first in leaf order: each node starts from
+// its binary node's two children (the root, if a leaf, is its own single lane) and opens
+// the inner lane of largest area, in place so that lanes stay in leaf order, until it has
+// four lanes or only leaves. The likeliest-hit boxes get opened, as SAH collapses do. A
+// node's children get consecutive indices.
+void collapse(const std::vector<BinaryNode>& binary, std::uint32_t count,
+              std::vector<BvhNode>& wide) {
+    constexpr int kWidth = BvhNode::kWidth;
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    struct Item {
+        std::uint32_t wide, binary, first, end;
+    };
+    // At most one wide node per inner binary node (and one for a leaf root).
+    wide.reserve(binary.size() / 2 + 1);
+    wide.resize(1);
+    std::vector<Item> work{{0, 0, 0, count}};
+    while (!work.empty()) {
+        const Item item = work.back();
+        work.pop_back();
+        std::uint32_t lanes[kWidth];
+        int used = 0;
+        if (binary[item.binary].is_leaf()) {
+            lanes[used++] = item.binary;
+        } else {
+            lanes[used++] = binary[item.binary].first;
+            lanes[used++] = binary[item.binary].first + 1;
+        }
+        while (used < kWidth) {
+            int open = -1;
+            double largest = -1.0;
+            for (int i = 0; i < used; ++i)
+                if (!binary[lanes[i]].is_leaf() && binary[lanes[i]].half_area() > largest) {
+                    open = i;
+                    largest = binary[lanes[i]].half_area();
+                }
+            if (open < 0) break;
+            for (int i = used; i > open + 1; --i) lanes[i] = lanes[i - 1];
+            const std::uint32_t left = binary[lanes[open]].first;
+            lanes[open] = left;
+            lanes[open + 1] = left + 1;
+            ++used;
+        }
+
+        BvhNode node;
+        std::uint32_t first = item.first;
+        for (int i = 0; i < kWidth; ++i) {
+            node.first[i] = first;
+            if (i >= used) {
+                for (int a = 0; a < 3; ++a) node.min[a][i] = node.max[a][i] = nan;
+                node.child[i] = BvhNode::kLeaf;
+                continue;
+            }
+            const BinaryNode& b = binary[lanes[i]];
+            for (int a = 0; a < 3; ++a) {
+                node.min[a][i] = b.min[a];
+                node.max[a][i] = b.max[a];
+            }
+            node.child[i] = b.is_leaf() ? BvhNode::kLeaf : static_cast<std::uint32_t>(wide.size());
+            if (!b.is_leaf()) wide.emplace_back();
+            first += b.count();
+        }
+        TP_ASSERT(first == item.end, "collapsed lanes do not cover their node's range");
+        wide[item.wide] = node;
+        // Last lane pushed first: the tree is laid out depth first in leaf order.
+        for (int i = used - 1; i >= 0; --i)
+            if (!node.is_leaf(i))
+                work.push_back({node.child[i], lanes[i], node.first[i], node.end(i, item.end)});
+    }
+    wide.shrink_to_fit();
+}
+
+}  // namespace
+
+BuiltBvh build_bvh(std::vector<BuildPrimitive> prims) {
+    BuiltBvh result;
+    const auto count = static_cast<std::uint32_t>(prims.size());
+    if (count == 0) return result;
+    collapse(build_binary(prims), count, result.nodes);
     result.order.resize(count);
     for (std::uint32_t i = 0; i < count; ++i) result.order[i] = prims[i].index;
     return result;

@@ -1,27 +1,18 @@
 #pragma once
 
 // The binned-SAH builder behind StaticCollider (private). It only sees boxes: the collider
-// turns triangles into outward-rounded float boxes, the builder returns the nodes and the
-// leaf order, and the collider permutes its triangle data into that order.
+// turns triangles into outward-rounded float boxes (float_bounds.hpp), the builder returns
+// the four-wide nodes and the leaf order, and the collider permutes its triangle data into
+// that order.
 
 #include <cstdint>
 #include <vector>
 
 #include "trackphys/collision/bvh_node.hpp"
+#include "float_bounds.hpp"
 #include "trackphys/geometry/aabb.hpp"
 
 namespace trackphys::collision_detail {
-
-/// A box in float, 24 bytes.
-struct FloatBox {
-    float min[3];
-    float max[3];
-};
-static_assert(sizeof(FloatBox) == 24);
-
-/// The float box that contains `box` exactly: each bound rounded outward (down for min, up
-/// for max), so double tests against it never reject what the double box would accept.
-FloatBox outward_float_box(const Aabb& box);
 
 /// A float box padded to four lanes (lane 3 is 0), so that box unions compile to
 /// four-wide min/max. 32 bytes.
@@ -44,18 +35,24 @@ struct BuildPrimitive {
 static_assert(sizeof(BuildPrimitive) == 36);
 
 /// Deepest a built tree gets: SAH splits up to kMaxSahDepth, then median splits that halve
-/// the count (at most 31 more levels); queries size their fixed stacks from this.
+/// the count (at most 31 more levels); the four-wide tree is never deeper than the binary
+/// one it is collapsed from, and queries size their fixed stacks from this.
 inline constexpr int kMaxSahDepth = 48;
 inline constexpr int kMaxTreeDepth = kMaxSahDepth + 32;
+/// Most entries a depth-first traversal of the four-wide tree keeps pending: each level
+/// down leaves at most three siblings behind, plus the four children of the last node.
+inline constexpr int kMaxTraversalStack = 3 * kMaxTreeDepth + 4;
 
 struct BuiltBvh {
-    std::vector<BvhNode, CacheLineAllocator<BvhNode>> nodes;  ///< root 0, node 1 unused
+    std::vector<BvhNode> nodes;  ///< four-wide, root at 0
     std::vector<std::uint32_t> order;  ///< leaf slot -> index of the primitive given
 };
 
-/// Builds the tree: binned SAH on centroids, all three axes, up to 16 bins (nodes above
-/// ~16k primitives bin a strided sample), leaves of up to 8 primitives, single-threaded.
-/// Deterministic: the same primitives give the same tree. Empty input -> no nodes.
+/// Builds the tree: a binary tree by binned SAH on centroids, all three axes, up to 16 bins
+/// (nodes above ~16k primitives bin a strided sample), leaves of up to 8 primitives, then
+/// collapsed into four-wide nodes (each takes its binary node's two children and keeps
+/// opening the inner child of largest area until it has four). Single-threaded and
+/// deterministic: the same primitives give the same tree. Empty input -> no nodes.
 BuiltBvh build_bvh(std::vector<BuildPrimitive> primitives);
 
 }  // namespace trackphys::collision_detail

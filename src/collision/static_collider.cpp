@@ -1,39 +1,45 @@
 #include "trackphys/collision/static_collider.hpp"
 
+#include <algorithm>
 #include <array>
+#include <bit>
 #include <limits>
 #include <string>
 
 #include "bvh_builder.hpp"
+#include "bvh_lanes.hpp"
 #include "core/fnv1a.hpp"
 #include "trackphys/error.hpp"
 #include "triangle_predicates.hpp"
 
 namespace trackphys {
 
-using collision_detail::kMaxTreeDepth;
+using collision_detail::BoxLanes;
+using collision_detail::kMaxTraversalStack;
+using collision_detail::QueryLanes;
 
 namespace {
 
 constexpr std::uint32_t kNoSlot = std::numeric_limits<std::uint32_t>::max();
+// Floats in one block of four slot boxes (BoxLanes::of).
+constexpr std::size_t kBlockFloats = 24;
 
-// Node boxes are float; comparing float with double converts the float exactly, so these
-// tests see the outward-rounded box as it is.
-bool node_overlaps(const BvhNode& n, const Aabb& box) {
-    return n.min[0] <= box.max.x && box.min.x <= n.max[0] && n.min[1] <= box.max.y &&
-           box.min.y <= n.max[1] && n.min[2] <= box.max.z && box.min.z <= n.max[2];
+// Lanes 0 .. n - 1 of four (n >= 4: all of them).
+unsigned first_lanes(std::uint32_t n) { return (1u << std::min(n, 4u)) - 1u; }
+// The lanes of the block of four slots from `block_first` (a multiple of 4) that lie in
+// [first, end), first < block_first + 4.
+unsigned lanes_in(std::uint32_t block_first, std::uint32_t first, std::uint32_t end) {
+    return first_lanes(end - block_first) &
+           ~first_lanes(std::max(first, block_first) - block_first);
 }
+int lowest_lane(unsigned mask) { return std::countr_zero(mask); }
+int highest_lane(unsigned mask) { return 31 - std::countl_zero(mask); }
 
-bool node_inside(const BvhNode& n, const Aabb& box) {
-    return box.min.x <= n.min[0] && n.max[0] <= box.max.x && box.min.y <= n.min[1] &&
-           n.max[1] <= box.max.y && box.min.z <= n.min[2] && n.max[2] <= box.max.z;
-}
+glm::dvec3 lane_min(const BvhNode& n, int i) { return {n.min[0][i], n.min[1][i], n.min[2][i]}; }
+glm::dvec3 lane_max(const BvhNode& n, int i) { return {n.max[0][i], n.max[1][i], n.max[2][i]}; }
 
-glm::dvec3 node_min(const BvhNode& n) { return {n.min[0], n.min[1], n.min[2]}; }
-glm::dvec3 node_max(const BvhNode& n) { return {n.max[0], n.max[1], n.max[2]}; }
-
-template <class T, class A>
-std::size_t capacity_bytes(const std::vector<T, A>& v) {
+template <class T>
+std::size_t capacity_bytes(const std::vector<T>& v) {
     return v.capacity() * sizeof(T);
 }
 
@@ -52,13 +58,13 @@ StaticCollider::StaticCollider(const TriangleMesh& mesh) {
     }
     collision_detail::BuiltBvh bvh = collision_detail::build_bvh(std::move(primitives));
     nodes_ = std::move(bvh.nodes);
-    nodes_.shrink_to_fit();
 
     // Permute the triangles into leaf order, and the vertices into the order in which the
     // leaves first use them, so that neighbouring leaves read neighbouring memory.
     const std::size_t n = kept.size();
     slot_vertices_.resize(n);
-    slot_to_triangle_.resize(n);
+    // Three more slots, never reported: four-lane reads at any slot stay inside.
+    slot_to_triangle_.resize(n + 3, 0);
     triangle_to_slot_.assign(mesh.triangles.size(), kNoSlot);
     std::vector<std::uint32_t> vertex_remap(mesh.vertices.size(), kNoSlot);
     std::uint32_t used_vertices = 0;
@@ -83,6 +89,19 @@ StaticCollider::StaticCollider(const TriangleMesh& mesh) {
         for (const std::uint32_t v : mesh.triangles[triangle]) hash.add(mesh.vertices[v]);
     }
     content_hash_ = hash.value;
+    // The slots' float boxes in blocks of four; the padding lanes are NaN (never hit).
+    slot_boxes_.assign(kBlockFloats * ((n + 3) / 4), std::numeric_limits<float>::quiet_NaN());
+    for (std::size_t slot = 0; slot < n; ++slot) {
+        const auto& tri = slot_vertices_[slot];
+        const collision_detail::FloatBox box =
+            collision_detail::outward_float_box(collision_detail::triangle_box(
+                vertices_[tri[0]], vertices_[tri[1]], vertices_[tri[2]]));
+        float* block = &slot_boxes_[kBlockFloats * (slot / 4) + slot % 4];
+        for (int a = 0; a < 3; ++a) {
+            block[4 * a] = box.min[a];
+            block[4 * (3 + a)] = box.max[a];
+        }
+    }
 }
 
 inline bool StaticCollider::triangle_box_overlaps(std::uint32_t slot, const Aabb& box) const {
@@ -91,107 +110,175 @@ inline bool StaticCollider::triangle_box_overlaps(std::uint32_t slot, const Aabb
         .overlaps(box);
 }
 
-// Depth-first traversal of the nodes whose boxes overlap `box`, carrying each node's first
-// leaf slot (a left child starts where its parent does, the right one after the left's
-// count). A node inside the box goes to sink.range whole: its triangles' boxes lie in the
-// node box, so each of them overlaps. Leaves on the boundary test each triangle's box.
+// Depth-first traversal of the lanes whose boxes may overlap `box` (QueryLanes' outward
+// test: a superset). A lane surely inside the box goes to sink.range whole: its
+// triangles' boxes lie in the lane's box, so each of them overlaps. A leaf lane on the
+// boundary tests its slots' float boxes a block of four at a time; a slot that may overlap
+// but not surely (a bound within a float step of the box's) gets the exact double test.
+// Inner lanes are stacked last to first, so that slots come out roughly in leaf order, and
+// their nodes are prefetched when stacked: the loads overlap the rest of this node's work.
 template <class Sink>
-void StaticCollider::visit_aabb(const Aabb& box, Sink&& sink) const {
-    if (nodes_.empty() || !node_overlaps(nodes_[0], box)) return;
+void StaticCollider::visit_aabb(const Aabb& box, Sink& sink) const {
+    if (nodes_.empty()) return;
+    const QueryLanes q(box);
+    const float* blocks = slot_boxes_.data();  // slot s's block starts at float 6 s (s % 4 = 0)
     struct Entry {
-        std::uint32_t node, first;
+        std::uint32_t node, end;
     };
-    std::array<Entry, kMaxTreeDepth + 1> stack;
+    std::array<Entry, kMaxTraversalStack> stack;
     int top = 0;
-    std::uint32_t node = 0, first = 0;
+    std::uint32_t node = 0, end = static_cast<std::uint32_t>(triangle_count());
     for (;;) {
         const BvhNode& n = nodes_[node];
-        if (node_inside(n, box)) {
-            sink.range(first, n.count());
-        } else if (n.is_leaf()) {
-            for (std::uint32_t s = first; s < first + n.count(); ++s)
-                if (triangle_box_overlaps(s, box)) sink.one(s);
-        } else {
-            const BvhNode& left = nodes_[n.first];
-            const bool hit_left = node_overlaps(left, box);
-            const bool hit_right = node_overlaps(nodes_[n.first + 1], box);
-            if (hit_left) {
-                if (hit_right) stack[top++] = {n.first + 1, first + left.count()};
-                node = n.first;
-                continue;
+        const BoxLanes lanes = BoxLanes::of(n);
+        const unsigned hit = collision_detail::may_overlap(lanes, q);
+        if (hit != 0) {
+            const unsigned inside = collision_detail::surely_inside(lanes, q) & hit;
+            const unsigned leaves = collision_detail::leaf_lanes(n) & hit & ~inside;
+            const unsigned inner = hit & ~inside & ~leaves;
+            // Stacked without branches: every lane is written, only inner ones are kept.
+            for (int i = BvhNode::kWidth - 1; i >= 0; --i) {
+                stack[top] = {n.child[i], n.end(i, end)};
+                top += static_cast<int>((inner >> i) & 1u);
             }
-            if (hit_right) {
-                node = n.first + 1;
-                first += left.count();
-                continue;
+            for (unsigned m = inner; m != 0; m &= m - 1) {
+                const char* child = reinterpret_cast<const char*>(&nodes_[n.child[lowest_lane(m)]]);
+                _mm_prefetch(child, _MM_HINT_T0);
+                _mm_prefetch(child + 64, _MM_HINT_T0);
+            }
+            for (unsigned m = inside; m != 0; m &= m - 1) {
+                const int i = lowest_lane(m);
+                sink.range(n.first[i], n.end(i, end));
+            }
+            for (unsigned m = leaves; m != 0; m &= m - 1) {
+                const int i = lowest_lane(m);
+                const std::uint32_t leaf_first = n.first[i], leaf_end = n.end(i, end);
+                for (std::uint32_t s = leaf_first & ~3u; s < leaf_end; s += 4) {
+                    const BoxLanes slots = BoxLanes::of(blocks + std::size_t{s} * 6);
+                    const unsigned maybe = collision_detail::may_overlap(slots, q) &
+                                           lanes_in(s, leaf_first, leaf_end);
+                    unsigned keep = collision_detail::surely_overlaps(slots, q) & maybe;
+                    for (unsigned k = maybe & ~keep; k != 0; k &= k - 1) [[unlikely]] {
+                        const int lane = lowest_lane(k);
+                        if (triangle_box_overlaps(s + static_cast<std::uint32_t>(lane), box))
+                            keep |= 1u << lane;
+                    }
+                    sink.slots(s, keep);
+                }
             }
         }
         if (top == 0) return;
         --top;
         node = stack[top].node;
-        first = stack[top].first;
+        end = stack[top].end;
     }
 }
 
-void StaticCollider::query_aabb(const Aabb& box, std::vector<std::uint32_t>& out) const {
-    struct Sink {
-        const StaticCollider& self;
-        std::vector<std::uint32_t>& out;
-        void one(std::uint32_t slot) { out.push_back(self.slot_to_triangle_[slot]); }
-        void range(std::uint32_t first, std::uint32_t count) {
-            const auto begin = self.slot_to_triangle_.begin() + first;
-            out.insert(out.end(), begin, begin + count);
+namespace {
+
+// A query's output gathered in a fixed local buffer and appended to the caller's vector in
+// bulk: a reported triangle costs a store, not a push_back. make(triangle) is the element.
+template <class T, class Make>
+class BufferedOutput {
+public:
+    BufferedOutput(std::vector<T>& out, const std::uint32_t* slot_to_triangle, Make make)
+        : out_(out), slot_to_triangle_(slot_to_triangle), make_(make) {}
+    BufferedOutput(const BufferedOutput&) = delete;
+    BufferedOutput& operator=(const BufferedOutput&) = delete;
+    ~BufferedOutput() { flush(); }
+
+    /// Slots s + i for the set bits i of `mask` (four lanes; the slot array is padded, so
+    /// every lane is read and stored, and only the set ones are kept: no branches).
+    void slots(std::uint32_t s, unsigned mask) {
+        if (used_ > kSize - 4) flush();
+        for (unsigned i = 0; i < 4; ++i) {
+            buffer_[used_] = make_(slot_to_triangle_[s + i]);
+            used_ += (mask >> i) & 1u;
         }
-    };
-    visit_aabb(box, Sink{*this, out});
+    }
+    /// Slots [first, end).
+    void range(std::uint32_t first, std::uint32_t end) {
+        if (end - first > kSize - used_) {
+            flush();
+            for (std::uint32_t s = first; s < end; ++s) out_.push_back(make_(slot_to_triangle_[s]));
+            return;
+        }
+        T* to = buffer_ + used_;
+        for (std::uint32_t s = first; s < end; ++s) *to++ = make_(slot_to_triangle_[s]);
+        used_ += end - first;
+    }
+
+private:
+    static constexpr unsigned kSize = 256;
+    void flush() {
+        out_.insert(out_.end(), buffer_, buffer_ + used_);
+        used_ = 0;
+    }
+
+    std::vector<T>& out_;
+    const std::uint32_t* slot_to_triangle_;
+    Make make_;
+    unsigned used_ = 0;
+    T buffer_[kSize];
+};
+
+}  // namespace
+
+void StaticCollider::query_aabb(const Aabb& box, std::vector<std::uint32_t>& out) const {
+    BufferedOutput sink(out, slot_to_triangle_.data(), [](std::uint32_t t) { return t; });
+    visit_aabb(box, sink);
 }
 
 void StaticCollider::query_aabb_refs(const Aabb& box, std::uint32_t collider_id,
                                      std::vector<TriangleRef>& out) const {
-    struct Sink {
-        const StaticCollider& self;
-        std::uint32_t collider;
-        std::vector<TriangleRef>& out;
-        void one(std::uint32_t slot) { out.push_back({collider, self.slot_to_triangle_[slot]}); }
-        void range(std::uint32_t first, std::uint32_t count) {
-            for (std::uint32_t s = first; s < first + count; ++s) one(s);
-        }
-    };
-    visit_aabb(box, Sink{*this, collider_id, out});
+    BufferedOutput sink(out, slot_to_triangle_.data(), [collider_id](std::uint32_t t) {
+        return TriangleRef{collider_id, t};
+    });
+    visit_aabb(box, sink);
 }
 
-// The traversal of visit_aabb without the inside shortcut: being inside the query's box
-// says nothing about the distance test.
+// The traversal of visit_aabb without the inside shortcut (being inside the query's box
+// says nothing about the distance test): leaf slots whose float boxes may overlap `box`
+// go to `keep` with their double vertices.
 template <class Predicate>
 void StaticCollider::visit_box_filtered(const Aabb& box, Predicate&& keep,
                                         std::vector<std::uint32_t>& out) const {
-    if (nodes_.empty() || !node_overlaps(nodes_[0], box)) return;
-    std::array<std::uint32_t, kMaxTreeDepth + 1> stack;
+    if (nodes_.empty()) return;
+    const QueryLanes q(box);
+    const float* blocks = slot_boxes_.data();  // slot s's block starts at float 6 s (s % 4 = 0)
+    struct Entry {
+        std::uint32_t node, end;
+    };
+    std::array<Entry, kMaxTraversalStack> stack;
     int top = 0;
-    std::uint32_t node = 0;
+    std::uint32_t node = 0, end = static_cast<std::uint32_t>(triangle_count());
     for (;;) {
         const BvhNode& n = nodes_[node];
-        if (n.is_leaf()) {
-            for (std::uint32_t s = n.first; s < n.first + n.count(); ++s) {
-                const auto& tri = slot_vertices_[s];
-                if (keep(vertices_[tri[0]], vertices_[tri[1]], vertices_[tri[2]]))
-                    out.push_back(slot_to_triangle_[s]);
-            }
-        } else {
-            const bool hit_left = node_overlaps(nodes_[n.first], box);
-            const bool hit_right = node_overlaps(nodes_[n.first + 1], box);
-            if (hit_left) {
-                if (hit_right) stack[top++] = n.first + 1;
-                node = n.first;
-                continue;
-            }
-            if (hit_right) {
-                node = n.first + 1;
-                continue;
+        const unsigned hit = collision_detail::may_overlap(BoxLanes::of(n), q);
+        const unsigned leaves = collision_detail::leaf_lanes(n) & hit;
+        for (unsigned m = leaves; m != 0; m &= m - 1) {
+            const int i = lowest_lane(m);
+            const std::uint32_t leaf_first = n.first[i], leaf_end = n.end(i, end);
+            for (std::uint32_t s = leaf_first & ~3u; s < leaf_end; s += 4) {
+                const unsigned maybe =
+                    collision_detail::may_overlap(BoxLanes::of(blocks + std::size_t{s} * 6), q) &
+                    lanes_in(s, leaf_first, leaf_end);
+                for (unsigned k = maybe; k != 0; k &= k - 1) {
+                    const auto slot = s + static_cast<std::uint32_t>(lowest_lane(k));
+                    const auto& tri = slot_vertices_[slot];
+                    if (keep(vertices_[tri[0]], vertices_[tri[1]], vertices_[tri[2]]))
+                        out.push_back(slot_to_triangle_[slot]);
+                }
             }
         }
+        for (unsigned m = hit & ~leaves; m != 0; m &= ~(1u << highest_lane(m))) {
+            const int i = highest_lane(m);
+            stack[top++] = {n.child[i], n.end(i, end)};
+        }
         if (top == 0) return;
-        node = stack[--top];
+        --top;
+        node = stack[top].node;
+        end = stack[top].end;
     }
 }
 
@@ -219,10 +306,11 @@ void StaticCollider::query_capsule(const glm::dvec3& start, const glm::dvec3& en
         out);
 }
 
-// Closest-hit traversal: nearer child first, the farther one stacked with its entry
-// distance and dropped when popped beyond the best hit. A triangle's reported distance is
-// never below its box's entry distance, which is never below its nodes' (the span test is
-// monotone in the box), so pruning at "entry > best" loses no hit, ties included.
+// Closest-hit traversal: a node's hit lanes (leaves and inner children alike) are stacked
+// farthest first with their entry distances, so the nearest is taken next, and an entry
+// popped beyond the best hit is dropped. A triangle's reported distance is never below its
+// box's entry distance, which is never below its lanes' (the span test is monotone in the
+// box), so pruning at "entry > best" loses no hit, ties included.
 std::optional<RayHit> StaticCollider::raycast(const glm::dvec3& origin, const glm::dvec3& unit_dir,
                                               double max_distance) const {
     const collision_detail::RayQuery ray =
@@ -230,21 +318,23 @@ std::optional<RayHit> StaticCollider::raycast(const glm::dvec3& origin, const gl
     if (nodes_.empty()) return std::nullopt;
     double best_t = ray.max_distance;
     std::uint32_t best_triangle = kNoSlot, best_slot = kNoSlot;
-    double t_near, t_far;
-    if (!collision_detail::ray_box_span(ray, node_min(nodes_[0]), node_max(nodes_[0]), best_t,
-                                        t_near, t_far))
-        return std::nullopt;
     struct Entry {
-        std::uint32_t node;
+        std::uint32_t child, first, end;  // child: a node index, or kLeaf for slots [first, end)
         double t_near;
     };
-    std::array<Entry, kMaxTreeDepth + 1> stack;
+    std::array<Entry, kMaxTraversalStack> stack;
     int top = 0;
-    std::uint32_t node = 0;
+    Entry entry{0, 0, static_cast<std::uint32_t>(triangle_count()), 0.0};
     for (;;) {
-        const BvhNode& n = nodes_[node];
-        if (n.is_leaf()) {
-            for (std::uint32_t s = n.first; s < n.first + n.count(); ++s) {
+        if ((entry.child & BvhNode::kLeaf) != 0) {
+            for (std::uint32_t s = entry.first; s < entry.end; ++s) {
+                // The slot's float box holds the triangle's box, so its span holds the hit.
+                const float* box = &slot_boxes_[kBlockFloats * (s / 4) + s % 4];
+                double t_near, t_far;
+                if (!collision_detail::ray_box_span(ray, {box[0], box[4], box[8]},
+                                                    {box[12], box[16], box[20]}, best_t, t_near,
+                                                    t_far))
+                    continue;
                 const auto& tri = slot_vertices_[s];
                 const std::optional<double> t = collision_detail::ray_triangle(
                     ray, vertices_[tri[0]], vertices_[tri[1]], vertices_[tri[2]]);
@@ -256,24 +346,22 @@ std::optional<RayHit> StaticCollider::raycast(const glm::dvec3& origin, const gl
                 }
             }
         } else {
-            const BvhNode& left = nodes_[n.first];
-            const BvhNode& right = nodes_[n.first + 1];
-            double near_left, near_right;
-            const bool hit_left = collision_detail::ray_box_span(
-                ray, node_min(left), node_max(left), best_t, near_left, t_far);
-            const bool hit_right = collision_detail::ray_box_span(
-                ray, node_min(right), node_max(right), best_t, near_right, t_far);
-            if (hit_left && hit_right) {
-                const bool left_first = near_left <= near_right;
-                stack[top++] = left_first ? Entry{n.first + 1, near_right}
-                                          : Entry{n.first, near_left};
-                node = left_first ? n.first : n.first + 1;
-                continue;
+            const BvhNode& n = nodes_[entry.child];
+            Entry hits[BvhNode::kWidth];
+            int count = 0;
+            for (int i = 0; i < BvhNode::kWidth; ++i) {
+                double t_near, t_far;
+                if (n.is_empty(i) || !collision_detail::ray_box_span(ray, lane_min(n, i),
+                                                                     lane_max(n, i), best_t,
+                                                                     t_near, t_far))
+                    continue;
+                // Insertion by decreasing entry distance (of equal ones, the lower lane is
+                // taken first).
+                int at = count++;
+                for (; at > 0 && hits[at - 1].t_near <= t_near; --at) hits[at] = hits[at - 1];
+                hits[at] = {n.child[i], n.first[i], n.end(i, entry.end), t_near};
             }
-            if (hit_left || hit_right) {
-                node = hit_left ? n.first : n.first + 1;
-                continue;
-            }
+            for (int k = 0; k < count; ++k) stack[top++] = hits[k];
         }
         do {
             if (top == 0) {
@@ -285,7 +373,7 @@ std::optional<RayHit> StaticCollider::raycast(const glm::dvec3& origin, const gl
             }
             --top;
         } while (stack[top].t_near > best_t);
-        node = stack[top].node;
+        entry = stack[top];
     }
 }
 
@@ -309,7 +397,7 @@ NormalizedTriangle StaticCollider::normalized_triangle(std::uint32_t index) cons
 std::size_t StaticCollider::bytes_used() const {
     return sizeof(*this) + capacity_bytes(vertices_) + capacity_bytes(slot_vertices_) +
            capacity_bytes(slot_to_triangle_) + capacity_bytes(triangle_to_slot_) +
-           capacity_bytes(nodes_);
+           capacity_bytes(slot_boxes_) + capacity_bytes(nodes_);
 }
 
 }  // namespace trackphys

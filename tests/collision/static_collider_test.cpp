@@ -159,43 +159,70 @@ TEST(StaticCollider, KeepsTrianglesAsGivenAndDropsDegenerateOnes) {
     EXPECT_EQ(all.size(), kept);
 }
 
-// The tree's own contract, checked on its nodes: every triangle slot in exactly one leaf,
-// each node's box holding its children's boxes, subtree counts adding up.
+// The tree's own contract, checked on its nodes: every triangle slot in exactly one leaf
+// lane, lanes in leaf order covering their node's range, each lane's box holding its
+// child's lanes, empty lanes last with NaN boxes (which no query hits).
 TEST(StaticCollider, TreeInvariants) {
     const TriangleMesh mesh = test::random_soup(3000, 9);
     const StaticCollider collider(mesh);
     const auto& nodes = collider.nodes();
-    ASSERT_GE(nodes.size(), 3u);
-    std::vector<int> seen(collider.triangle_count(), 0);
+    ASSERT_GE(nodes.size(), 2u);
+    std::vector<int> seen(collider.triangle_count(), 0), reached(nodes.size(), 0);
     struct Item {
-        std::uint32_t node, first;
+        std::uint32_t node, first, end;
+        Aabb box;  // the parent lane's box (everything for the root)
     };
-    std::vector<Item> stack{{0, 0}};
-    std::size_t leaves = 0;
+    const auto count = static_cast<std::uint32_t>(collider.triangle_count());
+    std::vector<Item> stack{{0, 0, count, {glm::dvec3(-kInf), glm::dvec3(kInf)}}};
+    std::size_t leaves = 0, lanes = 0;
     while (!stack.empty()) {
         const Item item = stack.back();
         stack.pop_back();
+        ++reached[item.node];
         const BvhNode& n = nodes[item.node];
-        if (n.is_leaf()) {
+        ASSERT_EQ(n.first[0], item.first);
+        ASSERT_FALSE(n.is_empty(0));
+        for (int i = 0; i < BvhNode::kWidth; ++i) {
+            const std::uint32_t end = n.end(i, item.end);
+            ASSERT_LE(n.first[i], end);
+            if (n.is_empty(i)) {
+                ASSERT_EQ(n.first[i], item.end);
+                ASSERT_TRUE(n.is_leaf(i));
+                for (int a = 0; a < 3; ++a)
+                    ASSERT_TRUE(std::isnan(n.min[a][i]) && std::isnan(n.max[a][i]));
+                continue;
+            }
+            ++lanes;
+            ASSERT_LT(n.first[i], end);
+            const Aabb lane{{n.min[0][i], n.min[1][i], n.min[2][i]},
+                            {n.max[0][i], n.max[1][i], n.max[2][i]}};
+            for (int a = 0; a < 3; ++a) {
+                ASSERT_LE(item.box.min[a], lane.min[a]);
+                ASSERT_GE(item.box.max[a], lane.max[a]);
+            }
+            if (!n.is_leaf(i)) {
+                ASSERT_LT(n.child[i], nodes.size());
+                stack.push_back({n.child[i], n.first[i], end, lane});
+                continue;
+            }
             ++leaves;
-            ASSERT_EQ(n.first, item.first);
-            ASSERT_GE(n.count(), 1u);
-            ASSERT_LE(n.count(), 8u);
-            for (std::uint32_t s = n.first; s < n.first + n.count(); ++s) ++seen[s];
-            continue;
+            ASSERT_LE(end - n.first[i], 32u);  // bvh_builder.cpp kMaxLeafSize
+            for (std::uint32_t s = n.first[i]; s < end; ++s) ++seen[s];
         }
-        const BvhNode& l = nodes[n.first];
-        const BvhNode& r = nodes[n.first + 1];
-        ASSERT_EQ(l.count() + r.count(), n.count());
-        for (int a = 0; a < 3; ++a) {
-            ASSERT_LE(n.min[a], std::min(l.min[a], r.min[a]));
-            ASSERT_GE(n.max[a], std::max(l.max[a], r.max[a]));
+        // Lanes fill from the first: an empty lane is followed by empty lanes only. The
+        // collapse opens inner children until a node is full, so a node with an empty lane
+        // has leaves only.
+        for (int i = 1; i < BvhNode::kWidth; ++i)
+            if (n.is_empty(i - 1)) {
+                ASSERT_TRUE(n.is_empty(i));
+            }
+        if (n.is_empty(BvhNode::kWidth - 1)) {
+            for (int i = 0; i < BvhNode::kWidth; ++i) ASSERT_TRUE(n.is_leaf(i));
         }
-        stack.push_back({n.first, item.first});
-        stack.push_back({n.first + 1, item.first + l.count()});
     }
     EXPECT_TRUE(std::all_of(seen.begin(), seen.end(), [](int k) { return k == 1; }));
-    EXPECT_EQ(nodes.size(), 2 * leaves);  // 2 leaves - 1 nodes, plus the unused node 1
+    EXPECT_TRUE(std::all_of(reached.begin(), reached.end(), [](int k) { return k == 1; }));
+    EXPECT_GE(lanes, 2 * nodes.size());  // not a binary tree in disguise
     EXPECT_LE(collider.bytes_used(), 200 * mesh.triangles.size());
 }
 

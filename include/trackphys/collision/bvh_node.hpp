@@ -1,56 +1,45 @@
 #pragma once
 
-#include <cstddef>
 #include <cstdint>
-#include <new>
 
 namespace trackphys {
 
-/// One node of a StaticCollider's bounding volume hierarchy (the madmann91/bvh layout:
-/// all nodes in one vector, root at 0, the two children of an inner node adjacent at
-/// `first` and `first + 1`, no parent links).
+/// One node of a StaticCollider's four-wide bounding volume hierarchy: up to four children,
+/// their boxes stored lane by lane (structure of arrays) so that a query tests all four
+/// with a few SIMD comparisons. All nodes live in one vector, root at 0, no parent links.
 ///
 /// Bounds are float, rounded outward from the triangles' exact double bounds (never
-/// inward), so a node box always holds every triangle of its subtree exactly: a query that
+/// inward), so a child box always holds every triangle of its subtree exactly: a query that
 /// would hit a triangle always reaches it, and float halves the node size.
 ///
-/// Every subtree covers a contiguous range of the collider's leaf-ordered triangles, so a
-/// node also keeps its subtree's triangle count: traversal carries the range's first slot
-/// and can report a whole subtree that lies inside a query box without visiting it.
-struct BvhNode {
-    static constexpr std::uint32_t kLeafBit = 0x8000'0000u;
+/// Every child covers a contiguous range of the collider's leaf-ordered triangles, the
+/// lanes in order: lane i covers slots [first[i], first[i + 1]), the last used lane up to the
+/// node's own end (its parent's bound for it, the triangle count at the root). A query can
+/// report a whole child that lies inside its box without visiting it.
+///
+/// A lane is a leaf (its triangles are tested directly), an inner child (`child` is its node
+/// index), or empty: NaN bounds, which fail every comparison, so that no query box, however
+/// large or infinite, ever hits it; an empty lane's range is empty (first = the node's end).
+struct alignas(64) BvhNode {
+    static constexpr int kWidth = 4;
+    /// `child` of a leaf (or empty) lane: no node below.
+    static constexpr std::uint32_t kLeaf = 0x8000'0000u;
 
-    float min[3];          ///< 12 bytes: box minimum (m), rounded down
-    float max[3];          ///< 12 bytes: box maximum (m), rounded up
-    std::uint32_t first;   ///<  4 bytes: leaf: first triangle slot; inner: left child index
-    std::uint32_t packed;  ///<  4 bytes: kLeafBit for a leaf | triangles in the subtree
+    float min[3][kWidth];           ///< 48 bytes: min[axis][lane] (m), rounded down
+    float max[3][kWidth];           ///< 48 bytes: max[axis][lane] (m), rounded up
+    std::uint32_t child[kWidth];    ///< 16 bytes: inner lane: child node index; else kLeaf
+    std::uint32_t first[kWidth];    ///< 16 bytes: first triangle slot of each lane's range
 
-    bool is_leaf() const { return (packed & kLeafBit) != 0; }
-    /// Number of triangles in this node's subtree (a leaf's own triangles).
-    std::uint32_t count() const { return packed & ~kLeafBit; }
-};
-static_assert(sizeof(BvhNode) == 32, "BvhNode is 32 bytes: two siblings share a cache line");
-
-/// Allocates on 64-byte boundaries, so that with the root at 0 and an unused node at 1 every
-/// sibling pair (2k, 2k + 1) fills exactly one cache line.
-template <class T>
-struct CacheLineAllocator {
-    using value_type = T;
-    static constexpr std::align_val_t kAlignment{64};
-
-    CacheLineAllocator() = default;
-    template <class U>
-    CacheLineAllocator(const CacheLineAllocator<U>&) noexcept {}
-
-    T* allocate(std::size_t n) {
-        return static_cast<T*>(::operator new(n * sizeof(T), kAlignment));
-    }
-    void deallocate(T* p, std::size_t) noexcept { ::operator delete(p, kAlignment); }
-
-    template <class U>
-    bool operator==(const CacheLineAllocator<U>&) const noexcept {
-        return true;
+    bool is_leaf(int lane) const { return (child[lane] & kLeaf) != 0; }
+    /// True for an unused lane (NaN bounds).
+    bool is_empty(int lane) const { return !(min[0][lane] <= max[0][lane]); }
+    /// One past the last slot of lane `lane`'s range, given this node's own end.
+    std::uint32_t end(int lane, std::uint32_t node_end) const {
+        return lane + 1 < kWidth ? first[lane + 1] : node_end;
     }
 };
+// Aligned to a cache line (std::vector honours over-alignment since C++17): a node is
+// exactly two lines, and its lanes load with aligned SIMD loads.
+static_assert(sizeof(BvhNode) == 128, "BvhNode is 128 bytes: exactly two cache lines");
 
 }  // namespace trackphys

@@ -51,20 +51,22 @@ struct TriangleRef {
 ///
 /// Layout (bytes_used() counts it all): vertices in double, re-ordered by first use in leaf
 /// order and without unused ones (24 bytes each, ~12 a triangle on a shared-vertex mesh);
-/// per triangle, in leaf order, its three vertex indices (12) and mesh index (4); the
-/// inverse map mesh index -> leaf slot (4); ~0.45 32-byte nodes (~14). About 47 bytes a
-/// triangle on a track mesh, ~111 on a soup of unshared vertices. NormalizedTriangle frames
-/// are not stored: 120 bytes in double would break the 80-byte budget, every exact
-/// predicate needs the double vertices anyway, and a measured float per-slot box (24 bytes,
-/// to test leaves without reading vertices) did not speed up box queries and slowed rays
-/// (bench_collision_bvh). The mid phase builds the few hundred frames it culls per update
+/// per triangle, in leaf order, its three vertex indices (12), mesh index (4) and box in
+/// float, rounded outward (24, in blocks of four that load as six SIMD vectors); the
+/// inverse map mesh index -> leaf slot (4); ~0.02 four-wide 128-byte nodes (~2.5, leaves
+/// of up to 32 triangles). About 59 bytes a triangle on a track mesh, ~119 on a soup of
+/// unshared vertices. The box queries test the float boxes four at a time and read a
+/// triangle's vertices only when its box lies within a float step of the query's (sphere
+/// and capsule: for the distance test). NormalizedTriangle frames are not stored: 120
+/// bytes in double would break the 80-byte budget, and every exact predicate needs the
+/// double vertices anyway. The mid phase builds the few hundred frames it culls per update
 /// with normalized_triangle().
 class TRACKPHYS_API StaticCollider {
 public:
     /// Largest accepted |coordinate| (m): node bounds are float, and 1e18 m keeps every
     /// bound, area and SAH cost finite.
     static constexpr double kMaxCoordinate = 1e18;
-    /// Largest number of mesh triangles (leaf counts use 31 bits).
+    /// Largest number of mesh triangles (slot and node indices use 31 bits).
     static constexpr std::size_t kMaxTriangles = 0x7fff'ffffu;
 
     /// Validates the mesh and builds the BVH. Throws trackphys::Error naming the vertex or
@@ -115,16 +117,17 @@ public:
 
     /// Box around every kept triangle (empty when none was kept).
     const Aabb& bounds() const { return bounds_; }
-    /// The BVH nodes: root at 0 (when there is a triangle), node 1 unused.
-    const std::vector<BvhNode, CacheLineAllocator<BvhNode>>& nodes() const { return nodes_; }
+    /// The four-wide BVH nodes: root at 0 (when there is a triangle), covering leaf slots
+    /// [0, triangle_count()).
+    const std::vector<BvhNode>& nodes() const { return nodes_; }
     /// Bytes of every structure the collider keeps (vector capacities included).
     std::size_t bytes_used() const;
 
 private:
-    // Leaf slot s holds mesh triangle slot_to_triangle_[s]; its vertices are
-    // vertices_[slot_vertices_[s][k]], in the mesh's order (winding kept).
+    // Leaf slot s holds mesh triangle slot_to_triangle_[s] (padded by three unused slots);
+    // its vertices are vertices_[slot_vertices_[s][k]], in the mesh's order (winding kept).
     template <class Sink>
-    void visit_aabb(const Aabb& box, Sink&& sink) const;
+    void visit_aabb(const Aabb& box, Sink& sink) const;
     template <class Predicate>
     void visit_box_filtered(const Aabb& box, Predicate&& keep,
                             std::vector<std::uint32_t>& out) const;
@@ -134,7 +137,10 @@ private:
     std::vector<std::array<std::uint32_t, 3>> slot_vertices_;
     std::vector<std::uint32_t> slot_to_triangle_;
     std::vector<std::uint32_t> triangle_to_slot_;
-    std::vector<BvhNode, CacheLineAllocator<BvhNode>> nodes_;
+    // Slot boxes in blocks of four slots (from a multiple of 4): 24 floats, min x, y, z,
+    // then max x, y, z, one lane per slot; lanes past the last slot are NaN.
+    std::vector<float> slot_boxes_;
+    std::vector<BvhNode> nodes_;
     Aabb bounds_;
     std::uint64_t content_hash_ = 0;
 };
