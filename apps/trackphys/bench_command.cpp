@@ -123,7 +123,7 @@ nlohmann::json to_json(const BenchRun& run, const std::vector<PeerStatus>& peers
     json["quick"] = run.quick();
     json["wall_s"] = wall_s;
     json["writeup_budget_us"] = {{"typical", kWriteupTypicalUs}, {"spikes", kWriteupSpikeUs}};
-    for (const PeerStatus& p : peers) json["peers"][p.name] = {{"built", p.built}, {"detail", p.detail}};
+    for (const PeerStatus& p : peers) json["peers"][p.key] = {{"name", p.name}, {"built", p.built}, {"detail", p.detail}};
     json["rows"] = nlohmann::json::array();
     for (const BenchRow& r : run.rows()) {
         nlohmann::json row = {{"group", r.group}, {"case", r.name}, {"median_ns", r.median_ns},

@@ -43,7 +43,8 @@ struct BenchTarget {
 
 /// A peer library and whether this build has it.
 struct PeerStatus {
-    std::string name;    ///< e.g. "Bullet 3.24 (float)"
+    std::string key;     ///< "bullet" or "fcl" (the JSON key)
+    std::string name;    ///< with the version found, e.g. "Bullet 3.24"
     bool built = false;
     std::string detail;  ///< what `built` covers, or how to get it
 };

@@ -65,8 +65,6 @@ bool write_json(const std::string& path, const char* program,
 
 }  // namespace
 
-}  // namespace
-
 int main(int argc, char** argv) {
 #ifdef BT_USE_DOUBLE_PRECISION
     const char* program = "bench_peers_mesh_bullet_double";
