@@ -162,8 +162,8 @@ void bench_mesh_peers(BenchRun& run) {
 }
 
 // The whole update with Bullet's collision: the same car (CarSpec::default_car) from the
-// default track's start line, driven by autopilot, once by World::update (ours) and once by
-// peers::BulletCarLoop; us per update and how far the two trajectories drift apart.
+// default track's start line, driven by autopilot, by World::update (ours) and by
+// peers::BulletCarLoop in lockstep; us per update and how far the two trajectories drift apart.
 void bench_update_peers(BenchRun& run) {
 #if TRACKPHYS_HAVE_BULLET
     run.progress("bullet update", "default track");
@@ -174,14 +174,14 @@ void bench_update_peers(BenchRun& run) {
     settings.profile = false;
     World world(scene.statics, settings);
     world.add_car(spec, start_on_track(*scene.track, spec));
-    run.progress("bullet update", "ours");
-    const TimedDrive ours = drive_timed(*scene.track, world.car(0), updates, [&] { world.update(); });
-
     run.progress("bullet update", "Bullet's BVH");
     peers::BulletCarLoop bullet(bench::merged_track_mesh(*scene.track), settings);
     Car car(spec, start_on_track(*scene.track, spec));
-    run.progress("bullet update", "Bullet");
-    const TimedDrive theirs = drive_timed(*scene.track, car, updates, [&] { bullet.update(car); });
+    run.progress("bullet update", "driving " + std::to_string(updates) + " updates each");
+    const std::vector<TimedDrive> drives = drive_timed(
+        *scene.track, {{&world.car(0), [&] { world.update(); }}, {&car, [&] { bullet.update(car); }}}, updates);
+    const TimedDrive& ours = drives[0];
+    const TimedDrive& theirs = drives[1];
 
     const auto drift_after = [&](std::size_t n) { return glm::length(ours.positions[n - 1] - theirs.positions[n - 1]); };
     double drift_max = 0.0;

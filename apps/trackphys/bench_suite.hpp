@@ -111,9 +111,16 @@ struct TimedDrive {
     double final_speed_kmh = 0.0;
 };
 
-/// Drives `car` around `track` for `updates` updates by autopilot (default settings), with
-/// `update` advancing it one update (World::update, or the Bullet loop).
-TimedDrive drive_timed(const Track& track, Car& car, int updates, const std::function<void()>& update);
+/// One car and what advances it by one update (World::update, or the Bullet loop).
+struct Driver {
+    Car* car;
+    std::function<void()> update;
+};
+
+/// Drives every driver's car around `track` for `updates` updates, each by its own autopilot
+/// (default settings), in lockstep: update k of every car, then update k + 1, so that a busy
+/// moment of the machine falls on all of them alike.
+std::vector<TimedDrive> drive_timed(const Track& track, const std::vector<Driver>& drivers, int updates);
 
 /// Median, 99th percentile and maximum of a sample.
 struct Spread {
