@@ -96,11 +96,16 @@ std::string format_figures(const BenchRow& row) {
     return out.str();
 }
 
-void print_table(const BenchRun& run, const std::vector<PeerStatus>& peers, double wall_s) {
+/// Printed before the run, so the peers found are known while it runs.
+void print_header(bool quick, const std::vector<PeerStatus>& peers) {
     std::printf("trackphys bench%s: median time of one call; x = median / the 'vs' row's median\n",
-                run.quick() ? " --quick" : "");
+                quick ? " --quick" : "");
     for (const PeerStatus& p : peers)
         std::printf("  peer %-14s %s (%s)\n", p.name.c_str(), p.built ? "built" : "not built", p.detail.c_str());
+    std::fflush(stdout);
+}
+
+void print_table(const BenchRun& run, double wall_s) {
     std::printf("\n%-14s %-52s %10s %9s  %-34s %s\n", "group", "case", "median", "x", "vs", "figures");
     std::string last_group;
     for (const BenchRow& r : run.rows()) {
@@ -152,6 +157,7 @@ void run_bench(const BenchOptions& o) {
             throw Error("--json '" + o.json.string() + "': folder '" + folder.string() + "' does not exist");
     }
     const std::vector<PeerStatus> peers = peer_status();
+    print_header(o.quick, peers);
     BenchRun run(o.quick);
     const auto start = std::chrono::steady_clock::now();
     for (const Group& g : kGroups) {
@@ -161,7 +167,7 @@ void run_bench(const BenchOptions& o) {
     }
     run.end_progress();
     const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    print_table(run, peers, wall_s);
+    print_table(run, wall_s);
     if (!o.json.empty()) write_json_file(to_json(run, peers, wall_s), o.json);
 }
 

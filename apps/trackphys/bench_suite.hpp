@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstddef>
+#include <deque>
 #include <string>
 #include <functional>
 #include <utility>
@@ -66,7 +67,7 @@ public:
     BenchRow& add(std::string group, std::string name, double median_ns, std::string versus = {});
     void add_target(std::string what, double value, double target);
 
-    const std::vector<BenchRow>& rows() const { return rows_; }
+    const std::deque<BenchRow>& rows() const { return rows_; }
     const std::vector<BenchTarget>& targets() const { return targets_; }
     /// The row `name` of `group`; throws trackphys::Error if there is none.
     const BenchRow& row(const std::string& group, const std::string& name) const;
@@ -75,7 +76,7 @@ public:
 private:
     bool quick_;
     bool terminal_;
-    std::vector<BenchRow> rows_;
+    std::deque<BenchRow> rows_;  // a deque: add() hands out references that stay valid
     std::vector<BenchTarget> targets_;
 };
 
