@@ -128,13 +128,16 @@ nlohmann::json to_json(const BenchRun& run, const std::vector<PeerStatus>& peers
     json["quick"] = run.quick();
     json["wall_s"] = wall_s;
     json["writeup_budget_us"] = {{"typical", kWriteupTypicalUs}, {"spikes", kWriteupSpikeUs}};
-    for (const PeerStatus& p : peers) json["peers"][p.key] = {{"name", p.name}, {"built", p.built}, {"detail", p.detail}};
+    for (const PeerStatus& p : peers)
+        json["peers"][p.key] = {{"name", p.name}, {"built", p.built}, {"detail", p.detail}};
     json["rows"] = nlohmann::json::array();
     for (const BenchRow& r : run.rows()) {
         nlohmann::json row = {{"group", r.group}, {"case", r.name}, {"median_ns", r.median_ns},
                               {"ratio", r.ratio}, {"versus", r.versus}, {"note", r.note}};
         row["figures"] = nlohmann::json::object();
-        for (const auto& [key, value] : r.figures) row["figures"][key] = std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
+        // JSON has no NaN or infinity: a figure that is not finite is written as null.
+        for (const auto& [key, value] : r.figures)
+            row["figures"][key] = std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
         json["rows"].push_back(std::move(row));
     }
     json["targets"] = nlohmann::json::array();

@@ -183,7 +183,9 @@ void bench_update_peers(BenchRun& run) {
     const TimedDrive& ours = drives[0];
     const TimedDrive& theirs = drives[1];
 
-    const auto drift_after = [&](std::size_t n) { return glm::length(ours.positions[n - 1] - theirs.positions[n - 1]); };
+    const auto drift_after = [&](std::size_t n) {
+        return glm::length(ours.positions[n - 1] - theirs.positions[n - 1]);
+    };
     double drift_max = 0.0;
     for (std::size_t n = 1; n <= ours.positions.size(); ++n) drift_max = std::max(drift_max, drift_after(n));
     const Spread us = spread(ours.update_ns), them = spread(theirs.update_ns);
