@@ -163,7 +163,7 @@ void bench_mesh_peers(BenchRun& run) {
 
 // The whole update with Bullet's collision: the same car (CarSpec::default_car) from the
 // default track's start line, driven by autopilot, by World::update (ours) and by
-// peers::BulletCarLoop in lockstep; us per update and how far the two trajectories drift apart.
+// peers::BulletCarLoop taking turns; us per update and how far the two trajectories drift apart.
 void bench_update_peers(BenchRun& run) {
 #if TRACKPHYS_HAVE_BULLET
     run.progress("bullet update", "default track");
