@@ -13,34 +13,20 @@
 #include <vector>
 
 #include "support/contact_cases.hpp"
-#include "support/point_cases.hpp"
+#include "point_queries.hpp"
 #include "trackphys/geometry/contact.hpp"
 #include "trackphys/geometry/point_ellipsoid.hpp"
 
 namespace {
 
 using namespace trackphys;
+using bench::point_queries;
+using bench::PointQuery;
 
 constexpr int kCases = 4096;
 
-struct PointQuery {
-    glm::dvec3 radii, p;
-};
-
-/// Points of one class (or the whole mix when kind == count).
-std::vector<PointQuery> point_queries(test::PointClass kind) {
-    test::PointCaseGenerator<3> generator(4242);
-    std::vector<PointQuery> queries;
-    while (queries.size() < kCases) {
-        const test::PointCase<3> c = generator.next();
-        if (kind != test::PointClass::count && c.kind != kind) continue;
-        queries.push_back({{c.radii[0], c.radii[1], c.radii[2]}, {c.p[0], c.p[1], c.p[2]}});
-    }
-    return queries;
-}
-
 void BM_ClosestPoint(benchmark::State& state, RootFinder finder, test::PointClass kind) {
-    const std::vector<PointQuery> queries = point_queries(kind);
+    const std::vector<PointQuery> queries = point_queries(kind, kCases);
     std::size_t i = 0;
     long iterations = 0, calls = 0;
     int worst = 0;
@@ -78,7 +64,7 @@ void latency(benchmark::State& state, std::size_t count, Call call) {
 }
 
 void BM_ClosestPointLatency(benchmark::State& state, RootFinder finder) {
-    const std::vector<PointQuery> queries = point_queries(test::PointClass::count);
+    const std::vector<PointQuery> queries = point_queries(test::PointClass::count, kCases);
     latency(state, queries.size(), [&](std::size_t i) {
         benchmark::DoNotOptimize(
             closest_point_on_sorted_ellipsoid(queries[i].radii, queries[i].p, finder));

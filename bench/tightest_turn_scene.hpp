@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include <glm/gtc/quaternion.hpp>
@@ -16,10 +17,29 @@
 #include "trackphys/geometry/aabb.hpp"
 #include "trackphys/geometry/ellipsoid.hpp"
 #include "trackphys/geometry/triangle.hpp"
+#include "trackphys/geometry/triangle_mesh.hpp"
 #include "trackphys/track/track.hpp"
 #include "trackphys/track/track_stats.hpp"
 
 namespace trackphys::bench {
+
+/// Every chunk of a track as one mesh (the chunks' vertices concatenated), for the structures
+/// that take a single mesh: brute force, Bullet's btBvhTriangleMeshShape.
+inline TriangleMesh merged_track_mesh(const Track& track) {
+    TriangleMesh mesh;
+    for (const TrackChunk& chunk : track.chunks) {
+        const auto base = static_cast<std::uint32_t>(mesh.vertices.size());
+        mesh.vertices.insert(mesh.vertices.end(), chunk.mesh.vertices.begin(), chunk.mesh.vertices.end());
+        for (const auto& t : chunk.mesh.triangles) mesh.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+    }
+    return mesh;
+}
+
+/// A sphere (m): an ellipsoid's bounding sphere at one sub-step, the cull's query.
+struct BoundingSphere {
+    glm::dvec3 center;
+    double radius;
+};
 
 struct TightestTurnScene {
     static constexpr int kSubsteps = 40;      ///< one 10 ms update
@@ -64,6 +84,15 @@ struct TightestTurnScene {
     double bounding_radius(std::size_t e) const {
         const glm::dvec3& a = car.ellipsoids[e].semi_axes;
         return std::max({a.x, a.y, a.z});
+    }
+
+    /// The cull's queries over the update: each sub-step's 8 bounding spheres (40 x 8).
+    std::vector<BoundingSphere> bounding_spheres() const {
+        std::vector<BoundingSphere> spheres;
+        for (int substep = 0; substep < kSubsteps; ++substep)
+            for (std::size_t e = 0; e < car.ellipsoids.size(); ++e)
+                spheres.push_back({center(e, substep), bounding_radius(e)});
+        return spheres;
     }
 
     /// The broad-phase candidates: every triangle whose box meets the update box.

@@ -2,19 +2,13 @@
 
 #include <cinttypes>
 #include <cstdio>
-#include <fstream>
-#include <system_error>
 
 #include <nlohmann/json.hpp>
 
-#include "trackphys/error.hpp"
+#include "json_file.hpp"
 
 namespace trackphys::cli {
 namespace {
-
-// The write-up's budget for one update, printed beside ours.
-constexpr double kWriteupTypicalUs = 4000.0;
-constexpr double kWriteupSpikeUs = 8000.0;
 
 nlohmann::json summary_json(const Summary& s) {
     return {{"mean", s.mean}, {"p50", s.p50}, {"p99", s.p99}, {"max", s.max}};
@@ -84,19 +78,7 @@ void write_drive_json(const DriveReport& r, const std::filesystem::path& path) {
                       {"contacts", r.profile.mean_contacts()}};
     json["writeup_budget_us"] = {{"typical", kWriteupTypicalUs}, {"spikes", kWriteupSpikeUs}};
 
-    const std::filesystem::path temporary = path.string() + ".partial";
-    {
-        std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-        if (!out) throw Error("cannot open '" + temporary.string() + "' to write the JSON report");
-        out << json.dump(2) << '\n';
-        if (!out.flush()) throw Error("cannot write the JSON report '" + temporary.string() + "'");
-    }
-    std::error_code error;
-    std::filesystem::rename(temporary, path, error);
-    if (error) {
-        std::filesystem::remove(temporary, error);
-        throw Error("cannot move the JSON report into place at '" + path.string() + "'");
-    }
+    write_json_file(json, path);
 }
 
 }  // namespace trackphys::cli

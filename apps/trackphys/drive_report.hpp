@@ -10,6 +10,10 @@
 
 namespace trackphys::cli {
 
+/// The write-up's budget for one update (us), printed beside ours by drive and bench.
+inline constexpr double kWriteupTypicalUs = 4000.0;
+inline constexpr double kWriteupSpikeUs = 8000.0;
+
 /// Everything `trackphys drive` reports about a run.
 struct DriveReport {
     std::string scene;
