@@ -207,9 +207,13 @@ void StaticCollider::visit_aabb(const Aabb& box, Sink& sink) const {
             }
             QuantizedQuery qq;
             if (leaves != 0) qq = collision_detail::quantize_query(bounds, grids_[node]);
-            for (unsigned m = leaves; m != 0; m &= m - 1) {
+            // Neighbouring hit leaf lanes cover neighbouring slots in the same grids: each
+            // run of them is tested as one range, so a block they share is tested once.
+            for (unsigned m = leaves; m != 0;) {
                 const int i = lowest_lane(m);
-                const std::uint32_t leaf_first = n.first[i], leaf_end = n.end(i, end);
+                const int run = std::countr_one(m >> i);
+                m &= ~(((1u << run) - 1u) << i);
+                const std::uint32_t leaf_first = n.first[i], leaf_end = n.end(i + run - 1, end);
                 for (std::uint32_t s = leaf_first & ~(kBlockSlots - 1); s < leaf_end;
                      s += kBlockSlots) {
                     const unsigned tested = collision_detail::test_block(block(s), qq);
@@ -316,9 +320,11 @@ void StaticCollider::visit_box_filtered(const Aabb& box, Predicate&& keep,
         const unsigned leaves = collision_detail::leaf_lanes(n) & hit;
         QuantizedQuery qq;
         if (leaves != 0) qq = collision_detail::quantize_query(bounds, grids_[node]);
-        for (unsigned m = leaves; m != 0; m &= m - 1) {
+        for (unsigned m = leaves; m != 0;) {  // runs of neighbouring leaf lanes, as above
             const int i = lowest_lane(m);
-            const std::uint32_t leaf_first = n.first[i], leaf_end = n.end(i, end);
+            const int run = std::countr_one(m >> i);
+            m &= ~(((1u << run) - 1u) << i);
+            const std::uint32_t leaf_first = n.first[i], leaf_end = n.end(i + run - 1, end);
             for (std::uint32_t s = leaf_first & ~(kBlockSlots - 1); s < leaf_end;
                  s += kBlockSlots) {
                 const unsigned maybe =
