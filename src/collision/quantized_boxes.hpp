@@ -1,11 +1,13 @@
 #pragma once
 
-// Triangle boxes in 16 bits, relative to their leaf's box (private). A leaf lane's float
-// box defines a grid per axis: a power-of-two step h and an integer base, so that grid
-// index k stands for the coordinate k h and every triangle bound of the leaf falls on a
-// relative index in [1, 65534]. A triangle keeps, per bound, the relative index of its
-// float bound rounded outward (min: floor, max: ceil): 12 bytes a triangle, in blocks of
-// eight that one SSE2 16-bit compare tests at once.
+// Triangle boxes in 16 bits, relative to their node's leaf lanes (private). The union of a
+// BvhNode's leaf lane float boxes defines a grid per axis: a power-of-two step h and an
+// integer base, so that grid index k stands for the coordinate k h and every triangle
+// bound below those lanes falls on a relative index in [1, 65534]. A triangle keeps, per
+// bound, the relative index of its float bound rounded outward (min: floor, max: ceil): 12
+// bytes a triangle, in blocks of eight that one SSE2 16-bit compare per bound tests. One
+// grid per node (not per lane) lets a query quantize its box once per node, and test
+// neighbouring leaf lanes as one slot range (a block they share, once).
 //
 // Exactness. All arithmetic below is exact in double: x / h is a power-of-two scaling of a
 // float (no overflow or underflow for |x| <= 1e18 and h >= 2^-149), and relative indices
@@ -16,12 +18,12 @@
 //   outward float bounds. T overlapping B gives Qmin h <= tmin <= B.max <= B.max_out <=
 //   ceil(...) h; rejecting never loses a triangle.
 // - surely overlaps: Qmin < floor(B.max_in / h) - 1 (and the mirror for max). The step is
-//   at least the float spacing of the leaf box's largest |coordinate|, so tmin <
+//   at least the float spacing of the grid box's largest |coordinate|, so tmin <
 //   float_above(tmin_f) <= tmin_f + h < (Qmin + 2) h <= floor(B.max_in / h) h <= B.max.
 // Triangles that may overlap but not surely (within about two steps of a query bound) get
-// the exact double test. The step is the smallest power of two that fits the leaf's extent
-// into the index range, and never below that float spacing; a leaf flat on an axis (zero
-// extent) gets the float spacing there (2^-149 at 0): no division by its extent.
+// the exact double test. The step is the smallest power of two that fits the grid box's
+// extent into the index range, and never below that float spacing; a box flat on an axis
+// (zero extent) gets the float spacing there (2^-149 at 0): no division by its extent.
 
 #include <emmintrin.h>
 
@@ -41,7 +43,7 @@ inline constexpr int kIndexLimit = 65535;
 /// Stored values are relative indices minus this (signed 16-bit compares, order kept).
 inline constexpr int kIndexBias = 32768;
 
-/// The grid of one leaf on one axis.
+/// The grid of one node on one axis.
 struct AxisGrid {
     double step;      ///< h (m), a power of two
     double inv_step;  ///< 1 / h, exact
@@ -58,15 +60,14 @@ inline double ceil_small(double x) {
     return t < x ? t + 1.0 : t;
 }
 
-/// The grid of a leaf whose float box is [lo, hi] on this axis (lo <= hi, finite). A pure
-/// function of the two floats: build and query compute the same grid.
+/// The grid of a float box [lo, hi] on one axis (lo <= hi, finite).
 inline AxisGrid axis_grid(float lo, float hi) {
     // Float spacing at the box's largest magnitude: 2^(exponent - 23), 2^-149 for denormals.
     const auto magnitude = std::bit_cast<std::uint32_t>(std::max(std::fabs(lo), std::fabs(hi)));
     const std::uint64_t exponent = std::max<std::uint32_t>((magnitude >> 23) & 0xffu, 1u);
     const double spacing = std::bit_cast<double>((exponent - 150u + 1023u) << 52);
-    // Smallest power of two >= extent / 65530 (the margin over 65532 absorbs the division's
-    // rounding): floor(lo / h) .. ceil(hi / h) then spans at most 65532 steps.
+    // Smallest power of two >= extent / 65530 (the margin absorbs the division's rounding):
+    // floor(lo / h) .. ceil(hi / h) then spans at most 65531 steps, relative 1 .. 65532.
     const double need = (double(hi) - double(lo)) / 65530.0;
     auto bits = std::bit_cast<std::uint64_t>(need);
     constexpr std::uint64_t kMantissa = (std::uint64_t{1} << 52) - 1;
@@ -89,7 +90,8 @@ inline int quantize_up(float x, const AxisGrid& g) {
 inline double grid_value(int k, const AxisGrid& g) { return (g.base + k) * g.step; }
 
 /// The layout of eight triangle boxes in 16 bits: v[bound][lane], bounds min x, y, z, max
-/// x, y, z, each the biased relative index in its own leaf's grid. 96 bytes.
+/// x, y, z, each the biased relative index in its own node's grid (a block may straddle
+/// nodes; queries only read the lanes of the node they test). 96 bytes.
 struct QuantizedBlock {
     static constexpr std::uint32_t kLanes = 8;
     std::int16_t v[6][kLanes];
