@@ -12,7 +12,7 @@ namespace trackphys::collision_detail {
 namespace {
 
 constexpr int kBins = 16;
-// Leaves are tested a block of four slot boxes at a time (StaticCollider), so big leaves
+// Leaves are tested a block of slot boxes at a time (StaticCollider), so big leaves
 // are cheap. Car boxes on the default track (cycles a query, with the traversal cost
 // below): leaves of 8 and cost 3 +45%, 16 and 10 +10%, 32 and 20 best, 64 and 40 no faster.
 constexpr std::uint32_t kMaxLeafSize = 32;
@@ -21,7 +21,7 @@ constexpr std::uint32_t kMaxLeafSize = 32;
 // top levels of 10M-triangle builds (the partition still sees every primitive).
 constexpr std::uint32_t kSampleTarget = 8192;
 // SAH costs in units of one triangle test: a node visit (two cache lines, eight lane tests)
-// costs about as much as 20 triangles tested four at a time.
+// costs about as much as 20 triangles tested a block at a time.
 constexpr double kTraversalCost = 20.0;
 constexpr double kTriangleCost = 1.0;
 

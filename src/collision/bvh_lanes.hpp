@@ -1,8 +1,9 @@
 #pragma once
 
 // Four boxes against one query box at a time, in SSE2 (private; x86-64 guarantees SSE2, so
-// no -m flag is needed). The four boxes are a BvhNode's children or four consecutive
-// triangle slots, stored lane by lane in float; the query box is double.
+// no -m flag is needed). The four boxes are a BvhNode's children, stored lane by lane in
+// float; the query box is double. (Leaf triangles are tested in 16 bits, eight at a time:
+// quantized_boxes.hpp.)
 //
 // Comparing float bounds with a double box exactly would need double lanes (twice the
 // work); instead the query box is rounded to float both ways, and each test uses the
@@ -10,14 +11,9 @@
 // - "may overlap" uses the outward box: a float bound beyond it is beyond the double box
 //   too, so a rejected box surely misses (child and triangle boxes are rounded outward, so
 //   nothing they contain is lost).
-// - "inside" and "surely overlaps" use the inward box. Inside: the child box lies within
-//   the inward box, so within the double box. Surely overlaps: a triangle's float min is
-//   the largest float <= its double min (tight, float_bounds.hpp), so the double min lies
-//   below the next float up; a float min strictly below the inward max is at most that next
-//   float below it, so the double min is below the double max; the same for the other
-//   bounds.
-// A triangle that may overlap but not surely (a bound within a float step of the query's)
-// goes to the exact double test. NaN bounds (empty node lanes) fail every comparison.
+// - "inside" uses the inward box: the child box lies within the inward box, so within the
+//   double box, and every triangle below it overlaps the query.
+// NaN bounds (empty node lanes) fail every comparison.
 
 #include <emmintrin.h>
 
@@ -44,18 +40,13 @@ struct QueryLanes {
     }
 };
 
-/// Four boxes as six lane vectors: min x, y, z, then max x, y, z.
+/// A node's four child boxes as six lane vectors: min x, y, z, then max x, y, z.
 struct BoxLanes {
     __m128 min[3], max[3];
 
     static BoxLanes of(const BvhNode& n) {
         return {{_mm_load_ps(n.min[0]), _mm_load_ps(n.min[1]), _mm_load_ps(n.min[2])},
                 {_mm_load_ps(n.max[0]), _mm_load_ps(n.max[1]), _mm_load_ps(n.max[2])}};
-    }
-    /// One block of four slot boxes: 24 floats, min x, y, z, then max x, y, z, four lanes each.
-    static BoxLanes of(const float* block) {
-        return {{_mm_loadu_ps(block), _mm_loadu_ps(block + 4), _mm_loadu_ps(block + 8)},
-                {_mm_loadu_ps(block + 12), _mm_loadu_ps(block + 16), _mm_loadu_ps(block + 20)}};
     }
 };
 
@@ -78,18 +69,6 @@ inline unsigned surely_inside(const BoxLanes& b, const QueryLanes& q) {
                                  _mm_cmple_ps(b.max[1], q.in_max[1])));
     m = _mm_and_ps(m, _mm_and_ps(_mm_cmple_ps(q.in_min[2], b.min[2]),
                                  _mm_cmple_ps(b.max[2], q.in_max[2])));
-    return static_cast<unsigned>(_mm_movemask_ps(m));
-}
-
-/// Bit i set: the double box that float box i was tightly rounded out from surely overlaps
-/// the query (never set when it does not; see the header comment).
-inline unsigned surely_overlaps(const BoxLanes& b, const QueryLanes& q) {
-    __m128 m =
-        _mm_and_ps(_mm_cmplt_ps(b.min[0], q.in_max[0]), _mm_cmplt_ps(q.in_min[0], b.max[0]));
-    m = _mm_and_ps(m, _mm_and_ps(_mm_cmplt_ps(b.min[1], q.in_max[1]),
-                                 _mm_cmplt_ps(q.in_min[1], b.max[1])));
-    m = _mm_and_ps(m, _mm_and_ps(_mm_cmplt_ps(b.min[2], q.in_max[2]),
-                                 _mm_cmplt_ps(q.in_min[2], b.max[2])));
     return static_cast<unsigned>(_mm_movemask_ps(m));
 }
 

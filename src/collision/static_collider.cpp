@@ -8,26 +8,32 @@
 
 #include "bvh_builder.hpp"
 #include "bvh_lanes.hpp"
+#include "quantized_boxes.hpp"
 #include "core/fnv1a.hpp"
+#include "trackphys/assert.hpp"
 #include "trackphys/error.hpp"
 #include "triangle_predicates.hpp"
 
 namespace trackphys {
 
+using collision_detail::AxisGrid;
 using collision_detail::BoxLanes;
 using collision_detail::kMaxTraversalStack;
+using collision_detail::QuantizedBlock;
+using collision_detail::QuantizedQuery;
 using collision_detail::QueryLanes;
 
 namespace {
 
 constexpr std::uint32_t kNoSlot = std::numeric_limits<std::uint32_t>::max();
-// Floats in one block of four slot boxes (BoxLanes::of).
-constexpr std::size_t kBlockFloats = 24;
+// Slots in one block of quantized boxes, and 16-bit values in one block.
+constexpr std::uint32_t kBlockSlots = QuantizedBlock::kLanes;
+constexpr std::size_t kBlockValues = 6 * kBlockSlots;
 
-// Lanes 0 .. n - 1 of four (n >= 4: all of them).
-unsigned first_lanes(std::uint32_t n) { return (1u << std::min(n, 4u)) - 1u; }
-// The lanes of the block of four slots from `block_first` (a multiple of 4) that lie in
-// [first, end), first < block_first + 4.
+// Lanes 0 .. n - 1 of eight (n >= 8: all of them).
+unsigned first_lanes(std::uint32_t n) { return (1u << std::min(n, kBlockSlots)) - 1u; }
+// The lanes of the block of eight slots from `block_first` (a multiple of 8) that lie in
+// [first, end), first < block_first + 8.
 unsigned lanes_in(std::uint32_t block_first, std::uint32_t first, std::uint32_t end) {
     return first_lanes(end - block_first) &
            ~first_lanes(std::max(first, block_first) - block_first);
@@ -63,8 +69,8 @@ StaticCollider::StaticCollider(const TriangleMesh& mesh) {
     // leaves first use them, so that neighbouring leaves read neighbouring memory.
     const std::size_t n = kept.size();
     slot_vertices_.resize(n);
-    // Three more slots, never reported: four-lane reads at any slot stay inside.
-    slot_to_triangle_.resize(n + 3, 0);
+    // Seven more slots, never reported: eight-lane reads at any block stay inside.
+    slot_to_triangle_.resize(n + kBlockSlots - 1, 0);
     triangle_to_slot_.assign(mesh.triangles.size(), kNoSlot);
     std::vector<std::uint32_t> vertex_remap(mesh.vertices.size(), kNoSlot);
     std::uint32_t used_vertices = 0;
@@ -89,17 +95,64 @@ StaticCollider::StaticCollider(const TriangleMesh& mesh) {
         for (const std::uint32_t v : mesh.triangles[triangle]) hash.add(mesh.vertices[v]);
     }
     content_hash_ = hash.value;
-    // The slots' float boxes in blocks of four; the padding lanes are NaN (never hit).
-    slot_boxes_.assign(kBlockFloats * ((n + 3) / 4), std::numeric_limits<float>::quiet_NaN());
-    for (std::size_t slot = 0; slot < n; ++slot) {
-        const auto& tri = slot_vertices_[slot];
-        const collision_detail::FloatBox box =
-            collision_detail::outward_float_box(collision_detail::triangle_box(
-                vertices_[tri[0]], vertices_[tri[1]], vertices_[tri[2]]));
-        float* block = &slot_boxes_[kBlockFloats * (slot / 4) + slot % 4];
-        for (int a = 0; a < 3; ++a) {
-            block[4 * a] = box.min[a];
-            block[4 * (3 + a)] = box.max[a];
+    quantize_slot_boxes();
+}
+
+// Each node's grids over the union of its leaf lanes' boxes, and each slot's float box
+// (rounded outward, as the builder saw it, so inside its leaf lane's box) quantized outward
+// in them, in blocks of eight slots.
+void StaticCollider::quantize_slot_boxes() {
+    const auto n = static_cast<std::uint32_t>(slot_vertices_.size());
+    slot_boxes_.assign(kBlockValues * ((n + kBlockSlots - 1) / kBlockSlots), 0);
+    grids_.assign(nodes_.size(), BvhNodeGrid{});
+    if (nodes_.empty()) return;
+    struct Entry {
+        std::uint32_t node, end;
+    };
+    std::vector<Entry> stack{{0, n}};
+    while (!stack.empty()) {
+        const Entry e = stack.back();
+        stack.pop_back();
+        const BvhNode& node = nodes_[e.node];
+        float lo[3], hi[3];
+        bool any_leaf = false;
+        for (int i = 0; i < BvhNode::kWidth; ++i) {
+            if (node.is_empty(i)) continue;
+            if (!node.is_leaf(i)) {
+                stack.push_back({node.child[i], node.end(i, e.end)});
+                continue;
+            }
+            for (int a = 0; a < 3; ++a) {
+                lo[a] = any_leaf ? std::min(lo[a], node.min[a][i]) : node.min[a][i];
+                hi[a] = any_leaf ? std::max(hi[a], node.max[a][i]) : node.max[a][i];
+            }
+            any_leaf = true;
+        }
+        if (!any_leaf) continue;
+        const AxisGrid grid[3] = {collision_detail::axis_grid(lo[0], hi[0]),
+                                  collision_detail::axis_grid(lo[1], hi[1]),
+                                  collision_detail::axis_grid(lo[2], hi[2])};
+        grids_[e.node] = collision_detail::node_grid(grid);
+        for (int i = 0; i < BvhNode::kWidth; ++i) {
+            if (node.is_empty(i) || !node.is_leaf(i)) continue;
+            for (std::uint32_t slot = node.first[i]; slot < node.end(i, e.end); ++slot) {
+                const auto& tri = slot_vertices_[slot];
+                const collision_detail::FloatBox box =
+                    collision_detail::outward_float_box(collision_detail::triangle_box(
+                        vertices_[tri[0]], vertices_[tri[1]], vertices_[tri[2]]));
+                std::int16_t* block = &slot_boxes_[kBlockValues * (slot / kBlockSlots) +
+                                                   slot % kBlockSlots];
+                for (int a = 0; a < 3; ++a) {
+                    const int qlo = collision_detail::quantize_down(box.min[a], grid[a]);
+                    const int qhi = collision_detail::quantize_up(box.max[a], grid[a]);
+                    TP_ASSERT(qlo >= 1 && qhi <= collision_detail::kIndexLimit - 1 && qlo <= qhi,
+                              "slot box outside its node's grid");
+                    block[kBlockSlots * a] =
+                        static_cast<std::int16_t>(qlo - collision_detail::kIndexBias);
+                    block[kBlockSlots * (3 + a)] =
+                        static_cast<std::int16_t>(qhi - collision_detail::kIndexBias);
+                }
+            }
         }
     }
 }
@@ -113,15 +166,17 @@ inline bool StaticCollider::triangle_box_overlaps(std::uint32_t slot, const Aabb
 // Depth-first traversal of the lanes whose boxes may overlap `box` (QueryLanes' outward
 // test: a superset). A lane surely inside the box goes to sink.range whole: its
 // triangles' boxes lie in the lane's box, so each of them overlaps. A leaf lane on the
-// boundary tests its slots' float boxes a block of four at a time; a slot that may overlap
-// but not surely (a bound within a float step of the box's) gets the exact double test.
+// boundary tests its slots' 16-bit boxes a block of eight at a time, in the grids of its
+// node (the query is quantized once per node with leaf lanes); a slot that may overlap but
+// not surely (a bound within about two grid steps of the box's) gets the exact double test.
 // Inner lanes are stacked last to first, so that slots come out roughly in leaf order, and
 // their nodes are prefetched when stacked: the loads overlap the rest of this node's work.
 template <class Sink>
 void StaticCollider::visit_aabb(const Aabb& box, Sink& sink) const {
     if (nodes_.empty()) return;
     const QueryLanes q(box);
-    const float* blocks = slot_boxes_.data();  // slot s's block starts at float 6 s (s % 4 = 0)
+    const collision_detail::QueryBounds bounds(collision_detail::outward_float_box(box),
+                                               collision_detail::inward_float_box(box));
     struct Entry {
         std::uint32_t node, end;
     };
@@ -150,14 +205,20 @@ void StaticCollider::visit_aabb(const Aabb& box, Sink& sink) const {
                 const int i = lowest_lane(m);
                 sink.range(n.first[i], n.end(i, end));
             }
-            for (unsigned m = leaves; m != 0; m &= m - 1) {
+            QuantizedQuery qq;
+            if (leaves != 0) qq = collision_detail::quantize_query(bounds, grids_[node]);
+            // Neighbouring hit leaf lanes cover neighbouring slots in the same grids: each
+            // run of them is tested as one range, so a block they share is tested once.
+            for (unsigned m = leaves; m != 0;) {
                 const int i = lowest_lane(m);
-                const std::uint32_t leaf_first = n.first[i], leaf_end = n.end(i, end);
-                for (std::uint32_t s = leaf_first & ~3u; s < leaf_end; s += 4) {
-                    const BoxLanes slots = BoxLanes::of(blocks + std::size_t{s} * 6);
-                    const unsigned maybe = collision_detail::may_overlap(slots, q) &
-                                           lanes_in(s, leaf_first, leaf_end);
-                    unsigned keep = collision_detail::surely_overlaps(slots, q) & maybe;
+                const int run = std::countr_one(m >> i);
+                m &= ~(((1u << run) - 1u) << i);
+                const std::uint32_t leaf_first = n.first[i], leaf_end = n.end(i + run - 1, end);
+                for (std::uint32_t s = leaf_first & ~(kBlockSlots - 1); s < leaf_end;
+                     s += kBlockSlots) {
+                    const unsigned tested = collision_detail::test_block(block(s), qq);
+                    const unsigned maybe = tested & lanes_in(s, leaf_first, leaf_end);
+                    unsigned keep = (tested >> kBlockSlots) & maybe;
                     for (unsigned k = maybe & ~keep; k != 0; k &= k - 1) [[unlikely]] {
                         const int lane = lowest_lane(k);
                         if (triangle_box_overlaps(s + static_cast<std::uint32_t>(lane), box))
@@ -187,11 +248,11 @@ public:
     BufferedOutput& operator=(const BufferedOutput&) = delete;
     ~BufferedOutput() { flush(); }
 
-    /// Slots s + i for the set bits i of `mask` (four lanes; the slot array is padded, so
+    /// Slots s + i for the set bits i of `mask` (eight lanes; the slot array is padded, so
     /// every lane is read and stored, and only the set ones are kept: no branches).
     void slots(std::uint32_t s, unsigned mask) {
-        if (used_ > kSize - 4) flush();
-        for (unsigned i = 0; i < 4; ++i) {
+        if (used_ > kSize - kBlockSlots) flush();
+        for (unsigned i = 0; i < kBlockSlots; ++i) {
             buffer_[used_] = make_(slot_to_triangle_[s + i]);
             used_ += (mask >> i) & 1u;
         }
@@ -238,14 +299,15 @@ void StaticCollider::query_aabb_refs(const Aabb& box, std::uint32_t collider_id,
 }
 
 // The traversal of visit_aabb without the inside shortcut (being inside the query's box
-// says nothing about the distance test): leaf slots whose float boxes may overlap `box`
+// says nothing about the distance test): leaf slots whose 16-bit boxes may overlap `box`
 // go to `keep` with their double vertices.
 template <class Predicate>
 void StaticCollider::visit_box_filtered(const Aabb& box, Predicate&& keep,
                                         std::vector<std::uint32_t>& out) const {
     if (nodes_.empty()) return;
     const QueryLanes q(box);
-    const float* blocks = slot_boxes_.data();  // slot s's block starts at float 6 s (s % 4 = 0)
+    const collision_detail::QueryBounds bounds(collision_detail::outward_float_box(box),
+                                               collision_detail::inward_float_box(box));
     struct Entry {
         std::uint32_t node, end;
     };
@@ -256,13 +318,17 @@ void StaticCollider::visit_box_filtered(const Aabb& box, Predicate&& keep,
         const BvhNode& n = nodes_[node];
         const unsigned hit = collision_detail::may_overlap(BoxLanes::of(n), q);
         const unsigned leaves = collision_detail::leaf_lanes(n) & hit;
-        for (unsigned m = leaves; m != 0; m &= m - 1) {
+        QuantizedQuery qq;
+        if (leaves != 0) qq = collision_detail::quantize_query(bounds, grids_[node]);
+        for (unsigned m = leaves; m != 0;) {  // runs of neighbouring leaf lanes, as above
             const int i = lowest_lane(m);
-            const std::uint32_t leaf_first = n.first[i], leaf_end = n.end(i, end);
-            for (std::uint32_t s = leaf_first & ~3u; s < leaf_end; s += 4) {
+            const int run = std::countr_one(m >> i);
+            m &= ~(((1u << run) - 1u) << i);
+            const std::uint32_t leaf_first = n.first[i], leaf_end = n.end(i + run - 1, end);
+            for (std::uint32_t s = leaf_first & ~(kBlockSlots - 1); s < leaf_end;
+                 s += kBlockSlots) {
                 const unsigned maybe =
-                    collision_detail::may_overlap(BoxLanes::of(blocks + std::size_t{s} * 6), q) &
-                    lanes_in(s, leaf_first, leaf_end);
+                    collision_detail::test_block(block(s), qq) & lanes_in(s, leaf_first, leaf_end);
                 for (unsigned k = maybe; k != 0; k &= k - 1) {
                     const auto slot = s + static_cast<std::uint32_t>(lowest_lane(k));
                     const auto& tri = slot_vertices_[slot];
@@ -320,21 +386,31 @@ std::optional<RayHit> StaticCollider::raycast(const glm::dvec3& origin, const gl
     std::uint32_t best_triangle = kNoSlot, best_slot = kNoSlot;
     struct Entry {
         std::uint32_t child, first, end;  // child: a node index, or kLeaf for slots [first, end)
+        std::uint32_t lane;               // leaf: 4 * its node + its lane (for its grid)
         double t_near;
     };
     std::array<Entry, kMaxTraversalStack> stack;
     int top = 0;
-    Entry entry{0, 0, static_cast<std::uint32_t>(triangle_count()), 0.0};
+    Entry entry{0, 0, static_cast<std::uint32_t>(triangle_count()), 0, 0.0};
     for (;;) {
         if ((entry.child & BvhNode::kLeaf) != 0) {
+            const BvhNodeGrid& node_grid = grids_[entry.lane / 4];
+            const AxisGrid grid[3] = {collision_detail::axis_of(node_grid, 0),
+                                      collision_detail::axis_of(node_grid, 1),
+                                      collision_detail::axis_of(node_grid, 2)};
             for (std::uint32_t s = entry.first; s < entry.end; ++s) {
-                // The slot's float box holds the triangle's box, so its span holds the hit.
-                const float* box = &slot_boxes_[kBlockFloats * (s / 4) + s % 4];
+                // The slot's quantized box holds the triangle's box, so its span holds the hit.
+                const std::int16_t* b =
+                    &slot_boxes_[kBlockValues * (s / kBlockSlots) + s % kBlockSlots];
+                glm::dvec3 lo, hi;
+                for (int a = 0; a < 3; ++a) {
+                    lo[a] = collision_detail::grid_value(
+                        b[kBlockSlots * a] + collision_detail::kIndexBias, grid[a]);
+                    hi[a] = collision_detail::grid_value(
+                        b[kBlockSlots * (3 + a)] + collision_detail::kIndexBias, grid[a]);
+                }
                 double t_near, t_far;
-                if (!collision_detail::ray_box_span(ray, {box[0], box[4], box[8]},
-                                                    {box[12], box[16], box[20]}, best_t, t_near,
-                                                    t_far))
-                    continue;
+                if (!collision_detail::ray_box_span(ray, lo, hi, best_t, t_near, t_far)) continue;
                 const auto& tri = slot_vertices_[s];
                 const std::optional<double> t = collision_detail::ray_triangle(
                     ray, vertices_[tri[0]], vertices_[tri[1]], vertices_[tri[2]]);
@@ -359,7 +435,8 @@ std::optional<RayHit> StaticCollider::raycast(const glm::dvec3& origin, const gl
                 // taken first).
                 int at = count++;
                 for (; at > 0 && hits[at - 1].t_near <= t_near; --at) hits[at] = hits[at - 1];
-                hits[at] = {n.child[i], n.first[i], n.end(i, entry.end), t_near};
+                hits[at] = {n.child[i], n.first[i], n.end(i, entry.end),
+                            4 * entry.child + static_cast<std::uint32_t>(i), t_near};
             }
             for (int k = 0; k < count; ++k) stack[top++] = hits[k];
         }
@@ -397,7 +474,7 @@ NormalizedTriangle StaticCollider::normalized_triangle(std::uint32_t index) cons
 std::size_t StaticCollider::bytes_used() const {
     return sizeof(*this) + capacity_bytes(vertices_) + capacity_bytes(slot_vertices_) +
            capacity_bytes(slot_to_triangle_) + capacity_bytes(triangle_to_slot_) +
-           capacity_bytes(slot_boxes_) + capacity_bytes(nodes_);
+           capacity_bytes(slot_boxes_) + capacity_bytes(nodes_) + capacity_bytes(grids_);
 }
 
 }  // namespace trackphys

@@ -223,5 +223,25 @@ TEST(BruteForceMatch, FarFromTheOrigin) {
     expect_same_everywhere(mesh, 44);
 }
 
+// Flat ground: every leaf box has zero extent in y (its 16-bit grid falls back to the
+// float spacing there, no division by the extent), and touching query boxes meet it
+// exactly at y = height; at 0 and at a height where float spacing is 1/16 m.
+TEST(BruteForceMatch, FlatGround) {
+    for (const double height : {0.0, 1.0e6}) {
+        TriangleMesh mesh;
+        constexpr std::uint32_t kCells = 50;
+        for (std::uint32_t i = 0; i <= kCells; ++i)
+            for (std::uint32_t j = 0; j <= kCells; ++j)
+                mesh.vertices.push_back({0.37 * i - 4.0, height, 0.29 * j + 1.0});
+        for (std::uint32_t i = 0; i < kCells; ++i)
+            for (std::uint32_t j = 0; j < kCells; ++j) {
+                const std::uint32_t v = i * (kCells + 1) + j;
+                mesh.triangles.push_back({v, v + 1, v + kCells + 1});
+                mesh.triangles.push_back({v + 1, v + kCells + 2, v + kCells + 1});
+            }
+        expect_same_everywhere(mesh, 66);
+    }
+}
+
 }  // namespace
 }  // namespace trackphys

@@ -52,13 +52,14 @@ struct TriangleRef {
 /// Layout (bytes_used() counts it all): vertices in double, re-ordered by first use in leaf
 /// order and without unused ones (24 bytes each, ~12 a triangle on a shared-vertex mesh);
 /// per triangle, in leaf order, its three vertex indices (12), mesh index (4) and box in
-/// float, rounded outward (24, in blocks of four that load as six SIMD vectors); the
-/// inverse map mesh index -> leaf slot (4); ~0.02 four-wide 128-byte nodes (~2.5, leaves
-/// of up to 32 triangles). About 59 bytes a triangle on a track mesh, ~119 on a soup of
-/// unshared vertices. The box queries test the float boxes four at a time and read a
-/// triangle's vertices only when its box lies within a float step of the query's (sphere
-/// and capsule: for the distance test). NormalizedTriangle frames are not stored: 120
-/// bytes in double would break the 80-byte budget, and every exact predicate needs the
+/// 16 bits, rounded outward in a grid over its node's leaf lanes (12, in blocks of eight
+/// that one SSE2 16-bit compare per bound tests); the inverse map mesh index -> leaf slot
+/// (4); ~0.02 four-wide 128-byte nodes (~2.5, leaves of up to 32 triangles) and as many
+/// 48-byte node grids (~0.9). About 48 bytes a triangle on a track mesh, ~108 on a soup of
+/// unshared vertices. The box queries test the 16-bit boxes eight at a time and read a
+/// triangle's vertices only when its box lies within about two grid steps of the query's
+/// (sphere and capsule: for the distance test). NormalizedTriangle frames are not stored:
+/// 120 bytes in double would break the 80-byte budget, and every exact predicate needs the
 /// double vertices anyway. The mid phase builds the few hundred frames it culls per update
 /// with normalized_triangle().
 class TRACKPHYS_API StaticCollider {
@@ -132,15 +133,20 @@ private:
     void visit_box_filtered(const Aabb& box, Predicate&& keep,
                             std::vector<std::uint32_t>& out) const;
     bool triangle_box_overlaps(std::uint32_t slot, const Aabb& box) const;
+    void quantize_slot_boxes();
+    // The quantized boxes of the block of eight slots from s (a multiple of 8).
+    const std::int16_t* block(std::uint32_t s) const { return &slot_boxes_[std::size_t{6} * s]; }
 
     std::vector<glm::dvec3> vertices_;
     std::vector<std::array<std::uint32_t, 3>> slot_vertices_;
     std::vector<std::uint32_t> slot_to_triangle_;
     std::vector<std::uint32_t> triangle_to_slot_;
-    // Slot boxes in blocks of four slots (from a multiple of 4): 24 floats, min x, y, z,
-    // then max x, y, z, one lane per slot; lanes past the last slot are NaN.
-    std::vector<float> slot_boxes_;
+    // Slot boxes in blocks of eight slots (from a multiple of 8), quantized in their leaf's
+    // grid (src/collision/quantized_boxes.hpp): 48 values, min x, y, z, then max x, y, z,
+    // one lane per slot; lanes past the last slot are 0 (never read as a slot).
+    std::vector<std::int16_t> slot_boxes_;
     std::vector<BvhNode> nodes_;
+    std::vector<BvhNodeGrid> grids_;  // per node: the grids of its leaf lanes' slot boxes
     Aabb bounds_;
     std::uint64_t content_hash_ = 0;
 };
