@@ -6,6 +6,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <unistd.h>
@@ -16,8 +17,11 @@
 #include "drive_report.hpp"
 #include "drive_scene.hpp"
 #include "drive_svg.hpp"
+#include "staged_outputs.hpp"
 #include "trackphys/error.hpp"
+#include "trackphys/io/car_spec_json.hpp"
 #include "trackphys/io/recording.hpp"
+#include "trackphys/io/scenario.hpp"
 #include "trackphys/profile/trace_recorder.hpp"
 #include "trackphys/world/autopilot.hpp"
 #include "trackphys/world/world.hpp"
@@ -25,8 +29,13 @@
 namespace trackphys::cli {
 namespace {
 
+// The command line. Scene options (seed to steer, laps, seconds) start at the Scenario
+// defaults; build_scenario applies those given explicitly over the scenario file.
 struct DriveOptions {
     std::string track = "default";
+    std::filesystem::path scenario_file, car_file;
+    bool print_car = false;
+    bool print_scenario = false;
     std::uint64_t seed = 7;
     std::filesystem::path mesh;
     int laps = 0;
@@ -42,12 +51,46 @@ struct DriveOptions {
 // A lap that takes longer than this (simulated) means the car is stuck: give up.
 constexpr double kMaxSecondsPerLap = 600.0;
 
-void check_output(const std::filesystem::path& path, const char* option) {
-    if (path.empty()) return;
-    const std::filesystem::path folder = path.has_parent_path() ? path.parent_path() : ".";
-    if (!std::filesystem::is_directory(folder))
-        throw Error(std::string(option) + " '" + path.string() + "': folder '" + folder.string() +
-                    "' does not exist");
+// The option that sets each Scenario field, to name it in Scenario::validate()'s messages.
+constexpr std::pair<const char*, const char*> kFieldOptions[] = {
+    {"Scenario.mesh", "--mesh"},          {"Scenario.spawn", "--spawn"},
+    {"Scenario.heading_deg", "--heading"}, {"Scenario.target_speed_kmh", "--target-speed"},
+    {"Scenario.inputs.throttle", "--throttle"}, {"Scenario.inputs.steer", "--steer"},
+    {"Scenario.laps", "--laps"},           {"Scenario.seconds", "--seconds"},
+};
+
+// The scenario file (or the defaults) with the car file and every scene option given on
+// the command line applied over it: a flag overrides the same field of the file. A flag
+// that the resulting mode does not use is an error rather than silently ignored.
+Scenario build_scenario(const DriveOptions& o, const CLI::App& command) {
+    const auto given = [&](const char* option) { return command.count(option) > 0; };
+    Scenario s = o.scenario_file.empty() ? Scenario{} : load_scenario(o.scenario_file);
+    if (!o.car_file.empty()) s.car = load_car_spec(o.car_file);
+    if (given("--seed")) s.seed = o.seed;
+    if (given("--mesh")) s.mesh = o.mesh;
+    if (given("--spawn")) s.spawn = glm::dvec3(o.spawn.at(0), o.spawn.at(1), o.spawn.at(2));
+    if (given("--heading")) s.heading_deg = o.heading_deg;
+    if (given("--target-speed")) s.target_speed_kmh = o.target_speed_kmh;
+    if (given("--throttle")) s.inputs.throttle = o.throttle;
+    if (given("--steer")) s.inputs.steer = o.steer;
+    if (given("--laps")) s.laps = o.laps;
+    if (given("--seconds")) s.seconds = o.seconds;
+
+    if (given("--seed") && !s.mesh.empty())
+        throw Error("--seed picks a generated track, but this drive is on the mesh '" + s.mesh.string() + "'");
+    if (given("--target-speed") && s.free_mode())
+        throw Error("--target-speed sets the autopilot, which does not drive in free mode (a spawn point): "
+                    "use --throttle and --steer");
+    for (const char* option : {"--throttle", "--steer", "--heading"})
+        if (given(option) && !s.free_mode())
+            throw Error(std::string(option) + " applies in free mode only: add --spawn x,y,z (without a spawn "
+                        "point the autopilot drives the generated track from its start line)");
+    std::string why = s.validate();
+    if (why.empty()) return s;
+    for (const auto& [field, option] : kFieldOptions)
+        if (why.rfind(field, 0) == 0 && given(option)) throw Error(std::string(option) + ": " + why);
+    if (!o.scenario_file.empty()) why = "scenario '" + o.scenario_file.string() + "': " + why;
+    throw Error(why);
 }
 
 // A progress bar on stderr, only when stderr is a terminal (never in logs or CI).
@@ -74,45 +117,45 @@ private:
     int last_ = -1;
 };
 
-void run(const DriveOptions& o) {
-    const bool free_mode = !o.mesh.empty() || !o.spawn.empty();
+void run(const DriveOptions& o, const CLI::App& command) {
     if (o.track != "default") throw Error("--track '" + o.track + "': the only generated track is 'default'");
-    if (o.laps < 0) throw Error("--laps must be >= 0");
-    if (o.seconds < 0.0 || !std::isfinite(o.seconds)) throw Error("--seconds must be finite and >= 0");
-    if (!(o.target_speed_kmh > 0.0 && o.target_speed_kmh <= 1500.0))
-        throw Error("--target-speed must be in (0, 1500] km/h");
-    if (free_mode && o.spawn.empty()) throw Error("--mesh needs --spawn x,y,z to place the car");
-    if (free_mode && o.laps > 0) throw Error("--laps needs the generated track (no centreline on a mesh); use --seconds");
-    if (!o.spawn.empty() && o.spawn.size() != 3) throw Error("--spawn takes three numbers: x,y,z");
-    for (const auto& [path, option] : {std::pair{o.json, "--json"}, {o.trace, "--trace"},
-                                       {o.record, "--record"}, {o.svg, "--svg"}})
-        check_output(path, option);
+    const Scenario s = build_scenario(o, command);
+    if (o.print_car || o.print_scenario) {
+        std::fputs(o.print_car ? car_spec_to_json(s.car).c_str() : scenario_to_json(s).c_str(), stdout);
+        return;
+    }
+    // Every output is checked and staged before the drive, and put in place only after it
+    // succeeded: a failure anywhere leaves none of them behind.
+    StagedOutputs outputs;
+    const auto stage = [&](const std::filesystem::path& path, const char* option) {
+        return path.empty() ? path : outputs.stage(path, option);
+    };
+    const std::filesystem::path json = stage(o.json, "--json"), trace_file = stage(o.trace, "--trace"),
+                                record = stage(o.record, "--record"), svg = stage(o.svg, "--svg");
 
-    const DriveScene scene = o.mesh.empty() ? make_track_scene(o.seed) : make_mesh_scene(o.mesh);
-    const CarSpec spec = CarSpec::default_car();
+    const DriveScene scene = s.mesh.empty() ? make_track_scene(s.seed) : make_mesh_scene(s.mesh);
     World world(scene.statics);
-    const RigidBodyState start =
-        free_mode ? spawn_on_surface(*scene.statics, spec, {o.spawn[0], o.spawn[1], o.spawn[2]}, o.heading_deg)
-                  : start_on_track(*scene.track, spec);
-    world.add_car(spec, start);
+    const RigidBodyState start = s.free_mode() ? spawn_on_surface(*scene.statics, s.car, *s.spawn, s.heading_deg)
+                                               : start_on_track(*scene.track, s.car);
+    world.add_car(s.car, start);
 
     std::optional<Autopilot> autopilot;
-    if (!free_mode) {
+    if (!s.free_mode()) {
         AutopilotSettings settings;
-        settings.target_speed = o.target_speed_kmh / 3.6;
-        autopilot.emplace(*scene.track, spec, settings);
+        settings.target_speed = s.target_speed_kmh / 3.6;
+        autopilot.emplace(*scene.track, s.car, settings);
     }
-    const int laps = !free_mode && o.laps == 0 && o.seconds == 0.0 ? 1 : o.laps;
-    const double seconds = o.seconds > 0.0 ? o.seconds : laps * kMaxSecondsPerLap;
+    const int laps = !s.free_mode() && s.laps == 0 && s.seconds == 0.0 ? 1 : s.laps;
+    const double seconds = s.seconds > 0.0 ? s.seconds : laps * kMaxSecondsPerLap;
 
     std::unique_ptr<TraceRecorder> trace;
-    if (!o.trace.empty()) {
+    if (!trace_file.empty()) {
         trace = std::make_unique<TraceRecorder>();
         world.set_trace(trace.get());
     }
     std::unique_ptr<RecordingWriter> recording;
-    if (!o.record.empty())
-        recording = std::make_unique<RecordingWriter>(o.record, world.settings().dt_update, 1, scene.description);
+    if (!record.empty())
+        recording = std::make_unique<RecordingWriter>(record, world.settings().dt_update, 1, scene.description);
 
     DriveReport report;
     report.scene = scene.description;
@@ -125,7 +168,7 @@ void run(const DriveOptions& o) {
 
     while (world.time() < seconds - 1e-9 && (laps == 0 || autopilot->laps() < laps)) {
         Car& car = world.car(0);
-        car.set_inputs(autopilot ? autopilot->drive(car) : CarInputs{o.throttle, 0.0, o.steer});
+        car.set_inputs(autopilot ? autopilot->drive(car) : s.inputs);
         const int laps_before = autopilot ? autopilot->laps() : 0;
         world.update();
         if (autopilot) {
@@ -162,17 +205,18 @@ void run(const DriveOptions& o) {
     report.state_hash = world.state_hash();
 
     print_drive_report(report);
-    if (!o.json.empty()) write_drive_json(report, o.json);
-    if (!o.svg.empty()) write_drive_svg(plot, scene.track, o.svg);
-    if (trace) {
-        std::ofstream out(o.trace, std::ios::binary);
-        trace->write_chrome_trace(out);
-        if (!out.flush()) throw Error("cannot write the trace '" + o.trace.string() + "'");
-    }
-    if (recording) recording->finish();
     if (laps > 0 && report.laps_completed < laps)
         throw Error("the car completed " + std::to_string(report.laps_completed) + " of " +
                     std::to_string(laps) + " laps in " + std::to_string(seconds) + " simulated seconds");
+    if (!json.empty()) write_drive_json(report, json);
+    if (!svg.empty()) write_drive_svg(plot, scene.track, svg);
+    if (trace) {
+        std::ofstream out(trace_file, std::ios::binary);
+        trace->write_chrome_trace(out);
+        if (!out.flush()) throw Error("--trace '" + o.trace.string() + "': cannot write the trace");
+    }
+    if (recording) recording->finish();
+    outputs.commit();
 }
 
 }  // namespace
@@ -180,10 +224,22 @@ void run(const DriveOptions& o) {
 void add_drive_command(CLI::App& app) {
     auto o = std::make_shared<DriveOptions>();
     CLI::App* command = app.add_subcommand(
-        "drive", "Drive the default car: laps of a generated track by autopilot, or free on any mesh; "
-                 "prints lap time, top speed and the per-phase profile of every update");
+        "drive", "Drive the default car (or --car, or a --scenario file): laps of a generated track by "
+                 "autopilot, or free on any mesh; prints lap time, top speed and the per-phase profile of "
+                 "every update. Options given with --scenario override the file's values");
+    command->add_option("--scenario", o->scenario_file,
+                        "Read track, car, driver and duration from this JSON file (see README, 'Scenario files')");
+    command->add_option("--car", o->car_file, "Read the car spec from this JSON file (see --print-car)");
+    command->add_flag("--print-car", o->print_car,
+                      "Print the car spec (default, --car or the scenario's) as JSON and exit: a starting point "
+                      "for a --car file");
+    command->add_flag("--print-scenario", o->print_scenario,
+                      "Print the scenario these options describe as JSON and exit: a starting point for a "
+                      "--scenario file");
     command->add_option("--track", o->track, "Generated track to drive (default)")->capture_default_str();
-    command->add_option("--seed", o->seed, "Seed of the generated track")->capture_default_str();
+    command->add_option("--seed", o->seed, "Seed of the generated track")
+        ->check(CLI::NonNegativeNumber)  // CLI11 would read -1 as 2^64 - 1
+        ->capture_default_str();
     command->add_option("--mesh", o->mesh, "Drive on this mesh file instead (free mode, needs --spawn)");
     command->add_option("--laps", o->laps, "Laps to drive by autopilot (default 1 without --seconds)");
     command->add_option("--seconds", o->seconds, "Simulated seconds to drive");
@@ -200,7 +256,7 @@ void add_drive_command(CLI::App& app) {
     command->add_option("--trace", o->trace, "Write a Chrome trace (Perfetto) of every update's phases");
     command->add_option("--record", o->record, "Write car poses and contacts per update (JSON Lines) for a viewer");
     command->add_option("--svg", o->svg, "Plot the path over the track and the update times");
-    command->callback([o] { run(*o); });
+    command->callback([o, command] { run(*o, *command); });
 }
 
 }  // namespace trackphys::cli
