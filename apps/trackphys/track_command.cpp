@@ -104,7 +104,9 @@ void add_track_command(CLI::App& app) {
     CLI::App* command = app.add_subcommand(
         "track", "Generate a closed, banked race track (Bezier loop) and print its figures; "
                  "optionally write its mesh and a top-view picture");
-    command->add_option("--seed", p.seed, "Random seed (same seed, same track)")->capture_default_str();
+    command->add_option("--seed", p.seed, "Random seed (same seed, same track)")
+        ->check(CLI::NonNegativeNumber)  // CLI11 would read -1 as 2^64 - 1
+        ->capture_default_str();
     command->add_option("--length", p.length_m, "Centreline length (m)")->capture_default_str();
     command->add_option("--width", p.width_m, "Road width (m)")->capture_default_str();
     command->add_option("--max-bank", p.max_bank_deg, "Largest bank angle (degrees)")->capture_default_str();

@@ -39,7 +39,9 @@ std::string without_exception_id(const std::string& what) {
 std::string describe(const Json& value) {
     if (value.is_number_integer() || value.is_number_float()) return "the number " + value.dump();
     if (value.is_string()) return "the string " + value.dump();
-    return std::string("a ") + value.type_name();
+    if (value.is_array()) return "an array";
+    if (value.is_object()) return "an object";
+    return value.is_null() ? "null" : "a boolean";
 }
 
 }  // namespace
