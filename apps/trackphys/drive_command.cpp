@@ -238,7 +238,7 @@ void add_drive_command(CLI::App& app) {
                       "--scenario file");
     command->add_option("--track", o->track, "Generated track to drive (default)")->capture_default_str();
     command->add_option("--seed", o->seed, "Seed of the generated track")
-        ->check(CLI::NonNegativeNumber)  // CLI11 would read -1 as 2^64 - 1
+        ->check(not_negative())
         ->capture_default_str();
     command->add_option("--mesh", o->mesh, "Drive on this mesh file instead (free mode, needs --spawn)");
     command->add_option("--laps", o->laps, "Laps to drive by autopilot (default 1 without --seconds)");

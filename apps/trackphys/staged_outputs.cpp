@@ -25,7 +25,11 @@ fs::path StagedOutputs::stage(const fs::path& destination, const std::string& op
     std::error_code error;
     const fs::path folder = destination.has_parent_path() ? destination.parent_path() : ".";
     if (!fs::is_directory(folder, error)) throw Error(name + ": folder '" + folder.string() + "' does not exist");
-    if (fs::is_directory(destination, error)) throw Error(name + ": is a folder");
+    const fs::file_status existing = fs::symlink_status(destination, error);
+    if (fs::is_directory(existing)) throw Error(name + ": is a folder");
+    // The rename would replace it: never a device (/dev/null as root), a pipe or a link.
+    if (fs::exists(existing) && !fs::is_regular_file(existing))
+        throw Error(name + ": exists and is not a regular file");
     for (const Staged& s : staged_)
         if (fs::weakly_canonical(s.destination, error) == fs::weakly_canonical(destination, error))
             throw Error(name + ": " + s.option + " writes the same file");

@@ -105,7 +105,7 @@ void add_track_command(CLI::App& app) {
         "track", "Generate a closed, banked race track (Bezier loop) and print its figures; "
                  "optionally write its mesh and a top-view picture");
     command->add_option("--seed", p.seed, "Random seed (same seed, same track)")
-        ->check(CLI::NonNegativeNumber)  // CLI11 would read -1 as 2^64 - 1
+        ->check(not_negative())
         ->capture_default_str();
     command->add_option("--length", p.length_m, "Centreline length (m)")->capture_default_str();
     command->add_option("--width", p.width_m, "Road width (m)")->capture_default_str();
