@@ -67,6 +67,8 @@ std::string read_text_file(const fs::path& path, const char* what) {
     const fs::file_status status = fs::status(path, error);
     if (!fs::exists(status)) throw Error(name + ": no such file");
     if (fs::is_directory(status)) throw Error(name + ": is a folder, not a file");
+    // A device or a pipe (/dev/stdin) could block or never end.
+    if (!fs::is_regular_file(status)) throw Error(name + ": not a regular file");
     std::ifstream in(path, std::ios::binary);
     if (!in) throw Error(name + ": cannot open it for reading");
     std::string text;

@@ -26,7 +26,8 @@ using Json = nlohmann::ordered_json;
 inline constexpr std::uintmax_t max_file_bytes = 16u << 20;
 
 /// The whole file as text. Throws trackphys::Error "<what> '<path>': <reason>" when it is
-/// missing, a folder, unreadable, empty or larger than max_file_bytes.
+/// missing, a folder or another non-regular file (a device, a pipe), unreadable, empty or
+/// larger than max_file_bytes.
 std::string read_text_file(const std::filesystem::path& path, const char* what);
 
 /// One JSON document. Throws trackphys::Error "<source>: malformed JSON at line L, column C:

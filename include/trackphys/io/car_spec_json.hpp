@@ -44,7 +44,7 @@ namespace trackphys {
 TRACKPHYS_API CarSpec parse_car_spec(std::string_view json_text, const std::string& source = "car spec");
 
 /// parse_car_spec of a file's contents; the message also names the file when it is
-/// missing, a folder, unreadable, empty or larger than 16 MiB.
+/// missing, a folder or a device, unreadable, empty or larger than 16 MiB.
 TRACKPHYS_API CarSpec load_car_spec(const std::filesystem::path& file);
 
 /// spec as a JSON document (2-space indent, every key, numbers that read back to the same

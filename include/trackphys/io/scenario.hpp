@@ -73,7 +73,7 @@ TRACKPHYS_API Scenario parse_scenario(std::string_view json_text, const std::str
                                       const std::filesystem::path& base_folder = {});
 
 /// parse_scenario of a file's contents, relative names taken from the file's folder; the
-/// message also names the file when it is missing, a folder, unreadable, empty or larger
+/// message also names the file when it is missing, a folder or a device, unreadable, empty or larger
 /// than 16 MiB.
 TRACKPHYS_API Scenario load_scenario(const std::filesystem::path& file);
 
