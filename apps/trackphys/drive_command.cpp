@@ -29,22 +29,15 @@
 namespace trackphys::cli {
 namespace {
 
-// The command line. Scene options (seed to steer, laps, seconds) start at the Scenario
-// defaults; build_scenario applies those given explicitly over the scenario file.
+// The command line. The scene options (--seed to --steer, --laps, --seconds) are read into
+// a default Scenario; build_scenario copies those given explicitly over the scenario file.
 struct DriveOptions {
     std::string track = "default";
     std::filesystem::path scenario_file, car_file;
     bool print_car = false;
     bool print_scenario = false;
-    std::uint64_t seed = 7;
-    std::filesystem::path mesh;
-    int laps = 0;
-    double seconds = 0.0;
-    double target_speed_kmh = 600.0;
+    Scenario flags;
     std::vector<double> spawn;
-    double heading_deg = 0.0;
-    double throttle = 0.5;
-    double steer = 0.0;
     std::filesystem::path json, trace, record, svg;
 };
 
@@ -66,15 +59,16 @@ Scenario build_scenario(const DriveOptions& o, const CLI::App& command) {
     const auto given = [&](const char* option) { return command.count(option) > 0; };
     Scenario s = o.scenario_file.empty() ? Scenario{} : load_scenario(o.scenario_file);
     if (!o.car_file.empty()) s.car = load_car_spec(o.car_file);
-    if (given("--seed")) s.seed = o.seed;
-    if (given("--mesh")) s.mesh = o.mesh;
+    const Scenario& f = o.flags;
+    if (given("--seed")) s.seed = f.seed;
+    if (given("--mesh")) s.mesh = f.mesh;
     if (given("--spawn")) s.spawn = glm::dvec3(o.spawn.at(0), o.spawn.at(1), o.spawn.at(2));
-    if (given("--heading")) s.heading_deg = o.heading_deg;
-    if (given("--target-speed")) s.target_speed_kmh = o.target_speed_kmh;
-    if (given("--throttle")) s.inputs.throttle = o.throttle;
-    if (given("--steer")) s.inputs.steer = o.steer;
-    if (given("--laps")) s.laps = o.laps;
-    if (given("--seconds")) s.seconds = o.seconds;
+    if (given("--heading")) s.heading_deg = f.heading_deg;
+    if (given("--target-speed")) s.target_speed_kmh = f.target_speed_kmh;
+    if (given("--throttle")) s.inputs.throttle = f.inputs.throttle;
+    if (given("--steer")) s.inputs.steer = f.inputs.steer;
+    if (given("--laps")) s.laps = f.laps;
+    if (given("--seconds")) s.seconds = f.seconds;
 
     if (given("--seed") && !s.mesh.empty())
         throw Error("--seed picks a generated track, but this drive is on the mesh '" + s.mesh.string() + "'");
@@ -230,28 +224,31 @@ void add_drive_command(CLI::App& app) {
     command->add_option("--scenario", o->scenario_file,
                         "Read track, car, driver and duration from this JSON file (see README, 'Scenario files')");
     command->add_option("--car", o->car_file, "Read the car spec from this JSON file (see --print-car)");
-    command->add_flag("--print-car", o->print_car,
-                      "Print the car spec (default, --car or the scenario's) as JSON and exit: a starting point "
-                      "for a --car file");
-    command->add_flag("--print-scenario", o->print_scenario,
-                      "Print the scenario these options describe as JSON and exit: a starting point for a "
-                      "--scenario file");
+    CLI::Option* print_car =
+        command->add_flag("--print-car", o->print_car,
+                          "Print the car spec (default, --car or the scenario's) as JSON and exit: a starting "
+                          "point for a --car file");
+    command
+        ->add_flag("--print-scenario", o->print_scenario,
+                   "Print the scenario these options describe as JSON and exit: a starting point for a "
+                   "--scenario file")
+        ->excludes(print_car);
     command->add_option("--track", o->track, "Generated track to drive (default)")->capture_default_str();
-    command->add_option("--seed", o->seed, "Seed of the generated track")
+    command->add_option("--seed", o->flags.seed, "Seed of the generated track")
         ->check(not_negative())
         ->capture_default_str();
-    command->add_option("--mesh", o->mesh, "Drive on this mesh file instead (free mode, needs --spawn)");
-    command->add_option("--laps", o->laps, "Laps to drive by autopilot (default 1 without --seconds)");
-    command->add_option("--seconds", o->seconds, "Simulated seconds to drive");
-    command->add_option("--target-speed", o->target_speed_kmh, "Autopilot speed on straights (km/h)")
+    command->add_option("--mesh", o->flags.mesh, "Drive on this mesh file instead (free mode, needs --spawn)");
+    command->add_option("--laps", o->flags.laps, "Laps to drive by autopilot (default 1 without --seconds)");
+    command->add_option("--seconds", o->flags.seconds, "Simulated seconds to drive");
+    command->add_option("--target-speed", o->flags.target_speed_kmh, "Autopilot speed on straights (km/h)")
         ->capture_default_str();
     command->add_option("--spawn", o->spawn, "Free mode: start above x,y,z (the car lands on the surface below)")
         ->delimiter(',')
         ->expected(3);
-    command->add_option("--heading", o->heading_deg, "Free mode: heading about +Y in degrees (0 = +X, 90 = -Z)")
+    command->add_option("--heading", o->flags.heading_deg, "Free mode: heading about +Y in degrees (0 = +X, 90 = -Z)")
         ->capture_default_str();
-    command->add_option("--throttle", o->throttle, "Free mode: fixed throttle 0..1")->capture_default_str();
-    command->add_option("--steer", o->steer, "Free mode: fixed steering -1..1 (+1 = left)")->capture_default_str();
+    command->add_option("--throttle", o->flags.inputs.throttle, "Free mode: fixed throttle 0..1")->capture_default_str();
+    command->add_option("--steer", o->flags.inputs.steer, "Free mode: fixed steering -1..1 (+1 = left)")->capture_default_str();
     command->add_option("--json", o->json, "Write the figures as JSON");
     command->add_option("--trace", o->trace, "Write a Chrome trace (Perfetto) of every update's phases");
     command->add_option("--record", o->record, "Write car poses and contacts per update (JSON Lines) for a viewer");
