@@ -17,6 +17,7 @@
 #include "drive_report.hpp"
 #include "drive_scene.hpp"
 #include "drive_svg.hpp"
+#include "interrupt_guard.hpp"
 #include "staged_outputs.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/io/car_spec_json.hpp"
@@ -119,7 +120,8 @@ void run(const DriveOptions& o, const CLI::App& command) {
         return;
     }
     // Every output is checked and staged before the drive, and put in place only after it
-    // succeeded: a failure anywhere leaves none of them behind.
+    // succeeded: a failure anywhere, Ctrl-C included, leaves none of them behind.
+    const InterruptGuard interrupt_guard;
     StagedOutputs outputs;
     const auto stage = [&](const std::filesystem::path& path, const char* option) {
         return path.empty() ? path : outputs.stage(path, option);
@@ -161,6 +163,7 @@ void run(const DriveOptions& o, const CLI::App& command) {
     glm::dvec3 previous = start.position;
 
     while (world.time() < seconds - 1e-9 && (laps == 0 || autopilot->laps() < laps)) {
+        InterruptGuard::check();
         Car& car = world.car(0);
         car.set_inputs(autopilot ? autopilot->drive(car) : s.inputs);
         const int laps_before = autopilot ? autopilot->laps() : 0;

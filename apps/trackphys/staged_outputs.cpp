@@ -18,7 +18,7 @@ StagedOutputs::~StagedOutputs() {
     for (const Staged& s : staged_) fs::remove(s.temporary, ignored);
 }
 
-fs::path StagedOutputs::stage(const fs::path& destination, const std::string& option) {
+void check_destination(const fs::path& destination, const std::string& option) {
     const std::string name = option + " '" + destination.string() + "'";
     if (destination.filename().empty() || destination.filename() == "." || destination.filename() == "..")
         throw Error(name + ": not a file name");
@@ -30,6 +30,13 @@ fs::path StagedOutputs::stage(const fs::path& destination, const std::string& op
     // The rename would replace it: never a device (/dev/null as root), a pipe or a link.
     if (fs::exists(existing) && !fs::is_regular_file(existing))
         throw Error(name + ": exists and is not a regular file");
+}
+
+fs::path StagedOutputs::stage(const fs::path& destination, const std::string& option) {
+    check_destination(destination, option);
+    const std::string name = option + " '" + destination.string() + "'";
+    const fs::path folder = destination.has_parent_path() ? destination.parent_path() : ".";
+    std::error_code error;
     for (const Staged& s : staged_)
         if (fs::weakly_canonical(s.destination, error) == fs::weakly_canonical(destination, error))
             throw Error(name + ": " + s.option + " writes the same file");

@@ -6,6 +6,11 @@
 
 namespace trackphys::cli {
 
+/// Throws trackphys::Error, naming option and destination, unless destination can be
+/// written: a file name in a folder that exists, not a folder itself, not a device. (Whether
+/// the folder takes a new file shows when one is created there: StagedOutputs::stage.)
+void check_destination(const std::filesystem::path& destination, const std::string& option);
+
 /// The files one command writes, put in place together or not at all. stage() checks a
 /// destination up front (its folder exists and takes a new file, it is not a folder, no
 /// other option names it) and creates an empty temporary file beside it, which the command

@@ -75,6 +75,7 @@ void run(const TrackOptions& options) {
     if (!options.out.empty() && !can_save_mesh_as(options.out))
         throw Error("--out '" + options.out.string() + "': the extension must be " +
                     saved_mesh_extensions);
+    if (!options.out.empty()) check_destination(options.out, "--out");
     // The picture is staged and put in place with the mesh (save_mesh is atomic itself), so
     // a failure leaves neither (staged_outputs.hpp).
     StagedOutputs outputs;
