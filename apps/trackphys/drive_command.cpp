@@ -115,8 +115,15 @@ private:
 void run(const DriveOptions& o, const CLI::App& command) {
     if (o.track != "default") throw Error("--track '" + o.track + "': the only generated track is 'default'");
     const Scenario s = build_scenario(o, command);
-    if (o.print_car || o.print_scenario) {
-        std::fputs(o.print_car ? car_spec_to_json(s.car).c_str() : scenario_to_json(s).c_str(), stdout);
+    if (o.print_car) {
+        std::fputs(car_spec_to_json(s.car).c_str(), stdout);
+        return;
+    }
+    if (o.print_scenario) {
+        // A scenario file reads relative names from its own folder, wherever it is saved.
+        Scenario printed = s;
+        if (!printed.mesh.empty()) printed.mesh = std::filesystem::absolute(printed.mesh);
+        std::fputs(scenario_to_json(printed).c_str(), stdout);
         return;
     }
     // Every output is checked and staged before the drive, and put in place only after it
