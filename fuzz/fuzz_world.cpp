@@ -4,8 +4,10 @@
 // Bytes -> a start (centreline sample, height above the road, speed along the road up to
 // ~1100 km/h, a sideways slip and a spin) and up to 25 updates of controls. Byte 0 picks the
 // controls' decoding: even, one byte each for throttle, brake and steer in their ranges;
-// odd, raw doubles (NaN, infinities, out of range: Car::set_inputs clamps them and takes
-// NaN as no input). After every update the car's state must be finite.
+// odd, raw doubles (infinities and out of range: Car::set_inputs clamps them; NaN: it must
+// reject them with trackphys::Error). A start inside the road (the lowest starts sink the
+// wheels into it) must be rejected by World::add_car with trackphys::Error. After every
+// update the car's state must be finite.
 
 #include <algorithm>
 #include <cmath>
@@ -19,10 +21,12 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/mat3x3.hpp>
 
+#include "trackphys/collision/mid_phase.hpp"
 #include "trackphys/collision/static_collider.hpp"
 #include "trackphys/collision/static_world.hpp"
 #include "trackphys/dynamics/car.hpp"
 #include "trackphys/dynamics/car_spec.hpp"
+#include "trackphys/error.hpp"
 #include "trackphys/math/types.hpp"
 #include "trackphys/track/track.hpp"
 #include "trackphys/track/track_params.hpp"
@@ -39,18 +43,22 @@ constexpr std::size_t kMaxUpdates = 25;
 struct Scene {
     trackphys::Track track;
     std::shared_ptr<const trackphys::StaticWorld> statics;
+    trackphys::ColliderPlaneTrees trees;
 };
 
-// Built once per process: generating and indexing the track takes far longer than a run.
+// Built once per process: generating and indexing the track (and its plane trees, which a
+// World would otherwise build for every input: seconds under the sanitizers) takes far
+// longer than a run.
 const Scene& scene() {
     static const Scene built = [] {
         trackphys::TrackParams params;
         params.seed = 7;
-        Scene s{trackphys::generate_track(params), nullptr};
+        Scene s{trackphys::generate_track(params), nullptr, {}};
         auto statics = std::make_shared<trackphys::StaticWorld>();
         for (const trackphys::TrackChunk& chunk : s.track.chunks)
             statics->add(std::make_shared<trackphys::StaticCollider>(chunk.mesh));
         s.statics = std::move(statics);
+        s.trees = trackphys::make_collider_plane_trees(*s.statics);
         return s;
     }();
     return built;
@@ -103,17 +111,38 @@ bool finite(const RigidBodyState& s) {
 
 }  // namespace
 
+// The scene is built before the first input, outside libFuzzer's per-input timeout (it takes
+// longer than that under the sanitizers on a loaded machine).
+extern "C" int LLVMFuzzerInitialize(int*, char***) {
+    scene();
+    return 0;
+}
+
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     const bool raw = size > 0 && data[0] % 2 == 1;
     const std::size_t per_update = raw ? 24 : 3;
     if (size < 1 + kStartBytes || size > 1 + kStartBytes + kMaxUpdates * per_update) return -1;
     const Scene& s = scene();
-    trackphys::World world(s.statics);
-    const std::size_t car = world.add_car(trackphys::CarSpec::default_car(),
-                                          decode_start(s.track, data, size));
+    trackphys::World world(s.statics, trackphys::WorldSettings{}, s.trees);
+    std::size_t car = 0;
+    try {
+        car = world.add_car(trackphys::CarSpec::default_car(), decode_start(s.track, data, size));
+    } catch (const trackphys::Error&) {
+        return 0;  // a start inside the road
+    }
     const std::size_t updates = std::max<std::size_t>(1, (size - 1 - kStartBytes) / per_update);
     for (std::size_t u = 0; u < updates; ++u) {
-        world.car(car).set_inputs(decode_inputs(raw, data, size, 1 + kStartBytes + u * per_update));
+        const CarInputs in = decode_inputs(raw, data, size, 1 + kStartBytes + u * per_update);
+        const bool nan = std::isnan(in.throttle) || std::isnan(in.brake) || std::isnan(in.steer);
+        try {
+            world.car(car).set_inputs(in);
+            if (nan) {
+                std::fprintf(stderr, "fuzz_world: a NaN input was accepted\n");
+                std::abort();
+            }
+        } catch (const trackphys::Error&) {
+            if (!nan) throw;  // an error for finite inputs is a finding
+        }
         world.update();
         if (!finite(world.car(car).state())) {
             std::fprintf(stderr, "fuzz_world: non-finite car state after update %zu\n", u + 1);

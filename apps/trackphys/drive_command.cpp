@@ -16,6 +16,7 @@
 #include "commands.hpp"
 #include "drive_report.hpp"
 #include "drive_scene.hpp"
+#include "drive_session.hpp"
 #include "drive_svg.hpp"
 #include "interrupt_guard.hpp"
 #include "staged_outputs.hpp"
@@ -23,6 +24,7 @@
 #include "trackphys/io/car_spec_json.hpp"
 #include "trackphys/io/recording.hpp"
 #include "trackphys/io/scenario.hpp"
+#include "trackphys/io/snapshot_file.hpp"
 #include "trackphys/profile/trace_recorder.hpp"
 #include "trackphys/world/autopilot.hpp"
 #include "trackphys/world/world.hpp"
@@ -40,6 +42,15 @@ struct DriveOptions {
     Scenario flags;
     std::vector<double> spawn;
     std::filesystem::path json, trace, record, svg;
+    std::pair<std::string, std::string> save_at;  // T FILE
+    std::filesystem::path resume;
+};
+
+// --save-at T FILE, checked; the snapshot is written to `staged` (staged_outputs.hpp).
+struct SavePoint {
+    double seconds;
+    std::filesystem::path file;
+    std::filesystem::path staged;
 };
 
 // A lap that takes longer than this (simulated) means the car is stuck: give up.
@@ -112,6 +123,23 @@ private:
     int last_ = -1;
 };
 
+std::optional<SavePoint> parse_save_at(const DriveOptions& o, double drive_seconds) {
+    const auto& [time, file] = o.save_at;
+    if (file.empty()) return std::nullopt;
+    SavePoint point{0.0, file, {}};
+    std::size_t used = 0;
+    try {
+        point.seconds = std::stod(time, &used);
+    } catch (const std::exception&) {
+        used = 0;
+    }
+    if (used != time.size() || !std::isfinite(point.seconds) || point.seconds < 0.0)
+        throw Error("--save-at '" + time + "': the time must be a finite number of seconds >= 0");
+    if (drive_seconds > 0.0 && point.seconds > drive_seconds + 1e-9)
+        throw Error("--save-at " + time + " is after the drive's end (--seconds " + std::to_string(drive_seconds) + ")");
+    return point;
+}
+
 void run(const DriveOptions& o, const CLI::App& command) {
     if (o.track != "default") throw Error("--track '" + o.track + "': the only generated track is 'default'");
     const Scenario s = build_scenario(o, command);
@@ -127,7 +155,8 @@ void run(const DriveOptions& o, const CLI::App& command) {
         return;
     }
     // Every output is checked and staged before the drive, and put in place only after it
-    // succeeded: a failure anywhere, Ctrl-C included, leaves none of them behind.
+    // succeeded: a failure anywhere, Ctrl-C included, leaves none of them behind (the
+    // snapshot of --save-at too).
     const InterruptGuard interrupt_guard;
     StagedOutputs outputs;
     const auto stage = [&](const std::filesystem::path& path, const char* option) {
@@ -135,18 +164,32 @@ void run(const DriveOptions& o, const CLI::App& command) {
     };
     const std::filesystem::path json = stage(o.json, "--json"), trace_file = stage(o.trace, "--trace"),
                                 record = stage(o.record, "--record"), svg = stage(o.svg, "--svg");
+    std::optional<SavePoint> save_at = parse_save_at(o, s.seconds);
+    if (save_at) save_at->staged = stage(save_at->file, "--save-at");
+    DriveSession session{s.free_mode(), s.seed, s.target_speed_kmh, s.inputs.throttle, s.inputs.steer, {}, 0.0, 0.0, {}};
+    std::optional<SnapshotFile> resume;
+    if (!o.resume.empty()) {
+        resume = load_snapshot(o.resume);
+        const DriveSession saved = parse_session(resume->user_data);
+        check_same_drive(saved, session);
+        session = saved;
+    }
 
     const DriveScene scene = s.mesh.empty() ? make_track_scene(s.seed) : make_mesh_scene(s.mesh);
     World world(scene.statics);
     const RigidBodyState start = s.free_mode() ? spawn_on_surface(*scene.statics, s.car, *s.spawn, s.heading_deg)
                                                : start_on_track(*scene.track, s.car);
     world.add_car(s.car, start);
+    // Resuming: the same static world, settings and car (restore_state checks their
+    // fingerprints), then the snapshot's state, update count and time.
+    if (resume) world.restore_state(resume->world);
 
     std::optional<Autopilot> autopilot;
     if (!s.free_mode()) {
         AutopilotSettings settings;
         settings.target_speed = s.target_speed_kmh / 3.6;
         autopilot.emplace(*scene.track, s.car, settings);
+        if (session.autopilot) autopilot->set_progress(*session.autopilot);
     }
     const int laps = !s.free_mode() && s.laps == 0 && s.seconds == 0.0 ? 1 : s.laps;
     const double seconds = s.seconds > 0.0 ? s.seconds : laps * kMaxSecondsPerLap;
@@ -163,11 +206,27 @@ void run(const DriveOptions& o, const CLI::App& command) {
     DriveReport report;
     report.scene = scene.description;
     report.triangles = scene.triangle_count;
+    report.distance_m = session.distance_m;
+    report.top_speed_kmh = session.top_speed_kmh;
+    report.lap_times_s = session.lap_times_s;
     DrivePlot plot;
     plot.dt = world.settings().dt_update;
     Progress progress(laps > 0 ? static_cast<double>(laps) : seconds);
     const auto wall_start = std::chrono::steady_clock::now();
-    glm::dvec3 previous = start.position;
+    glm::dvec3 previous = world.car(0).state().position;
+    // Saves once, at the first moment the simulated time has reached --save-at's.
+    bool saved = false;
+    const auto save_if_due = [&] {
+        if (!save_at || saved || world.time() < save_at->seconds - 1e-9) return;
+        session.autopilot = autopilot ? std::optional(autopilot->progress()) : std::nullopt;
+        session.distance_m = report.distance_m;
+        session.top_speed_kmh = report.top_speed_kmh;
+        session.lap_times_s = report.lap_times_s;
+        save_snapshot(save_at->staged, world.save_state(), session_json(session));
+        std::printf("snapshot     %s at %.2f s\n", save_at->file.string().c_str(), world.time());
+        saved = true;
+    };
+    save_if_due();
 
     while (world.time() < seconds - 1e-9 && (laps == 0 || autopilot->laps() < laps)) {
         InterruptGuard::check();
@@ -200,6 +259,7 @@ void run(const DriveOptions& o, const CLI::App& command) {
                                      autopilot->laps()
                                : world.time(),
                       car.speed() * 3.6);
+        save_if_due();
     }
     report.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
     report.updates = world.update_count();
@@ -207,8 +267,13 @@ void run(const DriveOptions& o, const CLI::App& command) {
     report.laps_completed = autopilot ? autopilot->laps() : 0;
     report.final_position = world.car(0).state().position;
     report.state_hash = world.state_hash();
+    report.resets = world.car_resets(0);
+    report.last_reset = world.last_reset_reason(0);
 
     print_drive_report(report);
+    if (save_at && !saved)
+        throw Error("--save-at " + o.save_at.first + ": the drive ended at " + std::to_string(world.time()) +
+                    " s, before that time; no snapshot written");
     if (laps > 0 && report.laps_completed < laps)
         throw Error("the car completed " + std::to_string(report.laps_completed) + " of " +
                     std::to_string(laps) + " laps in " + std::to_string(seconds) + " simulated seconds");
@@ -263,6 +328,13 @@ void add_drive_command(CLI::App& app) {
     command->add_option("--trace", o->trace, "Write a Chrome trace (Perfetto) of every update's phases");
     command->add_option("--record", o->record, "Write car poses and contacts per update (JSON Lines) for a viewer");
     command->add_option("--svg", o->svg, "Plot the path over the track and the update times");
+    command->add_option("--save-at", o->save_at,
+                        "Save a snapshot to FILE when the simulated time reaches T seconds, and keep driving")
+        ->type_name("T FILE");
+    command->add_option("--resume", o->resume,
+                        "Continue the drive saved in this snapshot (give the original drive's options; "
+                        "--seconds and --laps count from the original start)")
+        ->type_name("FILE");
     command->callback([o, command] { run(*o, *command); });
 }
 

@@ -54,6 +54,8 @@ void print_drive_report(const DriveReport& r) {
                 "%.1f exact tests, %.1f contacts\n",
                 r.profile.mean_candidates(), r.profile.mean_tested_per_ellipsoid_substep(),
                 r.profile.mean_exact_tests(), r.profile.mean_contacts());
+    std::printf("resets       %" PRIu64 "%s%s\n", r.resets, r.last_reset.empty() ? "" : ", last at ",
+                r.last_reset.c_str());
     std::printf("state hash   %s\n", hash_hex(r.state_hash).c_str());
 }
 
@@ -71,6 +73,7 @@ void write_drive_json(const DriveReport& r, const std::filesystem::path& path) {
     json["distance_m"] = r.distance_m;
     json["final_position"] = {r.final_position.x, r.final_position.y, r.final_position.z};
     json["state_hash"] = hash_hex(r.state_hash);
+    json["resets"] = r.resets;
     json["update_us"] = summary_json(r.profile.update_us());
     for (std::size_t p = 0; p < phase_count; ++p)
         json["phases_us"][phase_name(static_cast<Phase>(p))] =

@@ -27,6 +27,7 @@
 #include "trackphys/collision/plane_tree_builder.hpp"
 #include "trackphys/collision/static_collider.hpp"
 #include "trackphys/collision/static_world.hpp"
+#include "trackphys/collision/swept_ellipsoid.hpp"
 
 #include "trackphys/dynamics/car.hpp"
 #include "trackphys/dynamics/car_spec.hpp"
@@ -36,6 +37,7 @@
 #include "trackphys/world/autopilot.hpp"
 #include "trackphys/world/world.hpp"
 #include "trackphys/world/world_settings.hpp"
+#include "trackphys/world/world_snapshot.hpp"
 
 #include "trackphys/profile/profile_statistics.hpp"
 #include "trackphys/profile/trace_recorder.hpp"
@@ -49,3 +51,4 @@
 #include "trackphys/io/mesh_io.hpp"
 #include "trackphys/io/recording.hpp"
 #include "trackphys/io/scenario.hpp"
+#include "trackphys/io/snapshot_file.hpp"

@@ -202,7 +202,6 @@ PlaneTreeBuilder::Split PlaneTreeBuilder::pca_median_split(std::size_t begin, st
 bool PlaneTreeBuilder::cost_based_split(std::size_t begin, std::size_t end, Split& split) {
     const std::size_t count = end - begin;
     glm::dvec3 mean(0.0);
-    glm::dvec3 normal_sum(0.0);
     for (std::size_t i = begin; i < end; ++i) mean += items_[order_[i]].centroid;
     mean /= double(count);
     glm::dmat3 covariance(0.0), normals(0.0);

@@ -7,4 +7,5 @@ target_sources(trackphys PRIVATE
   collision/triangle_predicates.cpp
   collision/plane_tree.cpp
   collision/plane_tree_builder.cpp
-  collision/mid_phase.cpp)
+  collision/mid_phase.cpp
+  collision/swept_ellipsoid.cpp)

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "bvh_builder.hpp"
+#include "core/fnv1a.hpp"
 #include "trackphys/error.hpp"
 #include "triangle_predicates.hpp"
 
@@ -74,6 +75,14 @@ StaticCollider::StaticCollider(const TriangleMesh& mesh) {
     vertices_.resize(used_vertices);
     for (std::size_t v = 0; v < vertex_remap.size(); ++v)
         if (vertex_remap[v] != kNoSlot) vertices_[vertex_remap[v]] = mesh.vertices[v];
+
+    core::WordHash hash;
+    hash.add(static_cast<std::uint64_t>(mesh.triangles.size()));
+    for (const std::uint32_t triangle : kept) {
+        hash.add(static_cast<std::uint64_t>(triangle));
+        for (const std::uint32_t v : mesh.triangles[triangle]) hash.add(mesh.vertices[v]);
+    }
+    content_hash_ = hash.value;
 }
 
 inline bool StaticCollider::triangle_box_overlaps(std::uint32_t slot, const Aabb& box) const {

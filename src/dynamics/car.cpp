@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
 #include <utility>
 
 #include <glm/geometric.hpp>
@@ -23,8 +24,15 @@ void check_state(const RigidBodyState& state) {
         throw Error("car state: angular_velocity is not finite");
 }
 
-double clamp_input(double value, double low, double high) {
-    return std::isnan(value) ? 0.0 : std::clamp(value, low, high);
+double clamp_input(const char* name, double value, double low, double high) {
+    if (std::isnan(value)) throw Error(std::string("car inputs: ") + name + " is NaN");
+    return std::clamp(value, low, high);
+}
+
+// The inputs clamped to their ranges; throws for NaN.
+CarInputs clamped(const CarInputs& in) {
+    return {clamp_input("throttle", in.throttle, 0.0, 1.0), clamp_input("brake", in.brake, 0.0, 1.0),
+            clamp_input("steer", in.steer, -1.0, 1.0)};
 }
 
 }  // namespace
@@ -50,8 +58,35 @@ void Car::set_state(const RigidBodyState& state) {
 }
 
 void Car::set_inputs(const CarInputs& inputs) {
-    inputs_ = {clamp_input(inputs.throttle, 0.0, 1.0), clamp_input(inputs.brake, 0.0, 1.0),
-               clamp_input(inputs.steer, -1.0, 1.0)};
+    inputs_ = clamped(inputs);
+}
+
+void Car::restore(const RigidBodyState& state, const CarInputs& inputs,
+                  std::span<const double> suspension) {
+    check_state(state);
+    if (!(std::abs(glm::length(state.orientation) - 1.0) <= 1e-6))
+        throw Error("car state: orientation is not a unit quaternion");
+    const CarInputs in_range = clamped(inputs);
+    if (in_range.throttle != inputs.throttle || in_range.brake != inputs.brake ||
+        in_range.steer != inputs.steer)
+        throw Error("car inputs: out of range (throttle and brake 0..1, steer -1..1)");
+    set_suspension(suspension);
+    state_ = state;
+    inputs_ = inputs;
+}
+
+void Car::set_suspension(std::span<const double> travel) {
+    if (travel.size() != suspension_.size())
+        throw Error("car suspension: " + std::to_string(travel.size()) + " values for " +
+                    std::to_string(suspension_.size()) + " ellipsoids");
+    for (std::size_t i = 0; i < travel.size(); ++i) {
+        const double limit =
+            spec_.ellipsoids[i].role == EllipsoidRole::body ? 0.0 : spec_.suspension.travel;
+        if (!(travel[i] >= 0.0 && travel[i] <= limit))
+            throw Error("car suspension: ellipsoid " + std::to_string(i) + "'s travel must be in [0, " +
+                        std::to_string(limit) + "] m, got " + std::to_string(travel[i]));
+    }
+    std::copy(travel.begin(), travel.end(), suspension_.begin());
 }
 
 double Car::speed() const { return glm::length(state_.linear_velocity); }

@@ -6,4 +6,5 @@ target_sources(trackphys PRIVATE
   io/mesh_import.cpp
   io/ply_header_check.cpp
   io/recording.cpp
-  io/scenario.cpp)
+  io/scenario.cpp
+  io/snapshot_file.cpp)

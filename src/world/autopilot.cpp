@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -135,6 +136,16 @@ void Autopilot::locate(const Car& car) {
     if (located_ && previous > nearest_ && previous - nearest_ > n / 2) ++laps_;
     if (located_ && nearest_ > previous && nearest_ - previous > n / 2 && laps_ > 0) --laps_;
     located_ = true;
+}
+
+void Autopilot::set_progress(const AutopilotProgress& progress) {
+    if (progress.nearest_sample >= centerline_.size())
+        throw Error("Autopilot progress: sample " + std::to_string(progress.nearest_sample) +
+                    " is beyond the centreline's " + std::to_string(centerline_.size()) + " samples");
+    if (progress.laps < 0) throw Error("Autopilot progress: laps must be >= 0");
+    nearest_ = progress.nearest_sample;
+    laps_ = progress.laps;
+    located_ = progress.located;
 }
 
 CarInputs Autopilot::drive(const Car& car) {

@@ -1,4 +1,6 @@
 target_sources(trackphys PRIVATE
   world/autopilot.cpp
   world/world.cpp
-  world/world_settings.cpp)
+  world/world_guard.cpp
+  world/world_settings.cpp
+  world/world_snapshot.cpp)

@@ -7,6 +7,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "core/fnv1a.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/geometry/contact.hpp"
 #include "trackphys/geometry/ellipsoid_cull.hpp"
@@ -25,9 +26,12 @@ World::World(std::shared_ptr<const StaticWorld> statics, WorldSettings settings,
 
 std::size_t World::add_car(const CarSpec& spec, const RigidBodyState& state) {
     Car car(spec, state);
+    check_placement(car);
     const std::size_t ellipsoids = car.ellipsoid_count();
-    CarSlot slot{std::move(car), MidPhase(settings_.mid_phase, *statics_, trees_), Aabb{}, {}, {}, {}, {}, {}};
+    CarSlot slot{std::move(car), MidPhase(settings_.mid_phase, *statics_, trees_), Aabb{}, {}, {}, {},
+                 {}, {}, {}, RigidBodyState{}, {}, 0, {}};
     slot.listed.resize(ellipsoids);
+    slot.listed_for.resize(ellipsoids);
     slot.kept.resize(ellipsoids);
     slot.deepest.resize(ellipsoids);
     slot.deepest_ref.resize(ellipsoids, TriangleRef{~0u, ~0u});
@@ -39,7 +43,7 @@ void World::update() {
     profile_ = UpdateProfile{};
     const auto start = PhaseStopwatch::Clock::now();
     PhaseStopwatch watch(profile_, settings_.profile, trace_);
-    for (CarSlot& slot : cars_) update_car(slot, watch);
+    for (CarSlot& slot : cars_) update_car_or_reset(slot, watch);
     ++updates_;
     if (settings_.profile) {
         const auto end = PhaseStopwatch::Clock::now();
@@ -65,7 +69,7 @@ void World::update_car(CarSlot& slot, PhaseStopwatch& watch) {
     begin_update(slot, swept_box(box, state.linear_velocity * dt, margin), watch);
 
     for (int step = 0; step < settings_.steps; ++step) {
-        list_step_candidates(slot, watch);
+        list_step_candidates(slot, settings_.steps - step, watch);
         for (int s = 0; s < settings_.substeps; ++s) substep(slot, watch);
     }
 }
@@ -75,36 +79,50 @@ void World::update_car(CarSlot& slot, PhaseStopwatch& watch) {
 void World::begin_update(CarSlot& slot, const Aabb& box, PhaseStopwatch& watch) {
     slot.update_box = box;
     slot.mid.begin_update(box);
+    // Lists are queried inside the update box, from entry nodes of that box.
+    for (std::optional<SweptEllipsoid>& shape : slot.listed_for) shape.reset();
     profile_.candidates += slot.mid.broad_phase_candidate_count();
     watch.lap(settings_.mid_phase == MidPhaseMode::per_update_tree ? Phase::mid : Phase::broad);
 }
 
 // The mid phase, once per step: each ellipsoid's triangles for the step's sub-steps, from
 // the ellipsoid swept by its velocity over the step and grown for rotation and for up to
-// 10 m/s of velocity change.
-void World::list_step_candidates(CarSlot& slot, PhaseStopwatch& watch) {
+// 10 m/s of velocity change. A query costs far more than culling a few more triangles, so
+// each query looks settings_.mid_phase_look_ahead steps ahead along the current velocity
+// with some slack, and later steps of the update reuse its list while their own swept
+// ellipsoid stays inside it (a car that turns or bounces out of it queries again).
+void World::list_step_candidates(CarSlot& slot, int steps_left, PhaseStopwatch& watch) {
     const Car& car = slot.car;
     const RigidBodyState& state = car.state();
     const double step_dt = settings_.dt_update / settings_.steps;
     const double spin = glm::length(state.angular_velocity);
     for (std::size_t i = 0; i < car.ellipsoid_count(); ++i) {
         const Ellipsoid ellipsoid = car.world_ellipsoid(i);
-        const glm::dvec3 end = ellipsoid.center() + point_velocity(state, ellipsoid.center()) * step_dt;
+        const glm::dvec3 velocity = point_velocity(state, ellipsoid.center());
         const double margin = spin * ellipsoid.bounding_radius() * step_dt + 10.0 * step_dt;
-        // A step that leaves the update's box (a car thrown off its course by an impact)
-        // widens the box first: the mid phase only knows the triangles inside it.
-        Aabb reach = ellipsoid.bounds();
-        reach.expand(Aabb{reach.min + (end - ellipsoid.center()), reach.max + (end - ellipsoid.center())});
-        reach = reach.padded(margin);
-        if (!(slot.update_box.contains(reach.min) && slot.update_box.contains(reach.max))) {
-            Aabb wider = slot.update_box;
-            wider.expand(reach.padded(settings_.broad_phase_margin));
-            watch.lap(Phase::mid);
-            begin_update(slot, wider, watch);
-        }
+        const SweptEllipsoid step_shape{ellipsoid, ellipsoid.center() + velocity * step_dt, margin};
         std::vector<MidPhaseCandidate>& listed = slot.listed[i];
-        listed.clear();
-        slot.mid.query_swept_ellipsoid(ellipsoid, end, margin, listed);
+        std::optional<SweptEllipsoid>& listed_for = slot.listed_for[i];
+        if (!listed_for || !listed_for->contains(step_shape)) {
+            const int ahead = std::min(settings_.mid_phase_look_ahead, steps_left);
+            const double slack = ahead > 1 ? settings_.mid_phase_slack : 0.0;
+            listed_for = SweptEllipsoid{ellipsoid, ellipsoid.center() + velocity * (step_dt * ahead),
+                                        margin + slack};
+            // Looking ahead must not leave the update box; a step that leaves it (a car
+            // thrown off its course by an impact) widens the box first: the mid phase only
+            // knows the triangles inside it.
+            if (!slot.update_box.contains(listed_for->bounds())) listed_for = step_shape;
+            if (!slot.update_box.contains(step_shape.bounds())) {
+                Aabb wider = slot.update_box;
+                wider.expand(step_shape.bounds().padded(settings_.broad_phase_margin));
+                watch.lap(Phase::mid);
+                begin_update(slot, wider, watch);
+                listed_for = step_shape;
+            }
+            listed.clear();
+            slot.mid.query_swept_ellipsoid(ellipsoid, listed_for->end, listed_for->margin, listed);
+            ++profile_.mid_queries;
+        }
         if (settings_.mid_phase == MidPhaseMode::precomputed_tree) profile_.candidates += listed.size();
     }
     watch.lap(Phase::mid);
@@ -152,13 +170,23 @@ void World::substep(CarSlot& slot, PhaseStopwatch& watch) {
                 return a.depth_bound < b.depth_bound;
             });
         std::iter_swap(kept.begin(), first);
+        // After the first contact, the bound along its normal skips the neighbours that
+        // cannot beat it (ties within kDepthTie, far below the 1e-9 m contract, included).
+        constexpr double kDepthTie = 1e-12;  // m
+        const Ellipsoid& ellipsoid = slot.placed[i];
+        double deepest_support = 0.0;  // h(deepest.normal)
         for (const Survivor& s : kept) {
             if (!(s.depth_bound > deepest.depth)) continue;
             const Triangle triangle = statics_->collider(s.ref.collider).triangle(s.ref.triangle);
-            const Contact contact = ellipsoid_triangle_contact(slot.placed[i], triangle);
+            if (deepest.depth > -std::numeric_limits<double>::infinity() &&
+                !(depth_bound_along(triangle, ellipsoid, deepest.normal, deepest_support) >
+                  deepest.depth + kDepthTie))
+                continue;
+            const Contact contact = ellipsoid_triangle_contact(ellipsoid, triangle);
             ++profile_.exact_tests;
             if (contact.depth > deepest.depth) {
                 deepest = contact;
+                deepest_support = support_extent(ellipsoid, contact.normal);
                 slot.deepest_ref[i] = s.ref;
             }
         }
@@ -170,29 +198,13 @@ void World::substep(CarSlot& slot, PhaseStopwatch& watch) {
     watch.lap(Phase::integrate);
 }
 
-namespace {
-
-// FNV-1a over raw bytes: the hash sees every bit of every double.
-struct Fnv1a {
-    std::uint64_t value = 0xcbf29ce484222325ull;
-    void add(const void* data, std::size_t size) {
-        const auto* bytes = static_cast<const unsigned char*>(data);
-        for (std::size_t i = 0; i < size; ++i) value = (value ^ bytes[i]) * 0x100000001b3ull;
-    }
-    void add(double x) { add(&x, sizeof x); }
-    void add(const glm::dvec3& v) { add(v.x), add(v.y), add(v.z); }
-};
-
-}  // namespace
-
 std::uint64_t World::state_hash() const {
-    Fnv1a hash;
-    hash.add(&updates_, sizeof updates_);
+    core::Fnv1a hash;
+    hash.add(updates_);
     for (const CarSlot& slot : cars_) {
         const RigidBodyState& s = slot.car.state();
         hash.add(s.position);
-        hash.add(s.orientation.w), hash.add(s.orientation.x), hash.add(s.orientation.y),
-            hash.add(s.orientation.z);
+        hash.add(s.orientation);
         hash.add(s.linear_velocity);
         hash.add(s.angular_velocity);
         for (std::size_t i = 0; i < slot.car.ellipsoid_count(); ++i) hash.add(slot.car.suspension(i));

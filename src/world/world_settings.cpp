@@ -3,6 +3,8 @@
 #include <cmath>
 #include <sstream>
 
+#include <glm/geometric.hpp>
+
 #include "trackphys/math/types.hpp"
 
 namespace trackphys {
@@ -15,11 +17,24 @@ std::string WorldSettings::validate() const {
         why << "WorldSettings.steps must be in [1, 10000], got " << steps;
     else if (substeps < 1 || substeps > 10000)
         why << "WorldSettings.substeps must be in [1, 10000], got " << substeps;
-    else if (!is_finite(gravity))
-        why << "WorldSettings.gravity is not finite";
+    else if (!(is_finite(gravity) && glm::length(gravity) <= kMaxGravity))
+        why << "WorldSettings.gravity must be finite and at most " << kMaxGravity
+            << " m/s^2 in magnitude, got (" << gravity.x << ", " << gravity.y << ", " << gravity.z << ")";
     else if (!(std::isfinite(broad_phase_margin) && broad_phase_margin >= 0.0))
         why << "WorldSettings.broad_phase_margin must be finite and >= 0, got "
             << broad_phase_margin;
+    else if (mid_phase_look_ahead < 1)
+        why << "WorldSettings.mid_phase_look_ahead must be >= 1, got " << mid_phase_look_ahead;
+    else if (!(std::isfinite(mid_phase_slack) && mid_phase_slack >= 0.0))
+        why << "WorldSettings.mid_phase_slack must be finite and >= 0, got " << mid_phase_slack;
+    else if (!(std::isfinite(max_car_speed) && max_car_speed > 0.0))
+        why << "WorldSettings.max_car_speed must be finite and > 0, got " << max_car_speed;
+    else if (!(std::isfinite(max_car_angular_speed) && max_car_angular_speed > 0.0))
+        why << "WorldSettings.max_car_angular_speed must be finite and > 0, got "
+            << max_car_angular_speed;
+    else if (!(max_spawn_distance >= 0.0))
+        why << "WorldSettings.max_spawn_distance must be >= 0 (infinity for no limit), got "
+            << max_spawn_distance;
     return why.str();
 }
 

@@ -1,6 +1,10 @@
 #include "trackphys/geometry/ellipsoid_cull.hpp"
 
+#include <cmath>
+#include <random>
+
 #include <gtest/gtest.h>
+#include <glm/geometric.hpp>
 
 #include "support/contact_cases.hpp"
 #include "trackphys/geometry/contact.hpp"
@@ -30,6 +34,31 @@ TEST(EllipsoidCull, NeverRejectsAnOverlappingPair) {
     }
     EXPECT_GT(overlapping, 10000);
     EXPECT_GT(rejected, 5000);
+}
+
+// Any direction bounds the depth from above, and the contact's own normal gives the depth
+// itself: the bound the world's exact phase skips neighbours with.
+TEST(EllipsoidCull, DepthBoundAlongAnyDirectionHoldsAndIsTightAtTheContactNormal) {
+    test::ContactCaseGenerator cases(977);
+    std::mt19937_64 rng(31);
+    std::normal_distribution<double> gauss;
+    int tight = 0;
+    for (int i = 0; i < 20000; ++i) {
+        const auto kind = static_cast<test::ContactKind>(i % static_cast<int>(test::ContactKind::count));
+        const test::ContactCase c = cases.make(kind);
+        const Contact contact = ellipsoid_triangle_contact(c.ellipsoid, c.triangle);
+        const double scale = 1e-12 * (1.0 + c.ellipsoid.sorted_radii().x + glm::length(c.ellipsoid.center()) +
+                                      glm::length(c.triangle[0]));
+        const glm::dvec3 u = glm::normalize(glm::dvec3(gauss(rng), gauss(rng), gauss(rng)));
+        ASSERT_GE(depth_bound_along(c.triangle, c.ellipsoid, u, support_extent(c.ellipsoid, u)),
+                  contact.depth - scale)
+            << "case " << i << " (" << test::contact_kind_name(kind) << ")";
+        const double at_normal = depth_bound_along(c.triangle, c.ellipsoid, contact.normal,
+                                                   support_extent(c.ellipsoid, contact.normal));
+        ASSERT_GE(at_normal, contact.depth - scale) << "case " << i;
+        tight += at_normal - contact.depth < 1e-9 * (1.0 + std::abs(contact.depth));
+    }
+    EXPECT_GT(tight, 19000);
 }
 
 TEST(EllipsoidCull, SupportExtentIsTheHalfWidthAlongADirection) {

@@ -9,40 +9,16 @@
 #include "trackphys/track/track.hpp"
 #include "trackphys/world/autopilot.hpp"
 #include "trackphys/world/world.hpp"
+#include "world/track_world.hpp"
 #include "world/world_scenes.hpp"
 
 namespace trackphys {
 namespace {
 
-struct TrackWorld {
-    Track track;
-    std::shared_ptr<const StaticWorld> statics;
-    ColliderPlaneTrees trees;  ///< built once, shared by every world of a test
-};
-
-TrackWorld make_track_world(std::uint64_t seed) {
-    TrackParams params;
-    params.seed = seed;
-    TrackWorld tw{generate_track(params), nullptr, {}};
-    auto statics = std::make_shared<StaticWorld>();
-    for (const TrackChunk& chunk : tw.track.chunks) statics->add(std::make_shared<StaticCollider>(chunk.mesh));
-    tw.statics = std::move(statics);
-    tw.trees = make_collider_plane_trees(*tw.statics);
-    return tw;
-}
-
-const TrackWorld& default_track() {
-    static const TrackWorld instance = make_track_world(7);
-    return instance;
-}
-
-RigidBodyState on_start_line(const Track& track) {
-    const CenterlineSample& s = track.centerline.front();
-    RigidBodyState state;
-    state.position = s.position + s.up * (CarSpec::default_car().lowest_point_depth() + 0.001);
-    state.orientation = glm::normalize(glm::quat_cast(glm::dmat3(s.left, s.up, s.tangent)));
-    return state;
-}
+using test::TrackWorld;
+using test::default_track;
+using test::make_track_world;
+using test::on_start_line;
 
 void drive_a_lap(double target_kmh, const TrackWorld& tw = default_track()) {
     const CarSpec spec = CarSpec::default_car();
@@ -151,6 +127,36 @@ TEST(Autopilot, EveryMidPhaseModeDrivesTheSame) {
     }
     EXPECT_LE(glm::length(finals[1] - finals[0]), 1e-9);
     EXPECT_LE(glm::length(finals[2] - finals[0]), 1e-9);
+}
+
+// Reusing a look-ahead query's list while the step's shape stays inside it changes which
+// triangles are culled, never which contacts win: 1 (a query every step), the default and
+// the whole update ahead end in the same state. The reuse must also happen.
+TEST(Autopilot, LookingAheadInTheMidPhaseDrivesTheSame) {
+    const TrackWorld& tw = default_track();
+    const CarSpec spec = CarSpec::default_car();
+    std::vector<glm::dvec3> finals;
+    std::vector<std::uint64_t> queries;
+    for (const int look_ahead : {1, 3, 10}) {
+        WorldSettings settings;
+        settings.mid_phase_look_ahead = look_ahead;
+        World world(tw.statics, settings, tw.trees);
+        world.add_car(spec, on_start_line(tw.track));
+        Autopilot pilot(tw.track, spec);
+        std::uint64_t listed = 0;
+        for (int i = 0; i < 300; ++i) {
+            world.car(0).set_inputs(pilot.drive(world.car(0)));
+            world.update();
+            listed += world.last_profile().mid_queries;
+        }
+        finals.push_back(world.car(0).state().position);
+        queries.push_back(listed);
+    }
+    EXPECT_LE(glm::length(finals[1] - finals[0]), 1e-9);
+    EXPECT_LE(glm::length(finals[2] - finals[0]), 1e-9);
+    EXPECT_EQ(queries[0], 300u * 10u * spec.ellipsoids.size());
+    EXPECT_LT(queries[1], queries[0] * 6 / 10);
+    EXPECT_LT(queries[2], queries[1]);
 }
 
 }  // namespace

@@ -170,6 +170,12 @@ TEST(CarPhysics, InvalidSettingsAndStatesAreRejected) {
     WorldSettings bad;
     bad.dt_update = 0.0;
     EXPECT_THROW(World(statics, bad), Error);
+    bad = WorldSettings{};
+    bad.mid_phase_look_ahead = 0;
+    EXPECT_THROW(World(statics, bad), Error);
+    bad = WorldSettings{};
+    bad.mid_phase_slack = -1.0;
+    EXPECT_THROW(World(statics, bad), Error);
     EXPECT_THROW(World(nullptr), Error);
     World world(statics);
     RigidBodyState nan_state;

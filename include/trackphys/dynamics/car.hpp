@@ -16,7 +16,8 @@
 
 namespace trackphys {
 
-/// The driver's controls. Out-of-range values are clamped by Car::set_inputs.
+/// The driver's controls. Out-of-range values are clamped by Car::set_inputs; NaN is
+/// rejected.
 struct CarInputs {
     double throttle = 0.0;  ///< 0..1, fraction of the available drive force
     double brake = 0.0;     ///< 0..1, fraction of the brake force
@@ -36,7 +37,9 @@ public:
     /// Replaces the state (teleport, restore). Throws trackphys::Error if not finite.
     void set_state(const RigidBodyState& state);
     const CarInputs& inputs() const { return inputs_; }
-    /// Sets the inputs, clamped to their ranges; NaN counts as 0 (no input).
+    /// Sets the inputs, clamped to their ranges (infinities too). Throws trackphys::Error
+    /// naming the input when one is NaN: a NaN is a bug upstream (a controller dividing by
+    /// zero), not a command, and guessing a value for it would hide that bug.
     void set_inputs(const CarInputs& inputs);
 
     std::size_t ellipsoid_count() const { return body_ellipsoids_.size(); }
@@ -50,6 +53,18 @@ public:
     }
     /// Suspension compression of ellipsoid i from full droop (m; always 0 for the body).
     double suspension(std::size_t i) const { return suspension_[i]; }
+    /// Suspension compression of every ellipsoid, in CarSpec order (m).
+    std::span<const double> suspension() const { return suspension_; }
+    /// Replaces the suspension compressions (restore, reset). Throws trackphys::Error unless
+    /// there is one per ellipsoid, each in [0, CarSpec::suspension.travel] (0 for the body).
+    void set_suspension(std::span<const double> travel);
+    /// Replaces state, inputs and suspension with exactly these bits (no renormalisation, no
+    /// clamping), as World::restore_state needs for bit-identical results. Throws
+    /// trackphys::Error, changing nothing, when set_state or set_suspension would reject
+    /// them, the orientation is off unit length by more than 1e-6, or an input is NaN or out
+    /// of its range.
+    void restore(const RigidBodyState& state, const CarInputs& inputs,
+                 std::span<const double> suspension);
     /// Radius about the centre of mass of a sphere holding every ellipsoid (m).
     double bounding_radius() const { return bounding_radius_; }
 

@@ -82,7 +82,7 @@ struct TRACKPHYS_API CarSpec {
     double air_density = 1.2;           ///< kg/m^3
 
     /// A 1200 kg car, 4.5 m long and 2 m wide: four wheels (0.35 m radius, 0.15 m half
-    /// width) and four body ellipsoids, springs for about 1.5 cm static sag, damping near
+    /// width) and four body ellipsoids, tyres of 0.74 cm static sag, damping near
     /// critical, enough power and downforce to reach 1000 km/h.
     static CarSpec default_car();
 

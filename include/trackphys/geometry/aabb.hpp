@@ -51,6 +51,8 @@ struct Aabb {
         return min.x <= p.x && p.x <= max.x && min.y <= p.y && p.y <= max.y && min.z <= p.z &&
                p.z <= max.z;
     }
+    /// True when b lies inside this box (borders included).
+    bool contains(const Aabb& b) const { return contains(b.min) && contains(b.max); }
 };
 
 }  // namespace trackphys

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -7,6 +8,7 @@
 
 #include "trackphys/geometry/ellipsoid.hpp"
 #include "trackphys/geometry/normalized_triangle.hpp"
+#include "trackphys/geometry/triangle.hpp"
 
 namespace trackphys {
 
@@ -40,6 +42,19 @@ inline double ellipsoid_depth_bound(const NormalizedTriangle& t, const Ellipsoid
     const double hy = support_extent(e, t.dir_y);
     if (y < -hy || y > t.y2 + hy) return apart;
     return hz - std::abs(z);
+}
+
+/// An upper bound of the ellipsoid's penetration depth into the triangle from any unit
+/// direction u, given its support h(u) = support_extent(e, u): sigma = min over unit u of
+/// max_i u . (v_i - c) + h(u) (DESIGN.md, "Exact ellipsoid-triangle contact"), so every u
+/// bounds it. With u the normal of the deepest contact found so far on a neighbouring
+/// triangle, a triangle that lies lower along it (a coplanar or convex neighbour of the one
+/// a wheel stands on) cannot be deeper, whatever its own normal says.
+inline double depth_bound_along(const Triangle& t, const Ellipsoid& e, const glm::dvec3& u,
+                                double support) {
+    const glm::dvec3& c = e.center();
+    return std::max({glm::dot(u, t[0] - c), glm::dot(u, t[1] - c), glm::dot(u, t[2] - c)}) +
+           support;
 }
 
 /// false only if the ellipsoid cannot touch the triangle (see ellipsoid_depth_bound).

@@ -30,6 +30,7 @@ struct UpdateProfile {
     std::array<double, phase_count> phase_us{};
     double update_us = 0.0;              ///< the whole update, wall clock
     std::uint64_t candidates = 0;        ///< broad-phase triangles, summed over cars
+    std::uint64_t mid_queries = 0;       ///< mid-phase queries (the others reused a list)
     std::uint64_t culled_tests = 0;      ///< sphere culls run (per ellipsoid per sub-step)
     std::uint64_t exact_tests = 0;       ///< exact contacts computed
     std::uint64_t contacts = 0;          ///< ellipsoids in contact, summed over sub-steps

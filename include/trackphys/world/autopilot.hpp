@@ -23,6 +23,15 @@ struct AutopilotSettings {
     double yaw_damping = 0.5;
 };
 
+/// Where an Autopilot is along its track: all it remembers between calls (besides what
+/// its constructor computes from the track, the car and the settings), so that a saved
+/// drive continues identically (World::save_state for the cars, this for the driver).
+struct AutopilotProgress {
+    std::size_t nearest_sample = 0;  ///< Autopilot::nearest_sample()
+    int laps = 0;                    ///< Autopilot::laps()
+    bool located = false;            ///< false until the first drive() or locate()
+};
+
 /// Drives a car around a generated track unattended: a speed profile computed from the
 /// centreline (the fastest each turn's radius, bank, grip and downforce allow, with
 /// braking distance before it), throttle and brake to follow it, and pure-pursuit steering
@@ -45,6 +54,12 @@ public:
     double distance_along() const { return laps_ * length_ + centerline_[nearest_].distance; }
     /// Completed laps: times the car crossed the start line going forward.
     int laps() const { return laps_; }
+
+    /// The progress to save beside a world snapshot.
+    AutopilotProgress progress() const { return {nearest_, laps_, located_}; }
+    /// Continues from saved progress. Throws trackphys::Error when the sample is not on
+    /// this track's centreline or laps is negative.
+    void set_progress(const AutopilotProgress& progress);
 
 private:
     std::size_t find_nearest(const glm::dvec3& position) const;

@@ -3,11 +3,14 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "trackphys/collision/mid_phase.hpp"
 #include "trackphys/collision/static_world.hpp"
+#include "trackphys/collision/swept_ellipsoid.hpp"
 #include "trackphys/dynamics/car.hpp"
 #include "trackphys/export.hpp"
 #include "trackphys/geometry/normalized_triangle.hpp"
@@ -15,6 +18,7 @@
 #include "trackphys/profile/trace_recorder.hpp"
 #include "trackphys/profile/update_profile.hpp"
 #include "trackphys/world/world_settings.hpp"
+#include "trackphys/world/world_snapshot.hpp"
 
 namespace trackphys {
 
@@ -24,7 +28,15 @@ namespace trackphys {
 ///
 /// Cars do not interact yet, so each car's update reads only the static world and its
 /// own state: the result does not depend on the order of the cars. Same inputs, same
-/// build -> bit-identical states (state_hash()).
+/// build -> bit-identical states (state_hash()), also across save_state/restore_state.
+///
+/// Reset policy: a car that ends an update in an impossible state (a non-finite position,
+/// orientation or velocity, a speed above settings().max_car_speed or an angular speed above
+/// settings().max_car_angular_speed) is put back where it was at the start of that update,
+/// with zero linear and angular velocity, its suspension as it was then, no contacts and its
+/// inputs kept; car_resets() counts it and last_reset_reason() says why. The start state was
+/// checked when it was reached, so the reset state is always possible. The other cars are
+/// not affected.
 class TRACKPHYS_API World {
 public:
     /// Throws trackphys::Error on a null static world or invalid settings. In the
@@ -41,8 +53,12 @@ public:
     const WorldSettings& settings() const { return settings_; }
     const StaticWorld& statics() const { return *statics_; }
 
-    /// Adds a car; returns its index (0, 1, 2... in order). Throws trackphys::Error for an
-    /// invalid spec or state (see Car).
+    /// Adds a car; returns its index (0, 1, 2... in order). Throws trackphys::Error, naming
+    /// the reason, for an invalid spec or state (see Car), a state the reset policy would
+    /// reset (too fast, spinning too fast), a car inside geometry (an ellipsoid deeper than
+    /// half its smallest semi-axis into a static triangle) or far outside the map (its centre
+    /// of mass farther than settings().max_spawn_distance from every collider's box; a world
+    /// without triangles has no map and accepts any position).
     std::size_t add_car(const CarSpec& spec, const RigidBodyState& state);
     std::size_t car_count() const { return cars_.size(); }
     Car& car(std::size_t i) { return cars_.at(i).car; }
@@ -52,8 +68,24 @@ public:
     /// the last update; depth <= 0 where an ellipsoid touched nothing.
     std::span<const Contact> contacts(std::size_t i) const { return cars_.at(i).deepest; }
 
-    /// Advances every car by settings().dt_update.
+    /// Advances every car by settings().dt_update, resetting any car that ends it in an
+    /// impossible state (see the class notes).
     void update();
+
+    /// How many times car i was reset (counted over the whole simulation: snapshots keep it).
+    std::uint64_t car_resets(std::size_t i) const { return cars_.at(i).resets; }
+    /// Why car i was last reset by this World object ("update N: speed ... m/s is above
+    /// ..."), or empty.
+    const std::string& last_reset_reason(std::size_t i) const { return cars_.at(i).last_reset; }
+
+    /// The complete dynamic state (see WorldSnapshot): a few hundred bytes per car.
+    WorldSnapshot save_state() const;
+    /// Puts the world back into a saved state: the next update() gives bit-identical results
+    /// to the world it was saved from. The world must have the same static colliders, the
+    /// same stepping settings and the same cars (number and CarSpec, added in the same order;
+    /// their current states do not matter). Throws trackphys::Error naming what differs or
+    /// what is invalid, and then changes nothing.
+    void restore_state(const WorldSnapshot& snapshot);
 
     /// Simulated time (s) and number of updates run.
     double time() const { return static_cast<double>(updates_) * settings_.dt_update; }
@@ -83,15 +115,27 @@ private:
         MidPhase mid;
         Aabb update_box;                                      // what mid.begin_update covers
         std::vector<std::vector<MidPhaseCandidate>> listed;   // per ellipsoid, this step
+        std::vector<std::optional<SweptEllipsoid>> listed_for;  // the shape each list holds
         std::vector<Ellipsoid> placed;                        // the ellipsoids, this sub-step
         std::vector<std::vector<Survivor>> kept;              // per ellipsoid: culled survivors
         std::vector<Contact> deepest;                         // per ellipsoid, this sub-step
         std::vector<TriangleRef> deepest_ref;                 // its triangle, tried first next
+        // The reset policy's memory: the state at the start of this update, the resets.
+        RigidBodyState start_state;
+        std::vector<double> start_suspension;
+        std::uint64_t resets = 0;
+        std::string last_reset;
     };
 
+    // update_car under the reset policy (world_guard.cpp).
+    void update_car_or_reset(CarSlot& slot, PhaseStopwatch& watch);
+    // Why this state breaks the reset policy's limits, or empty.
+    std::string impossible_state(const RigidBodyState& state) const;
+    // add_car's checks of where the car is (world_guard.cpp).
+    void check_placement(const Car& car) const;
     void update_car(CarSlot& slot, PhaseStopwatch& watch);
     void begin_update(CarSlot& slot, const Aabb& box, PhaseStopwatch& watch);
-    void list_step_candidates(CarSlot& slot, PhaseStopwatch& watch);
+    void list_step_candidates(CarSlot& slot, int steps_left, PhaseStopwatch& watch);
     void substep(CarSlot& slot, PhaseStopwatch& watch);
 
     std::shared_ptr<const StaticWorld> statics_;

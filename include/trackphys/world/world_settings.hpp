@@ -15,12 +15,35 @@ struct TRACKPHYS_API WorldSettings {
     double dt_update = 0.01;                    ///< seconds per update()
     int steps = 10;                             ///< steps per update
     int substeps = 4;                           ///< sub-steps per step (integration steps)
+    /// The largest gravity validate() accepts (m/s^2, 100,000 g): beyond it the update's
+    /// margins, which square it, stop being finite.
+    static constexpr double kMaxGravity = 1e6;
     glm::dvec3 gravity{0.0, -9.81, 0.0};        ///< m/s^2, world +Y is up
     /// Extra broad-phase padding (m) beyond what the car can move in one update.
     double broad_phase_margin = 0.05;
     /// How each step's candidates are found (see MidPhaseMode; the default was measured
     /// fastest by bench_midphase).
     MidPhaseMode mid_phase = kDefaultMidPhaseMode;
+    /// Steps a mid-phase query covers (>= 1): it sweeps each ellipsoid along its velocity
+    /// that far ahead with mid_phase_slack more margin, and the following steps of the update
+    /// reuse its list while their own swept ellipsoid stays inside (SweptEllipsoid::contains).
+    /// 1 queries every step for that step alone, as the write-up's loop did; 3 halved the
+    /// mid phase of the default drive for 0.3 more triangles culled a sub-step.
+    int mid_phase_look_ahead = 3;
+    /// Extra margin (m, finite, >= 0) of a query that looks ahead, which a step's small
+    /// deviations from the straight path (a turn, a bump) spend before a new query.
+    double mid_phase_slack = 0.005;
+    /// A car that ends an update faster than this (m/s; default twice the 1000 km/h design
+    /// speed) is in an impossible state and is reset (World::update).
+    double max_car_speed = 2000.0 / 3.6;
+    /// Likewise for its angular speed (rad/s): 500 turns the car 0.125 rad per default
+    /// sub-step, still integrated well, and is three times the hardest impact tried (a
+    /// 1080 km/h vertical drop onto a corner: 155 rad/s; 1000 km/h into a wall: 8 rad/s).
+    double max_car_angular_speed = 500.0;
+    /// World::add_car rejects a car whose centre of mass is farther than this (m) from the
+    /// box of every collider: a car placed far outside the map is a mistake (a wrong unit or
+    /// frame) and would fall forever.
+    double max_spawn_distance = 1000.0;
     /// Measure per-phase times in the UpdateProfile (reads the clock a few times per
     /// sub-step); counts are kept either way.
     bool profile = true;

@@ -1,0 +1,54 @@
+#include "trackphys/collision/swept_ellipsoid.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+namespace trackphys {
+
+namespace {
+
+/// Distance from p to the segment [a, b].
+double distance_to_segment(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b) {
+    const glm::dvec3 along = b - a;
+    const double length2 = glm::dot(along, along);
+    const double t = length2 > 0.0 ? std::clamp(glm::dot(p - a, along) / length2, 0.0, 1.0) : 0.0;
+    return glm::length(p - (a + t * along));
+}
+
+}  // namespace
+
+Aabb SweptEllipsoid::bounds() const {
+    // The scaled ellipsoid reaches (scale - 1) r_x beyond the ellipsoid along any axis.
+    const Aabb start = ellipsoid.bounds().padded((scale() - 1.0) * ellipsoid.sorted_radii().x);
+    const glm::dvec3 move = end - ellipsoid.center();
+    Aabb box = start;
+    box.expand(Aabb{start.min + move, start.max + move});
+    return box;
+}
+
+// Write E (semi-axes D, sorted axes A) for the ellipsoid, f for the scale, c(t) for the
+// center along the segment. A point of the inner shape is c1 + A1 D f1 s with |s| <= 1 and
+// c1 on the inner segment; the point c0 + A0 D f1 s, with c0 the closest point of the outer
+// segment to c1, lies in f1 E0 about c0, and the two differ by at most
+// |c1 - c0| + ||A1 - A0|| f1 r_x (the Frobenius norm bounds the operator norm). The
+// distance to a segment is convex, so the inner segment's ends bound |c1 - c0|. Finally f1 E
+// grown by rho stays inside f0 E when rho <= (f0 - f1) r_z = margin0 - margin1, because
+// f0 E = f1 E + (f0 - f1) E and E holds the ball of radius r_z.
+bool SweptEllipsoid::contains(const SweptEllipsoid& inner) const {
+    const glm::dvec3& radii = ellipsoid.sorted_radii();
+    if (inner.ellipsoid.sorted_radii() != radii) return false;
+    const glm::dmat3 turn = inner.ellipsoid.sorted_axes() - ellipsoid.sorted_axes();
+    const double turn_norm = std::sqrt(glm::dot(turn[0], turn[0]) + glm::dot(turn[1], turn[1]) +
+                                       glm::dot(turn[2], turn[2]));
+    const glm::dvec3& a = ellipsoid.center();
+    const double offset = std::max(distance_to_segment(inner.ellipsoid.center(), a, end),
+                                   distance_to_segment(inner.end, a, end));
+    const double moved = offset + turn_norm * inner.scale() * radii.x;
+    // The rounding of these few operations is far below a nanometre on any map.
+    constexpr double kRounding = 1e-9;
+    return moved + kRounding <= margin - inner.margin;
+}
+
+}  // namespace trackphys

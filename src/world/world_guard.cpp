@@ -1,0 +1,132 @@
+// The World's guards: add_car's placement checks and the reset policy around each car's
+// update (see World's class notes).
+
+#include <cmath>
+#include <limits>
+#include <span>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <glm/geometric.hpp>
+
+#include "trackphys/error.hpp"
+#include "trackphys/geometry/contact.hpp"
+#include "trackphys/math/types.hpp"
+#include "trackphys/world/world.hpp"
+
+namespace trackphys {
+namespace {
+
+const char* role_name(EllipsoidRole role) {
+    switch (role) {
+        case EllipsoidRole::body: return "body";
+        case EllipsoidRole::front_wheel: return "front wheel";
+        case EllipsoidRole::rear_wheel: return "rear wheel";
+    }
+    return "ellipsoid";
+}
+
+// Euclidean distance from p to the box (0 inside).
+double distance_to(const Aabb& box, const glm::dvec3& p) {
+    const glm::dvec3 outside = glm::max(glm::max(box.min - p, p - box.max), glm::dvec3(0.0));
+    return glm::length(outside);
+}
+
+}  // namespace
+
+std::string World::impossible_state(const RigidBodyState& s) const {
+    // Once per car and update: the common case decides without building a message (a NaN or
+    // infinite velocity fails the comparisons too).
+    const double v = glm::length(s.linear_velocity);
+    const double w = glm::length(s.angular_velocity);
+    if (is_finite(s.position) && is_finite(s.orientation) && v <= settings_.max_car_speed &&
+        w <= settings_.max_car_angular_speed)
+        return {};
+    std::ostringstream why;
+    if (!is_finite(s.position)) why << "position is not finite";
+    else if (!is_finite(s.orientation)) why << "orientation is not finite";
+    else if (!is_finite(s.linear_velocity)) why << "linear velocity is not finite";
+    else if (!is_finite(s.angular_velocity)) why << "angular velocity is not finite";
+    else if (!(v <= settings_.max_car_speed))
+        why << "speed " << v << " m/s is above WorldSettings.max_car_speed " << settings_.max_car_speed;
+    else
+        why << "angular speed " << w << " rad/s is above WorldSettings.max_car_angular_speed "
+            << settings_.max_car_angular_speed;
+    return why.str();
+}
+
+void World::check_placement(const Car& car) const {
+    const RigidBodyState& state = car.state();
+    if (std::string why = impossible_state(state); !why.empty()) throw Error("World::add_car: " + why);
+
+    // Far outside the map: farther than max_spawn_distance from every collider's box.
+    double nearest = std::numeric_limits<double>::infinity();
+    for (std::uint32_t id = 0; id < statics_->size(); ++id) {
+        const Aabb& box = statics_->collider(id).bounds();
+        if (!box.empty()) nearest = std::min(nearest, distance_to(box, state.position));
+    }
+    if (std::isfinite(nearest) && nearest > settings_.max_spawn_distance) {
+        std::ostringstream why;
+        why << "World::add_car: the car's centre of mass (" << state.position.x << ", "
+            << state.position.y << ", " << state.position.z << ") is " << nearest
+            << " m from the nearest collider's box, farther than WorldSettings.max_spawn_distance ("
+            << settings_.max_spawn_distance << " m): the car is far outside the map";
+        throw Error(why.str());
+    }
+
+    // Inside geometry: an ellipsoid deeper than half its smallest semi-axis into a triangle
+    // (a car resting on a road sinks a few centimetres; this is a car placed through it).
+    std::vector<TriangleRef> refs;
+    for (std::size_t i = 0; i < car.ellipsoid_count(); ++i) {
+        const Ellipsoid ellipsoid = car.world_ellipsoid(i);
+        const double limit = 0.5 * ellipsoid.sorted_radii().z;
+        refs.clear();
+        statics_->query_aabb(ellipsoid.bounds(), refs);
+        for (const TriangleRef& ref : refs) {
+            const Contact contact =
+                ellipsoid_triangle_contact(ellipsoid, statics_->collider(ref.collider).triangle(ref.triangle));
+            if (contact.depth > limit) {
+                std::ostringstream why;
+                why << "World::add_car: ellipsoid " << i << " (" << role_name(car.spec().ellipsoids[i].role)
+                    << ") is " << contact.depth << " m deep in collider " << ref.collider << "'s triangle "
+                    << ref.triangle << ", more than half its smallest semi-axis (" << limit
+                    << " m): the car starts inside geometry";
+                throw Error(why.str());
+            }
+        }
+    }
+}
+
+// The hook around the hot loop: remember the start, run the update, and reset the car if it
+// ended impossible. A car whose state turns non-finite mid-update makes a query of the
+// update throw (non-finite shapes are rejected there); that is the same impossible state,
+// caught and reset here. Any other error, with the car's state still possible, propagates.
+void World::update_car_or_reset(CarSlot& slot, PhaseStopwatch& watch) {
+    slot.start_state = slot.car.state();
+    const std::span<const double> suspension = slot.car.suspension();
+    slot.start_suspension.assign(suspension.begin(), suspension.end());
+    std::string why;
+    try {
+        update_car(slot, watch);
+        why = impossible_state(slot.car.state());
+    } catch (const Error& error) {
+        why = impossible_state(slot.car.state());
+        if (why.empty()) throw;
+        why += std::string(" (the update stopped: ") + error.what() + ")";
+    }
+    if (why.empty()) return;
+
+    RigidBodyState reset = slot.start_state;
+    reset.linear_velocity = glm::dvec3(0.0);
+    reset.angular_velocity = glm::dvec3(0.0);
+    // Car::restore re-checks the start state: if even that were impossible it throws, loudly.
+    slot.car.restore(reset, slot.car.inputs(), slot.start_suspension);
+    for (Contact& contact : slot.deepest)
+        contact = Contact{-std::numeric_limits<double>::infinity(), glm::dvec3(0.0), glm::dvec3(0.0)};
+    for (TriangleRef& ref : slot.deepest_ref) ref = TriangleRef{~0u, ~0u};
+    ++slot.resets;
+    slot.last_reset = "update " + std::to_string(updates_ + 1) + ": " + why;
+}
+
+}  // namespace trackphys

@@ -1,0 +1,206 @@
+// World::save_state / restore_state and the fingerprints that tie a snapshot to its world.
+
+#include "trackphys/world/world_snapshot.hpp"
+
+#include <bit>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <string>
+#include <utility>
+
+#include <glm/geometric.hpp>
+
+#include "core/fnv1a.hpp"
+#include "trackphys/error.hpp"
+#include "trackphys/math/types.hpp"
+#include "trackphys/world/world.hpp"
+
+namespace trackphys {
+namespace {
+
+void add(core::Fnv1a& hash, const ContactMaterial& m) {
+    hash.add(m.stiffness), hash.add(m.damping), hash.add(m.friction), hash.add(m.slip_speed);
+}
+
+// Every field of CarSpec goes into its fingerprint. The size checks fail to compile when a
+// field is added, as a reminder to hash it too (then update the sizes).
+static_assert(sizeof(CarSpec) == 240, "a new CarSpec field must join fingerprint(CarSpec)");
+static_assert(sizeof(CarEllipsoid) == 88, "a new CarEllipsoid field must join fingerprint(CarSpec)");
+
+std::string describe(const ColliderFingerprint& f) {
+    std::ostringstream text;
+    text << f.mesh_triangles << " mesh triangles, " << f.kept_triangles << " kept, content hash "
+         << std::hex << f.content_hash;
+    return text.str();
+}
+
+bool same(double x, double y) { return std::bit_cast<std::uint64_t>(x) == std::bit_cast<std::uint64_t>(y); }
+
+// The first stepping setting that differs, or empty. `profile` does not change results.
+static_assert(sizeof(WorldSettings) == 96,
+              "a new WorldSettings field must join settings_difference and the snapshot file");
+std::string settings_difference(const WorldSettings& a, const WorldSettings& b) {
+    std::ostringstream why;
+    if (!same(a.dt_update, b.dt_update)) why << "dt_update " << a.dt_update << " vs " << b.dt_update;
+    else if (a.steps != b.steps) why << "steps " << a.steps << " vs " << b.steps;
+    else if (a.substeps != b.substeps) why << "substeps " << a.substeps << " vs " << b.substeps;
+    else if (!same(a.gravity.x, b.gravity.x) || !same(a.gravity.y, b.gravity.y) ||
+             !same(a.gravity.z, b.gravity.z))
+        why << "gravity";
+    else if (!same(a.broad_phase_margin, b.broad_phase_margin))
+        why << "broad_phase_margin " << a.broad_phase_margin << " vs " << b.broad_phase_margin;
+    else if (a.mid_phase != b.mid_phase)
+        why << "mid_phase " << to_string(a.mid_phase) << " vs " << to_string(b.mid_phase);
+    else if (a.mid_phase_look_ahead != b.mid_phase_look_ahead)
+        why << "mid_phase_look_ahead " << a.mid_phase_look_ahead << " vs " << b.mid_phase_look_ahead;
+    else if (!same(a.mid_phase_slack, b.mid_phase_slack))
+        why << "mid_phase_slack " << a.mid_phase_slack << " vs " << b.mid_phase_slack;
+    else if (!same(a.max_car_speed, b.max_car_speed))
+        why << "max_car_speed " << a.max_car_speed << " vs " << b.max_car_speed;
+    else if (!same(a.max_car_angular_speed, b.max_car_angular_speed))
+        why << "max_car_angular_speed " << a.max_car_angular_speed << " vs "
+            << b.max_car_angular_speed;
+    else if (!same(a.max_spawn_distance, b.max_spawn_distance))
+        why << "max_spawn_distance " << a.max_spawn_distance << " vs " << b.max_spawn_distance;
+    return why.str();
+}
+
+std::string car_problem(const CarSnapshot& car) {
+    const RigidBodyState& s = car.state;
+    if (!is_finite(s.position)) return "position is not finite";
+    // As far as a collider may reach: beyond it the update's boxes lose their precision.
+    if (!(glm::length(s.position) <= StaticCollider::kMaxCoordinate))
+        return "position is farther than 1e18 m from the origin";
+    if (!is_finite(s.orientation) || !(std::abs(glm::length(s.orientation) - 1.0) < 1e-6))
+        return "orientation is not a finite unit quaternion";
+    if (!is_finite(s.linear_velocity)) return "linear_velocity is not finite";
+    if (!is_finite(s.angular_velocity)) return "angular_velocity is not finite";
+    const CarInputs& in = car.inputs;
+    if (!(in.throttle >= 0.0 && in.throttle <= 1.0)) return "throttle is not in [0, 1]";
+    if (!(in.brake >= 0.0 && in.brake <= 1.0)) return "brake is not in [0, 1]";
+    if (!(in.steer >= -1.0 && in.steer <= 1.0)) return "steer is not in [-1, 1]";
+    if (car.suspension.empty()) return "it has no ellipsoids";
+    if (car.contacts.size() != car.suspension.size() || car.deepest_refs.size() != car.suspension.size())
+        return "its per-ellipsoid lists differ in length";
+    for (std::size_t i = 0; i < car.suspension.size(); ++i) {
+        if (!(std::isfinite(car.suspension[i]) && car.suspension[i] >= 0.0))
+            return "ellipsoid " + std::to_string(i) + "'s suspension is not finite and >= 0";
+        const Contact& c = car.contacts[i];
+        // depth is -infinity for "no contact"; normal and point feed the next sub-step's
+        // force laws even then (multiplied by zero), so they must be finite.
+        if (std::isnan(c.depth) || c.depth == std::numeric_limits<double>::infinity() ||
+            !is_finite(c.normal) || !is_finite(c.point))
+            return "ellipsoid " + std::to_string(i) + "'s contact is not finite";
+    }
+    return {};
+}
+
+}  // namespace
+
+std::vector<ColliderFingerprint> fingerprint(const StaticWorld& statics) {
+    std::vector<ColliderFingerprint> out;
+    out.reserve(statics.size());
+    for (std::uint32_t id = 0; id < statics.size(); ++id) {
+        const StaticCollider& c = statics.collider(id);
+        out.push_back({c.mesh_triangle_count(), c.triangle_count(), c.content_hash()});
+    }
+    return out;
+}
+
+std::uint64_t fingerprint(const CarSpec& spec) {
+    core::Fnv1a hash;
+    hash.add(spec.mass.mass), hash.add(spec.mass.principal_inertia);
+    hash.add(static_cast<std::uint64_t>(spec.ellipsoids.size()));
+    for (const CarEllipsoid& e : spec.ellipsoids) {
+        hash.add(e.center), hash.add(e.semi_axes), hash.add(e.orientation);
+        hash.add(static_cast<std::uint64_t>(e.role));
+    }
+    add(hash, spec.body_contact);
+    add(hash, spec.wheel_contact);
+    hash.add(spec.rear_grip_factor);
+    hash.add(spec.suspension.stiffness), hash.add(spec.suspension.damping), hash.add(spec.suspension.travel);
+    for (const double x : {spec.max_drive_force, spec.front_drive_share, spec.traction_limit,
+                           spec.max_drive_power, spec.max_brake_force, spec.front_brake_share,
+                           spec.max_steer_angle, spec.deep_contact_fraction, spec.drag_area,
+                           spec.downforce_area, spec.air_density})
+        hash.add(x);
+    return hash.value;
+}
+
+std::string WorldSnapshot::validate() const {
+    if (std::string why = settings.validate(); !why.empty()) return why;
+    for (std::size_t i = 0; i < cars.size(); ++i)
+        if (std::string why = car_problem(cars[i]); !why.empty())
+            return "car " + std::to_string(i) + ": " + why;
+    return {};
+}
+
+WorldSnapshot World::save_state() const {
+    WorldSnapshot snapshot;
+    snapshot.colliders = fingerprint(*statics_);
+    snapshot.settings = settings_;
+    snapshot.update_count = updates_;
+    for (const CarSlot& slot : cars_) {
+        const std::span<const double> suspension = slot.car.suspension();
+        snapshot.cars.push_back({fingerprint(slot.car.spec()), slot.car.state(), slot.car.inputs(),
+                                 {suspension.begin(), suspension.end()}, slot.deepest,
+                                 slot.deepest_ref, slot.resets});
+    }
+    return snapshot;
+}
+
+// Everything is checked, and the new cars built aside, before anything changes: a
+// rejected snapshot leaves the World as it was.
+void World::restore_state(const WorldSnapshot& snapshot) {
+    const auto reject = [](const std::string& why) { throw Error("World::restore_state: " + why); };
+    if (std::string why = snapshot.validate(); !why.empty()) reject("the snapshot is invalid: " + why);
+
+    const std::vector<ColliderFingerprint> colliders = fingerprint(*statics_);
+    if (snapshot.colliders.size() != colliders.size())
+        reject("the snapshot was made over " + std::to_string(snapshot.colliders.size()) +
+               " colliders, this world has " + std::to_string(colliders.size()));
+    for (std::size_t i = 0; i < colliders.size(); ++i)
+        if (!(snapshot.colliders[i] == colliders[i]))
+            reject("collider " + std::to_string(i) + " differs: the snapshot's has " +
+                   describe(snapshot.colliders[i]) + ", this world's " + describe(colliders[i]));
+    if (std::string why = settings_difference(snapshot.settings, settings_); !why.empty())
+        reject("the world settings differ (snapshot vs this world): " + why);
+    if (snapshot.cars.size() != cars_.size())
+        reject("the snapshot has " + std::to_string(snapshot.cars.size()) + " cars, this world " +
+               std::to_string(cars_.size()) + " (add the same cars first)");
+
+    std::vector<Car> restored;
+    restored.reserve(cars_.size());
+    for (std::size_t i = 0; i < cars_.size(); ++i) {
+        const CarSnapshot& saved = snapshot.cars[i];
+        const Car& car = cars_[i].car;
+        if (saved.spec_fingerprint != fingerprint(car.spec()))
+            reject("car " + std::to_string(i) + " has another CarSpec than the snapshot's");
+        if (saved.suspension.size() != car.ellipsoid_count())
+            reject("car " + std::to_string(i) + " has " + std::to_string(car.ellipsoid_count()) +
+                   " ellipsoids, the snapshot " + std::to_string(saved.suspension.size()));
+        if (std::string why = impossible_state(saved.state); !why.empty())
+            reject("car " + std::to_string(i) + ": " + why);
+        try {
+            Car copy = car;
+            copy.restore(saved.state, saved.inputs, saved.suspension);
+            restored.push_back(std::move(copy));
+        } catch (const Error& e) {
+            reject("car " + std::to_string(i) + ": " + e.what());
+        }
+    }
+
+    for (std::size_t i = 0; i < cars_.size(); ++i) {
+        CarSlot& slot = cars_[i];
+        const CarSnapshot& saved = snapshot.cars[i];
+        slot.car = std::move(restored[i]);
+        slot.deepest = saved.contacts;
+        slot.deepest_ref = saved.deepest_refs;
+        slot.resets = saved.resets;
+        slot.last_reset.clear();
+    }
+    updates_ = snapshot.update_count;
+}
+
+}  // namespace trackphys

@@ -1,0 +1,197 @@
+// The World's guards: the reset policy (a car in an impossible state is reset, never left to
+// poison the world) and the API preconditions (settings, inputs, where a car is added).
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <gtest/gtest.h>
+
+#include "trackphys/error.hpp"
+#include "trackphys/math/types.hpp"
+#include "trackphys/world/world.hpp"
+#include "world/world_scenes.hpp"
+
+namespace trackphys {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+RigidBodyState at(const glm::dvec3& position, const glm::dvec3& velocity = glm::dvec3(0.0)) {
+    RigidBodyState state;
+    state.position = position;
+    state.linear_velocity = velocity;
+    return state;
+}
+
+std::string error_of(auto&& f) {
+    try {
+        f();
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "(no error)";
+}
+
+bool finite(const RigidBodyState& s) {
+    return is_finite(s.position) && is_finite(s.orientation) && is_finite(s.linear_velocity) &&
+           is_finite(s.angular_velocity);
+}
+
+// An absurd but valid air density (1e300 kg/m^3) makes the drag at 5 m/s throw the car to
+// ~1e294 m/s in one sub-step, and v . v overflows in the next: the state turns NaN
+// mid-update. The car is reset to where the update began, at rest; from rest the drag is
+// zero, the car falls, and the next update does it again. The world stays finite.
+TEST(ResetPolicy, ANonFiniteCarIsResetToItsStartAtRest) {
+    CarSpec absurd = CarSpec::default_car();
+    absurd.air_density = 1e300;
+    World world(test::static_world_of(test::flat_grid(40.0, 8)));
+    const RigidBodyState start = at({0.0, 3.0, 0.0}, {0.0, 0.0, 5.0});
+    world.add_car(absurd, start);
+    world.car(0).set_inputs({0.7, 0.0, 0.1});
+    for (int i = 1; i <= 5; ++i) {
+        world.update();
+        ASSERT_EQ(world.car_resets(0), static_cast<std::uint64_t>(i));
+        const RigidBodyState& s = world.car(0).state();
+        ASSERT_TRUE(finite(s));
+        EXPECT_EQ(s.position, start.position);
+        EXPECT_EQ(s.linear_velocity, glm::dvec3(0.0));
+        EXPECT_EQ(s.angular_velocity, glm::dvec3(0.0));
+        EXPECT_EQ(world.car(0).inputs().throttle, 0.7) << "inputs are kept";
+        for (const Contact& c : world.contacts(0)) EXPECT_EQ(c.depth, -kInf);
+    }
+    EXPECT_NE(world.last_reset_reason(0).find("update 5: "), std::string::npos) << world.last_reset_reason(0);
+    EXPECT_NE(world.last_reset_reason(0).find("not finite"), std::string::npos) << world.last_reset_reason(0);
+}
+
+// A strong gravity (300 g) pulls a car falling at 540 m/s past twice the design speed
+// (555.6 m/s) in one update: reset once, then it falls from rest within the limits.
+TEST(ResetPolicy, AnOverSpeedCarIsResetOnce) {
+    WorldSettings strong;
+    strong.gravity = {0.0, -3000.0, 0.0};
+    World world(test::static_world_of(test::flat_grid(40.0, 8)), strong);
+    const RigidBodyState start = at({0.0, 900.0, 0.0}, {0.0, -540.0, 0.0});
+    world.add_car(CarSpec::default_car(), start);
+    world.update();
+    EXPECT_EQ(world.car_resets(0), 1u);
+    EXPECT_EQ(world.car(0).state().position, start.position);
+    EXPECT_NE(world.last_reset_reason(0).find("above WorldSettings.max_car_speed"), std::string::npos)
+        << world.last_reset_reason(0);
+    world.update();
+    EXPECT_EQ(world.car_resets(0), 1u);
+    EXPECT_GT(world.car(0).speed(), 20.0) << "falling again";
+}
+
+// A car dropped at 100 m/s onto its corner (rolled 60 degrees) spins up in the impact; with
+// the limit at 5 rad/s that is an impossible state.
+TEST(ResetPolicy, AnOverSpinningCarIsReset) {
+    WorldSettings tight;
+    tight.max_car_angular_speed = 5.0;
+    World world(test::static_world_of(test::flat_grid(40.0, 8)), tight);
+    RigidBodyState start = at({0.0, 2.0, 0.0}, {0.0, -100.0, 0.0});
+    start.orientation = glm::angleAxis(1.05, glm::dvec3(0.0, 0.0, 1.0));
+    world.add_car(CarSpec::default_car(), start);
+    for (int i = 0; i < 10 && world.car_resets(0) == 0; ++i) world.update();
+    EXPECT_GE(world.car_resets(0), 1u);
+    EXPECT_NE(world.last_reset_reason(0).find("angular speed"), std::string::npos) << world.last_reset_reason(0);
+    EXPECT_LE(glm::length(world.car(0).state().angular_velocity), 5.0);
+}
+
+TEST(ResetPolicy, ResetsTravelWithSnapshots) {
+    WorldSettings strong;
+    strong.gravity = {0.0, -3000.0, 0.0};
+    World world(test::static_world_of(test::flat_grid(40.0, 8)), strong);
+    world.add_car(CarSpec::default_car(), at({0.0, 900.0, 0.0}, {0.0, -540.0, 0.0}));
+    world.update();
+    World copy(test::static_world_of(test::flat_grid(40.0, 8)), strong);
+    copy.add_car(CarSpec::default_car(), at({0.0, 900.0, 0.0}));
+    copy.restore_state(world.save_state());
+    EXPECT_EQ(copy.car_resets(0), 1u);
+}
+
+TEST(Preconditions, WorldSettingsNameTheFieldAndTheReason) {
+    const auto statics = test::static_world_of(test::flat_grid(10.0, 2));
+    const auto message = [&](auto change) {
+        WorldSettings settings;
+        change(settings);
+        return error_of([&] { World world(statics, settings); });
+    };
+    for (const double dt : {0.0, -0.01, kNaN, kInf})
+        EXPECT_NE(message([dt](WorldSettings& s) { s.dt_update = dt; }).find("WorldSettings.dt_update must be in (0, 1]"),
+                  std::string::npos) << dt;
+    EXPECT_NE(message([](WorldSettings& s) { s.steps = 0; }).find("WorldSettings.steps"), std::string::npos);
+    EXPECT_NE(message([](WorldSettings& s) { s.substeps = -1; }).find("WorldSettings.substeps"), std::string::npos);
+    EXPECT_NE(message([](WorldSettings& s) { s.gravity.y = kNaN; }).find("WorldSettings.gravity"), std::string::npos);
+    EXPECT_NE(message([](WorldSettings& s) { s.gravity.y = -1e300; }).find("WorldSettings.gravity must be finite and at most"),
+              std::string::npos);
+    EXPECT_NE(message([](WorldSettings& s) { s.max_car_speed = 0.0; }).find("WorldSettings.max_car_speed"),
+              std::string::npos);
+    EXPECT_NE(message([](WorldSettings& s) { s.max_car_angular_speed = kNaN; })
+                  .find("WorldSettings.max_car_angular_speed"),
+              std::string::npos);
+    EXPECT_NE(message([](WorldSettings& s) { s.max_spawn_distance = -1.0; }).find("WorldSettings.max_spawn_distance"),
+              std::string::npos);
+}
+
+TEST(Preconditions, NaNInputsAreRejectedAndInfinitiesClamped) {
+    Car car(CarSpec::default_car(), RigidBodyState{});
+    car.set_inputs({0.5, 0.25, -0.5});
+    EXPECT_NE(error_of([&] { car.set_inputs({kNaN, 0.0, 0.0}); }).find("throttle is NaN"), std::string::npos);
+    EXPECT_NE(error_of([&] { car.set_inputs({0.0, kNaN, 0.0}); }).find("brake is NaN"), std::string::npos);
+    EXPECT_NE(error_of([&] { car.set_inputs({0.0, 0.0, kNaN}); }).find("steer is NaN"), std::string::npos);
+    EXPECT_EQ(car.inputs().throttle, 0.5) << "a rejected input changes nothing";
+    car.set_inputs({kInf, -kInf, kInf});
+    EXPECT_EQ(car.inputs().throttle, 1.0);
+    EXPECT_EQ(car.inputs().brake, 0.0);
+    EXPECT_EQ(car.inputs().steer, 1.0);
+}
+
+TEST(Preconditions, ACarInsideGeometryIsRejected) {
+    TriangleMesh scene = test::flat_grid(40.0, 8);
+    const TriangleMesh barrier = test::wall(5.0, 10.0, 3.0);
+    const auto base = static_cast<std::uint32_t>(scene.vertices.size());
+    scene.vertices.insert(scene.vertices.end(), barrier.vertices.begin(), barrier.vertices.end());
+    for (auto t : barrier.triangles) scene.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+    World world(test::static_world_of(scene));
+
+    // Wheels 20 cm into the ground (more than half of their 15 cm half-width).
+    const std::string sunk = error_of([&] { world.add_car(CarSpec::default_car(), at({0.0, 0.3, 0.0})); });
+    EXPECT_NE(sunk.find("inside geometry"), std::string::npos) << sunk;
+    EXPECT_NE(sunk.find("wheel"), std::string::npos) << sunk;
+    // Through the wall.
+    const std::string walled = error_of([&] { world.add_car(CarSpec::default_car(), at({0.0, 0.52, 5.0})); });
+    EXPECT_NE(walled.find("inside geometry"), std::string::npos) << walled;
+    EXPECT_EQ(world.car_count(), 0u);
+    // Resting on the ground with its wheels 1 cm deep, or a millimetre above it: fine.
+    EXPECT_NO_THROW(world.add_car(CarSpec::default_car(), at({0.0, 0.49, -5.0})));
+    EXPECT_NO_THROW(world.add_car(CarSpec::default_car(), at({0.0, 0.501, -10.0})));
+}
+
+TEST(Preconditions, ACarFarOutsideTheMapIsRejected) {
+    World world(test::static_world_of(test::flat_grid(40.0, 8)));
+    const std::string far = error_of([&] { world.add_car(CarSpec::default_car(), at({5000.0, 1.0, 0.0})); });
+    EXPECT_NE(far.find("far outside the map"), std::string::npos) << far;
+    EXPECT_NE(far.find("WorldSettings.max_spawn_distance"), std::string::npos) << far;
+    EXPECT_NO_THROW(world.add_car(CarSpec::default_car(), at({0.0, 900.0, 0.0})));
+    EXPECT_NO_THROW(world.add_car(CarSpec::default_car(), at({1000.0, 5.0, 0.0})));
+
+    // A world without triangles has no map: anywhere goes.
+    World empty(std::make_shared<StaticWorld>());
+    EXPECT_NO_THROW(empty.add_car(CarSpec::default_car(), at({1e6, 0.0, 0.0})));
+}
+
+TEST(Preconditions, ImpossibleStartsAreRejected) {
+    World world(test::static_world_of(test::flat_grid(40.0, 8)));
+    EXPECT_NE(error_of([&] { world.add_car(CarSpec::default_car(), at({0.0, 5.0, 0.0}, {600.0, 0.0, 0.0})); })
+                  .find("above WorldSettings.max_car_speed"),
+              std::string::npos);
+    RigidBodyState spinning = at({0.0, 5.0, 0.0});
+    spinning.angular_velocity = {0.0, 600.0, 0.0};
+    EXPECT_NE(error_of([&] { world.add_car(CarSpec::default_car(), spinning); }).find("angular speed"),
+              std::string::npos);
+}
+
+}  // namespace
+}  // namespace trackphys
