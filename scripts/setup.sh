@@ -15,7 +15,7 @@ required=(
   zlib1g-dev # libassimp-dev's CMake target links /usr/lib/x86_64-linux-gnu/libz.so by path
              # but does not depend on the package that holds it: without it every link
              # against assimp::assimp fails ("No rule to make target .../libz.so")
-  nlohmann-json3-dev # JSON output of the command line tool
+  nlohmann-json3-dev # car spec and scenario files (src/io), JSON output of the command line tool
   libcli11-dev # command line parsing of the trackphys tool
   libbullet-dev # peer benchmarks (bench/peers): Bullet's GJK/EPA and quantized BVH, float
                 # and double builds; optional: without it those programs are not built

@@ -9,6 +9,13 @@ namespace trackphys::cli {
 // reports failure by throwing (trackphys::Error or CLI::Error); main turns that into a
 // message on stderr and a non-zero exit.
 
+/// Rejects a leading minus sign: CLI11 reads "-1" into an unsigned option as 2^64 - 1.
+inline CLI::Validator not_negative() {
+    return CLI::Validator(
+        [](const std::string& text) { return text.rfind('-', 0) == 0 ? std::string("must be >= 0, got " + text) : ""; },
+        "UINT", "not_negative");
+}
+
 void add_drive_command(CLI::App& app);
 void add_track_command(CLI::App& app);
 void add_info_command(CLI::App& app);

@@ -18,8 +18,12 @@
 #include "drive_scene.hpp"
 #include "drive_session.hpp"
 #include "drive_svg.hpp"
+#include "interrupt_guard.hpp"
+#include "staged_outputs.hpp"
 #include "trackphys/error.hpp"
+#include "trackphys/io/car_spec_json.hpp"
 #include "trackphys/io/recording.hpp"
+#include "trackphys/io/scenario.hpp"
 #include "trackphys/io/snapshot_file.hpp"
 #include "trackphys/profile/trace_recorder.hpp"
 #include "trackphys/world/autopilot.hpp"
@@ -28,37 +32,71 @@
 namespace trackphys::cli {
 namespace {
 
+// The command line. The scene options (--seed to --steer, --laps, --seconds) are read into
+// a default Scenario; build_scenario copies those given explicitly over the scenario file.
 struct DriveOptions {
     std::string track = "default";
-    std::uint64_t seed = 7;
-    std::filesystem::path mesh;
-    int laps = 0;
-    double seconds = 0.0;
-    double target_speed_kmh = 600.0;
+    std::filesystem::path scenario_file, car_file;
+    bool print_car = false;
+    bool print_scenario = false;
+    Scenario flags;
     std::vector<double> spawn;
-    double heading_deg = 0.0;
-    double throttle = 0.5;
-    double steer = 0.0;
     std::filesystem::path json, trace, record, svg;
     std::pair<std::string, std::string> save_at;  // T FILE
     std::filesystem::path resume;
 };
 
-// --save-at T FILE, checked.
+// --save-at T FILE, checked; the snapshot is written to `staged` (staged_outputs.hpp).
 struct SavePoint {
     double seconds;
     std::filesystem::path file;
+    std::filesystem::path staged;
 };
 
 // A lap that takes longer than this (simulated) means the car is stuck: give up.
 constexpr double kMaxSecondsPerLap = 600.0;
 
-void check_output(const std::filesystem::path& path, const char* option) {
-    if (path.empty()) return;
-    const std::filesystem::path folder = path.has_parent_path() ? path.parent_path() : ".";
-    if (!std::filesystem::is_directory(folder))
-        throw Error(std::string(option) + " '" + path.string() + "': folder '" + folder.string() +
-                    "' does not exist");
+// The option that sets each Scenario field, to name it in Scenario::validate()'s messages.
+constexpr std::pair<const char*, const char*> kFieldOptions[] = {
+    {"Scenario.mesh", "--mesh"},          {"Scenario.spawn", "--spawn"},
+    {"Scenario.heading_deg", "--heading"}, {"Scenario.target_speed_kmh", "--target-speed"},
+    {"Scenario.inputs.throttle", "--throttle"}, {"Scenario.inputs.steer", "--steer"},
+    {"Scenario.laps", "--laps"},           {"Scenario.seconds", "--seconds"},
+};
+
+// The scenario file (or the defaults) with the car file and every scene option given on
+// the command line applied over it: a flag overrides the same field of the file. A flag
+// that the resulting mode does not use is an error rather than silently ignored.
+Scenario build_scenario(const DriveOptions& o, const CLI::App& command) {
+    const auto given = [&](const char* option) { return command.count(option) > 0; };
+    Scenario s = o.scenario_file.empty() ? Scenario{} : load_scenario(o.scenario_file);
+    if (!o.car_file.empty()) s.car = load_car_spec(o.car_file);
+    const Scenario& f = o.flags;
+    if (given("--seed")) s.seed = f.seed;
+    if (given("--mesh")) s.mesh = f.mesh;
+    if (given("--spawn")) s.spawn = glm::dvec3(o.spawn.at(0), o.spawn.at(1), o.spawn.at(2));
+    if (given("--heading")) s.heading_deg = f.heading_deg;
+    if (given("--target-speed")) s.target_speed_kmh = f.target_speed_kmh;
+    if (given("--throttle")) s.inputs.throttle = f.inputs.throttle;
+    if (given("--steer")) s.inputs.steer = f.inputs.steer;
+    if (given("--laps")) s.laps = f.laps;
+    if (given("--seconds")) s.seconds = f.seconds;
+
+    if (given("--seed") && !s.mesh.empty())
+        throw Error("--seed picks a generated track, but this drive is on the mesh '" + s.mesh.string() + "'");
+    if (given("--target-speed") && s.free_mode())
+        throw Error("--target-speed sets the autopilot, which does not drive in free mode (a spawn point): "
+                    "use --throttle and --steer");
+    for (const char* option : {"--throttle", "--steer", "--heading"})
+        if (given(option) && !s.free_mode())
+            throw Error(std::string(option) + " applies in free mode only: add --spawn x,y,z (without a spawn "
+                        "point the autopilot drives the generated track from its start line)");
+    std::string why = s.validate();
+    if (why.empty()) return s;
+    for (const auto& [field, option] : kFieldOptions)
+        if (why.rfind(field, 0) == 0 && given(option)) throw Error(std::string(option) + ": " + why);
+    if (!o.scenario_file.empty()) why = "scenario '" + o.scenario_file.string() + "': " + why;
+    throw Error(why);
 }
 
 // A progress bar on stderr, only when stderr is a terminal (never in logs or CI).
@@ -85,10 +123,10 @@ private:
     int last_ = -1;
 };
 
-std::optional<SavePoint> parse_save_at(const DriveOptions& o) {
+std::optional<SavePoint> parse_save_at(const DriveOptions& o, double drive_seconds) {
     const auto& [time, file] = o.save_at;
     if (file.empty()) return std::nullopt;
-    SavePoint point{0.0, file};
+    SavePoint point{0.0, file, {}};
     std::size_t used = 0;
     try {
         point.seconds = std::stod(time, &used);
@@ -97,27 +135,38 @@ std::optional<SavePoint> parse_save_at(const DriveOptions& o) {
     }
     if (used != time.size() || !std::isfinite(point.seconds) || point.seconds < 0.0)
         throw Error("--save-at '" + time + "': the time must be a finite number of seconds >= 0");
-    if (o.seconds > 0.0 && point.seconds > o.seconds + 1e-9)
-        throw Error("--save-at " + time + " is after the drive's end (--seconds " + std::to_string(o.seconds) + ")");
-    check_output(point.file, "--save-at");
+    if (drive_seconds > 0.0 && point.seconds > drive_seconds + 1e-9)
+        throw Error("--save-at " + time + " is after the drive's end (--seconds " + std::to_string(drive_seconds) + ")");
     return point;
 }
 
-void run(const DriveOptions& o) {
-    const bool free_mode = !o.mesh.empty() || !o.spawn.empty();
+void run(const DriveOptions& o, const CLI::App& command) {
     if (o.track != "default") throw Error("--track '" + o.track + "': the only generated track is 'default'");
-    if (o.laps < 0) throw Error("--laps must be >= 0");
-    if (o.seconds < 0.0 || !std::isfinite(o.seconds)) throw Error("--seconds must be finite and >= 0");
-    if (!(o.target_speed_kmh > 0.0 && o.target_speed_kmh <= 1500.0))
-        throw Error("--target-speed must be in (0, 1500] km/h");
-    if (free_mode && o.spawn.empty()) throw Error("--mesh needs --spawn x,y,z to place the car");
-    if (free_mode && o.laps > 0) throw Error("--laps needs the generated track (no centreline on a mesh); use --seconds");
-    if (!o.spawn.empty() && o.spawn.size() != 3) throw Error("--spawn takes three numbers: x,y,z");
-    for (const auto& [path, option] : {std::pair{o.json, "--json"}, {o.trace, "--trace"},
-                                       {o.record, "--record"}, {o.svg, "--svg"}})
-        check_output(path, option);
-    const std::optional<SavePoint> save_at = parse_save_at(o);
-    DriveSession session{free_mode, o.seed, o.target_speed_kmh, o.throttle, o.steer, {}, 0.0, 0.0, {}};
+    const Scenario s = build_scenario(o, command);
+    if (o.print_car) {
+        std::fputs(car_spec_to_json(s.car).c_str(), stdout);
+        return;
+    }
+    if (o.print_scenario) {
+        // A scenario file reads relative names from its own folder, wherever it is saved.
+        Scenario printed = s;
+        if (!printed.mesh.empty()) printed.mesh = std::filesystem::absolute(printed.mesh);
+        std::fputs(scenario_to_json(printed).c_str(), stdout);
+        return;
+    }
+    // Every output is checked and staged before the drive, and put in place only after it
+    // succeeded: a failure anywhere, Ctrl-C included, leaves none of them behind (the
+    // snapshot of --save-at too).
+    const InterruptGuard interrupt_guard;
+    StagedOutputs outputs;
+    const auto stage = [&](const std::filesystem::path& path, const char* option) {
+        return path.empty() ? path : outputs.stage(path, option);
+    };
+    const std::filesystem::path json = stage(o.json, "--json"), trace_file = stage(o.trace, "--trace"),
+                                record = stage(o.record, "--record"), svg = stage(o.svg, "--svg");
+    std::optional<SavePoint> save_at = parse_save_at(o, s.seconds);
+    if (save_at) save_at->staged = stage(save_at->file, "--save-at");
+    DriveSession session{s.free_mode(), s.seed, s.target_speed_kmh, s.inputs.throttle, s.inputs.steer, {}, 0.0, 0.0, {}};
     std::optional<SnapshotFile> resume;
     if (!o.resume.empty()) {
         resume = load_snapshot(o.resume);
@@ -126,35 +175,33 @@ void run(const DriveOptions& o) {
         session = saved;
     }
 
-    const DriveScene scene = o.mesh.empty() ? make_track_scene(o.seed) : make_mesh_scene(o.mesh);
-    const CarSpec spec = CarSpec::default_car();
+    const DriveScene scene = s.mesh.empty() ? make_track_scene(s.seed) : make_mesh_scene(s.mesh);
     World world(scene.statics);
-    const RigidBodyState start =
-        free_mode ? spawn_on_surface(*scene.statics, spec, {o.spawn[0], o.spawn[1], o.spawn[2]}, o.heading_deg)
-                  : start_on_track(*scene.track, spec);
-    world.add_car(spec, start);
+    const RigidBodyState start = s.free_mode() ? spawn_on_surface(*scene.statics, s.car, *s.spawn, s.heading_deg)
+                                               : start_on_track(*scene.track, s.car);
+    world.add_car(s.car, start);
     // Resuming: the same static world, settings and car (restore_state checks their
     // fingerprints), then the snapshot's state, update count and time.
     if (resume) world.restore_state(resume->world);
 
     std::optional<Autopilot> autopilot;
-    if (!free_mode) {
+    if (!s.free_mode()) {
         AutopilotSettings settings;
-        settings.target_speed = o.target_speed_kmh / 3.6;
-        autopilot.emplace(*scene.track, spec, settings);
+        settings.target_speed = s.target_speed_kmh / 3.6;
+        autopilot.emplace(*scene.track, s.car, settings);
         if (session.autopilot) autopilot->set_progress(*session.autopilot);
     }
-    const int laps = !free_mode && o.laps == 0 && o.seconds == 0.0 ? 1 : o.laps;
-    const double seconds = o.seconds > 0.0 ? o.seconds : laps * kMaxSecondsPerLap;
+    const int laps = !s.free_mode() && s.laps == 0 && s.seconds == 0.0 ? 1 : s.laps;
+    const double seconds = s.seconds > 0.0 ? s.seconds : laps * kMaxSecondsPerLap;
 
     std::unique_ptr<TraceRecorder> trace;
-    if (!o.trace.empty()) {
+    if (!trace_file.empty()) {
         trace = std::make_unique<TraceRecorder>();
         world.set_trace(trace.get());
     }
     std::unique_ptr<RecordingWriter> recording;
-    if (!o.record.empty())
-        recording = std::make_unique<RecordingWriter>(o.record, world.settings().dt_update, 1, scene.description);
+    if (!record.empty())
+        recording = std::make_unique<RecordingWriter>(record, world.settings().dt_update, 1, scene.description);
 
     DriveReport report;
     report.scene = scene.description;
@@ -175,15 +222,16 @@ void run(const DriveOptions& o) {
         session.distance_m = report.distance_m;
         session.top_speed_kmh = report.top_speed_kmh;
         session.lap_times_s = report.lap_times_s;
-        save_snapshot(save_at->file, world.save_state(), session_json(session));
+        save_snapshot(save_at->staged, world.save_state(), session_json(session));
         std::printf("snapshot     %s at %.2f s\n", save_at->file.string().c_str(), world.time());
         saved = true;
     };
     save_if_due();
 
     while (world.time() < seconds - 1e-9 && (laps == 0 || autopilot->laps() < laps)) {
+        InterruptGuard::check();
         Car& car = world.car(0);
-        car.set_inputs(autopilot ? autopilot->drive(car) : CarInputs{o.throttle, 0.0, o.steer});
+        car.set_inputs(autopilot ? autopilot->drive(car) : s.inputs);
         const int laps_before = autopilot ? autopilot->laps() : 0;
         world.update();
         if (autopilot) {
@@ -223,20 +271,21 @@ void run(const DriveOptions& o) {
     report.last_reset = world.last_reset_reason(0);
 
     print_drive_report(report);
-    if (!o.json.empty()) write_drive_json(report, o.json);
-    if (!o.svg.empty()) write_drive_svg(plot, scene.track, o.svg);
-    if (trace) {
-        std::ofstream out(o.trace, std::ios::binary);
-        trace->write_chrome_trace(out);
-        if (!out.flush()) throw Error("cannot write the trace '" + o.trace.string() + "'");
-    }
-    if (recording) recording->finish();
     if (save_at && !saved)
         throw Error("--save-at " + o.save_at.first + ": the drive ended at " + std::to_string(world.time()) +
                     " s, before that time; no snapshot written");
     if (laps > 0 && report.laps_completed < laps)
         throw Error("the car completed " + std::to_string(report.laps_completed) + " of " +
                     std::to_string(laps) + " laps in " + std::to_string(seconds) + " simulated seconds");
+    if (!json.empty()) write_drive_json(report, json);
+    if (!svg.empty()) write_drive_svg(plot, scene.track, svg);
+    if (trace) {
+        std::ofstream out(trace_file, std::ios::binary);
+        trace->write_chrome_trace(out);
+        if (!out.flush()) throw Error("--trace '" + o.trace.string() + "': cannot write the trace");
+    }
+    if (recording) recording->finish();
+    outputs.commit();
 }
 
 }  // namespace
@@ -244,22 +293,37 @@ void run(const DriveOptions& o) {
 void add_drive_command(CLI::App& app) {
     auto o = std::make_shared<DriveOptions>();
     CLI::App* command = app.add_subcommand(
-        "drive", "Drive the default car: laps of a generated track by autopilot, or free on any mesh; "
-                 "prints lap time, top speed and the per-phase profile of every update");
+        "drive", "Drive the default car (or --car, or a --scenario file): laps of a generated track by "
+                 "autopilot, or free on any mesh; prints lap time, top speed and the per-phase profile of "
+                 "every update. Options given with --scenario override the file's values");
+    command->add_option("--scenario", o->scenario_file,
+                        "Read track, car, driver and duration from this JSON file (see README, 'Scenario files')");
+    command->add_option("--car", o->car_file, "Read the car spec from this JSON file (see --print-car)");
+    CLI::Option* print_car =
+        command->add_flag("--print-car", o->print_car,
+                          "Print the car spec (default, --car or the scenario's) as JSON and exit: a starting "
+                          "point for a --car file");
+    command
+        ->add_flag("--print-scenario", o->print_scenario,
+                   "Print the scenario these options describe as JSON and exit: a starting point for a "
+                   "--scenario file")
+        ->excludes(print_car);
     command->add_option("--track", o->track, "Generated track to drive (default)")->capture_default_str();
-    command->add_option("--seed", o->seed, "Seed of the generated track")->capture_default_str();
-    command->add_option("--mesh", o->mesh, "Drive on this mesh file instead (free mode, needs --spawn)");
-    command->add_option("--laps", o->laps, "Laps to drive by autopilot (default 1 without --seconds)");
-    command->add_option("--seconds", o->seconds, "Simulated seconds to drive");
-    command->add_option("--target-speed", o->target_speed_kmh, "Autopilot speed on straights (km/h)")
+    command->add_option("--seed", o->flags.seed, "Seed of the generated track")
+        ->check(not_negative())
+        ->capture_default_str();
+    command->add_option("--mesh", o->flags.mesh, "Drive on this mesh file instead (free mode, needs --spawn)");
+    command->add_option("--laps", o->flags.laps, "Laps to drive by autopilot (default 1 without --seconds)");
+    command->add_option("--seconds", o->flags.seconds, "Simulated seconds to drive");
+    command->add_option("--target-speed", o->flags.target_speed_kmh, "Autopilot speed on straights (km/h)")
         ->capture_default_str();
     command->add_option("--spawn", o->spawn, "Free mode: start above x,y,z (the car lands on the surface below)")
         ->delimiter(',')
         ->expected(3);
-    command->add_option("--heading", o->heading_deg, "Free mode: heading about +Y in degrees (0 = +X, 90 = -Z)")
+    command->add_option("--heading", o->flags.heading_deg, "Free mode: heading about +Y in degrees (0 = +X, 90 = -Z)")
         ->capture_default_str();
-    command->add_option("--throttle", o->throttle, "Free mode: fixed throttle 0..1")->capture_default_str();
-    command->add_option("--steer", o->steer, "Free mode: fixed steering -1..1 (+1 = left)")->capture_default_str();
+    command->add_option("--throttle", o->flags.inputs.throttle, "Free mode: fixed throttle 0..1")->capture_default_str();
+    command->add_option("--steer", o->flags.inputs.steer, "Free mode: fixed steering -1..1 (+1 = left)")->capture_default_str();
     command->add_option("--json", o->json, "Write the figures as JSON");
     command->add_option("--trace", o->trace, "Write a Chrome trace (Perfetto) of every update's phases");
     command->add_option("--record", o->record, "Write car poses and contacts per update (JSON Lines) for a viewer");
@@ -271,7 +335,7 @@ void add_drive_command(CLI::App& app) {
                         "Continue the drive saved in this snapshot (give the original drive's options; "
                         "--seconds and --laps count from the original start)")
         ->type_name("FILE");
-    command->callback([o] { run(*o); });
+    command->callback([o, command] { run(*o, *command); });
 }
 
 }  // namespace trackphys::cli

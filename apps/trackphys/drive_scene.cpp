@@ -42,7 +42,11 @@ DriveScene make_mesh_scene(const std::filesystem::path& mesh) {
     auto statics = std::make_shared<StaticWorld>();
     const TriangleMesh loaded = load_mesh(mesh);
     scene.triangle_count = loaded.triangles.size();
-    statics->add(std::make_shared<StaticCollider>(loaded));
+    try {
+        statics->add(std::make_shared<StaticCollider>(loaded));
+    } catch (const Error& e) {  // a mesh the collider refuses (coordinates beyond its limit)
+        throw Error("mesh file '" + mesh.string() + "': " + e.what());
+    }
     scene.statics = std::move(statics);
     scene.description = "mesh " + mesh.string();
     return scene;

@@ -4,8 +4,10 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <system_error>
 
 #include "commands.hpp"
+#include "staged_outputs.hpp"
 #include "track_svg.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/io/mesh_io.hpp"
@@ -73,18 +75,26 @@ void run(const TrackOptions& options) {
     if (!options.out.empty() && !can_save_mesh_as(options.out))
         throw Error("--out '" + options.out.string() + "': the extension must be " +
                     saved_mesh_extensions);
+    if (!options.out.empty()) check_destination(options.out, "--out");
+    // The picture is staged and put in place with the mesh (save_mesh is atomic itself), so
+    // a failure leaves neither (staged_outputs.hpp).
+    StagedOutputs outputs;
+    const std::filesystem::path svg = options.svg.empty() ? options.svg : outputs.stage(options.svg, "--svg");
     const auto start = std::chrono::steady_clock::now();
     const Track track = generate_track(options.params);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     print_summary(track, seconds);
-    if (!options.svg.empty()) {
-        write_track_svg(track, options.svg);
-        std::printf("wrote        %s\n", options.svg.string().c_str());
+    if (!svg.empty()) write_track_svg(track, svg);
+    if (!options.out.empty()) write_track_mesh(track, options.out);
+    try {
+        outputs.commit();
+    } catch (const Error&) {
+        std::error_code ignored;
+        if (!options.out.empty()) std::filesystem::remove(options.out, ignored);
+        throw;
     }
-    if (!options.out.empty()) {
-        write_track_mesh(track, options.out);
-        std::printf("wrote        %s\n", options.out.string().c_str());
-    }
+    for (const std::filesystem::path* written : {&options.svg, &options.out})
+        if (!written->empty()) std::printf("wrote        %s\n", written->string().c_str());
 }
 
 }  // namespace
@@ -95,7 +105,9 @@ void add_track_command(CLI::App& app) {
     CLI::App* command = app.add_subcommand(
         "track", "Generate a closed, banked race track (Bezier loop) and print its figures; "
                  "optionally write its mesh and a top-view picture");
-    command->add_option("--seed", p.seed, "Random seed (same seed, same track)")->capture_default_str();
+    command->add_option("--seed", p.seed, "Random seed (same seed, same track)")
+        ->check(not_negative())
+        ->capture_default_str();
     command->add_option("--length", p.length_m, "Centreline length (m)")->capture_default_str();
     command->add_option("--width", p.width_m, "Road width (m)")->capture_default_str();
     command->add_option("--max-bank", p.max_bank_deg, "Largest bank angle (degrees)")->capture_default_str();

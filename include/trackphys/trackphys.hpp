@@ -47,6 +47,8 @@
 #include "trackphys/track/track_params.hpp"
 #include "trackphys/track/track_stats.hpp"
 
+#include "trackphys/io/car_spec_json.hpp"
 #include "trackphys/io/mesh_io.hpp"
 #include "trackphys/io/recording.hpp"
+#include "trackphys/io/scenario.hpp"
 #include "trackphys/io/snapshot_file.hpp"

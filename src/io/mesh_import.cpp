@@ -298,13 +298,15 @@ TriangleMesh load_mesh(const fs::path& path, MeshLoadReport& report) {
     SceneMerger merger(path, report);
     try {
         const aiScene* scene = importer.ReadFile(path.string(), aiProcess_ValidateDataStructure);
-        if (scene == nullptr) fail(path, importer.GetErrorString());
+        // assimp's own words ("OBJ-file is too small.", "An unknown error occurred during
+        // converting"), said to come from the reader: they may not name what is wrong.
+        if (scene == nullptr) fail(path, std::string("assimp cannot read it: ") + importer.GetErrorString());
         merger.inspect_before_triangulation(*scene);
         // The importer owns the scene and hands it out const; it is ours to fix until the
         // next call (the scene itself was never const).
         set_primitive_types_from_faces(const_cast<aiScene&>(*scene));
         scene = importer.ApplyPostProcessing(aiProcess_Triangulate);
-        if (scene == nullptr) fail(path, importer.GetErrorString());
+        if (scene == nullptr) fail(path, std::string("assimp cannot triangulate it: ") + importer.GetErrorString());
         TriangleMesh mesh = merger.merge(*scene);
         if (mesh.triangles.empty())
             fail(path, "contains no triangles (" + std::to_string(report.degenerate_dropped) +

@@ -1,7 +1,10 @@
 # The io part's sources: target_sources(trackphys PRIVATE io/...).
 target_sources(trackphys PRIVATE
+  io/car_spec_json.cpp
+  io/json_reader.cpp
   io/mesh_export.cpp
   io/mesh_import.cpp
   io/ply_header_check.cpp
   io/recording.cpp
+  io/scenario.cpp
   io/snapshot_file.cpp)

@@ -1,0 +1,209 @@
+#include "json_reader.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <system_error>
+
+#include "trackphys/error.hpp"
+
+namespace trackphys::json_io {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Where the parser is while it reads: one frame per open object or array, so that a
+// duplicate key can be reported with the path of its object.
+struct Frame {
+    bool object = true;
+    std::vector<std::string> keys;  // object: keys seen so far
+    std::size_t elements = 0;       // array: elements begun so far
+};
+
+std::string frames_path(const std::vector<Frame>& frames) {
+    std::string path;
+    // Every frame but the innermost has begun the value that holds the next frame.
+    for (std::size_t i = 0; i + 1 < frames.size(); ++i)
+        path = frames[i].object ? join_path(path, frames[i].keys.back())
+                                : index_path(path, frames[i].elements - 1);
+    return path;
+}
+
+// nlohmann's messages start with "[json.exception.parse_error.101] ": keep what follows.
+std::string without_exception_id(const std::string& what) {
+    const std::size_t end = what.find("] ");
+    return what.rfind("[json.exception.", 0) == 0 && end != std::string::npos ? what.substr(end + 2) : what;
+}
+
+std::string describe(const Json& value) {
+    if (value.is_number_integer() || value.is_number_float()) return "the number " + value.dump();
+    if (value.is_string()) return "the string " + value.dump();
+    if (value.is_array()) return "an array";
+    if (value.is_object()) return "an object";
+    return value.is_null() ? "null" : "a boolean";
+}
+
+}  // namespace
+
+std::string join_path(const std::string& parent, std::string_view key) {
+    std::string path = parent;
+    if (!path.empty()) path += '.';
+    path += key;
+    return path;
+}
+
+std::string index_path(const std::string& parent, std::size_t index) {
+    return parent + "[" + std::to_string(index) + "]";
+}
+
+void fail(const std::string& source, const std::string& path, const std::string& reason) {
+    throw Error(source + ": " + (path.empty() ? "" : path + ": ") + reason);
+}
+
+std::string read_text_file(const fs::path& path, const char* what) {
+    const std::string name = std::string(what) + " '" + path.string() + "'";
+    std::error_code error;
+    const fs::file_status status = fs::status(path, error);
+    if (!fs::exists(status)) throw Error(name + ": no such file");
+    if (fs::is_directory(status)) throw Error(name + ": is a folder, not a file");
+    // A device or a pipe (/dev/stdin) could block or never end.
+    if (!fs::is_regular_file(status)) throw Error(name + ": not a regular file");
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw Error(name + ": cannot open it for reading");
+    std::string text;
+    char buffer[65536];
+    while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
+        text.append(buffer, static_cast<std::size_t>(in.gcount()));
+        if (text.size() > max_file_bytes)
+            throw Error(name + ": larger than " + std::to_string(max_file_bytes >> 20) + " MiB");
+    }
+    if (in.bad()) throw Error(name + ": read error");
+    if (text.empty()) throw Error(name + ": the file is empty");
+    return text;
+}
+
+Json parse_document(std::string_view text, const std::string& source) {
+    std::vector<Frame> frames;
+    const Json::parser_callback_t track = [&](int, Json::parse_event_t event, Json& parsed) {
+        using Event = Json::parse_event_t;
+        const bool opens = event == Event::object_start || event == Event::array_start;
+        // A container or a plain value begins the next element of an enclosing array.
+        if ((opens || event == Event::value) && !frames.empty() && !frames.back().object)
+            ++frames.back().elements;
+        if (opens) frames.push_back({event == Event::object_start, {}, 0});
+        if (event == Event::object_end || event == Event::array_end) frames.pop_back();
+        if (event == Event::key) {
+            std::vector<std::string>& keys = frames.back().keys;
+            const std::string& key = parsed.get_ref<const std::string&>();
+            if (std::find(keys.begin(), keys.end(), key) != keys.end()) {
+                const std::string where = frames_path(frames);
+                fail(source, "", "duplicate key '" + key + "' in " + (where.empty() ? "the top-level object" : where));
+            }
+            keys.push_back(key);
+        }
+        return true;
+    };
+    try {
+        return Json::parse(text.begin(), text.end(), track);
+    } catch (const Json::parse_error& e) {
+        // "parse error at line 3, column 7: syntax error while parsing object - ..."
+        throw Error(source + ": malformed JSON, " + without_exception_id(e.what()));
+    } catch (const Json::exception& e) {  // e.g. a number too large for a double
+        throw Error(source + ": malformed JSON, " + without_exception_id(e.what()));
+    }
+}
+
+double to_number(const Json& value, const std::string& path, const std::string& source) {
+    if (!value.is_number()) fail(source, path, "expected a number, got " + describe(value));
+    const double x = value.get<double>();
+    if (!std::isfinite(x)) fail(source, path, "the number must be finite, got " + value.dump());
+    return x;
+}
+
+std::vector<double> to_numbers(const Json& value, std::size_t n, const std::string& path,
+                               const std::string& source) {
+    if (!value.is_array() || value.size() != n)
+        fail(source, path, "expected an array of " + std::to_string(n) + " numbers, got " +
+                               (value.is_array() ? "an array of " + std::to_string(value.size())
+                                                 : describe(value)));
+    std::vector<double> numbers;
+    for (std::size_t i = 0; i < n; ++i) numbers.push_back(to_number(value[i], index_path(path, i), source));
+    return numbers;
+}
+
+ObjectReader::ObjectReader(const Json& value, std::string path, std::string source)
+    : value_(value), path_(std::move(path)), source_(std::move(source)) {
+    if (!value_.is_object()) fail(source_, path_, "expected an object, got " + describe(value_));
+}
+
+bool ObjectReader::has(std::string_view key) { return find(key) != nullptr; }
+
+const Json* ObjectReader::find(std::string_view key) {
+    if (std::find(known_.begin(), known_.end(), key) == known_.end()) known_.emplace_back(key);
+    const auto it = value_.find(key);
+    return it == value_.end() ? nullptr : &*it;
+}
+
+const Json& ObjectReader::require(std::string_view key) {
+    const Json* value = find(key);
+    if (value == nullptr) fail(source_, path_, "missing key '" + std::string(key) + "'");
+    return *value;
+}
+
+void ObjectReader::read(std::string_view key, double& out) {
+    if (const Json* value = find(key)) out = to_number(*value, path_of(key), source_);
+}
+
+void ObjectReader::read(std::string_view key, std::uint64_t& out) {
+    const Json* value = find(key);
+    if (value == nullptr) return;
+    if (value->is_number_unsigned())
+        out = value->get<std::uint64_t>();
+    else if (value->is_number_integer())
+        fail(source_, path_of(key), "must be >= 0, got " + value->dump());
+    else
+        fail(source_, path_of(key), "expected a whole number, got " + describe(*value));
+}
+
+void ObjectReader::read(std::string_view key, int& out) {
+    const Json* value = find(key);
+    if (value == nullptr) return;
+    const bool fits = value->is_number_unsigned()
+                          ? value->get<std::uint64_t>() <= static_cast<std::uint64_t>(std::numeric_limits<int>::max())
+                          : value->is_number_integer() && value->get<std::int64_t>() >= std::numeric_limits<int>::min();
+    if (!fits) fail(source_, path_of(key), "expected a whole number in int's range, got " + describe(*value));
+    out = value->get<int>();
+}
+
+void ObjectReader::read(std::string_view key, glm::dvec3& out) {
+    if (const Json* value = find(key)) {
+        const std::vector<double> v = to_numbers(*value, 3, path_of(key), source_);
+        out = {v[0], v[1], v[2]};
+    }
+}
+
+void ObjectReader::read(std::string_view key, glm::dquat& out) {
+    if (const Json* value = find(key)) {
+        const std::vector<double> v = to_numbers(*value, 4, path_of(key), source_);
+        out = glm::dquat(v[0], v[1], v[2], v[3]);  // w, x, y, z
+    }
+}
+
+void ObjectReader::read(std::string_view key, std::string& out) {
+    const Json* value = find(key);
+    if (value == nullptr) return;
+    if (!value->is_string()) fail(source_, path_of(key), "expected a string, got " + describe(*value));
+    out = value->get<std::string>();
+}
+
+void ObjectReader::finish() const {
+    for (const auto& [key, ignored] : value_.items()) {
+        if (std::find(known_.begin(), known_.end(), key) != known_.end()) continue;
+        std::string expected;
+        for (const std::string& k : known_) expected += (expected.empty() ? "" : ", ") + k;
+        fail(source_, path_of(key), "unknown key" + (expected.empty() ? "" : " (expected one of: " + expected + ")"));
+    }
+}
+
+}  // namespace trackphys::json_io
