@@ -12,15 +12,22 @@ cd "$(dirname "$0")/.."
 
 minutes="${1:-60}"
 shift || true
+# Every fuzzer and its longest input (bytes), as fuzz/CMakeLists.txt declares them
+# (trackphys_add_fuzzer(<name> <max_len> ...)).
+declare -A max_len=()
+while read -r name length; do
+  max_len[$name]=$length
+done < <(sed -n 's/^trackphys_add_fuzzer(\([a-z_]*\) \([0-9]*\).*/\1 \2/p' fuzz/CMakeLists.txt)
 fuzzers=("$@")
-[ ${#fuzzers[@]} -gt 0 ] || fuzzers=(fuzz_mesh_import fuzz_contact fuzz_world fuzz_json_files)
+[ ${#fuzzers[@]} -gt 0 ] || mapfile -t fuzzers < <(printf '%s\n' "${!max_len[@]}" | sort)
+for fuzzer in "${fuzzers[@]}"; do
+  [ -n "${max_len[$fuzzer]:-}" ] || { echo "fuzz_long: no fuzzer '$fuzzer' in fuzz/CMakeLists.txt" >&2; exit 2; }
+done
 
 scripts/setup.sh
 cmake --preset fuzz >/dev/null
 cmake --build --preset fuzz --parallel 2 --target "${fuzzers[@]}"
 
-# Each fuzzer's longest input (bytes), as in fuzz/CMakeLists.txt.
-declare -A max_len=([fuzz_mesh_import]=8192 [fuzz_contact]=153 [fuzz_world]=613 [fuzz_json_files]=4096)
 bin=build/fuzz/fuzz
 mkdir -p "$bin/findings"
 # assimp allocates what a file's header claims: beyond 1 GB an allocation fails as on a
