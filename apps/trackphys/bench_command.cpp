@@ -19,6 +19,7 @@
 #include "commands.hpp"
 #include "drive_report.hpp"
 #include "json_file.hpp"
+#include "staged_outputs.hpp"
 #include "trackphys/error.hpp"
 
 namespace trackphys::cli {
@@ -154,11 +155,9 @@ void run_bench(const BenchOptions& o) {
             throw Error("--only '" + name +
                         "': not a group (cull, roots, broad, mid, update, contact, mesh, bullet_update)");
     }
-    if (!o.json.empty()) {
-        const std::filesystem::path folder = o.json.has_parent_path() ? o.json.parent_path() : ".";
-        if (!std::filesystem::is_directory(folder))
-            throw Error("--json '" + o.json.string() + "': folder '" + folder.string() + "' does not exist");
-    }
+    // Checked and staged before minutes of measuring; put in place only after the run.
+    StagedOutputs outputs;
+    const std::filesystem::path json = o.json.empty() ? o.json : outputs.stage(o.json, "--json");
     const std::vector<PeerStatus> peers = peer_status();
     print_header(o.quick, peers);
     BenchRun run(o.quick);
@@ -171,7 +170,10 @@ void run_bench(const BenchOptions& o) {
     run.end_progress();
     const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     print_table(run, wall_s);
-    if (!o.json.empty()) write_json_file(to_json(run, peers, wall_s), o.json);
+    if (!json.empty()) {
+        write_json_file(to_json(run, peers, wall_s), json);
+        outputs.commit();
+    }
 }
 
 }  // namespace
