@@ -10,6 +10,8 @@
 
 #include <gtest/gtest.h>
 
+#include "support/error_message.hpp"
+
 #include "core/fnv1a.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/io/snapshot_file.hpp"
@@ -18,6 +20,8 @@
 
 namespace trackphys {
 namespace {
+
+using test::error_of;
 
 namespace fs = std::filesystem;
 
@@ -31,15 +35,6 @@ WorldSnapshot small_snapshot() {
     world.car(0).set_inputs({0.4, 0.0, 0.2});
     for (int i = 0; i < 100; ++i) world.update();
     return world.save_state();
-}
-
-std::string error_of(auto&& f) {
-    try {
-        f();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "(no error)";
 }
 
 // Rewrites a header field and the checksum, as a tool writing another version would.

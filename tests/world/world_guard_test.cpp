@@ -8,6 +8,8 @@
 #include <glm/gtc/quaternion.hpp>
 #include <gtest/gtest.h>
 
+#include "support/error_message.hpp"
+
 #include "trackphys/error.hpp"
 #include "trackphys/math/types.hpp"
 #include "trackphys/world/world.hpp"
@@ -15,6 +17,8 @@
 
 namespace trackphys {
 namespace {
+
+using test::error_of;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -24,15 +28,6 @@ RigidBodyState at(const glm::dvec3& position, const glm::dvec3& velocity = glm::
     state.position = position;
     state.linear_velocity = velocity;
     return state;
-}
-
-std::string error_of(auto&& f) {
-    try {
-        f();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "(no error)";
 }
 
 bool finite(const RigidBodyState& s) {

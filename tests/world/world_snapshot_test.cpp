@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include "support/error_message.hpp"
+
 #include "trackphys/error.hpp"
 #include "trackphys/io/snapshot_file.hpp"
 #include "trackphys/world/autopilot.hpp"
@@ -17,6 +19,8 @@
 
 namespace trackphys {
 namespace {
+
+using test::error_of;
 
 using test::default_track;
 using test::on_start_line;
@@ -47,15 +51,6 @@ struct Drive {
         return hashes;
     }
 };
-
-std::string error_of(auto&& f) {
-    try {
-        f();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "(no error)";
-}
 
 TEST(WorldSnapshot, RestoreThenUpdateIsBitIdentical) {
     Drive original;
