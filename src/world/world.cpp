@@ -24,18 +24,20 @@ World::World(std::shared_ptr<const StaticWorld> statics, WorldSettings settings,
     if (settings_.mid_phase != MidPhaseMode::precomputed_tree) trees_.clear();
 }
 
+World::CarSlot::CarSlot(Car car_in, MidPhase mid_in)
+    : car(std::move(car_in)), mid(std::move(mid_in)) {
+    const std::size_t ellipsoids = car.ellipsoid_count();
+    listed.resize(ellipsoids);
+    listed_for.resize(ellipsoids);
+    kept.resize(ellipsoids);
+    deepest.resize(ellipsoids);
+    deepest_ref.resize(ellipsoids, TriangleRef{~0u, ~0u});
+}
+
 std::size_t World::add_car(const CarSpec& spec, const RigidBodyState& state) {
     Car car(spec, state);
     check_placement(car);
-    const std::size_t ellipsoids = car.ellipsoid_count();
-    CarSlot slot{std::move(car), MidPhase(settings_.mid_phase, *statics_, trees_), Aabb{}, {}, {}, {},
-                 {}, {}, {}, RigidBodyState{}, {}, 0, {}};
-    slot.listed.resize(ellipsoids);
-    slot.listed_for.resize(ellipsoids);
-    slot.kept.resize(ellipsoids);
-    slot.deepest.resize(ellipsoids);
-    slot.deepest_ref.resize(ellipsoids, TriangleRef{~0u, ~0u});
-    cars_.push_back(std::move(slot));
+    cars_.emplace_back(std::move(car), MidPhase(settings_.mid_phase, *statics_, trees_));
     return cars_.size() - 1;
 }
 
@@ -106,19 +108,19 @@ void World::list_step_candidates(CarSlot& slot, int steps_left, PhaseStopwatch& 
         if (!listed_for || !listed_for->contains(step_shape)) {
             const int ahead = std::min(settings_.mid_phase_look_ahead, steps_left);
             const double slack = ahead > 1 ? settings_.mid_phase_slack : 0.0;
-            listed_for = SweptEllipsoid{ellipsoid, ellipsoid.center() + velocity * (step_dt * ahead),
-                                        margin + slack};
+            SweptEllipsoid wanted{ellipsoid, ellipsoid.center() + velocity * (step_dt * ahead),
+                                  margin + slack};
             // Looking ahead must not leave the update box; a step that leaves it (a car
             // thrown off its course by an impact) widens the box first: the mid phase only
             // knows the triangles inside it.
-            if (!slot.update_box.contains(listed_for->bounds())) listed_for = step_shape;
-            if (!slot.update_box.contains(step_shape.bounds())) {
+            if (!slot.update_box.contains(wanted.bounds())) wanted = step_shape;
+            if (!slot.update_box.contains(wanted.bounds())) {
                 Aabb wider = slot.update_box;
-                wider.expand(step_shape.bounds().padded(settings_.broad_phase_margin));
+                wider.expand(wanted.bounds().padded(settings_.broad_phase_margin));
                 watch.lap(Phase::mid);
                 begin_update(slot, wider, watch);
-                listed_for = step_shape;
             }
+            listed_for = wanted;
             listed.clear();
             slot.mid.query_swept_ellipsoid(ellipsoid, listed_for->end, listed_for->margin, listed);
             ++profile_.mid_queries;

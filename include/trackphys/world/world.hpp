@@ -111,6 +111,9 @@ private:
 
     // Per-car working memory, kept between updates so a steady state allocates nothing.
     struct CarSlot {
+        // Per-ellipsoid storage sized for the car, no hint yet.
+        CarSlot(Car car_in, MidPhase mid_in);
+
         Car car;
         MidPhase mid;
         Aabb update_box;                                      // what mid.begin_update covers
