@@ -1,7 +1,7 @@
 // Mid phase on the default track's tightest banked turn at 1000 km/h (tightest_turn_scene.hpp):
 // per update, the triangles each ellipsoid tests per sub-step and the time for the three
 // MidPhaseModes, queried per step with each ellipsoid's swept bounding sphere or the swept
-// ellipsoid itself; the tree build per collider (time, bytes a triangle); and how well each
+// ellipsoid itself, every step or looking ahead as World does; the tree build per collider (time, bytes a triangle); and how well each
 // split rule copes with the road's thin triangles (filtered / reported per query).
 //
 //   cmake --build --preset release -j2 --target bench_midphase
@@ -36,75 +36,72 @@ const char* variant_name(std::int64_t variant) {
 }
 
 void BM_MidPhaseUpdate(benchmark::State& state) {
-    const auto mode = static_cast<MidPhaseMode>(state.range(0));
-    const auto shape = static_cast<Shape>(state.range(1));
-    const bool cull = state.range(2) != 0;
-    auto mid = make_mid_phase(mode);
-    std::vector<MidPhaseCandidate> list;
+    const MidVariant& variant = mid_variants()[std::size_t(state.range(0))];
+    const bool cull = state.range(1) != 0;
+    auto mid = make_mid_phase(variant.mode);
+    UpdateLists lists;
     std::size_t total = 0, kept = 0;
     for (auto _ : state) {
-        total = run_update(*mid, shape, cull, list, kept);
+        total = run_update(*mid, variant, cull, lists, kept);
         benchmark::DoNotOptimize(kept);
     }
     mid->reset_counters();
-    total = run_update(*mid, shape, cull, list, kept);
+    total = run_update(*mid, variant, cull, lists, kept);
     const MidPhaseCounters& c = mid->counters();
-    state.SetLabel(std::string(to_string(mode)) + (shape == Shape::sphere ? " sphere" : " ellipsoid") +
-                   (cull ? " +cull" : ""));
+    state.SetLabel(std::string(variant.name) + (cull ? " +cull" : ""));
     state.counters["tested_per_ell_sub"] = tested_per_ellipsoid_substep(total);
+    state.counters["queries"] = double(c.queries);
     state.counters["broad_candidates"] = double(c.broad_phase_candidates);
     state.counters["planes_per_query"] = double(c.planes_tested) / double(c.queries);
     state.counters["filtered_per_query"] = double(c.triangles_filtered) / double(c.queries);
 }
 
-/// The three modes side by side in one run: min over repeats of begin_update alone (the
-/// per-update stage), of the whole update's mid phase (begin_update + 80 step queries), and
-/// of that plus the sub-step cull; their ratios; the candidates per ellipsoid per sub-step.
+/// Every variant side by side in one run: min over repeats of begin_update alone (the
+/// per-update stage), of the whole update's mid phase (begin_update + the step lists), and
+/// of that plus the sub-step cull; the candidates per ellipsoid per sub-step; and the
+/// write-up's loop over ours (World's default), the ratio.
 void BM_ModeRatios(benchmark::State& state) {
-    const auto shape = static_cast<Shape>(state.range(0));
-    const MidPhaseMode modes[] = {MidPhaseMode::none, MidPhaseMode::per_update_tree,
-                                  MidPhaseMode::precomputed_tree};
-    const char* names[] = {"none", "per_update", "precomputed"};
-    double best_us[3][2], begin_us[3], tested[3];
-    std::vector<MidPhaseCandidate> list;
+    const std::vector<MidVariant>& variants = mid_variants();
+    const std::size_t n = variants.size();
+    std::vector<double> begin_us(n), mid_us(n), cull_us(n), tested(n);
+    UpdateLists lists;
     std::size_t kept = 0;
+    const auto best_of = [](auto&& run) {
+        double best = 1e300;
+        for (int repeat = 0; repeat < 200; ++repeat) {
+            const auto t0 = std::chrono::steady_clock::now();
+            run();
+            best = std::min(best, std::chrono::duration<double, std::micro>(
+                                      std::chrono::steady_clock::now() - t0)
+                                      .count());
+        }
+        return best;
+    };
     for (auto _ : state) {
-        for (int m = 0; m < 3; ++m) {
-            auto mid = make_mid_phase(modes[m]);
-            begin_us[m] = 1e300;
-            for (int repeat = 0; repeat < 200; ++repeat) {
-                const auto t0 = std::chrono::steady_clock::now();
-                mid->begin_update(bench::tightest_turn_scene().update_box);
-                begin_us[m] = std::min(begin_us[m], std::chrono::duration<double, std::micro>(
-                                                        std::chrono::steady_clock::now() - t0)
-                                                        .count());
-            }
-            for (int cull = 0; cull < 2; ++cull) {
-                best_us[m][cull] = 1e300;
-                for (int repeat = 0; repeat < 200; ++repeat) {
-                    const auto t0 = std::chrono::steady_clock::now();
-                    const std::size_t total = run_update(*mid, shape, cull != 0, list, kept);
-                    const double us = std::chrono::duration<double, std::micro>(
-                                          std::chrono::steady_clock::now() - t0)
-                                          .count();
-                    best_us[m][cull] = std::min(best_us[m][cull], us);
-                    tested[m] = tested_per_ellipsoid_substep(total);
-                }
-            }
+        for (std::size_t v = 0; v < n; ++v) {
+            auto mid = make_mid_phase(variants[v].mode);
+            begin_us[v] = best_of([&] { mid->begin_update(bench::tightest_turn_scene().update_box); });
+            std::size_t total = 0;
+            mid_us[v] = best_of([&] { total = run_update(*mid, variants[v], false, lists, kept); });
+            cull_us[v] = best_of([&] { total = run_update(*mid, variants[v], true, lists, kept); });
+            tested[v] = tested_per_ellipsoid_substep(total);
         }
         benchmark::DoNotOptimize(kept);
     }
-    state.SetLabel(shape == Shape::sphere ? "swept bounding spheres" : "swept ellipsoids");
-    for (int m = 0; m < 3; ++m) {
-        state.counters[std::string(names[m]) + "_tested"] = tested[m];
-        state.counters[std::string(names[m]) + "_begin_us"] = begin_us[m];
-        state.counters[std::string(names[m]) + "_mid_us"] = best_us[m][0];
-        state.counters[std::string(names[m]) + "_cull_us"] = best_us[m][1];
+    for (std::size_t v = 0; v < n; ++v) {
+        const std::string key = std::string("v").append(std::to_string(v)).append("_");
+        state.counters[key + "tested"] = tested[v];
+        state.counters[key + "begin_us"] = begin_us[v];
+        state.counters[key + "mid_us"] = mid_us[v];
+        state.counters[key + "cull_us"] = cull_us[v];
     }
-    state.counters["begin_per_update/precomputed"] = begin_us[1] / begin_us[2];
-    state.counters["mid_per_update/precomputed"] = best_us[1][0] / best_us[2][0];
-    state.counters["mid_none/precomputed"] = best_us[0][0] / best_us[2][0];
-    state.counters["total_none/precomputed"] = best_us[0][1] / best_us[2][1];
+    state.counters["writeup/ours_begin"] = begin_us[kWriteupVariant] / begin_us[kDefaultVariant];
+    state.counters["writeup/ours_mid"] = mid_us[kWriteupVariant] / mid_us[kDefaultVariant];
+    state.counters["writeup/ours_mid+cull"] = cull_us[kWriteupVariant] / cull_us[kDefaultVariant];
+    std::string legend;
+    for (std::size_t v = 0; v < n; ++v)
+        legend.append("v").append(std::to_string(v)).append(" ").append(variants[v].name).append("; ");
+    state.SetLabel(legend);
 }
 
 /// The turn's collider's tree in each variant: build time, size, depth.
@@ -186,14 +183,10 @@ void BM_SplitQuality(benchmark::State& state) {
         nq, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
-void mode_shape_cull_args(benchmark::internal::Benchmark* b) {
-    for (int mode = 0; mode < 3; ++mode)
-        for (int shape = 0; shape < 2; ++shape)
-            for (int cull = 0; cull < 2; ++cull) b->Args({mode, shape, cull});
-}
-
-BENCHMARK(BM_ModeRatios)->Arg(0)->Arg(1)->Iterations(1)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_MidPhaseUpdate)->Apply(mode_shape_cull_args)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_ModeRatios)->Iterations(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_MidPhaseUpdate)
+    ->ArgsProduct({benchmark::CreateDenseRange(0, int(mid_variants().size()) - 1, 1), {0, 1}})
+    ->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_BuildColliderTree)->DenseRange(0, 2)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_SplitQuality)->ArgsProduct({{0, 1, 2}, {0, 1}})->Unit(benchmark::kMicrosecond);
 

@@ -3,7 +3,8 @@
 // The mid phase on the default track's tightest banked turn at 1000 km/h
 // (tightest_turn_scene.hpp), header-only, shared by bench_midphase and `trackphys bench`:
 // the track's colliders and precomputed plane trees, each step's query per ellipsoid (10
-// steps x 8 ellipsoids), and one update's mid-phase work in each MidPhaseMode.
+// steps x 8 ellipsoids), and one update's mid-phase work in each variant (mode, query shape,
+// look-ahead).
 
 #include <algorithm>
 #include <chrono>
@@ -12,9 +13,11 @@
 #include <vector>
 
 #include "tightest_turn_scene.hpp"
+#include "trackphys/collision/look_ahead_list.hpp"
 #include "trackphys/collision/mid_phase.hpp"
 #include "trackphys/collision/plane_tree_builder.hpp"
 #include "trackphys/collision/static_world.hpp"
+#include "trackphys/world/world_settings.hpp"
 
 namespace trackphys::bench {
 
@@ -82,30 +85,83 @@ inline std::unique_ptr<MidPhase> make_mid_phase(MidPhaseMode mode) {
                                                                              : ColliderPlaneTrees{});
 }
 
-/// One update's mid-phase work: begin_update, then each step's query per ellipsoid. With
-/// `cull`, also each sub-step's bounding-sphere cull over the step's list (the loop's next
-/// stage), so the time shows what the lists cost downstream. Returns the candidates summed.
-inline std::size_t run_update(MidPhase& mid, Shape shape, bool cull,
-                       std::vector<MidPhaseCandidate>& list, std::size_t& kept) {
+/// One way of running an update's mid phase: the mode, the query shape, and how many steps
+/// an ellipsoid query covers (World's look-ahead; spheres are queried every step).
+struct MidVariant {
+    MidPhaseMode mode;
+    Shape shape;
+    int look_ahead;
+    const char* name;
+    const char* note;
+};
+
+/// The variants compared, the write-up's loop (the reference) first.
+inline const std::vector<MidVariant>& mid_variants() {
+    static const std::vector<MidVariant> variants = {
+        {MidPhaseMode::per_update_tree, Shape::sphere, 1, "write-up: per-update PCA tree, spheres",
+         "the write-up's WIP, queried every step: ~1.25 ms to build there"},
+        {MidPhaseMode::none, Shape::ellipsoid, 1, "none", "every ellipsoid scans the broad-phase list"},
+        {MidPhaseMode::per_update_tree, Shape::ellipsoid, 1, "per-update PCA tree, ellipsoids", ""},
+        {MidPhaseMode::precomputed_tree, Shape::sphere, 1, "precomputed, spheres", "DESIGN.md's query"},
+        {MidPhaseMode::precomputed_tree, Shape::ellipsoid, 1, "precomputed, ellipsoids, every step",
+         ""},
+        {MidPhaseMode::precomputed_tree, Shape::ellipsoid, WorldSettings{}.mid_phase_look_ahead,
+         "precomputed, ellipsoids, looking ahead", "ours: World's default"}};
+    return variants;
+}
+inline constexpr std::size_t kWriteupVariant = 0;
+inline constexpr std::size_t kDefaultVariant = 5;
+
+/// What run_update fills: the step's list of each ellipsoid.
+struct UpdateLists {
+    std::vector<MidPhaseCandidate> spheres;  ///< a sphere query's list, this step
+    std::vector<LookAheadList> ellipsoids;   ///< per ellipsoid, as World keeps them
+};
+
+/// One update's mid-phase work as World does it: begin_update, then per step each
+/// ellipsoid's list: its swept bounding sphere queried for the step, or its swept ellipsoid
+/// through a LookAheadList that looks variant.look_ahead steps ahead (within the update, and
+/// within the update box) and is reused while the step stays inside. With `cull`, also each
+/// sub-step's bounding-sphere cull over the step's list (the loop's next stage), so the time
+/// shows what the lists cost downstream. Returns the list lengths summed over the steps.
+inline std::size_t run_update(MidPhase& mid, const MidVariant& variant, bool cull,
+                              UpdateLists& lists, std::size_t& kept) {
     const TightestTurnScene& s = tightest_turn_scene();
     const MidScene& m = mid_scene();
+    constexpr double kStepDt = TightestTurnScene::kSubstepDt * TightestTurnScene::kStepSubsteps;
+    constexpr int kSteps = TightestTurnScene::kSubsteps / TightestTurnScene::kStepSubsteps;
     mid.begin_update(s.update_box);
-    std::size_t total = 0;
     const std::size_t ellipsoids = s.car.ellipsoids.size();
+    lists.ellipsoids.resize(ellipsoids);
+    for (LookAheadList& list : lists.ellipsoids) list.forget();
+    std::size_t total = 0;
     for (std::size_t q = 0; q < m.queries.size(); ++q) {
         const StepQuery& sq = m.queries[q];
-        list.clear();
-        if (shape == Shape::sphere)
-            mid.query_swept_sphere(sq.start, sq.end, sq.radius, list);
-        else
-            mid.query_swept_ellipsoid(sq.ellipsoid, sq.end, kRotationMargin, list);
-        total += list.size();
-        if (!cull) continue;
         const std::size_t e = q % ellipsoids;
-        const int first = int(q / ellipsoids) * TightestTurnScene::kStepSubsteps;
+        const int step = int(q / ellipsoids);
+        const std::vector<MidPhaseCandidate>* list = &lists.spheres;
+        if (variant.shape == Shape::sphere) {
+            lists.spheres.clear();
+            mid.query_swept_sphere(sq.start, sq.end, sq.radius, lists.spheres);
+        } else {
+            LookAheadList& ahead = lists.ellipsoids[e];
+            const SweptEllipsoid step_shape{sq.ellipsoid, sq.end, kRotationMargin};
+            if (!ahead.covers(step_shape)) {
+                SweptEllipsoid wanted =
+                    look_ahead(step_shape, (sq.end - sq.start) / kStepDt, kStepDt,
+                               ahead.steps_ahead(variant.look_ahead, kSteps - step),
+                               WorldSettings{}.mid_phase_slack);
+                if (!s.update_box.contains(wanted.bounds())) wanted = step_shape;
+                ahead.refill(mid, wanted);
+            }
+            list = &ahead.candidates();
+        }
+        total += list->size();
+        if (!cull) continue;
+        const int first = step * TightestTurnScene::kStepSubsteps;
         for (int sub = first; sub < first + TightestTurnScene::kStepSubsteps; ++sub) {
             const glm::dvec3 c = s.center(e, sub);
-            for (const MidPhaseCandidate& cand : list)
+            for (const MidPhaseCandidate& cand : *list)
                 kept += cand.triangle->may_touch_sphere(c, sq.radius) ? 1 : 0;
         }
     }

@@ -182,41 +182,47 @@ void bench_broad_phase(BenchRun& run) {
                     : "TRIANGLE SETS DIFFER";
 }
 
-// Mid phase: one update's mid-phase work and the sub-step cull over the lists it hands out
-// (begin_update, 10 steps x 8 ellipsoid queries, 40 x 8 bounding-sphere culls), per mode.
+// Mid phase: one update's mid-phase work (begin_update and each step's list per ellipsoid,
+// as World does) per variant, and with the sub-step cull over the lists it hands out (40 x 8
+// bounding-sphere culls); the write-up's per-update tree queried every step is the reference.
 void bench_mid_phase(BenchRun& run) {
     run.progress("mid", "colliders and precomputed plane trees");
     const bench::MidScene& scene = bench::mid_scene();
-    struct Mode {
-        MidPhaseMode mode;
-        bench::Shape shape;
-        const char* name;
-        const char* note;
-    };
-    const Mode modes[] = {
-        {MidPhaseMode::none, bench::Shape::ellipsoid, "none", "every ellipsoid scans the broad-phase list"},
-        {MidPhaseMode::per_update_tree, bench::Shape::ellipsoid, "per-update PCA tree",
-         "the write-up's WIP: ~1.25 ms to build"},
-        {MidPhaseMode::precomputed_tree, bench::Shape::sphere, "precomputed, swept spheres",
-         "DESIGN.md's query"},
-        {MidPhaseMode::precomputed_tree, bench::Shape::ellipsoid, "precomputed, swept ellipsoids",
-         "ours, World's default"}};
-    std::vector<MidPhaseCandidate> list;
-    for (const Mode& m : modes) {
-        run.progress("mid", m.name);
-        const std::unique_ptr<MidPhase> mid = bench::make_mid_phase(m.mode);
+    const std::vector<bench::MidVariant>& variants = bench::mid_variants();
+    const std::string reference = variants[bench::kWriteupVariant].name;
+    bench::UpdateLists lists;
+    double writeup_with_cull_ns = 0.0;
+    for (std::size_t v = 0; v < variants.size(); ++v) {
+        const bench::MidVariant& variant = variants[v];
+        run.progress("mid", variant.name);
+        const std::unique_ptr<MidPhase> mid = bench::make_mid_phase(variant.mode);
         std::size_t total = 0, kept = 0;
-        const double ns = median_call_ns(
-            [&] {
-                total = bench::run_update(*mid, m.shape, /*cull=*/true, list, kept);
-                keep(kept);
-            },
-            1, run.batches(21, 201));
-        BenchRow& row = run.add("mid", m.name, ns, m.mode == MidPhaseMode::none ? "" : modes[0].name);
-        row.figures = {{"tested_per_ellipsoid_substep", bench::tested_per_ellipsoid_substep(total)}};
-        if (m.mode == MidPhaseMode::precomputed_tree)
+        const auto timed = [&](bool cull) {
+            return median_call_ns(
+                [&] {
+                    total = bench::run_update(*mid, variant, cull, lists, kept);
+                    keep(kept);
+                },
+                1, run.batches(21, 201));
+        };
+        const double with_cull_ns = timed(true);
+        mid->reset_counters();
+        const double ns = timed(false);
+        const double updates = double(mid->counters().updates);
+        BenchRow& row = run.add("mid", variant.name, ns, v == bench::kWriteupVariant ? "" : reference);
+        row.figures = {{"tested_per_ellipsoid_substep", bench::tested_per_ellipsoid_substep(total)},
+                       {"queries_per_update", double(mid->counters().queries) / updates},
+                       {"with_cull_us", with_cull_ns * 1e-3}};
+        if (variant.mode == MidPhaseMode::precomputed_tree)
             row.figures.push_back({"trees_build_ms_all_colliders", scene.trees_build_ms});
-        row.note = m.note;
+        row.note = variant.note;
+        if (v == bench::kWriteupVariant) writeup_with_cull_ns = with_cull_ns;
+        if (v == bench::kDefaultVariant) {
+            const BenchRow& writeup = run.row("mid", reference);
+            run.add_target("mid phase per update: write-up's per-update tree / ours", writeup.median_ns / ns,
+                           10.0);
+            row.figures.push_back({"writeup_with_cull_x", writeup_with_cull_ns / with_cull_ns});
+        }
     }
 }
 

@@ -44,9 +44,10 @@ void print_drive_report(const DriveReport& r) {
         print_row(phase_name(static_cast<Phase>(p)), r.profile.phase_us(static_cast<Phase>(p)));
     std::printf("  write-up budget: %.0f us typical, %.0f us spikes\n", kWriteupTypicalUs,
                 kWriteupSpikeUs);
-    std::printf("counts per update: %.1f candidates, %.1f tested per ellipsoid sub-step, "
-                "%.1f exact tests, %.1f contacts\n",
-                r.profile.mean_candidates(), r.profile.mean_tested_per_ellipsoid_substep(),
+    std::printf("counts per update: %.1f mid-phase queries, %.1f candidates, %.1f tested per "
+                "ellipsoid sub-step, %.1f exact tests, %.1f contacts\n",
+                r.profile.mean_mid_queries(), r.profile.mean_candidates(),
+                r.profile.mean_tested_per_ellipsoid_substep(),
                 r.profile.mean_exact_tests(), r.profile.mean_contacts());
     std::printf("resets       %" PRIu64 "%s%s\n", r.resets, r.last_reset.empty() ? "" : ", last at ",
                 r.last_reset.c_str());
@@ -72,7 +73,8 @@ void write_drive_json(const DriveReport& r, const std::filesystem::path& path) {
     for (std::size_t p = 0; p < phase_count; ++p)
         json["phases_us"][phase_name(static_cast<Phase>(p))] =
             summary_json(r.profile.phase_us(static_cast<Phase>(p)));
-    json["counts"] = {{"candidates", r.profile.mean_candidates()},
+    json["counts"] = {{"mid_queries", r.profile.mean_mid_queries()},
+                      {"candidates", r.profile.mean_candidates()},
                       {"tested_per_ellipsoid_substep", r.profile.mean_tested_per_ellipsoid_substep()},
                       {"exact_tests", r.profile.mean_exact_tests()},
                       {"contacts", r.profile.mean_contacts()}};

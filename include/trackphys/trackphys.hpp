@@ -27,6 +27,7 @@
 #include "trackphys/collision/plane_tree_builder.hpp"
 #include "trackphys/collision/static_collider.hpp"
 #include "trackphys/collision/static_world.hpp"
+#include "trackphys/collision/look_ahead_list.hpp"
 #include "trackphys/collision/swept_ellipsoid.hpp"
 
 #include "trackphys/dynamics/car.hpp"

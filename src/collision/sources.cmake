@@ -8,4 +8,5 @@ target_sources(trackphys PRIVATE
   collision/plane_tree.cpp
   collision/plane_tree_builder.cpp
   collision/mid_phase.cpp
-  collision/swept_ellipsoid.cpp)
+  collision/swept_ellipsoid.cpp
+  collision/look_ahead_list.cpp)

@@ -26,6 +26,7 @@ void ProfileStatistics::add(const UpdateProfile& profile) {
     exact_tests_ += static_cast<double>(profile.exact_tests);
     contacts_ += static_cast<double>(profile.contacts);
     ellipsoid_substeps_ += static_cast<double>(profile.ellipsoid_substeps);
+    mid_queries_ += static_cast<double>(profile.mid_queries);
 }
 
 namespace {
@@ -35,6 +36,7 @@ double ratio(double a, double b) { return b > 0.0 ? a / b : 0.0; }
 double ProfileStatistics::mean_candidates() const { return ratio(candidates_, double(updates())); }
 double ProfileStatistics::mean_exact_tests() const { return ratio(exact_tests_, double(updates())); }
 double ProfileStatistics::mean_contacts() const { return ratio(contacts_, double(updates())); }
+double ProfileStatistics::mean_mid_queries() const { return ratio(mid_queries_, double(updates())); }
 double ProfileStatistics::mean_tested_per_ellipsoid_substep() const {
     return ratio(culled_tests_, ellipsoid_substeps_);
 }

@@ -28,7 +28,6 @@ World::CarSlot::CarSlot(Car car_in, MidPhase mid_in)
     : car(std::move(car_in)), mid(std::move(mid_in)) {
     const std::size_t ellipsoids = car.ellipsoid_count();
     listed.resize(ellipsoids);
-    listed_for.resize(ellipsoids);
     kept.resize(ellipsoids);
     deepest.resize(ellipsoids);
     deepest_ref.resize(ellipsoids, TriangleRef{~0u, ~0u});
@@ -82,17 +81,15 @@ void World::begin_update(CarSlot& slot, const Aabb& box, PhaseStopwatch& watch) 
     slot.update_box = box;
     slot.mid.begin_update(box);
     // Lists are queried inside the update box, from entry nodes of that box.
-    for (std::optional<SweptEllipsoid>& shape : slot.listed_for) shape.reset();
+    for (LookAheadList& list : slot.listed) list.forget();
     profile_.candidates += slot.mid.broad_phase_candidate_count();
     watch.lap(settings_.mid_phase == MidPhaseMode::per_update_tree ? Phase::mid : Phase::broad);
 }
 
 // The mid phase, once per step: each ellipsoid's triangles for the step's sub-steps, from
 // the ellipsoid swept by its velocity over the step and grown for rotation and for up to
-// 10 m/s of velocity change. A query costs far more than culling a few more triangles, so
-// each query looks settings_.mid_phase_look_ahead steps ahead along the current velocity
-// with some slack, and later steps of the update reuse its list while their own swept
-// ellipsoid stays inside it (a car that turns or bounces out of it queries again).
+// 10 m/s of velocity change. A query looks settings_.mid_phase_look_ahead steps ahead and
+// the following steps reuse its list while they stay inside (LookAheadList).
 void World::list_step_candidates(CarSlot& slot, int steps_left, PhaseStopwatch& watch) {
     const Car& car = slot.car;
     const RigidBodyState& state = car.state();
@@ -103,13 +100,12 @@ void World::list_step_candidates(CarSlot& slot, int steps_left, PhaseStopwatch& 
         const glm::dvec3 velocity = point_velocity(state, ellipsoid.center());
         const double margin = spin * ellipsoid.bounding_radius() * step_dt + 10.0 * step_dt;
         const SweptEllipsoid step_shape{ellipsoid, ellipsoid.center() + velocity * step_dt, margin};
-        std::vector<MidPhaseCandidate>& listed = slot.listed[i];
-        std::optional<SweptEllipsoid>& listed_for = slot.listed_for[i];
-        if (!listed_for || !listed_for->contains(step_shape)) {
-            const int ahead = std::min(settings_.mid_phase_look_ahead, steps_left);
-            const double slack = ahead > 1 ? settings_.mid_phase_slack : 0.0;
-            SweptEllipsoid wanted{ellipsoid, ellipsoid.center() + velocity * (step_dt * ahead),
-                                  margin + slack};
+        LookAheadList& listed = slot.listed[i];
+        if (!listed.covers(step_shape)) {
+            SweptEllipsoid wanted =
+                look_ahead(step_shape, velocity, step_dt,
+                           listed.steps_ahead(settings_.mid_phase_look_ahead, steps_left),
+                           settings_.mid_phase_slack);
             // Looking ahead must not leave the update box; a step that leaves it (a car
             // thrown off its course by an impact) widens the box first: the mid phase only
             // knows the triangles inside it.
@@ -120,12 +116,11 @@ void World::list_step_candidates(CarSlot& slot, int steps_left, PhaseStopwatch& 
                 watch.lap(Phase::mid);
                 begin_update(slot, wider, watch);
             }
-            listed_for = wanted;
-            listed.clear();
-            slot.mid.query_swept_ellipsoid(ellipsoid, listed_for->end, listed_for->margin, listed);
+            listed.refill(slot.mid, wanted);
             ++profile_.mid_queries;
         }
-        if (settings_.mid_phase == MidPhaseMode::precomputed_tree) profile_.candidates += listed.size();
+        if (settings_.mid_phase == MidPhaseMode::precomputed_tree)
+            profile_.candidates += listed.candidates().size();
     }
     watch.lap(Phase::mid);
 }
@@ -144,12 +139,12 @@ void World::substep(CarSlot& slot, PhaseStopwatch& watch) {
         const double radius = ellipsoid.bounding_radius();
         std::vector<Survivor>& kept = slot.kept[i];
         kept.clear();
-        for (const MidPhaseCandidate& c : slot.listed[i]) {
+        for (const MidPhaseCandidate& c : slot.listed[i].candidates()) {
             if (!c.triangle->may_touch_sphere(ellipsoid.center(), radius)) continue;
             const double bound = ellipsoid_depth_bound(*c.triangle, ellipsoid);
             if (bound > 0.0) kept.push_back({c.ref, bound});
         }
-        profile_.culled_tests += slot.listed[i].size();
+        profile_.culled_tests += slot.listed[i].candidates().size();
     }
     profile_.ellipsoid_substeps += ellipsoids;
     watch.lap(Phase::cull);

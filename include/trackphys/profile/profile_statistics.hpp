@@ -35,6 +35,8 @@ public:
     double mean_candidates() const;
     double mean_exact_tests() const;
     double mean_contacts() const;
+    /// Mid-phase queries per update (the other steps' ellipsoids reused a list).
+    double mean_mid_queries() const;
     /// Sphere culls per ellipsoid per sub-step, averaged over the run.
     double mean_tested_per_ellipsoid_substep() const;
 
@@ -42,7 +44,7 @@ private:
     std::vector<double> update_us_;
     std::array<std::vector<double>, phase_count> phase_us_;
     double candidates_ = 0.0, culled_tests_ = 0.0, exact_tests_ = 0.0, contacts_ = 0.0,
-           ellipsoid_substeps_ = 0.0;
+           ellipsoid_substeps_ = 0.0, mid_queries_ = 0.0;
 };
 
 }  // namespace trackphys

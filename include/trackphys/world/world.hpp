@@ -10,7 +10,7 @@
 
 #include "trackphys/collision/mid_phase.hpp"
 #include "trackphys/collision/static_world.hpp"
-#include "trackphys/collision/swept_ellipsoid.hpp"
+#include "trackphys/collision/look_ahead_list.hpp"
 #include "trackphys/dynamics/car.hpp"
 #include "trackphys/export.hpp"
 #include "trackphys/geometry/normalized_triangle.hpp"
@@ -117,8 +117,7 @@ private:
         Car car;
         MidPhase mid;
         Aabb update_box;                                      // what mid.begin_update covers
-        std::vector<std::vector<MidPhaseCandidate>> listed;   // per ellipsoid, this step
-        std::vector<std::optional<SweptEllipsoid>> listed_for;  // the shape each list holds
+        std::vector<LookAheadList> listed;                    // per ellipsoid, this step
         std::vector<Ellipsoid> placed;                        // the ellipsoids, this sub-step
         std::vector<std::vector<Survivor>> kept;              // per ellipsoid: culled survivors
         std::vector<Contact> deepest;                         // per ellipsoid, this sub-step

@@ -1,0 +1,59 @@
+#pragma once
+
+#include <algorithm>
+#include <optional>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "trackphys/collision/mid_phase.hpp"
+#include "trackphys/collision/swept_ellipsoid.hpp"
+#include "trackphys/export.hpp"
+
+namespace trackphys {
+
+/// The shape a mid-phase query covers when it looks `steps` steps ahead (>= 1) instead of
+/// one: `step` (an ellipsoid swept at `velocity`, m/s, over one step of `step_dt` seconds)
+/// swept `steps` steps along the same velocity, its margin grown by `slack` (m) when
+/// steps > 1: the room a later step's small deviations from the straight path (a turn, a
+/// bump) spend before a new query.
+TRACKPHYS_API SweptEllipsoid look_ahead(const SweptEllipsoid& step, const glm::dvec3& velocity,
+                                        double step_dt, int steps, double slack);
+
+/// One ellipsoid's mid-phase candidates over the steps of an update, queried for a shape
+/// that looks ahead (look_ahead) and reused by the following steps while their own swept
+/// ellipsoid stays inside that shape. A query costs far more than culling a few more
+/// triangles a sub-step, so World lists each ellipsoid's triangles for several steps at
+/// once (WorldSettings::mid_phase_look_ahead):
+///
+///     if (!list.covers(step_shape))
+///         list.refill(mid, look_ahead(step_shape, ..., list.steps_ahead(n, steps_left), ...));
+///     for each sub-step: cull and test list.candidates()
+///
+/// Reuse never loses a triangle: a list holds every triangle of any shape its own contains().
+class TRACKPHYS_API LookAheadList {
+public:
+    /// True when the list holds every triangle `step` can touch.
+    bool covers(const SweptEllipsoid& step) const { return shape_ && shape_->contains(step); }
+    /// Replaces the list by mid's candidates for `shape`.
+    void refill(MidPhase& mid, const SweptEllipsoid& shape);
+    /// Forgets the list (its candidates come from a MidPhase update that has ended); the
+    /// next steps_ahead still knows whether it was empty.
+    void forget() { shape_.reset(); }
+    /// How many steps the next query should cover: `look_ahead` (1: each step its own
+    /// query, the write-up's loop), or when looking ahead at all and the last list was
+    /// empty (a body ellipsoid riding above the road), every step left: an empty list costs
+    /// the cull nothing however far it looks, so one query can serve the whole update.
+    int steps_ahead(int look_ahead, int steps_left) const {
+        if (look_ahead > 1 && candidates_.empty()) return steps_left;
+        return std::min(look_ahead, steps_left);
+    }
+
+    const std::vector<MidPhaseCandidate>& candidates() const { return candidates_; }
+
+private:
+    std::vector<MidPhaseCandidate> candidates_;
+    std::optional<SweptEllipsoid> shape_;
+};
+
+}  // namespace trackphys
