@@ -9,12 +9,13 @@ namespace trackphys {
 
 namespace {
 
-/// Distance from p to the segment [a, b].
-double distance_to_segment(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b) {
+/// Squared distance from p to the segment [a, b].
+double distance_squared_to_segment(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b) {
     const glm::dvec3 along = b - a;
     const double length2 = glm::dot(along, along);
     const double t = length2 > 0.0 ? std::clamp(glm::dot(p - a, along) / length2, 0.0, 1.0) : 0.0;
-    return glm::length(p - (a + t * along));
+    const glm::dvec3 gap = p - (a + t * along);
+    return glm::dot(gap, gap);
 }
 
 }  // namespace
@@ -37,18 +38,23 @@ Aabb SweptEllipsoid::bounds() const {
 // grown by rho stays inside f0 E when rho <= (f0 - f1) r_z = margin0 - margin1, because
 // f0 E = f1 E + (f0 - f1) E and E holds the ball of radius r_z.
 bool SweptEllipsoid::contains(const SweptEllipsoid& inner) const {
-    const glm::dvec3& radii = ellipsoid.sorted_radii();
-    if (inner.ellipsoid.sorted_radii() != radii) return false;
-    const glm::dmat3 turn = inner.ellipsoid.sorted_axes() - ellipsoid.sorted_axes();
-    const double turn_norm = std::sqrt(glm::dot(turn[0], turn[0]) + glm::dot(turn[1], turn[1]) +
-                                       glm::dot(turn[2], turn[2]));
-    const glm::dvec3& a = ellipsoid.center();
-    const double offset = std::max(distance_to_segment(inner.ellipsoid.center(), a, end),
-                                   distance_to_segment(inner.end, a, end));
-    const double moved = offset + turn_norm * inner.scale() * radii.x;
     // The rounding of these few operations is far below a nanometre on any map.
     constexpr double kRounding = 1e-9;
-    return moved + kRounding <= margin - inner.margin;
+    const glm::dvec3& radii = ellipsoid.sorted_radii();
+    if (inner.ellipsoid.sorted_radii() != radii) return false;
+    // What the turn leaves of the margin difference for the centre offset; cheapest first,
+    // the offset compared in squares.
+    double room = margin - inner.margin - kRounding;
+    if (!(room >= 0.0)) return false;
+    const glm::dmat3 turn = inner.ellipsoid.sorted_axes() - ellipsoid.sorted_axes();
+    room -= std::sqrt(glm::dot(turn[0], turn[0]) + glm::dot(turn[1], turn[1]) +
+                      glm::dot(turn[2], turn[2])) *
+            inner.scale() * radii.x;
+    if (!(room >= 0.0)) return false;
+    const glm::dvec3& a = ellipsoid.center();
+    const double room_squared = room * room;
+    return distance_squared_to_segment(inner.ellipsoid.center(), a, end) <= room_squared &&
+           distance_squared_to_segment(inner.end, a, end) <= room_squared;
 }
 
 }  // namespace trackphys
