@@ -227,7 +227,7 @@ void bench_mid_phase(BenchRun& run) {
 }
 
 // The whole update of one car (default car, default track seed 7, autopilot from the start)
-// in each mid-phase mode, World's profile off (and the default mode with it on, the cost of
+// in each mid-phase mode, queried every step or looking ahead, World's profile off (and the default mode with it on, the cost of
 // the per-phase clock reads), the cars taking turns by blocks; the write-up's budget is the
 // reference row.
 void bench_update(BenchRun& run) {
@@ -240,14 +240,17 @@ void bench_update(BenchRun& run) {
     budget.note = "one car, 10 steps x 4 sub-steps x 8 ellipsoids";
     struct Combination {
         MidPhaseMode mode;
+        int look_ahead;
         bool profile;
         const char* name;
     };
+    const int look_ahead = WorldSettings{}.mid_phase_look_ahead;
     const Combination combinations[] = {
-        {MidPhaseMode::none, false, "mid phase none"},
-        {MidPhaseMode::per_update_tree, false, "per-update PCA tree"},
-        {MidPhaseMode::precomputed_tree, false, "precomputed trees (default)"},
-        {MidPhaseMode::precomputed_tree, true, "precomputed trees, profile on"}};
+        {MidPhaseMode::none, 1, false, "mid phase none"},
+        {MidPhaseMode::per_update_tree, 1, false, "per-update PCA tree, every step (write-up)"},
+        {MidPhaseMode::precomputed_tree, 1, false, "precomputed trees, every step"},
+        {MidPhaseMode::precomputed_tree, look_ahead, false, "precomputed trees, looking ahead (default)"},
+        {MidPhaseMode::precomputed_tree, look_ahead, true, "default, profile on"}};
     run.progress("update", "worlds and precomputed trees");
     std::vector<std::unique_ptr<World>> worlds;
     std::vector<Driver> drivers;
@@ -255,6 +258,7 @@ void bench_update(BenchRun& run) {
     for (const Combination& c : combinations) {
         WorldSettings settings;
         settings.mid_phase = c.mode;
+        settings.mid_phase_look_ahead = c.look_ahead;
         settings.profile = c.profile;
         // The precomputed worlds share one set of trees.
         ColliderPlaneTrees trees;
