@@ -1,10 +1,17 @@
 #!/usr/bin/env bash
 # The README's test command: installs what is missing, builds Release and runs every test
-# (the long soak and fuzz runs are behind the ctest label "long", see README.md).
+# (the soak and the fuzzers' short runs are behind the ctest labels "long" and "fuzz", see
+# README.md). Extra arguments go to ctest.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 scripts/setup.sh
 cmake --preset release
 cmake --build --preset release --parallel "$(nproc)"
-ctest --preset release --label-exclude long "$@"
+# Every test but the long ones (labels "long" and "fuzz": the soak and the fuzzers' short
+# runs); a label of the caller's own (-L LABEL) chooses instead: scripts/test.sh -L fuzz.
+skip=(--label-exclude 'long|fuzz')
+for arg in "$@"; do
+  case "$arg" in -L* | --label-regex*) skip=() ;; esac
+done
+ctest --preset release "${skip[@]}" "$@"
