@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 #include <glm/geometric.hpp>
@@ -152,9 +154,14 @@ public:
         const LocalTriangle& tri = *pb_.tri;
         // Face, from the unnormalised area normal N: |N| and h(N) = |N| h(n) are independent
         // square roots, and u = sign N / |N| faces the center (g(-u) >= g(u)).
+        // At the unit scale of the caller (r_x in [1, 2), r_z >= 2^-200) |N|^2 >= 2^-600 keeps
+        // |N|^2 and h(N)^2 >= r_z^2 |N|^2 normal numbers, so u is unit and g exact. Below it the
+        // triangle lies within 2^-150 of one of its edges (its height is |N| / longest edge, or
+        // every edge is below 2^-150), which moves sigma by less than that: below an ulp of
+        // r_x, so the edges and vertices answer for it.
         const dvec3 area_normal = glm::cross(tri.edge[0], -tri.edge[2]);
         const double n2 = glm::dot(area_normal, area_normal);
-        if (n2 > 0.0 && n2 < kInfinity) {
+        if (n2 >= 0x1p-600 && n2 < kInfinity) {
             const dvec3 r2n = pb_.r2 * area_normal;
             const double inv_length = 1.0 / std::sqrt(n2);
             const double hn = std::sqrt(glm::dot(r2n, area_normal));
@@ -315,16 +322,18 @@ private:
     /// (1 - c <= s, R >= g). For c < 0, the plane offset n.z <= 0 and h(u) >= |c| h(n) -
     /// s r_max give g(u) >= (1 - s)(h(n) - n.z) + s (R - |z| - r_max) >= h(n) + n.z = g. So n
     /// minimises g at any depth: a wheel pressed deep into a large road triangle.
-    /// side_k = |N| |e_k| times z's distance from edge line k.
+    /// side_k = |N| |e_k| times z's distance from edge line k. The distance is formed by
+    /// dividing (a length^4 over a length^3), not by comparing squares: those are 8th powers
+    /// of lengths, which underflow to 0 = 0 at 1e-54 m (and certified a wrong face there).
     /// Reads the face's stored best_, face_touch_ and side_; n2 = |N|^2.
     [[gnu::noinline]] bool big_face(double n2) const {
         const double g = best_.g;
         if (!(g > 0.0)) return false;
         const double r = g + glm::length(face_touch_) + pb_.r.x;
-        const double limit = r * r * n2;
+        const double inv_length = 1.0 / std::sqrt(n2);
         const LocalTriangle& tri = *pb_.tri;
         for (int k = 0; k < 3; ++k)
-            if (side_[k] * side_[k] < limit * glm::dot(tri.edge[k], tri.edge[k])) return false;
+            if (side_[k] * inv_length < r * glm::length(tri.edge[k])) return false;
         return true;
     }
 
@@ -447,6 +456,40 @@ namespace {
 
 namespace {
 
+/// The power of two p with x in [p, 2p), and 1/p, for a normal positive x: read from its
+/// exponent bits (ilogb and ldexp are library calls, too slow for every contact).
+struct PowerOfTwo {
+    double value, inverse;
+};
+
+PowerOfTwo power_of_two_below(double x) {
+    constexpr std::uint64_t kExponentBits = 0x7ff0000000000000;
+    const std::uint64_t exponent = std::bit_cast<std::uint64_t>(x) & kExponentBits;
+    // Biased exponent E gives 2^(E - 1023); its inverse has biased exponent 2046 - E.
+    return {std::bit_cast<double>(exponent),
+            std::bit_cast<double>((std::uint64_t{2046} << 52) - exponent)};
+}
+
+/// The kernel at the scale where the largest radius is in [1, 2): local.q given (already
+/// flushed and multiplied by unit.inverse), radii and extent in the input's scale. The
+/// kernel forms products up to the sixth power of a length (h(N)^2 = |D N|^2 for the area
+/// normal N, a length^2) and compares fourth powers; at a fixed scale these stay normal
+/// numbers over every configuration the callers admit (smallest radius within 2^-200 of the
+/// largest, triangle within 2^206 of it), while at the input's own scale they underflowed
+/// below 1e-54 m and overflowed above 1e51 m (a wrong depth at 2^-179 and 2^170 times a car;
+/// found by the power-of-two scaling test). Powers of two scale every rounding exactly, so
+/// the result is bit-identical to solving at the input's scale wherever that did not
+/// under- or overflow.
+[[gnu::always_inline]] inline detail::LocalContact solve_at_unit_scale(
+    const glm::dvec3& radii, detail::LocalTriangle& local, const PowerOfTwo& unit) {
+    for (int i = 0; i < 3; ++i) local.edge[i] = local.q[(i + 1) % 3] - local.q[i];
+    local.extent *= unit.inverse;
+    detail::LocalContact solved = detail::solve_inline(radii * unit.inverse, local);
+    solved.depth *= unit.value;
+    solved.point *= unit.value;
+    return solved;
+}
+
 /// Closest point of triangle (a, b, c) to p by its Voronoi regions (Ericson, "Real-Time
 /// Collision Detection", 5.1.5), every division guarded so that degenerate triangles give a
 /// point of their hull.
@@ -567,15 +610,20 @@ Contact rescaled_contact(const Ellipsoid& ellipsoid, const std::array<glm::dvec3
     // (1-Lipschitz), while subnormal components (a center 1e-303 from the triangle beside
     // a 1e9 m radius: found by fuzz_contact) would break the solver's squares into an
     // infinite depth.
+    // The ellipsoid and the triangle's offsets from its center can still be far below the
+    // largest coordinate (radii 6e257 m beside a vertex at -3.5e296 m: 1e-39 here, and a
+    // normal 0.987 long; found by fuzz_contact): solve_at_unit_scale rescales once more.
+    const glm::dvec3 local_radii = radii / scale;
+    const PowerOfTwo unit = power_of_two_below(local_radii.x);
     for (int i = 0; i < 3; ++i) {
         local.q[i] = (v[i] / scale - center) * axes;
         for (int k = 0; k < 3; ++k)
             if (std::abs(local.q[i][k]) < 0x1p-200) local.q[i][k] = 0.0;
+        local.q[i] *= unit.inverse;
     }
-    for (int i = 0; i < 3; ++i) local.edge[i] = local.q[(i + 1) % 3] - local.q[i];
     const glm::dvec3 sum = glm::abs(local.q[0]) + glm::abs(local.q[1]) + glm::abs(local.q[2]);
-    local.extent = sum.x + sum.y + sum.z;
-    const detail::LocalContact solved = detail::contact_in_sorted_frame(radii / scale, local);
+    local.extent = (sum.x + sum.y + sum.z) * unit.value;  // in the input's scale
+    const detail::LocalContact solved = solve_at_unit_scale(local_radii, local, unit);
     return {solved.depth * scale, axes * solved.u, c + axes * (solved.point * scale)};
 }
 
@@ -612,11 +660,12 @@ Contact ellipsoid_triangle_contact(const Ellipsoid& ellipsoid, const Triangle& t
     // little moves sigma by less, while a subnormal one (1e-311 m from the center of a 32 m
     // ellipsoid, found by fuzz_contact) made the solver miss the minimum by 1.3 cm, and one
     // beside 1e-76 m radii gave an infinite depth. A 0/1 mask multiplies without branches.
+    // The mask and the scale to unit radius (solve_at_unit_scale) in one product.
+    const PowerOfTwo unit = power_of_two_below(radii.x);
     const glm::dvec3 negligible(std::max(local.extent, radii.x) * 0x1p-200);
     for (glm::dvec3& q : local.q)
-        q *= glm::dvec3(glm::greaterThanEqual(glm::abs(q), negligible));
-    for (int i = 0; i < 3; ++i) local.edge[i] = local.q[(i + 1) % 3] - local.q[i];
-    const detail::LocalContact solved = detail::solve_inline(radii, local);
+        q *= glm::dvec3(glm::greaterThanEqual(glm::abs(q), negligible)) * unit.inverse;
+    const detail::LocalContact solved = solve_at_unit_scale(radii, local, unit);
     return {solved.depth, axes * solved.u, c + axes * solved.point};
 }
 

@@ -34,8 +34,10 @@ struct LocalTriangle {
     double extent;
 };
 
-/// sigma and its direction for radii x >= y >= z > 0; all inputs finite and of moderate
-/// size (the caller scales huge and tiny configurations by a power of two).
+/// sigma and its direction for radii x >= y >= z > 0; all inputs finite, at the unit
+/// scale x in [1, 2) (within a few powers of two of it: the kernel's sixth powers of lengths
+/// must stay normal numbers), z >= 2^-200 x and extent <= 2^206 x. The public entry scales
+/// every configuration there by powers of two.
 LocalContact contact_in_sorted_frame(const glm::dvec3& radii, const LocalTriangle& triangle);
 
 }  // namespace trackphys::detail
