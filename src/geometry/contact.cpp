@@ -56,6 +56,8 @@ struct Problem {
     dvec3 r2;  // squared radii
     double r_min2;
     std::array<double, 3> pole;  // (r_i - r_z)(r_i + r_z): offsets of the poles of f from -r_z^2
+    dvec3 inv_r;                 // 1 / r_i
+    std::array<double, 3> inv_r2;  // 1 / r_i^2
     const LocalTriangle* tri;
 
     double support(const dvec3& u) const { return std::sqrt(glm::dot(r2 * u, u)); }
@@ -67,26 +69,34 @@ struct Problem {
     bool closest_regime(double g, double h) const { return g * h < r_min2; }
 };
 
+/// The lowest candidate so far: g, its unit direction u and the support h(u) there (kept
+/// for the contact point).
 struct Best {
     double g = kInfinity;
     dvec3 u{0.0, 1.0, 0.0};
-    void offer(double value, const dvec3& u_candidate) {
+    double h = 1.0;
+    void offer(double value, const dvec3& u_candidate, double h_candidate) {
         if (value < g) {
             g = value;
             u = u_candidate;
+            h = h_candidate;
         }
     }
 };
 
-/// Whether a point at level l = ||p / r|| (radii r, smallest r_small, largest r_large)
-/// certainly has signed depth >= best, so that no candidate of it can win: its depth is at
-/// least (1 - l) * (l < 1 ? r_small : r_large), which never exceeds r_small (so the level
-/// is only computed when best is below that).
-bool depth_at_least(double best, double x, double y, double z, double rx, double ry, double rz,
-                    double r_small, double r_large) {
+/// Whether a point p at level l = ||p / r|| (inverse radii inv, smallest radius r_small,
+/// largest r_large) certainly has signed depth >= best, so that no candidate of it can win:
+/// its depth is at least (1 - l) * r with r = r_small for l < 1, r_large otherwise, which
+/// never exceeds r_small (so the level is only computed when best is below that). Tested
+/// without a square root or a division: (1 - l) r >= best <=> l <= 1 - best / r, and for
+/// l >= 0 that is 1 - best / r >= 0 and l^2 <= (1 - best / r)^2.
+bool depth_at_least(double best, const dvec3& p, const dvec3& inv, double r_small,
+                    double inv_small, double inv_large) {
     if (best > r_small) return false;
-    const double level = std::sqrt((x / rx) * (x / rx) + (y / ry) * (y / ry) + (z / rz) * (z / rz));
-    return (1.0 - level) * (level < 1.0 ? r_small : r_large) >= best;
+    const dvec3 scaled = p * inv;
+    const double level2 = glm::dot(scaled, scaled);
+    const double bound = 1.0 - best * (level2 < 1.0 ? inv_small : inv_large);
+    return bound >= 0.0 && level2 <= bound * bound;
 }
 
 /// Edge (i, i+1) and its shadow ellipse: basis (b1, b2) of the plane orthogonal to the edge
@@ -95,6 +105,7 @@ struct EdgeShadow {
     bool valid;
     dvec3 axis1, axis2;  // 3-D directions of the shadow's axes
     double s1, s2;
+    double inv_s1, inv_s2;
     double px, py;         // the edge line's point in the shadow frame
     double closest_value;  // the closest candidate's edge value, once computed
 };
@@ -135,10 +146,22 @@ EdgeShadow make_shadow(const Problem& pb, int i) {
     s.s1 = std::sqrt(mean + radius);
     s.s2 = std::sqrt(std::max(mean - radius, 0.0));
     if (!(s.s2 > 0.0)) return s;
+    s.inv_s1 = 1.0 / s.s1;
+    s.inv_s2 = 1.0 / s.s2;
     s.px = glm::dot(s.axis1, pb.tri->q[i]);
     s.py = glm::dot(s.axis2, pb.tri->q[i]);
     s.valid = true;
     return s;
+}
+
+/// The closest point by the general solver (a coordinate of p is 0), in the form of
+/// closest_direction_fast: a unit m.
+template <int N>
+ClosestDirection<N> closest_by_solver(const std::array<double, N>& r, const std::array<double, N>& p) {
+    CriticalSolver<N> solver(r, p);
+    CriticalPoints<N> found;
+    solver.solve(CriticalSet::closest, found);
+    return {found.points[0].n, 1.0, found.points[0].offset};
 }
 
 class Solver {
@@ -194,7 +217,7 @@ public:
                 return {g, u, extreme + 0.5 * g * u, ContactPath::face_certified, 0};
             // Kept only now: stores on the certified path would cost more than the math.
             begin_search();
-            best_.offer(g, u);
+            best_.offer(g, u, h);
             side_[0] = side0;
             side_[1] = side1;
             side_[2] = side2;
@@ -211,6 +234,8 @@ private:
     void begin_search() {
         const dvec3& r = pb_.r;
         for (int i = 0; i < 3; ++i) pb_.pole[i] = (r[i] - r.z) * (r[i] + r.z);
+        pb_.inv_r = 1.0 / r;
+        for (int i = 0; i < 3; ++i) pb_.inv_r2[i] = pb_.inv_r[i] * pb_.inv_r[i];
         best_ = Best{};
         iterations_ = 0;
         face_touch_ = dvec3(0.0);
@@ -237,8 +262,7 @@ private:
 
     LocalContact finish(ContactPath path) const {
         // The ellipsoid's extreme point towards the triangle, x(-u), moved by half the depth.
-        const double h = pb_.support(best_.u);
-        const dvec3 point = 0.5 * best_.g * best_.u - pb_.support_point(best_.u, h);
+        const dvec3 point = 0.5 * best_.g * best_.u - pb_.support_point(best_.u, best_.h);
         return {best_.g, best_.u, point, path, iterations_};
     }
 
@@ -286,33 +310,50 @@ private:
         EdgeShadow& s = shadow_[i];
         s.closest_value = kInfinity;
         if (!s.valid || cannot_win(s)) return false;
-        std::array<double, 2> n;
-        if (s.py != 0.0) {
-            const double pole = (s.s1 - s.s2) * (s.s1 + s.s2);
-            s.closest_value =
-                -closest_normal_fast<2>({s.s1, s.s2}, {pole, 0.0}, {s.px, s.py}, n, iterations_);
-        } else {
-            CriticalSolver<2> solver({s.s1, s.s2}, {s.px, s.py});
-            CriticalPoints<2> found;
-            solver.solve(CriticalSet::closest, found);
-            n = found.points[0].n;
-            s.closest_value = -found.points[0].offset;
-        }
-        const dvec3 u = -(n[0] * s.axis1 + n[1] * s.axis2);
-        const double h = pb_.support(u);
+        const double pole = (s.s1 - s.s2) * (s.s1 + s.s2);
+        const ClosestDirection<2> d =
+            s.py != 0.0 ? closest_direction_fast<2>({s.s1, s.s2}, {pole, 0.0},
+                                                    {s.inv_s1 * s.inv_s1, s.inv_s2 * s.inv_s2},
+                                                    {s.px, s.py}, iterations_)
+                        : closest_by_solver<2>({s.s1, s.s2}, {s.px, s.py});
+        // The shadow's axes are orthonormal, so the 3-D direction has the 2-D length.
+        const Candidate c = candidate(-(d.m[0] * s.axis1 + d.m[1] * s.axis2), d.norm2);
+        s.closest_value = -d.offset_times_length * c.inv_length;
+        best_.offer(c.g, c.u, c.h);
+        if (c.dots[(i + 2) % 3] > std::max(c.dots[i], c.dots[(i + 1) % 3])) return false;
         const LocalTriangle& tri = *pb_.tri;
-        const int j = (i + 1) % 3;
-        const int k = (i + 2) % 3;
-        const double di = glm::dot(u, tri.q[i]);
-        const double dj = glm::dot(u, tri.q[j]);
-        const double dk = glm::dot(u, tri.q[k]);
-        const double g = std::max({di, dj, dk}) + h;
-        best_.offer(g, u);
-        if (dk > std::max(di, dj)) return false;
-        const dvec3 z = g * u - pb_.support_point(u, h);
+        const dvec3 z = c.g * c.u - pb_.support_point(c.u, c.h);
         const double along = glm::dot(z - tri.q[i], tri.edge[i]);
         return along >= 0.0 && along <= glm::dot(tri.edge[i], tri.edge[i]) &&
-               pb_.closest_regime(g, h);
+               pb_.closest_regime(c.g, c.h);
+    }
+
+    /// A closest-point candidate given its push direction unnormalised, m = |m| u (|m|^2 =
+    /// norm2): |m| and h(m) = |m| h(u) are independent square roots, g = (max_i m.q_i +
+    /// h(m)) / |m|, and dots keeps m.q_i (their order is that of u.q_i).
+    struct Candidate {
+        dvec3 u;
+        double g, h, inv_length;
+        dvec3 dots;
+    };
+
+    Candidate candidate(const dvec3& m, double norm2) const {
+        const LocalTriangle& tri = *pb_.tri;
+        const double hm = pb_.support(m);
+        const double inv_length = 1.0 / std::sqrt(norm2);
+        Candidate c;
+        c.dots = dvec3(glm::dot(m, tri.q[0]), glm::dot(m, tri.q[1]), glm::dot(m, tri.q[2]));
+        c.g = (std::max({c.dots.x, c.dots.y, c.dots.z}) + hm) * inv_length;
+        c.h = hm * inv_length;
+        c.u = m * inv_length;
+        c.inv_length = inv_length;
+        return c;
+    }
+
+    /// Offers a unit direction found by the deep enumeration.
+    void offer_direction(const dvec3& u) {
+        const double h = pb_.support(u);
+        best_.offer(pb_.top(u) + h, u, h);
     }
 
     /// The deep face certificate: the face's touching point z lies at least
@@ -339,38 +380,25 @@ private:
 
     /// No direction orthogonal to the edge gives g below the 2-D depth of its point.
     bool cannot_win(const EdgeShadow& s) const {
-        return depth_at_least(best_.g, s.px, s.py, 0.0, s.s1, s.s2, 1.0, s.s2, s.s1);
-    }
-
-    /// The outward normal of q's closest surface point; returns the signed distance.
-    double closest_normal(const dvec3& q, std::array<double, 3>& n) {
-        if (q.z != 0.0)
-            return closest_normal_fast<3>({pb_.r.x, pb_.r.y, pb_.r.z}, pb_.pole, {q.x, q.y, q.z}, n,
-                                          iterations_);
-        CriticalSolver<3> solver({pb_.r.x, pb_.r.y, pb_.r.z}, {q.x, q.y, q.z});
-        CriticalPoints<3> found;
-        solver.solve(CriticalSet::closest, found);
-        n = found.points[0].n;
-        return found.points[0].offset;
+        return depth_at_least(best_.g, dvec3(s.px, s.py, 0.0), dvec3(s.inv_s1, s.inv_s2, 0.0), s.s2,
+                              s.inv_s2, s.inv_s1);
     }
 
     bool try_vertex(int i) {
         const dvec3& q = pb_.tri->q[i];
         vertex_closest_[i] = kInfinity;
-        if (depth_at_least(best_.g, q.x, q.y, q.z, pb_.r.x, pb_.r.y, pb_.r.z, pb_.r.z, pb_.r.x))
-            return false;
-        std::array<double, 3> n;
-        vertex_closest_[i] = -closest_normal(q, n);
-        const dvec3 u(-n[0], -n[1], -n[2]);
-        const double h = pb_.support(u);
-        const double di = glm::dot(u, q);
-        const double others =
-            std::max(glm::dot(u, pb_.tri->q[(i + 1) % 3]), glm::dot(u, pb_.tri->q[(i + 2) % 3]));
-        const double g = std::max(di, others) + h;
-        best_.offer(g, u);
+        if (depth_at_least(best_.g, q, pb_.inv_r, pb_.r.z, pb_.inv_r.z, pb_.inv_r.x)) return false;
+        const std::array<double, 3> r = {pb_.r.x, pb_.r.y, pb_.r.z};
+        const ClosestDirection<3> d =
+            q.z != 0.0
+                ? closest_direction_fast<3>(r, pb_.pole, pb_.inv_r2, {q.x, q.y, q.z}, iterations_)
+                : closest_by_solver<3>(r, {q.x, q.y, q.z});
+        const Candidate c = candidate(-dvec3(d.m[0], d.m[1], d.m[2]), d.norm2);
+        vertex_closest_[i] = -d.offset_times_length * c.inv_length;
+        best_.offer(c.g, c.u, c.h);
         // u comes from q's closest point, so g = depth(q) when the vertex is active: q is the
         // deepest point of the triangle and sigma = g at any depth.
-        return di >= others;
+        return c.dots[i] >= std::max(c.dots[(i + 1) % 3], c.dots[(i + 2) % 3]);
     }
 
     void other_edge_minima(int i) {
@@ -384,8 +412,7 @@ private:
             const double pole = (s.s1 - s.s2) * (s.s1 + s.s2);
             if (other_minimum_normal_fast<2>({s.s1, s.s2}, {pole, 0.0}, {s.px, s.py}, n,
                                              iterations_)) {
-                const dvec3 u = -(n[0] * s.axis1 + n[1] * s.axis2);
-                best_.offer(pb_.top(u) + pb_.support(u), u);
+                offer_direction(-(n[0] * s.axis1 + n[1] * s.axis2));
             }
             return;
         }
@@ -394,8 +421,7 @@ private:
         solver.solve(CriticalSet::other_minima, found);
         for (int k = 0; k < found.count; ++k) {
             const CriticalPoint<2>& cp = found.points[k];
-            const dvec3 u = -(cp.n[0] * s.axis1 + cp.n[1] * s.axis2);
-            best_.offer(pb_.top(u) + pb_.support(u), u);
+            offer_direction(-(cp.n[0] * s.axis1 + cp.n[1] * s.axis2));
         }
     }
 
@@ -409,8 +435,7 @@ private:
             std::array<double, 3> n;
             if (other_minimum_normal_fast<3>({pb_.r.x, pb_.r.y, pb_.r.z}, pb_.pole, {q.x, q.y, q.z},
                                              n, iterations_)) {
-                const dvec3 u(-n[0], -n[1], -n[2]);
-                best_.offer(pb_.top(u) + pb_.support(u), u);
+                offer_direction(dvec3(-n[0], -n[1], -n[2]));
             }
             return;
         }
@@ -419,8 +444,7 @@ private:
         solver.solve(CriticalSet::other_minima, found);
         for (int k = 0; k < found.count; ++k) {
             const CriticalPoint<3>& cp = found.points[k];
-            const dvec3 u(-cp.n[0], -cp.n[1], -cp.n[2]);
-            best_.offer(pb_.top(u) + pb_.support(u), u);
+            offer_direction(dvec3(-cp.n[0], -cp.n[1], -cp.n[2]));
         }
     }
 
