@@ -118,7 +118,7 @@ EdgeShadow make_shadow(const Problem& pb, int i) {
     if (!(length2 > 0.0)) return s;
     // b1: orthogonal to the edge and to the coordinate axis least aligned with it; b2 = e x b1
     // / |e|. The two square roots are independent.
-    const dvec3 a = glm::abs(e);
+    const dvec3 a = abs_each(e);
     const dvec3 b1_raw = a.x <= a.y && a.x <= a.z ? dvec3(0.0, e.z, -e.y)
                          : a.y <= a.z             ? dvec3(-e.z, 0.0, e.x)
                                                   : dvec3(e.y, -e.x, 0.0);
@@ -622,7 +622,7 @@ Contact rescaled_contact(const Ellipsoid& ellipsoid, const std::array<glm::dvec3
     double raw_extent = radii.x;
     for (int i = 0; i < 3; ++i) {
         // max, not sum: a sum of two coordinates near 1.8e308 overflows (found by fuzz_contact).
-        const glm::dvec3 d = glm::max(glm::abs(v[i]), glm::abs(c));
+        const glm::dvec3 d = glm::max(abs_each(v[i]), abs_each(c));
         raw_extent = std::max({raw_extent, d.x, d.y, d.z});
     }
     const double scale = std::ldexp(1.0, std::ilogb(raw_extent));
@@ -645,7 +645,7 @@ Contact rescaled_contact(const Ellipsoid& ellipsoid, const std::array<glm::dvec3
             if (std::abs(local.q[i][k]) < 0x1p-200) local.q[i][k] = 0.0;
         local.q[i] *= unit.inverse;
     }
-    const glm::dvec3 sum = glm::abs(local.q[0]) + glm::abs(local.q[1]) + glm::abs(local.q[2]);
+    const glm::dvec3 sum = abs_each(local.q[0]) + abs_each(local.q[1]) + abs_each(local.q[2]);
     local.extent = (sum.x + sum.y + sum.z) * unit.value;  // in the input's scale
     const detail::LocalContact solved = solve_at_unit_scale(local_radii, local, unit);
     return {solved.depth * scale, axes * solved.u, c + axes * (solved.point * scale)};
@@ -672,7 +672,7 @@ Contact ellipsoid_triangle_contact(const Ellipsoid& ellipsoid, const Triangle& t
     // raises radii below 2^-200 of the largest to it (or treats the ellipsoid as a point),
     // which moves sigma by less than that. The sum also catches non-finite input (NaN and
     // infinity propagate).
-    const glm::dvec3 sum = glm::abs(local.q[0]) + glm::abs(local.q[1]) + glm::abs(local.q[2]);
+    const glm::dvec3 sum = abs_each(local.q[0]) + abs_each(local.q[1]) + abs_each(local.q[2]);
     local.extent = sum.x + sum.y + sum.z;
     if (!(local.extent < 0x1p250) || radii.z < 0x1p-200 || !(radii.x < 0x1p250) ||
         radii.z < std::max(radii.x, local.extent) * 0x1p-200) {
@@ -688,7 +688,7 @@ Contact ellipsoid_triangle_contact(const Ellipsoid& ellipsoid, const Triangle& t
     const PowerOfTwo unit = power_of_two_below(radii.x);
     const glm::dvec3 negligible(std::max(local.extent, radii.x) * 0x1p-200);
     for (glm::dvec3& q : local.q)
-        q *= glm::dvec3(glm::greaterThanEqual(glm::abs(q), negligible)) * unit.inverse;
+        q *= glm::dvec3(glm::greaterThanEqual(abs_each(q), negligible)) * unit.inverse;
     const detail::LocalContact solved = solve_at_unit_scale(radii, local, unit);
     return {solved.depth, axes * solved.u, c + axes * solved.point};
 }

@@ -50,6 +50,11 @@ inline constexpr int kClimbCap = 64;
 /// A climb stops once a Newton step is below this fraction of the offset: with quadratic
 /// convergence the remaining error is then far below one ulp.
 inline constexpr double kClimbRelativeStep = 1e-8;
+/// The contact kernel's closest-point climbs stop once the predicted error is below this
+/// fraction of eta: directions then carry ~1e-10 rad (the contract asks 1e-6 rad), depths
+/// ~1e-20 m (second order: a candidate's g is evaluated exactly at its direction). Saves
+/// the last Newton step of most climbs (vertex 5.0 -> 4.2 steps, edge 3.9 -> 3.1).
+inline constexpr double kContactPredicted = 1e-10;
 
 struct ClimbResult {
     double eta;
@@ -79,10 +84,14 @@ inline NewtonStep newton_step(const std::array<double, N>& a, const std::array<d
 }
 
 /// Climbs h(eta) from eta0 to its first root below eta_max. Inactive terms must carry
-/// a = 0 and c = 1 (so they add exactly 0).
+/// a = 0 and c = 1 (so they add exactly 0). Stops once a step is below kClimbRelativeStep
+/// of eta, or, when predicted > 0, once the error left after a step, as quadratic
+/// convergence predicts it from the last two steps (e_{k+1} = e_k (e_k / e_{k-1})^2), is
+/// below predicted * eta. previous_step: the step that led to eta0, if any (else 0).
 template <int N>
 inline ClimbResult climb(const std::array<double, N>& a, const std::array<double, N>& c,
-                         double eta0, double eta_max) {
+                         double eta0, double eta_max, double predicted = 0.0,
+                         double previous_step = 0.0) {
     double eta = eta0;
     if (!(eta < eta_max)) return {eta, 0, false};
     for (int k = 1; k <= kClimbCap; ++k) {
@@ -94,6 +103,9 @@ inline ClimbResult climb(const std::array<double, N>& a, const std::array<double
         const double next = eta + n.step;
         if (!(next < eta_max)) return {next, k, false};
         if (n.step <= kClimbRelativeStep * eta) return {next, k, true};
+        const double ratio = n.step / previous_step;  // infinite without a previous step
+        if (n.step * ratio * ratio <= predicted * eta) return {next, k, true};
+        previous_step = n.step;
         eta = next;
     }
     return {eta, kClimbCap, true};
@@ -109,14 +121,14 @@ inline ClimbResult climb(const std::array<double, N>& a, const std::array<double
 template <int N>
 inline ClimbResult climb_from_guess(const std::array<double, N>& a, const std::array<double, N>& c,
                                     double eta0, double guess,
-                                    const std::array<double, N>& inv_w) {
+                                    const std::array<double, N>& inv_w, double predicted) {
     const double infinity = std::numeric_limits<double>::infinity();
-    if (!(guess > eta0)) return climb<N>(a, c, eta0, infinity);
+    if (!(guess > eta0)) return climb<N>(a, c, eta0, infinity, predicted);
     const NewtonStep n = newton_step<N>(a, inv_w);
-    if (!(n.t > 0.0)) return climb<N>(a, c, eta0, infinity);
+    if (!(n.t > 0.0)) return climb<N>(a, c, eta0, infinity, predicted);
     const double next = std::max(guess + n.step, eta0);
     if (std::abs(n.step) <= kClimbRelativeStep * guess) return {next, 1, true};
-    ClimbResult rest = climb<N>(a, c, next, infinity);
+    ClimbResult rest = climb<N>(a, c, next, infinity, predicted);
     rest.iterations += 1;
     return rest;
 }
@@ -150,7 +162,8 @@ inline ClosestDirection<N> closest_direction_fast(const std::array<double, N>& r
         a[i] = r[i] * std::abs(p[i]);
         eta0 = std::max(eta0, a[i] - pole[i]);
     }
-    const ClimbResult root = climb_from_guess<N>(a, pole, eta0, r[N - 1] * r[N - 1], inv_r2);
+    const ClimbResult root =
+        climb_from_guess<N>(a, pole, eta0, r[N - 1] * r[N - 1], inv_r2, kContactPredicted);
     iterations += root.iterations;
     // x_i = r_i^2 p_i / w_i and m_i = p_i / w_i with w_i = pole_i + eta.
     ClosestDirection<N> out;
