@@ -61,7 +61,6 @@ struct Problem {
     const LocalTriangle* tri;
 
     double support(const dvec3& u) const { return std::sqrt(glm::dot(r2 * u, u)); }
-    dvec3 support_point(const dvec3& u, double h) const { return r2 * u / h; }
     double top(const dvec3& u) const {
         return std::max({glm::dot(u, tri->q[0]), glm::dot(u, tri->q[1]), glm::dot(u, tri->q[2])});
     }
@@ -69,17 +68,18 @@ struct Problem {
     bool closest_regime(double g, double h) const { return g * h < r_min2; }
 };
 
-/// The lowest candidate so far: g, its unit direction u and the support h(u) there (kept
-/// for the contact point).
+/// The lowest candidate so far: g, its unit direction u and the ellipsoid's extreme point
+/// x(-u) = -D^2 u / h(u) towards the triangle (kept for the contact point, and computed
+/// by each candidate beside the normalisation of u rather than after it).
 struct Best {
     double g = kInfinity;
     dvec3 u{0.0, 1.0, 0.0};
-    double h = 1.0;
-    void offer(double value, const dvec3& u_candidate, double h_candidate) {
+    dvec3 extreme{0.0, -1.0, 0.0};
+    void offer(double value, const dvec3& u_candidate, const dvec3& extreme_candidate) {
         if (value < g) {
             g = value;
             u = u_candidate;
-            h = h_candidate;
+            extreme = extreme_candidate;
         }
     }
 };
@@ -161,7 +161,10 @@ ClosestDirection<N> closest_by_solver(const std::array<double, N>& r, const std:
     CriticalSolver<N> solver(r, p);
     CriticalPoints<N> found;
     solver.solve(CriticalSet::closest, found);
-    return {found.points[0].n, 1.0, found.points[0].offset};
+    const std::array<double, N>& n = found.points[0].n;
+    double support2 = 0.0;
+    for (int i = 0; i < N; ++i) support2 += r[i] * r[i] * n[i] * n[i];
+    return {n, 1.0, support2, found.points[0].offset};
 }
 
 class Solver {
@@ -175,13 +178,20 @@ public:
 
     [[gnu::always_inline]] LocalContact run() {
         const LocalTriangle& tri = *pb_.tri;
+        // A vertex inside the ellipsoid is tried before the face: a vertex contact (a
+        // triangle's corner pressed into the car) is then certified without the face (-10 ns
+        // at the hard mix's median), and a shallow road contact, whose vertices are all far
+        // outside, pays only the test (~2 ns, won back by the entry's flush test).
+        const int inner = deepest_inner_vertex();
+        if (inner >= 0 && try_first_vertex(inner)) return finish(ContactPath::vertex_certified);
         // Face, from the unnormalised area normal N: |N| and h(N) = |N| h(n) are independent
         // square roots, and u = sign N / |N| faces the center (g(-u) >= g(u)).
-        // At the unit scale of the caller (r_x in [1, 2), r_z >= 2^-200) |N|^2 >= 2^-600 keeps
-        // |N|^2 and h(N)^2 >= r_z^2 |N|^2 normal numbers, so u is unit and g exact. Below it the
-        // triangle lies within 2^-150 of one of its edges (its height is |N| / longest edge, or
-        // every edge is below 2^-150), which moves sigma by less than that: below an ulp of
-        // r_x, so the edges and vertices answer for it.
+        // With r_z >= 2^-200 (unit scale, r_x in [1, 2)) or >= 2^-100 m (the fast path),
+        // |N|^2 >= 2^-600 keeps |N|^2 and h(N)^2 >= r_z^2 |N|^2 normal numbers, so u is unit
+        // and g exact. Below it the triangle lies within 2^-150 of one of its edges (its
+        // height is |N| / longest edge, or every edge is below 2^-150), which moves sigma by
+        // less than that: below an ulp of r_x at unit scale, far below the contract's 1e-9 m
+        // on the fast path; the edges and vertices answer for it.
         const dvec3 area_normal = glm::cross(tri.edge[0], -tri.edge[2]);
         const double n2 = glm::dot(area_normal, area_normal);
         if (n2 >= 0x1p-600 && n2 < kInfinity) {
@@ -216,17 +226,17 @@ public:
             if (inside & pb_.closest_regime(g, h))
                 return {g, u, extreme + 0.5 * g * u, ContactPath::face_certified, 0};
             // Kept only now: stores on the certified path would cost more than the math.
-            begin_search();
-            best_.offer(g, u, h);
+            if (inner < 0) begin_search();
+            best_.offer(g, u, extreme);
             side_[0] = side0;
             side_[1] = side1;
             side_[2] = side2;
             face_touch_ = z;
             if (inside && big_face(n2)) return finish(ContactPath::face_certified);
-        } else {
-            begin_search();
+            return edges_and_vertices(inner);
         }
-        return edges_and_vertices();
+        if (inner < 0) begin_search();
+        return edges_and_vertices(inner);
     }
 
 private:
@@ -242,13 +252,35 @@ private:
         side_[0] = side_[1] = side_[2] = 0.0;
     }
 
+    /// The vertex deepest in level l_i^2 = sum_k q_ik^2 / r_k^2 when it lies inside (l < 1),
+    /// else -1. Compared as l_i^2 r_x^2 r_y^2 r_z^2 = sum_k q_ik^2 prod_{j != k} r_j^2, so that
+    /// every contact pays no division for it.
+    int deepest_inner_vertex() const {
+        const dvec3& r2 = pb_.r2;
+        const dvec3 weight(r2.y * r2.z, r2.x * r2.z, r2.x * r2.y);
+        const LocalTriangle& tri = *pb_.tri;
+        double level[3];
+        for (int i = 0; i < 3; ++i) level[i] = glm::dot(tri.q[i] * tri.q[i], weight);
+        const int lower = level[1] < level[0] ? 1 : 0;
+        const int deepest = level[2] < level[lower] ? 2 : lower;
+        return level[deepest] < r2.x * weight.x ? deepest : -1;
+    }
+
+    /// The search begun at vertex i (out of line, as edges_and_vertices).
+    [[gnu::noinline]] bool try_first_vertex(int i) {
+        begin_search();
+        return try_vertex(i);
+    }
+
     /// Everything after the face, out of line so that the face path stays small and inlined.
-    [[gnu::noinline]] LocalContact edges_and_vertices() {
+    /// tried: a vertex already tried (deepest_inner_vertex), or -1.
+    [[gnu::noinline]] LocalContact edges_and_vertices(int tried) {
         // Edges and vertices by their closest-point candidates, the ones the face's touching
         // point fell beyond first.
         int order[6];
         feature_order(order);
         for (const int feature : order) {
+            if (tried >= 0 && feature == 3 + tried) continue;
             if (feature < 3 ? try_edge(feature) : try_vertex(feature - 3))
                 return finish(feature < 3 ? ContactPath::edge_certified
                                           : ContactPath::vertex_certified);
@@ -262,7 +294,7 @@ private:
 
     LocalContact finish(ContactPath path) const {
         // The ellipsoid's extreme point towards the triangle, x(-u), moved by half the depth.
-        const dvec3 point = 0.5 * best_.g * best_.u - pb_.support_point(best_.u, best_.h);
+        const dvec3 point = 0.5 * best_.g * best_.u + best_.extreme;
         return {best_.g, best_.u, point, path, iterations_};
     }
 
@@ -316,32 +348,36 @@ private:
                                                     {s.inv_s1 * s.inv_s1, s.inv_s2 * s.inv_s2},
                                                     {s.px, s.py}, iterations_)
                         : closest_by_solver<2>({s.s1, s.s2}, {s.px, s.py});
-        // The shadow's axes are orthonormal, so the 3-D direction has the 2-D length.
-        const Candidate c = candidate(-(d.m[0] * s.axis1 + d.m[1] * s.axis2), d.norm2);
+        // The shadow's axes are orthonormal, so the 3-D direction has the 2-D length, and the
+        // shadow's support is the ellipsoid's for directions orthogonal to the edge.
+        const Candidate c = candidate(-(d.m[0] * s.axis1 + d.m[1] * s.axis2), d);
         s.closest_value = -d.offset_times_length * c.inv_length;
-        best_.offer(c.g, c.u, c.h);
+        best_.offer(c.g, c.u, c.extreme);
         if (c.dots[(i + 2) % 3] > std::max(c.dots[i], c.dots[(i + 1) % 3])) return false;
         const LocalTriangle& tri = *pb_.tri;
-        const dvec3 z = c.g * c.u - pb_.support_point(c.u, c.h);
+        const dvec3 z = c.g * c.u + c.extreme;
         const double along = glm::dot(z - tri.q[i], tri.edge[i]);
         return along >= 0.0 && along <= glm::dot(tri.edge[i], tri.edge[i]) &&
                pb_.closest_regime(c.g, c.h);
     }
 
-    /// A closest-point candidate given its push direction unnormalised, m = |m| u (|m|^2 =
-    /// norm2): |m| and h(m) = |m| h(u) are independent square roots, g = (max_i m.q_i +
-    /// h(m)) / |m|, and dots keeps m.q_i (their order is that of u.q_i).
+    /// A closest-point candidate given its push direction unnormalised, m = |m| u, and the
+    /// closest point it came from (|m|^2 and h(m)^2): |m| and h(m) = |m| h(u) are independent
+    /// square roots, g = (max_i m.q_i + h(m)) / |m|, the extreme point x(-u) = -D^2 m / h(m)
+    /// needs no |m|, and dots keeps m.q_i (their order is that of u.q_i).
     struct Candidate {
-        dvec3 u;
+        dvec3 u, extreme;
         double g, h, inv_length;
         dvec3 dots;
     };
 
-    Candidate candidate(const dvec3& m, double norm2) const {
+    template <int N>
+    Candidate candidate(const dvec3& m, const ClosestDirection<N>& d) const {
         const LocalTriangle& tri = *pb_.tri;
-        const double hm = pb_.support(m);
-        const double inv_length = 1.0 / std::sqrt(norm2);
+        const double hm = std::sqrt(d.support2);
+        const double inv_length = 1.0 / std::sqrt(d.norm2);
         Candidate c;
+        c.extreme = pb_.r2 * m * (-1.0 / hm);
         c.dots = dvec3(glm::dot(m, tri.q[0]), glm::dot(m, tri.q[1]), glm::dot(m, tri.q[2]));
         c.g = (std::max({c.dots.x, c.dots.y, c.dots.z}) + hm) * inv_length;
         c.h = hm * inv_length;
@@ -353,7 +389,7 @@ private:
     /// Offers a unit direction found by the deep enumeration.
     void offer_direction(const dvec3& u) {
         const double h = pb_.support(u);
-        best_.offer(pb_.top(u) + h, u, h);
+        best_.offer(pb_.top(u) + h, u, pb_.r2 * u * (-1.0 / h));
     }
 
     /// The deep face certificate: the face's touching point z lies at least
@@ -393,9 +429,9 @@ private:
             q.z != 0.0
                 ? closest_direction_fast<3>(r, pb_.pole, pb_.inv_r2, {q.x, q.y, q.z}, iterations_)
                 : closest_by_solver<3>(r, {q.x, q.y, q.z});
-        const Candidate c = candidate(-dvec3(d.m[0], d.m[1], d.m[2]), d.norm2);
+        const Candidate c = candidate(-dvec3(d.m[0], d.m[1], d.m[2]), d);
         vertex_closest_[i] = -d.offset_times_length * c.inv_length;
-        best_.offer(c.g, c.u, c.h);
+        best_.offer(c.g, c.u, c.extreme);
         // u comes from q's closest point, so g = depth(q) when the vertex is active: q is the
         // deepest point of the triangle and sigma = g at any depth.
         return c.dots[i] >= std::max(c.dots[(i + 1) % 3], c.dots[(i + 2) % 3]);
@@ -494,16 +530,13 @@ PowerOfTwo power_of_two_below(double x) {
             std::bit_cast<double>((std::uint64_t{2046} << 52) - exponent)};
 }
 
-/// The kernel at the scale where the largest radius is in [1, 2): local.q given (already
-/// flushed and multiplied by unit.inverse), radii and extent in the input's scale. The
-/// kernel forms products up to the sixth power of a length (h(N)^2 = |D N|^2 for the area
-/// normal N, a length^2) and compares fourth powers; at a fixed scale these stay normal
-/// numbers over every configuration the callers admit (smallest radius within 2^-200 of the
-/// largest, triangle within 2^206 of it), while at the input's own scale they underflowed
-/// below 1e-54 m and overflowed above 1e51 m (a wrong depth at 2^-179 and 2^170 times a car;
-/// found by the power-of-two scaling test). Powers of two scale every rounding exactly, so
-/// the result is bit-identical to solving at the input's scale wherever that did not
-/// under- or overflow.
+/// The kernel at the scale where the largest radius is in [1, 2), for the careful path:
+/// local.q given (already flushed and multiplied by unit.inverse), radii and extent in the
+/// input's scale. The kernel forms products up to the sixth power of a length (h(N)^2 =
+/// |D N|^2 for the area normal N, a length^2) and compares fourth powers; at unit scale these
+/// stay normal numbers over every configuration the careful path admits (smallest radius
+/// within 2^-200 of the largest, triangle within 2^206 of it). Powers of two scale every
+/// rounding exactly, so the result is bit-identical to the fast path's wherever both apply.
 [[gnu::always_inline]] inline detail::LocalContact solve_at_unit_scale(
     const glm::dvec3& radii, detail::LocalTriangle& local, const PowerOfTwo& unit) {
     for (int i = 0; i < 3; ++i) local.edge[i] = local.q[(i + 1) % 3] - local.q[i];
@@ -569,6 +602,11 @@ std::array<int, 3> canonical_order(const Triangle& t) {
 /// The triangle's vertices in canonical order.
 std::array<glm::dvec3, 3> canonical_vertices(const Triangle& t, const std::array<int, 3>& order) {
     return {t[order[0]], t[order[1]], t[order[2]]};
+}
+
+/// Sets the coordinates below negligible to zero (see ellipsoid_triangle_contact).
+[[gnu::noinline]] void flush_negligible(std::array<glm::dvec3, 3>& q, double negligible) {
+    for (glm::dvec3& v : q) v *= glm::dvec3(glm::greaterThanEqual(abs_each(v), glm::dvec3(negligible)));
 }
 
 /// Scales v to unit length and sets length to its former length; false (v unchanged) for
@@ -661,20 +699,23 @@ Contact ellipsoid_triangle_contact(const Ellipsoid& ellipsoid, const Triangle& t
     detail::LocalTriangle local;
     for (int k = 0; k < 3; ++k)  // row vector * M = M^T * column
         local.q[k] = (triangle[order[static_cast<std::size_t>(k)]] - c) * axes;
-    // The fast solver needs every length's square, cube and fourth power to be a normal
-    // number: radii within [2^-200, 2^250], the smallest radius within 2^200 of the largest
-    // and of the triangle's extent, vertices within 2^250 of the center, as every car and
-    // track is (edges are at most twice the largest |q|); tiny vertex offsets are flushed
-    // below. fuzz_contact found each bound the hard way: 1e262 m
-    // and 1e79 m radii gave an infinite depth or a NaN normal, 1e-76 m radii a normal 2e-8
-    // off unit, a 1e114 radii ratio an infinite depth, a 1e-57 m sphere under a 1e5 m
-    // triangle a normal 5e-7 off unit. The careful path rescales by a power of two and
-    // raises radii below 2^-200 of the largest to it (or treats the ellipsoid as a point),
-    // which moves sigma by less than that. The sum also catches non-finite input (NaN and
-    // infinity propagate).
-    const glm::dvec3 sum = abs_each(local.q[0]) + abs_each(local.q[1]) + abs_each(local.q[2]);
+    // The fast solver needs every product it forms, up to the sixth power of a length
+    // (h(N)^2 = |D N|^2 for the area normal N), to be a normal number: radii within
+    // [2^-100, 2^100], the smallest radius within 2^200 of the largest and of the triangle's
+    // extent, vertices within 2^100 of the center, as every car and track is (edges are at
+    // most twice the largest |q|); tiny vertex offsets are flushed below. fuzz_contact found
+    // each bound the hard way: 1e262 m and 1e79 m radii gave an infinite depth or a NaN
+    // normal, 1e-76 m radii a normal 2e-8 off unit, a 1e114 radii ratio an infinite depth, a
+    // 1e-57 m sphere under a 1e5 m triangle a normal 5e-7 off unit; and the power-of-two
+    // scaling test a wrong depth for a car scaled by 2^-179 or 2^170 (sixth powers). The
+    // careful path solves at unit scale (solve_at_unit_scale) and raises radii below 2^-200
+    // of the largest to it (or treats the ellipsoid as a point), which moves sigma by less
+    // than that. The sum also catches non-finite input (NaN and infinity propagate).
+    const std::array<glm::dvec3, 3> abs_q = {abs_each(local.q[0]), abs_each(local.q[1]),
+                                             abs_each(local.q[2])};
+    const glm::dvec3 sum = abs_q[0] + abs_q[1] + abs_q[2];
     local.extent = sum.x + sum.y + sum.z;
-    if (!(local.extent < 0x1p250) || radii.z < 0x1p-200 || !(radii.x < 0x1p250) ||
+    if (!(local.extent < 0x1p100) || radii.z < 0x1p-100 || !(radii.x < 0x1p100) ||
         radii.z < std::max(radii.x, local.extent) * 0x1p-200) {
         if (!finite_triangle(triangle))
             return {-std::numeric_limits<double>::infinity(), glm::dvec3(0.0, 1.0, 0.0), c};
@@ -683,13 +724,15 @@ Contact ellipsoid_triangle_contact(const Ellipsoid& ellipsoid, const Triangle& t
     // Offsets below 2^-200 of the configuration are flushed to zero: moving a vertex by that
     // little moves sigma by less, while a subnormal one (1e-311 m from the center of a 32 m
     // ellipsoid, found by fuzz_contact) made the solver miss the minimum by 1.3 cm, and one
-    // beside 1e-76 m radii gave an infinite depth. A 0/1 mask multiplies without branches.
-    // The mask and the scale to unit radius (solve_at_unit_scale) in one product.
-    const PowerOfTwo unit = power_of_two_below(radii.x);
-    const glm::dvec3 negligible(std::max(local.extent, radii.x) * 0x1p-200);
-    for (glm::dvec3& q : local.q)
-        q *= glm::dvec3(glm::greaterThanEqual(abs_each(q), negligible)) * unit.inverse;
-    const detail::LocalContact solved = solve_at_unit_scale(radii, local, unit);
+    // beside 1e-76 m radii gave an infinite depth. Tested on the smallest offset first: a
+    // car's coordinates are never that small (nor, in a rotated frame, exactly 0), and the
+    // mask on every coordinate cost the shallow road contact 2 ns.
+    const double negligible = std::max(local.extent, radii.x) * 0x1p-200;
+    const glm::dvec3 smallest = glm::min(glm::min(abs_q[0], abs_q[1]), abs_q[2]);
+    if (std::min({smallest.x, smallest.y, smallest.z}) < negligible) [[unlikely]]
+        flush_negligible(local.q, negligible);
+    for (int i = 0; i < 3; ++i) local.edge[i] = local.q[(i + 1) % 3] - local.q[i];
+    const detail::LocalContact solved = detail::solve_inline(radii, local);
     return {solved.depth, axes * solved.u, c + axes * solved.point};
 }
 

@@ -134,13 +134,15 @@ inline ClimbResult climb_from_guess(const std::array<double, N>& a, const std::a
 }
 
 /// The closest surface point's outward normal direction, unnormalised, for the contact
-/// kernel: m_i = p_i / (r_i^2 + t) = x_i / r_i^2, with |m|^2 and offset_times_length = |m|
-/// times the signed distance n . (p - x). Left unnormalised so that the caller can take
-/// |m| and the support h(m) = |m| h(n) as independent square roots.
+/// kernel: m_i = p_i / (r_i^2 + t) = x_i / r_i^2, with |m|^2, support2 = sum r_i^2 m_i^2 =
+/// h(m)^2 (= x . m) and offset_times_length = |m| times the signed distance n . (p - x).
+/// Left unnormalised so that the caller can take |m| and h(m) = |m| h(n) as independent
+/// square roots.
 template <int N>
 struct ClosestDirection {
     std::array<double, N> m;
     double norm2;
+    double support2;
     double offset_times_length;
 };
 
@@ -168,16 +170,16 @@ inline ClosestDirection<N> closest_direction_fast(const std::array<double, N>& r
     // x_i = r_i^2 p_i / w_i and m_i = p_i / w_i with w_i = pole_i + eta.
     ClosestDirection<N> out;
     out.norm2 = 0.0;
-    double x_dot_m = 0.0;
+    out.support2 = 0.0;
     double p_dot_m = 0.0;
     for (int i = 0; i < N; ++i) {
         const double w = pole[i] + root.eta;
         out.m[i] = p[i] / w;
         out.norm2 += out.m[i] * out.m[i];
-        x_dot_m += r[i] * r[i] * out.m[i] * out.m[i];
+        out.support2 += r[i] * r[i] * out.m[i] * out.m[i];
         p_dot_m += p[i] * out.m[i];
     }
-    out.offset_times_length = p_dot_m - x_dot_m;
+    out.offset_times_length = p_dot_m - out.support2;
     return out;
 }
 
