@@ -50,10 +50,11 @@ inline constexpr int kClimbCap = 64;
 /// A climb stops once a Newton step is below this fraction of the offset: with quadratic
 /// convergence the remaining error is then far below one ulp.
 inline constexpr double kClimbRelativeStep = 1e-8;
-/// The contact kernel's closest-point climbs stop once the predicted error is below this
-/// fraction of eta: directions then carry ~1e-10 rad (the contract asks 1e-6 rad), depths
-/// ~1e-20 m (second order: a candidate's g is evaluated exactly at its direction). Saves
-/// the last Newton step of most climbs (vertex 5.0 -> 4.2 steps, edge 3.9 -> 3.1).
+/// The contact kernel's climbs (closest point, other minimum) also stop once the predicted
+/// error is below this fraction of eta: directions then carry ~1e-10 rad (the contract asks
+/// 1e-6 rad), depths ~1e-20 m (second order: a candidate's g is evaluated exactly at its
+/// direction). Saves the last Newton step of most climbs (vertex 5.0 -> 4.2 steps, edge
+/// 3.9 -> 3.1).
 inline constexpr double kContactPredicted = 1e-10;
 
 struct ClimbResult {
@@ -202,7 +203,7 @@ inline bool other_minimum_normal_fast(const std::array<double, N>& r,
         if (a[i] > 0.0 && pole[i] > 0.0) eta_max = std::min(eta_max, pole[i]);
         if (pole[i] == 0.0) eta0 = std::max(eta0, a[i]);
     }
-    const ClimbResult root = climb<N>(a, c, eta0, eta_max);
+    const ClimbResult root = climb<N>(a, c, eta0, eta_max, kContactPredicted);
     iterations += root.iterations;
     if (!root.found) return false;
     int negative = 0;
