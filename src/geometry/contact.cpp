@@ -29,8 +29,9 @@
 // closest-point direction keeps it the top vertex is certified at any depth (z = q_i and
 // the direction is its closest point by construction), and so is a face whose touching point
 // lies far enough inside the triangle (big_face). Only the rest enumerate every local
-// minimum. The order of the tries follows where the face's touching point fell: beyond an
-// edge, that edge (or the vertex past whose end it fell) comes first.
+// minimum. The deepest vertex, when it lies inside the ellipsoid, is tried before the face;
+// after the face, the order follows where its touching point fell: beyond an edge, that edge
+// (or the vertex past whose end it fell) comes first.
 //
 // Candidates (the minimiser of g has 3, 2 or 1 active vertices):
 // - face: u = +-n; only the side facing the center can win, g(-n) >= g(n) when n.q <= 0;
@@ -178,7 +179,7 @@ public:
     [[gnu::always_inline]] LocalContact run() {
         const LocalTriangle& tri = *pb_.tri;
         // A vertex inside the ellipsoid is tried before the face: a vertex contact (a
-        // triangle's corner pressed into the car) is then certified without the face (-10 ns
+        // triangle's corner pressed into the car) is then certified without the face (-9 ns
         // at the hard mix's median), and a shallow road contact, whose vertices are all far
         // outside, pays only the test (~2 ns, won back by the entry's flush test).
         const int inner = deepest_inner_vertex();
