@@ -8,6 +8,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vector_relational.hpp>
 
+#include "geometry/contact_extremes.hpp"
 #include "geometry/contact_kernel.hpp"
 #include "geometry/ellipsoid_roots.hpp"
 #include "trackphys/math/types.hpp"
@@ -28,8 +29,9 @@
 // closest-point direction keeps it the top vertex is certified at any depth (z = q_i and
 // the direction is its closest point by construction), and so is a face whose touching point
 // lies far enough inside the triangle (big_face). Only the rest enumerate every local
-// minimum. The order of the tries follows where the face's touching point fell: beyond an
-// edge, that edge (or the vertex past whose end it fell) comes first.
+// minimum. The deepest vertex, when it lies inside the ellipsoid, is tried before the face;
+// after the face, the order follows where its touching point fell: beyond an edge, that edge
+// (or the vertex past whose end it fell) comes first.
 //
 // Candidates (the minimiser of g has 3, 2 or 1 active vertices):
 // - face: u = +-n; only the side facing the center can win, g(-n) >= g(n) when n.q <= 0;
@@ -54,10 +56,11 @@ struct Problem {
     dvec3 r2;  // squared radii
     double r_min2;
     std::array<double, 3> pole;  // (r_i - r_z)(r_i + r_z): offsets of the poles of f from -r_z^2
+    dvec3 inv_r;                 // 1 / r_i
+    std::array<double, 3> inv_r2;  // 1 / r_i^2
     const LocalTriangle* tri;
 
     double support(const dvec3& u) const { return std::sqrt(glm::dot(r2 * u, u)); }
-    dvec3 support_point(const dvec3& u, double h) const { return r2 * u / h; }
     double top(const dvec3& u) const {
         return std::max({glm::dot(u, tri->q[0]), glm::dot(u, tri->q[1]), glm::dot(u, tri->q[2])});
     }
@@ -65,26 +68,35 @@ struct Problem {
     bool closest_regime(double g, double h) const { return g * h < r_min2; }
 };
 
+/// The lowest candidate so far: g, its unit direction u and the ellipsoid's extreme point
+/// x(-u) = -D^2 u / h(u) towards the triangle (kept for the contact point, and computed
+/// by each candidate beside the normalisation of u rather than after it).
 struct Best {
     double g = kInfinity;
     dvec3 u{0.0, 1.0, 0.0};
-    void offer(double value, const dvec3& u_candidate) {
+    dvec3 extreme{0.0, -1.0, 0.0};
+    void offer(double value, const dvec3& u_candidate, const dvec3& extreme_candidate) {
         if (value < g) {
             g = value;
             u = u_candidate;
+            extreme = extreme_candidate;
         }
     }
 };
 
-/// Whether a point at level l = ||p / r|| (radii r, smallest r_small, largest r_large)
-/// certainly has signed depth >= best, so that no candidate of it can win: its depth is at
-/// least (1 - l) * (l < 1 ? r_small : r_large), which never exceeds r_small (so the level
-/// is only computed when best is below that).
-bool depth_at_least(double best, double x, double y, double z, double rx, double ry, double rz,
-                    double r_small, double r_large) {
+/// Whether a point p at level l = ||p / r|| (inverse radii inv, smallest radius r_small,
+/// largest r_large) certainly has signed depth >= best, so that no candidate of it can win:
+/// its depth is at least (1 - l) * r with r = r_small for l < 1, r_large otherwise, which
+/// never exceeds r_small (so the level is only computed when best is below that). Tested
+/// without a square root or a division: (1 - l) r >= best <=> l <= 1 - best / r, and for
+/// l >= 0 that is 1 - best / r >= 0 and l^2 <= (1 - best / r)^2.
+bool depth_at_least(double best, const dvec3& p, const dvec3& inv, double r_small,
+                    double inv_small, double inv_large) {
     if (best > r_small) return false;
-    const double level = std::sqrt((x / rx) * (x / rx) + (y / ry) * (y / ry) + (z / rz) * (z / rz));
-    return (1.0 - level) * (level < 1.0 ? r_small : r_large) >= best;
+    const dvec3 scaled = p * inv;
+    const double level2 = glm::dot(scaled, scaled);
+    const double bound = 1.0 - best * (level2 < 1.0 ? inv_small : inv_large);
+    return bound >= 0.0 && level2 <= bound * bound;
 }
 
 /// Edge (i, i+1) and its shadow ellipse: basis (b1, b2) of the plane orthogonal to the edge
@@ -93,6 +105,7 @@ struct EdgeShadow {
     bool valid;
     dvec3 axis1, axis2;  // 3-D directions of the shadow's axes
     double s1, s2;
+    double inv_s1, inv_s2;
     double px, py;         // the edge line's point in the shadow frame
     double closest_value;  // the closest candidate's edge value, once computed
 };
@@ -105,7 +118,7 @@ EdgeShadow make_shadow(const Problem& pb, int i) {
     if (!(length2 > 0.0)) return s;
     // b1: orthogonal to the edge and to the coordinate axis least aligned with it; b2 = e x b1
     // / |e|. The two square roots are independent.
-    const dvec3 a = glm::abs(e);
+    const dvec3 a = abs_each(e);
     const dvec3 b1_raw = a.x <= a.y && a.x <= a.z ? dvec3(0.0, e.z, -e.y)
                          : a.y <= a.z             ? dvec3(-e.z, 0.0, e.x)
                                                   : dvec3(e.y, -e.x, 0.0);
@@ -133,10 +146,25 @@ EdgeShadow make_shadow(const Problem& pb, int i) {
     s.s1 = std::sqrt(mean + radius);
     s.s2 = std::sqrt(std::max(mean - radius, 0.0));
     if (!(s.s2 > 0.0)) return s;
+    s.inv_s1 = 1.0 / s.s1;
+    s.inv_s2 = 1.0 / s.s2;
     s.px = glm::dot(s.axis1, pb.tri->q[i]);
     s.py = glm::dot(s.axis2, pb.tri->q[i]);
     s.valid = true;
     return s;
+}
+
+/// The closest point by the general solver (a coordinate of p is 0), in the form of
+/// closest_direction_fast: a unit m.
+template <int N>
+ClosestDirection<N> closest_by_solver(const std::array<double, N>& r, const std::array<double, N>& p) {
+    CriticalSolver<N> solver(r, p);
+    CriticalPoints<N> found;
+    solver.solve(CriticalSet::closest, found);
+    const std::array<double, N>& n = found.points[0].n;
+    double support2 = 0.0;
+    for (int i = 0; i < N; ++i) support2 += r[i] * r[i] * n[i] * n[i];
+    return {n, 1.0, support2, found.points[0].offset};
 }
 
 class Solver {
@@ -150,11 +178,23 @@ public:
 
     [[gnu::always_inline]] LocalContact run() {
         const LocalTriangle& tri = *pb_.tri;
+        // A vertex inside the ellipsoid is tried before the face: a vertex contact (a
+        // triangle's corner pressed into the car) is then certified without the face (-9 ns
+        // at the hard mix's median), and a shallow road contact, whose vertices are all far
+        // outside, pays only the test (~2 ns, won back by the entry's flush test).
+        const int inner = deepest_inner_vertex();
+        if (inner >= 0 && try_first_vertex(inner)) return finish(ContactPath::vertex_certified);
         // Face, from the unnormalised area normal N: |N| and h(N) = |N| h(n) are independent
         // square roots, and u = sign N / |N| faces the center (g(-u) >= g(u)).
+        // With r_z >= 2^-200 (unit scale, r_x in [1, 2)) or >= 2^-100 m (the fast path),
+        // |N|^2 >= 2^-600 keeps |N|^2 and h(N)^2 >= r_z^2 |N|^2 normal numbers, so u is unit
+        // and g exact. Below it the triangle lies within 2^-150 of one of its edges (its
+        // height is |N| / longest edge, or every edge is below 2^-150), which moves sigma by
+        // less than that: below an ulp of r_x at unit scale, far below the contract's 1e-9 m
+        // on the fast path; the edges and vertices answer for it.
         const dvec3 area_normal = glm::cross(tri.edge[0], -tri.edge[2]);
         const double n2 = glm::dot(area_normal, area_normal);
-        if (n2 > 0.0 && n2 < kInfinity) {
+        if (n2 >= 0x1p-600 && n2 < kInfinity) {
             const dvec3 r2n = pb_.r2 * area_normal;
             const double inv_length = 1.0 / std::sqrt(n2);
             const double hn = std::sqrt(glm::dot(r2n, area_normal));
@@ -186,17 +226,17 @@ public:
             if (inside & pb_.closest_regime(g, h))
                 return {g, u, extreme + 0.5 * g * u, ContactPath::face_certified, 0};
             // Kept only now: stores on the certified path would cost more than the math.
-            begin_search();
-            best_.offer(g, u);
+            if (inner < 0) begin_search();
+            best_.offer(g, u, extreme);
             side_[0] = side0;
             side_[1] = side1;
             side_[2] = side2;
             face_touch_ = z;
             if (inside && big_face(n2)) return finish(ContactPath::face_certified);
-        } else {
-            begin_search();
+            return edges_and_vertices(inner);
         }
-        return edges_and_vertices();
+        if (inner < 0) begin_search();
+        return edges_and_vertices(inner);
     }
 
 private:
@@ -204,19 +244,43 @@ private:
     void begin_search() {
         const dvec3& r = pb_.r;
         for (int i = 0; i < 3; ++i) pb_.pole[i] = (r[i] - r.z) * (r[i] + r.z);
+        pb_.inv_r = 1.0 / r;
+        for (int i = 0; i < 3; ++i) pb_.inv_r2[i] = pb_.inv_r[i] * pb_.inv_r[i];
         best_ = Best{};
         iterations_ = 0;
         face_touch_ = dvec3(0.0);
         side_[0] = side_[1] = side_[2] = 0.0;
     }
 
+    /// The vertex deepest in level l_i^2 = sum_k q_ik^2 / r_k^2 when it lies inside (l < 1),
+    /// else -1. Compared as l_i^2 r_x^2 r_y^2 r_z^2 = sum_k q_ik^2 prod_{j != k} r_j^2, so that
+    /// every contact pays no division for it.
+    int deepest_inner_vertex() const {
+        const dvec3& r2 = pb_.r2;
+        const dvec3 weight(r2.y * r2.z, r2.x * r2.z, r2.x * r2.y);
+        const LocalTriangle& tri = *pb_.tri;
+        double level[3];
+        for (int i = 0; i < 3; ++i) level[i] = glm::dot(tri.q[i] * tri.q[i], weight);
+        const int lower = level[1] < level[0] ? 1 : 0;
+        const int deepest = level[2] < level[lower] ? 2 : lower;
+        return level[deepest] < r2.x * weight.x ? deepest : -1;
+    }
+
+    /// The search begun at vertex i (out of line, as edges_and_vertices).
+    [[gnu::noinline]] bool try_first_vertex(int i) {
+        begin_search();
+        return try_vertex(i);
+    }
+
     /// Everything after the face, out of line so that the face path stays small and inlined.
-    [[gnu::noinline]] LocalContact edges_and_vertices() {
+    /// tried: a vertex already tried (deepest_inner_vertex), or -1.
+    [[gnu::noinline]] LocalContact edges_and_vertices(int tried) {
         // Edges and vertices by their closest-point candidates, the ones the face's touching
         // point fell beyond first.
         int order[6];
         feature_order(order);
         for (const int feature : order) {
+            if (tried >= 0 && feature == 3 + tried) continue;
             if (feature < 3 ? try_edge(feature) : try_vertex(feature - 3))
                 return finish(feature < 3 ? ContactPath::edge_certified
                                           : ContactPath::vertex_certified);
@@ -230,8 +294,7 @@ private:
 
     LocalContact finish(ContactPath path) const {
         // The ellipsoid's extreme point towards the triangle, x(-u), moved by half the depth.
-        const double h = pb_.support(best_.u);
-        const dvec3 point = 0.5 * best_.g * best_.u - pb_.support_point(best_.u, h);
+        const dvec3 point = 0.5 * best_.g * best_.u + best_.extreme;
         return {best_.g, best_.u, point, path, iterations_};
     }
 
@@ -279,33 +342,54 @@ private:
         EdgeShadow& s = shadow_[i];
         s.closest_value = kInfinity;
         if (!s.valid || cannot_win(s)) return false;
-        std::array<double, 2> n;
-        if (s.py != 0.0) {
-            const double pole = (s.s1 - s.s2) * (s.s1 + s.s2);
-            s.closest_value =
-                -closest_normal_fast<2>({s.s1, s.s2}, {pole, 0.0}, {s.px, s.py}, n, iterations_);
-        } else {
-            CriticalSolver<2> solver({s.s1, s.s2}, {s.px, s.py});
-            CriticalPoints<2> found;
-            solver.solve(CriticalSet::closest, found);
-            n = found.points[0].n;
-            s.closest_value = -found.points[0].offset;
-        }
-        const dvec3 u = -(n[0] * s.axis1 + n[1] * s.axis2);
-        const double h = pb_.support(u);
+        const double pole = (s.s1 - s.s2) * (s.s1 + s.s2);
+        const ClosestDirection<2> d =
+            s.py != 0.0 ? closest_direction_fast<2>({s.s1, s.s2}, {pole, 0.0},
+                                                    {s.inv_s1 * s.inv_s1, s.inv_s2 * s.inv_s2},
+                                                    {s.px, s.py}, iterations_)
+                        : closest_by_solver<2>({s.s1, s.s2}, {s.px, s.py});
+        // The shadow's axes are orthonormal, so the 3-D direction has the 2-D length, and the
+        // shadow's support is the ellipsoid's for directions orthogonal to the edge.
+        const Candidate c = candidate(-(d.m[0] * s.axis1 + d.m[1] * s.axis2), d);
+        s.closest_value = -d.offset_times_length * c.inv_length;
+        best_.offer(c.g, c.u, c.extreme);
+        if (c.dots[(i + 2) % 3] > std::max(c.dots[i], c.dots[(i + 1) % 3])) return false;
         const LocalTriangle& tri = *pb_.tri;
-        const int j = (i + 1) % 3;
-        const int k = (i + 2) % 3;
-        const double di = glm::dot(u, tri.q[i]);
-        const double dj = glm::dot(u, tri.q[j]);
-        const double dk = glm::dot(u, tri.q[k]);
-        const double g = std::max({di, dj, dk}) + h;
-        best_.offer(g, u);
-        if (dk > std::max(di, dj)) return false;
-        const dvec3 z = g * u - pb_.support_point(u, h);
+        const dvec3 z = c.g * c.u + c.extreme;
         const double along = glm::dot(z - tri.q[i], tri.edge[i]);
         return along >= 0.0 && along <= glm::dot(tri.edge[i], tri.edge[i]) &&
-               pb_.closest_regime(g, h);
+               pb_.closest_regime(c.g, c.h);
+    }
+
+    /// A closest-point candidate given its push direction unnormalised, m = |m| u, and the
+    /// closest point it came from (|m|^2 and h(m)^2): |m| and h(m) = |m| h(u) are independent
+    /// square roots, g = (max_i m.q_i + h(m)) / |m|, the extreme point x(-u) = -D^2 m / h(m)
+    /// needs no |m|, and dots keeps m.q_i (their order is that of u.q_i).
+    struct Candidate {
+        dvec3 u, extreme;
+        double g, h, inv_length;
+        dvec3 dots;
+    };
+
+    template <int N>
+    Candidate candidate(const dvec3& m, const ClosestDirection<N>& d) const {
+        const LocalTriangle& tri = *pb_.tri;
+        const double hm = std::sqrt(d.support2);
+        const double inv_length = 1.0 / std::sqrt(d.norm2);
+        Candidate c;
+        c.extreme = pb_.r2 * m * (-1.0 / hm);
+        c.dots = dvec3(glm::dot(m, tri.q[0]), glm::dot(m, tri.q[1]), glm::dot(m, tri.q[2]));
+        c.g = (std::max({c.dots.x, c.dots.y, c.dots.z}) + hm) * inv_length;
+        c.h = hm * inv_length;
+        c.u = m * inv_length;
+        c.inv_length = inv_length;
+        return c;
+    }
+
+    /// Offers a unit direction found by the deep enumeration.
+    void offer_direction(const dvec3& u) {
+        const double h = pb_.support(u);
+        best_.offer(pb_.top(u) + h, u, pb_.r2 * u * (-1.0 / h));
     }
 
     /// The deep face certificate: the face's touching point z lies at least
@@ -315,53 +399,42 @@ private:
     /// (1 - c <= s, R >= g). For c < 0, the plane offset n.z <= 0 and h(u) >= |c| h(n) -
     /// s r_max give g(u) >= (1 - s)(h(n) - n.z) + s (R - |z| - r_max) >= h(n) + n.z = g. So n
     /// minimises g at any depth: a wheel pressed deep into a large road triangle.
-    /// side_k = |N| |e_k| times z's distance from edge line k.
+    /// side_k = |N| |e_k| times z's distance from edge line k. The distance is formed by
+    /// dividing (a length^4 over a length^3), not by comparing squares: those are 8th powers
+    /// of lengths, which underflow to 0 = 0 at 1e-54 m (and certified a wrong face there).
     /// Reads the face's stored best_, face_touch_ and side_; n2 = |N|^2.
     [[gnu::noinline]] bool big_face(double n2) const {
         const double g = best_.g;
         if (!(g > 0.0)) return false;
         const double r = g + glm::length(face_touch_) + pb_.r.x;
-        const double limit = r * r * n2;
+        const double inv_length = 1.0 / std::sqrt(n2);
         const LocalTriangle& tri = *pb_.tri;
         for (int k = 0; k < 3; ++k)
-            if (side_[k] * side_[k] < limit * glm::dot(tri.edge[k], tri.edge[k])) return false;
+            if (side_[k] * inv_length < r * glm::length(tri.edge[k])) return false;
         return true;
     }
 
     /// No direction orthogonal to the edge gives g below the 2-D depth of its point.
     bool cannot_win(const EdgeShadow& s) const {
-        return depth_at_least(best_.g, s.px, s.py, 0.0, s.s1, s.s2, 1.0, s.s2, s.s1);
-    }
-
-    /// The outward normal of q's closest surface point; returns the signed distance.
-    double closest_normal(const dvec3& q, std::array<double, 3>& n) {
-        if (q.z != 0.0)
-            return closest_normal_fast<3>({pb_.r.x, pb_.r.y, pb_.r.z}, pb_.pole, {q.x, q.y, q.z}, n,
-                                          iterations_);
-        CriticalSolver<3> solver({pb_.r.x, pb_.r.y, pb_.r.z}, {q.x, q.y, q.z});
-        CriticalPoints<3> found;
-        solver.solve(CriticalSet::closest, found);
-        n = found.points[0].n;
-        return found.points[0].offset;
+        return depth_at_least(best_.g, dvec3(s.px, s.py, 0.0), dvec3(s.inv_s1, s.inv_s2, 0.0), s.s2,
+                              s.inv_s2, s.inv_s1);
     }
 
     bool try_vertex(int i) {
         const dvec3& q = pb_.tri->q[i];
         vertex_closest_[i] = kInfinity;
-        if (depth_at_least(best_.g, q.x, q.y, q.z, pb_.r.x, pb_.r.y, pb_.r.z, pb_.r.z, pb_.r.x))
-            return false;
-        std::array<double, 3> n;
-        vertex_closest_[i] = -closest_normal(q, n);
-        const dvec3 u(-n[0], -n[1], -n[2]);
-        const double h = pb_.support(u);
-        const double di = glm::dot(u, q);
-        const double others =
-            std::max(glm::dot(u, pb_.tri->q[(i + 1) % 3]), glm::dot(u, pb_.tri->q[(i + 2) % 3]));
-        const double g = std::max(di, others) + h;
-        best_.offer(g, u);
+        if (depth_at_least(best_.g, q, pb_.inv_r, pb_.r.z, pb_.inv_r.z, pb_.inv_r.x)) return false;
+        const std::array<double, 3> r = {pb_.r.x, pb_.r.y, pb_.r.z};
+        const ClosestDirection<3> d =
+            q.z != 0.0
+                ? closest_direction_fast<3>(r, pb_.pole, pb_.inv_r2, {q.x, q.y, q.z}, iterations_)
+                : closest_by_solver<3>(r, {q.x, q.y, q.z});
+        const Candidate c = candidate(-dvec3(d.m[0], d.m[1], d.m[2]), d);
+        vertex_closest_[i] = -d.offset_times_length * c.inv_length;
+        best_.offer(c.g, c.u, c.extreme);
         // u comes from q's closest point, so g = depth(q) when the vertex is active: q is the
         // deepest point of the triangle and sigma = g at any depth.
-        return di >= others;
+        return c.dots[i] >= std::max(c.dots[(i + 1) % 3], c.dots[(i + 2) % 3]);
     }
 
     void other_edge_minima(int i) {
@@ -375,8 +448,7 @@ private:
             const double pole = (s.s1 - s.s2) * (s.s1 + s.s2);
             if (other_minimum_normal_fast<2>({s.s1, s.s2}, {pole, 0.0}, {s.px, s.py}, n,
                                              iterations_)) {
-                const dvec3 u = -(n[0] * s.axis1 + n[1] * s.axis2);
-                best_.offer(pb_.top(u) + pb_.support(u), u);
+                offer_direction(-(n[0] * s.axis1 + n[1] * s.axis2));
             }
             return;
         }
@@ -385,8 +457,7 @@ private:
         solver.solve(CriticalSet::other_minima, found);
         for (int k = 0; k < found.count; ++k) {
             const CriticalPoint<2>& cp = found.points[k];
-            const dvec3 u = -(cp.n[0] * s.axis1 + cp.n[1] * s.axis2);
-            best_.offer(pb_.top(u) + pb_.support(u), u);
+            offer_direction(-(cp.n[0] * s.axis1 + cp.n[1] * s.axis2));
         }
     }
 
@@ -400,8 +471,7 @@ private:
             std::array<double, 3> n;
             if (other_minimum_normal_fast<3>({pb_.r.x, pb_.r.y, pb_.r.z}, pb_.pole, {q.x, q.y, q.z},
                                              n, iterations_)) {
-                const dvec3 u(-n[0], -n[1], -n[2]);
-                best_.offer(pb_.top(u) + pb_.support(u), u);
+                offer_direction(dvec3(-n[0], -n[1], -n[2]));
             }
             return;
         }
@@ -410,8 +480,7 @@ private:
         solver.solve(CriticalSet::other_minima, found);
         for (int k = 0; k < found.count; ++k) {
             const CriticalPoint<3>& cp = found.points[k];
-            const dvec3 u(-cp.n[0], -cp.n[1], -cp.n[2]);
-            best_.offer(pb_.top(u) + pb_.support(u), u);
+            offer_direction(dvec3(-cp.n[0], -cp.n[1], -cp.n[2]));
         }
     }
 
@@ -447,32 +516,6 @@ namespace {
 
 namespace {
 
-/// Closest point of triangle (a, b, c) to p by its Voronoi regions (Ericson, "Real-Time
-/// Collision Detection", 5.1.5), every division guarded so that degenerate triangles give a
-/// point of their hull.
-glm::dvec3 closest_point_on_triangle(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b,
-                                     const glm::dvec3& c) {
-    const glm::dvec3 ab = b - a, ac = c - a, ap = p - a;
-    const double d1 = glm::dot(ab, ap), d2 = glm::dot(ac, ap);
-    if (d1 <= 0.0 && d2 <= 0.0) return a;
-    const glm::dvec3 bp = p - b;
-    const double d3 = glm::dot(ab, bp), d4 = glm::dot(ac, bp);
-    if (d3 >= 0.0 && d4 <= d3) return b;
-    const double vc = d1 * d4 - d3 * d2;
-    if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 && d1 - d3 > 0.0) return a + ab * (d1 / (d1 - d3));
-    const glm::dvec3 cp = p - c;
-    const double d5 = glm::dot(ab, cp), d6 = glm::dot(ac, cp);
-    if (d6 >= 0.0 && d5 <= d6) return c;
-    const double vb = d5 * d2 - d1 * d6;
-    if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 && d2 - d6 > 0.0) return a + ac * (d2 / (d2 - d6));
-    const double va = d3 * d6 - d5 * d4;
-    if (va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0 && (d4 - d3) + (d5 - d6) > 0.0)
-        return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
-    const double sum = va + vb + vc;
-    if (!(sum > 0.0)) return a;
-    return a + ab * (vb / sum) + ac * (vc / sum);
-}
-
 bool finite_triangle(const Triangle& t) {
     return is_finite(t[0]) && is_finite(t[1]) && is_finite(t[2]);
 }
@@ -504,79 +547,10 @@ std::array<glm::dvec3, 3> canonical_vertices(const Triangle& t, const std::array
     return {t[order[0]], t[order[1]], t[order[2]]};
 }
 
-/// Scales v to unit length and sets length to its former length; false (v unchanged) for
-/// the zero vector. The center can sit far below the scale that brings the triangle near 1
-/// (c ~ 1e-159 when the triangle spans 1e170 around a center at 1e11): squaring such
-/// components gives subnormals, whose lost bits left a direction 2e-7 off unit (found by
-/// fuzz_contact). Dividing by the largest component first keeps the squares in [0, 3].
-bool unit_and_length(glm::dvec3& v, double& length) {
-    const double largest = std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
-    if (!(largest > 0.0)) return false;
-    v /= largest;
-    const double scaled = glm::length(v);
-    v /= scaled;
-    length = largest * scaled;
-    return true;
-}
-
-/// For configurations whose lengths span more than double's squares can hold (the ellipsoid
-/// smaller than 1e-60 of the triangle's distance or size): the ellipsoid acts as its center
-/// point, sigma = h(u) - |c - z| with z the triangle's closest point and u = (c - z) / |c - z|.
-/// The neglected terms are far below one ulp of the distances involved.
-Contact point_like_contact(const Ellipsoid& ellipsoid, const std::array<glm::dvec3, 3>& v,
-                           double scale) {
-    const glm::dvec3 c = ellipsoid.center() / scale;
-    std::array<glm::dvec3, 3> w;
-    for (int i = 0; i < 3; ++i) w[i] = v[i] / scale;
-    const glm::dvec3 z = closest_point_on_triangle(c, w[0], w[1], w[2]);
-    glm::dvec3 u = c - z;
-    double distance = 0.0;
-    if (!unit_and_length(u, distance)) {
-        u = glm::cross(w[1] - w[0], w[2] - w[0]);
-        double length = 0.0;
-        if (!unit_and_length(u, length)) u = glm::dvec3(0.0, 1.0, 0.0);
-    }
-    const glm::dvec3 local = u * ellipsoid.sorted_axes();
-    const glm::dvec3 r = ellipsoid.sorted_radii();
-    const double h = r.x * glm::length(r / r.x * local);
-    const double depth = h - distance * scale;
-    return {depth, u, z * scale + 0.5 * depth * u};
-}
-
-/// Extreme configurations: solve at a power-of-two scale (exact) that brings the largest
-/// length near 1. Radii below 2^-200 of the largest are raised to it (sigma moves by less
-/// than that, far below one ulp of the largest radius), and an ellipsoid that is still below
-/// 2^-200 of the configuration acts as a point.
-Contact rescaled_contact(const Ellipsoid& ellipsoid, const std::array<glm::dvec3, 3>& v) {
-    const glm::dvec3& c = ellipsoid.center();
-    const glm::dmat3& axes = ellipsoid.sorted_axes();
-    const glm::dvec3 radii =
-        glm::max(ellipsoid.sorted_radii(), glm::dvec3(ellipsoid.sorted_radii().x * 0x1p-200));
-    double raw_extent = radii.x;
-    for (int i = 0; i < 3; ++i) {
-        // max, not sum: a sum of two coordinates near 1.8e308 overflows (found by fuzz_contact).
-        const glm::dvec3 d = glm::max(glm::abs(v[i]), glm::abs(c));
-        raw_extent = std::max({raw_extent, d.x, d.y, d.z});
-    }
-    const double scale = std::ldexp(1.0, std::ilogb(raw_extent));
-    if (radii.z / scale < 0x1p-200) return point_like_contact(ellipsoid, v, scale);
-    const glm::dvec3 center = c / scale;
-    detail::LocalTriangle local;
-    // Components below 2^-200 of the scale are flushed to zero, as the radii are raised
-    // above: each vertex moves by less than 2^-199 of the largest length, and sigma with it
-    // (1-Lipschitz), while subnormal components (a center 1e-303 from the triangle beside
-    // a 1e9 m radius: found by fuzz_contact) would break the solver's squares into an
-    // infinite depth.
-    for (int i = 0; i < 3; ++i) {
-        local.q[i] = (v[i] / scale - center) * axes;
-        for (int k = 0; k < 3; ++k)
-            if (std::abs(local.q[i][k]) < 0x1p-200) local.q[i][k] = 0.0;
-    }
-    for (int i = 0; i < 3; ++i) local.edge[i] = local.q[(i + 1) % 3] - local.q[i];
-    const glm::dvec3 sum = glm::abs(local.q[0]) + glm::abs(local.q[1]) + glm::abs(local.q[2]);
-    local.extent = sum.x + sum.y + sum.z;
-    const detail::LocalContact solved = detail::contact_in_sorted_frame(radii / scale, local);
-    return {solved.depth * scale, axes * solved.u, c + axes * (solved.point * scale)};
+/// Sets the coordinates below negligible to zero (see ellipsoid_triangle_contact).
+[[gnu::noinline]] void flush_negligible(std::array<glm::dvec3, 3>& q, double negligible) {
+    for (glm::dvec3& v : q)
+        v *= glm::dvec3(glm::greaterThanEqual(abs_each(v), glm::dvec3(negligible)));
 }
 
 }  // namespace
@@ -589,32 +563,38 @@ Contact ellipsoid_triangle_contact(const Ellipsoid& ellipsoid, const Triangle& t
     detail::LocalTriangle local;
     for (int k = 0; k < 3; ++k)  // row vector * M = M^T * column
         local.q[k] = (triangle[order[static_cast<std::size_t>(k)]] - c) * axes;
-    // The fast solver needs every length's square, cube and fourth power to be a normal
-    // number: radii within [2^-200, 2^250], the smallest radius within 2^200 of the largest
-    // and of the triangle's extent, vertices within 2^250 of the center, as every car and
-    // track is (edges are at most twice the largest |q|); tiny vertex offsets are flushed
-    // below. fuzz_contact found each bound the hard way: 1e262 m
-    // and 1e79 m radii gave an infinite depth or a NaN normal, 1e-76 m radii a normal 2e-8
-    // off unit, a 1e114 radii ratio an infinite depth, a 1e-57 m sphere under a 1e5 m
-    // triangle a normal 5e-7 off unit. The careful path rescales by a power of two and
-    // raises radii below 2^-200 of the largest to it (or treats the ellipsoid as a point),
-    // which moves sigma by less than that. The sum also catches non-finite input (NaN and
-    // infinity propagate).
-    const glm::dvec3 sum = glm::abs(local.q[0]) + glm::abs(local.q[1]) + glm::abs(local.q[2]);
+    // The fast solver needs every product it forms, up to the sixth power of a length
+    // (h(N)^2 = |D N|^2 for the area normal N), to be a normal number: radii within
+    // [2^-100, 2^100], the smallest radius within 2^200 of the largest and of the triangle's
+    // extent, vertices within 2^100 of the center, as every car and track is (edges are at
+    // most twice the largest |q|); tiny vertex offsets are flushed below. fuzz_contact found
+    // each bound the hard way: 1e262 m and 1e79 m radii gave an infinite depth or a NaN
+    // normal, 1e-76 m radii a normal 2e-8 off unit, a 1e114 radii ratio an infinite depth, a
+    // 1e-57 m sphere under a 1e5 m triangle a normal 5e-7 off unit; and the power-of-two
+    // scaling test a wrong depth for a car scaled by 2^-179 or 2^170 (sixth powers). The
+    // careful path solves at unit scale (solve_at_unit_scale) and raises radii below 2^-200
+    // of the largest to it (or treats the ellipsoid as a point), which moves sigma by less
+    // than that. The sum also catches non-finite input (NaN and infinity propagate).
+    const std::array<glm::dvec3, 3> abs_q = {abs_each(local.q[0]), abs_each(local.q[1]),
+                                             abs_each(local.q[2])};
+    const glm::dvec3 sum = abs_q[0] + abs_q[1] + abs_q[2];
     local.extent = sum.x + sum.y + sum.z;
-    if (!(local.extent < 0x1p250) || radii.z < 0x1p-200 || !(radii.x < 0x1p250) ||
+    if (!(local.extent < 0x1p100) || radii.z < 0x1p-100 || !(radii.x < 0x1p100) ||
         radii.z < std::max(radii.x, local.extent) * 0x1p-200) {
         if (!finite_triangle(triangle))
             return {-std::numeric_limits<double>::infinity(), glm::dvec3(0.0, 1.0, 0.0), c};
-        return rescaled_contact(ellipsoid, canonical_vertices(triangle, order));
+        return detail::rescaled_contact(ellipsoid, canonical_vertices(triangle, order));
     }
     // Offsets below 2^-200 of the configuration are flushed to zero: moving a vertex by that
     // little moves sigma by less, while a subnormal one (1e-311 m from the center of a 32 m
     // ellipsoid, found by fuzz_contact) made the solver miss the minimum by 1.3 cm, and one
-    // beside 1e-76 m radii gave an infinite depth. A 0/1 mask multiplies without branches.
-    const glm::dvec3 negligible(std::max(local.extent, radii.x) * 0x1p-200);
-    for (glm::dvec3& q : local.q)
-        q *= glm::dvec3(glm::greaterThanEqual(glm::abs(q), negligible));
+    // beside 1e-76 m radii gave an infinite depth. Tested on the smallest offset first: a
+    // car's coordinates are never that small (nor, in a rotated frame, exactly 0), and the
+    // mask on every coordinate cost the shallow road contact 2 ns.
+    const double negligible = std::max(local.extent, radii.x) * 0x1p-200;
+    const glm::dvec3 smallest = glm::min(glm::min(abs_q[0], abs_q[1]), abs_q[2]);
+    if (std::min({smallest.x, smallest.y, smallest.z}) < negligible) [[unlikely]]
+        flush_negligible(local.q, negligible);
     for (int i = 0; i < 3; ++i) local.edge[i] = local.q[(i + 1) % 3] - local.q[i];
     const detail::LocalContact solved = detail::solve_inline(radii, local);
     return {solved.depth, axes * solved.u, c + axes * solved.point};

@@ -34,8 +34,10 @@ struct LocalTriangle {
     double extent;
 };
 
-/// sigma and its direction for radii x >= y >= z > 0; all inputs finite and of moderate
-/// size (the caller scales huge and tiny configurations by a power of two).
+/// sigma and its direction for radii x >= y >= z > 0; all inputs finite, z >= 2^-200 x,
+/// and either every length within 2^-100..2^100 m or at the unit scale x in [1, 2) with
+/// extent <= 2^206 x (the kernel's sixth powers of lengths must stay normal numbers). The
+/// public entry scales every other configuration to unit scale by powers of two.
 LocalContact contact_in_sorted_frame(const glm::dvec3& radii, const LocalTriangle& triangle);
 
 }  // namespace trackphys::detail

@@ -5,6 +5,7 @@ target_sources(trackphys PRIVATE
   geometry/triangle.cpp)
 target_sources(trackphys PRIVATE
   geometry/contact.cpp
+  geometry/contact_extremes.cpp
   geometry/point_ellipse.cpp
   geometry/point_ellipsoid.cpp
   geometry/writeup_root_finders.cpp)

@@ -184,6 +184,27 @@ TEST(Contact, ShallowRoadContactsTakeTheCertifiedFaceExit) {
     EXPECT_GT(count, 7000);
 }
 
+// A triangle's corner pressed into the car: the vertex inside is tried before the face, and
+// its closest-point certificate answers alone (98% here; the rest are deeper than the
+// certificate's reach or have another vertex above it).
+TEST(Contact, VertexContactsAreCertifiedByTheirVertex) {
+    ContactCaseGenerator generator(21);
+    int vertex = 0;
+    for (int k = 0; k < 10000; ++k) {
+        const ContactCase c = generator.make(ContactKind::vertex, /*overlapping=*/true);
+        detail::LocalTriangle local;
+        local.extent = 0.0;
+        for (int i = 0; i < 3; ++i) {
+            local.q[i] = c.ellipsoid.to_sorted_local(c.triangle[i]);
+            local.edge[i] = c.ellipsoid.to_sorted_local(c.triangle[(i + 1) % 3]) - local.q[i];
+            local.extent += std::abs(local.q[i].x) + std::abs(local.q[i].y) + std::abs(local.q[i].z);
+        }
+        vertex += detail::contact_in_sorted_frame(c.ellipsoid.sorted_radii(), local).path ==
+                  detail::ContactPath::vertex_certified;
+    }
+    EXPECT_GT(vertex, 9500);
+}
+
 TEST(Contact, RigidMotionsChangeTheDepthByAtMostANanometre) {
     ContactCaseGenerator generator(14);
     double worst = 0;
@@ -369,6 +390,74 @@ TEST(Contact, FuzzFoundExtremesStayFinite) {
         EXPECT_TRUE(finite(got)) << got.depth;
         EXPECT_TRUE(std::isfinite(got.depth));
         EXPECT_NEAR(glm::length(got.normal), 1.0, 1e-12);
+    }
+}
+
+Ellipsoid scaled(double s, const Ellipsoid& e) {
+    return Ellipsoid(s * e.center(), e.orientation(), s * e.semi_axes());
+}
+
+Triangle scaled(double s, const Triangle& t) {
+    return Triangle(s * t[0], s * t[1], s * t[2]);
+}
+
+// Issue 8: fuzz_contact found normals 0.987 long (semi-axes ~6e257 beside a vertex at
+// -3.5e296) and 4.3e-9 off unit (coordinates ~1e209, radii ~1e170). The rescaled path
+// brought the world's largest coordinate near 1 but left the ellipsoid and the triangle's
+// offsets from its center near 1e-39 of it. The kernel's answer scales with the input: a
+// power-of-two scale s is exact on every input, so contact(s E, s T) = s contact(E, T) to
+// the contract (1e-9 of s), from radii of 1e-150 m to 1e300 m.
+TEST(Contact, PowerOfTwoScalesScaleTheContact) {
+    ContactCaseGenerator generator(19);
+    for (int k = 0; k < 20000; ++k) {
+        const ContactCase c = generator.any();
+        const Contact base = ellipsoid_triangle_contact(c.ellipsoid, c.triangle);
+        const int exponent = -500 + generator.pick(1495);  // 2^-500 ~ 3e-151 .. 2^994 ~ 2e299
+        const double s = std::ldexp(1.0, exponent);
+        const Contact got =
+            ellipsoid_triangle_contact(scaled(s, c.ellipsoid), scaled(s, c.triangle));
+        ASSERT_TRUE(finite(got)) << describe(c) << " scale 2^" << exponent;
+        ASSERT_NEAR(glm::length(got.normal), 1.0, 1e-12) << describe(c) << " scale 2^" << exponent;
+        ASSERT_NEAR(got.depth / s, base.depth, 1e-9) << describe(c) << " scale 2^" << exponent;
+    }
+}
+
+// The same far from the origin: an ellipsoid of radii from 1e-150 m to 1e300 m (each axis
+// on its own, so ratios up to 1e450 are raised as the kernel documents) at up to 1e300 m
+// from the origin, its triangle's vertices within a few of its radii, or far out.
+TEST(Contact, HugeAndTinyScalesFarOutKeepAUnitNormal) {
+    ContactCaseGenerator generator(20);
+    const auto power = [&](double lo, double hi) { return std::pow(10.0, generator.uniform(lo, hi)); };
+    // The two findings of issue 8, as closely as the lost reports describe them.
+    const std::array<std::pair<Ellipsoid, Triangle>, 2> findings = {{
+        {Ellipsoid({1e296, -2e296, 3e295}, generator.rotation(), {6e257, 5.9e257, 6.1e257}),
+         Triangle({-3.5e296, 1e296, 2e295}, {1e296, -2e296, 3e295 + 5e257},
+                  {1e296 + 4e257, -2e296, 3e295})},
+        {Ellipsoid({1e209, 2e209, -3e209}, generator.rotation(), {1e170, 2e170, 3e170}),
+         Triangle({1e209 + 1e170, 2e209, -3e209}, {1e209, 2e209 + 2e170, -3e209},
+                  {1e209, 2e209, -3e209 + 4e170})},
+    }};
+    for (const auto& [e, t] : findings) {
+        const Contact got = ellipsoid_triangle_contact(e, t);
+        ASSERT_TRUE(finite(got));
+        ASSERT_NEAR(glm::length(got.normal), 1.0, 1e-12);
+    }
+    for (int k = 0; k < 20000; ++k) {
+        const glm::dvec3 radii(power(-150, 300), power(-150, 300), power(-150, 300));
+        const glm::dvec3 center = power(-10, 300) * generator.direction();
+        const Ellipsoid e(center, generator.rotation(), radii);
+        const double reach = std::max({radii.x, radii.y, radii.z});
+        std::array<glm::dvec3, 3> v;
+        for (glm::dvec3& x : v)
+            x = generator.pick(8) == 0 ? power(-10, 300) * generator.direction()
+                                       : center + reach * generator.uniform(0, 3) * generator.direction();
+        const Triangle t(v[0], v[1], v[2]);
+        const Contact got = ellipsoid_triangle_contact(e, t);
+        ASSERT_TRUE(finite(got)) << k;
+        ASSERT_TRUE(std::isfinite(got.depth)) << k;
+        ASSERT_NEAR(glm::length(got.normal), 1.0, 1e-12)
+            << "radii " << radii.x << " " << radii.y << " " << radii.z << " center " << center.x
+            << " " << center.y << " " << center.z << " v " << v[0].x << " " << v[1].x << " " << v[2].x;
     }
 }
 
