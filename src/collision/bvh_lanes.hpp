@@ -19,7 +19,6 @@
 
 #include "float_bounds.hpp"
 #include "trackphys/collision/bvh_node.hpp"
-#include "trackphys/geometry/aabb.hpp"
 
 namespace trackphys::collision_detail {
 
@@ -28,9 +27,8 @@ struct QueryLanes {
     __m128 out_min[3], out_max[3];  ///< outward: holds the double box
     __m128 in_min[3], in_max[3];    ///< inward: inside the double box
 
-    explicit QueryLanes(const Aabb& box) {
-        const FloatBox out = outward_float_box(box);
-        const FloatBox in = inward_float_box(box);
+    /// From the query box rounded outward (out) and inward (in).
+    QueryLanes(const FloatBox& out, const FloatBox& in) {
         for (int a = 0; a < 3; ++a) {
             out_min[a] = _mm_set1_ps(out.min[a]);
             out_max[a] = _mm_set1_ps(out.max[a]);

@@ -8,6 +8,7 @@
 
 #include "bvh_builder.hpp"
 #include "bvh_lanes.hpp"
+#include "lane_compaction.hpp"
 #include "quantized_boxes.hpp"
 #include "core/fnv1a.hpp"
 #include "trackphys/assert.hpp"
@@ -174,9 +175,11 @@ inline bool StaticCollider::triangle_box_overlaps(std::uint32_t slot, const Aabb
 template <class Sink>
 void StaticCollider::visit_aabb(const Aabb& box, Sink& sink) const {
     if (nodes_.empty()) return;
-    const QueryLanes q(box);
-    const collision_detail::QueryBounds bounds(collision_detail::outward_float_box(box),
-                                               collision_detail::inward_float_box(box));
+    // Rounded once: the node lanes and the leaf grids test the same float bounds.
+    const collision_detail::FloatBox outward = collision_detail::outward_float_box(box);
+    const collision_detail::FloatBox inward = collision_detail::inward_float_box(box);
+    const QueryLanes q(outward, inward);
+    const collision_detail::QueryBounds bounds(outward, inward);
     struct Entry {
         std::uint32_t node, end;
     };
@@ -248,14 +251,16 @@ public:
     BufferedOutput& operator=(const BufferedOutput&) = delete;
     ~BufferedOutput() { flush(); }
 
-    /// Slots s + i for the set bits i of `mask` (eight lanes; the slot array is padded, so
-    /// every lane is read and stored, and only the set ones are kept: no branches).
+    /// Slots s + i for the set bits i of `mask` (eight lanes): eight slots are copied in
+    /// the order of collision_detail::kCompactedLanes, set lanes first, and the count kept
+    /// (the slot array is padded, so every lane can be read; no branch on the mask).
     void slots(std::uint32_t s, unsigned mask) {
         if (used_ > kSize - kBlockSlots) flush();
-        for (unsigned i = 0; i < kBlockSlots; ++i) {
-            buffer_[used_] = make_(slot_to_triangle_[s + i]);
-            used_ += (mask >> i) & 1u;
-        }
+        const collision_detail::CompactedLanes& c = collision_detail::kCompactedLanes[mask];
+        const std::uint32_t* from = slot_to_triangle_ + s;
+        T* to = buffer_ + used_;
+        for (unsigned k = 0; k < kBlockSlots; ++k) to[k] = make_(from[c.lane[k]]);
+        used_ += c.count;
     }
     /// Slots [first, end).
     void range(std::uint32_t first, std::uint32_t end) {
@@ -305,9 +310,10 @@ template <class Predicate>
 void StaticCollider::visit_box_filtered(const Aabb& box, Predicate&& keep,
                                         std::vector<std::uint32_t>& out) const {
     if (nodes_.empty()) return;
-    const QueryLanes q(box);
-    const collision_detail::QueryBounds bounds(collision_detail::outward_float_box(box),
-                                               collision_detail::inward_float_box(box));
+    const collision_detail::FloatBox outward = collision_detail::outward_float_box(box);
+    const collision_detail::FloatBox inward = collision_detail::inward_float_box(box);
+    const QueryLanes q(outward, inward);
+    const collision_detail::QueryBounds bounds(outward, inward);
     struct Entry {
         std::uint32_t node, end;
     };
