@@ -27,9 +27,10 @@ using collision_detail::QueryLanes;
 namespace {
 
 constexpr std::uint32_t kNoSlot = std::numeric_limits<std::uint32_t>::max();
-// Slots in one block of quantized boxes, and 16-bit values in one block.
+// Slots in one block.
 constexpr std::uint32_t kBlockSlots = QuantizedBlock::kLanes;
-constexpr std::size_t kBlockValues = 6 * kBlockSlots;
+static_assert(BvhSlotBlock::kLanes == kBlockSlots &&
+              sizeof(BvhSlotBlock::box) == sizeof(QuantizedBlock));
 
 // Lanes 0 .. n - 1 of eight (n >= 8: all of them).
 unsigned first_lanes(std::uint32_t n) { return (1u << std::min(n, kBlockSlots)) - 1u; }
@@ -70,14 +71,13 @@ StaticCollider::StaticCollider(const TriangleMesh& mesh) {
     // leaves first use them, so that neighbouring leaves read neighbouring memory.
     const std::size_t n = kept.size();
     slot_vertices_.resize(n);
-    // Seven more slots, never reported: eight-lane reads at any block stay inside.
-    slot_to_triangle_.resize(n + kBlockSlots - 1, 0);
+    slot_blocks_.assign((n + kBlockSlots - 1) / kBlockSlots, BvhSlotBlock{});
     triangle_to_slot_.assign(mesh.triangles.size(), kNoSlot);
     std::vector<std::uint32_t> vertex_remap(mesh.vertices.size(), kNoSlot);
     std::uint32_t used_vertices = 0;
     for (std::size_t slot = 0; slot < n; ++slot) {
         const std::uint32_t triangle = kept[bvh.order[slot]];
-        slot_to_triangle_[slot] = triangle;
+        slot_blocks_[slot / kBlockSlots].triangle[slot % kBlockSlots] = triangle;
         triangle_to_slot_[triangle] = static_cast<std::uint32_t>(slot);
         for (int k = 0; k < 3; ++k) {
             std::uint32_t& remapped = vertex_remap[mesh.triangles[triangle][k]];
@@ -104,7 +104,6 @@ StaticCollider::StaticCollider(const TriangleMesh& mesh) {
 // in them, in blocks of eight slots.
 void StaticCollider::quantize_slot_boxes() {
     const auto n = static_cast<std::uint32_t>(slot_vertices_.size());
-    slot_boxes_.assign(kBlockValues * ((n + kBlockSlots - 1) / kBlockSlots), 0);
     grids_.assign(nodes_.size(), BvhNodeGrid{});
     if (nodes_.empty()) return;
     struct Entry {
@@ -141,16 +140,16 @@ void StaticCollider::quantize_slot_boxes() {
                 const collision_detail::FloatBox box =
                     collision_detail::outward_float_box(collision_detail::triangle_box(
                         vertices_[tri[0]], vertices_[tri[1]], vertices_[tri[2]]));
-                std::int16_t* block = &slot_boxes_[kBlockValues * (slot / kBlockSlots) +
-                                                   slot % kBlockSlots];
+                BvhSlotBlock& block = slot_blocks_[slot / kBlockSlots];
+                const std::uint32_t lane = slot % kBlockSlots;
                 for (int a = 0; a < 3; ++a) {
                     const int qlo = collision_detail::quantize_down(box.min[a], grid[a]);
                     const int qhi = collision_detail::quantize_up(box.max[a], grid[a]);
                     TP_ASSERT(qlo >= 1 && qhi <= collision_detail::kIndexLimit - 1 && qlo <= qhi,
                               "slot box outside its node's grid");
-                    block[kBlockSlots * a] =
+                    block.box[a][lane] =
                         static_cast<std::int16_t>(qlo - collision_detail::kIndexBias);
-                    block[kBlockSlots * (3 + a)] =
+                    block.box[3 + a][lane] =
                         static_cast<std::int16_t>(qhi - collision_detail::kIndexBias);
                 }
             }
@@ -245,19 +244,19 @@ namespace {
 template <class T, class Make>
 class BufferedOutput {
 public:
-    BufferedOutput(std::vector<T>& out, const std::uint32_t* slot_to_triangle, Make make)
-        : out_(out), slot_to_triangle_(slot_to_triangle), make_(make) {}
+    BufferedOutput(std::vector<T>& out, const BvhSlotBlock* blocks, Make make)
+        : out_(out), blocks_(blocks), make_(make) {}
     BufferedOutput(const BufferedOutput&) = delete;
     BufferedOutput& operator=(const BufferedOutput&) = delete;
     ~BufferedOutput() { flush(); }
 
-    /// Slots s + i for the set bits i of `mask` (eight lanes): eight slots are copied in
-    /// the order of collision_detail::kCompactedLanes, set lanes first, and the count kept
-    /// (the slot array is padded, so every lane can be read; no branch on the mask).
+    /// Slots s + i for the set bits i of `mask` (eight lanes of the block from s): eight
+    /// slots are copied in the order of collision_detail::kCompactedLanes, set lanes first,
+    /// and the count kept (every lane of a block can be read; no branch on the mask).
     void slots(std::uint32_t s, unsigned mask) {
         if (used_ > kSize - kBlockSlots) flush();
         const collision_detail::CompactedLanes& c = collision_detail::kCompactedLanes[mask];
-        const std::uint32_t* from = slot_to_triangle_ + s;
+        const std::uint32_t* from = blocks_[s / kBlockSlots].triangle;
         T* to = buffer_ + used_;
         for (unsigned k = 0; k < kBlockSlots; ++k) to[k] = make_(from[c.lane[k]]);
         used_ += c.count;
@@ -266,23 +265,26 @@ public:
     void range(std::uint32_t first, std::uint32_t end) {
         if (end - first > kSize - used_) {
             flush();
-            for (std::uint32_t s = first; s < end; ++s) out_.push_back(make_(slot_to_triangle_[s]));
+            for (std::uint32_t s = first; s < end; ++s) out_.push_back(make_(triangle(s)));
             return;
         }
         T* to = buffer_ + used_;
-        for (std::uint32_t s = first; s < end; ++s) *to++ = make_(slot_to_triangle_[s]);
+        for (std::uint32_t s = first; s < end; ++s) *to++ = make_(triangle(s));
         used_ += end - first;
     }
 
 private:
     static constexpr unsigned kSize = 256;
+    std::uint32_t triangle(std::uint32_t s) const {
+        return blocks_[s / kBlockSlots].triangle[s % kBlockSlots];
+    }
     void flush() {
         out_.insert(out_.end(), buffer_, buffer_ + used_);
         used_ = 0;
     }
 
     std::vector<T>& out_;
-    const std::uint32_t* slot_to_triangle_;
+    const BvhSlotBlock* blocks_;
     Make make_;
     unsigned used_ = 0;
     T buffer_[kSize];
@@ -291,13 +293,13 @@ private:
 }  // namespace
 
 void StaticCollider::query_aabb(const Aabb& box, std::vector<std::uint32_t>& out) const {
-    BufferedOutput sink(out, slot_to_triangle_.data(), [](std::uint32_t t) { return t; });
+    BufferedOutput sink(out, slot_blocks_.data(), [](std::uint32_t t) { return t; });
     visit_aabb(box, sink);
 }
 
 void StaticCollider::query_aabb_refs(const Aabb& box, std::uint32_t collider_id,
                                      std::vector<TriangleRef>& out) const {
-    BufferedOutput sink(out, slot_to_triangle_.data(), [collider_id](std::uint32_t t) {
+    BufferedOutput sink(out, slot_blocks_.data(), [collider_id](std::uint32_t t) {
         return TriangleRef{collider_id, t};
     });
     visit_aabb(box, sink);
@@ -339,7 +341,7 @@ void StaticCollider::visit_box_filtered(const Aabb& box, Predicate&& keep,
                     const auto slot = s + static_cast<std::uint32_t>(lowest_lane(k));
                     const auto& tri = slot_vertices_[slot];
                     if (keep(vertices_[tri[0]], vertices_[tri[1]], vertices_[tri[2]]))
-                        out.push_back(slot_to_triangle_[slot]);
+                        out.push_back(slot_triangle(slot));
                 }
             }
         }
@@ -406,24 +408,24 @@ std::optional<RayHit> StaticCollider::raycast(const glm::dvec3& origin, const gl
                                       collision_detail::axis_of(node_grid, 2)};
             for (std::uint32_t s = entry.first; s < entry.end; ++s) {
                 // The slot's quantized box holds the triangle's box, so its span holds the hit.
-                const std::int16_t* b =
-                    &slot_boxes_[kBlockValues * (s / kBlockSlots) + s % kBlockSlots];
+                const BvhSlotBlock& block = slot_blocks_[s / kBlockSlots];
+                const std::uint32_t lane = s % kBlockSlots;
                 glm::dvec3 lo, hi;
                 for (int a = 0; a < 3; ++a) {
                     lo[a] = collision_detail::grid_value(
-                        b[kBlockSlots * a] + collision_detail::kIndexBias, grid[a]);
+                        block.box[a][lane] + collision_detail::kIndexBias, grid[a]);
                     hi[a] = collision_detail::grid_value(
-                        b[kBlockSlots * (3 + a)] + collision_detail::kIndexBias, grid[a]);
+                        block.box[3 + a][lane] + collision_detail::kIndexBias, grid[a]);
                 }
                 double t_near, t_far;
                 if (!collision_detail::ray_box_span(ray, lo, hi, best_t, t_near, t_far)) continue;
                 const auto& tri = slot_vertices_[s];
                 const std::optional<double> t = collision_detail::ray_triangle(
                     ray, vertices_[tri[0]], vertices_[tri[1]], vertices_[tri[2]]);
-                if (t && collision_detail::better_hit(*t, slot_to_triangle_[s], best_t,
+                if (t && collision_detail::better_hit(*t, block.triangle[lane], best_t,
                                                       best_triangle)) {
                     best_t = *t;
-                    best_triangle = slot_to_triangle_[s];
+                    best_triangle = block.triangle[lane];
                     best_slot = s;
                 }
             }
@@ -479,8 +481,8 @@ NormalizedTriangle StaticCollider::normalized_triangle(std::uint32_t index) cons
 
 std::size_t StaticCollider::bytes_used() const {
     return sizeof(*this) + capacity_bytes(vertices_) + capacity_bytes(slot_vertices_) +
-           capacity_bytes(slot_to_triangle_) + capacity_bytes(triangle_to_slot_) +
-           capacity_bytes(slot_boxes_) + capacity_bytes(nodes_) + capacity_bytes(grids_);
+           capacity_bytes(triangle_to_slot_) + capacity_bytes(slot_blocks_) +
+           capacity_bytes(nodes_) + capacity_bytes(grids_);
 }
 
 }  // namespace trackphys

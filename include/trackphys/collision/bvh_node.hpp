@@ -51,4 +51,16 @@ struct BvhNodeGrid {
 };
 static_assert(sizeof(BvhNodeGrid) == 48);
 
+/// Eight consecutive leaf slots of a StaticCollider (from a multiple of 8): their triangles'
+/// boxes in 16 bits (src/collision/quantized_boxes.hpp, QuantizedBlock's layout) and their
+/// mesh triangle indices side by side, so that a query reads the indices it reports from the
+/// two cache lines it has just tested (a separate index array costs a miss per block on cold
+/// caches). Lanes past the last slot hold zeros (never read as a slot). 128 bytes.
+struct alignas(64) BvhSlotBlock {
+    static constexpr int kLanes = 8;
+    std::int16_t box[6][kLanes];      ///< 96 bytes: min x, y, z, max x, y, z, biased indices
+    std::uint32_t triangle[kLanes];   ///< 32 bytes: the mesh index of each slot's triangle
+};
+static_assert(sizeof(BvhSlotBlock) == 128, "BvhSlotBlock is 128 bytes: two cache lines");
+
 }  // namespace trackphys

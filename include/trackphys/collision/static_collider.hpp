@@ -51,9 +51,10 @@ struct TriangleRef {
 ///
 /// Layout (bytes_used() counts it all): vertices in double, re-ordered by first use in leaf
 /// order and without unused ones (24 bytes each, ~12 a triangle on a shared-vertex mesh);
-/// per triangle, in leaf order, its three vertex indices (12), mesh index (4) and box in
-/// 16 bits, rounded outward in a grid over its node's leaf lanes (12, in blocks of eight
-/// that one SSE2 16-bit compare per bound tests); the inverse map mesh index -> leaf slot
+/// per triangle, in leaf order, its three vertex indices (12), and its box in 16 bits,
+/// rounded outward in a grid over its node's leaf lanes (12), beside its mesh index (4) in
+/// 128-byte blocks of eight (BvhSlotBlock: one SSE2 16-bit compare per bound tests a block,
+/// and the indices it reports share its cache lines); the inverse map mesh index -> leaf slot
 /// (4); ~0.02 four-wide 128-byte nodes (~2.5, leaves of up to 32 triangles) and as many
 /// 48-byte node grids (~0.9). About 48 bytes a triangle on a track mesh, ~108 on a soup of
 /// unshared vertices. The box queries test the 16-bit boxes eight at a time and read a
@@ -125,8 +126,8 @@ public:
     std::size_t bytes_used() const;
 
 private:
-    // Leaf slot s holds mesh triangle slot_to_triangle_[s] (padded by three unused slots);
-    // its vertices are vertices_[slot_vertices_[s][k]], in the mesh's order (winding kept).
+    // Leaf slot s holds mesh triangle slot_triangle(s); its vertices are
+    // vertices_[slot_vertices_[s][k]], in the mesh's order (winding kept).
     template <class Sink>
     void visit_aabb(const Aabb& box, Sink& sink) const;
     template <class Predicate>
@@ -135,16 +136,18 @@ private:
     bool triangle_box_overlaps(std::uint32_t slot, const Aabb& box) const;
     void quantize_slot_boxes();
     // The quantized boxes of the block of eight slots from s (a multiple of 8).
-    const std::int16_t* block(std::uint32_t s) const { return &slot_boxes_[std::size_t{6} * s]; }
+    const std::int16_t* block(std::uint32_t s) const {
+        return slot_blocks_[s / BvhSlotBlock::kLanes].box[0];
+    }
+    std::uint32_t slot_triangle(std::uint32_t s) const {
+        return slot_blocks_[s / BvhSlotBlock::kLanes].triangle[s % BvhSlotBlock::kLanes];
+    }
 
     std::vector<glm::dvec3> vertices_;
     std::vector<std::array<std::uint32_t, 3>> slot_vertices_;
-    std::vector<std::uint32_t> slot_to_triangle_;
     std::vector<std::uint32_t> triangle_to_slot_;
-    // Slot boxes in blocks of eight slots (from a multiple of 8), quantized in their leaf's
-    // grid (src/collision/quantized_boxes.hpp): 48 values, min x, y, z, then max x, y, z,
-    // one lane per slot; lanes past the last slot are 0 (never read as a slot).
-    std::vector<std::int16_t> slot_boxes_;
+    // Slot boxes, quantized in their leaf's grid, and mesh indices, eight slots a block.
+    std::vector<BvhSlotBlock> slot_blocks_;
     std::vector<BvhNode> nodes_;
     std::vector<BvhNodeGrid> grids_;  // per node: the grids of its leaf lanes' slot boxes
     Aabb bounds_;
