@@ -42,9 +42,10 @@ struct alignas(64) BvhNode {
 // exactly two lines, and its lanes load with aligned SIMD loads.
 static_assert(sizeof(BvhNode) == 128, "BvhNode is 128 bytes: exactly two cache lines");
 
-/// The grids in which a BvhNode's leaf lanes store their triangles' boxes in 16 bits
+/// The grids in which BvhNode leaf lanes store their triangles' boxes in 16 bits
 /// (src/collision/quantized_boxes.hpp): per axis, coordinate = (base + index) / inv_step.
-/// One per node, beside the nodes; zero for a node without leaf lanes. 48 bytes.
+/// Shared by the nodes of a subtree (StaticCollider: up to a few thousand triangles), or
+/// one node's own. 48 bytes.
 struct BvhNodeGrid {
     double inv_step[3];  ///< 1 / grid step (a power of two) per axis (1/m)
     double base[3];      ///< grid index of stored index 0 per axis (an integer)

@@ -52,11 +52,11 @@ struct TriangleRef {
 /// Layout (bytes_used() counts it all): vertices in double, re-ordered by first use in leaf
 /// order and without unused ones (24 bytes each, ~12 a triangle on a shared-vertex mesh);
 /// per triangle, in leaf order, its three vertex indices (12), and its box in 16 bits,
-/// rounded outward in a grid over its node's leaf lanes (12), beside its mesh index (4) in
-/// 128-byte blocks of eight (BvhSlotBlock: one SSE2 16-bit compare per bound tests a block,
-/// and the indices it reports share its cache lines); the inverse map mesh index -> leaf slot
-/// (4); ~0.02 four-wide 128-byte nodes (~2.5, leaves of up to 32 triangles) and as many
-/// 48-byte node grids (~0.9). About 48 bytes a triangle on a track mesh, ~108 on a soup of
+/// rounded outward in a grid over its subtree of up to 4096 triangles (12), beside its mesh
+/// index (4) in 128-byte blocks of eight (BvhSlotBlock: one SSE2 16-bit compare per bound
+/// tests a block, and the indices it reports share its cache lines); the inverse map mesh
+/// index -> leaf slot (4); ~0.02 four-wide 128-byte nodes (~2.5, leaves of up to 32
+/// triangles), each with the index of its 48-byte grids (~0.1). About 48 bytes a triangle on a track mesh, ~108 on a soup of
 /// unshared vertices. The box queries test the 16-bit boxes eight at a time and read a
 /// triangle's vertices only when its box lies within about two grid steps of the query's
 /// (sphere and capsule: for the distance test). NormalizedTriangle frames are not stored:
@@ -149,7 +149,8 @@ private:
     // Slot boxes, quantized in their leaf's grid, and mesh indices, eight slots a block.
     std::vector<BvhSlotBlock> slot_blocks_;
     std::vector<BvhNode> nodes_;
-    std::vector<BvhNodeGrid> grids_;  // per node: the grids of its leaf lanes' slot boxes
+    std::vector<BvhNodeGrid> grids_;  // the grids of the slot boxes, shared by node groups
+    std::vector<std::uint32_t> node_grid_;  // per node with leaf lanes: its grids_ index
     Aabb bounds_;
     std::uint64_t content_hash_ = 0;
 };
