@@ -225,8 +225,8 @@ void StaticCollider::visit_aabb(const Aabb& box, Sink& sink) const {
             }
             for (unsigned m = inner; m != 0; m &= m - 1) {
                 const char* child = reinterpret_cast<const char*>(&nodes_[n.child[lowest_lane(m)]]);
-                _mm_prefetch(child, _MM_HINT_T0);
-                _mm_prefetch(child + 64, _MM_HINT_T0);
+                for (std::size_t line = 0; line < sizeof(BvhNode); line += 64)
+                    _mm_prefetch(child + line, _MM_HINT_T0);
             }
             for (unsigned m = inside; m != 0; m &= m - 1) {
                 const int i = lowest_lane(m);
@@ -425,7 +425,7 @@ std::optional<RayHit> StaticCollider::raycast(const glm::dvec3& origin, const gl
     std::uint32_t best_triangle = kNoSlot, best_slot = kNoSlot;
     struct Entry {
         std::uint32_t child, first, end;  // child: a node index, or kLeaf for slots [first, end)
-        std::uint32_t lane;               // leaf: 4 * its node + its lane (for its grid)
+        std::uint32_t node;               // leaf: its node (for its grids)
         double t_near;
     };
     std::array<Entry, kMaxTraversalStack> stack;
@@ -433,7 +433,7 @@ std::optional<RayHit> StaticCollider::raycast(const glm::dvec3& origin, const gl
     Entry entry{0, 0, static_cast<std::uint32_t>(triangle_count()), 0, 0.0};
     for (;;) {
         if ((entry.child & BvhNode::kLeaf) != 0) {
-            const BvhNodeGrid& node_grid = grids_[node_grid_[entry.lane / 4]];
+            const BvhNodeGrid& node_grid = grids_[node_grid_[entry.node]];
             const AxisGrid grid[3] = {collision_detail::axis_of(node_grid, 0),
                                       collision_detail::axis_of(node_grid, 1),
                                       collision_detail::axis_of(node_grid, 2)};
@@ -475,7 +475,7 @@ std::optional<RayHit> StaticCollider::raycast(const glm::dvec3& origin, const gl
                 int at = count++;
                 for (; at > 0 && hits[at - 1].t_near <= t_near; --at) hits[at] = hits[at - 1];
                 hits[at] = {n.child[i], n.first[i], n.end(i, entry.end),
-                            4 * entry.child + static_cast<std::uint32_t>(i), t_near};
+                            entry.child, t_near};
             }
             for (int k = 0; k < count; ++k) stack[top++] = hits[k];
         }

@@ -55,14 +55,14 @@ struct TriangleRef {
 /// rounded outward in a grid over its subtree of up to 4096 triangles (12), beside its mesh
 /// index (4) in 128-byte blocks of eight (BvhSlotBlock: one SSE2 16-bit compare per bound
 /// tests a block, and the indices it reports share its cache lines); the inverse map mesh
-/// index -> leaf slot (4); ~0.02 four-wide 128-byte nodes (~2.5, leaves of up to 32
-/// triangles), each with the index of its 48-byte grids (~0.1). About 48 bytes a triangle on a track mesh, ~108 on a soup of
-/// unshared vertices. The box queries test the 16-bit boxes eight at a time and read a
-/// triangle's vertices only when its box lies within about two grid steps of the query's
-/// (sphere and capsule: for the distance test). NormalizedTriangle frames are not stored:
-/// 120 bytes in double would break the 80-byte budget, and every exact predicate needs the
-/// double vertices anyway. The mid phase builds the few hundred frames it culls per update
-/// with normalized_triangle().
+/// index -> leaf slot (4); ~0.015 eight-wide 256-byte nodes (~4, leaves of up to 32
+/// triangles), each with the index of its 48-byte grids (~0.1). About 49 bytes a triangle
+/// on a track mesh, ~108 on a soup of unshared vertices. The box queries test the 16-bit
+/// boxes eight at a time and read a triangle's vertices only when its box lies within about
+/// two grid steps of the query's (sphere and capsule: for the distance test).
+/// NormalizedTriangle frames are not stored: 120 bytes in double would break the 80-byte
+/// budget, and every exact predicate needs the double vertices anyway. The mid phase builds
+/// the few hundred frames it culls per update with normalized_triangle().
 class TRACKPHYS_API StaticCollider {
 public:
     /// Largest accepted |coordinate| (m): node bounds are float, and 1e18 m keeps every
@@ -119,7 +119,7 @@ public:
 
     /// Box around every kept triangle (empty when none was kept).
     const Aabb& bounds() const { return bounds_; }
-    /// The four-wide BVH nodes: root at 0 (when there is a triangle), covering leaf slots
+    /// The eight-wide BVH nodes: root at 0 (when there is a triangle), covering leaf slots
     /// [0, triangle_count()).
     const std::vector<BvhNode>& nodes() const { return nodes_; }
     /// Bytes of every structure the collider keeps (vector capacities included).
