@@ -214,14 +214,17 @@ void StaticCollider::visit_aabb(const Aabb& box, Sink& sink) const {
         const BvhNode& n = nodes_[node];
         const BoxLanes lanes = BoxLanes::of(n);
         const unsigned hit = collision_detail::may_overlap(lanes, q);
+        unsigned inner = 0;
         if (hit != 0) {
             const unsigned inside = collision_detail::surely_inside(lanes, q) & hit;
             const unsigned leaves = collision_detail::leaf_lanes(n) & hit & ~inside;
-            const unsigned inner = hit & ~inside & ~leaves;
-            // Stacked without branches: every lane is written, only inner ones are kept.
+            inner = hit & ~inside & ~leaves;
+            // Stacked without branches: every lane is written, only inner ones but the first
+            // are kept (the first is visited next, straight from this node's registers).
+            const unsigned stacked = inner & (inner - 1);
             for (int i = BvhNode::kWidth - 1; i >= 0; --i) {
                 stack[top] = {n.child[i], n.end(i, end)};
-                top += static_cast<int>((inner >> i) & 1u);
+                top += static_cast<int>((stacked >> i) & 1u);
             }
             for (unsigned m = inner; m != 0; m &= m - 1) {
                 const char* child = reinterpret_cast<const char*>(&nodes_[n.child[lowest_lane(m)]]);
@@ -256,6 +259,12 @@ void StaticCollider::visit_aabb(const Aabb& box, Sink& sink) const {
                     sink.slots(s, keep);
                 }
             }
+        }
+        if (inner != 0) {
+            const int i = lowest_lane(inner);
+            node = n.child[i];
+            end = n.end(i, end);
+            continue;
         }
         if (top == 0) return;
         --top;
