@@ -222,9 +222,11 @@ void StaticCollider::visit_aabb(const Aabb& box, Sink& sink) const {
             // Stacked without branches: every lane is written, only inner ones but the first
             // are kept (the first is visited next, straight from this node's registers).
             const unsigned stacked = inner & (inner - 1);
-            for (int i = BvhNode::kWidth - 1; i >= 0; --i) {
-                stack[top] = {n.child[i], n.end(i, end)};
-                top += static_cast<int>((stacked >> i) & 1u);
+            if (stacked != 0) {
+                for (int i = BvhNode::kWidth - 1; i >= 0; --i) {
+                    stack[top] = {n.child[i], n.end(i, end)};
+                    top += static_cast<int>((stacked >> i) & 1u);
+                }
             }
             for (unsigned m = inner; m != 0; m &= m - 1) {
                 const char* child = reinterpret_cast<const char*>(&nodes_[n.child[lowest_lane(m)]]);
