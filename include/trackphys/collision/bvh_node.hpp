@@ -7,7 +7,8 @@ namespace trackphys {
 /// One node of a StaticCollider's eight-wide bounding volume hierarchy: up to eight
 /// children, their boxes stored lane by lane (structure of arrays) so that a query tests
 /// them four at a time with a few SIMD comparisons (eight-wide rather than four: a car box
-/// descends about 11 nodes instead of 15, each a dependent load). All nodes live in one vector, root at 0, no parent links.
+/// descends about 11 nodes instead of 15, each a dependent load). All nodes live in one
+/// vector, root at 0, no parent links.
 ///
 /// Bounds are float, rounded outward from the triangles' exact double bounds (never
 /// inward), so a child box always holds every triangle of its subtree exactly: a query that

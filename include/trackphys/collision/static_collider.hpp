@@ -151,6 +151,7 @@ private:
     std::vector<BvhNode> nodes_;
     std::vector<BvhNodeGrid> grids_;  // the grids of the slot boxes, shared by node groups
     std::vector<std::uint32_t> node_grid_;  // per node with leaf lanes: its grids_ index
+    double inside_extent_[3] = {0.0, 0.0, 0.0};  // box extents to look for whole lanes from
     Aabb bounds_;
     std::uint64_t content_hash_ = 0;
 };
