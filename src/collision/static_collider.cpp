@@ -216,8 +216,8 @@ template <class Sink>
 void StaticCollider::visit_aabb(const Aabb& box, Sink& sink) const {
     if (nodes_.empty()) return;
     // Rounded once: the node lanes and the leaf grids test the same float bounds.
-    const collision_detail::FloatBox outward = collision_detail::outward_float_box(box);
-    const collision_detail::FloatBox inward = collision_detail::inward_float_box(box);
+    collision_detail::FloatBox outward, inward;
+    collision_detail::round_both_ways(box, outward, inward);
     const QueryLanes q(outward, inward);
     const collision_detail::QueryBounds bounds(outward, inward);
     const glm::dvec3 extent = box.extent();
@@ -372,8 +372,8 @@ template <class Predicate>
 void StaticCollider::visit_box_filtered(const Aabb& box, Predicate&& keep,
                                         std::vector<std::uint32_t>& out) const {
     if (nodes_.empty()) return;
-    const collision_detail::FloatBox outward = collision_detail::outward_float_box(box);
-    const collision_detail::FloatBox inward = collision_detail::inward_float_box(box);
+    collision_detail::FloatBox outward, inward;
+    collision_detail::round_both_ways(box, outward, inward);
     const QueryLanes q(outward, inward);
     const collision_detail::QueryBounds bounds(outward, inward);
     struct Entry {
