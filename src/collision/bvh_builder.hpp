@@ -34,6 +34,9 @@ struct BuildPrimitive {
 };
 static_assert(sizeof(BuildPrimitive) == 36);
 
+/// Most primitives in a leaf (bvh_builder.cpp says why 32).
+inline constexpr std::uint32_t kMaxLeafSize = 32;
+
 /// Deepest a built tree gets: SAH splits up to kMaxSahDepth, then median splits that halve
 /// the count (at most 31 more levels); the eight-wide tree is never deeper than the binary
 /// one it is collapsed from, and queries size their fixed stacks from this.
@@ -50,7 +53,7 @@ struct BuiltBvh {
 };
 
 /// Builds the tree: a binary tree by binned SAH on centroids, all three axes, up to 16 bins
-/// (nodes above ~16k primitives bin a strided sample), leaves of up to 8 primitives, then
+/// (nodes above ~16k primitives bin a strided sample), leaves of up to kMaxLeafSize, then
 /// collapsed into eight-wide nodes (each takes its binary node's two children and keeps
 /// opening the inner child of largest area until it has eight). Single-threaded and
 /// deterministic: the same primitives give the same tree. Empty input -> no nodes.
