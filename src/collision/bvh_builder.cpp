@@ -12,16 +12,17 @@ namespace trackphys::collision_detail {
 namespace {
 
 constexpr int kBins = 16;
-// Leaves are tested a block of slot boxes at a time (StaticCollider), so big leaves
-// are cheap. Car boxes on the default track (cycles a query, with the traversal cost
-// below): leaves of 8 and cost 3 +45%, 16 and 10 +10%, 32 and 20 best, 64 and 40 no faster.
-constexpr std::uint32_t kMaxLeafSize = 32;
+// kMaxLeafSize (bvh_builder.hpp): leaves are tested a block of slot boxes at a time
+// (StaticCollider), so big leaves are cheap. Car boxes on the default track (cycles a query,
+// with the traversal cost below): leaves of 8 and cost 3 +45%, 16 and 10 +10%, 32 and 20
+// best, 64 and 40 no faster (four-wide nodes); with eight-wide nodes 16 and 10 +10%, 24
+// and 20 or 32 and 40 no faster.
 // Large nodes choose their split from an evenly strided sample of about this many
 // primitives: the SAH picks nearly the same plane, and binning stops dominating the
 // top levels of 10M-triangle builds (the partition still sees every primitive).
 constexpr std::uint32_t kSampleTarget = 8192;
-// SAH costs in units of one triangle test: a node visit (two cache lines, eight lane tests)
-// costs about as much as 20 triangles tested a block at a time.
+// SAH costs in units of one triangle test: a node visit (a dependent load, then lane tests
+// four at a time) costs about as much as 20 triangles tested a block at a time.
 constexpr double kTraversalCost = 20.0;
 constexpr double kTriangleCost = 1.0;
 
@@ -210,7 +211,7 @@ std::uint32_t median_split(std::vector<BuildPrimitive>& prims, const WorkItem& i
 }
 
 // The binary tree the SAH builds (children adjacent at `first` and `first + 1`), collapsed
-// into four-wide nodes once complete. 32 bytes.
+// into eight-wide nodes once complete. 32 bytes.
 struct BinaryNode {
     static constexpr std::uint32_t kLeafBit = 0x8000'0000u;
     float min[3], max[3];
@@ -299,10 +300,10 @@ std::vector<BinaryNode> build_binary(std::vector<BuildPrimitive>& prims) {
     return nodes;
 }
 
-// Four-wide nodes from the binary tree, depth first in leaf order: each node starts from
+// Eight-wide nodes from the binary tree, depth first in leaf order: each node starts from
 // its binary node's two children (the root, if a leaf, is its own single lane) and opens
 // the inner lane of largest area, in place so that lanes stay in leaf order, until it has
-// four lanes or only leaves. The likeliest-hit boxes get opened, as SAH collapses do. A
+// eight lanes or only leaves. The likeliest-hit boxes get opened, as SAH collapses do. A
 // node's children get consecutive indices.
 void collapse(const std::vector<BinaryNode>& binary, std::uint32_t count,
               std::vector<BvhNode>& wide) {

@@ -2,7 +2,7 @@
 
 // The binned-SAH builder behind StaticCollider (private). It only sees boxes: the collider
 // turns triangles into outward-rounded float boxes (float_bounds.hpp), the builder returns
-// the four-wide nodes and the leaf order, and the collider permutes its triangle data into
+// the eight-wide nodes and the leaf order, and the collider permutes its triangle data into
 // that order.
 
 #include <cstdint>
@@ -34,24 +34,28 @@ struct BuildPrimitive {
 };
 static_assert(sizeof(BuildPrimitive) == 36);
 
+/// Most primitives in a leaf (bvh_builder.cpp says why 32).
+inline constexpr std::uint32_t kMaxLeafSize = 32;
+
 /// Deepest a built tree gets: SAH splits up to kMaxSahDepth, then median splits that halve
-/// the count (at most 31 more levels); the four-wide tree is never deeper than the binary
+/// the count (at most 31 more levels); the eight-wide tree is never deeper than the binary
 /// one it is collapsed from, and queries size their fixed stacks from this.
 inline constexpr int kMaxSahDepth = 48;
 inline constexpr int kMaxTreeDepth = kMaxSahDepth + 32;
-/// Most entries a depth-first traversal of the four-wide tree keeps pending: each level
-/// down leaves at most three siblings behind, plus the four children of the last node.
-inline constexpr int kMaxTraversalStack = 3 * kMaxTreeDepth + 4;
+/// Most entries a depth-first traversal of the wide tree keeps pending: each level down
+/// leaves at most kWidth - 1 siblings behind, plus the children of the last node.
+inline constexpr int kMaxTraversalStack =
+    (BvhNode::kWidth - 1) * kMaxTreeDepth + BvhNode::kWidth;
 
 struct BuiltBvh {
-    std::vector<BvhNode> nodes;  ///< four-wide, root at 0
+    std::vector<BvhNode> nodes;  ///< eight-wide, root at 0
     std::vector<std::uint32_t> order;  ///< leaf slot -> index of the primitive given
 };
 
 /// Builds the tree: a binary tree by binned SAH on centroids, all three axes, up to 16 bins
-/// (nodes above ~16k primitives bin a strided sample), leaves of up to 8 primitives, then
-/// collapsed into four-wide nodes (each takes its binary node's two children and keeps
-/// opening the inner child of largest area until it has four). Single-threaded and
+/// (nodes above ~16k primitives bin a strided sample), leaves of up to kMaxLeafSize, then
+/// collapsed into eight-wide nodes (each takes its binary node's two children and keeps
+/// opening the inner child of largest area until it has eight). Single-threaded and
 /// deterministic: the same primitives give the same tree. Empty input -> no nodes.
 BuiltBvh build_bvh(std::vector<BuildPrimitive> primitives);
 

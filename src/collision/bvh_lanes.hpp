@@ -1,8 +1,8 @@
 #pragma once
 
-// Four boxes against one query box at a time, in SSE2 (private; x86-64 guarantees SSE2, so
-// no -m flag is needed). The four boxes are a BvhNode's children, stored lane by lane in
-// float; the query box is double. (Leaf triangles are tested in 16 bits, eight at a time:
+// A BvhNode's child boxes against one query box, four at a time, in SSE2 (private; x86-64
+// guarantees SSE2, so no -m flag is needed). The boxes are stored lane by lane in float;
+// the query box is double. (Leaf triangles are tested in 16 bits, eight at a time:
 // quantized_boxes.hpp.)
 //
 // Comparing float bounds with a double box exactly would need double lanes (twice the
@@ -19,18 +19,21 @@
 
 #include "float_bounds.hpp"
 #include "trackphys/collision/bvh_node.hpp"
-#include "trackphys/geometry/aabb.hpp"
 
 namespace trackphys::collision_detail {
+
+/// Lanes in one SSE2 vector, and vectors per node.
+inline constexpr int kVectorLanes = 4;
+inline constexpr int kNodeVectors = BvhNode::kWidth / kVectorLanes;
+static_assert(BvhNode::kWidth % kVectorLanes == 0);
 
 /// A query box rounded to float both ways, each bound in all four lanes.
 struct QueryLanes {
     __m128 out_min[3], out_max[3];  ///< outward: holds the double box
     __m128 in_min[3], in_max[3];    ///< inward: inside the double box
 
-    explicit QueryLanes(const Aabb& box) {
-        const FloatBox out = outward_float_box(box);
-        const FloatBox in = inward_float_box(box);
+    /// From the query box rounded outward (out) and inward (in).
+    QueryLanes(const FloatBox& out, const FloatBox& in) {
         for (int a = 0; a < 3; ++a) {
             out_min[a] = _mm_set1_ps(out.min[a]);
             out_max[a] = _mm_set1_ps(out.max[a]);
@@ -40,42 +43,61 @@ struct QueryLanes {
     }
 };
 
-/// A node's four child boxes as six lane vectors: min x, y, z, then max x, y, z.
+/// A node's child boxes as lane vectors: min x, y, z, then max x, y, z, four lanes each.
 struct BoxLanes {
-    __m128 min[3], max[3];
+    __m128 min[kNodeVectors][3], max[kNodeVectors][3];
 
     static BoxLanes of(const BvhNode& n) {
-        return {{_mm_load_ps(n.min[0]), _mm_load_ps(n.min[1]), _mm_load_ps(n.min[2])},
-                {_mm_load_ps(n.max[0]), _mm_load_ps(n.max[1]), _mm_load_ps(n.max[2])}};
+        BoxLanes b;
+        for (int v = 0; v < kNodeVectors; ++v)
+            for (int a = 0; a < 3; ++a) {
+                b.min[v][a] = _mm_load_ps(n.min[a] + kVectorLanes * v);
+                b.max[v][a] = _mm_load_ps(n.max[a] + kVectorLanes * v);
+            }
+        return b;
     }
 };
 
 /// Bit i set: box i may overlap the query (closed intervals; never clear when it does).
 inline unsigned may_overlap(const BoxLanes& b, const QueryLanes& q) {
-    __m128 m =
-        _mm_and_ps(_mm_cmple_ps(b.min[0], q.out_max[0]), _mm_cmple_ps(q.out_min[0], b.max[0]));
-    m = _mm_and_ps(m, _mm_and_ps(_mm_cmple_ps(b.min[1], q.out_max[1]),
-                                 _mm_cmple_ps(q.out_min[1], b.max[1])));
-    m = _mm_and_ps(m, _mm_and_ps(_mm_cmple_ps(b.min[2], q.out_max[2]),
-                                 _mm_cmple_ps(q.out_min[2], b.max[2])));
-    return static_cast<unsigned>(_mm_movemask_ps(m));
+    unsigned mask = 0;
+    for (int v = 0; v < kNodeVectors; ++v) {
+        __m128 m = _mm_and_ps(_mm_cmple_ps(b.min[v][0], q.out_max[0]),
+                              _mm_cmple_ps(q.out_min[0], b.max[v][0]));
+        m = _mm_and_ps(m, _mm_and_ps(_mm_cmple_ps(b.min[v][1], q.out_max[1]),
+                                     _mm_cmple_ps(q.out_min[1], b.max[v][1])));
+        m = _mm_and_ps(m, _mm_and_ps(_mm_cmple_ps(b.min[v][2], q.out_max[2]),
+                                     _mm_cmple_ps(q.out_min[2], b.max[v][2])));
+        mask |= static_cast<unsigned>(_mm_movemask_ps(m)) << (kVectorLanes * v);
+    }
+    return mask;
 }
 
 /// Bit i set: box i surely lies inside the query (never set when it does not).
 inline unsigned surely_inside(const BoxLanes& b, const QueryLanes& q) {
-    __m128 m =
-        _mm_and_ps(_mm_cmple_ps(q.in_min[0], b.min[0]), _mm_cmple_ps(b.max[0], q.in_max[0]));
-    m = _mm_and_ps(m, _mm_and_ps(_mm_cmple_ps(q.in_min[1], b.min[1]),
-                                 _mm_cmple_ps(b.max[1], q.in_max[1])));
-    m = _mm_and_ps(m, _mm_and_ps(_mm_cmple_ps(q.in_min[2], b.min[2]),
-                                 _mm_cmple_ps(b.max[2], q.in_max[2])));
-    return static_cast<unsigned>(_mm_movemask_ps(m));
+    unsigned mask = 0;
+    for (int v = 0; v < kNodeVectors; ++v) {
+        __m128 m = _mm_and_ps(_mm_cmple_ps(q.in_min[0], b.min[v][0]),
+                              _mm_cmple_ps(b.max[v][0], q.in_max[0]));
+        m = _mm_and_ps(m, _mm_and_ps(_mm_cmple_ps(q.in_min[1], b.min[v][1]),
+                                     _mm_cmple_ps(b.max[v][1], q.in_max[1])));
+        m = _mm_and_ps(m, _mm_and_ps(_mm_cmple_ps(q.in_min[2], b.min[v][2]),
+                                     _mm_cmple_ps(b.max[v][2], q.in_max[2])));
+        mask |= static_cast<unsigned>(_mm_movemask_ps(m)) << (kVectorLanes * v);
+    }
+    return mask;
 }
 
 /// Bit i set: lane i is a leaf or empty (BvhNode::kLeaf is the sign bit).
 inline unsigned leaf_lanes(const BvhNode& n) {
-    const __m128i child = _mm_load_si128(reinterpret_cast<const __m128i*>(n.child));
-    return static_cast<unsigned>(_mm_movemask_ps(_mm_castsi128_ps(child)));
+    unsigned mask = 0;
+    for (int v = 0; v < kNodeVectors; ++v) {
+        const __m128i child =
+            _mm_load_si128(reinterpret_cast<const __m128i*>(n.child + kVectorLanes * v));
+        mask |= static_cast<unsigned>(_mm_movemask_ps(_mm_castsi128_ps(child)))
+                << (kVectorLanes * v);
+    }
+    return mask;
 }
 
 }  // namespace trackphys::collision_detail

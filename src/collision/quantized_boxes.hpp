@@ -1,13 +1,15 @@
 #pragma once
 
-// Triangle boxes in 16 bits, relative to their node's leaf lanes (private). The union of a
-// BvhNode's leaf lane float boxes defines a grid per axis: a power-of-two step h and an
-// integer base, so that grid index k stands for the coordinate k h and every triangle
-// bound below those lanes falls on a relative index in [1, 65534]. A triangle keeps, per
-// bound, the relative index of its float bound rounded outward (min: floor, max: ceil): 12
-// bytes a triangle, in blocks of eight that one SSE2 16-bit compare per bound tests. One
-// grid per node (not per lane) lets a query quantize its box once per node, and test
-// neighbouring leaf lanes as one slot range (a block they share, once).
+// Triangle boxes in 16 bits, relative to a box around their leaf lanes (private). A float
+// box (the union of a subtree's lanes, shared by the nodes of that subtree, or of one
+// node's leaf lanes: StaticCollider::quantize_slot_boxes) defines a grid per axis: a
+// power-of-two step h and an integer base, so that grid index k stands for the coordinate
+// k h and every triangle bound inside the box falls on a relative index in [1, 65534]. A
+// triangle keeps, per bound, the relative index of its float bound rounded outward (min:
+// floor, max: ceil): 12 bytes a triangle, in blocks of eight that one SSE2 16-bit compare
+// per bound tests. Grids shared by a node's lanes (not per lane) let a query test
+// neighbouring leaf lanes as one slot range (a block they share, once), and grids shared by
+// a subtree let it quantize its box once for all the subtree's nodes it visits.
 //
 // Exactness. All arithmetic below is exact in double: x / h is a power-of-two scaling of a
 // float (no overflow or underflow for |x| <= 1e18 and h >= 2^-149), and relative indices

@@ -8,6 +8,7 @@
 
 #include "bvh_builder.hpp"
 #include "bvh_lanes.hpp"
+#include "lane_compaction.hpp"
 #include "quantized_boxes.hpp"
 #include "core/fnv1a.hpp"
 #include "trackphys/assert.hpp"
@@ -26,9 +27,21 @@ using collision_detail::QueryLanes;
 namespace {
 
 constexpr std::uint32_t kNoSlot = std::numeric_limits<std::uint32_t>::max();
-// Slots in one block of quantized boxes, and 16-bit values in one block.
+// Slots up to which a subtree's nodes share one set of grids (quantize_slot_boxes), so that
+// a query quantizes its box once for all of those it visits (default-track car boxes:
+// 1024 -7% time, 4096 -9%, 16384 -6%: larger groups reuse more, but their steps, a few mm,
+// leave more slots near a query bound to the exact test).
+constexpr std::uint32_t kGridGroupSlots = 4096;
+// Box queries look for whole lanes inside the box (reported without testing their
+// triangles) only when the box spans this many mean leaf lanes on every axis: a smaller box
+// rarely holds a whole lane, and the test costs more than it saves (car boxes, about 2.7
+// mean leaves across: 6% faster without it on the default track and the 300k loop; boxes
+// padded by 5 or 20 m, which use it: same time).
+constexpr double kInsideShortcutLeaves = 4.0;
+// Slots in one block.
 constexpr std::uint32_t kBlockSlots = QuantizedBlock::kLanes;
-constexpr std::size_t kBlockValues = 6 * kBlockSlots;
+static_assert(BvhSlotBlock::kLanes == kBlockSlots &&
+              sizeof(BvhSlotBlock::box) == sizeof(QuantizedBlock));
 
 // Lanes 0 .. n - 1 of eight (n >= 8: all of them).
 unsigned first_lanes(std::uint32_t n) { return (1u << std::min(n, kBlockSlots)) - 1u; }
@@ -69,14 +82,13 @@ StaticCollider::StaticCollider(const TriangleMesh& mesh) {
     // leaves first use them, so that neighbouring leaves read neighbouring memory.
     const std::size_t n = kept.size();
     slot_vertices_.resize(n);
-    // Seven more slots, never reported: eight-lane reads at any block stay inside.
-    slot_to_triangle_.resize(n + kBlockSlots - 1, 0);
+    slot_blocks_.assign((n + kBlockSlots - 1) / kBlockSlots, BvhSlotBlock{});
     triangle_to_slot_.assign(mesh.triangles.size(), kNoSlot);
     std::vector<std::uint32_t> vertex_remap(mesh.vertices.size(), kNoSlot);
     std::uint32_t used_vertices = 0;
     for (std::size_t slot = 0; slot < n; ++slot) {
         const std::uint32_t triangle = kept[bvh.order[slot]];
-        slot_to_triangle_[slot] = triangle;
+        slot_blocks_[slot / kBlockSlots].triangle[slot % kBlockSlots] = triangle;
         triangle_to_slot_[triangle] = static_cast<std::uint32_t>(slot);
         for (int k = 0; k < 3; ++k) {
             std::uint32_t& remapped = vertex_remap[mesh.triangles[triangle][k]];
@@ -98,63 +110,90 @@ StaticCollider::StaticCollider(const TriangleMesh& mesh) {
     quantize_slot_boxes();
 }
 
-// Each node's grids over the union of its leaf lanes' boxes, and each slot's float box
-// (rounded outward, as the builder saw it, so inside its leaf lane's box) quantized outward
-// in them, in blocks of eight slots.
+// The grids, and each slot's float box (rounded outward, as the builder saw it, so inside
+// its leaf lane's box) quantized outward in its node's grids, in blocks of eight slots. The
+// nodes of a subtree of at most kGridGroupSlots slots share the grids over its root's lanes
+// (the highest such subtree: a group); a node above the groups with leaf lanes gets grids
+// of its own, over its leaf lanes.
 void StaticCollider::quantize_slot_boxes() {
     const auto n = static_cast<std::uint32_t>(slot_vertices_.size());
-    slot_boxes_.assign(kBlockValues * ((n + kBlockSlots - 1) / kBlockSlots), 0);
-    grids_.assign(nodes_.size(), BvhNodeGrid{});
+    grids_.clear();
+    node_grid_.assign(nodes_.size(), kNoSlot);
     if (nodes_.empty()) return;
     struct Entry {
-        std::uint32_t node, end;
+        std::uint32_t node, end, grid;
     };
-    std::vector<Entry> stack{{0, n}};
-    while (!stack.empty()) {
-        const Entry e = stack.back();
-        stack.pop_back();
-        const BvhNode& node = nodes_[e.node];
-        float lo[3], hi[3];
-        bool any_leaf = false;
+    // The grids over the lanes of `node` selected by `lanes` (one at least, not empty),
+    // appended.
+    auto add_grids = [this](const BvhNode& node, unsigned lanes) {
+        constexpr float kInf = std::numeric_limits<float>::infinity();
+        float lo[3] = {kInf, kInf, kInf}, hi[3] = {-kInf, -kInf, -kInf};
         for (int i = 0; i < BvhNode::kWidth; ++i) {
-            if (node.is_empty(i)) continue;
-            if (!node.is_leaf(i)) {
-                stack.push_back({node.child[i], node.end(i, e.end)});
-                continue;
-            }
+            if (node.is_empty(i) || ((lanes >> i) & 1u) == 0) continue;
             for (int a = 0; a < 3; ++a) {
-                lo[a] = any_leaf ? std::min(lo[a], node.min[a][i]) : node.min[a][i];
-                hi[a] = any_leaf ? std::max(hi[a], node.max[a][i]) : node.max[a][i];
+                lo[a] = std::min(lo[a], node.min[a][i]);
+                hi[a] = std::max(hi[a], node.max[a][i]);
             }
-            any_leaf = true;
         }
-        if (!any_leaf) continue;
         const AxisGrid grid[3] = {collision_detail::axis_grid(lo[0], hi[0]),
                                   collision_detail::axis_grid(lo[1], hi[1]),
                                   collision_detail::axis_grid(lo[2], hi[2])};
-        grids_[e.node] = collision_detail::node_grid(grid);
+        grids_.push_back(collision_detail::node_grid(grid));
+        return static_cast<std::uint32_t>(grids_.size() - 1);
+    };
+    double leaf_extent_sum[3] = {0.0, 0.0, 0.0};
+    std::size_t leaf_count = 0;
+    std::vector<Entry> stack{{0, n, kNoSlot}};
+    while (!stack.empty()) {
+        Entry e = stack.back();
+        stack.pop_back();
+        const BvhNode& node = nodes_[e.node];
+        unsigned leaf_lanes = 0;
+        for (int i = 0; i < BvhNode::kWidth; ++i)
+            if (!node.is_empty(i) && node.is_leaf(i)) leaf_lanes |= 1u << i;
+        if (e.grid == kNoSlot && e.end - node.first[0] <= kGridGroupSlots)
+            e.grid = add_grids(node, (1u << BvhNode::kWidth) - 1u);
+        for (int i = 0; i < BvhNode::kWidth; ++i)
+            if (!node.is_empty(i) && !node.is_leaf(i))
+                stack.push_back({node.child[i], node.end(i, e.end), e.grid});
         for (int i = 0; i < BvhNode::kWidth; ++i) {
-            if (node.is_empty(i) || !node.is_leaf(i)) continue;
+            if (((leaf_lanes >> i) & 1u) == 0) continue;
+            for (int a = 0; a < 3; ++a)
+                leaf_extent_sum[a] += double(node.max[a][i]) - double(node.min[a][i]);
+            ++leaf_count;
+        }
+        if (leaf_lanes == 0) continue;
+        const std::uint32_t grid_index = e.grid != kNoSlot ? e.grid : add_grids(node, leaf_lanes);
+        node_grid_[e.node] = grid_index;
+        const BvhNodeGrid& node_grid = grids_[grid_index];
+        const AxisGrid grid[3] = {collision_detail::axis_of(node_grid, 0),
+                                  collision_detail::axis_of(node_grid, 1),
+                                  collision_detail::axis_of(node_grid, 2)};
+        for (int i = 0; i < BvhNode::kWidth; ++i) {
+            if (((leaf_lanes >> i) & 1u) == 0) continue;
             for (std::uint32_t slot = node.first[i]; slot < node.end(i, e.end); ++slot) {
                 const auto& tri = slot_vertices_[slot];
                 const collision_detail::FloatBox box =
                     collision_detail::outward_float_box(collision_detail::triangle_box(
                         vertices_[tri[0]], vertices_[tri[1]], vertices_[tri[2]]));
-                std::int16_t* block = &slot_boxes_[kBlockValues * (slot / kBlockSlots) +
-                                                   slot % kBlockSlots];
+                BvhSlotBlock& block = slot_blocks_[slot / kBlockSlots];
+                const std::uint32_t lane = slot % kBlockSlots;
                 for (int a = 0; a < 3; ++a) {
                     const int qlo = collision_detail::quantize_down(box.min[a], grid[a]);
                     const int qhi = collision_detail::quantize_up(box.max[a], grid[a]);
                     TP_ASSERT(qlo >= 1 && qhi <= collision_detail::kIndexLimit - 1 && qlo <= qhi,
                               "slot box outside its node's grid");
-                    block[kBlockSlots * a] =
+                    block.box[a][lane] =
                         static_cast<std::int16_t>(qlo - collision_detail::kIndexBias);
-                    block[kBlockSlots * (3 + a)] =
+                    block.box[3 + a][lane] =
                         static_cast<std::int16_t>(qhi - collision_detail::kIndexBias);
                 }
             }
         }
     }
+    grids_.shrink_to_fit();
+    for (int a = 0; a < 3; ++a)
+        inside_extent_[a] = kInsideShortcutLeaves * leaf_extent_sum[a] / double(leaf_count);
 }
 
 inline bool StaticCollider::triangle_box_overlaps(std::uint32_t slot, const Aabb& box) const {
@@ -164,49 +203,66 @@ inline bool StaticCollider::triangle_box_overlaps(std::uint32_t slot, const Aabb
 }
 
 // Depth-first traversal of the lanes whose boxes may overlap `box` (QueryLanes' outward
-// test: a superset). A lane surely inside the box goes to sink.range whole: its
-// triangles' boxes lie in the lane's box, so each of them overlaps. A leaf lane on the
-// boundary tests its slots' 16-bit boxes a block of eight at a time, in the grids of its
-// node (the query is quantized once per node with leaf lanes); a slot that may overlap but
-// not surely (a bound within about two grid steps of the box's) gets the exact double test.
-// Inner lanes are stacked last to first, so that slots come out roughly in leaf order, and
-// their nodes are prefetched when stacked: the loads overlap the rest of this node's work.
+// test: a superset). When the box is large enough to hold whole lanes
+// (kInsideShortcutLeaves), a lane surely inside it goes to sink.range whole: its triangles'
+// boxes lie in the lane's box, so each of them overlaps. Any other hit leaf lane tests its
+// slots' 16-bit boxes a block of eight at a time, in its node's grids (the query is
+// quantized once per group of nodes sharing them); a slot that may overlap but not surely
+// (a bound within about two grid steps of the box's) gets the exact double test. Inner
+// lanes are visited in lane order, so that slots come out roughly in leaf order: the first
+// straight away, the others stacked last to first, and all prefetched: the loads overlap
+// the rest of this node's work.
 template <class Sink>
 void StaticCollider::visit_aabb(const Aabb& box, Sink& sink) const {
     if (nodes_.empty()) return;
-    const QueryLanes q(box);
-    const collision_detail::QueryBounds bounds(collision_detail::outward_float_box(box),
-                                               collision_detail::inward_float_box(box));
+    // Rounded once: the node lanes and the leaf grids test the same float bounds.
+    collision_detail::FloatBox outward, inward;
+    collision_detail::round_both_ways(box, outward, inward);
+    const QueryLanes q(outward, inward);
+    const collision_detail::QueryBounds bounds(outward, inward);
+    const glm::dvec3 extent = box.extent();
+    const bool inside_shortcut = extent.x >= inside_extent_[0] &&
+                                 extent.y >= inside_extent_[1] && extent.z >= inside_extent_[2];
     struct Entry {
         std::uint32_t node, end;
     };
     std::array<Entry, kMaxTraversalStack> stack;
     int top = 0;
     std::uint32_t node = 0, end = static_cast<std::uint32_t>(triangle_count());
+    QuantizedQuery qq;  // the query in grids_[qq_grid], kept while the next nodes share them
+    std::uint32_t qq_grid = kNoSlot;
     for (;;) {
         const BvhNode& n = nodes_[node];
         const BoxLanes lanes = BoxLanes::of(n);
         const unsigned hit = collision_detail::may_overlap(lanes, q);
+        unsigned inner = 0;
         if (hit != 0) {
-            const unsigned inside = collision_detail::surely_inside(lanes, q) & hit;
+            const unsigned inside =
+                inside_shortcut ? collision_detail::surely_inside(lanes, q) & hit : 0u;
             const unsigned leaves = collision_detail::leaf_lanes(n) & hit & ~inside;
-            const unsigned inner = hit & ~inside & ~leaves;
-            // Stacked without branches: every lane is written, only inner ones are kept.
-            for (int i = BvhNode::kWidth - 1; i >= 0; --i) {
-                stack[top] = {n.child[i], n.end(i, end)};
-                top += static_cast<int>((inner >> i) & 1u);
+            inner = hit & ~inside & ~leaves;
+            // Stacked without branches: every lane is written, only inner ones but the first
+            // are kept (the first is visited next, straight from this node's registers).
+            const unsigned stacked = inner & (inner - 1);
+            if (stacked != 0) {
+                for (int i = BvhNode::kWidth - 1; i >= 0; --i) {
+                    stack[top] = {n.child[i], n.end(i, end)};
+                    top += static_cast<int>((stacked >> i) & 1u);
+                }
             }
             for (unsigned m = inner; m != 0; m &= m - 1) {
                 const char* child = reinterpret_cast<const char*>(&nodes_[n.child[lowest_lane(m)]]);
-                _mm_prefetch(child, _MM_HINT_T0);
-                _mm_prefetch(child + 64, _MM_HINT_T0);
+                for (std::size_t line = 0; line < sizeof(BvhNode); line += 64)
+                    _mm_prefetch(child + line, _MM_HINT_T0);
             }
             for (unsigned m = inside; m != 0; m &= m - 1) {
                 const int i = lowest_lane(m);
                 sink.range(n.first[i], n.end(i, end));
             }
-            QuantizedQuery qq;
-            if (leaves != 0) qq = collision_detail::quantize_query(bounds, grids_[node]);
+            if (leaves != 0 && node_grid_[node] != qq_grid) {
+                qq_grid = node_grid_[node];
+                qq = collision_detail::quantize_query(bounds, grids_[qq_grid]);
+            }
             // Neighbouring hit leaf lanes cover neighbouring slots in the same grids: each
             // run of them is tested as one range, so a block they share is tested once.
             for (unsigned m = leaves; m != 0;) {
@@ -214,6 +270,7 @@ void StaticCollider::visit_aabb(const Aabb& box, Sink& sink) const {
                 const int run = std::countr_one(m >> i);
                 m &= ~(((1u << run) - 1u) << i);
                 const std::uint32_t leaf_first = n.first[i], leaf_end = n.end(i + run - 1, end);
+                sink.reserve_run(leaf_first, leaf_end);
                 for (std::uint32_t s = leaf_first & ~(kBlockSlots - 1); s < leaf_end;
                      s += kBlockSlots) {
                     const unsigned tested = collision_detail::test_block(block(s), qq);
@@ -227,6 +284,12 @@ void StaticCollider::visit_aabb(const Aabb& box, Sink& sink) const {
                     sink.slots(s, keep);
                 }
             }
+        }
+        if (inner != 0) {
+            const int i = lowest_lane(inner);
+            node = n.child[i];
+            end = n.end(i, end);
+            continue;
         }
         if (top == 0) return;
         --top;
@@ -242,42 +305,57 @@ namespace {
 template <class T, class Make>
 class BufferedOutput {
 public:
-    BufferedOutput(std::vector<T>& out, const std::uint32_t* slot_to_triangle, Make make)
-        : out_(out), slot_to_triangle_(slot_to_triangle), make_(make) {}
+    BufferedOutput(std::vector<T>& out, const BvhSlotBlock* blocks, Make make)
+        : out_(out), blocks_(blocks), make_(make) {}
     BufferedOutput(const BufferedOutput&) = delete;
     BufferedOutput& operator=(const BufferedOutput&) = delete;
     ~BufferedOutput() { flush(); }
 
-    /// Slots s + i for the set bits i of `mask` (eight lanes; the slot array is padded, so
-    /// every lane is read and stored, and only the set ones are kept: no branches).
+    /// Room for the blocks of slots [first, end) (a run of leaf lanes), flushing first if
+    /// need be: the blocks' slots() then need no check each.
+    void reserve_run(std::uint32_t first, std::uint32_t end) {
+        const std::uint32_t lanes =
+            ((end + kBlockSlots - 1) & ~(kBlockSlots - 1)) - (first & ~(kBlockSlots - 1));
+        if (used_ + lanes > kSize) flush();
+    }
+    /// Slots s + i for the set bits i of `mask` (eight lanes of the block from s, inside a
+    /// reserved run): eight slots are copied in the order of kCompactedLanes, set lanes
+    /// first, and the count kept (every lane of a block can be read; no branch on the mask).
     void slots(std::uint32_t s, unsigned mask) {
-        if (used_ > kSize - kBlockSlots) flush();
-        for (unsigned i = 0; i < kBlockSlots; ++i) {
-            buffer_[used_] = make_(slot_to_triangle_[s + i]);
-            used_ += (mask >> i) & 1u;
-        }
+        const collision_detail::CompactedLanes& c = collision_detail::kCompactedLanes[mask];
+        const std::uint32_t* from = blocks_[s / kBlockSlots].triangle;
+        T* to = buffer_ + used_;
+        for (unsigned k = 0; k < kBlockSlots; ++k) to[k] = make_(from[c.lane[k]]);
+        used_ += c.count;
     }
     /// Slots [first, end).
     void range(std::uint32_t first, std::uint32_t end) {
         if (end - first > kSize - used_) {
             flush();
-            for (std::uint32_t s = first; s < end; ++s) out_.push_back(make_(slot_to_triangle_[s]));
+            for (std::uint32_t s = first; s < end; ++s) out_.push_back(make_(triangle(s)));
             return;
         }
         T* to = buffer_ + used_;
-        for (std::uint32_t s = first; s < end; ++s) *to++ = make_(slot_to_triangle_[s]);
+        for (std::uint32_t s = first; s < end; ++s) *to++ = make_(triangle(s));
         used_ += end - first;
     }
 
 private:
-    static constexpr unsigned kSize = 256;
+    // A run of leaf lanes (at most a node's worth) fits after a flush; per-run rather than
+    // per-block room checks and fewer flushes: car-box queries 3% faster than 256 checked
+    // per block.
+    static constexpr unsigned kSize = 512;
+    static_assert(kSize >= BvhNode::kWidth * collision_detail::kMaxLeafSize + 2 * kBlockSlots);
+    std::uint32_t triangle(std::uint32_t s) const {
+        return blocks_[s / kBlockSlots].triangle[s % kBlockSlots];
+    }
     void flush() {
         out_.insert(out_.end(), buffer_, buffer_ + used_);
         used_ = 0;
     }
 
     std::vector<T>& out_;
-    const std::uint32_t* slot_to_triangle_;
+    const BvhSlotBlock* blocks_;
     Make make_;
     unsigned used_ = 0;
     T buffer_[kSize];
@@ -286,13 +364,13 @@ private:
 }  // namespace
 
 void StaticCollider::query_aabb(const Aabb& box, std::vector<std::uint32_t>& out) const {
-    BufferedOutput sink(out, slot_to_triangle_.data(), [](std::uint32_t t) { return t; });
+    BufferedOutput sink(out, slot_blocks_.data(), [](std::uint32_t t) { return t; });
     visit_aabb(box, sink);
 }
 
 void StaticCollider::query_aabb_refs(const Aabb& box, std::uint32_t collider_id,
                                      std::vector<TriangleRef>& out) const {
-    BufferedOutput sink(out, slot_to_triangle_.data(), [collider_id](std::uint32_t t) {
+    BufferedOutput sink(out, slot_blocks_.data(), [collider_id](std::uint32_t t) {
         return TriangleRef{collider_id, t};
     });
     visit_aabb(box, sink);
@@ -305,21 +383,26 @@ template <class Predicate>
 void StaticCollider::visit_box_filtered(const Aabb& box, Predicate&& keep,
                                         std::vector<std::uint32_t>& out) const {
     if (nodes_.empty()) return;
-    const QueryLanes q(box);
-    const collision_detail::QueryBounds bounds(collision_detail::outward_float_box(box),
-                                               collision_detail::inward_float_box(box));
+    collision_detail::FloatBox outward, inward;
+    collision_detail::round_both_ways(box, outward, inward);
+    const QueryLanes q(outward, inward);
+    const collision_detail::QueryBounds bounds(outward, inward);
     struct Entry {
         std::uint32_t node, end;
     };
     std::array<Entry, kMaxTraversalStack> stack;
     int top = 0;
     std::uint32_t node = 0, end = static_cast<std::uint32_t>(triangle_count());
+    QuantizedQuery qq;  // the query in grids_[qq_grid], kept while the next nodes share them
+    std::uint32_t qq_grid = kNoSlot;
     for (;;) {
         const BvhNode& n = nodes_[node];
         const unsigned hit = collision_detail::may_overlap(BoxLanes::of(n), q);
         const unsigned leaves = collision_detail::leaf_lanes(n) & hit;
-        QuantizedQuery qq;
-        if (leaves != 0) qq = collision_detail::quantize_query(bounds, grids_[node]);
+        if (leaves != 0 && node_grid_[node] != qq_grid) {
+            qq_grid = node_grid_[node];
+            qq = collision_detail::quantize_query(bounds, grids_[qq_grid]);
+        }
         for (unsigned m = leaves; m != 0;) {  // runs of neighbouring leaf lanes, as above
             const int i = lowest_lane(m);
             const int run = std::countr_one(m >> i);
@@ -333,7 +416,7 @@ void StaticCollider::visit_box_filtered(const Aabb& box, Predicate&& keep,
                     const auto slot = s + static_cast<std::uint32_t>(lowest_lane(k));
                     const auto& tri = slot_vertices_[slot];
                     if (keep(vertices_[tri[0]], vertices_[tri[1]], vertices_[tri[2]]))
-                        out.push_back(slot_to_triangle_[slot]);
+                        out.push_back(slot_triangle(slot));
                 }
             }
         }
@@ -386,7 +469,7 @@ std::optional<RayHit> StaticCollider::raycast(const glm::dvec3& origin, const gl
     std::uint32_t best_triangle = kNoSlot, best_slot = kNoSlot;
     struct Entry {
         std::uint32_t child, first, end;  // child: a node index, or kLeaf for slots [first, end)
-        std::uint32_t lane;               // leaf: 4 * its node + its lane (for its grid)
+        std::uint32_t node;               // leaf: its node (for its grids)
         double t_near;
     };
     std::array<Entry, kMaxTraversalStack> stack;
@@ -394,30 +477,30 @@ std::optional<RayHit> StaticCollider::raycast(const glm::dvec3& origin, const gl
     Entry entry{0, 0, static_cast<std::uint32_t>(triangle_count()), 0, 0.0};
     for (;;) {
         if ((entry.child & BvhNode::kLeaf) != 0) {
-            const BvhNodeGrid& node_grid = grids_[entry.lane / 4];
+            const BvhNodeGrid& node_grid = grids_[node_grid_[entry.node]];
             const AxisGrid grid[3] = {collision_detail::axis_of(node_grid, 0),
                                       collision_detail::axis_of(node_grid, 1),
                                       collision_detail::axis_of(node_grid, 2)};
             for (std::uint32_t s = entry.first; s < entry.end; ++s) {
                 // The slot's quantized box holds the triangle's box, so its span holds the hit.
-                const std::int16_t* b =
-                    &slot_boxes_[kBlockValues * (s / kBlockSlots) + s % kBlockSlots];
+                const BvhSlotBlock& block = slot_blocks_[s / kBlockSlots];
+                const std::uint32_t lane = s % kBlockSlots;
                 glm::dvec3 lo, hi;
                 for (int a = 0; a < 3; ++a) {
                     lo[a] = collision_detail::grid_value(
-                        b[kBlockSlots * a] + collision_detail::kIndexBias, grid[a]);
+                        block.box[a][lane] + collision_detail::kIndexBias, grid[a]);
                     hi[a] = collision_detail::grid_value(
-                        b[kBlockSlots * (3 + a)] + collision_detail::kIndexBias, grid[a]);
+                        block.box[3 + a][lane] + collision_detail::kIndexBias, grid[a]);
                 }
                 double t_near, t_far;
                 if (!collision_detail::ray_box_span(ray, lo, hi, best_t, t_near, t_far)) continue;
                 const auto& tri = slot_vertices_[s];
                 const std::optional<double> t = collision_detail::ray_triangle(
                     ray, vertices_[tri[0]], vertices_[tri[1]], vertices_[tri[2]]);
-                if (t && collision_detail::better_hit(*t, slot_to_triangle_[s], best_t,
+                if (t && collision_detail::better_hit(*t, block.triangle[lane], best_t,
                                                       best_triangle)) {
                     best_t = *t;
-                    best_triangle = slot_to_triangle_[s];
+                    best_triangle = block.triangle[lane];
                     best_slot = s;
                 }
             }
@@ -436,7 +519,7 @@ std::optional<RayHit> StaticCollider::raycast(const glm::dvec3& origin, const gl
                 int at = count++;
                 for (; at > 0 && hits[at - 1].t_near <= t_near; --at) hits[at] = hits[at - 1];
                 hits[at] = {n.child[i], n.first[i], n.end(i, entry.end),
-                            4 * entry.child + static_cast<std::uint32_t>(i), t_near};
+                            entry.child, t_near};
             }
             for (int k = 0; k < count; ++k) stack[top++] = hits[k];
         }
@@ -473,8 +556,9 @@ NormalizedTriangle StaticCollider::normalized_triangle(std::uint32_t index) cons
 
 std::size_t StaticCollider::bytes_used() const {
     return sizeof(*this) + capacity_bytes(vertices_) + capacity_bytes(slot_vertices_) +
-           capacity_bytes(slot_to_triangle_) + capacity_bytes(triangle_to_slot_) +
-           capacity_bytes(slot_boxes_) + capacity_bytes(nodes_) + capacity_bytes(grids_);
+           capacity_bytes(triangle_to_slot_) + capacity_bytes(slot_blocks_) +
+           capacity_bytes(nodes_) + capacity_bytes(grids_) +
+           capacity_bytes(node_grid_);
 }
 
 }  // namespace trackphys

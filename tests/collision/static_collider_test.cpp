@@ -206,7 +206,7 @@ TEST(StaticCollider, TreeInvariants) {
                 continue;
             }
             ++leaves;
-            ASSERT_LE(end - n.first[i], 32u);  // bvh_builder.cpp kMaxLeafSize
+            ASSERT_LE(end - n.first[i], 32u);  // bvh_builder.hpp kMaxLeafSize
             for (std::uint32_t s = n.first[i]; s < end; ++s) ++seen[s];
         }
         // Lanes fill from the first: an empty lane is followed by empty lanes only. The

@@ -51,17 +51,18 @@ struct TriangleRef {
 ///
 /// Layout (bytes_used() counts it all): vertices in double, re-ordered by first use in leaf
 /// order and without unused ones (24 bytes each, ~12 a triangle on a shared-vertex mesh);
-/// per triangle, in leaf order, its three vertex indices (12), mesh index (4) and box in
-/// 16 bits, rounded outward in a grid over its node's leaf lanes (12, in blocks of eight
-/// that one SSE2 16-bit compare per bound tests); the inverse map mesh index -> leaf slot
-/// (4); ~0.02 four-wide 128-byte nodes (~2.5, leaves of up to 32 triangles) and as many
-/// 48-byte node grids (~0.9). About 48 bytes a triangle on a track mesh, ~108 on a soup of
-/// unshared vertices. The box queries test the 16-bit boxes eight at a time and read a
-/// triangle's vertices only when its box lies within about two grid steps of the query's
-/// (sphere and capsule: for the distance test). NormalizedTriangle frames are not stored:
-/// 120 bytes in double would break the 80-byte budget, and every exact predicate needs the
-/// double vertices anyway. The mid phase builds the few hundred frames it culls per update
-/// with normalized_triangle().
+/// per triangle, in leaf order, its three vertex indices (12), and its box in 16 bits,
+/// rounded outward in a grid over its subtree of up to 4096 triangles (12), beside its mesh
+/// index (4) in 128-byte blocks of eight (BvhSlotBlock: one SSE2 16-bit compare per bound
+/// tests a block, and the indices it reports share its cache lines); the inverse map mesh
+/// index -> leaf slot (4); ~0.015 eight-wide 256-byte nodes (~4, leaves of up to 32
+/// triangles), each with the index of its 48-byte grids (~0.1). About 49 bytes a triangle
+/// on a track mesh, ~108 on a soup of unshared vertices. The box queries test the 16-bit
+/// boxes eight at a time and read a triangle's vertices only when its box lies within about
+/// two grid steps of the query's (sphere and capsule: for the distance test).
+/// NormalizedTriangle frames are not stored: 120 bytes in double would break the 80-byte
+/// budget, and every exact predicate needs the double vertices anyway. The mid phase builds
+/// the few hundred frames it culls per update with normalized_triangle().
 class TRACKPHYS_API StaticCollider {
 public:
     /// Largest accepted |coordinate| (m): node bounds are float, and 1e18 m keeps every
@@ -118,15 +119,15 @@ public:
 
     /// Box around every kept triangle (empty when none was kept).
     const Aabb& bounds() const { return bounds_; }
-    /// The four-wide BVH nodes: root at 0 (when there is a triangle), covering leaf slots
+    /// The eight-wide BVH nodes: root at 0 (when there is a triangle), covering leaf slots
     /// [0, triangle_count()).
     const std::vector<BvhNode>& nodes() const { return nodes_; }
     /// Bytes of every structure the collider keeps (vector capacities included).
     std::size_t bytes_used() const;
 
 private:
-    // Leaf slot s holds mesh triangle slot_to_triangle_[s] (padded by three unused slots);
-    // its vertices are vertices_[slot_vertices_[s][k]], in the mesh's order (winding kept).
+    // Leaf slot s holds mesh triangle slot_triangle(s); its vertices are
+    // vertices_[slot_vertices_[s][k]], in the mesh's order (winding kept).
     template <class Sink>
     void visit_aabb(const Aabb& box, Sink& sink) const;
     template <class Predicate>
@@ -135,18 +136,22 @@ private:
     bool triangle_box_overlaps(std::uint32_t slot, const Aabb& box) const;
     void quantize_slot_boxes();
     // The quantized boxes of the block of eight slots from s (a multiple of 8).
-    const std::int16_t* block(std::uint32_t s) const { return &slot_boxes_[std::size_t{6} * s]; }
+    const std::int16_t* block(std::uint32_t s) const {
+        return slot_blocks_[s / BvhSlotBlock::kLanes].box[0];
+    }
+    std::uint32_t slot_triangle(std::uint32_t s) const {
+        return slot_blocks_[s / BvhSlotBlock::kLanes].triangle[s % BvhSlotBlock::kLanes];
+    }
 
     std::vector<glm::dvec3> vertices_;
     std::vector<std::array<std::uint32_t, 3>> slot_vertices_;
-    std::vector<std::uint32_t> slot_to_triangle_;
     std::vector<std::uint32_t> triangle_to_slot_;
-    // Slot boxes in blocks of eight slots (from a multiple of 8), quantized in their leaf's
-    // grid (src/collision/quantized_boxes.hpp): 48 values, min x, y, z, then max x, y, z,
-    // one lane per slot; lanes past the last slot are 0 (never read as a slot).
-    std::vector<std::int16_t> slot_boxes_;
+    // Slot boxes, quantized in their leaf's grid, and mesh indices, eight slots a block.
+    std::vector<BvhSlotBlock> slot_blocks_;
     std::vector<BvhNode> nodes_;
-    std::vector<BvhNodeGrid> grids_;  // per node: the grids of its leaf lanes' slot boxes
+    std::vector<BvhNodeGrid> grids_;  // the grids of the slot boxes, shared by node groups
+    std::vector<std::uint32_t> node_grid_;  // per node with leaf lanes: its grids_ index
+    double inside_extent_[3] = {0.0, 0.0, 0.0};  // box extents to look for whole lanes from
     Aabb bounds_;
     std::uint64_t content_hash_ = 0;
 };
