@@ -572,7 +572,7 @@ Contact ellipsoid_triangle_contact(const Ellipsoid& ellipsoid, const Triangle& t
     // normal, 1e-76 m radii a normal 2e-8 off unit, a 1e114 radii ratio an infinite depth, a
     // 1e-57 m sphere under a 1e5 m triangle a normal 5e-7 off unit; and the power-of-two
     // scaling test a wrong depth for a car scaled by 2^-179 or 2^170 (sixth powers). The
-    // careful path solves at unit scale (solve_at_unit_scale) and raises radii below 2^-200
+    // careful path solves at unit scale (rescaled_contact) and raises radii below 2^-200
     // of the largest to it (or treats the ellipsoid as a point), which moves sigma by less
     // than that. The sum also catches non-finite input (NaN and infinity propagate).
     const std::array<glm::dvec3, 3> abs_q = {abs_each(local.q[0]), abs_each(local.q[1]),

@@ -27,23 +27,6 @@ PowerOfTwo power_of_two_below(double x) {
             std::bit_cast<double>((std::uint64_t{2046} << 52) - exponent)};
 }
 
-/// The kernel at the scale where the largest radius is in [1, 2), for the careful path:
-/// local.q given (already flushed and multiplied by unit.inverse), radii and extent in the
-/// input's scale. The kernel forms products up to the sixth power of a length (h(N)^2 =
-/// |D N|^2 for the area normal N, a length^2) and compares fourth powers; at unit scale these
-/// stay normal numbers over every configuration the careful path admits (smallest radius
-/// within 2^-200 of the largest, triangle within 2^206 of it). Powers of two scale every
-/// rounding exactly, so the result is bit-identical to the fast path's wherever both apply.
-detail::LocalContact solve_at_unit_scale(
-    const glm::dvec3& radii, detail::LocalTriangle& local, const PowerOfTwo& unit) {
-    for (int i = 0; i < 3; ++i) local.edge[i] = local.q[(i + 1) % 3] - local.q[i];
-    local.extent *= unit.inverse;
-    detail::LocalContact solved = detail::contact_in_sorted_frame(radii * unit.inverse, local);
-    solved.depth *= unit.value;
-    solved.point *= unit.value;
-    return solved;
-}
-
 /// Closest point of triangle (a, b, c) to p by its Voronoi regions (Ericson, "Real-Time
 /// Collision Detection", 5.1.5), every division guarded so that degenerate triangles give a
 /// point of their hull.
@@ -137,7 +120,12 @@ Contact detail::rescaled_contact(const Ellipsoid& ellipsoid, const std::array<gl
     // infinite depth.
     // The ellipsoid and the triangle's offsets from its center can still be far below the
     // largest coordinate (radii 6e257 m beside a vertex at -3.5e296 m: 1e-39 here, and a
-    // normal 0.987 long; found by fuzz_contact): solve_at_unit_scale rescales once more.
+    // normal 0.987 long; found by fuzz_contact), so the kernel runs where the largest radius
+    // is in [1, 2): it forms products up to the sixth power of a length (h(N)^2 = |D N|^2
+    // for the area normal N) and compares fourth powers, which stay normal numbers there
+    // over every configuration this path admits (smallest radius within 2^-200 of the
+    // largest, triangle within 2^206 of it). Powers of two scale every rounding exactly, so
+    // the result is bit-identical to the fast path's wherever both apply.
     const glm::dvec3 local_radii = radii / scale;
     const PowerOfTwo unit = power_of_two_below(local_radii.x);
     for (int i = 0; i < 3; ++i) {
@@ -147,9 +135,11 @@ Contact detail::rescaled_contact(const Ellipsoid& ellipsoid, const std::array<gl
         local.q[i] *= unit.inverse;
     }
     const glm::dvec3 sum = abs_each(local.q[0]) + abs_each(local.q[1]) + abs_each(local.q[2]);
-    local.extent = (sum.x + sum.y + sum.z) * unit.value;  // in the input's scale
-    const detail::LocalContact solved = solve_at_unit_scale(local_radii, local, unit);
-    return {solved.depth * scale, axes * solved.u, c + axes * (solved.point * scale)};
+    local.extent = sum.x + sum.y + sum.z;
+    for (int i = 0; i < 3; ++i) local.edge[i] = local.q[(i + 1) % 3] - local.q[i];
+    const detail::LocalContact solved = detail::contact_in_sorted_frame(local_radii * unit.inverse, local);
+    const double back = unit.value * scale;  // a power of two: exact
+    return {solved.depth * back, axes * solved.u, c + axes * (solved.point * back)};
 }
 
 }  // namespace trackphys

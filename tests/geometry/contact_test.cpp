@@ -160,6 +160,18 @@ TEST(Contact, MatchesTheReferenceOnAxisAlignedGrids) {
                 stats.unique, stats.depth_error);
 }
 
+// Which way the kernel answers a case (its sorted frame, the case's vertex order).
+detail::ContactPath kernel_path(const ContactCase& c) {
+    detail::LocalTriangle local;
+    local.extent = 0.0;
+    for (int i = 0; i < 3; ++i) {
+        local.q[i] = c.ellipsoid.to_sorted_local(c.triangle[i]);
+        local.edge[i] = c.ellipsoid.to_sorted_local(c.triangle[(i + 1) % 3]) - local.q[i];
+        local.extent += std::abs(local.q[i].x) + std::abs(local.q[i].y) + std::abs(local.q[i].z);
+    }
+    return detail::contact_in_sorted_frame(c.ellipsoid.sorted_radii(), local).path;
+}
+
 TEST(Contact, ShallowRoadContactsTakeTheCertifiedFaceExit) {
     ContactCaseGenerator generator(13);
     int face = 0;
@@ -170,15 +182,7 @@ TEST(Contact, ShallowRoadContactsTakeTheCertifiedFaceExit) {
         const glm::dvec3 r = c.ellipsoid.sorted_radii();
         if (ellipsoid_triangle_contact(c.ellipsoid, c.triangle).depth * r.x >= r.z * r.z) continue;
         ++count;
-        detail::LocalTriangle local;
-        local.extent = 0.0;
-        for (int i = 0; i < 3; ++i) {
-            local.q[i] = c.ellipsoid.to_sorted_local(c.triangle[i]);
-            local.edge[i] = c.ellipsoid.to_sorted_local(c.triangle[(i + 1) % 3]) - local.q[i];
-            local.extent += std::abs(local.q[i].x) + std::abs(local.q[i].y) + std::abs(local.q[i].z);
-        }
-        face += detail::contact_in_sorted_frame(c.ellipsoid.sorted_radii(), local).path ==
-                detail::ContactPath::face_certified;
+        face += kernel_path(c) == detail::ContactPath::face_certified;
     }
     EXPECT_EQ(face, count);
     EXPECT_GT(count, 7000);
@@ -192,15 +196,7 @@ TEST(Contact, VertexContactsAreCertifiedByTheirVertex) {
     int vertex = 0;
     for (int k = 0; k < 10000; ++k) {
         const ContactCase c = generator.make(ContactKind::vertex, /*overlapping=*/true);
-        detail::LocalTriangle local;
-        local.extent = 0.0;
-        for (int i = 0; i < 3; ++i) {
-            local.q[i] = c.ellipsoid.to_sorted_local(c.triangle[i]);
-            local.edge[i] = c.ellipsoid.to_sorted_local(c.triangle[(i + 1) % 3]) - local.q[i];
-            local.extent += std::abs(local.q[i].x) + std::abs(local.q[i].y) + std::abs(local.q[i].z);
-        }
-        vertex += detail::contact_in_sorted_frame(c.ellipsoid.sorted_radii(), local).path ==
-                  detail::ContactPath::vertex_certified;
+        vertex += kernel_path(c) == detail::ContactPath::vertex_certified;
     }
     EXPECT_GT(vertex, 9500);
 }
