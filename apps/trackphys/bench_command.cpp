@@ -20,6 +20,7 @@
 #include "drive_report.hpp"
 #include "json_file.hpp"
 #include "staged_outputs.hpp"
+#include "trackphys/build_target.hpp"
 #include "trackphys/error.hpp"
 
 namespace trackphys::cli {
@@ -101,6 +102,8 @@ std::string format_figures(const BenchRow& row) {
 void print_header(bool quick, const std::vector<PeerStatus>& peers) {
     std::printf("trackphys bench%s: median time of one call; x = median / the 'vs' row's median\n",
                 quick ? " --quick" : "");
+    std::printf("  trackphys built for %s; the peers are Debian's builds (x86-64 baseline)\n",
+                trackphys::build_target());
     for (const PeerStatus& p : peers)
         std::printf("  peer %-14s %s (%s)\n", p.name.c_str(), p.built ? "built" : "not built", p.detail.c_str());
     std::fflush(stdout);
@@ -127,6 +130,7 @@ void print_table(const BenchRun& run, double wall_s) {
 nlohmann::json to_json(const BenchRun& run, const std::vector<PeerStatus>& peers, double wall_s) {
     nlohmann::json json;
     json["quick"] = run.quick();
+    json["build_target"] = trackphys::build_target();
     json["wall_s"] = wall_s;
     json["writeup_budget_us"] = {{"typical", kWriteupTypicalUs}, {"spikes", kWriteupSpikeUs}};
     for (const PeerStatus& p : peers)

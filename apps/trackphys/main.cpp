@@ -4,9 +4,17 @@
 #include <CLI/CLI.hpp>
 
 #include "commands.hpp"
+#include "trackphys/build_target.hpp"
 #include "trackphys/error.hpp"
 
 int main(int argc, char** argv) {
+    if (!trackphys::cpu_runs_build_target()) {
+        std::fprintf(stderr,
+                     "trackphys: error: this build is for %s CPUs and this one lacks some of its "
+                     "instructions; rebuild with cmake -DTRACKPHYS_X86_64_LEVEL=v1\n",
+                     trackphys::build_target());
+        return 1;
+    }
     CLI::App app{"trackphys: racing-game physics, ellipsoid cars on triangle-mesh tracks",
                  "trackphys"};
     app.require_subcommand(1);

@@ -3,6 +3,7 @@
 /// The whole public API of trackphys in one include.
 
 #include "trackphys/assert.hpp"
+#include "trackphys/build_target.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/export.hpp"
 

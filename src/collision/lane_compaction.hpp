@@ -1,25 +1,36 @@
 #pragma once
 
-// The set lanes of an eight-lane mask, packed to the front, from a table (private). A block
-// of eight leaf slots reports its kept lanes without branching on the mask and without a
-// per-lane "keep" step: it copies eight slots in the table's order and advances by the
-// count. Per lane that is a table byte, a load and a store (the bit-by-bit alternative costs
-// about 7.5 instructions a lane, and a loop over set bits mispredicts on mixed masks).
+// The set lanes of a mask, packed to the front (private): how a block of eight leaf slots
+// reports its kept slots without branching on the mask and without a per-lane "keep" step.
+// Two ways, by the instruction set the library is built for (TRACKPHYS_X86_64_LEVEL):
+// - x86-64-v2 (SSSE3; the default): each half of four 32-bit lanes is packed by one byte
+//   shuffle from a 16-entry table: a load, a shuffle and a store per half.
+// - x86-64 baseline (SSE2 has no variable shuffle): eight lanes are copied in a table's
+//   order, set lanes first; per lane a table byte, a load and a store (the bit-by-bit
+//   alternative costs about 7.5 instructions a lane, and a loop over set bits mispredicts
+//   on mixed masks). On the default track's car boxes the shuffle makes the whole query
+//   7-8% faster.
+// Both tables are always built, and the tests check both against a plain statement.
+
+#include <emmintrin.h>
+#if defined(__SSSE3__)
+#include <tmmintrin.h>
+#endif
 
 #include <array>
 #include <cstdint>
 
 namespace trackphys::collision_detail {
 
-/// For one mask: its set lanes in increasing order, then lane 0 repeated (a lane that is
-/// always safe to read), and how many are set. 9 bytes.
+/// For one eight-lane mask: its set lanes in increasing order, then lane 0 repeated (a lane
+/// that is always safe to read), and how many are set. 9 bytes.
 struct CompactedLanes {
     std::uint8_t lane[8];
     std::uint8_t count;
 };
 static_assert(sizeof(CompactedLanes) == 9);
 
-/// All 256 masks (2,304 bytes: a few lines of which a query touches).
+/// All 256 eight-lane masks (2,304 bytes: a few lines of which a query touches).
 inline constexpr std::array<CompactedLanes, 256> kCompactedLanes = [] {
     std::array<CompactedLanes, 256> table{};
     for (unsigned mask = 0; mask < 256; ++mask) {
@@ -29,5 +40,39 @@ inline constexpr std::array<CompactedLanes, 256> kCompactedLanes = [] {
     }
     return table;
 }();
+
+/// For one four-lane mask: the byte shuffle (_mm_shuffle_epi8's control) that moves its set
+/// 32-bit lanes to the front, in order, and zeroes the rest. 16 bytes.
+struct alignas(16) FourLaneShuffle {
+    std::uint8_t byte[16];
+};
+
+/// All 16 four-lane masks (256 bytes).
+inline constexpr std::array<FourLaneShuffle, 16> kFourLaneShuffles = [] {
+    std::array<FourLaneShuffle, 16> table{};
+    for (unsigned mask = 0; mask < 16; ++mask) {
+        unsigned to = 0;
+        for (unsigned lane = 0; lane < 4; ++lane)
+            if ((mask >> lane) & 1u) {
+                for (unsigned b = 0; b < 4; ++b)
+                    table[mask].byte[4 * to + b] = static_cast<std::uint8_t>(4 * lane + b);
+                ++to;
+            }
+        for (unsigned b = 4 * to; b < 16; ++b) table[mask].byte[b] = 0x80;  // zero
+    }
+    return table;
+}();
+
+/// Set lanes of each four-lane mask.
+inline constexpr std::array<std::uint8_t, 16> kFourLaneCount = {0, 1, 1, 2, 1, 2, 2, 3,
+                                                                1, 2, 2, 3, 2, 3, 3, 4};
+
+#if defined(__SSSE3__)
+/// The 32-bit lanes of `four` set in `mask` (< 16), packed to the front; zeros after them.
+inline __m128i pack_four_lanes(__m128i four, unsigned mask) {
+    return _mm_shuffle_epi8(
+        four, _mm_load_si128(reinterpret_cast<const __m128i*>(kFourLaneShuffles[mask].byte)));
+}
+#endif
 
 }  // namespace trackphys::collision_detail

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <cstddef>
 #include <limits>
 #include <string>
 
@@ -43,14 +44,27 @@ constexpr std::uint32_t kBlockSlots = QuantizedBlock::kLanes;
 static_assert(BvhSlotBlock::kLanes == kBlockSlots &&
               sizeof(BvhSlotBlock::box) == sizeof(QuantizedBlock));
 
-// Lanes 0 .. n - 1 of eight (n >= 8: all of them).
-unsigned first_lanes(std::uint32_t n) { return (1u << std::min(n, kBlockSlots)) - 1u; }
-// The lanes of the block of eight slots from `block_first` (a multiple of 8) that lie in
-// [first, end), first < block_first + 8.
-unsigned lanes_in(std::uint32_t block_first, std::uint32_t first, std::uint32_t end) {
-    return first_lanes(end - block_first) &
-           ~first_lanes(std::max(first, block_first) - block_first);
-}
+// The lanes of each block of a slot range [first, end) (first < end) that lie in it, block
+// by block from the first: all eight but in the first block (from first) and the last (up
+// to end); per block a compare, not two clamped shifts (car boxes test ~37 blocks each).
+class RunLanes {
+public:
+    RunLanes(std::uint32_t first, std::uint32_t end)
+        : lower_((0xffu << (first % kBlockSlots)) & 0xffu),
+          last_block_((end - 1) & ~(kBlockSlots - 1)),
+          last_lanes_(0xffu >> (kBlockSlots - 1 - (end - 1) % kBlockSlots)) {}
+    /// The lanes of the block from s: the first call's s is first's block, each next one 8 on.
+    unsigned next(std::uint32_t s) {
+        const unsigned lanes = lower_ & (s == last_block_ ? last_lanes_ : 0xffu);
+        lower_ = 0xffu;
+        return lanes;
+    }
+
+private:
+    unsigned lower_;
+    std::uint32_t last_block_;
+    unsigned last_lanes_;
+};
 int lowest_lane(unsigned mask) { return std::countr_zero(mask); }
 int highest_lane(unsigned mask) { return 31 - std::countl_zero(mask); }
 
@@ -270,19 +284,23 @@ void StaticCollider::visit_aabb(const Aabb& box, Sink& sink) const {
                 const int run = std::countr_one(m >> i);
                 m &= ~(((1u << run) - 1u) << i);
                 const std::uint32_t leaf_first = n.first[i], leaf_end = n.end(i + run - 1, end);
-                sink.reserve_run(leaf_first, leaf_end);
+                // The run's output cursor stays in a register (as the sink's member it was
+                // stored and reloaded around every block's stores, which may alias it).
+                auto* to = sink.reserve_run(leaf_first, leaf_end);
+                RunLanes run_lanes(leaf_first, leaf_end);
                 for (std::uint32_t s = leaf_first & ~(kBlockSlots - 1); s < leaf_end;
                      s += kBlockSlots) {
                     const unsigned tested = collision_detail::test_block(block(s), qq);
-                    const unsigned maybe = tested & lanes_in(s, leaf_first, leaf_end);
+                    const unsigned maybe = tested & run_lanes.next(s);
                     unsigned keep = (tested >> kBlockSlots) & maybe;
                     for (unsigned k = maybe & ~keep; k != 0; k &= k - 1) [[unlikely]] {
                         const int lane = lowest_lane(k);
                         if (triangle_box_overlaps(s + static_cast<std::uint32_t>(lane), box))
                             keep |= 1u << lane;
                     }
-                    sink.slots(s, keep);
+                    to = sink.slots(to, s, keep);
                 }
+                sink.commit(to);
             }
         }
         if (inner != 0) {
@@ -300,43 +318,78 @@ void StaticCollider::visit_aabb(const Aabb& box, Sink& sink) const {
 
 namespace {
 
+// The elements the box queries report, made from mesh triangle indices one at a time, or
+// four at a time from an SSE vector of them (stored at `to`, unaligned).
+struct IndexElement {
+    using T = std::uint32_t;
+    T make(std::uint32_t triangle) const { return triangle; }
+    void store_four(T* to, __m128i triangles) const {
+        _mm_storeu_si128(reinterpret_cast<__m128i*>(to), triangles);
+    }
+};
+struct RefElement {
+    using T = TriangleRef;
+    static_assert(sizeof(TriangleRef) == 8 && offsetof(TriangleRef, triangle) == 4);
+    std::uint32_t collider;
+    T make(std::uint32_t triangle) const { return {collider, triangle}; }
+    void store_four(T* to, __m128i triangles) const {
+        const __m128i id = _mm_set1_epi32(static_cast<int>(collider));
+        auto* out = reinterpret_cast<__m128i*>(to);
+        _mm_storeu_si128(out, _mm_unpacklo_epi32(id, triangles));
+        _mm_storeu_si128(out + 1, _mm_unpackhi_epi32(id, triangles));
+    }
+};
+
 // A query's output gathered in a fixed local buffer and appended to the caller's vector in
-// bulk: a reported triangle costs a store, not a push_back. make(triangle) is the element.
-template <class T, class Make>
+// bulk: a reported triangle costs a store, not a push_back.
+template <class Element>
 class BufferedOutput {
 public:
-    BufferedOutput(std::vector<T>& out, const BvhSlotBlock* blocks, Make make)
-        : out_(out), blocks_(blocks), make_(make) {}
+    using T = typename Element::T;
+    BufferedOutput(std::vector<T>& out, const BvhSlotBlock* blocks, Element element)
+        : out_(out), blocks_(blocks), element_(element) {}
     BufferedOutput(const BufferedOutput&) = delete;
     BufferedOutput& operator=(const BufferedOutput&) = delete;
     ~BufferedOutput() { flush(); }
 
     /// Room for the blocks of slots [first, end) (a run of leaf lanes), flushing first if
     /// need be: the blocks' slots() then need no check each.
-    void reserve_run(std::uint32_t first, std::uint32_t end) {
+    T* reserve_run(std::uint32_t first, std::uint32_t end) {
         const std::uint32_t lanes =
             ((end + kBlockSlots - 1) & ~(kBlockSlots - 1)) - (first & ~(kBlockSlots - 1));
         if (used_ + lanes > kSize) flush();
+        return buffer_ + used_;
     }
-    /// Slots s + i for the set bits i of `mask` (eight lanes of the block from s, inside a
-    /// reserved run): eight slots are copied in the order of kCompactedLanes, set lanes
-    /// first, and the count kept (every lane of a block can be read; no branch on the mask).
-    void slots(std::uint32_t s, unsigned mask) {
-        const collision_detail::CompactedLanes& c = collision_detail::kCompactedLanes[mask];
+    /// The run's elements end at `to` (the last slots() result).
+    void commit(T* to) { used_ = static_cast<unsigned>(to - buffer_); }
+    /// Writes the slots s + i for the set bits i of `mask` (the block of eight slots from s,
+    /// in a reserved run) at `to`, in increasing order; returns their end. Eight elements
+    /// are written, set lanes first (lane_compaction.hpp), and `to` advances by the count:
+    /// no branch on the mask.
+    T* slots(T* to, std::uint32_t s, unsigned mask) const {
         const std::uint32_t* from = blocks_[s / kBlockSlots].triangle;
-        T* to = buffer_ + used_;
-        for (unsigned k = 0; k < kBlockSlots; ++k) to[k] = make_(from[c.lane[k]]);
-        used_ += c.count;
+#if defined(__SSSE3__)
+        const auto* halves = reinterpret_cast<const __m128i*>(from);
+        const unsigned low = mask & 0xfu, high = mask >> 4;
+        element_.store_four(to, collision_detail::pack_four_lanes(_mm_load_si128(halves), low));
+        to += collision_detail::kFourLaneCount[low];
+        element_.store_four(to, collision_detail::pack_four_lanes(_mm_load_si128(halves + 1), high));
+        return to + collision_detail::kFourLaneCount[high];
+#else
+        const collision_detail::CompactedLanes& c = collision_detail::kCompactedLanes[mask];
+        for (unsigned k = 0; k < kBlockSlots; ++k) to[k] = element_.make(from[c.lane[k]]);
+        return to + c.count;
+#endif
     }
     /// Slots [first, end).
     void range(std::uint32_t first, std::uint32_t end) {
         if (end - first > kSize - used_) {
             flush();
-            for (std::uint32_t s = first; s < end; ++s) out_.push_back(make_(triangle(s)));
+            for (std::uint32_t s = first; s < end; ++s) out_.push_back(element_.make(triangle(s)));
             return;
         }
         T* to = buffer_ + used_;
-        for (std::uint32_t s = first; s < end; ++s) *to++ = make_(triangle(s));
+        for (std::uint32_t s = first; s < end; ++s) *to++ = element_.make(triangle(s));
         used_ += end - first;
     }
 
@@ -356,7 +409,7 @@ private:
 
     std::vector<T>& out_;
     const BvhSlotBlock* blocks_;
-    Make make_;
+    Element element_;
     unsigned used_ = 0;
     T buffer_[kSize];
 };
@@ -364,15 +417,13 @@ private:
 }  // namespace
 
 void StaticCollider::query_aabb(const Aabb& box, std::vector<std::uint32_t>& out) const {
-    BufferedOutput sink(out, slot_blocks_.data(), [](std::uint32_t t) { return t; });
+    BufferedOutput sink(out, slot_blocks_.data(), IndexElement{});
     visit_aabb(box, sink);
 }
 
 void StaticCollider::query_aabb_refs(const Aabb& box, std::uint32_t collider_id,
                                      std::vector<TriangleRef>& out) const {
-    BufferedOutput sink(out, slot_blocks_.data(), [collider_id](std::uint32_t t) {
-        return TriangleRef{collider_id, t};
-    });
+    BufferedOutput sink(out, slot_blocks_.data(), RefElement{collider_id});
     visit_aabb(box, sink);
 }
 
@@ -408,10 +459,11 @@ void StaticCollider::visit_box_filtered(const Aabb& box, Predicate&& keep,
             const int run = std::countr_one(m >> i);
             m &= ~(((1u << run) - 1u) << i);
             const std::uint32_t leaf_first = n.first[i], leaf_end = n.end(i + run - 1, end);
+            RunLanes run_lanes(leaf_first, leaf_end);
             for (std::uint32_t s = leaf_first & ~(kBlockSlots - 1); s < leaf_end;
                  s += kBlockSlots) {
                 const unsigned maybe =
-                    collision_detail::test_block(block(s), qq) & lanes_in(s, leaf_first, leaf_end);
+                    collision_detail::test_block(block(s), qq) & run_lanes.next(s);
                 for (unsigned k = maybe; k != 0; k &= k - 1) {
                     const auto slot = s + static_cast<std::uint32_t>(lowest_lane(k));
                     const auto& tri = slot_vertices_[slot];

@@ -1,2 +1,3 @@
 target_sources(trackphys PRIVATE
-  core/assert.cpp)
+  core/assert.cpp
+  core/build_target.cpp)
