@@ -8,21 +8,24 @@ target_compile_options(trackphys_options INTERFACE
   -Wall -Wextra -Wpedantic -Wshadow -Wconversion -Wno-sign-conversion
   $<$<BOOL:${TRACKPHYS_WARNINGS_AS_ERRORS}>:-Werror>)
 
-# The x86-64 level the library is built for: v2 (SSSE3, SSE4.1/4.2, POPCNT: every x86-64
-# CPU since about 2009) by default, or v1, the 2003 baseline (SSE2 only). Results are the
-# same at both levels (no contraction, the same IEEE operations); v2 lets the BVH box query
-# pack the triangles it reports with byte shuffles (src/collision/lane_compaction.hpp), 7-8%
-# faster on car boxes. A v2 build run on an older CPU stops with an error (the trackphys
-# command checks; src/core/cpu_check.cpp).
-set(TRACKPHYS_X86_64_LEVEL v2 CACHE STRING "x86-64 level to build for: v2 (default) or v1 (SSE2 only)")
-set_property(CACHE TRACKPHYS_X86_64_LEVEL PROPERTY STRINGS v1 v2)
+# The x86-64 level the library is built for: v2 (SSE3 to SSE4.2 and POPCNT: Intel since
+# 2008, AMD since 2011) by default, v1, the 2003 baseline (SSE2 only), or none (no -march:
+# the compiler's default, or whatever CMAKE_CXX_FLAGS asks for). Results are the same at
+# every level (no contraction, the same IEEE operations; scripts/determinism.sh compares a
+# v1 clang++ build with the v2 g++ one); v2 lets the BVH box query pack the triangles it
+# reports with byte shuffles (src/collision/lane_compaction.hpp), 7-8% faster on car boxes.
+# A v2 build run on an older CPU would crash: the trackphys command checks first
+# (src/core/build_target.cpp).
+set(TRACKPHYS_X86_64_LEVEL v2 CACHE STRING "x86-64 level to build for: v2 (default), v1 (SSE2 only) or none (no -march)")
+set_property(CACHE TRACKPHYS_X86_64_LEVEL PROPERTY STRINGS v2 v1 none)
+if(NOT TRACKPHYS_X86_64_LEVEL MATCHES "^(v1|v2|none)$")
+  message(FATAL_ERROR "TRACKPHYS_X86_64_LEVEL must be v2, v1 or none, got '${TRACKPHYS_X86_64_LEVEL}'")
+endif()
 if(CMAKE_SYSTEM_PROCESSOR MATCHES "^(x86_64|AMD64|amd64)$")
   if(TRACKPHYS_X86_64_LEVEL STREQUAL "v2")
     target_compile_options(trackphys_options INTERFACE -march=x86-64-v2)
   elseif(TRACKPHYS_X86_64_LEVEL STREQUAL "v1")
     target_compile_options(trackphys_options INTERFACE -march=x86-64)
-  else()
-    message(FATAL_ERROR "TRACKPHYS_X86_64_LEVEL must be v1 or v2, got '${TRACKPHYS_X86_64_LEVEL}'")
   endif()
 endif()
 

@@ -1,7 +1,7 @@
 #pragma once
 
-// A BvhNode's child boxes against one query box, four at a time, in SSE2 (private; x86-64
-// guarantees SSE2, so no -m flag is needed). The boxes are stored lane by lane in float;
+// A BvhNode's child boxes against one query box, four at a time, in SSE2 (private; every
+// x86-64 level has it). The boxes are stored lane by lane in float;
 // the query box is double. (Leaf triangles are tested in 16 bits, eight at a time:
 // quantized_boxes.hpp.)
 //

@@ -4,13 +4,14 @@
 // reports its kept slots without branching on the mask and without a per-lane "keep" step.
 // Two ways, by the instruction set the library is built for (TRACKPHYS_X86_64_LEVEL):
 // - x86-64-v2 (SSSE3; the default): each half of four 32-bit lanes is packed by one byte
-//   shuffle from a 16-entry table: a load, a shuffle and a store per half.
+//   shuffle from a 16-entry table: a load, a shuffle, a store and a popcount per half.
 // - x86-64 baseline (SSE2 has no variable shuffle): eight lanes are copied in a table's
 //   order, set lanes first; per lane a table byte, a load and a store (the bit-by-bit
 //   alternative costs about 7.5 instructions a lane, and a loop over set bits mispredicts
 //   on mixed masks). On the default track's car boxes the shuffle makes the whole query
 //   7-8% faster.
-// Both tables are always built, and the tests check both against a plain statement.
+// Both tables are always built and the tests check both against a plain statement; a v1
+// build runs the first in scripts/determinism.sh, which must end a drive as v2 does.
 
 #include <emmintrin.h>
 #if defined(__SSSE3__)
@@ -62,10 +63,6 @@ inline constexpr std::array<FourLaneShuffle, 16> kFourLaneShuffles = [] {
     }
     return table;
 }();
-
-/// Set lanes of each four-lane mask.
-inline constexpr std::array<std::uint8_t, 16> kFourLaneCount = {0, 1, 1, 2, 1, 2, 2, 3,
-                                                                1, 2, 2, 3, 2, 3, 3, 4};
 
 #if defined(__SSSE3__)
 /// The 32-bit lanes of `four` set in `mask` (< 16), packed to the front; zeros after them.

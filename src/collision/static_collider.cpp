@@ -372,9 +372,10 @@ public:
         const auto* halves = reinterpret_cast<const __m128i*>(from);
         const unsigned low = mask & 0xfu, high = mask >> 4;
         element_.store_four(to, collision_detail::pack_four_lanes(_mm_load_si128(halves), low));
-        to += collision_detail::kFourLaneCount[low];
-        element_.store_four(to, collision_detail::pack_four_lanes(_mm_load_si128(halves + 1), high));
-        return to + collision_detail::kFourLaneCount[high];
+        to += std::popcount(low);
+        element_.store_four(to,
+                            collision_detail::pack_four_lanes(_mm_load_si128(halves + 1), high));
+        return to + std::popcount(high);
 #else
         const collision_detail::CompactedLanes& c = collision_detail::kCompactedLanes[mask];
         for (unsigned k = 0; k < kBlockSlots; ++k) to[k] = element_.make(from[c.lane[k]]);
