@@ -301,10 +301,11 @@ std::vector<BinaryNode> build_binary(std::vector<BuildPrimitive>& prims) {
 }
 
 // Eight-wide nodes from the binary tree, depth first in leaf order: each node starts from
-// its binary node's two children (the root, if a leaf, is its own single lane) and opens
+// its binary node's two children (the root, if a lane, is its own single lane) and opens
 // the inner lane of largest area, in place so that lanes stay in leaf order, until it has
-// eight lanes or only leaves. The likeliest-hit boxes get opened, as SAH collapses do. A
-// node's children get consecutive indices.
+// eight lanes or only leaf lanes. A binary subtree of at most kMaxLeafLaneSize primitives
+// is a leaf lane (never opened). The likeliest-hit boxes get opened, as SAH collapses do.
+// A node's children get consecutive indices.
 void collapse(const std::vector<BinaryNode>& binary, std::uint32_t count,
               std::vector<BvhNode>& wide) {
     constexpr int kWidth = BvhNode::kWidth;
@@ -315,13 +316,16 @@ void collapse(const std::vector<BinaryNode>& binary, std::uint32_t count,
     // At most one wide node per inner binary node (and one for a leaf root).
     wide.reserve(binary.size() / 2 + 1);
     wide.resize(1);
+    auto is_leaf_lane = [&binary](std::uint32_t b) {
+        return binary[b].is_leaf() || binary[b].count() <= kMaxLeafLaneSize;
+    };
     std::vector<Item> work{{0, 0, 0, count}};
     while (!work.empty()) {
         const Item item = work.back();
         work.pop_back();
         std::uint32_t lanes[kWidth];
         int used = 0;
-        if (binary[item.binary].is_leaf()) {
+        if (is_leaf_lane(item.binary)) {
             lanes[used++] = item.binary;
         } else {
             lanes[used++] = binary[item.binary].first;
@@ -331,7 +335,7 @@ void collapse(const std::vector<BinaryNode>& binary, std::uint32_t count,
             int open = -1;
             double largest = -1.0;
             for (int i = 0; i < used; ++i)
-                if (!binary[lanes[i]].is_leaf() && binary[lanes[i]].half_area() > largest) {
+                if (!is_leaf_lane(lanes[i]) && binary[lanes[i]].half_area() > largest) {
                     open = i;
                     largest = binary[lanes[i]].half_area();
                 }
@@ -357,8 +361,9 @@ void collapse(const std::vector<BinaryNode>& binary, std::uint32_t count,
                 node.min[a][i] = b.min[a];
                 node.max[a][i] = b.max[a];
             }
-            node.child[i] = b.is_leaf() ? BvhNode::kLeaf : static_cast<std::uint32_t>(wide.size());
-            if (!b.is_leaf()) wide.emplace_back();
+            const bool leaf = is_leaf_lane(lanes[i]);
+            node.child[i] = leaf ? BvhNode::kLeaf : static_cast<std::uint32_t>(wide.size());
+            if (!leaf) wide.emplace_back();
             first += b.count();
         }
         TP_ASSERT(first == item.end, "collapsed lanes do not cover their node's range");

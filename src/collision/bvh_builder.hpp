@@ -34,8 +34,15 @@ struct BuildPrimitive {
 };
 static_assert(sizeof(BuildPrimitive) == 36);
 
-/// Most primitives in a leaf (bvh_builder.cpp says why 32).
+/// Most primitives in a leaf of the binary SAH tree (bvh_builder.cpp says why 32).
 inline constexpr std::uint32_t kMaxLeafSize = 32;
+/// Most primitives in a leaf lane of the wide tree: the collapse turns a binary subtree of
+/// at most this many into one leaf lane, its primitives in the order of its SAH leaves.
+/// Queries test a leaf lane's slot boxes eight at a time in that order, so neighbouring
+/// blocks stay tight, and a block test costs much less than a node visit (a dependent
+/// load and its branches): default-track car boxes 6% faster in driving order and 10% with
+/// random boxes than with lanes of one SAH leaf (64 and 128 about as fast, 256 slower).
+inline constexpr std::uint32_t kMaxLeafLaneSize = 96;
 
 /// Deepest a built tree gets: SAH splits up to kMaxSahDepth, then median splits that halve
 /// the count (at most 31 more levels); the eight-wide tree is never deeper than the binary
@@ -55,7 +62,8 @@ struct BuiltBvh {
 /// Builds the tree: a binary tree by binned SAH on centroids, all three axes, up to 16 bins
 /// (nodes above ~16k primitives bin a strided sample), leaves of up to kMaxLeafSize, then
 /// collapsed into eight-wide nodes (each takes its binary node's two children and keeps
-/// opening the inner child of largest area until it has eight). Single-threaded and
+/// opening the inner child of largest area until it has eight; subtrees of up to
+/// kMaxLeafLaneSize primitives stay whole, as leaf lanes). Single-threaded and
 /// deterministic: the same primitives give the same tree. Empty input -> no nodes.
 BuiltBvh build_bvh(std::vector<BuildPrimitive> primitives);
 

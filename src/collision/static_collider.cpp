@@ -398,8 +398,8 @@ private:
     // A run of leaf lanes (at most a node's worth) fits after a flush; per-run rather than
     // per-block room checks and fewer flushes: car-box queries 3% faster than 256 checked
     // per block.
-    static constexpr unsigned kSize = 512;
-    static_assert(kSize >= BvhNode::kWidth * collision_detail::kMaxLeafSize + 2 * kBlockSlots);
+    static constexpr unsigned kSize =
+        BvhNode::kWidth * collision_detail::kMaxLeafLaneSize + 2 * kBlockSlots;
     std::uint32_t triangle(std::uint32_t s) const {
         return blocks_[s / kBlockSlots].triangle[s % kBlockSlots];
     }

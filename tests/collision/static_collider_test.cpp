@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include "collision/bvh_builder.hpp"
 #include "collision/collision_meshes.hpp"
 #include "trackphys/error.hpp"
 
@@ -206,7 +207,7 @@ TEST(StaticCollider, TreeInvariants) {
                 continue;
             }
             ++leaves;
-            ASSERT_LE(end - n.first[i], 32u);  // bvh_builder.hpp kMaxLeafSize
+            ASSERT_LE(end - n.first[i], collision_detail::kMaxLeafLaneSize);
             for (std::uint32_t s = n.first[i]; s < end; ++s) ++seen[s];
         }
         // Lanes fill from the first: an empty lane is followed by empty lanes only. The

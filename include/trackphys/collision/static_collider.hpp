@@ -55,9 +55,10 @@ struct TriangleRef {
 /// rounded outward in a grid over its subtree of up to 4096 triangles (12), beside its mesh
 /// index (4) in 128-byte blocks of eight (BvhSlotBlock: one SSE2 16-bit compare per bound
 /// tests a block, and the indices it reports share its cache lines); the inverse map mesh
-/// index -> leaf slot (4); ~0.015 eight-wide 256-byte nodes (~4, leaves of up to 32
-/// triangles), each with the index of its 48-byte grids (~0.1). About 49 bytes a triangle
-/// on a track mesh, ~108 on a soup of unshared vertices. The box queries test the 16-bit
+/// index -> leaf slot (4); ~0.003 eight-wide 256-byte nodes (~0.8: a leaf lane holds up to
+/// 96 triangles, in the order of the SAH leaves of up to 32 it was made of), each with the
+/// index of its 48-byte grids (~0.1). About 45 bytes a triangle on a track mesh, ~105 on a
+/// soup of unshared vertices. The box queries test the 16-bit
 /// boxes eight at a time and read a triangle's vertices only when its box lies within about
 /// two grid steps of the query's (sphere and capsule: for the distance test).
 /// NormalizedTriangle frames are not stored: 120 bytes in double would break the 80-byte
