@@ -120,7 +120,10 @@ void print_table(const BenchRun& run, double wall_s) {
         std::printf("%-14s %-52s %10s %9s  %-34s %s\n", r.group.c_str(), r.name.c_str(),
                     format_time(r.median_ns).c_str(), ratio, r.versus.c_str(), format_figures(r).c_str());
     }
-    if (!run.targets().empty()) std::printf("\nthe issues' targets on this machine:\n");
+    if (!run.targets().empty())
+        std::printf("\nthe issues' targets on this machine%s:\n",
+                    run.quick() ? " (--quick: fewer cases on colder caches; the full run decides)"
+                                : "");
     for (const BenchTarget& t : run.targets())
         std::printf("  %-4s %-70s %10.3g  (target >= %g)\n", t.met() ? "met" : "MISS", t.what.c_str(),
                     t.value, t.target);
