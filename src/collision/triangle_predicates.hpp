@@ -13,6 +13,7 @@
 #include <optional>
 #include <vector>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
@@ -173,6 +174,25 @@ inline bool ray_box_span(const RayQuery& ray, const glm::dvec3& lo, const glm::d
         t_far = t1 < t_far ? t1 : t_far;
     }
     return t_near <= t_far;
+}
+
+/// A box around the ray's points for t in [t0, t1] (0 <= t0 <= t1), padded by 2e-9 of the
+/// scale (|origin| + t1) and by 1e-300: nullopt when t1 or a bound is not finite. Every
+/// triangle that ray_triangle hits at a t in [t0, t1] has its box overlapping it: the hit
+/// point lies within the triangle's box but for ray_box_span's robust slack and the
+/// rounding of the points, both within about 1e-15 of the scale (so a box query can cull
+/// a leaf's slots before their slab tests).
+inline std::optional<Aabb> ray_segment_box(const RayQuery& ray, double t0, double t1) {
+    if (!(t1 < std::numeric_limits<double>::infinity())) return {};
+    const glm::dvec3 p0 = ray.origin + ray.dir * t0, p1 = ray.origin + ray.dir * t1;
+    const glm::dvec3 a = glm::abs(ray.origin);
+    const double pad = 2e-9 * (std::max({a.x, a.y, a.z}) + t1) + 1e-300;
+    const Aabb box{glm::min(p0, p1) - pad, glm::max(p0, p1) + pad};
+    for (int axis = 0; axis < 3; ++axis)
+        if (!(std::abs(box.min[axis]) < std::numeric_limits<double>::infinity() &&
+              std::abs(box.max[axis]) < std::numeric_limits<double>::infinity()))
+            return {};
+    return box;
 }
 
 /// Two-sided Moller-Trumbore hit distance in [0, max_distance], or nullopt. The distance is

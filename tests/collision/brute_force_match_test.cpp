@@ -96,7 +96,12 @@ public:
     Ray ray() {
         Ray r;
         r.origin = point();
-        if (pick(4) == 0) {
+        if (pick(6) == 0) {  // axis-parallel at a surface point (a ground probe): zero components
+            glm::dvec3 axis(0.0);
+            axis[pick(3)] = pick(2) ? 1.0 : -1.0;
+            r.dir = axis;
+            r.origin = surface_point() - axis * (log_uniform(1e-3, 1.0) * scale_);
+        } else if (pick(4) == 0) {
             r.dir = unit_vector();
         } else {  // aimed at a vertex, edge or face point: hits, shared edges, ties
             glm::dvec3 to = surface_point() - r.origin;
