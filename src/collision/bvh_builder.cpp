@@ -301,7 +301,7 @@ std::vector<BinaryNode> build_binary(std::vector<BuildPrimitive>& prims) {
 }
 
 // Eight-wide nodes from the binary tree, depth first in leaf order: each node starts from
-// its binary node's two children (the root, if a lane, is its own single lane) and opens
+// its binary node's two children (the root, if a leaf lane, is its own single lane) and opens
 // the inner lane of largest area, in place so that lanes stay in leaf order, until it has
 // eight lanes or only leaf lanes. A binary subtree of at most kMaxLeafLaneSize primitives
 // is a leaf lane (never opened). The likeliest-hit boxes get opened, as SAH collapses do.
