@@ -1,6 +1,7 @@
 #include "trackphys/io/mesh_io.hpp"
 
 #include <array>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -21,6 +22,7 @@
 #include <glm/mat4x4.hpp>
 #include <glm/matrix.hpp>
 
+#include "io/off_header_check.hpp"
 #include "io/ply_header_check.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/geometry/triangle.hpp"
@@ -69,6 +71,18 @@ void check_ply_header(const fs::path& path) {
     std::ifstream in(path, std::ios::binary);
     if (!in) fail(path, "cannot open it");
     if (auto problem = detail::ply_header_problem(in, fs::file_size(path)))
+        fail(path, *problem);
+}
+
+// See off_header_check.hpp: counts assimp's OFF reader would allocate without bound for.
+// Its header is looked for in every file (assimp may pick the OFF reader by content), and a
+// headerless one only under the .off extension.
+void check_off_header(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) fail(path, "cannot open it");
+    std::string extension = path.extension().string();
+    for (char& ch : extension) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+    if (auto problem = detail::off_header_problem(in, fs::file_size(path), extension == ".off"))
         fail(path, *problem);
 }
 
@@ -284,6 +298,7 @@ TriangleMesh load_mesh(const fs::path& path, MeshLoadReport& report) {
     report = MeshLoadReport{};
     check_is_nonempty_file(path);
     check_ply_header(path);
+    check_off_header(path);
 
     Assimp::Importer importer;
     // Some importers invent a mesh to visualise a skeleton when a file has bones but no

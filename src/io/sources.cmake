@@ -4,6 +4,7 @@ target_sources(trackphys PRIVATE
   io/json_reader.cpp
   io/mesh_export.cpp
   io/mesh_import.cpp
+  io/off_header_check.cpp
   io/ply_header_check.cpp
   io/recording.cpp
   io/scenario.cpp

@@ -148,6 +148,32 @@ TEST_F(MeshLoadErrors, PlyHeaderWithoutEndHeaderIsRejectedNotHung) {
     }
 }
 
+TEST_F(MeshLoadErrors, OffCountsBeyondTheFileAreRejectedBeforeAllocating) {
+    // assimp's OFF reader allocates the header's vertex and face counts before reading
+    // (found by fuzz_mesh_import: "OFF" and thirty digits, tens of GB). Digits wrap at 2^32
+    // as assimp reads them; the header is found after comments and prefixes, in any file.
+    const std::string digits(70, '6');
+    const std::vector<std::pair<std::string, std::string>> cases{
+        {"glued.off", "OFF" + digits + "\n5 2 0\n0 4 0\n1 0 0\n"},
+        {"vertices.off", "OFF\n# a comment\n4000000000 1 0\n0 0 0\n"},
+        {"faces.off", "COFF\n3 99999999 0\n0 0 0\n1 0 0\n0 0 1\n"},
+        {"headerless.off", "\n3000000000 1 0\n0 0 0\n"},
+        {"by_content.gltf", "NOFF 5000000000 1 0\n0 0 0\n"},
+    };
+    for (const auto& [name, text] : cases) {
+        test::write_file(file(name), text);
+        const std::string message = load_error(file(name));
+        EXPECT_NE(message.find(name), std::string::npos) << message;
+        EXPECT_NE(message.find("OFF header claims"), std::string::npos) << message;
+    }
+    // Counts the file can hold load; a headerless count under another extension is no OFF.
+    test::write_file(file("ok.off"), "OFF\n# square\n4 2 0\n0 0 0\n1 0 0\n1 0 1\n0 0 1\n"
+                                     "3 0 1 2\n3 0 2 3\n");
+    EXPECT_EQ(load_mesh(file("ok.off")).triangles.size(), 2u);
+    test::write_file(file("digits.obj"), "4000000000 1 0\nv 0 0 0\nv 1 0 0\nv 0 0 1\nf 1 2 3\n");
+    EXPECT_EQ(load_mesh(file("digits.obj")).triangles.size(), 1u);
+}
+
 TEST_F(MeshLoadErrors, PlyElementCountBeyondTheFileIsRejectedBeforeAllocating) {
     // assimp allocates what the count claims before reading (found by fuzz_mesh_import: 45 GB
     // for a 400-byte file); each instance takes at least one byte of the file.
