@@ -65,25 +65,21 @@ void check_is_nonempty_file(const fs::path& path) {
     if (size == 0) fail(path, "the file is empty");
 }
 
-// See ply_header_check.hpp: files assimp's PLY reader would hang on or allocate without
-// bound for (both found by fuzz_mesh_import).
-void check_ply_header(const fs::path& path) {
+// Refuses the file when `problem_of(stream, size)` names a problem: the checks of the
+// readers assimp 5.2.5 would hang in or allocate without bound for, on a file that they
+// may be given (all found by fuzz_mesh_import). PLY: ply_header_check.hpp. OFF:
+// off_header_check.hpp; its header is looked for in every file (assimp may pick the OFF
+// reader by content), a headerless one only under the .off extension.
+template <class Check>
+void check_header(const fs::path& path, Check&& problem_of) {
     std::ifstream in(path, std::ios::binary);
     if (!in) fail(path, "cannot open it");
-    if (auto problem = detail::ply_header_problem(in, fs::file_size(path)))
-        fail(path, *problem);
+    if (auto problem = problem_of(in, fs::file_size(path))) fail(path, *problem);
 }
-
-// See off_header_check.hpp: counts assimp's OFF reader would allocate without bound for.
-// Its header is looked for in every file (assimp may pick the OFF reader by content), and a
-// headerless one only under the .off extension.
-void check_off_header(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) fail(path, "cannot open it");
+bool has_off_extension(const fs::path& path) {
     std::string extension = path.extension().string();
     for (char& ch : extension) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
-    if (auto problem = detail::off_header_problem(in, fs::file_size(path), extension == ".off"))
-        fail(path, *problem);
+    return extension == ".off";
 }
 
 // assimp's triangulation trusts each mesh's mPrimitiveTypes: a mesh that claims polygons but
@@ -297,8 +293,10 @@ private:
 TriangleMesh load_mesh(const fs::path& path, MeshLoadReport& report) {
     report = MeshLoadReport{};
     check_is_nonempty_file(path);
-    check_ply_header(path);
-    check_off_header(path);
+    check_header(path, detail::ply_header_problem);
+    check_header(path, [&path](std::istream& in, std::uintmax_t size) {
+        return detail::off_header_problem(in, size, has_off_extension(path));
+    });
 
     Assimp::Importer importer;
     // Some importers invent a mesh to visualise a skeleton when a file has bones but no
