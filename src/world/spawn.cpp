@@ -111,8 +111,10 @@ std::string describe(const glm::dvec3& p) {
 RigidBodyState place_car_on_surface(const StaticWorld& statics, const CarSpec& spec,
                                     const glm::dvec3& position, const glm::dquat& orientation,
                                     double clearance) {
-    if (!(clearance >= 0.0 && clearance <= 1.0))
-        throw Error("place_car_on_surface: clearance must be in [0, 1] m, got " +
+    // Positive, so that a clear car's lowest points, where the drop's rays start, are off
+    // every surface.
+    if (!(clearance > 0.0 && clearance <= 1.0))
+        throw Error("place_car_on_surface: clearance must be in (0, 1] m, got " +
                     std::to_string(clearance));
     RigidBodyState placed;
     placed.position = position;

@@ -131,8 +131,8 @@ TEST(Spawn, RejectsNothingBelowAWallAndBadInput) {
     EXPECT_NE(message.find("is inside geometry and stays so raised by"), std::string::npos)
         << message;
     EXPECT_NE(test::error_of([&] {
-                  place_car_on_surface(*ground, spec, {0, 3, 0}, heading(0), -1.0);
-              }).find("clearance must be in [0, 1] m"),
+                  place_car_on_surface(*ground, spec, {0, 3, 0}, heading(0), 0.0);
+              }).find("clearance must be in (0, 1] m"),
               std::string::npos);
     CarSpec bad = spec;
     bad.ellipsoids[0].semi_axes.y = 0.0;
