@@ -8,8 +8,8 @@
 #   alpine-1    mountain road: steep, twisting, cut into slopes
 # Each lands as DIR/<name>.ac, taken
 #   1. from an installed torcs-data (/usr/share/games/torcs, or $TRACKPHYS_TORCS_ROOT);
-#   2. else from one `apt-get download torcs-data` (333 MB, about 5 s on a fast mirror and
-#      20 s to extract), deleted once the missing tracks are out of it.
+#   2. else from one `apt-get download torcs-data` (333 MB), deleted once the missing
+#      tracks are out of it.
 # Tracks already in DIR are kept: DIR (build/torcs for every preset) downloads once.
 #   scripts/fetch_torcs_track.sh DIR
 # Exits 0 when every track is in DIR, 77 (CTest: skipped) when they cannot be had, with the

@@ -219,12 +219,12 @@ inline std::optional<double> ray_triangle(const RayQuery& ray, const glm::dvec3&
     const double v = glm::dot(ray.dir, q) * inv_det;
     if (!(v >= 0.0 && u + v <= 1.0)) return {};
     double t = glm::dot(e2, q) * inv_det;
-    // Two-sided means either face, not either way along the line: the ray's line crosses
-    // the triangle behind the origin. The clamp below only absorbs rounding (a t a few ulps
-    // outside the box span that the crossing point lies in); a negative t is no rounding
-    // error, and clamped it became the span's start, a hit at 0 whenever the origin lies in
-    // the triangle's box (a point above a long, steep kerb triangle). NaN (0 * infinity
-    // from a det near the smallest double) still goes to the clamp.
+    // Two-sided means either face, not either way along the line: t < 0 is the line
+    // crossing the triangle behind the origin. The clamp below only absorbs rounding (a t
+    // a few ulps outside the box span that the crossing point lies in); a negative t is no
+    // rounding error, and clamped it would be the span's start, a hit at 0 whenever the
+    // origin lies in the triangle's box (a point above a long, steep kerb triangle). NaN
+    // (0 * infinity from a det near the smallest double) still goes to the clamp.
     if (t < 0.0) return {};
     t = t > t_near ? t : t_near;  // also maps NaN to t_near
     t = t < t_far ? t : t_far;

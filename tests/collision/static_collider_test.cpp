@@ -109,8 +109,8 @@ TEST(StaticCollider, SingleTriangle) {
 // A steep kerb triangle of c-speedway (15 m x 10 m, 4.8 m high) and a point 1.12 m in front
 // of its plane and inside its box: the ray's line crosses the triangle 2.79 m behind the
 // origin. Two-sided is about faces, not directions: cast away from the crossing it is a
-// miss (it was a hit at 0, the start of the ray's span through the box), cast towards it a
-// hit at the crossing.
+// miss (not a hit at 0, the start of the ray's span through the box), cast towards it a hit
+// at the crossing.
 TEST(StaticCollider, RayMissesTheCrossingBehindItsOrigin) {
     TriangleMesh mesh;
     mesh.vertices = {{529.998, 4.8, -46.0011}, {529.998, 0.0, -56.0011}, {544.998, 4.8, -46.001}};

@@ -99,7 +99,7 @@ void add_box(TriangleMesh& mesh, const glm::dvec3& lo, const glm::dvec3& hi) {
 }
 
 // A flat road with a kerb 0.15 m high under the car's front left wheel (the default car
-// faces +Z here, its front left wheel near x = 0.8, z = 1.4): the car rests on the kerb,
+// faces +Z here, its front left wheel at x = 0.9, z = 1.45): the car rests on the kerb,
 // not on the road under its centre, so it sits higher than on the plain road.
 TEST(Spawn, KerbUnderOneWheelLiftsTheCar) {
     const CarSpec spec = CarSpec::default_car();
