@@ -1,15 +1,16 @@
 #pragma once
 
-// `trackphys bench`: every comparison of issue 7 in one run. Each group measures its cases
-// on the same inputs and adds rows to a BenchRun; bench_command.cpp prints them as one table
-// and JSON. The inputs are the bench/ programs' own (tightest_turn_scene.hpp, cull_scene.hpp,
-// midphase_scene.hpp, point_queries.hpp, peers/*.hpp), so the command and the Google
-// Benchmark programs measure the same thing.
+// trackphys-bench: every comparison of the benchmarks in one run. Each group measures its
+// cases on the same inputs and adds rows to a BenchRun; main.cpp prints them as one table
+// and JSON. The inputs are trackphys_bench_support's (tightest_turn_scene.hpp,
+// cull_scene.hpp, midphase_scene.hpp, point_queries.hpp, peers/*.hpp), so this program and
+// the Google Benchmark programs measure the same thing.
 
 #include <algorithm>
 #include <chrono>
 #include <cstddef>
 #include <deque>
+#include <filesystem>
 #include <string>
 #include <functional>
 #include <utility>
@@ -20,7 +21,15 @@
 #include "trackphys/dynamics/car.hpp"
 #include "trackphys/track/track.hpp"
 
-namespace trackphys::cli {
+namespace trackphys::suite {
+
+/// trackphys-bench's options.
+struct BenchOptions {
+    bool quick = false;
+    std::vector<std::string> only;  ///< groups to run; empty: all
+    std::filesystem::path json;     ///< where to write the JSON; empty: nowhere
+    bool check = false;             ///< fail on a MISS in --quick runs too
+};
 
 /// One measured case. median_ns is the median time of one call of the case (ns); ratio is
 /// median_ns / the median of the row named `versus` (< 1: faster than it).
@@ -143,4 +152,4 @@ void bench_update_peers(BenchRun& run);
 /// Which peers this build has.
 std::vector<PeerStatus> peer_status();
 
-}  // namespace trackphys::cli
+}  // namespace trackphys::suite

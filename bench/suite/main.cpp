@@ -1,29 +1,29 @@
-// `trackphys bench [--quick] [--only GROUPS] [--json FILE]`: every comparison of issue 7 in
-// one run on this machine, printed as one table (and JSON), with the peers found and the
-// issue's targets checked.
+// trackphys-bench [--quick] [--only GROUPS] [--json FILE] [--check]: every comparison of the
+// benchmarks in one run on this machine, printed as one table (and JSON), with the peers
+// found and the issue's target lines checked.
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include <unistd.h>
 
+#include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 #include "bench_suite.hpp"
-#include "commands.hpp"
 #include "drive_report.hpp"
 #include "json_file.hpp"
 #include "staged_outputs.hpp"
 #include "trackphys/build_target.hpp"
 #include "trackphys/error.hpp"
 
-namespace trackphys::cli {
+namespace trackphys::suite {
 
 BenchRun::BenchRun(bool quick) : quick_(quick), terminal_(isatty(2) != 0) {}
 
@@ -55,12 +55,6 @@ const BenchRow& BenchRun::row(const std::string& group, const std::string& name)
 }
 
 namespace {
-
-struct BenchOptions {
-    bool quick = false;
-    std::vector<std::string> only;
-    std::filesystem::path json;
-};
 
 struct Group {
     const char* name;
@@ -100,7 +94,7 @@ std::string format_figures(const BenchRow& row) {
 
 /// Printed before the run, so the peers found are known while it runs.
 void print_header(bool quick, const std::vector<PeerStatus>& peers) {
-    std::printf("trackphys bench%s: median time of one call; x = median / the 'vs' row's median\n",
+    std::printf("trackphys-bench%s: median time of one call; x = median / the 'vs' row's median\n",
                 quick ? " --quick" : "");
     std::printf("  trackphys built for %s; the peers are Debian's builds (x86-64 baseline)\n",
                 trackphys::build_target());
@@ -135,7 +129,7 @@ nlohmann::json to_json(const BenchRun& run, const std::vector<PeerStatus>& peers
     json["quick"] = run.quick();
     json["build_target"] = trackphys::build_target();
     json["wall_s"] = wall_s;
-    json["writeup_budget_us"] = {{"typical", kWriteupTypicalUs}, {"spikes", kWriteupSpikeUs}};
+    json["writeup_budget_us"] = {{"typical", cli::kWriteupTypicalUs}, {"spikes", cli::kWriteupSpikeUs}};
     for (const PeerStatus& p : peers)
         json["peers"][p.key] = {{"name", p.name}, {"built", p.built}, {"detail", p.detail}};
     json["rows"] = nlohmann::json::array();
@@ -154,7 +148,9 @@ nlohmann::json to_json(const BenchRun& run, const std::vector<PeerStatus>& peers
     return json;
 }
 
-void run_bench(const BenchOptions& o) {
+/// Runs the selected groups and prints (and writes) the table; returns the number of target
+/// lines that say MISS.
+int run_bench(const BenchOptions& o) {
     for (const std::string& name : o.only) {
         bool known = false;
         for (const Group& g : kGroups) known = known || name == g.name;
@@ -163,7 +159,7 @@ void run_bench(const BenchOptions& o) {
                         "': not a group (cull, roots, broad, mid, update, contact, mesh, bullet_update)");
     }
     // Checked and staged before minutes of measuring; put in place only after the run.
-    StagedOutputs outputs;
+    cli::StagedOutputs outputs;
     const std::filesystem::path json = o.json.empty() ? o.json : outputs.stage(o.json, "--json");
     const std::vector<PeerStatus> peers = peer_status();
     print_header(o.quick, peers);
@@ -178,25 +174,59 @@ void run_bench(const BenchOptions& o) {
     const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     print_table(run, wall_s);
     if (!json.empty()) {
-        write_json_file(to_json(run, peers, wall_s), json);
+        cli::write_json_file(to_json(run, peers, wall_s), json);
         outputs.commit();
     }
+    return int(std::count_if(run.targets().begin(), run.targets().end(),
+                             [](const BenchTarget& t) { return !t.met(); }));
 }
+
+/// The exit status when a target line says MISS.
+constexpr int kMissExit = 3;
 
 }  // namespace
+}  // namespace trackphys::suite
 
-void add_bench_command(CLI::App& app) {
-    auto o = std::make_shared<BenchOptions>();
-    CLI::App* command = app.add_subcommand(
-        "bench", "Run every comparison of issue 7 on this machine: the write-up's improvements (cull, roots, "
-                 "broad and mid phase, whole update vs its budget) and the peers (Bullet, FCL) where built; "
-                 "prints one table of medians and ratios");
-    command->add_flag("--quick", o->quick, "Fewer cases and repeats: under a minute");
-    command->add_option("--only", o->only, "Run only these groups (cull, roots, broad, mid, update, contact, "
-                                           "mesh, bullet_update), comma-separated")
+int main(int argc, char** argv) {
+    using namespace trackphys;
+    if (!cpu_runs_build_target()) {
+        std::fprintf(stderr,
+                     "trackphys-bench: error: this build is for %s CPUs and this one lacks some of "
+                     "its instructions; rebuild with cmake -DTRACKPHYS_X86_64_LEVEL=v1\n",
+                     build_target());
+        return 1;
+    }
+    suite::BenchOptions o;
+    CLI::App app{"trackphys-bench: every comparison of the benchmarks on this machine in one run: the "
+                 "write-up's improvements (cull, roots, broad and mid phase, whole update vs its "
+                 "budget) and the peers (Bullet, FCL) where built; prints one table of medians and "
+                 "ratios and the target lines",
+                 "trackphys-bench"};
+    app.add_flag("--quick", o.quick, "Fewer cases and repeats, colder caches: a smoke run, not the measure");
+    app.add_option("--only", o.only, "Run only these groups (cull, roots, broad, mid, update, contact, "
+                                     "mesh, bullet_update), comma-separated")
         ->delimiter(',');
-    command->add_option("--json", o->json, "Write the table as JSON (atomically)");
-    command->callback([o] { run_bench(*o); });
+    app.add_option("--json", o.json, "Write the table as JSON (atomically)");
+    app.add_flag("--check", o.check, "Fail on a MISS in any mode (a full run always does)");
+    app.footer("Exit status: 0 when every target line printed is met; 3 when one says MISS in a full "
+               "run, or in a --quick run with --check (without --check a --quick run reports MISS "
+               "and exits 0: its cold caches do not decide); 1 on an error.");
+    try {
+        app.parse(argc, argv);
+        const int missed = suite::run_bench(o);
+        if (missed > 0 && (!o.quick || o.check)) {
+            std::fprintf(stderr, "trackphys-bench: %d target line%s say MISS\n", missed,
+                         missed == 1 ? "" : "s");
+            return suite::kMissExit;
+        }
+    } catch (const CLI::ParseError& e) {
+        return app.exit(e);
+    } catch (const Error& e) {
+        std::fprintf(stderr, "trackphys-bench: error: %s\n", e.what());
+        return 1;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "trackphys-bench: unexpected error: %s\n", e.what());
+        return 1;
+    }
+    return 0;
 }
-
-}  // namespace trackphys::cli

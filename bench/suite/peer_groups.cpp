@@ -33,7 +33,7 @@
 #include "peers/contact_peer_harness.hpp"
 #endif
 
-namespace trackphys::cli {
+namespace trackphys::suite {
 namespace {
 
 [[maybe_unused]] void not_built(BenchRun& run, const std::string& group, const std::string& peer) {
@@ -167,16 +167,16 @@ void bench_mesh_peers(BenchRun& run) {
 void bench_update_peers(BenchRun& run) {
 #if TRACKPHYS_HAVE_BULLET
     run.progress("bullet update", "default track");
-    const DriveScene scene = make_track_scene(7);
+    const cli::DriveScene scene = cli::make_track_scene(7);
     const CarSpec spec = CarSpec::default_car();
     const int updates = run.quick() ? 100 : 500;
     WorldSettings settings;
     settings.profile = false;
     World world(scene.statics, settings);
-    world.add_car(spec, start_on_track(*scene.track, spec));
+    world.add_car(spec, cli::start_on_track(*scene.track, spec));
     run.progress("bullet update", "Bullet's BVH");
     peers::BulletCarLoop bullet(bench::merged_track_mesh(*scene.track), settings);
-    Car car(spec, start_on_track(*scene.track, spec));
+    Car car(spec, cli::start_on_track(*scene.track, spec));
     run.progress("bullet update", "driving " + std::to_string(updates) + " updates each");
     const std::vector<TimedDrive> drives = drive_timed(
         *scene.track, {{&world.car(0), [&] { world.update(); }}, {&car, [&] { bullet.update(car); }}}, updates);
@@ -207,4 +207,4 @@ void bench_update_peers(BenchRun& run) {
 #endif
 }
 
-}  // namespace trackphys::cli
+}  // namespace trackphys::suite

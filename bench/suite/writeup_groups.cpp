@@ -21,7 +21,7 @@
 #include "trackphys/world/autopilot.hpp"
 #include "trackphys/world/world.hpp"
 
-namespace trackphys::cli {
+namespace trackphys::suite {
 
 Spread spread(std::vector<double> sample) {
     if (sample.empty()) throw Error("bench: an empty sample has no spread");
@@ -86,22 +86,22 @@ void bench_roots(BenchRun& run) {
     const std::vector<bench::PointQuery> queries = bench::point_queries(test::PointClass::count);
     std::vector<double> exact;
     for (const bench::PointQuery& q : queries)
-        exact.push_back(closest_point_on_sorted_ellipsoid(q.radii, q.p, RootFinder::robust).distance);
+        exact.push_back(bench::closest_point(q, bench::RootFinder::ours).distance);
     struct Finder {
-        RootFinder finder;
+        bench::RootFinder finder;
         const char* name;
         const char* note;
     };
     const Finder finders[] = {
-        {RootFinder::bisection, "bisection", "write-up's first solver: 15-16 iterations"},
-        {RootFinder::writeup_newton, "write-up Newton", "write-up: 5 Newton steps"},
-        {RootFinder::robust, "ours (concave-h Newton)", "exact; the library's"}};
+        {bench::RootFinder::bisection, "bisection", "write-up's first solver: 15-16 iterations"},
+        {bench::RootFinder::writeup_newton, "write-up Newton", "write-up: 5 Newton steps"},
+        {bench::RootFinder::ours, "ours (concave-h Newton)", "exact; the library's"}};
     for (const Finder& f : finders) {
         run.progress("roots", f.name);
         std::size_t i = 0;
         const double ns = median_call_ns(
             [&] {
-                keep(closest_point_on_sorted_ellipsoid(queries[i].radii, queries[i].p, f.finder));
+                keep(bench::closest_point(queries[i], f.finder));
                 i = i + 1 == queries.size() ? 0 : i + 1;
             },
             int(queries.size()), run.batches(11, 51));
@@ -109,7 +109,7 @@ void bench_roots(BenchRun& run) {
         std::vector<double> error;
         std::size_t not_finite = 0;
         for (std::size_t k = 0; k < queries.size(); ++k) {
-            const PointEllipsoid r = closest_point_on_sorted_ellipsoid(queries[k].radii, queries[k].p, f.finder);
+            const PointEllipsoid r = bench::closest_point(queries[k], f.finder);
             steps += r.iterations;
             worst_steps = std::max(worst_steps, double(r.iterations));
             if (!std::isfinite(r.distance)) {
@@ -119,7 +119,7 @@ void bench_roots(BenchRun& run) {
             error.push_back(std::abs(r.distance - exact[k]));
         }
         const Spread e = spread(error);
-        BenchRow& row = run.add("roots", f.name, ns, f.finder == RootFinder::bisection ? "" : finders[0].name);
+        BenchRow& row = run.add("roots", f.name, ns, f.finder == bench::RootFinder::bisection ? "" : finders[0].name);
         row.figures = {{"steps_mean", steps / double(queries.size())},
                        {"steps_max", worst_steps},
                        {"err_median_m", e.median},
@@ -232,11 +232,11 @@ void bench_mid_phase(BenchRun& run) {
 // reference row.
 void bench_update(BenchRun& run) {
     run.progress("update", "default track");
-    const DriveScene scene = make_track_scene(7);
+    const cli::DriveScene scene = cli::make_track_scene(7);
     const CarSpec spec = CarSpec::default_car();
     const int updates = run.quick() ? 300 : 2000;
-    BenchRow& budget = run.add("update", "write-up budget", kWriteupTypicalUs * 1e3);
-    budget.figures = {{"spikes_us", kWriteupSpikeUs}};
+    BenchRow& budget = run.add("update", "write-up budget", cli::kWriteupTypicalUs * 1e3);
+    budget.figures = {{"spikes_us", cli::kWriteupSpikeUs}};
     budget.note = "one car, 10 steps x 4 sub-steps x 8 ellipsoids";
     struct Combination {
         MidPhaseMode mode;
@@ -266,7 +266,7 @@ void bench_update(BenchRun& run) {
             if (!w->plane_trees().empty()) trees = w->plane_trees();
         worlds.push_back(std::make_unique<World>(scene.statics, settings, trees));
         World& world = *worlds.back();
-        world.add_car(spec, start_on_track(*scene.track, spec));
+        world.add_car(spec, cli::start_on_track(*scene.track, spec));
         const std::size_t i = drivers.size();
         drivers.push_back({&world.car(0), [&world, &tested, &substeps, i] {
                                world.update();
@@ -284,10 +284,10 @@ void bench_update(BenchRun& run) {
                        {"tested_per_ellipsoid_substep", double(tested[i]) / double(substeps[i])},
                        {"updates", double(updates)},
                        {"final_kmh", drives[i].final_speed_kmh}};
-        row.note = us.max <= kWriteupSpikeUs * 1e3
+        row.note = us.max <= cli::kWriteupSpikeUs * 1e3
                        ? "max within the 8 ms spike budget"
                        : "max over the 8 ms spike budget (wall clock: includes preemption)";
     }
 }
 
-}  // namespace trackphys::cli
+}  // namespace trackphys::suite

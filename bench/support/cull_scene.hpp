@@ -1,7 +1,7 @@
 #pragma once
 
-// The write-up's three sphere culls on the same inputs (header-only, shared by
-// bench_sphere_cull and `trackphys bench`): the broad-phase candidates of the default track's
+// The write-up's three sphere culls on the same inputs (shared by bench_sphere_cull and
+// trackphys-bench): the broad-phase candidates of the default track's
 // tightest banked turn against the bounding spheres of the default car's 8 ellipsoids over
 // the 40 sub-steps of one update at 1000 km/h.
 //   x-y-z order:   origin at the first vertex, tests in x, y, z order (its first version)
@@ -14,7 +14,7 @@
 
 #include "tightest_turn_scene.hpp"
 #include "trackphys/geometry/normalized_triangle.hpp"
-#include "trackphys/geometry/sphere_cull_variants.hpp"
+#include "geometry/sphere_cull_variants.hpp"
 
 namespace trackphys::bench {
 
@@ -37,36 +37,7 @@ struct CullScene {
     std::size_t tests() const { return spheres.size() * longest_edge_origin.size(); }
 };
 
-namespace detail {
-template <class Stored, class Test>
-std::size_t count_kept(const CullScene& scene, const std::vector<Stored>& stored, Test test) {
-    std::size_t kept = 0;
-    for (const BoundingSphere& s : scene.spheres)
-        for (const Stored& t : stored) kept += test(t, s) ? 1 : 0;
-    return kept;
-}
-}  // namespace detail
-
 /// One pass of `variant` over the scene: the number of (sphere, triangle) pairs kept.
-inline std::size_t cull_pass(const CullScene& scene, CullVariant variant) {
-    switch (variant) {
-        case CullVariant::xyz_order:
-            return detail::count_kept(scene, scene.first_vertex_origin,
-                                      [](const ArbitraryOriginTriangle& t, const BoundingSphere& s) {
-                                          return t.may_touch_sphere_xyz(s.center, s.radius);
-                                      });
-        case CullVariant::normal_first:
-            return detail::count_kept(scene, scene.first_vertex_origin,
-                                      [](const ArbitraryOriginTriangle& t, const BoundingSphere& s) {
-                                          return t.may_touch_sphere_normal_first(s.center, s.radius);
-                                      });
-        case CullVariant::longest_edge_normal_first:
-            break;
-    }
-    return detail::count_kept(scene, scene.longest_edge_origin,
-                              [](const NormalizedTriangle& t, const BoundingSphere& s) {
-                                  return t.may_touch_sphere(s.center, s.radius);
-                              });
-}
+std::size_t cull_pass(const CullScene& scene, CullVariant variant);
 
 }  // namespace trackphys::bench

@@ -1,8 +1,8 @@
 #pragma once
 
-// The point-ellipsoid queries of the root-finder comparison (header-only, shared by
-// bench_contact and `trackphys bench`): deterministic points from tests/support's generator
-// (seed 4242), sorted-frame radii and a point each.
+// The point-ellipsoid queries of the root-finder comparison (shared by bench_contact and
+// trackphys-bench): deterministic points from tests/support's generator (seed 4242),
+// sorted-frame radii and a point each, and the root finders compared on them.
 
 #include <cstddef>
 #include <vector>
@@ -10,6 +10,7 @@
 #include <glm/vec3.hpp>
 
 #include "support/point_cases.hpp"
+#include "trackphys/geometry/point_ellipsoid.hpp"
 
 namespace trackphys::bench {
 
@@ -19,15 +20,13 @@ struct PointQuery {
 };
 
 /// `count` points of one class, or of the whole mix when kind == PointClass::count.
-inline std::vector<PointQuery> point_queries(test::PointClass kind, std::size_t count = 4096) {
-    test::PointCaseGenerator<3> generator(4242);
-    std::vector<PointQuery> queries;
-    while (queries.size() < count) {
-        const test::PointCase<3> c = generator.next();
-        if (kind != test::PointClass::count && c.kind != kind) continue;
-        queries.push_back({{c.radii[0], c.radii[1], c.radii[2]}, {c.p[0], c.p[1], c.p[2]}});
-    }
-    return queries;
-}
+std::vector<PointQuery> point_queries(test::PointClass kind, std::size_t count = 4096);
+
+/// The largest root of the write-up's f(t): ours (the library's), or one of the write-up's
+/// two solvers (src/geometry/writeup_root_finders.hpp).
+enum class RootFinder { ours, bisection, writeup_newton };
+
+/// The closest surface point of q's ellipsoid by `finder`.
+PointEllipsoid closest_point(const PointQuery& q, RootFinder finder);
 
 }  // namespace trackphys::bench
