@@ -43,12 +43,17 @@ struct BenchRow {
     std::string note;                                    ///< what the write-up said, a caveat
 };
 
-/// A target of the issue, checked on this run.
+/// A target of the issue, checked on this run. A speed ratio is met only together with the
+/// correctness that goes with it (the same triangle sets, our depth contract held, the
+/// drift and the peer's failures reported): `correct` says whether it holds, `evidence` the
+/// figures, printed on the target line itself.
 struct BenchTarget {
     std::string what;
     double value = 0.0;   ///< measured (a ratio: larger is better)
     double target = 0.0;  ///< at least this
-    bool met() const { return value >= target; }
+    bool correct = true;
+    std::string evidence;
+    bool met() const { return correct && value >= target; }
 };
 
 /// A peer library and whether this build has it.
@@ -74,7 +79,8 @@ public:
     /// Adds a row; its ratio is against the row `versus` of the same group (added before),
     /// or 1 for a reference row (versus empty).
     BenchRow& add(std::string group, std::string name, double median_ns, std::string versus = {});
-    void add_target(std::string what, double value, double target);
+    void add_target(std::string what, double value, double target, bool correct = true,
+                    std::string evidence = {});
 
     const std::deque<BenchRow>& rows() const { return rows_; }
     const std::vector<BenchTarget>& targets() const { return targets_; }

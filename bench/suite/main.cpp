@@ -44,8 +44,9 @@ BenchRow& BenchRun::add(std::string group, std::string name, double median_ns, s
     return rows_.back();
 }
 
-void BenchRun::add_target(std::string what, double value, double target) {
-    targets_.push_back({std::move(what), value, target});
+void BenchRun::add_target(std::string what, double value, double target, bool correct,
+                          std::string evidence) {
+    targets_.push_back({std::move(what), value, target, correct, std::move(evidence)});
 }
 
 const BenchRow& BenchRun::row(const std::string& group, const std::string& name) const {
@@ -118,9 +119,12 @@ void print_table(const BenchRun& run, double wall_s) {
         std::printf("\nthe issues' targets on this machine%s:\n",
                     run.quick() ? " (--quick: fewer cases on colder caches; the full run decides)"
                                 : "");
-    for (const BenchTarget& t : run.targets())
-        std::printf("  %-4s %-70s %10.3g  (target >= %g)\n", t.met() ? "met" : "MISS", t.what.c_str(),
+    for (const BenchTarget& t : run.targets()) {
+        std::printf("  %-4s %-70s %10.3g  (target >= %g)", t.met() ? "met" : "MISS", t.what.c_str(),
                     t.value, t.target);
+        if (!t.evidence.empty()) std::printf("  %s%s", t.correct ? "" : "NOT CORRECT: ", t.evidence.c_str());
+        std::printf("\n");
+    }
     std::printf("\nwall time %.1f s\n", wall_s);
 }
 
@@ -144,7 +148,12 @@ nlohmann::json to_json(const BenchRun& run, const std::vector<PeerStatus>& peers
     }
     json["targets"] = nlohmann::json::array();
     for (const BenchTarget& t : run.targets())
-        json["targets"].push_back({{"what", t.what}, {"value", t.value}, {"target", t.target}, {"met", t.met()}});
+        json["targets"].push_back({{"what", t.what},
+                                   {"value", t.value},
+                                   {"target", t.target},
+                                   {"correct", t.correct},
+                                   {"evidence", t.evidence},
+                                   {"met", t.met()}});
     return json;
 }
 
@@ -215,8 +224,8 @@ int main(int argc, char** argv) {
         app.parse(argc, argv);
         const int missed = suite::run_bench(o);
         if (missed > 0 && (!o.quick || o.check)) {
-            std::fprintf(stderr, "trackphys-bench: %d target line%s say MISS\n", missed,
-                         missed == 1 ? "" : "s");
+            std::fprintf(stderr, "trackphys-bench: %d target line%s MISS\n", missed,
+                         missed == 1 ? " says" : "s say");
             return suite::kMissExit;
         }
     } catch (const CLI::ParseError& e) {
