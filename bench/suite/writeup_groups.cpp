@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <memory>
 #include <string>
 #include <vector>
@@ -218,9 +219,15 @@ void bench_mid_phase(BenchRun& run) {
         row.note = variant.note;
         if (v == bench::kWriteupVariant) writeup_with_cull_ns = with_cull_ns;
         if (v == bench::kDefaultVariant) {
+            // The target counts the cull: a list that looks further ahead costs fewer queries
+            // but more sub-step tests, so the mid phase alone would flatter it.
             const BenchRow& writeup = run.row("mid", reference);
-            run.add_target("mid phase per update: write-up's per-update tree / ours", writeup.median_ns / ns,
-                           10.0);
+            char evidence[128];
+            std::snprintf(evidence, sizeof evidence,
+                          "with the sub-step cull: write-up %.3g us, ours %.3g us; mid phase alone %.3gx",
+                          writeup_with_cull_ns * 1e-3, with_cull_ns * 1e-3, writeup.median_ns / ns);
+            run.add_target("mid phase + sub-step cull per update: write-up's per-update tree / ours",
+                           writeup_with_cull_ns / with_cull_ns, 10.0, true, evidence);
             row.figures.push_back({"writeup_with_cull_x", writeup_with_cull_ns / with_cull_ns});
         }
     }

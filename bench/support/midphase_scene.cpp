@@ -19,6 +19,8 @@ MidScene::MidScene() {
     turn_collider = static_cast<std::uint32_t>(
         std::max_element(per_collider.begin(), per_collider.end()) - per_collider.begin());
 
+    for (int sub = 0; sub < TightestTurnScene::kSubsteps; ++sub)
+        for (std::size_t e = 0; e < s.car.ellipsoids.size(); ++e) centers.push_back(s.center(e, sub));
     constexpr int kSteps = TightestTurnScene::kSubsteps / TightestTurnScene::kStepSubsteps;
     for (int step = 0; step < kSteps; ++step) {
         const int first = step * TightestTurnScene::kStepSubsteps;
@@ -91,7 +93,7 @@ std::size_t run_update(MidPhase& mid, const MidVariant& variant, bool cull,
         if (!cull) continue;
         const int first = step * TightestTurnScene::kStepSubsteps;
         for (int sub = first; sub < first + TightestTurnScene::kStepSubsteps; ++sub) {
-            const glm::dvec3 c = s.center(e, sub);
+            const glm::dvec3& c = m.centers[std::size_t(sub) * ellipsoids + e];
             for (const MidPhaseCandidate& cand : *list)
                 kept += cand.triangle->may_touch_sphere(c, sq.radius) ? 1 : 0;
         }

@@ -42,6 +42,9 @@ struct MidScene {
     ColliderPlaneTrees trees;             // cost_based (the precomputed default)
     std::uint32_t turn_collider = 0;      // the collider with most candidates
     std::vector<StepQuery> queries;       // 10 steps x 8 ellipsoids
+    /// Each sub-step's ellipsoid centres (40 x 8): the cull's inputs, as World has them from
+    /// integrating, so that the cull is timed without the scene's kinematics.
+    std::vector<glm::dvec3> centers;
     double trees_build_ms = 0.0;
     std::size_t trees_bytes = 0;
 
