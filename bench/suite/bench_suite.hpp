@@ -120,9 +120,14 @@ double median_call_ns(F&& f, int calls, int batches) {
     return ns[static_cast<std::size_t>(batches / 2)];
 }
 
+/// This thread's CPU time (ns). An update of Bullet's loop takes milliseconds, longer than
+/// a time slice on a busy machine: its wall time would count other processes' turns, which
+/// a 60 us update mostly escapes, and flatter the ratio.
+double thread_cpu_ns();
+
 /// A car driven by autopilot, each update timed.
 struct TimedDrive {
-    std::vector<double> update_ns;        ///< per update
+    std::vector<double> update_ns;        ///< per update: the thread's CPU time
     std::vector<glm::dvec3> positions;    ///< the car's centre of mass after each update (m)
     double final_speed_kmh = 0.0;
 };

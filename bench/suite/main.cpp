@@ -95,7 +95,9 @@ std::string format_figures(const BenchRow& row) {
 
 /// Printed before the run, so the peers found are known while it runs.
 void print_header(bool quick, const std::vector<PeerStatus>& peers) {
-    std::printf("trackphys-bench%s: median time of one call; x = median / the 'vs' row's median\n",
+    std::printf("trackphys-bench%s: median time of one call; x = median / the 'vs' row's median\n"
+                "  (update groups: the thread's CPU time per update, so that a busy machine's\n"
+                "  other processes do not count)\n",
                 quick ? " --quick" : "");
     std::printf("  trackphys built for %s; the peers are Debian's builds (x86-64 baseline)\n",
                 trackphys::build_target());
