@@ -125,6 +125,30 @@ double median_call_ns(F&& f, int calls, int batches) {
 /// a 60 us update mostly escapes, and flatter the ratio.
 double thread_cpu_ns();
 
+/// median_call_ns of several functions whose ratios matter, taking turns batch by batch, so
+/// that a busy moment of a shared machine falls on all of them alike. Only for functions
+/// that share their data or whose data fits the caches together: turns among many working
+/// sets time each one on cold caches.
+inline std::vector<double> median_call_ns_in_turns(const std::vector<std::function<void()>>& fs,
+                                                   int calls, int batches) {
+    using Clock = std::chrono::steady_clock;
+    for (const auto& f : fs)
+        for (int k = 0; k < calls; ++k) f();
+    std::vector<std::vector<double>> ns(fs.size(), std::vector<double>(static_cast<std::size_t>(batches)));
+    for (std::size_t b = 0; b < static_cast<std::size_t>(batches); ++b)
+        for (std::size_t i = 0; i < fs.size(); ++i) {
+            const auto start = Clock::now();
+            for (int k = 0; k < calls; ++k) fs[i]();
+            ns[i][b] = std::chrono::duration<double, std::nano>(Clock::now() - start).count() / calls;
+        }
+    std::vector<double> medians;
+    for (std::vector<double>& sample : ns) {
+        std::nth_element(sample.begin(), sample.begin() + batches / 2, sample.end());
+        medians.push_back(sample[static_cast<std::size_t>(batches / 2)]);
+    }
+    return medians;
+}
+
 /// A car driven by autopilot, each update timed.
 struct TimedDrive {
     std::vector<double> update_ns;        ///< per update: the thread's CPU time
