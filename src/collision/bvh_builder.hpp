@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "trackphys/collision/bvh_node.hpp"
+#include "trackphys/detail/bvh_node.hpp"
 #include "float_bounds.hpp"
 #include "trackphys/geometry/aabb.hpp"
 

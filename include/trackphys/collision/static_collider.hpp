@@ -9,7 +9,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "trackphys/collision/bvh_node.hpp"
+#include "trackphys/detail/bvh_node.hpp"
 #include "trackphys/export.hpp"
 #include "trackphys/geometry/aabb.hpp"
 #include "trackphys/geometry/normalized_triangle.hpp"
@@ -35,7 +35,7 @@ struct TriangleRef {
 };
 
 /// A static triangle mesh ready for queries: validated, degenerate triangles dropped and
-/// counted, and a binned-SAH BVH over the rest (DESIGN.md, "Broad phase and mid phase").
+/// counted, and a binned-SAH BVH over the rest (docs/design.md#broad-phase-the-bvh).
 /// Immutable after construction, so one collider can be shared by any number of threads.
 ///
 /// Every query has the exact meaning of its BruteForceCollider twin and returns exactly

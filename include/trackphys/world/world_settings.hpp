@@ -4,12 +4,12 @@
 
 #include <glm/vec3.hpp>
 
-#include "trackphys/collision/mid_phase.hpp"
+#include "trackphys/collision/mid_phase_mode.hpp"
 #include "trackphys/export.hpp"
 
 namespace trackphys {
 
-/// How a World steps (DESIGN.md, "The system in one picture"). The defaults are the
+/// How a World steps (docs/design.md#the-update-loop). The defaults are the
 /// write-up's: 100 updates a second, 10 steps of 4 sub-steps, so h = 0.25 ms.
 struct TRACKPHYS_API WorldSettings {
     double dt_update = 0.01;                    ///< seconds per update()
