@@ -40,8 +40,8 @@ class TraceRecorder;
 class TRACKPHYS_API World {
 public:
     /// Throws trackphys::Error on a null static world or invalid settings. In the
-    /// precomputed_tree mid-phase mode the colliders' plane trees are built here (about
-    /// 25 ms per 5k-triangle collider) unless `trees` holds them already (one per collider,
+    /// precomputed_tree mid-phase mode the colliders' plane trees are built here (the
+    /// costliest part of making a World) unless `trees` holds them already (one per collider,
     /// in id order, e.g. another world's plane_trees()).
     explicit World(std::shared_ptr<const StaticWorld> statics, WorldSettings settings = {},
                    ColliderPlaneTrees trees = {});
