@@ -1,0 +1,48 @@
+# cmake -DROOT=<source dir> -P doc_links_resolve.cmake
+# Fails unless every docs/<page>.md#<anchor> cited in the sources, scripts and docs names a
+# page that exists and a heading of it with that anchor (GitHub's rule: lower case, spaces
+# to hyphens, punctuation but hyphens and underscores dropped), and that none cites the
+# design notes the project was planned from, which live outside the repository.
+file(GLOB_RECURSE files RELATIVE "${ROOT}"
+     "${ROOT}/include/*" "${ROOT}/src/*" "${ROOT}/apps/*" "${ROOT}/tests/*" "${ROOT}/bench/*"
+     "${ROOT}/fuzz/*.cpp" "${ROOT}/examples/*" "${ROOT}/scripts/*" "${ROOT}/docs/*.md"
+     "${ROOT}/README.md" "${ROOT}/CMakeLists.txt")
+list(FILTER files EXCLUDE REGEX "\\.(png|glb|obj|seed)$")
+set(checked 0)
+foreach(file IN LISTS files)
+  file(STRINGS "${ROOT}/${file}" outside REGEX "DESIGN[.]md")
+  if(outside)
+    list(GET outside 0 first)
+    message(FATAL_ERROR "${file} cites a design note outside the repository: ${first}")
+  endif()
+  file(STRINGS "${ROOT}/${file}" lines REGEX "docs/[a-z_]+\\.md#")
+  foreach(line IN LISTS lines)
+    string(REGEX MATCHALL "docs/[a-z_]+\\.md#[a-z0-9_-]+" links "${line}")
+    foreach(link IN LISTS links)
+      string(REGEX REPLACE "#.*" "" page "${link}")
+      string(REGEX REPLACE ".*#" "" anchor "${link}")
+      if(NOT EXISTS "${ROOT}/${page}")
+        message(FATAL_ERROR "${file} cites ${link}: ${page} does not exist")
+      endif()
+      file(STRINGS "${ROOT}/${page}" headings REGEX "^#+ ")
+      set(found OFF)
+      foreach(heading IN LISTS headings)
+        string(REGEX REPLACE "^#+ " "" text "${heading}")
+        string(TOLOWER "${text}" text)
+        string(REGEX REPLACE "[^a-z0-9 _-]" "" text "${text}")
+        string(REPLACE " " "-" text "${text}")
+        if(text STREQUAL anchor)
+          set(found ON)
+        endif()
+      endforeach()
+      if(NOT found)
+        message(FATAL_ERROR "${file} cites ${link}: no heading of ${page} has that anchor")
+      endif()
+      math(EXPR checked "${checked} + 1")
+    endforeach()
+  endforeach()
+endforeach()
+if(checked EQUAL 0)
+  message(FATAL_ERROR "no docs/<page>.md#<anchor> link found under ${ROOT}")
+endif()
+message(STATUS "${checked} links to docs/ sections resolve")
