@@ -54,7 +54,8 @@ using trackphys::Triangle;
 
 constexpr std::size_t kValues = 19;  // center 3, quaternion 4, radii 3, vertices 9
 constexpr double kEps = std::numeric_limits<double>::epsilon();
-// The accuracy contract (docs/design.md#exactness-promises-and-their-tests): depth within 1e-9 m of the truth.
+// The accuracy contract (docs/design.md#exactness-promises-and-their-tests): depth within
+// 1e-9 m of the truth.
 constexpr double kContract = 1e-9;
 
 [[noreturn]] void finding(const char* what, const Ellipsoid& e, const Triangle& t,

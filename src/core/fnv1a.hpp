@@ -32,8 +32,9 @@ struct Fnv1a {
 
 /// The same idea a 64-bit word at a time, for bulk data (a whole track mesh, where byte by
 /// byte would be several times slower): multiply after each xor, then fold the high half
-/// down so that every bit of a word reaches every bit of the result. Each step is a bijection of the
-/// running value, so two inputs that differ in one word always hash differently.
+/// down so that every bit of a word reaches every bit of the result. Each step is a
+/// bijection of the running value, so two inputs that differ in one word always hash
+/// differently.
 struct WordHash {
     std::uint64_t value = Fnv1a::kOffset;
 

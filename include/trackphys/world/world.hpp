@@ -24,7 +24,8 @@ class TraceRecorder;
 
 /// Static colliders (shared, immutable) and the cars that drive on them. update() runs
 /// the loop of docs/design.md#the-update-loop for every car: broad phase over the whole
-/// update, then steps x sub-steps of cull, exact contact, deepest contact per ellipsoid, forces and integration.
+/// update, then steps x sub-steps of cull, exact contact, deepest contact per ellipsoid,
+/// forces and integration.
 ///
 /// Cars do not interact yet, so each car's update reads only the static world and its
 /// own state: the result does not depend on the order of the cars. Same inputs, same
