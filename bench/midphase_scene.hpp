@@ -15,7 +15,7 @@
 #include "tightest_turn_scene.hpp"
 #include "trackphys/collision/look_ahead_list.hpp"
 #include "trackphys/collision/mid_phase.hpp"
-#include "trackphys/collision/plane_tree_builder.hpp"
+#include "trackphys/detail/plane_tree_builder.hpp"
 #include "trackphys/collision/static_world.hpp"
 #include "trackphys/world/world_settings.hpp"
 
@@ -102,7 +102,8 @@ inline const std::vector<MidVariant>& mid_variants() {
          "the write-up's WIP, queried every step: ~1.25 ms to build there"},
         {MidPhaseMode::none, Shape::ellipsoid, 1, "none", "every ellipsoid scans the broad-phase list"},
         {MidPhaseMode::per_update_tree, Shape::ellipsoid, 1, "per-update PCA tree, ellipsoids", ""},
-        {MidPhaseMode::precomputed_tree, Shape::sphere, 1, "precomputed, spheres", "DESIGN.md's query"},
+        {MidPhaseMode::precomputed_tree, Shape::sphere, 1, "precomputed, spheres",
+         "the write-up's swept spheres"},
         {MidPhaseMode::precomputed_tree, Shape::ellipsoid, 1, "precomputed, ellipsoids, every step",
          ""},
         {MidPhaseMode::precomputed_tree, Shape::ellipsoid, WorldSettings{}.mid_phase_look_ahead,

@@ -17,8 +17,8 @@ struct PointEllipsoid {
     int iterations;     ///< root-finder steps spent (bisection or Newton), for benchmarks
 };
 
-/// How the largest root of the write-up's f(t) is found (DESIGN.md, "Exact
-/// ellipsoid-triangle contact"). Only `robust` keeps the accuracy contract; the write-up's
+/// How the largest root of the write-up's f(t) is found
+/// (docs/design.md#root-finding). Only `robust` keeps the accuracy contract; the write-up's
 /// two are kept so that the benchmark and the tests can measure its claims.
 enum class RootFinder {
     robust,          ///< concave-h Newton beside the nearest pole, capped (the default)
