@@ -15,7 +15,7 @@
 #include "tightest_turn_scene.hpp"
 #include "trackphys/collision/look_ahead_list.hpp"
 #include "trackphys/collision/mid_phase.hpp"
-#include "trackphys/collision/plane_tree_builder.hpp"
+#include "trackphys/detail/plane_tree_builder.hpp"
 #include "trackphys/collision/static_world.hpp"
 #include "trackphys/world/world_settings.hpp"
 

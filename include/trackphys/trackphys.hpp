@@ -21,10 +21,9 @@
 #include "trackphys/geometry/triangle_mesh.hpp"
 
 #include "trackphys/collision/brute_force_collider.hpp"
-#include "trackphys/collision/bvh_node.hpp"
 #include "trackphys/collision/mid_phase.hpp"
+#include "trackphys/collision/mid_phase_mode.hpp"
 #include "trackphys/collision/plane_tree.hpp"
-#include "trackphys/collision/plane_tree_builder.hpp"
 #include "trackphys/collision/static_collider.hpp"
 #include "trackphys/collision/static_world.hpp"
 #include "trackphys/collision/look_ahead_list.hpp"

@@ -3,7 +3,7 @@
 // The write-up's two solvers for the largest root of
 //     f(t) = sum_i (r_i p_i / (r_i^2 + t))^2 - 1      (radii sorted, r_0 >= r_1 >= r_2)
 // reconstructed from its text so that the benchmark and the tests can measure its claims
-// (DESIGN.md, "Root finding, as measured"). They work on t directly, with no guard for a
+// (docs/design.md#root-finding). They work on t directly, with no guard for a
 // zero coordinate and no offset from the pole: exactly what the measurement criticises.
 // Not used by the library: private, for the benchmark and the tests only.
 

@@ -317,8 +317,9 @@ TEST(PointEllipsoid, WriteupSolversHoldOnlyInTheMedian) {
         newton_total += t.newton_fail;
     }
     EXPECT_EQ(robust_fail, 0);
-    // The measured facts (DESIGN.md): 5 Newton steps fail on zero coordinates (NaN) and
-    // next to the planes, and bisection fails next to the smallest axis' plane.
+    // The measured facts (docs/design.md#root-finding): 5 Newton steps fail on zero
+    // coordinates (NaN) and next to the planes, and bisection fails next to the smallest
+    // axis' plane.
     EXPECT_GT(tally[PointClass::on_plane].newton_nan, 0);
     EXPECT_GT(tally[PointClass::near_plane].newton_fail, 0);
     EXPECT_GT(tally[PointClass::near_plane].bisection_fail, 0);
