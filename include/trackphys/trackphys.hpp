@@ -17,7 +17,6 @@
 #include "trackphys/geometry/normalized_triangle.hpp"
 #include "trackphys/geometry/point_ellipse.hpp"
 #include "trackphys/geometry/point_ellipsoid.hpp"
-#include "trackphys/geometry/sphere_cull_variants.hpp"
 #include "trackphys/geometry/triangle.hpp"
 #include "trackphys/geometry/triangle_mesh.hpp"
 
