@@ -25,14 +25,14 @@ using bench::PointQuery;
 
 constexpr int kCases = 4096;
 
-void BM_ClosestPoint(benchmark::State& state, RootFinder finder, test::PointClass kind) {
+void BM_ClosestPoint(benchmark::State& state, bench::RootFinder finder, test::PointClass kind) {
     const std::vector<PointQuery> queries = point_queries(kind, kCases);
     std::size_t i = 0;
     long iterations = 0, calls = 0;
     int worst = 0;
     for (auto _ : state) {
         const PointQuery& q = queries[i];
-        const PointEllipsoid r = closest_point_on_sorted_ellipsoid(q.radii, q.p, finder);
+        const PointEllipsoid r = bench::closest_point(q, finder);
         benchmark::DoNotOptimize(r);
         iterations += r.iterations;
         worst = std::max(worst, r.iterations);
@@ -63,19 +63,18 @@ void latency(benchmark::State& state, std::size_t count, Call call) {
     state.counters["max_ns"] = ns.back();
 }
 
-void BM_ClosestPointLatency(benchmark::State& state, RootFinder finder) {
+void BM_ClosestPointLatency(benchmark::State& state, bench::RootFinder finder) {
     const std::vector<PointQuery> queries = point_queries(test::PointClass::count, kCases);
     latency(state, queries.size(), [&](std::size_t i) {
-        benchmark::DoNotOptimize(
-            closest_point_on_sorted_ellipsoid(queries[i].radii, queries[i].p, finder));
+        benchmark::DoNotOptimize(bench::closest_point(queries[i], finder));
     });
 }
 
 void register_points() {
-    const std::pair<const char*, RootFinder> finders[] = {
-        {"robust", RootFinder::robust},
-        {"writeup_newton5", RootFinder::writeup_newton},
-        {"bisection", RootFinder::bisection}};
+    const std::pair<const char*, bench::RootFinder> finders[] = {
+        {"robust", bench::RootFinder::ours},
+        {"writeup_newton5", bench::RootFinder::writeup_newton},
+        {"bisection", bench::RootFinder::bisection}};
     for (const auto& [name, finder] : finders) {
         benchmark::RegisterBenchmark((std::string("ClosestPoint/") + name + "/mix").c_str(),
                                      BM_ClosestPoint, finder, test::PointClass::count);

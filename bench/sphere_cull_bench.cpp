@@ -5,7 +5,7 @@
 //   1. origin at the first vertex, tests in x, y, z order (its first version)
 //   2. the same layout, normal test first ("about half the cull time")
 //   3. longest-edge origin, normal first, no min/max ("a little more")
-// `trackphys bench` runs the same passes (its "cull" group).
+// trackphys-bench runs the same passes (its "cull" group).
 #include <benchmark/benchmark.h>
 
 #include "cull_scene.hpp"

@@ -54,7 +54,8 @@ using trackphys::Triangle;
 
 constexpr std::size_t kValues = 19;  // center 3, quaternion 4, radii 3, vertices 9
 constexpr double kEps = std::numeric_limits<double>::epsilon();
-// The accuracy contract (DESIGN.md): depth within 1e-9 m of the truth.
+// The accuracy contract (docs/design.md#exactness-promises-and-their-tests): depth within
+// 1e-9 m of the truth.
 constexpr double kContract = 1e-9;
 
 [[noreturn]] void finding(const char* what, const Ellipsoid& e, const Triangle& t,
@@ -118,7 +119,7 @@ void check_finite(const Ellipsoid& e, const Triangle& t, const Contact& c) {
 
 // Sizes at which a double computation of the checks is accurate to well under the contract:
 // radii in [1e-3, 1e3] m, vertices within 1e3 m of the center, the center within 1e5 m of the
-// origin (a 20 km world: DESIGN.md, "Conventions").
+// origin (a 20 km world: docs/design.md#conventions).
 bool is_moderate(const Ellipsoid& e, const Triangle& t) {
     const dvec3& r = e.sorted_radii();
     if (!(r.z >= 1e-3 && r.x <= 1e3 && glm::length(e.center()) <= 1e5)) return false;

@@ -26,6 +26,8 @@ required=(
   libclang-rt-14-dev # clang's runtimes: libFuzzer (-fsanitize=fuzzer) and its sanitizers;
                      # clang-14 only recommends it, and this script installs without
                      # recommends
+  clang-format-14 # scripts/check_format.sh (CI's format check): one version, since another
+                  # major version breaks lines differently
   llvm # llvm-symbolizer: function names and lines in sanitizer and fuzzer reports
 )
 

@@ -1,202 +1,22 @@
-// `trackphys bench [--quick] [--only GROUPS] [--json FILE]`: every comparison of issue 7 in
-// one run on this machine, printed as one table (and JSON), with the peers found and the
-// issue's targets checked.
+// `trackphys bench`: the benchmark suite is its own program, trackphys-bench, built with the
+// benchmarks (it links the peers, Bullet and FCL, which the trackphys command must not).
+// The subcommand stays only to say so: any arguments, a message, a non-zero exit.
 
-#include <chrono>
-#include <cmath>
-#include <cstdio>
-#include <filesystem>
-#include <memory>
-#include <sstream>
-#include <string>
-#include <vector>
-
-#include <unistd.h>
-
-#include <nlohmann/json.hpp>
-
-#include "bench_suite.hpp"
 #include "commands.hpp"
-#include "drive_report.hpp"
-#include "json_file.hpp"
-#include "staged_outputs.hpp"
-#include "trackphys/build_target.hpp"
 #include "trackphys/error.hpp"
 
 namespace trackphys::cli {
 
-BenchRun::BenchRun(bool quick) : quick_(quick), terminal_(isatty(2) != 0) {}
-
-void BenchRun::progress(const std::string& group, const std::string& what) {
-    if (!terminal_) return;
-    std::fprintf(stderr, "\r%-79.79s", ("[" + group + "] " + what + "...").c_str());
-    std::fflush(stderr);
-}
-
-void BenchRun::end_progress() {
-    if (terminal_) std::fprintf(stderr, "\r%79s\r", "");
-}
-
-BenchRow& BenchRun::add(std::string group, std::string name, double median_ns, std::string versus) {
-    BenchRow row{std::move(group), std::move(name), median_ns, 1.0, std::move(versus), {}, {}};
-    if (!row.versus.empty()) row.ratio = median_ns / this->row(row.group, row.versus).median_ns;
-    rows_.push_back(std::move(row));
-    return rows_.back();
-}
-
-void BenchRun::add_target(std::string what, double value, double target) {
-    targets_.push_back({std::move(what), value, target});
-}
-
-const BenchRow& BenchRun::row(const std::string& group, const std::string& name) const {
-    for (const BenchRow& r : rows_)
-        if (r.group == group && r.name == name) return r;
-    throw Error("bench: no row '" + name + "' in group '" + group + "'");
-}
-
-namespace {
-
-struct BenchOptions {
-    bool quick = false;
-    std::vector<std::string> only;
-    std::filesystem::path json;
-};
-
-struct Group {
-    const char* name;
-    void (*run)(BenchRun&);
-};
-
-// Table order: the write-up's improvements, then the peers.
-constexpr Group kGroups[] = {{"cull", bench_cull},
-                             {"roots", bench_roots},
-                             {"broad", bench_broad_phase},
-                             {"mid", bench_mid_phase},
-                             {"update", bench_update},
-                             {"contact", bench_contact_peers},
-                             {"mesh", bench_mesh_peers},
-                             {"bullet_update", bench_update_peers}};
-
-/// A time with a readable unit: 812 ns, 3.41 us, 2.05 ms.
-std::string format_time(double ns) {
-    char text[32];
-    if (ns <= 0.0) return "-";
-    if (ns < 1e3) std::snprintf(text, sizeof text, "%.0f ns", ns);
-    else if (ns < 1e6) std::snprintf(text, sizeof text, "%.3g us", ns * 1e-3);
-    else std::snprintf(text, sizeof text, "%.3g ms", ns * 1e-6);
-    return text;
-}
-
-std::string format_figures(const BenchRow& row) {
-    std::ostringstream out;
-    for (const auto& [key, value] : row.figures) {
-        char number[32];
-        std::snprintf(number, sizeof number, "%.3g", value);
-        out << key << '=' << number << "  ";
-    }
-    if (!row.note.empty()) out << "(" << row.note << ")";
-    return out.str();
-}
-
-/// Printed before the run, so the peers found are known while it runs.
-void print_header(bool quick, const std::vector<PeerStatus>& peers) {
-    std::printf("trackphys bench%s: median time of one call; x = median / the 'vs' row's median\n",
-                quick ? " --quick" : "");
-    std::printf("  trackphys built for %s; the peers are Debian's builds (x86-64 baseline)\n",
-                trackphys::build_target());
-    for (const PeerStatus& p : peers)
-        std::printf("  peer %-14s %s (%s)\n", p.name.c_str(), p.built ? "built" : "not built", p.detail.c_str());
-    std::fflush(stdout);
-}
-
-void print_table(const BenchRun& run, double wall_s) {
-    std::printf("\n%-14s %-52s %10s %9s  %-34s %s\n", "group", "case", "median", "x", "vs", "figures");
-    std::string last_group;
-    for (const BenchRow& r : run.rows()) {
-        if (r.group != last_group && !last_group.empty()) std::printf("\n");
-        last_group = r.group;
-        char ratio[32] = "";
-        if (!r.versus.empty() && r.median_ns > 0.0) std::snprintf(ratio, sizeof ratio, "%.3g", r.ratio);
-        std::printf("%-14s %-52s %10s %9s  %-34s %s\n", r.group.c_str(), r.name.c_str(),
-                    format_time(r.median_ns).c_str(), ratio, r.versus.c_str(), format_figures(r).c_str());
-    }
-    if (!run.targets().empty())
-        std::printf("\nthe issues' targets on this machine%s:\n",
-                    run.quick() ? " (--quick: fewer cases on colder caches; the full run decides)"
-                                : "");
-    for (const BenchTarget& t : run.targets())
-        std::printf("  %-4s %-70s %10.3g  (target >= %g)\n", t.met() ? "met" : "MISS", t.what.c_str(),
-                    t.value, t.target);
-    std::printf("\nwall time %.1f s\n", wall_s);
-}
-
-nlohmann::json to_json(const BenchRun& run, const std::vector<PeerStatus>& peers, double wall_s) {
-    nlohmann::json json;
-    json["quick"] = run.quick();
-    json["build_target"] = trackphys::build_target();
-    json["wall_s"] = wall_s;
-    json["writeup_budget_us"] = {{"typical", kWriteupTypicalUs}, {"spikes", kWriteupSpikeUs}};
-    for (const PeerStatus& p : peers)
-        json["peers"][p.key] = {{"name", p.name}, {"built", p.built}, {"detail", p.detail}};
-    json["rows"] = nlohmann::json::array();
-    for (const BenchRow& r : run.rows()) {
-        nlohmann::json row = {{"group", r.group}, {"case", r.name}, {"median_ns", r.median_ns},
-                              {"ratio", r.ratio}, {"versus", r.versus}, {"note", r.note}};
-        row["figures"] = nlohmann::json::object();
-        // JSON has no NaN or infinity: a figure that is not finite is written as null.
-        for (const auto& [key, value] : r.figures)
-            row["figures"][key] = std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
-        json["rows"].push_back(std::move(row));
-    }
-    json["targets"] = nlohmann::json::array();
-    for (const BenchTarget& t : run.targets())
-        json["targets"].push_back({{"what", t.what}, {"value", t.value}, {"target", t.target}, {"met", t.met()}});
-    return json;
-}
-
-void run_bench(const BenchOptions& o) {
-    for (const std::string& name : o.only) {
-        bool known = false;
-        for (const Group& g : kGroups) known = known || name == g.name;
-        if (!known)
-            throw Error("--only '" + name +
-                        "': not a group (cull, roots, broad, mid, update, contact, mesh, bullet_update)");
-    }
-    // Checked and staged before minutes of measuring; put in place only after the run.
-    StagedOutputs outputs;
-    const std::filesystem::path json = o.json.empty() ? o.json : outputs.stage(o.json, "--json");
-    const std::vector<PeerStatus> peers = peer_status();
-    print_header(o.quick, peers);
-    BenchRun run(o.quick);
-    const auto start = std::chrono::steady_clock::now();
-    for (const Group& g : kGroups) {
-        bool selected = o.only.empty();
-        for (const std::string& name : o.only) selected = selected || name == g.name;
-        if (selected) g.run(run);
-    }
-    run.end_progress();
-    const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    print_table(run, wall_s);
-    if (!json.empty()) {
-        write_json_file(to_json(run, peers, wall_s), json);
-        outputs.commit();
-    }
-}
-
-}  // namespace
-
 void add_bench_command(CLI::App& app) {
-    auto o = std::make_shared<BenchOptions>();
     CLI::App* command = app.add_subcommand(
-        "bench", "Run every comparison of issue 7 on this machine: the write-up's improvements (cull, roots, "
-                 "broad and mid phase, whole update vs its budget) and the peers (Bullet, FCL) where built; "
-                 "prints one table of medians and ratios");
-    command->add_flag("--quick", o->quick, "Fewer cases and repeats: under a minute");
-    command->add_option("--only", o->only, "Run only these groups (cull, roots, broad, mid, update, contact, "
-                                           "mesh, bullet_update), comma-separated")
-        ->delimiter(',');
-    command->add_option("--json", o->json, "Write the table as JSON (atomically)");
-    command->callback([o] { run_bench(*o); });
+        "bench", "Moved: the benchmark suite is the trackphys-bench program (built with the benchmarks)");
+    command->allow_extras();
+    command->callback([] {
+        throw Error("the benchmark suite is its own program now: trackphys-bench, built with "
+                    "-DTRACKPHYS_BUILD_BENCHMARKS=ON (the default for a top-level build) as "
+                    "build/<preset>/bench/trackphys-bench, not installed; "
+                    "run trackphys-bench --help");
+    });
 }
 
 }  // namespace trackphys::cli

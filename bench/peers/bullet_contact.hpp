@@ -2,7 +2,7 @@
 
 // Bullet's GJK/EPA (btGjkEpaSolver2) on an ellipsoid and a triangle, with the exact
 // ellipsoid (header-only; shared by bench_peers_contact_bullet_*, the Bullet whole-update
-// loop and `trackphys bench`). Compiles with either btScalar (float, or double with
+// loops and trackphys-bench). Compiles with either btScalar (float, or double with
 // BT_USE_DOUBLE_PRECISION).
 //
 // Bullet gets the exact ellipsoid: a convex shape whose support map is the ellipsoid's own,

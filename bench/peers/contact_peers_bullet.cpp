@@ -5,7 +5,7 @@
 // *-float64 libraries). The two builds share symbol names, hence two programs.
 //
 // The adapter (the exact ellipsoid support shape, GJK then EPA) is peers/bullet_contact.hpp,
-// shared with `trackphys bench`.
+// shared with trackphys-bench.
 //
 //   build/release/bench/bench_peers_contact_bullet_float [--quick] [--json FILE]
 

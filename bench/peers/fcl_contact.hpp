@@ -21,7 +21,7 @@
 //   so its signed variant is left out.
 // Solvers keep FCL's default tolerances; shapes are built per query from the case.
 //
-//   (header-only: bench_peers_contact_fcl and `trackphys bench` run the same methods)
+//   (header-only: bench_peers_contact_fcl and trackphys-bench run the same methods)
 
 #include <cmath>
 #include <memory>

@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "trackphys/collision/bvh_node.hpp"
+#include "trackphys/detail/bvh_node.hpp"
 #include "float_bounds.hpp"
 #include "trackphys/geometry/aabb.hpp"
 
@@ -40,8 +40,8 @@ inline constexpr std::uint32_t kMaxLeafSize = 32;
 /// at most this many into one leaf lane, its primitives in the order of its SAH leaves.
 /// Queries test a leaf lane's slot boxes eight at a time in that order, so neighbouring
 /// blocks stay tight, and a block test costs much less than a node visit (a dependent
-/// load and its branches): default-track car boxes 6% faster in driving order and 10% with
-/// random boxes than with lanes of one SAH leaf (64 and 128 about as fast, 256 slower).
+/// load and its branches): default-track car boxes, in driving order or random, are faster
+/// than with lanes of one SAH leaf; larger lanes gain nothing, and far larger ones lose.
 inline constexpr std::uint32_t kMaxLeafLaneSize = 96;
 
 /// Deepest a built tree gets: SAH splits up to kMaxSahDepth, then median splits that halve

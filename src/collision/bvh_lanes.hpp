@@ -18,7 +18,7 @@
 #include <emmintrin.h>
 
 #include "float_bounds.hpp"
-#include "trackphys/collision/bvh_node.hpp"
+#include "trackphys/detail/bvh_node.hpp"
 
 namespace trackphys::collision_detail {
 

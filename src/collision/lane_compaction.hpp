@@ -8,8 +8,8 @@
 // - x86-64 baseline (SSE2 has no variable shuffle): eight lanes are copied in a table's
 //   order, set lanes first; per lane a table byte, a load and a store (the bit-by-bit
 //   alternative costs about 7.5 instructions a lane, and a loop over set bits mispredicts
-//   on mixed masks). On the default track's car boxes the shuffle makes the whole query
-//   7-8% faster.
+//   on mixed masks). On the default track's car boxes the shuffle speeds up the whole
+//   query, not only the packing.
 // Both tables are always built and the tests check both against a plain statement; a v1
 // build runs the first in scripts/determinism.sh, which must end a drive as v2 does.
 

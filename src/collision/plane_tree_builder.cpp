@@ -1,4 +1,4 @@
-#include "trackphys/collision/plane_tree_builder.hpp"
+#include "trackphys/detail/plane_tree_builder.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -9,6 +9,7 @@
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
 
+#include "trackphys/collision/static_collider.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/math/symmetric_eigen.hpp"
 

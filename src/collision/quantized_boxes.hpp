@@ -35,7 +35,7 @@
 #include <cstdint>
 
 #include "float_bounds.hpp"
-#include "trackphys/collision/bvh_node.hpp"
+#include "trackphys/detail/bvh_node.hpp"
 
 namespace trackphys::collision_detail {
 

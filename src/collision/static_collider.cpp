@@ -36,8 +36,8 @@ constexpr std::uint32_t kGridGroupSlots = 4096;
 // Box queries look for whole lanes inside the box (reported without testing their
 // triangles) only when the box spans this many mean leaf lanes on every axis: a smaller box
 // rarely holds a whole lane, and the test costs more than it saves (car boxes, about 2.7
-// mean leaves across: 6% faster without it on the default track and the 300k loop; boxes
-// padded by 5 or 20 m, which use it: same time).
+// mean leaves across, are faster without it; boxes padded by 5 or 20 m, which use it, take
+// the same time).
 constexpr double kInsideShortcutLeaves = 4.0;
 // Slots in one block.
 constexpr std::uint32_t kBlockSlots = QuantizedBlock::kLanes;
@@ -387,9 +387,8 @@ public:
     }
 
 private:
-    // A run of leaf lanes (at most a node's worth) fits after a flush; per-run rather than
-    // per-block room checks and fewer flushes: car-box queries 3% faster than 256 checked
-    // per block.
+    // A run of leaf lanes (at most a node's worth) fits after a flush: room is checked per
+    // run rather than per block, and flushes are fewer, which car-box queries feel.
     static constexpr unsigned kSize =
         BvhNode::kWidth * collision_detail::kMaxLeafLaneSize + 2 * kBlockSlots;
     std::uint32_t triangle(std::uint32_t s) const {

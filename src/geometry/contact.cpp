@@ -13,7 +13,7 @@
 #include "geometry/ellipsoid_roots.hpp"
 #include "trackphys/math/types.hpp"
 
-// The candidates and the certificate (DESIGN.md, "Exact ellipsoid-triangle contact").
+// The candidates and the certificate (docs/design.md#exact-ellipsoid-triangle-contact).
 //
 // In the sorted frame, E = {x : sum x_i^2 / r_i^2 <= 1} with support h(u) = ||D u|| and
 // support point x(u) = D^2 u / h(u); sigma = min over unit u of g(u) = max_i u.q_i + h(u).

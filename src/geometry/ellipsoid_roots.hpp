@@ -1,9 +1,9 @@
 #pragma once
 
 // The critical points of the distance from a point p to an ellipse (N = 2) or ellipsoid
-// (N = 3) in its sorted frame, radii r_0 >= ... >= r_{N-1} > 0 (DESIGN.md, "Exact
-// ellipsoid-triangle contact"). Internal: the public wrappers are point_ellipse.hpp and
-// point_ellipsoid.hpp, and the contact kernel uses this directly.
+// (N = 3) in its sorted frame, radii r_0 >= ... >= r_{N-1} > 0 (docs/design.md#root-finding).
+// Internal: the public wrappers are point_ellipse.hpp and point_ellipsoid.hpp, and the
+// contact kernel uses this directly.
 //
 // A surface point x is critical when p lies on its normal line: p = x + t D^-2 x, so
 // x_i = r_i^2 p_i / (r_i^2 + t) and t is a root of

@@ -54,4 +54,23 @@ LargestRoot writeup_newton_largest_root(const glm::dvec3& r, const glm::dvec3& p
     return {t, steps};
 }
 
+PointEllipsoid writeup_closest_point(const glm::dvec3& r, const glm::dvec3& p,
+                                     WriteupRootFinder finder) {
+    const LargestRoot root = finder == WriteupRootFinder::bisection
+                                 ? writeup_bisection_largest_root(r, p)
+                                 : writeup_newton_largest_root(r, p);
+    PointEllipsoid result{};
+    glm::dvec3 n;
+    for (int i = 0; i < 3; ++i) {
+        const double w = r[i] * r[i] + root.t;
+        result.point[i] = r[i] * r[i] * p[i] / w;
+        n[i] = p[i] / w;
+    }
+    result.normal = glm::normalize(n);
+    const double distance = glm::distance(p, result.point);
+    result.distance = root.t < 0.0 ? -distance : distance;
+    result.iterations = root.iterations;
+    return result;
+}
+
 }  // namespace trackphys::detail

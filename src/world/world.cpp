@@ -8,9 +8,11 @@
 #include <glm/geometric.hpp>
 
 #include "core/fnv1a.hpp"
+#include "profile/phase_stopwatch.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/geometry/contact.hpp"
 #include "trackphys/geometry/ellipsoid_cull.hpp"
+#include "world/car_slot.hpp"
 
 namespace trackphys {
 
@@ -23,6 +25,10 @@ World::World(std::shared_ptr<const StaticWorld> statics, WorldSettings settings,
         trees_ = make_collider_plane_trees(*statics_);
     if (settings_.mid_phase != MidPhaseMode::precomputed_tree) trees_.clear();
 }
+
+World::~World() = default;
+World::World(World&&) noexcept = default;
+World& World::operator=(World&&) noexcept = default;
 
 World::CarSlot::CarSlot(Car car_in, MidPhase mid_in)
     : car(std::move(car_in)), mid(std::move(mid_in)) {
@@ -38,6 +44,15 @@ std::size_t World::add_car(const CarSpec& spec, const RigidBodyState& state) {
     check_placement(car);
     cars_.emplace_back(std::move(car), MidPhase(settings_.mid_phase, *statics_, trees_));
     return cars_.size() - 1;
+}
+
+std::size_t World::car_count() const { return cars_.size(); }
+Car& World::car(std::size_t i) { return cars_.at(i).car; }
+const Car& World::car(std::size_t i) const { return cars_.at(i).car; }
+std::span<const Contact> World::contacts(std::size_t i) const { return cars_.at(i).deepest; }
+std::uint64_t World::car_resets(std::size_t i) const { return cars_.at(i).resets; }
+const std::string& World::last_reset_reason(std::size_t i) const {
+    return cars_.at(i).last_reset;
 }
 
 void World::update() {
@@ -126,6 +141,7 @@ void World::list_step_candidates(CarSlot& slot, int steps_left, PhaseStopwatch& 
 }
 
 void World::substep(CarSlot& slot, PhaseStopwatch& watch) {
+    using Survivor = CarSlot::Survivor;
     Car& car = slot.car;
     const std::size_t ellipsoids = car.ellipsoid_count();
 

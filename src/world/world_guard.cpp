@@ -10,10 +10,12 @@
 
 #include <glm/geometric.hpp>
 
+#include "profile/phase_stopwatch.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/geometry/contact.hpp"
 #include "trackphys/math/types.hpp"
 #include "trackphys/world/world.hpp"
+#include "world/car_slot.hpp"
 
 namespace trackphys {
 namespace {

@@ -15,6 +15,7 @@
 #include "trackphys/error.hpp"
 #include "trackphys/math/types.hpp"
 #include "trackphys/world/world.hpp"
+#include "world/car_slot.hpp"
 
 namespace trackphys {
 namespace {

@@ -17,7 +17,7 @@
 #include "collision/collision_meshes.hpp"
 #include "collision/plane_tree_reference.hpp"
 #include "trackphys/collision/plane_tree.hpp"
-#include "trackphys/collision/plane_tree_builder.hpp"
+#include "trackphys/detail/plane_tree_builder.hpp"
 #include "trackphys/collision/static_collider.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/track/track.hpp"

@@ -256,7 +256,7 @@ TEST(StaticCollider, TreeInvariants) {
 namespace trackphys {
 namespace {
 
-// Same mesh, same tree, same answers in the same order (DESIGN.md: determinism).
+// Same mesh, same tree, same answers in the same order (docs/design.md#determinism).
 TEST(StaticCollider, BuildsAreDeterministic) {
     const TriangleMesh mesh = test::random_soup(5000, 77);
     const StaticCollider a(mesh), b(mesh);

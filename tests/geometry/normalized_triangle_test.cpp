@@ -8,7 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "support/closest_point_reference.hpp"
-#include "trackphys/geometry/sphere_cull_variants.hpp"
+#include "geometry/sphere_cull_variants.hpp"
 
 namespace trackphys {
 namespace {

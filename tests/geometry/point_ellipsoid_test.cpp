@@ -8,6 +8,7 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include "geometry/writeup_root_finders.hpp"
 #include "support/ellipsoid_reference.hpp"
 #include "support/point_cases.hpp"
 
@@ -281,10 +282,12 @@ TEST(PointEllipsoid, WriteupSolversHoldOnlyInTheMedian) {
             return !(std::abs(r2.distance - reference) <= 1e-5);
         };
         const PointEllipsoid newton =
-            closest_point_on_sorted_ellipsoid(r, p, RootFinder::writeup_newton);
+            detail::writeup_closest_point(r, p, detail::WriteupRootFinder::newton);
         t.newton_fail += miss(newton);
         t.newton_nan += std::isnan(newton.distance);
-        t.bisection_fail += miss(closest_point_on_sorted_ellipsoid(r, p, RootFinder::bisection));
+        const PointEllipsoid bisection =
+            detail::writeup_closest_point(r, p, detail::WriteupRootFinder::bisection);
+        t.bisection_fail += miss(bisection);
         robust_fail += miss(closest_point_on_sorted_ellipsoid(r, p));
         const double closeness = std::abs(p.z) / r.z;
         int bin = 0;
@@ -293,7 +296,7 @@ TEST(PointEllipsoid, WriteupSolversHoldOnlyInTheMedian) {
         ++b.cases;
         b.newton_fail += miss(newton);
         b.newton_nan += std::isnan(newton.distance);
-        b.bisection_fail += miss(closest_point_on_sorted_ellipsoid(r, p, RootFinder::bisection));
+        b.bisection_fail += miss(bisection);
     }
     std::printf("|p_z|/r_z <=    cases  newton5>1e-5  (NaN)  bisection>1e-5\n");
     for (int bin = 0; bin < 7; ++bin) {
@@ -314,8 +317,9 @@ TEST(PointEllipsoid, WriteupSolversHoldOnlyInTheMedian) {
         newton_total += t.newton_fail;
     }
     EXPECT_EQ(robust_fail, 0);
-    // The measured facts (DESIGN.md): 5 Newton steps fail on zero coordinates (NaN) and
-    // next to the planes, and bisection fails next to the smallest axis' plane.
+    // The measured facts (docs/design.md#root-finding): 5 Newton steps fail on zero
+    // coordinates (NaN) and next to the planes, and bisection fails next to the smallest
+    // axis' plane.
     EXPECT_GT(tally[PointClass::on_plane].newton_nan, 0);
     EXPECT_GT(tally[PointClass::near_plane].newton_fail, 0);
     EXPECT_GT(tally[PointClass::near_plane].bisection_fail, 0);

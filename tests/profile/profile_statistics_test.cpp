@@ -1,3 +1,4 @@
+#include "profile/phase_stopwatch.hpp"
 #include "trackphys/profile/profile_statistics.hpp"
 
 #include <thread>

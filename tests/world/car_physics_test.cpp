@@ -1,5 +1,6 @@
-// The car's physics against analytic cases (DESIGN.md, "Verification"): static sag,
-// a bounce without damping, Coulomb's stopping distance, and contacts that never tunnel.
+// The car's physics against analytic cases (docs/design.md#exactness-promises-and-their-tests):
+// static sag, a bounce without damping, Coulomb's stopping distance, and contacts that never
+// tunnel.
 #include <cmath>
 #include <limits>
 

@@ -3,48 +3,21 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
-#include <optional>
-#include <string_view>
 #include <vector>
 
 #include <glm/vec3.hpp>
 
+#include "trackphys/collision/mid_phase_mode.hpp"
 #include "trackphys/collision/plane_tree.hpp"
-#include "trackphys/collision/plane_tree_builder.hpp"
 #include "trackphys/collision/static_collider.hpp"
 #include "trackphys/collision/static_world.hpp"
+#include "trackphys/detail/plane_tree_builder.hpp"
 #include "trackphys/export.hpp"
 #include "trackphys/geometry/aabb.hpp"
 #include "trackphys/geometry/ellipsoid.hpp"
 #include "trackphys/geometry/normalized_triangle.hpp"
 
 namespace trackphys {
-
-/// How the triangles of one update are organised for the per-step, per-ellipsoid queries
-/// (DESIGN.md, "The system in one picture").
-enum class MidPhaseMode {
-    /// No mid phase: every query returns the whole broad-phase candidate list.
-    none,
-    /// The write-up's WIP: a PCA plane tree (PlaneSplitRule::pca_median) built each update
-    /// over the broad-phase candidates, queried per step.
-    per_update_tree,
-    /// Each collider's precomputed plane tree (make_collider_plane_tree), queried per step
-    /// directly; the update only selects the colliders whose box meets the update box.
-    precomputed_tree,
-};
-
-/// The default (bench/midphase_bench.cpp, tightest turn of the default track at 1000 km/h,
-/// per update of 10 steps x 8 ellipsoids): precomputed_tree queried with swept ellipsoids
-/// hands each ellipsoid 2.5 triangles a sub-step (165 with none, 18.5 with swept bounding
-/// spheres) and, looking ahead as World does (LookAheadList: 20 queries an update instead of
-/// 80, 3.8 triangles a sub-step), costs ~9.4 us of mid phase per update against ~110-140 us
-/// for the write-up's per-update tree queried with spheres every step.
-inline constexpr MidPhaseMode kDefaultMidPhaseMode = MidPhaseMode::precomputed_tree;
-
-/// "none", "per_update_tree" or "precomputed_tree".
-TRACKPHYS_API std::string_view to_string(MidPhaseMode mode);
-/// The mode with that name, or nullopt.
-TRACKPHYS_API std::optional<MidPhaseMode> parse_mid_phase_mode(std::string_view name);
 
 /// One triangle a mid-phase query hands to the sub-step loop.
 struct MidPhaseCandidate {
@@ -62,10 +35,6 @@ struct MidPhaseCounters {
     std::size_t planes_tested = 0;           ///< tree queries only
     std::size_t triangles_filtered = 0;      ///< tree queries only
 };
-
-/// The precomputed trees of every collider of a world, index = collider id (what
-/// MidPhase needs for MidPhaseMode::precomputed_tree). Shared read-only like the colliders.
-using ColliderPlaneTrees = std::vector<std::shared_ptr<const PlaneTree>>;
 
 /// Builds make_collider_plane_tree for every collider of `world`, in id order.
 TRACKPHYS_API ColliderPlaneTrees make_collider_plane_trees(

@@ -13,10 +13,12 @@
 
 namespace trackphys {
 
+class StaticCollider;
+
 /// One node of a PlaneTree: the half-space {x : dot(normal, x) <= offset} that holds every
 /// triangle of its subtree. Nodes live in one vector, root at 0, the two children of an
-/// inner node adjacent at `first` and `first + 1` (the BVH layout, DESIGN.md "Broad phase
-/// and mid phase"). The root's half-space is all of space (normal 0, offset +inf).
+/// inner node adjacent at `first` and `first + 1` (the BVH layout,
+/// docs/design.md#data-layouts). The root's half-space is all of space (normal 0, offset +inf).
 ///
 /// The normal is stored in float and the offset is computed in double over the triangles'
 /// vertices with exactly that float normal, then rounded up to float: the stored plane never
@@ -114,7 +116,7 @@ struct PlaneTreeQueryCounts {
     std::size_t triangles_reported = 0;
 };
 
-/// A plane tree over a set of triangles (DESIGN.md, "Broad phase and mid phase"): each inner
+/// A plane tree over a set of triangles (docs/design.md#mid-phase-plane-trees): each inner
 /// node splits its triangles in two and each child keeps the plane that bounds its side,
 /// so a query visits a child only if its shape reaches that child's half-space. Built by
 /// PlaneTreeBuilder (per update, reusing storage) or make_collider_plane_tree (once per
@@ -209,5 +211,14 @@ private:
     std::vector<std::uint32_t> ids_;             ///< leaf order
     int depth_ = 0;
 };
+
+/// The precomputed plane tree of a collider: every kept triangle, cost-based splits
+/// (PlaneTreeSettings::precomputed() unless given), ids = mesh triangle indices, so that
+/// PlaneTree::id(slot) is what StaticCollider::triangle() takes. Built from the collider
+/// rather than stored in it: StaticCollider stays the broad phase's compact structure
+/// (~48 bytes a triangle) and worlds that use no precomputed mid phase pay nothing.
+TRACKPHYS_API PlaneTree make_collider_plane_tree(
+    const StaticCollider& collider,
+    const PlaneTreeSettings& settings = PlaneTreeSettings::precomputed());
 
 }  // namespace trackphys

@@ -9,7 +9,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "trackphys/collision/bvh_node.hpp"
+#include "trackphys/detail/bvh_node.hpp"
 #include "trackphys/export.hpp"
 #include "trackphys/geometry/aabb.hpp"
 #include "trackphys/geometry/normalized_triangle.hpp"
@@ -35,7 +35,7 @@ struct TriangleRef {
 };
 
 /// A static triangle mesh ready for queries: validated, degenerate triangles dropped and
-/// counted, and a binned-SAH BVH over the rest (DESIGN.md, "Broad phase and mid phase").
+/// counted, and a binned-SAH BVH over the rest (docs/design.md#broad-phase-the-bvh).
 /// Immutable after construction, so one collider can be shared by any number of threads.
 ///
 /// Every query has the exact meaning of its BruteForceCollider twin and returns exactly
@@ -115,9 +115,9 @@ public:
 
     /// A fingerprint of the mesh as kept: a hash of the mesh triangle count and of every kept
     /// triangle's index and vertex bits, in mesh order. Equal meshes give equal hashes; a
-    /// moved vertex, another triangle or another order give another. Computed at build
-    /// (~9 ms for the default track's 300k triangles, ~5% of building them), so a
-    /// world snapshot can tell whether it belongs to these colliders without copying them.
+    /// moved vertex, another triangle or another order give another. Computed at build (a
+    /// small share of building the collider), so a world snapshot can tell whether it
+    /// belongs to these colliders without copying them.
     std::uint64_t content_hash() const { return content_hash_; }
 
     /// Box around every kept triangle (empty when none was kept).

@@ -25,7 +25,7 @@ struct WorldRayHit {
 TRACKPHYS_API Aabb swept_box(const Aabb& box, const glm::dvec3& displacement, double margin);
 
 /// Every static collider of a world, and the world-level broad phase over them: collider
-/// boxes first, then each hit collider's BVH (DESIGN.md, "Broad phase and mid phase").
+/// boxes first, then each hit collider's BVH (docs/design.md#broad-phase-the-bvh).
 /// Colliders are shared read-only (one track chunk can sit in several worlds); queries
 /// are const and allocation-free once the caller's buffers have grown.
 class TRACKPHYS_API StaticWorld {

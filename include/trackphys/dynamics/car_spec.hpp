@@ -20,7 +20,7 @@ enum class EllipsoidRole {
 
 /// One ellipsoid of the car, fixed in the body frame (+Z forward, +Y up, +X left), relative
 /// to the centre of mass. Wheels do not spin as bodies of their own: rolling, drive, brake
-/// and grip are forces at the contact (DESIGN.md, "Dynamics").
+/// and grip are forces at the contact (docs/design.md#dynamics).
 struct CarEllipsoid {
     glm::dvec3 center{0.0};                       ///< body frame (m)
     glm::dvec3 semi_axes{0.3};                    ///< along its own local axes (m), all > 0

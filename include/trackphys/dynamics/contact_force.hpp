@@ -9,7 +9,7 @@
 
 namespace trackphys {
 
-/// The penalty-contact force laws (DESIGN.md, "Dynamics"). Inputs are one ellipsoid's
+/// The penalty-contact force laws (docs/design.md#dynamics). Inputs are one ellipsoid's
 /// deepest contact: depth d (m, > 0 overlapping), unit push direction n (world, the way
 /// the ellipsoid must move to separate) and the velocity of the car's material point at the
 /// contact (m/s). Every law returns the world force on the car at that point (N).

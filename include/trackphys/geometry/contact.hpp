@@ -8,8 +8,8 @@
 
 namespace trackphys {
 
-/// The exact contact between a solid ellipsoid and a triangle (DESIGN.md, "Exact
-/// ellipsoid-triangle contact").
+/// The exact contact between a solid ellipsoid and a triangle
+/// (docs/design.md#exact-ellipsoid-triangle-contact).
 struct Contact {
     /// Signed penetration (m): > 0 they overlap and depth is the minimum translation
     /// distance; < 0 they are apart by -depth. -infinity for a triangle with a non-finite

@@ -15,10 +15,11 @@ namespace trackphys {
 /// A solid ellipsoid: center c, orientation Q (maps local to world) and semi-axes along
 /// the local x, y, z axes, in any order.
 ///
-/// The exact kernels want the radii sorted, rx >= ry >= rz (DESIGN.md), so the ellipsoid
-/// also keeps a sorted frame: sorted_radii() and the world directions of the matching
-/// axes, sorted_axes() (columns, a proper rotation). to_sorted_local() maps a world point
-/// into that frame, where the ellipsoid is x^2/rx^2 + y^2/ry^2 + z^2/rz^2 <= 1.
+/// The exact kernels want the radii sorted, rx >= ry >= rz
+/// (docs/design.md#exact-ellipsoid-triangle-contact), so the ellipsoid also keeps a sorted
+/// frame: sorted_radii() and the world directions of the matching axes, sorted_axes()
+/// (columns, a proper rotation). to_sorted_local() maps a world point into that frame,
+/// where the ellipsoid is x^2/rx^2 + y^2/ry^2 + z^2/rz^2 <= 1.
 class TRACKPHYS_API Ellipsoid {
 public:
     /// orientation: any non-zero finite quaternion (it is normalised); semi_axes: all

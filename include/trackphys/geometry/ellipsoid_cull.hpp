@@ -46,7 +46,7 @@ inline double ellipsoid_depth_bound(const NormalizedTriangle& t, const Ellipsoid
 
 /// An upper bound of the ellipsoid's penetration depth into the triangle from any unit
 /// direction u, given its support h(u) = support_extent(e, u): sigma = min over unit u of
-/// max_i u . (v_i - c) + h(u) (DESIGN.md, "Exact ellipsoid-triangle contact"), so every u
+/// max_i u . (v_i - c) + h(u) (docs/design.md#exact-ellipsoid-triangle-contact), so every u
 /// bounds it. With u the normal of the deepest contact found so far on a neighbouring
 /// triangle, a triangle that lies lower along it (a coplanar or convex neighbour of the one
 /// a wheel stands on) cannot be deeper, whatever its own normal says.

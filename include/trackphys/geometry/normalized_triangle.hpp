@@ -9,7 +9,7 @@
 namespace trackphys {
 
 /// A triangle stored in its own frame for the cheapest conservative sphere test
-/// (DESIGN.md, "NormalizedTriangle").
+/// (docs/design.md#normalizedtriangle).
 ///
 /// The origin is the start vertex of the longest edge, dir_x runs along that edge and
 /// dir_y lies in the plane with dir_x x dir_y = normal. In that frame the vertices are

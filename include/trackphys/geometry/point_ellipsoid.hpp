@@ -14,16 +14,7 @@ struct PointEllipsoid {
     glm::dvec3 point;   ///< closest surface point (m)
     glm::dvec3 normal;  ///< outward unit surface normal at point
     double distance;    ///< signed distance from the surface (m), negative inside
-    int iterations;     ///< root-finder steps spent (bisection or Newton), for benchmarks
-};
-
-/// How the largest root of the write-up's f(t) is found (DESIGN.md, "Exact
-/// ellipsoid-triangle contact"). Only `robust` keeps the accuracy contract; the write-up's
-/// two are kept so that the benchmark and the tests can measure its claims.
-enum class RootFinder {
-    robust,          ///< concave-h Newton beside the nearest pole, capped (the default)
-    bisection,       ///< the write-up's first solver: bisection on t to 1e-5 m
-    writeup_newton,  ///< the write-up's Newton on f from its starting point, 5 steps
+    int iterations;     ///< Newton steps spent, for benchmarks
 };
 
 /// Closest surface point of `ellipsoid` to the world point p, with the signed distance
@@ -31,15 +22,9 @@ enum class RootFinder {
 TRACKPHYS_API PointEllipsoid closest_point_on_ellipsoid(const Ellipsoid& ellipsoid,
                                                         const glm::dvec3& p);
 
-/// The same with a chosen root finder. The write-up's finders reproduce its failures:
-/// they may be far off (bisection near the smallest axis' plane) or NaN (Newton on a
-/// coordinate that is exactly 0); use them only to measure.
-TRACKPHYS_API PointEllipsoid closest_point_on_ellipsoid(const Ellipsoid& ellipsoid,
-                                                        const glm::dvec3& p, RootFinder finder);
-
 /// The same in the sorted frame: radii x >= y >= z > 0 (m), p in that frame.
-TRACKPHYS_API PointEllipsoid closest_point_on_sorted_ellipsoid(
-    const glm::dvec3& sorted_radii, const glm::dvec3& p, RootFinder finder = RootFinder::robust);
+TRACKPHYS_API PointEllipsoid closest_point_on_sorted_ellipsoid(const glm::dvec3& sorted_radii,
+                                                               const glm::dvec3& p);
 
 /// A critical point of the distance from a point p to the surface: p lies on the normal
 /// line of point, p = point + offset * normal.

@@ -1,6 +1,6 @@
 #pragma once
 
-/// trackphys computes in double everywhere (DESIGN.md, "Conventions"): positions and
+/// trackphys computes in double everywhere (docs/design.md#conventions): positions and
 /// velocities keep 1e-5 m anywhere in a 20 km world only in double precision. glm's double
 /// types are the public vocabulary: glm::dvec3, glm::dquat (local -> world), glm::dmat3.
 

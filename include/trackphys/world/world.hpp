@@ -8,23 +8,24 @@
 #include <string>
 #include <vector>
 
-#include "trackphys/collision/mid_phase.hpp"
+#include "trackphys/collision/mid_phase_mode.hpp"
 #include "trackphys/collision/static_world.hpp"
-#include "trackphys/collision/look_ahead_list.hpp"
 #include "trackphys/dynamics/car.hpp"
 #include "trackphys/export.hpp"
-#include "trackphys/geometry/normalized_triangle.hpp"
-#include "trackphys/geometry/triangle.hpp"
-#include "trackphys/profile/trace_recorder.hpp"
+#include "trackphys/geometry/contact.hpp"
 #include "trackphys/profile/update_profile.hpp"
 #include "trackphys/world/world_settings.hpp"
 #include "trackphys/world/world_snapshot.hpp"
 
 namespace trackphys {
 
+class PhaseStopwatch;
+class TraceRecorder;
+
 /// Static colliders (shared, immutable) and the cars that drive on them. update() runs
-/// DESIGN.md's loop for every car: broad phase over the whole update, then steps x
-/// sub-steps of cull, exact contact, deepest contact per ellipsoid, forces and integration.
+/// the loop of docs/design.md#the-update-loop for every car: broad phase over the whole
+/// update, then steps x sub-steps of cull, exact contact, deepest contact per ellipsoid,
+/// forces and integration.
 ///
 /// Cars do not interact yet, so each car's update reads only the static world and its
 /// own state: the result does not depend on the order of the cars. Same inputs, same
@@ -40,11 +41,14 @@ namespace trackphys {
 class TRACKPHYS_API World {
 public:
     /// Throws trackphys::Error on a null static world or invalid settings. In the
-    /// precomputed_tree mid-phase mode the colliders' plane trees are built here (about
-    /// 25 ms per 5k-triangle collider) unless `trees` holds them already (one per collider,
+    /// precomputed_tree mid-phase mode the colliders' plane trees are built here (the
+    /// costliest part of making a World) unless `trees` holds them already (one per collider,
     /// in id order, e.g. another world's plane_trees()).
     explicit World(std::shared_ptr<const StaticWorld> statics, WorldSettings settings = {},
                    ColliderPlaneTrees trees = {});
+    ~World();
+    World(World&&) noexcept;
+    World& operator=(World&&) noexcept;
 
     /// The colliders' precomputed plane trees (empty unless the mode uses them), to share
     /// with other worlds over the same static world.
@@ -60,23 +64,24 @@ public:
     /// of mass farther than settings().max_spawn_distance from every collider's box; a world
     /// without triangles has no map and accepts any position).
     std::size_t add_car(const CarSpec& spec, const RigidBodyState& state);
-    std::size_t car_count() const { return cars_.size(); }
-    Car& car(std::size_t i) { return cars_.at(i).car; }
-    const Car& car(std::size_t i) const { return cars_.at(i).car; }
+    std::size_t car_count() const;
+    /// Car i (throws std::out_of_range past car_count()).
+    Car& car(std::size_t i);
+    const Car& car(std::size_t i) const;
 
     /// Car i's deepest contact per ellipsoid (in CarSpec order) at the last sub-step of
     /// the last update; depth <= 0 where an ellipsoid touched nothing.
-    std::span<const Contact> contacts(std::size_t i) const { return cars_.at(i).deepest; }
+    std::span<const Contact> contacts(std::size_t i) const;
 
     /// Advances every car by settings().dt_update, resetting any car that ends it in an
     /// impossible state (see the class notes).
     void update();
 
     /// How many times car i was reset (counted over the whole simulation: snapshots keep it).
-    std::uint64_t car_resets(std::size_t i) const { return cars_.at(i).resets; }
+    std::uint64_t car_resets(std::size_t i) const;
     /// Why car i was last reset by this World object ("update N: speed ... m/s is above
     /// ..."), or empty.
-    const std::string& last_reset_reason(std::size_t i) const { return cars_.at(i).last_reset; }
+    const std::string& last_reset_reason(std::size_t i) const;
 
     /// The complete dynamic state (see WorldSnapshot): a few hundred bytes per car.
     WorldSnapshot save_state() const;
@@ -103,31 +108,9 @@ public:
     void set_trace(TraceRecorder* trace) { trace_ = trace; }
 
 private:
-    // A candidate that passed the cull, with an upper bound of its penetration depth.
-    struct Survivor {
-        TriangleRef ref;
-        double depth_bound;
-    };
-
-    // Per-car working memory, kept between updates so a steady state allocates nothing.
-    struct CarSlot {
-        // Per-ellipsoid storage sized for the car, no hint yet.
-        CarSlot(Car car_in, MidPhase mid_in);
-
-        Car car;
-        MidPhase mid;
-        Aabb update_box;                                      // what mid.begin_update covers
-        std::vector<LookAheadList> listed;                    // per ellipsoid, this step
-        std::vector<Ellipsoid> placed;                        // the ellipsoids, this sub-step
-        std::vector<std::vector<Survivor>> kept;              // per ellipsoid: culled survivors
-        std::vector<Contact> deepest;                         // per ellipsoid, this sub-step
-        std::vector<TriangleRef> deepest_ref;                 // its triangle, tried first next
-        // The reset policy's memory: the state at the start of this update, the resets.
-        RigidBodyState start_state;
-        std::vector<double> start_suspension;
-        std::uint64_t resets = 0;
-        std::string last_reset;
-    };
+    // A car and its per-update working memory (src/world/car_slot.hpp): defined out of line so
+    // that the mid phase and its lists stay out of every user's includes.
+    struct CarSlot;
 
     // update_car under the reset policy (world_guard.cpp).
     void update_car_or_reset(CarSlot& slot, PhaseStopwatch& watch);

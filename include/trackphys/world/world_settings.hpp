@@ -4,12 +4,12 @@
 
 #include <glm/vec3.hpp>
 
-#include "trackphys/collision/mid_phase.hpp"
+#include "trackphys/collision/mid_phase_mode.hpp"
 #include "trackphys/export.hpp"
 
 namespace trackphys {
 
-/// How a World steps (DESIGN.md, "The system in one picture"). The defaults are the
+/// How a World steps (docs/design.md#the-update-loop). The defaults are the
 /// write-up's: 100 updates a second, 10 steps of 4 sub-steps, so h = 0.25 ms.
 struct TRACKPHYS_API WorldSettings {
     double dt_update = 0.01;                    ///< seconds per update()
@@ -29,8 +29,8 @@ struct TRACKPHYS_API WorldSettings {
     /// of the update reuse its list while their own swept ellipsoid stays inside; a list
     /// that came back empty (a body above the road) looks to the end of the update
     /// (LookAheadList). 1 queries every step for that step alone, as the write-up's loop did;
-    /// 3 makes 22 queries an update of 80 on the default lap, for 0.3 more triangles culled
-    /// a sub-step.
+    /// 3 makes about a quarter as many queries on the default lap, for a fraction of a
+    /// triangle more culled a sub-step.
     int mid_phase_look_ahead = 3;
     /// Extra margin (m, finite, >= 0) of a query that looks ahead, which a step's small
     /// deviations from the straight path (a turn, a bump) spend before a new query.

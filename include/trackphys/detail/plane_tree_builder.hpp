@@ -9,14 +9,15 @@
 #include <glm/vec3.hpp>
 
 #include "trackphys/collision/plane_tree.hpp"
-#include "trackphys/collision/static_collider.hpp"
 #include "trackphys/export.hpp"
 #include "trackphys/geometry/normalized_triangle.hpp"
 
 namespace trackphys {
 
-/// Builds PlaneTrees. Keeps its scratch between builds, and the target tree keeps its
-/// storage, so rebuilding per update over a similar number of triangles does not allocate.
+/// Builds PlaneTrees: the engine of make_collider_plane_tree and of MidPhase's per-update
+/// tree, in an installed header only because MidPhase holds one by value. Keeps its scratch
+/// between builds, and the target tree keeps its storage, so rebuilding per update over a
+/// similar number of triangles does not allocate.
 /// Deterministic: same triangles, ids and settings -> the same tree, bit for bit.
 class TRACKPHYS_API PlaneTreeBuilder {
 public:
@@ -64,14 +65,5 @@ private:
     std::vector<double> lows_, highs_;
     std::vector<double> suffix_low_;
 };
-
-/// The precomputed plane tree of a collider: every kept triangle, cost-based splits
-/// (PlaneTreeSettings::precomputed() unless given), ids = mesh triangle indices, so that
-/// PlaneTree::id(slot) is what StaticCollider::triangle() takes. Built from the collider
-/// rather than stored in it: StaticCollider stays the broad phase's compact structure
-/// (~48 bytes a triangle) and worlds that use no precomputed mid phase pay nothing.
-TRACKPHYS_API PlaneTree make_collider_plane_tree(
-    const StaticCollider& collider,
-    const PlaneTreeSettings& settings = PlaneTreeSettings::precomputed());
 
 }  // namespace trackphys

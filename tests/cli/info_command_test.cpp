@@ -8,7 +8,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "io_test_support.hpp"
+#include "io/io_test_support.hpp"
 #include "trackphys/io/mesh_io.hpp"
 
 namespace trackphys {

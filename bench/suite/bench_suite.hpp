@@ -1,15 +1,16 @@
 #pragma once
 
-// `trackphys bench`: every comparison of issue 7 in one run. Each group measures its cases
-// on the same inputs and adds rows to a BenchRun; bench_command.cpp prints them as one table
-// and JSON. The inputs are the bench/ programs' own (tightest_turn_scene.hpp, cull_scene.hpp,
-// midphase_scene.hpp, point_queries.hpp, peers/*.hpp), so the command and the Google
-// Benchmark programs measure the same thing.
+// trackphys-bench: every comparison of the benchmarks in one run. Each group measures its
+// cases on the same inputs and adds rows to a BenchRun; main.cpp prints them as one table
+// and JSON. The inputs are trackphys_bench_support's (tightest_turn_scene.hpp,
+// cull_scene.hpp, midphase_scene.hpp, point_queries.hpp, peers/*.hpp), so this program and
+// the Google Benchmark programs measure the same thing.
 
 #include <algorithm>
 #include <chrono>
 #include <cstddef>
 #include <deque>
+#include <filesystem>
 #include <string>
 #include <functional>
 #include <utility>
@@ -20,7 +21,15 @@
 #include "trackphys/dynamics/car.hpp"
 #include "trackphys/track/track.hpp"
 
-namespace trackphys::cli {
+namespace trackphys::suite {
+
+/// trackphys-bench's options.
+struct BenchOptions {
+    bool quick = false;
+    std::vector<std::string> only;  ///< groups to run; empty: all
+    std::filesystem::path json;     ///< where to write the JSON; empty: nowhere
+    bool check = false;             ///< fail on a MISS in --quick runs too
+};
 
 /// One measured case. median_ns is the median time of one call of the case (ns); ratio is
 /// median_ns / the median of the row named `versus` (< 1: faster than it).
@@ -34,12 +43,17 @@ struct BenchRow {
     std::string note;                                    ///< what the write-up said, a caveat
 };
 
-/// A target of the issue, checked on this run.
+/// A target of the issue, checked on this run. A speed ratio is met only together with the
+/// correctness that goes with it (the same triangle sets, our depth contract held, the
+/// drift and the peer's failures reported): `correct` says whether it holds, `evidence` the
+/// figures, printed on the target line itself.
 struct BenchTarget {
     std::string what;
     double value = 0.0;   ///< measured (a ratio: larger is better)
     double target = 0.0;  ///< at least this
-    bool met() const { return value >= target; }
+    bool correct = true;
+    std::string evidence;
+    bool met() const { return correct && value >= target; }
 };
 
 /// A peer library and whether this build has it.
@@ -65,7 +79,8 @@ public:
     /// Adds a row; its ratio is against the row `versus` of the same group (added before),
     /// or 1 for a reference row (versus empty).
     BenchRow& add(std::string group, std::string name, double median_ns, std::string versus = {});
-    void add_target(std::string what, double value, double target);
+    void add_target(std::string what, double value, double target, bool correct = true,
+                    std::string evidence = {});
 
     const std::deque<BenchRow>& rows() const { return rows_; }
     const std::vector<BenchTarget>& targets() const { return targets_; }
@@ -105,9 +120,38 @@ double median_call_ns(F&& f, int calls, int batches) {
     return ns[static_cast<std::size_t>(batches / 2)];
 }
 
+/// This thread's CPU time (ns). An update of Bullet's loop takes milliseconds, longer than
+/// a time slice on a busy machine: its wall time would count other processes' turns, which
+/// a 60 us update mostly escapes, and flatter the ratio.
+double thread_cpu_ns();
+
+/// median_call_ns of several functions whose ratios matter, taking turns batch by batch, so
+/// that a busy moment of a shared machine falls on all of them alike. Only for functions
+/// that share their data or whose data fits the caches together: turns among many working
+/// sets time each one on cold caches.
+inline std::vector<double> median_call_ns_in_turns(const std::vector<std::function<void()>>& fs,
+                                                   int calls, int batches) {
+    using Clock = std::chrono::steady_clock;
+    for (const auto& f : fs)
+        for (int k = 0; k < calls; ++k) f();
+    std::vector<std::vector<double>> ns(fs.size(), std::vector<double>(static_cast<std::size_t>(batches)));
+    for (std::size_t b = 0; b < static_cast<std::size_t>(batches); ++b)
+        for (std::size_t i = 0; i < fs.size(); ++i) {
+            const auto start = Clock::now();
+            for (int k = 0; k < calls; ++k) fs[i]();
+            ns[i][b] = std::chrono::duration<double, std::nano>(Clock::now() - start).count() / calls;
+        }
+    std::vector<double> medians;
+    for (std::vector<double>& sample : ns) {
+        std::nth_element(sample.begin(), sample.begin() + batches / 2, sample.end());
+        medians.push_back(sample[static_cast<std::size_t>(batches / 2)]);
+    }
+    return medians;
+}
+
 /// A car driven by autopilot, each update timed.
 struct TimedDrive {
-    std::vector<double> update_ns;        ///< per update
+    std::vector<double> update_ns;        ///< per update: the thread's CPU time
     std::vector<glm::dvec3> positions;    ///< the car's centre of mass after each update (m)
     double final_speed_kmh = 0.0;
 };
@@ -143,4 +187,4 @@ void bench_update_peers(BenchRun& run);
 /// Which peers this build has.
 std::vector<PeerStatus> peer_status();
 
-}  // namespace trackphys::cli
+}  // namespace trackphys::suite

@@ -2,7 +2,7 @@
 
 // The benchmarks' shared scene: the default track (seed 7), its tightest banked turn, and
 // the default car driving through it at 1000 km/h for one update (40 sub-steps of 0.25 ms,
-// 7 cm each, in 10 steps of 4), its wheels on the road. Header-only.
+// 7 cm each, in 10 steps of 4), its wheels on the road.
 
 #include <algorithm>
 #include <cstddef>
@@ -25,15 +25,7 @@ namespace trackphys::bench {
 
 /// Every chunk of a track as one mesh (the chunks' vertices concatenated), for the structures
 /// that take a single mesh: brute force, Bullet's btBvhTriangleMeshShape.
-inline TriangleMesh merged_track_mesh(const Track& track) {
-    TriangleMesh mesh;
-    for (const TrackChunk& chunk : track.chunks) {
-        const auto base = static_cast<std::uint32_t>(mesh.vertices.size());
-        mesh.vertices.insert(mesh.vertices.end(), chunk.mesh.vertices.begin(), chunk.mesh.vertices.end());
-        for (const auto& t : chunk.mesh.triangles) mesh.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
-    }
-    return mesh;
-}
+TriangleMesh merged_track_mesh(const Track& track);
 
 /// A sphere (m): an ellipsoid's bounding sphere at one sub-step, the cull's query.
 struct BoundingSphere {
@@ -56,16 +48,7 @@ struct TightestTurnScene {
     CarSpec car = CarSpec::default_car();
     glm::dquat car_orientation{1.0, 0.0, 0.0, 0.0};  ///< world from body
 
-    TightestTurnScene() {
-        TrackParams params;
-        params.seed = 7;
-        track = generate_track(params);
-        turn = track.centerline[compute_track_stats(track).tightest_sample];
-        update_box = car_update_box(turn);
-        ride_height = car.lowest_point_depth() - 0.01;
-        // Body frame +X left, +Y up, +Z forward: the columns are the road frame there.
-        car_orientation = glm::quat_cast(glm::dmat3(turn.left, turn.up, turn.tangent));
-    }
+    TightestTurnScene();
 
     /// World center of ellipsoid `e` at the start of sub-step `substep` (0..kSubsteps).
     glm::dvec3 center(std::size_t e, int substep) const {
@@ -87,33 +70,13 @@ struct TightestTurnScene {
     }
 
     /// The cull's queries over the update: each sub-step's 8 bounding spheres (40 x 8).
-    std::vector<BoundingSphere> bounding_spheres() const {
-        std::vector<BoundingSphere> spheres;
-        for (int substep = 0; substep < kSubsteps; ++substep)
-            for (std::size_t e = 0; e < car.ellipsoids.size(); ++e)
-                spheres.push_back({center(e, substep), bounding_radius(e)});
-        return spheres;
-    }
+    std::vector<BoundingSphere> bounding_spheres() const;
 
     /// The broad-phase candidates: every triangle whose box meets the update box.
-    std::vector<Triangle> candidates() const {
-        std::vector<Triangle> out;
-        for (const TrackChunk& chunk : track.chunks) {
-            if (!chunk.bounds.overlaps(update_box)) continue;
-            for (const auto& t : chunk.mesh.triangles) {
-                const Triangle triangle(chunk.mesh.vertices[t[0]], chunk.mesh.vertices[t[1]],
-                                        chunk.mesh.vertices[t[2]]);
-                if (triangle.bounds().overlaps(update_box)) out.push_back(triangle);
-            }
-        }
-        return out;
-    }
+    std::vector<Triangle> candidates() const;
 };
 
 /// Built once per benchmark program (generating the track takes ~0.1 s).
-inline const TightestTurnScene& tightest_turn_scene() {
-    static const TightestTurnScene instance;
-    return instance;
-}
+const TightestTurnScene& tightest_turn_scene();
 
 }  // namespace trackphys::bench

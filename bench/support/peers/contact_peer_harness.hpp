@@ -151,7 +151,7 @@ inline MethodResult measure_ours(const CaseSet& set) {
 }
 
 /// Command line of every peer program: --quick (a few hundred cases, for the tests and
-/// `trackphys bench --quick`) and --json FILE.
+/// `trackphys-bench --quick`) and --json FILE.
 struct Options {
     bool quick = false;
     std::string json;

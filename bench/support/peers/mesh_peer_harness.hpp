@@ -24,7 +24,7 @@
 // overlaps the box where ours kept the triangle ("miss" counts both failures). Exit code 1
 // otherwise.
 //
-//   (header-only: bench_peers_mesh_bullet_* and `trackphys bench` run the same queries)
+//   (header-only: bench_peers_mesh_bullet_* and trackphys-bench run the same queries)
 
 #include <BulletCollision/CollisionShapes/btBvhTriangleMeshShape.h>
 #include <BulletCollision/CollisionShapes/btTriangleIndexVertexArray.h>

@@ -1,0 +1,43 @@
+#pragma once
+
+// The write-up's three sphere culls on the same inputs (shared by bench_sphere_cull and
+// trackphys-bench): the broad-phase candidates of the default track's
+// tightest banked turn against the bounding spheres of the default car's 8 ellipsoids over
+// the 40 sub-steps of one update at 1000 km/h.
+//   x-y-z order:   origin at the first vertex, tests in x, y, z order (its first version)
+//   normal first:  the same layout, the plane distance first ("about half the cull time")
+//   longest edge:  longest-edge origin, normal first, no min/max ("a little more")
+
+#include <cstddef>
+#include <utility>
+#include <vector>
+
+#include "tightest_turn_scene.hpp"
+#include "trackphys/geometry/normalized_triangle.hpp"
+#include "geometry/sphere_cull_variants.hpp"
+
+namespace trackphys::bench {
+
+enum class CullVariant { xyz_order, normal_first, longest_edge_normal_first };
+
+/// The candidates in both stored layouts, and the spheres.
+struct CullScene {
+    std::vector<BoundingSphere> spheres;
+    std::vector<ArbitraryOriginTriangle> first_vertex_origin;
+    std::vector<NormalizedTriangle> longest_edge_origin;
+
+    explicit CullScene(const TightestTurnScene& turn)
+        : CullScene(turn.bounding_spheres(), turn.candidates()) {}
+    CullScene(std::vector<BoundingSphere> query_spheres, const std::vector<Triangle>& candidates)
+        : spheres(std::move(query_spheres)),
+          first_vertex_origin(candidates.begin(), candidates.end()),
+          longest_edge_origin(candidates.begin(), candidates.end()) {}
+
+    /// Sphere-triangle tests in one pass (every sphere against every candidate).
+    std::size_t tests() const { return spheres.size() * longest_edge_origin.size(); }
+};
+
+/// One pass of `variant` over the scene: the number of (sphere, triangle) pairs kept.
+std::size_t cull_pass(const CullScene& scene, CullVariant variant);
+
+}  // namespace trackphys::bench

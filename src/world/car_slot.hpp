@@ -1,0 +1,43 @@
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "trackphys/collision/look_ahead_list.hpp"
+#include "trackphys/collision/mid_phase.hpp"
+#include "trackphys/dynamics/car.hpp"
+#include "trackphys/geometry/aabb.hpp"
+#include "trackphys/geometry/contact.hpp"
+#include "trackphys/geometry/ellipsoid.hpp"
+#include "trackphys/world/world.hpp"
+
+namespace trackphys {
+
+// Per-car working memory, kept between updates so a steady state allocates nothing.
+struct World::CarSlot {
+    // A candidate that passed the cull, with an upper bound of its penetration depth.
+    struct Survivor {
+        TriangleRef ref;
+        double depth_bound;
+    };
+
+    // Per-ellipsoid storage sized for the car, no hint yet.
+    CarSlot(Car car_in, MidPhase mid_in);
+
+    Car car;
+    MidPhase mid;
+    Aabb update_box;                                      // what mid.begin_update covers
+    std::vector<LookAheadList> listed;                    // per ellipsoid, this step
+    std::vector<Ellipsoid> placed;                        // the ellipsoids, this sub-step
+    std::vector<std::vector<Survivor>> kept;              // per ellipsoid: culled survivors
+    std::vector<Contact> deepest;                         // per ellipsoid, this sub-step
+    std::vector<TriangleRef> deepest_ref;                 // its triangle, tried first next
+    // The reset policy's memory: the state at the start of this update, the resets.
+    RigidBodyState start_state;
+    std::vector<double> start_suspension;
+    std::uint64_t resets = 0;
+    std::string last_reset;
+};
+
+}  // namespace trackphys

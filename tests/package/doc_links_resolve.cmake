@@ -1,0 +1,75 @@
+# cmake -DROOT=<source dir> -P doc_links_resolve.cmake
+# Fails unless every link to a section of a docs page resolves: docs/<page>.md#<section>
+# cited anywhere in the sources, scripts and pages, and the Markdown links of the pages
+# themselves ([..](#section), [..](page.md#section)). A section is a heading's anchor by
+# GitHub's rule: lower case, spaces to hyphens, punctuation but hyphens and underscores
+# dropped. Also fails when a file cites the design notes the project was planned from,
+# which live outside the repository.
+
+# Fails unless ${page} (relative to ROOT) has a heading with anchor ${anchor}.
+function(expect_section from link page anchor)
+  if(NOT EXISTS "${ROOT}/${page}")
+    message(FATAL_ERROR "${from} links ${link}: ${page} does not exist")
+  endif()
+  file(STRINGS "${ROOT}/${page}" headings REGEX "^#+ ")
+  foreach(heading IN LISTS headings)
+    string(REGEX REPLACE "^#+ " "" text "${heading}")
+    string(TOLOWER "${text}" text)
+    string(REGEX REPLACE "[^a-z0-9 _-]" "" text "${text}")
+    string(REPLACE " " "-" text "${text}")
+    if(text STREQUAL anchor)
+      return()
+    endif()
+  endforeach()
+  message(FATAL_ERROR "${from} links ${link}: no heading of ${page} has that anchor")
+endfunction()
+
+file(GLOB_RECURSE files RELATIVE "${ROOT}"
+     "${ROOT}/include/*" "${ROOT}/src/*" "${ROOT}/apps/*" "${ROOT}/tests/*" "${ROOT}/bench/*"
+     "${ROOT}/fuzz/*.cpp" "${ROOT}/examples/*" "${ROOT}/scripts/*" "${ROOT}/docs/*.md"
+     "${ROOT}/README.md" "${ROOT}/CMakeLists.txt")
+list(FILTER files EXCLUDE REGEX "\\.(png|glb|obj|seed)$")
+set(checked 0)
+foreach(file IN LISTS files)
+  file(STRINGS "${ROOT}/${file}" outside REGEX "DESIGN[.]md")
+  if(outside)
+    list(GET outside 0 first)
+    message(FATAL_ERROR "${file} cites a design note outside the repository: ${first}")
+  endif()
+  file(STRINGS "${ROOT}/${file}" lines REGEX "docs/[a-z_]+\\.md#")
+  foreach(line IN LISTS lines)
+    string(REGEX MATCHALL "docs/[a-z_]+\\.md#[a-z0-9_-]+" links "${line}")
+    foreach(link IN LISTS links)
+      string(REGEX REPLACE "#.*" "" page "${link}")
+      string(REGEX REPLACE ".*#" "" anchor "${link}")
+      expect_section("${file}" "${link}" "${page}" "${anchor}")
+      math(EXPR checked "${checked} + 1")
+    endforeach()
+  endforeach()
+  if(file MATCHES "\\.md$")
+    get_filename_component(folder "${file}" DIRECTORY)
+    file(STRINGS "${ROOT}/${file}" lines REGEX "\\]\\([a-z_]*(\\.md)?#")
+    foreach(line IN LISTS lines)
+      # CMake does not split a list at a ';' inside square brackets: match "}(" for "](".
+      string(REPLACE "]" "}" line "${line}")
+      string(REGEX MATCHALL "}\\([a-z_]*(\\.md)?#[a-z0-9_-]+\\)" links "${line}")
+      foreach(link IN LISTS links)
+        string(REGEX REPLACE "^}\\(([^#]*)#([^)]*)\\)$" "\\1" target "${link}")
+        string(REGEX REPLACE "^}\\(([^#]*)#([^)]*)\\)$" "\\2" anchor "${link}")
+        if(target STREQUAL "")
+          set(page "${file}")
+        elseif(folder STREQUAL "")
+          set(page "${target}")
+        else()
+          set(page "${folder}/${target}")
+        endif()
+        expect_section("${file}" "(${target}#${anchor})" "${page}" "${anchor}")
+        math(EXPR checked "${checked} + 1")
+      endforeach()
+    endforeach()
+  endif()
+endforeach()
+if(checked EQUAL 0)
+  message(FATAL_ERROR "no link to a docs section found under ${ROOT}")
+endif()
+message(STATUS "${checked} links to docs sections resolve")
