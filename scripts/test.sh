@@ -8,6 +8,9 @@ cd "$(dirname "$0")/.."
 scripts/setup.sh
 cmake --preset release
 cmake --build --preset release --parallel "$(nproc)"
+# The real-world track meshes some tests run on, into build/torcs once (a 333 MB download:
+# see the script); without network the script says so and those tests skip.
+scripts/fetch_torcs_track.sh build/torcs || [ $? -eq 77 ]
 # Every test but the long ones (labels "long" and "fuzz": the soak and the fuzzers' short
 # runs); a label of the caller's own (-L LABEL) chooses instead: scripts/test.sh -L fuzz.
 skip=(--label-exclude 'long|fuzz')

@@ -1,7 +1,6 @@
 #include "drive_scene.hpp"
 
 #include <cmath>
-#include <limits>
 #include <numbers>
 #include <sstream>
 
@@ -10,6 +9,7 @@
 #include "trackphys/error.hpp"
 #include "trackphys/geometry/ellipsoid.hpp"
 #include "trackphys/io/mesh_io.hpp"
+#include "trackphys/world/spawn.hpp"
 
 namespace trackphys::cli {
 namespace {
@@ -63,21 +63,17 @@ RigidBodyState start_on_track(const Track& track, const CarSpec& car) {
 
 RigidBodyState spawn_on_surface(const StaticWorld& statics, const CarSpec& car,
                                 const glm::dvec3& spawn, double heading_deg) {
-    const auto hit = statics.raycast(spawn, glm::dvec3(0.0, -1.0, 0.0),
-                                     std::numeric_limits<double>::infinity());
-    if (!hit) {
-        std::ostringstream why;
-        why << "--spawn " << spawn.x << ',' << spawn.y << ',' << spawn.z
-            << ": no surface below it (a ray cast straight down hits nothing)";
-        throw Error(why.str());
-    }
-    RigidBodyState state;
-    state.position = spawn - glm::dvec3(0.0, hit->hit.distance - ride_height(car), 0.0);
     // Rotating about +Y by a maps body +Z to (sin a, 0, cos a); heading h wants
     // (cos h, 0, -sin h), so a = h + 90 degrees.
     const double a = (heading_deg + 90.0) * std::numbers::pi / 180.0;
-    state.orientation = glm::angleAxis(a, glm::dvec3(0.0, 1.0, 0.0));
-    return state;
+    try {
+        return place_car_on_surface(statics, car, spawn,
+                                    glm::angleAxis(a, glm::dvec3(0.0, 1.0, 0.0)));
+    } catch (const Error& e) {
+        std::ostringstream why;
+        why << "--spawn " << spawn.x << ',' << spawn.y << ',' << spawn.z << ": " << e.what();
+        throw Error(why.str());
+    }
 }
 
 }  // namespace trackphys::cli

@@ -32,8 +32,9 @@ DriveScene make_mesh_scene(const std::filesystem::path& mesh);
 RigidBodyState start_on_track(const Track& track, const CarSpec& car);
 
 /// The car upright, facing `heading_deg` (about +Y, counter-clockwise from above, 0 = +X,
-/// 90 = -Z), its wheels on the surface found by a ray cast straight down from spawn.
-/// Throws trackphys::Error when nothing is below the spawn point.
+/// 90 = -Z), its centre of mass straight above or below `spawn`, resting on the surface
+/// (place_car_on_surface). Throws trackphys::Error, naming the spawn point, when nothing is
+/// below it or the car does not fit there.
 RigidBodyState spawn_on_surface(const StaticWorld& statics, const CarSpec& car,
                                 const glm::dvec3& spawn, double heading_deg);
 

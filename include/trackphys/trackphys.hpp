@@ -35,6 +35,7 @@
 #include "trackphys/dynamics/rigid_body.hpp"
 
 #include "trackphys/world/autopilot.hpp"
+#include "trackphys/world/spawn.hpp"
 #include "trackphys/world/world.hpp"
 #include "trackphys/world/world_settings.hpp"
 #include "trackphys/world/world_snapshot.hpp"

@@ -198,7 +198,7 @@ inline std::optional<Aabb> ray_segment_box(const RayQuery& ray, double t0, doubl
 /// Two-sided Moller-Trumbore hit distance in [0, max_distance], or nullopt. The distance is
 /// clamped into the ray's (unlimited) span through the triangle's box, so that it never
 /// lies before a node's entry distance (what makes closest-hit pruning exact) and does not
-/// depend on max_distance.
+/// depend on max_distance. A crossing behind the origin (t < 0) is a miss.
 inline std::optional<double> ray_triangle(const RayQuery& ray, const glm::dvec3& a,
                                           const glm::dvec3& b, const glm::dvec3& c) {
     const Aabb box = triangle_box(a, b, c);
@@ -219,6 +219,13 @@ inline std::optional<double> ray_triangle(const RayQuery& ray, const glm::dvec3&
     const double v = glm::dot(ray.dir, q) * inv_det;
     if (!(v >= 0.0 && u + v <= 1.0)) return {};
     double t = glm::dot(e2, q) * inv_det;
+    // Two-sided means either face, not either way along the line: t < 0 is the line
+    // crossing the triangle behind the origin. The clamp below only absorbs rounding (a t
+    // a few ulps outside the box span that the crossing point lies in); a negative t is no
+    // rounding error, and clamped it would be the span's start, a hit at 0 whenever the
+    // origin lies in the triangle's box (a point above a long, steep kerb triangle). NaN
+    // (0 * infinity from a det near the smallest double) still goes to the clamp.
+    if (t < 0.0) return {};
     t = t > t_near ? t : t_near;  // also maps NaN to t_near
     t = t < t_far ? t : t_far;
     if (t > ray.max_distance) return {};

@@ -1,5 +1,6 @@
 target_sources(trackphys PRIVATE
   world/autopilot.cpp
+  world/spawn.cpp
   world/world.cpp
   world/world_guard.cpp
   world/world_settings.cpp

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
 #include "collision/bvh_builder.hpp"
@@ -103,6 +104,28 @@ TEST(StaticCollider, SingleTriangle) {
     EXPECT_TRUE(collider.raycast({0.25, 2.0, -0.25}, {0, -1, 0}, 2.0));
     EXPECT_FALSE(collider.raycast({0.25, 2.0, -0.25}, {0, 1, 0}, kInf));  // pointing away
     EXPECT_FALSE(collider.raycast({0.75, 2.0, -0.75}, {0, -1, 0}, kInf));  // beside it
+}
+
+// A steep kerb triangle of c-speedway (15 m x 10 m, 4.8 m high) and a point 1.12 m in front
+// of its plane and inside its box: the ray's line crosses the triangle 2.79 m behind the
+// origin. Two-sided is about faces, not directions: cast away from the crossing it is a
+// miss (not a hit at 0, the start of the ray's span through the box), cast towards it a hit
+// at the crossing.
+TEST(StaticCollider, RayMissesTheCrossingBehindItsOrigin) {
+    TriangleMesh mesh;
+    mesh.vertices = {{529.998, 4.8, -46.0011}, {529.998, 0.0, -56.0011}, {544.998, 4.8, -46.001}};
+    mesh.triangles = {{0, 1, 2}};
+    const StaticCollider collider(mesh);
+    const glm::dvec3 origin(535.223739, 2.55347419, -48.0970454);
+    const glm::dvec3 dir = glm::normalize(glm::dvec3(-0.539863, -0.681431, -0.494167));
+    ASSERT_TRUE(collider.bounds().contains(origin));
+    EXPECT_FALSE(collider.raycast(origin, dir, kInf));
+    EXPECT_FALSE(collider.raycast(origin, dir, 200.0));
+    const auto hit = collider.raycast(origin, -dir, kInf);
+    ASSERT_TRUE(hit);
+    EXPECT_NEAR(hit->distance, 2.79236, 1e-5);
+    const glm::dvec3 on_plane = origin - dir * hit->distance;
+    EXPECT_NEAR(glm::dot(on_plane - mesh.vertices[0], hit->normal), 0.0, 1e-12);
 }
 
 TEST(StaticCollider, QueriesFarOutsideFindNothing) {

@@ -44,8 +44,10 @@ struct TriangleRef {
 ///   box, closed intervals as Aabb::overlaps.
 /// - query_sphere / query_capsule: the triangle's box overlaps the query shape's box, and
 ///   its distance to the center (or segment), computed in double, is <= radius.
-/// - raycast: the closest two-sided hit (Moller-Trumbore in double), the distance clamped
-///   into the ray's span through the triangle's box; equal distances go to the lower index.
+/// - raycast: the closest hit on either face (Moller-Trumbore in double) at a distance >= 0
+///   along the ray (the line crossing a triangle behind the origin is no hit), the distance
+///   clamped into the ray's span through the triangle's box; equal distances go to the
+///   lower index.
 /// Queries append to caller-owned vectors and use a fixed stack: no allocation once the
 /// vectors have grown to their working size.
 ///
