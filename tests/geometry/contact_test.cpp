@@ -389,6 +389,39 @@ TEST(Contact, FuzzFoundExtremesStayFinite) {
     }
 }
 
+/// Checks a configuration whose separation is beyond double's range: the depth saturates
+/// at -DBL_MAX, and the normal and the point (the midpoint, within range) match the
+/// long-double reference.
+void expect_saturated_separation(const Ellipsoid& e, const Triangle& t) {
+    const Contact got = ellipsoid_triangle_contact(e, t);
+    ASSERT_TRUE(finite(got));
+    const Referenced ref = reference(e, t);
+    const double largest = std::numeric_limits<double>::max();
+    ASSERT_LT(ref.contact.depth, -R(largest));
+    EXPECT_EQ(got.depth, -largest);
+    EXPECT_LE(glm::distance(got.normal, ref.normal), 1e-15);
+    EXPECT_LE(glm::distance(got.point, ref.point), 1e-15 * glm::length(ref.point));
+}
+
+// Found by fuzz_contact (fuzz/seeds/fuzz_contact/separation_beyond_double_range.seed): a
+// center near -1.6e308 m in x and z and a triangle near 0 there are 2.2e308 m apart, and
+// the depth came back -infinity with the point (inf, -inf, inf). The ellipsoid (1e-250 m)
+// acts as a point there; the quaternion's norm overflows, so the orientation is the
+// identity (Ellipsoid's documented fallback). The second case takes the unit-scale solver.
+TEST(Contact, SeparationBeyondDoubleRangeSaturates) {
+    expect_saturated_separation(
+        Ellipsoid({-0x1.c306969697777p+1023, 0x1.000000000ffffp+659, -0x1.c306969696d69p+1023},
+                  glm::dquat(0x1.000000000ffffp-1021, -0x1.0150000000021p-175,
+                             0x1.5000000309b95p+666, 0x1.9696d69696969p+663),
+                  {0x0.0515101696969p-1022, 0x1.c0c0c69696901p-831, 0x1.151510c0c0c0cp-890}),
+        Triangle({0x1p+273, 0x1.f515171515151p-624, -0x1.7777777777777p+456},
+                 {-0x1.0c400ffd3ff77p+561, 0x0.0002100e3e3e3p-1022, 0x1.09b95b5001500p-1020},
+                 {-0x1.3e3e3e3e3e300p+575, -0x1.cfdffff0cfde3p+1009, 0}));
+    expect_saturated_separation(
+        Ellipsoid({-1.7e308, 1e300, 0}, glm::dquat(1, 0, 0, 0), {1e307, 2e306, 3e306}),
+        Triangle({1.7e308, 0, 0}, {1.6e308, 1e307, 0}, {1.6e308, 0, 1e307}));
+}
+
 Ellipsoid scaled(double s, const Ellipsoid& e) {
     return Ellipsoid(s * e.center(), e.orientation(), s * e.semi_axes());
 }
