@@ -86,6 +86,16 @@ struct KindStats {
     double depth_error = 0, angle_error = 0, point_error = 0;
 };
 
+constexpr double kEpsilon = std::numeric_limits<double>::epsilon();
+
+/// The largest distance from the ellipsoid's center to a vertex (m).
+double reach(const ContactCase& c) {
+    double r = 0;
+    for (int i = 0; i < 3; ++i)
+        r = std::max(r, glm::distance(c.triangle[i], c.ellipsoid.center()));
+    return r;
+}
+
 void check_case(const ContactCase& c, KindStats& stats) {
     const Contact got = ellipsoid_triangle_contact(c.ellipsoid, c.triangle);
     ASSERT_TRUE(finite(got)) << describe(c);
@@ -93,8 +103,16 @@ void check_case(const ContactCase& c, KindStats& stats) {
     // The reference is a true minimum: no sampled direction is lower.
     ASSERT_GE(double(ref.contact.sampled_min - ref.contact.depth), -1e-12) << describe(c);
     const double depth_error = std::abs(got.depth - double(ref.contact.depth));
+    // The contract (DESIGN.md), then the accuracy the README reports: 1e-12 m, or, where
+    // that is larger, 2 eps times the triangle's reach from the center. The vertices' offsets
+    // from the center, where any double computation starts, are only known to eps / 2 of that
+    // reach, which lifts the bound above 1e-12 m for the huge family's kilometre-sized
+    // triangles alone.
     ASSERT_LE(depth_error, 1e-9) << describe(c) << " got " << got.depth << " want "
                                  << double(ref.contact.depth);
+    const double measured = std::max(1e-12, 2.0 * kEpsilon * reach(c));
+    ASSERT_LE(depth_error, measured) << describe(c) << " got " << got.depth << " want "
+                                     << double(ref.contact.depth);
     ++stats.cases;
     stats.depth_error = std::max(stats.depth_error, depth_error);
     // Unique: the runner-up is 1e-6 m worse and g curves up by >= 1e-2 m/rad^2 around the
