@@ -71,9 +71,11 @@ bool unit_and_length(glm::dvec3& v, double& length) {
 
 /// x clamped to the finite doubles. Coordinates may lie anywhere in double's range, so the
 /// lengths between them may not: a center near -1.6e308 and a triangle near 0 in x and z
-/// are 2.2e308 apart (found by fuzz_contact), and a radius near 1.8e308 overlaps by up to
-/// twice that. Such a depth or point coordinate saturates at +-1.8e308 instead of
-/// overflowing to an infinity that contact.hpp reserves for non-finite triangles.
+/// are 2.2e308 apart (found by fuzz_contact), and the ellipsoid's extreme point, half of
+/// Contact::point, may lie a radius beyond the largest double. (An overlap is at most the
+/// largest radius: moving the ellipsoid that far along the triangle's normal, away from its
+/// plane, separates them.) Such a depth or point coordinate saturates at +-1.8e308 instead
+/// of overflowing to an infinity, which contact.hpp reserves for non-finite triangles.
 double saturated(double x) {
     constexpr double kLargest = std::numeric_limits<double>::max();
     return std::clamp(x, -kLargest, kLargest);
