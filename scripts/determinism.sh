@@ -3,9 +3,12 @@
 # release preset's build, build/release, as scripts/test.sh makes it, for x86-64-v2) and
 # from clang++ (its own build folder, build/determinism-clang++, for the SSE2 baseline,
 # TRACKPHYS_X86_64_LEVEL=v1, so that the other instruction-set paths run too) must give the
-# same state hash and final position of the same drive, bit for bit. CI (.ci/run) runs it after scripts/test.sh.
+# same state hash and final position of the same drive, bit for bit. The clang++ build also
+# runs the collision and geometry tests, so that the SSE2 code paths are tested, not only
+# driven. CI (.ci/run) runs it after scripts/test.sh.
 #   scripts/determinism.sh [seconds]     (default 10 simulated seconds, seed 7)
-# Exits 0 when they match, 1 when they differ, 2 when a build or run fails.
+# Exits 0 when they match and the tests pass, 1 when they differ or a test fails, 2 when a
+# build or run fails.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -18,22 +21,36 @@ summary() {
   tr -d ' \n' <"$1" | grep -o '"state_hash":"[0-9a-f]*"\|"final_position":\[[^]]*\]'
 }
 
-# Builds the trackphys command with `compiler` into folder `build`; fails with its logs.
+# Builds the space-separated `targets` with `compiler` into folder `build`, configured with
+# the remaining arguments; fails with its logs.
 build_with() {
-  local compiler="$1" build="$2"
-  shift 2
+  local compiler="$1" build="$2" targets
+  read -ra targets <<<"$3"
+  shift 3
   if ! { cmake "$@" >"$out/configure.log" &&
-         cmake --build "$build" --target trackphys_app --parallel "$(nproc)" >"$out/build.log"; }; then
+         cmake --build "$build" --target "${targets[@]}" --parallel "$(nproc)" >"$out/build.log"; }; then
     cat "$out/configure.log" "$out/build.log" >&2 || true
     echo "determinism: the $compiler build failed" >&2
     exit 2
   fi
 }
 
-build_with g++ build/release --preset release
-build_with clang++ build/determinism-clang++ -S . -B build/determinism-clang++ \
-  -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=clang++ -DTRACKPHYS_X86_64_LEVEL=v1 \
-  -DTRACKPHYS_BUILD_TESTS=OFF -DTRACKPHYS_BUILD_BENCHMARKS=OFF
+# The tests the SSE2 build runs, by their folder under tests/.
+sse2_tests=(collision/collision_tests geometry/geometry_tests)
+build_with g++ build/release trackphys_app --preset release
+build_with clang++ build/determinism-clang++ "trackphys_app ${sse2_tests[*]##*/}" \
+  -S . -B build/determinism-clang++ -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=clang++ \
+  -DTRACKPHYS_X86_64_LEVEL=v1 -DTRACKPHYS_BUILD_TESTS=ON -DTRACKPHYS_BUILD_BENCHMARKS=OFF
+
+for path in "${sse2_tests[@]}"; do
+  test="${path##*/}"
+  if ! "build/determinism-clang++/tests/$path" --gtest_brief=1 >"$out/$test.log" 2>&1; then
+    cat "$out/$test.log" >&2
+    echo "determinism: the clang++ (x86-64) build FAILS $test" >&2
+    exit 1
+  fi
+  echo "clang++ (x86-64): $test pass ($(grep -o '[0-9]* tests\? from [0-9]* test suites\? ran' "$out/$test.log"))"
+done
 
 for compiler in g++ clang++; do
   build=build/release

@@ -4,6 +4,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 
 #include <glm/geometric.hpp>
 
@@ -68,10 +69,29 @@ bool unit_and_length(glm::dvec3& v, double& length) {
     return true;
 }
 
+/// x clamped to the finite doubles. Coordinates may lie anywhere in double's range, so the
+/// lengths between them may not: a center near -1.6e308 and a triangle near 0 in x and z
+/// are 2.2e308 apart (found by fuzz_contact), and the ellipsoid's extreme point, half of
+/// Contact::point, may lie a radius beyond the largest double. (An overlap is at most the
+/// largest radius: moving the ellipsoid that far along the triangle's normal, away from its
+/// plane, separates them.) Such a depth or point coordinate saturates at +-1.8e308 instead
+/// of overflowing to an infinity, which contact.hpp reserves for non-finite triangles.
+double saturated(double x) {
+    constexpr double kLargest = std::numeric_limits<double>::max();
+    return std::clamp(x, -kLargest, kLargest);
+}
+
+/// s * p for a power of two s, each coordinate saturated.
+glm::dvec3 saturated_scaled(double s, const glm::dvec3& p) {
+    return {saturated(s * p.x), saturated(s * p.y), saturated(s * p.z)};
+}
+
 /// For configurations whose lengths span more than double's squares can hold (the ellipsoid
 /// smaller than 1e-60 of the triangle's distance or size): the ellipsoid acts as its center
 /// point, sigma = h(u) - |c - z| with z the triangle's closest point and u = (c - z) / |c - z|.
-/// The neglected terms are far below one ulp of the distances involved.
+/// The neglected terms are far below one ulp of the distances involved. The lengths are in
+/// units of scale (a power of two, so the units change no rounding) until the end, where
+/// they may leave double's range.
 Contact point_like_contact(const Ellipsoid& ellipsoid, const std::array<glm::dvec3, 3>& v,
                            double scale) {
     const glm::dvec3 c = ellipsoid.center() / scale;
@@ -88,8 +108,10 @@ Contact point_like_contact(const Ellipsoid& ellipsoid, const std::array<glm::dve
     const glm::dvec3 local = u * ellipsoid.sorted_axes();
     const glm::dvec3 r = ellipsoid.sorted_radii();
     const double h = r.x * glm::length(r / r.x * local);
-    const double depth = h - distance * scale;
-    return {depth, u, z * scale + 0.5 * depth * u};
+    // h / scale may lose bits as a subnormal, but only where h is below 2^-1022 of the
+    // configuration, far below the rounding of z; the depth keeps h itself.
+    const double half_depth = 0.5 * (h / scale - distance);
+    return {saturated(h - distance * scale), u, saturated_scaled(scale, z + half_depth * u)};
 }
 
 }  // namespace
@@ -139,7 +161,14 @@ Contact detail::rescaled_contact(const Ellipsoid& ellipsoid, const std::array<gl
     for (int i = 0; i < 3; ++i) local.edge[i] = local.q[(i + 1) % 3] - local.q[i];
     const detail::LocalContact solved = detail::contact_in_sorted_frame(local_radii * unit.inverse, local);
     const double back = unit.value * scale;  // a power of two: exact
-    return {solved.depth * back, axes * solved.u, c + axes * (solved.point * back)};
+    // The point as the center plus its offset, unless the offset alone leaves double's range
+    // (a center near -1.6e308 and a triangle near 1e308): then formed in units of back, where
+    // the center's lost bits (below 2^-1022 back) are far below the offset's rounding.
+    const glm::dvec3 offset = axes * solved.point;
+    glm::dvec3 point = c + back * offset;
+    for (int k = 0; k < 3; ++k)
+        if (!std::isfinite(point[k])) point[k] = saturated(back * (c[k] / back + offset[k]));
+    return {saturated(solved.depth * back), axes * solved.u, point};
 }
 
 }  // namespace trackphys

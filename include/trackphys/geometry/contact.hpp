@@ -13,13 +13,15 @@ namespace trackphys {
 struct Contact {
     /// Signed penetration (m): > 0 they overlap and depth is the minimum translation
     /// distance; < 0 they are apart by -depth. -infinity for a triangle with a non-finite
-    /// coordinate (out of reach).
+    /// coordinate (out of reach); otherwise finite: a separation beyond double's range
+    /// (possible only with coordinates near +-1e308) saturates at -DBL_MAX.
     double depth;
     /// Unit world direction in which to move the ellipsoid to separate (when apart: away
     /// from the triangle).
     glm::dvec3 normal;
     /// Midpoint between the ellipsoid's extreme point towards the triangle and the
-    /// triangle's touching point (m, world).
+    /// triangle's touching point (m, world; a coordinate beyond double's range saturates at
+    /// +-DBL_MAX).
     glm::dvec3 point;
 };
 
