@@ -52,7 +52,7 @@ Contact far_field(const Ellipsoid& a, const Ellipsoid& b, double scale) {
     const glm::dvec3 u = glm::normalize(half / largest);  // from b towards a
     const auto support = [&](const Ellipsoid& e, const glm::dvec3& n) {
         const glm::dvec3 local = n * e.sorted_axes();
-        const glm::dvec3 r = e.sorted_radii() / scale;
+        const glm::dvec3 r = raised(e.sorted_radii() / scale);
         const glm::dvec3 m2 = r * r * local;
         const double value = std::sqrt(glm::dot(m2, local));
         return std::pair{value, e.sorted_axes() * (m2 / value) * scale};
@@ -64,24 +64,32 @@ Contact far_field(const Ellipsoid& a, const Ellipsoid& b, double scale) {
     return {-(distance - (ha + hb) * scale), u, point};
 }
 
-Contact ordered_contact(const Ellipsoid& a, const Ellipsoid& b) {
+/// a and b in a's sorted frame at unit scale, or false when their centres are too far apart.
+bool unit_frame(const Ellipsoid& a, const Ellipsoid& b, double& scale, detail::PairFrame& frame) {
     // Unit scale: the larger semi-axis in [1, 2).
-    const double scale = std::ldexp(1.0, std::ilogb(std::max(a.sorted_radii().x,
-                                                             b.sorted_radii().x)));
+    scale = std::ldexp(1.0, std::ilogb(std::max(a.sorted_radii().x, b.sorted_radii().x)));
     const double inv = 1.0 / scale;
     const glm::dvec3 d_world = (a.center() - b.center()) * inv;
     const glm::dvec3 d_abs = abs_each(d_world);
-    if (!(std::max({d_abs.x, d_abs.y, d_abs.z}) < kFarField)) return far_field(a, b, scale);
+    if (!(std::max({d_abs.x, d_abs.y, d_abs.z}) < kFarField)) return false;
     const glm::dmat3& axes = a.sorted_axes();
-    detail::PairFrame frame;
     frame.ra = raised(a.sorted_radii() * inv);
     frame.rb = raised(b.sorted_radii() * inv);
     frame.b_axes = glm::transpose(axes) * b.sorted_axes();
     frame.d = d_world * axes;  // A^T d
+    return true;
+}
+
+Contact ordered_contact(const Ellipsoid& a, const Ellipsoid& b) {
+    double scale;
+    detail::PairFrame frame;
+    if (!unit_frame(a, b, scale, frame)) return far_field(a, b, scale);
     const detail::PairSolution s = detail::solve_pair(frame);
+    const glm::dmat3& axes = a.sorted_axes();
     const glm::dvec3 extreme_a = a.center() + axes * s.extreme_a * scale;
     const glm::dvec3 extreme_b = b.center() + axes * s.extreme_b * scale;
-    return {s.depth * scale, -(axes * s.n), 0.5 * (extreme_a + extreme_b)};
+    // Halves first: the sum of two points near the largest double would overflow.
+    return {s.depth * scale, -(axes * s.n), 0.5 * extreme_a + 0.5 * extreme_b};
 }
 
 }  // namespace
@@ -94,5 +102,18 @@ Contact ellipsoid_ellipsoid_contact(const Ellipsoid& a, const Ellipsoid& b) {
     }
     return ordered_contact(a, b);
 }
+
+namespace detail {
+
+PairSolution pair_solution(const Ellipsoid& a, const Ellipsoid& b) {
+    const bool swap = key(b) < key(a);
+    double scale;
+    PairFrame frame;
+    if (!unit_frame(swap ? b : a, swap ? a : b, scale, frame))
+        return {0.0, glm::dvec3(0.0), glm::dvec3(0.0), glm::dvec3(0.0), PairPath::far_field, 0};
+    return solve_pair(frame);
+}
+
+}  // namespace detail
 
 }  // namespace trackphys

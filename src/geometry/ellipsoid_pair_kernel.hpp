@@ -7,6 +7,8 @@
 #include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
 
+#include "trackphys/geometry/ellipsoid.hpp"
+
 namespace trackphys::detail {
 
 /// How the global minimum was established.
@@ -38,5 +40,9 @@ struct PairSolution {
 /// The global minimum of h. Radii must be finite, sorted, >= 2^-200 and <= 2; d finite
 /// with every component below 2^500 in magnitude.
 PairSolution solve_pair(const PairFrame& frame);
+
+/// How ellipsoid_ellipsoid_contact(a, b) establishes its answer, and how many evaluations
+/// of h it takes (for the tests and the benchmark).
+PairSolution pair_solution(const Ellipsoid& a, const Ellipsoid& b);
 
 }  // namespace trackphys::detail

@@ -2,15 +2,20 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstdio>
+#include <cstdint>
 #include <cstdlib>
+#include <limits>
 #include <map>
 #include <string>
+#include <vector>
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include "geometry/ellipsoid_pair_kernel.hpp"
 #include "support/ellipsoid_pair_cases.hpp"
 #include "support/ellipsoid_pair_reference.hpp"
 
@@ -138,6 +143,182 @@ TEST(EllipsoidPair, SpheresMatchTheClosedForm) {
             ASSERT_LE(angle(got.normal, d / distance), 1e-9) << describe(c);
         }
     }
+}
+
+}  // namespace
+}  // namespace trackphys
+
+namespace trackphys {
+namespace {
+
+/// h at -normal in double: the support of A - B in the direction the contact's normal
+/// says. A normal that minimises h gives back the depth.
+double support_at_normal(const Ellipsoid& a, const Ellipsoid& b, const glm::dvec3& normal) {
+    const glm::dvec3 n = -normal;
+    const glm::dvec3 xa = PairCaseGenerator::support_point(a, n) - a.center();
+    const glm::dvec3 xb = PairCaseGenerator::support_point(b, -n) - b.center();
+    return glm::dot(a.center() - b.center(), n) + glm::dot(xa, n) - glm::dot(xb, n);
+}
+
+std::vector<PairCase> mixed_cases(std::uint64_t seed, int per_kind) {
+    PairCaseGenerator generator(seed);
+    std::vector<PairCase> out;
+    for (int k = 0; k < static_cast<int>(PairKind::count); ++k)
+        for (int i = 0; i < per_kind; ++i) out.push_back(generator.make(static_cast<PairKind>(k)));
+    return out;
+}
+
+TEST(EllipsoidPair, SwappingTheArgumentsNegatesTheNormalBitForBit) {
+    for (const PairCase& c : mixed_cases(11, 200)) {
+        const Contact ab = ellipsoid_ellipsoid_contact(c.a, c.b);
+        const Contact ba = ellipsoid_ellipsoid_contact(c.b, c.a);
+        ASSERT_EQ(std::bit_cast<std::uint64_t>(ab.depth), std::bit_cast<std::uint64_t>(ba.depth))
+            << describe(c);
+        for (int i = 0; i < 3; ++i) {
+            ASSERT_EQ(ab.normal[i], -ba.normal[i]) << describe(c);
+            ASSERT_EQ(std::bit_cast<std::uint64_t>(ab.point[i]),
+                      std::bit_cast<std::uint64_t>(ba.point[i]))
+                << describe(c);
+        }
+    }
+}
+
+TEST(EllipsoidPair, RigidMotionsKeepTheDepthAndCarryTheNormal) {
+    PairCaseGenerator motions(12);
+    for (const PairCase& c : mixed_cases(13, 150)) {
+        const glm::dquat q = motions.rotation();
+        const glm::dvec3 t = motions.unit_vector() * motions.uniform(0.0, 100.0);
+        const Ellipsoid a = c.a.transformed(q, t), b = c.b.transformed(q, t);
+        const Contact before = ellipsoid_ellipsoid_contact(c.a, c.b);
+        const Contact after = ellipsoid_ellipsoid_contact(a, b);
+        const double magnitude = std::max({std::abs(before.depth), largest_axis(a, b), 100.0});
+        const double tolerance = 1e-12 * magnitude;
+        ASSERT_NEAR(after.depth, before.depth, tolerance) << describe(c);
+        // The moved normal, carried back, minimises the original pair's h (a rotated copy of
+        // the original normal when the minimiser is unique, another minimiser otherwise).
+        const glm::dvec3 back = glm::inverse(q) * after.normal;
+        ASSERT_NEAR(support_at_normal(c.a, c.b, back), before.depth, tolerance) << describe(c);
+    }
+}
+
+TEST(EllipsoidPair, PermutedSemiAxesWithTheMatchingRotationChangeNothing) {
+    // (x, y, z) -> (y, z, x) with the third of a turn about (1, 1, 1), and (x, y, z) ->
+    // (y, x, z) with a quarter turn about z: the same solid, described differently.
+    const glm::dquat cycle(0.5, 0.5, 0.5, 0.5);
+    const glm::dquat swap = glm::angleAxis(1.5707963267948966, glm::dvec3(0.0, 0.0, 1.0));
+    const auto cycled = [&](const Ellipsoid& e) {
+        const glm::dvec3 r = e.semi_axes();
+        return Ellipsoid(e.center(), e.orientation() * cycle, {r.y, r.z, r.x});
+    };
+    const auto swapped = [&](const Ellipsoid& e) {
+        const glm::dvec3 r = e.semi_axes();
+        return Ellipsoid(e.center(), e.orientation() * swap, {r.y, r.x, r.z});
+    };
+    for (const PairCase& c : mixed_cases(14, 150)) {
+        const Contact base = ellipsoid_ellipsoid_contact(c.a, c.b);
+        const double tolerance = 1e-12 * std::max(std::abs(base.depth), largest_axis(c.a, c.b));
+        for (const Contact& other : {ellipsoid_ellipsoid_contact(cycled(c.a), swapped(c.b)),
+                                     ellipsoid_ellipsoid_contact(swapped(c.a), cycled(c.b))}) {
+            ASSERT_NEAR(other.depth, base.depth, tolerance) << describe(c);
+            ASSERT_NEAR(support_at_normal(c.a, c.b, other.normal), base.depth, tolerance)
+                << describe(c);
+        }
+    }
+}
+
+Ellipsoid scaled_by(double s, const Ellipsoid& e) {
+    return Ellipsoid(e.center() * s, e.orientation(), e.semi_axes() * s);
+}
+
+// Every length is divided by a power of two before the solver runs, so a power-of-two scale
+// of the input scales the answer exactly, from 2^-500 to 2^500.
+TEST(EllipsoidPair, PowerOfTwoScalesScaleTheContactExactly) {
+    const std::vector<PairCase> cases = mixed_cases(15, 40);
+    for (const int exponent : {-500, -100, -20, -1, 1, 20, 100, 500}) {
+        const double s = std::ldexp(1.0, exponent);
+        for (const PairCase& c : cases) {
+            // Both built from the same quaternion (normalising a unit one again may move its
+            // last bits).
+            const Contact base =
+                ellipsoid_ellipsoid_contact(scaled_by(1.0, c.a), scaled_by(1.0, c.b));
+            const Contact got = ellipsoid_ellipsoid_contact(scaled_by(s, c.a), scaled_by(s, c.b));
+            ASSERT_EQ(got.depth, base.depth * s) << describe(c) << " scale 2^" << exponent;
+            ASSERT_EQ(got.normal, base.normal) << describe(c) << " scale 2^" << exponent;
+            ASSERT_EQ(got.point, base.point * s) << describe(c) << " scale 2^" << exponent;
+        }
+    }
+}
+
+TEST(EllipsoidPair, NoFiniteInputMakesNaN) {
+    PairCaseGenerator generator(16);
+    const auto any_length = [&] { return std::pow(10.0, generator.uniform(-300.0, 300.0)); };
+    const auto any_coordinate = [&] {
+        const double x = generator.uniform(0, 1);
+        if (x < 0.1) return 0.0;
+        if (x < 0.15) return std::numeric_limits<double>::max() * (x < 0.125 ? 1 : -1);
+        return any_length() * (generator.uniform(0, 1) < 0.5 ? 1 : -1);
+    };
+    const auto any_ellipsoid = [&] {
+        return Ellipsoid({any_coordinate(), any_coordinate(), any_coordinate()},
+                         generator.rotation(), {any_length(), any_length(), any_length()});
+    };
+    for (int i = 0; i < 3000; ++i) {
+        const Ellipsoid a = any_ellipsoid();
+        const Ellipsoid b = i % 3 == 0 ? a : any_ellipsoid();
+        const Contact c = ellipsoid_ellipsoid_contact(a, b);
+        ASSERT_FALSE(std::isnan(c.depth) || std::isnan(c.point.x) || std::isnan(c.point.y) ||
+                     std::isnan(c.point.z))
+            << describe(a, b);
+        ASSERT_NEAR(glm::length(c.normal), 1.0, 1e-12) << describe(a, b);
+        // The point is finite whenever both solids lie within the doubles' range (an extreme
+        // point beyond it is infinite, as it should be).
+        const auto inside_range = [](const Ellipsoid& e) {
+            const glm::dvec3 m = glm::abs(e.center());
+            return std::max({m.x, m.y, m.z}) + e.bounding_radius() <
+                   std::numeric_limits<double>::max();
+        };
+        if (inside_range(a) && inside_range(b)) {
+            ASSERT_TRUE(finite(c)) << describe(a, b);
+        }
+    }
+}
+
+TEST(EllipsoidPair, ShallowAndSeparatedPairsAreCertifiedWithoutSearch) {
+    PairCaseGenerator generator(17);
+    for (int i = 0; i < 1000; ++i) {
+        const PairCase c = generator.make(i % 2 ? PairKind::grazing : PairKind::far);
+        const detail::PairSolution s = detail::pair_solution(c.a, c.b);
+        ASSERT_NE(s.path, detail::PairPath::searched) << describe(c);
+        ASSERT_EQ(s.path == detail::PairPath::separated,
+                  ellipsoid_ellipsoid_contact(c.a, c.b).depth < 0.0)
+            << describe(c);
+    }
+}
+
+TEST(EllipsoidPair, KnownAnswers) {
+    const glm::dquat identity(1.0, 0.0, 0.0, 0.0);
+    // Two boxes' worth of car bodies side by side along x, 0.1 m apart.
+    const Ellipsoid a({0.0, 0.0, 0.0}, identity, {1.0, 0.5, 2.0});
+    const Ellipsoid b({2.1, 0.0, 0.0}, identity, {1.0, 0.7, 2.5});
+    const Contact apart = ellipsoid_ellipsoid_contact(a, b);
+    EXPECT_NEAR(apart.depth, -0.1, 1e-15);
+    EXPECT_EQ(apart.normal, glm::dvec3(-1.0, 0.0, 0.0));
+    EXPECT_NEAR(glm::distance(apart.point, glm::dvec3(1.05, 0.0, 0.0)), 0.0, 1e-15);
+    // Two flat ones stacked along z, overlapping by 0.1 m: pushing a down is the way out.
+    const Ellipsoid low({0.0, 0.0, 0.0}, identity, {2.0, 2.0, 0.5});
+    const Ellipsoid high({0.0, 0.0, 0.9}, identity, {2.0, 2.0, 0.5});
+    const Contact overlap = ellipsoid_ellipsoid_contact(low, high);
+    EXPECT_NEAR(overlap.depth, 0.1, 1e-15);
+    EXPECT_NEAR(glm::distance(overlap.normal, glm::dvec3(0.0, 0.0, -1.0)), 0.0, 1e-15);
+    EXPECT_NEAR(glm::distance(overlap.point, glm::dvec3(0.0, 0.0, 0.45)), 0.0, 1e-15);
+    // One centre, the same shape turned a quarter about z: h is 1 + 0.5 along x and along y,
+    // 4 along the common long axis z; the way out is x or y.
+    const Ellipsoid d({0.0, 0.0, 0.0}, glm::angleAxis(1.5707963267948966, glm::dvec3(0, 0, 1)),
+                      {1.0, 0.5, 2.0});
+    const Contact crossed = ellipsoid_ellipsoid_contact(a, d);
+    EXPECT_NEAR(crossed.depth, 1.5, 1e-12);
+    EXPECT_NEAR(std::abs(crossed.normal.z), 0.0, 1e-6);
+    EXPECT_NEAR(std::abs(crossed.normal.x) * std::abs(crossed.normal.y), 0.0, 1e-6);
 }
 
 }  // namespace
