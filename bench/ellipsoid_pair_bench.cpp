@@ -47,7 +47,7 @@ void BM_Pair(benchmark::State& state, PairKind kind) {
         evaluations += s.evaluations;
     }
     state.counters["separated"] = double(paths[0]) / kCases;
-    state.counters["rolling"] = double(paths[1]) / kCases;
+    state.counters["inscribed"] = double(paths[1]) / kCases;
     state.counters["searched"] = double(paths[2]) / kCases;
     state.counters["evals"] = double(evaluations) / kCases;
 }

@@ -23,12 +23,14 @@
 // - Separated (a critical point with h < 0): h is convex on the ball and decreases
 //   radially where it is negative, so a local minimum with h < 0 is the minimum over the
 //   ball, hence the global one on the sphere (and the only one).
-// - Overlapping, shallow (Blaschke's rolling theorem): every radius of curvature of an
-//   ellipsoid is at least r_min^2 / r_max, and those of a Minkowski sum add, so a ball of
-//   radius rho = r_min,A^2 / r_max,A + r_min,B^2 / r_max,B rolls freely inside K: for every
-//   boundary point p with normal n, the ball of radius rho about p - rho n lies in K. At a
-//   critical point with 0 <= h <= rho, the ball of radius h about the origin is inside that
-//   one, so K holds it and no direction has h below: the critical value is the global one.
+// - Overlapping, shallow (inscribed balls, as in Blaschke's rolling theorem): an ellipsoid
+//   holds the ball of radius rho tangent inside at its support point x(n) iff x(n) is the
+//   closest boundary point of that ball's centre x(n) - rho n, i.e. (Eberly's largest root
+//   of the distance equation, t = -rho a(n) > -r_min^2) iff rho <= r_min^2 / a(n), a(n) the
+//   support value. The Minkowski sum of A's such ball and -B's is a ball of radius
+//   rho = r_min,A^2 / a(n) + r_min,B^2 / b(n) inside K, tangent to K at p(n). At a critical
+//   point with 0 <= h <= rho, the ball of radius h about the origin lies inside that one, so
+//   K holds it and no direction has h below: the critical value is the global one.
 // - Otherwise, a branch-and-bound search. For unit c and any n, h(n) >= p(c).n (p(c) is a
 //   point of K), so on the cap of directions within angle theta of c,
 //       h(n) >= (h(c) >= 0 ? cos(theta) h(c) : h(c)) - sin(theta) |p_t(c)|,
@@ -281,11 +283,12 @@ PairSolution solve_pair(const PairFrame& frame) {
     const dvec3 start = d2 > 0x1p-600 ? -frame.d / std::sqrt(d2) : dvec3(0.0, 0.0, 1.0);
     Descent result = descend(f, f.at(start));
     PairPath path = PairPath::searched;
-    const double rolling = frame.ra.z * frame.ra.z / frame.ra.x + frame.rb.z * frame.rb.z / frame.rb.x;
-    if (result.converged && result.at.h < 0.0)
+    const Sample& at = result.at;
+    if (result.converged && at.h < 0.0)
         path = PairPath::separated;
-    else if (result.converged && result.at.h <= rolling + kSearchTolerance)
-        path = PairPath::rolling_ball;
+    else if (result.converged && at.h <= frame.ra.z * frame.ra.z / at.a +
+                                             frame.rb.z * frame.rb.z / at.b + kSearchTolerance)
+        path = PairPath::inscribed_balls;
     else
         result = search(f, result);
     return {result.at.h, result.at.n, result.at.xa, -result.at.xb, path, f.evaluations};

@@ -14,7 +14,7 @@ namespace trackphys::detail {
 /// How the global minimum was established.
 enum class PairPath {
     separated,     ///< a local minimum below zero: h is convex there, so it is the only one
-    rolling_ball,  ///< a critical point no deeper than the rolling radius (Blaschke)
+    inscribed_balls,  ///< a critical point no deeper than the balls inscribed at its support points
     searched,      ///< the branch-and-bound search over the sphere of directions
     far_field,     ///< centres too far apart for the solver: the closed form along them
 };
