@@ -55,8 +55,8 @@ struct Sample {
     dvec3 p;   // d + xa + xb
     dvec3 xa;  // A's support point in direction n
     dvec3 xb;  // B's support point in direction n (B's extreme point towards A is -xb)
-    dvec3 wb;  // n in B's frame
-    double a, b;
+    double a, b;          // the support values of A and B
+    double inv_a, inv_b;  // their inverses
 };
 
 /// A descent's end: converged when the last Newton step (with a positive-definite Hessian)
@@ -74,6 +74,7 @@ constexpr double kTrustRadius = 0.5;
 // Newton steps shorter than this (rad), with a positive-definite Hessian, are taken
 // without a line search.
 constexpr double kQuadraticRegion = 0x1p-20;
+constexpr double kLastStep = 0x1p-26;
 constexpr int kDescentCap = 64;
 constexpr int kHalvingCap = 40;
 // The search drops a square whose lower bound is within this of the best value (unit
@@ -99,11 +100,13 @@ public:
         s.n = n;
         const dvec3 ma = ra2_ * n;
         s.a = std::sqrt(glm::dot(ma, n));
-        s.wb = n * b_axes_;  // B^T n
-        const dvec3 scaled_b = rb_ * s.wb;
+        const dvec3 wb = n * b_axes_;  // B^T n
+        const dvec3 scaled_b = rb_ * wb;
         s.b = std::sqrt(glm::dot(scaled_b, scaled_b));
-        s.xa = ma / s.a;
-        s.xb = b_axes_ * (rb2_ * s.wb) / s.b;
+        s.inv_a = 1.0 / s.a;
+        s.inv_b = 1.0 / s.b;
+        s.xa = ma * s.inv_a;
+        s.xb = b_axes_ * (rb2_ * wb) * s.inv_b;
         s.h = glm::dot(d_, n) + s.a + s.b;
         s.p = d_ + s.xa + s.xb;
         return s;
@@ -115,7 +118,7 @@ public:
         const double a1 = glm::dot(s.xa, t1), a2 = glm::dot(s.xa, t2);
         const dvec3 w1 = t1 * b_axes_, w2 = t2 * b_axes_;
         const double b1 = glm::dot(s.xb, t1), b2 = glm::dot(s.xb, t2);
-        const double inv_a = 1.0 / s.a, inv_b = 1.0 / s.b;
+        const double inv_a = s.inv_a, inv_b = s.inv_b;
         const double h11 = (glm::dot(ra2_ * t1, t1) - a1 * a1) * inv_a +
                            (glm::dot(rb2_ * w1, w1) - b1 * b1) * inv_b - s.h;
         const double h12 = (glm::dot(ra2_ * t1, t2) - a1 * a2) * inv_a +
@@ -131,7 +134,7 @@ private:
     dvec3 d_;
 };
 
-dvec3 unit(const dvec3& v) { return v / std::sqrt(glm::dot(v, v)); }
+dvec3 unit(const dvec3& v) { return v * (1.0 / std::sqrt(glm::dot(v, v))); }
 
 /// An orthonormal basis (t1, t2) of the plane orthogonal to unit n.
 void tangent_basis(const dvec3& n, dvec3& t1, dvec3& t2) {
@@ -193,8 +196,11 @@ Descent descend(PairFunction& f, Sample s) {
         // Near a minimum, h cannot tell the last Newton steps apart (it changes by the
         // square of the step, below its rounding once the step is under ~1e-8 rad), while
         // the gradient still can: there the step is taken without the decrease test.
+        // Newton's error after a step is about the square of the step, so a step below
+        // 2^-26 rad leaves n within ~2^-50 rad of the minimum: it is the last one.
         if (definite && length < kQuadraticRegion) {
             s = f.at(unit(s.n + s1 * t1 + s2 * t2));
+            if (length < kLastStep) return {s, true};
             continue;
         }
         bool moved = false;
