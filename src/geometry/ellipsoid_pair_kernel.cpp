@@ -94,6 +94,8 @@ public:
 
     int evaluations = 0;
 
+    bool centred() const { return d_ == dvec3(0.0); }
+
     Sample at(const dvec3& n) {
         ++evaluations;
         Sample s;
@@ -263,10 +265,14 @@ Descent search(PairFunction& f, Descent best) {
             std::push_heap(heap.begin(), heap.end(), later);
         }
     };
+    // With both centres at one point h is even, h(-n) = h(n) to the bit, so the faces on
+    // one side of the cube cover every value.
+    const int sides = f.centred() ? 1 : 2;
     for (int axis = 0; axis < 3; ++axis)
-        for (const double sign : {1.0, -1.0})
+        for (int side = 0; side < sides; ++side)
             for (const double cu : {-0.5, 0.5})
-                for (const double cv : {-0.5, 0.5}) visit(cu, cv, 0.5, axis, sign);
+                for (const double cv : {-0.5, 0.5})
+                    visit(cu, cv, 0.5, axis, side == 0 ? 1.0 : -1.0);
     while (!heap.empty() && f.evaluations < kEvaluationCap) {
         std::pop_heap(heap.begin(), heap.end(), later);
         const Square q = heap.back();
