@@ -285,14 +285,51 @@ Descent search(PairFunction& f, Descent best) {
     return best;
 }
 
+dvec3 first_guess(const PairFrame& frame) {
+    // M / 2 = D_A^2 + B D_B^2 B^T (symmetric), then (M / 2 + t / 2 I)^-1 d by the adjugate
+    // (positive definite; the determinant and the scale do not matter after normalising).
+    const glm::dmat3& b = frame.b_axes;
+    const dvec3 rb2 = frame.rb * frame.rb;
+    double m[3][3];
+    for (int i = 0; i < 3; ++i)
+        for (int j = i; j < 3; ++j) {
+            m[i][j] = rb2.x * b[0][i] * b[0][j] + rb2.y * b[1][i] * b[1][j] + rb2.z * b[2][i] * b[2][j];
+            m[j][i] = m[i][j];
+        }
+    m[0][0] += frame.ra.x * frame.ra.x;
+    m[1][1] += frame.ra.y * frame.ra.y;
+    m[2][2] += frame.ra.z * frame.ra.z;
+    // The closest point x of {x^T M^-1 x <= 1} to d has the normal (M + t I)^-1 d with
+    // t >= 0 its Lagrange multiplier, about the distance times the radius s: 0 on the
+    // surface (the normal on the centre line), large far away (the centre line itself).
+    const dvec3& d = frame.d;
+    const double s2 = 2.0 * (m[0][0] + m[1][1] + m[2][2]) / 3.0;
+    const double s = std::sqrt(s2);
+    const double t = std::max(0.0, 0.5 * (s * std::sqrt(glm::dot(d, d)) - s2));
+    for (int i = 0; i < 3; ++i) m[i][i] += t;
+    const dvec3 solved(
+        (m[1][1] * m[2][2] - m[1][2] * m[1][2]) * d.x + (m[0][2] * m[1][2] - m[0][1] * m[2][2]) * d.y +
+            (m[0][1] * m[1][2] - m[0][2] * m[1][1]) * d.z,
+        (m[0][2] * m[1][2] - m[0][1] * m[2][2]) * d.x + (m[0][0] * m[2][2] - m[0][2] * m[0][2]) * d.y +
+            (m[0][1] * m[0][2] - m[0][0] * m[1][2]) * d.z,
+        (m[0][1] * m[1][2] - m[0][2] * m[1][1]) * d.x + (m[0][1] * m[0][2] - m[0][0] * m[1][2]) * d.y +
+            (m[0][0] * m[1][1] - m[0][1] * m[0][1]) * d.z);
+    const double length2 = glm::dot(solved, solved);
+    if (!(length2 > 0x1p-600 && length2 < 0x1p600)) {
+        const double d2 = glm::dot(d, d);
+        return d2 > 0x1p-600 ? -d * (1.0 / std::sqrt(d2)) : dvec3(0.0, 0.0, 1.0);
+    }
+    return -solved * (1.0 / std::sqrt(length2));
+}
+
 }  // namespace
 
 PairSolution solve_pair(const PairFrame& frame) {
     PairFunction f(frame);
-    // The first descent starts from B's direction as seen from A's centre, the minimiser for
-    // spheres and close to it for separated or shallow pairs.
-    const double d2 = glm::dot(frame.d, frame.d);
-    const dvec3 start = d2 > 0x1p-600 ? -frame.d / std::sqrt(d2) : dvec3(0.0, 0.0, 1.0);
+    // The first descent starts where the minimiser would be if A - B were the ellipsoid
+    // with matrix M = 2 (M_A + M_B) (which is A - B for two equal spheres): the normal at its
+    // closest point to the origin.
+    const dvec3 start = first_guess(frame);
     Descent result = descend(f, f.at(start));
     PairPath path = PairPath::searched;
     const Sample& at = result.at;
