@@ -168,7 +168,10 @@ Descent descend(PairFunction& f, Sample s) {
             s1 = -(h22 * g1 - h12 * g2) / det;
             s2 = -(h11 * g2 - h12 * g1) / det;
         } else {
-            const double shift = 0.25 * scale - lowest;
+            // The shift leaves at least |g| / trust radius of curvature: a flat or concave
+            // direction gets a step of about the trust radius (then halved until h
+            // decreases), not a crawl along a long flat valley.
+            const double shift = std::sqrt(g1 * g1 + g2 * g2) / kTrustRadius - std::min(lowest, 0.0);
             const double k11 = h11 + shift, k22 = h22 + shift;
             const double det = k11 * k22 - h12 * h12;
             s1 = -(k22 * g1 - h12 * g2) / det;
