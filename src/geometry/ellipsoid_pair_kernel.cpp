@@ -96,6 +96,9 @@ public:
 
     bool centred() const { return d_ == dvec3(0.0); }
 
+    /// The radius of the ball inside K tangent at p(n): r_min,A^2 / a + r_min,B^2 / b.
+    double inscribed(const Sample& s) const { return ra2_.z * s.inv_a + rb2_.z * s.inv_b; }
+
     Sample at(const dvec3& n) {
         ++evaluations;
         Sample s;
@@ -257,11 +260,15 @@ Descent search(PairFunction& f, Descent best) {
             if (found.at.h < best.at.h) best = found;
         }
         // Every point of the square is within angle theta of its centre direction, with
-        // sin(theta) <= the distance to a corner (sqrt 2 half) over |q| >= 1.
+        // sin(theta) <= the distance to a corner (sqrt 2 half) over |q| >= 1. K holds the
+        // ball of radius rho inscribed at p(c) (see the head of the file), whose support
+        // rho + (p(c) - rho c).n bounds h below: the plane bound with h(c) - rho for h(c).
         const double sin_theta = std::min(1.0, 1.4142135623730952 * half);
         const double cos_theta = std::sqrt(1.0 - sin_theta * sin_theta);
         const dvec3 tangential = s.p - glm::dot(s.p, s.n) * s.n;
-        const double bound = (s.h >= 0.0 ? cos_theta * s.h : s.h) -
+        const double rho = std::min(f.inscribed(s), std::max(s.h, 0.0));
+        const double above = s.h - rho;
+        const double bound = rho + (above >= 0.0 ? cos_theta * above : above) -
                              sin_theta * std::sqrt(glm::dot(tangential, tangential));
         if (bound < best.at.h - kSearchTolerance && half >= kSmallestHalf) {
             heap.push_back({bound, cu, cv, half, axis, sign});
@@ -338,8 +345,7 @@ PairSolution solve_pair(const PairFrame& frame) {
     const Sample& at = result.at;
     if (result.converged && at.h < 0.0)
         path = PairPath::separated;
-    else if (result.converged && at.h <= frame.ra.z * frame.ra.z / at.a +
-                                             frame.rb.z * frame.rb.z / at.b + kSearchTolerance)
+    else if (result.converged && at.h <= f.inscribed(at) + kSearchTolerance)
         path = PairPath::inscribed_balls;
     else
         result = search(f, result);
