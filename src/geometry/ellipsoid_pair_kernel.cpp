@@ -72,7 +72,8 @@ constexpr double kStepTolerance = 0x1p-40;
 // Longest step of a descent (rad): Newton's quadratic model is trusted this far.
 constexpr double kTrustRadius = 0.5;
 // Newton steps shorter than this (rad), with a positive-definite Hessian, are taken
-// without a line search.
+// without a line search; one shorter than kLastStep is the last (the direction's error after
+// a step of length L is about L^2, here ~2^-52 rad).
 constexpr double kQuadraticRegion = 0x1p-20;
 constexpr double kLastStep = 0x1p-26;
 constexpr int kDescentCap = 64;
@@ -295,28 +296,30 @@ Descent search(PairFunction& f, Descent best) {
     return best;
 }
 
+/// Where the minimiser would be if A - B were the ellipsoid E = {x^T M^-1 x <= 1} with
+/// M = 2 (M_A + M_B) (A - B itself for two equal spheres): the normal (M + t I)^-1 d at the
+/// point of E closest to -d, t >= 0 its Lagrange multiplier, about the distance times E's
+/// mean radius s: 0 on the surface (the normal on the centre line), large far away (the
+/// centre line itself).
 dvec3 first_guess(const PairFrame& frame) {
-    // M / 2 = D_A^2 + B D_B^2 B^T (symmetric), then (M / 2 + t / 2 I)^-1 d by the adjugate
-    // (positive definite; the determinant and the scale do not matter after normalising).
+    // m = M / 2 = D_A^2 + B D_B^2 B^T (symmetric), then (m + t / 2 I)^-1 d by the adjugate
+    // (positive definite; its determinant and the scale go with the normalisation).
     const glm::dmat3& b = frame.b_axes;
     const dvec3 rb2 = frame.rb * frame.rb;
     double m[3][3];
     for (int i = 0; i < 3; ++i)
         for (int j = i; j < 3; ++j) {
-            m[i][j] = rb2.x * b[0][i] * b[0][j] + rb2.y * b[1][i] * b[1][j] + rb2.z * b[2][i] * b[2][j];
+            m[i][j] = rb2.x * b[0][i] * b[0][j] + rb2.y * b[1][i] * b[1][j] +
+                      rb2.z * b[2][i] * b[2][j];
             m[j][i] = m[i][j];
         }
     m[0][0] += frame.ra.x * frame.ra.x;
     m[1][1] += frame.ra.y * frame.ra.y;
     m[2][2] += frame.ra.z * frame.ra.z;
-    // The closest point x of {x^T M^-1 x <= 1} to d has the normal (M + t I)^-1 d with
-    // t >= 0 its Lagrange multiplier, about the distance times the radius s: 0 on the
-    // surface (the normal on the centre line), large far away (the centre line itself).
     const dvec3& d = frame.d;
-    const double s2 = 2.0 * (m[0][0] + m[1][1] + m[2][2]) / 3.0;
-    const double s = std::sqrt(s2);
-    const double t = std::max(0.0, 0.5 * (s * std::sqrt(glm::dot(d, d)) - s2));
-    for (int i = 0; i < 3; ++i) m[i][i] += t;
+    const double s2 = 2.0 * (m[0][0] + m[1][1] + m[2][2]) / 3.0;  // trace(M) / 3
+    const double half_t = std::max(0.0, 0.5 * (std::sqrt(s2 * glm::dot(d, d)) - s2));
+    for (int i = 0; i < 3; ++i) m[i][i] += half_t;
     const dvec3 solved(
         (m[1][1] * m[2][2] - m[1][2] * m[1][2]) * d.x + (m[0][2] * m[1][2] - m[0][1] * m[2][2]) * d.y +
             (m[0][1] * m[1][2] - m[0][2] * m[1][1]) * d.z,
@@ -336,11 +339,7 @@ dvec3 first_guess(const PairFrame& frame) {
 
 PairSolution solve_pair(const PairFrame& frame) {
     PairFunction f(frame);
-    // The first descent starts where the minimiser would be if A - B were the ellipsoid
-    // with matrix M = 2 (M_A + M_B) (which is A - B for two equal spheres): the normal at its
-    // closest point to the origin.
-    const dvec3 start = first_guess(frame);
-    Descent result = descend(f, f.at(start));
+    Descent result = descend(f, f.at(first_guess(frame)));
     PairPath path = PairPath::searched;
     const Sample& at = result.at;
     if (result.converged && at.h < 0.0)
