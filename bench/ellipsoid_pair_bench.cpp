@@ -52,6 +52,21 @@ void BM_Pair(benchmark::State& state, PairKind kind) {
     state.counters["evals"] = double(evaluations) / kCases;
 }
 
+/// ellipsoids_may_touch with a 0.5 m reach: far pairs are rejected by a certificate.
+void BM_MayTouch(benchmark::State& state, PairKind kind) {
+    const std::vector<PairCase> cases = pairs(kind);
+    std::size_t i = 0;
+    long rejected = 0, calls = 0;
+    for (auto _ : state) {
+        const bool may = ellipsoids_may_touch(cases[i].a, cases[i].b, 0.5);
+        benchmark::DoNotOptimize(may);
+        rejected += !may;
+        ++calls;
+        i = i + 1 == cases.size() ? 0 : i + 1;
+    }
+    state.counters["rejected"] = double(rejected) / double(calls);
+}
+
 void BM_PairLatency(benchmark::State& state, PairKind kind) {
     const std::vector<PairCase> cases = pairs(kind);
     constexpr int kRepeat = 32;
@@ -72,6 +87,8 @@ void BM_PairLatency(benchmark::State& state, PairKind kind) {
 }
 
 void register_all() {
+    benchmark::RegisterBenchmark("BM_MayTouch/far", BM_MayTouch, PairKind::far);
+    benchmark::RegisterBenchmark("BM_MayTouch/car_like", BM_MayTouch, PairKind::car_like);
     for (const PairKind kind : {PairKind::car_like, PairKind::grazing, PairKind::far,
                                 PairKind::sphere_ellipsoid, PairKind::deep, PairKind::elongated,
                                 PairKind::crossing, PairKind::coincident}) {

@@ -325,3 +325,40 @@ TEST(EllipsoidPair, KnownAnswers) {
 
 }  // namespace
 }  // namespace trackphys
+
+namespace trackphys {
+namespace {
+
+// The rejection is a certificate: never false for a pair within reach, and it rejects
+// most far pairs (all of them beyond their bounding spheres).
+TEST(EllipsoidPair, MayTouchRejectsOnlyPairsBeyondReach) {
+    PairCaseGenerator generator(18);
+    int rejected_far = 0, far = 0;
+    for (int k = 0; k < static_cast<int>(PairKind::count); ++k)
+        for (int i = 0; i < 300; ++i) {
+            const PairCase c = generator.make(static_cast<PairKind>(k));
+            const double depth = ellipsoid_ellipsoid_contact(c.a, c.b).depth;
+            for (const double reach : {0.0, 0.05, 0.5, 20.0}) {
+                const bool may = ellipsoids_may_touch(c.a, c.b, reach);
+                if (depth >= -reach) {
+                    ASSERT_TRUE(may) << describe(c) << " reach " << reach;
+                }
+            }
+            if (c.kind == PairKind::far) {
+                ++far;
+                rejected_far += !ellipsoids_may_touch(c.a, c.b, 0.5);
+            }
+        }
+    EXPECT_EQ(rejected_far, far);
+    const Ellipsoid a({0.0, 0.0, 0.0}, glm::dquat(1.0, 0.0, 0.0, 0.0), {2.0, 0.5, 0.5});
+    // Beyond the centre-line gap but inside the bounding spheres: rejected by the second
+    // certificate.
+    const Ellipsoid b({0.0, 2.0, 0.0}, glm::dquat(1.0, 0.0, 0.0, 0.0), {2.0, 0.5, 0.5});
+    EXPECT_FALSE(ellipsoids_may_touch(a, b, 0.5));
+    EXPECT_TRUE(ellipsoids_may_touch(a, b, 1.0));
+    EXPECT_TRUE(ellipsoids_may_touch(a, a, 0.0));
+    EXPECT_TRUE(ellipsoids_may_touch(a, b, -1.0));
+}
+
+}  // namespace
+}  // namespace trackphys
