@@ -59,6 +59,11 @@ struct Sample {
     double inv_a, inv_b;  // their inverses
 };
 
+/// A symmetric 2x2 form in a tangent basis.
+struct Curvature {
+    double k11, k12, k22;
+};
+
 /// A descent's end: converged when the last Newton step (with a positive-definite Hessian)
 /// was below the step tolerance, i.e. n is a local minimum to rounding.
 struct Descent {
@@ -87,11 +92,24 @@ constexpr double kSearchTolerance = 0x1p-37;
 constexpr double kSmallestHalf = 0x1p-30;
 constexpr int kEvaluationCap = 40000;
 
+dvec3 unit(const dvec3& v) { return v * (1.0 / std::sqrt(glm::dot(v, v))); }
+
+/// An orthonormal basis (t1, t2) of the plane orthogonal to unit n.
+void tangent_basis(const dvec3& n, dvec3& t1, dvec3& t2) {
+    const dvec3 m = abs_each(n);
+    const dvec3 raw = m.x <= m.y && m.x <= m.z ? dvec3(0.0, n.z, -n.y)
+                      : m.y <= m.z             ? dvec3(-n.z, 0.0, n.x)
+                                               : dvec3(n.y, -n.x, 0.0);
+    t1 = unit(raw);
+    t2 = glm::cross(n, t1);
+}
+
 class PairFunction {
 public:
     explicit PairFunction(const PairFrame& frame)
         : ra2_(frame.ra * frame.ra), rb2_(frame.rb * frame.rb), rb_(frame.rb),
-          b_axes_(frame.b_axes), d_(frame.d) {}
+          cofactor_a_(cofactor(frame.ra)), cofactor_b_(cofactor(frame.rb)),
+          largest_a_(frame.ra.x), b_axes_(frame.b_axes), d_(frame.d) {}
 
     int evaluations = 0;
 
@@ -134,23 +152,48 @@ public:
         return {h11, h12, h22};
     }
 
+    /// A lower bound K of the curvature of h (the convex function on R^3) across the plane
+    /// m = s.n + y, y = y1 t1 + y2 t2 orthogonal to s.n, |y| <= tau: y^T K y <= y^T Hess h(m) y
+    /// at every such m. For a(m) = |D m| and unit t in the plane,
+    ///     t^T Hess a(m) t = |D m x D t|^2 / |D m|^3 = |C (m x t)|^2 / |D m|^3,
+    /// C = cof D = diag(r2 r3, r1 r3, r1 r2); m x t = n x t + beta n with |beta| <= tau, so
+    /// |C (m x t)| >= |C (n x t)| - tau |C n|, and (x - e)_+^2 >= x^2 - 2 e x; also
+    /// |D m| <= a(n) + r1 tau. For B, C = cof(D_B) R^T. Exact at tau = 0.
+    Curvature curvature_floor(const Sample& s, const dvec3& t1, const dvec3& t2,
+                              double tau) const {
+        // n x t1 = t2 and n x t2 = -t1: the form in t is the form in n x t, turned.
+        Curvature k{0.0, 0.0, 0.0};
+        double loss = 0.0;
+        const auto add = [&](const dvec3& c1, const dvec3& c2, const dvec3& cn, double value,
+                             double largest) {
+            const double reach = (value + largest * tau) * (1.0 + 0x1p-46);
+            const double weight = 1.0 / (reach * reach * reach);
+            const double p11 = glm::dot(c1, c1), p12 = glm::dot(c1, c2), p22 = glm::dot(c2, c2);
+            k.k11 += weight * p22;
+            k.k12 -= weight * p12;
+            k.k22 += weight * p11;
+            // 2 e x with e = tau |C n| and x <= sqrt(trace) >= |C (n x t)|.
+            loss += 2.0 * tau * std::sqrt(glm::dot(cn, cn) * (p11 + p22)) * weight;
+        };
+        add(cofactor_a_ * t1, cofactor_a_ * t2, cofactor_a_ * s.n, s.a, largest_a_);
+        add(cofactor_b_ * (t1 * b_axes_), cofactor_b_ * (t2 * b_axes_),
+            cofactor_b_ * (s.n * b_axes_), s.b, rb_.x);
+        // The rounding of the sums is below 2^-50 of their scale; the margin covers it.
+        const double margin = loss * (1.0 + 0x1p-46) + 0x1p-46 * (k.k11 + k.k22);
+        k.k11 -= margin;
+        k.k22 -= margin;
+        return k;
+    }
+
 private:
+    static dvec3 cofactor(const dvec3& r) { return {r.y * r.z, r.x * r.z, r.x * r.y}; }
+
     dvec3 ra2_, rb2_, rb_;
+    dvec3 cofactor_a_, cofactor_b_;
+    double largest_a_;
     glm::dmat3 b_axes_;
     dvec3 d_;
 };
-
-dvec3 unit(const dvec3& v) { return v * (1.0 / std::sqrt(glm::dot(v, v))); }
-
-/// An orthonormal basis (t1, t2) of the plane orthogonal to unit n.
-void tangent_basis(const dvec3& n, dvec3& t1, dvec3& t2) {
-    const dvec3 m = abs_each(n);
-    const dvec3 raw = m.x <= m.y && m.x <= m.z ? dvec3(0.0, n.z, -n.y)
-                      : m.y <= m.z             ? dvec3(-n.z, 0.0, n.x)
-                                               : dvec3(n.y, -n.x, 0.0);
-    t1 = unit(raw);
-    t2 = glm::cross(n, t1);
-}
 
 Descent descend(PairFunction& f, Sample s) {
     for (int iteration = 0; iteration < kDescentCap; ++iteration) {
@@ -246,6 +289,68 @@ dvec3 face_point(int axis, double sign, double u, double v) {
     return p;
 }
 
+/// A lower bound of h over the directions within angle atan(tau) of s.n that loses only
+/// the third order at a minimiser, where the ball's bound loses (h - rho) theta^2 / 2 (and
+/// would split the squares about it down to ~2^-18 rad). On the plane through c = s.n,
+/// g(y) = h(c + y) (y orthogonal to c, r = |y| <= tau) is convex with Hessian >= K
+/// (curvature_floor), so with G = (p.t1, p.t2) the gradient,
+///     g(y) >= N(y) = h(c) + G.y + y^T K y / 2,
+/// and h((c + y) / |c + y|) = g / sqrt(1 + r^2) >= N - max(N, 0) r^2 / 2
+///     >= h(c) + G.y + y^T W y / 2,  W = K - (max(h, 0) + |G| tau + max(l_max(K), 0) tau^2 / 2) I.
+/// When W is positive definite the least value over the plane, h - G^T W^-1 G / 2, bounds the
+/// disc; with nu the least eigenvalue of W, so does the least of h - |G| r + nu r^2 / 2 over
+/// r in [0, tau].
+double curved_bound(const PairFunction& f, const Sample& s, double tau) {
+    dvec3 t1, t2;
+    tangent_basis(s.n, t1, t2);
+    const double g1 = glm::dot(s.p, t1), g2 = glm::dot(s.p, t2);
+    const double slope = std::sqrt(g1 * g1 + g2 * g2);
+    const Curvature k = f.curvature_floor(s, t1, t2, tau);
+    const auto eigen = [](double m11, double m12, double m22, double sign) {
+        const double half_diff = 0.5 * (m11 - m22);
+        return 0.5 * (m11 + m22) + sign * std::sqrt(half_diff * half_diff + m12 * m12);
+    };
+    const double shift = std::max(s.h, 0.0) + slope * tau +
+                         0.5 * std::max(eigen(k.k11, k.k12, k.k22, 1.0), 0.0) * tau * tau;
+    const double w11 = k.k11 - shift, w22 = k.k22 - shift;
+    const double highest = eigen(w11, k.k12, w22, 1.0);
+    // The eigenvalue's rounding is below 2^-50 of the largest one; the margin covers it.
+    const double nu = eigen(w11, k.k12, w22, -1.0) - 0x1p-46 * std::abs(highest);
+    const double at_edge = s.h - slope * tau + 0.5 * nu * tau * tau;
+    if (!(nu > 0.0)) return std::min(s.h, at_edge);
+    // G^T adj(W) G / det(W), the numerator raised by its rounding, det(W) = nu highest.
+    const double adjugate = w22 * g1 * g1 - 2.0 * k.k12 * g1 * g2 + w11 * g2 * g2 +
+                            0x1p-46 * highest * slope * slope;
+    const double plane = s.h - 0.5 * adjugate / (nu * highest);
+    return slope > nu * tau ? std::max(plane, at_edge) : plane;
+}
+
+/// A cap of directions about a sample's where h is certified no lower than a floor:
+/// cos of its angular radius, above 1 when none is.
+struct Cap {
+    dvec3 centre;
+    double cos_radius;
+
+    /// Whether the cap holds every direction within angle theta of unit c.
+    bool holds(const dvec3& c, double sin_theta, double cos_theta) const {
+        const double cos_phi = glm::dot(c, centre);
+        const double sin_phi = glm::length(glm::cross(c, centre));
+        return cos_phi > 0.0 && cos_phi * cos_theta - sin_phi * sin_theta >= cos_radius + 0x1p-44;
+    }
+};
+
+/// The widest cap about s (of radius atan(tau), tau = 2^-2 .. 2^-12) whose curved bound
+/// reaches the floor. About a minimiser the curved bound is h there, less rounding, as long
+/// as the curvature floor exceeds h: a cap of about its least eigenvalue over the rate at
+/// which the floor falls, which drops the squares about the minimiser a few levels down
+/// instead of splitting them until the ball's bound is within tolerance.
+Cap certified_cap(const PairFunction& f, const Sample& s, double floor) {
+    for (double tau = 0x1p-2; tau >= 0x1p-12; tau *= 0.5)
+        if (curved_bound(f, s, tau) >= floor)
+            return {s.n, (1.0 + 0x1p-46) / std::sqrt(1.0 + tau * tau)};
+    return {s.n, 2.0};
+}
+
 /// The branch-and-bound search from the best descent so far (see the head of the file),
 /// lowest bound first, so that it stops as soon as no square can beat the best value.
 Descent search(PairFunction& f, Descent best) {
@@ -254,23 +359,40 @@ Descent search(PairFunction& f, Descent best) {
     const auto later = [](const Square& x, const Square& y) { return x.bound > y.bound; };
     // Evaluates a square: a centre below the best starts a descent; a square that may still
     // hold a lower value is queued.
+    // The best minimiser's certified cap (and, when h is even, its antipode's) drops the
+    // squares inside it unseen.
+    const bool even = f.centred();
+    Cap cap = certified_cap(f, best.at, best.at.h - kSearchTolerance);
     const auto visit = [&](double cu, double cv, double half, int axis, double sign) {
-        const Sample s = f.at(unit(face_point(axis, sign, cu, cv)));
+        const dvec3 q = face_point(axis, sign, cu, cv);
+        const double inv_length = 1.0 / std::sqrt(glm::dot(q, q));
+        const dvec3 c = q * inv_length;
+        // Every point x of the square is within angle theta < pi/2 of its centre direction
+        // c = q / |q|, with sin(theta) <= |x - q| / |q| <= sqrt 2 half / |q| (the law of
+        // sines in the triangle 0, q, x). K holds the ball of radius rho inscribed at p(c)
+        // (see the head of the file), whose support rho + (p(c) - rho c).n bounds h below:
+        // the plane bound with h(c) - rho for h(c).
+        const double sin_theta = 1.4142135623730952 * half * inv_length * (1.0 + 0x1p-46);
+        const double cos_theta = std::sqrt(1.0 - sin_theta * sin_theta);
+        if (cap.holds(c, sin_theta, cos_theta) || (even && cap.holds(-c, sin_theta, cos_theta)))
+            return;
+        const Sample s = f.at(c);
         if (s.h < best.at.h) {
             const Descent found = descend(f, s);
-            if (found.at.h < best.at.h) best = found;
+            if (found.at.h < best.at.h) {
+                best = found;
+                cap = certified_cap(f, best.at, best.at.h - kSearchTolerance);
+            }
         }
-        // Every point of the square is within angle theta of its centre direction, with
-        // sin(theta) <= the distance to a corner (sqrt 2 half) over |q| >= 1. K holds the
-        // ball of radius rho inscribed at p(c) (see the head of the file), whose support
-        // rho + (p(c) - rho c).n bounds h below: the plane bound with h(c) - rho for h(c).
-        const double sin_theta = std::min(1.0, 1.4142135623730952 * half);
-        const double cos_theta = std::sqrt(1.0 - sin_theta * sin_theta);
         const dvec3 tangential = s.p - glm::dot(s.p, s.n) * s.n;
+        const double slope = std::sqrt(glm::dot(tangential, tangential));
         const double rho = std::min(f.inscribed(s), std::max(s.h, 0.0));
         const double above = s.h - rho;
-        const double bound = rho + (above >= 0.0 ? cos_theta * above : above) -
-                             sin_theta * std::sqrt(glm::dot(tangential, tangential));
+        double bound = rho + (above >= 0.0 ? cos_theta * above : above) - sin_theta * slope;
+        if (bound < best.at.h - kSearchTolerance && half >= kSmallestHalf) {
+            const double curved = curved_bound(f, s, sin_theta / cos_theta * (1.0 + 0x1p-46));
+            if (curved > bound) bound = curved;  // never a NaN
+        }
         if (bound < best.at.h - kSearchTolerance && half >= kSmallestHalf) {
             heap.push_back({bound, cu, cv, half, axis, sign});
             std::push_heap(heap.begin(), heap.end(), later);
@@ -278,7 +400,7 @@ Descent search(PairFunction& f, Descent best) {
     };
     // With both centres at one point h is even, h(-n) = h(n) to the bit, so the faces on
     // one side of the cube cover every value.
-    const int sides = f.centred() ? 1 : 2;
+    const int sides = even ? 1 : 2;
     for (int axis = 0; axis < 3; ++axis)
         for (int side = 0; side < sides; ++side)
             for (const double cu : {-0.5, 0.5})
