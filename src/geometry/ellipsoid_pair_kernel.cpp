@@ -156,8 +156,8 @@ public:
     /// m = s.n + y, y = y1 t1 + y2 t2 orthogonal to s.n, |y| <= tau: y^T K y <= y^T Hess h(m) y
     /// at every such m. For a(m) = |D m| and unit t in the plane,
     ///     t^T Hess a(m) t = |D m x D t|^2 / |D m|^3 = |C (m x t)|^2 / |D m|^3,
-    /// C = cof D = diag(r2 r3, r1 r3, r1 r2); m x t = n x t + beta n with |beta| <= tau, so
-    /// |C (m x t)| >= |C (n x t)| - tau |C n|, and (x - e)_+^2 >= x^2 - 2 e x; also
+    /// C = cof D = diag(r2 r3, r1 r3, r1 r2); m x t = u + beta n with u = n x t a unit vector
+    /// of the plane and |beta| <= tau, so |C (m x t)|^2 >= |C u|^2 - 2 tau |C u . C n|; also
     /// |D m| <= a(n) + r1 tau. For B, C = cof(D_B) R^T. Exact at tau = 0.
     Curvature curvature_floor(const Sample& s, const dvec3& t1, const dvec3& t2,
                               double tau) const {
@@ -172,8 +172,9 @@ public:
             k.k11 += weight * p22;
             k.k12 -= weight * p12;
             k.k22 += weight * p11;
-            // 2 e x with e = tau |C n| and x <= sqrt(trace) >= |C (n x t)|.
-            loss += 2.0 * tau * std::sqrt(glm::dot(cn, cn) * (p11 + p22)) * weight;
+            // 2 tau max |C u . C n| over unit u in the plane.
+            const double q1 = glm::dot(c1, cn), q2 = glm::dot(c2, cn);
+            loss += 2.0 * tau * std::sqrt(q1 * q1 + q2 * q2) * weight;
         };
         add(cofactor_a_ * t1, cofactor_a_ * t2, cofactor_a_ * s.n, s.a, largest_a_);
         add(cofactor_b_ * (t1 * b_axes_), cofactor_b_ * (t2 * b_axes_),
@@ -345,7 +346,7 @@ struct Cap {
 /// which the floor falls, which drops the squares about the minimiser a few levels down
 /// instead of splitting them until the ball's bound is within tolerance.
 Cap certified_cap(const PairFunction& f, const Sample& s, double floor) {
-    for (double tau = 0x1p-2; tau >= 0x1p-12; tau *= 0.5)
+    for (double tau = 0x1p-2; tau >= 0x1p-12; tau *= 0.7071067811865476)
         if (curved_bound(f, s, tau) >= floor)
             return {s.n, (1.0 + 0x1p-46) / std::sqrt(1.0 + tau * tau)};
     return {s.n, 2.0};
@@ -389,7 +390,9 @@ Descent search(PairFunction& f, Descent best) {
         const double rho = std::min(f.inscribed(s), std::max(s.h, 0.0));
         const double above = s.h - rho;
         double bound = rho + (above >= 0.0 ? cos_theta * above : above) - sin_theta * slope;
-        if (bound < best.at.h - kSearchTolerance && half >= kSmallestHalf) {
+        // The curved bound is at most h(c): no use below the best.
+        if (bound < best.at.h - kSearchTolerance && s.h >= best.at.h - kSearchTolerance &&
+            half >= kSmallestHalf) {
             const double curved = curved_bound(f, s, sin_theta / cos_theta * (1.0 + 0x1p-46));
             if (curved > bound) bound = curved;  // never a NaN
         }
