@@ -335,8 +335,9 @@ struct Cap {
     /// Whether the cap holds every direction within angle theta of unit c.
     bool holds(const dvec3& c, double sin_theta, double cos_theta) const {
         const double cos_phi = glm::dot(c, centre);
+        if (!(cos_phi > cos_radius)) return false;  // c itself is outside
         const double sin_phi = glm::length(glm::cross(c, centre));
-        return cos_phi > 0.0 && cos_phi * cos_theta - sin_phi * sin_theta >= cos_radius + 0x1p-44;
+        return cos_phi * cos_theta - sin_phi * sin_theta >= cos_radius + 0x1p-44;
     }
 };
 
