@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -318,12 +319,16 @@ double curved_bound(const PairFunction& f, const Sample& s, double tau) {
     // The eigenvalue's rounding is below 2^-50 of the largest one; the margin covers it.
     const double nu = eigen(w11, k.k12, w22, -1.0) - 0x1p-46 * std::abs(highest);
     const double at_edge = s.h - slope * tau + 0.5 * nu * tau * tau;
-    if (!(nu > 0.0)) return std::min(s.h, at_edge);
-    // G^T adj(W) G / det(W), the numerator raised by its rounding, det(W) = nu highest.
-    const double adjugate = w22 * g1 * g1 - 2.0 * k.k12 * g1 * g2 + w11 * g2 * g2 +
-                            0x1p-46 * highest * slope * slope;
-    const double plane = s.h - 0.5 * adjugate / (nu * highest);
-    return slope > nu * tau ? std::max(plane, at_edge) : plane;
+    double bound = std::min(at_edge, s.h);  // a NaN edge stays NaN
+    if (nu > 0.0) {
+        // G^T adj(W) G / det(W), the numerator raised by its rounding, det(W) = nu highest.
+        const double adjugate = w22 * g1 * g1 - 2.0 * k.k12 * g1 * g2 + w11 * g2 * g2 +
+                                0x1p-46 * highest * slope * slope;
+        const double plane = s.h - 0.5 * adjugate / (nu * highest);
+        bound = slope > nu * tau ? std::max(plane, at_edge) : plane;
+    }
+    // Every such bound is at most h(c); a NaN (from extreme radii overflowing) bounds nothing.
+    return bound <= s.h ? bound : -std::numeric_limits<double>::infinity();
 }
 
 /// A cap of directions about a sample's where h is certified no lower than a floor:
