@@ -95,8 +95,9 @@ constexpr int kEvaluationCap = 40000;
 
 dvec3 unit(const dvec3& v) { return v * (1.0 / std::sqrt(glm::dot(v, v))); }
 
-/// An orthonormal basis (t1, t2) of the plane orthogonal to unit n.
-void tangent_basis(const dvec3& n, dvec3& t1, dvec3& t2) {
+/// An orthonormal basis (t1, t2) of the plane orthogonal to unit n. Forced inline: every
+/// descent step takes one, and with the search's callers the compiler would make it a call.
+[[gnu::always_inline]] inline void tangent_basis(const dvec3& n, dvec3& t1, dvec3& t2) {
     const dvec3 m = abs_each(n);
     const dvec3 raw = m.x <= m.y && m.x <= m.z ? dvec3(0.0, n.z, -n.y)
                       : m.y <= m.z             ? dvec3(-n.z, 0.0, n.x)
