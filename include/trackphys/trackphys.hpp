@@ -14,6 +14,7 @@
 #include "trackphys/geometry/contact.hpp"
 #include "trackphys/geometry/ellipsoid.hpp"
 #include "trackphys/geometry/ellipsoid_cull.hpp"
+#include "trackphys/geometry/ellipsoid_pair.hpp"
 #include "trackphys/geometry/normalized_triangle.hpp"
 #include "trackphys/geometry/point_ellipse.hpp"
 #include "trackphys/geometry/point_ellipsoid.hpp"

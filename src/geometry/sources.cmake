@@ -8,3 +8,6 @@ target_sources(trackphys PRIVATE
   geometry/point_ellipse.cpp
   geometry/point_ellipsoid.cpp
   geometry/writeup_root_finders.cpp)
+target_sources(trackphys PRIVATE
+  geometry/ellipsoid_pair.cpp
+  geometry/ellipsoid_pair_kernel.cpp)

@@ -1,0 +1,138 @@
+#include "trackphys/geometry/ellipsoid_pair.hpp"
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+#include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
+
+#include "geometry/ellipsoid_pair_kernel.hpp"
+#include "trackphys/math/types.hpp"
+
+// The public entry: orders the pair, moves it into the first ellipsoid's sorted frame at
+// unit scale (a rotation and a power of two, which keep the answer) and maps the solution
+// back (docs/ellipsoid_pair.md).
+
+namespace trackphys {
+namespace {
+
+/// The bits of an ellipsoid's defining numbers, for a total order independent of the
+/// argument order (so that a <-> b runs the very same arithmetic).
+std::array<std::uint64_t, 10> key(const Ellipsoid& e) {
+    const glm::dvec3& c = e.center();
+    const glm::dvec3& r = e.semi_axes();
+    const glm::dquat& q = e.orientation();
+    std::array<std::uint64_t, 10> k{};
+    const std::array<double, 10> v = {c.x, c.y, c.z, r.x, r.y, r.z, q.w, q.x, q.y, q.z};
+    for (std::size_t i = 0; i < v.size(); ++i) k[i] = std::bit_cast<std::uint64_t>(v[i]);
+    return k;
+}
+
+// Radii below 2^-200 of the larger semi-axis are raised to it: that moves the answer by
+// less than an ulp and keeps every support value a normal number.
+constexpr double kSmallestRadius = 0x1p-200;
+// Beyond this distance between the centres (at unit scale) the support of each ellipsoid
+// along the centre line is exact to far below an ulp of the distance.
+constexpr double kFarField = 0x1p500;
+
+glm::dvec3 raised(const glm::dvec3& r) {
+    return glm::max(r, glm::dvec3(kSmallestRadius));
+}
+
+/// Both centres so far apart (relative to the radii) that the solver's products would
+/// overflow: the minimiser is the centre line to within 2^-500 rad.
+Contact far_field(const Ellipsoid& a, const Ellipsoid& b, double scale) {
+    const glm::dvec3 half = a.center() * 0.5 - b.center() * 0.5;  // never overflows
+    const glm::dvec3 m = abs_each(half);
+    const double largest = std::max({m.x, m.y, m.z});
+    const glm::dvec3 u = glm::normalize(half / largest);  // from b towards a
+    const auto support = [&](const Ellipsoid& e, const glm::dvec3& n) {
+        const glm::dvec3 local = n * e.sorted_axes();
+        const glm::dvec3 r = raised(e.sorted_radii() / scale);
+        const glm::dvec3 m2 = r * r * local;
+        const double value = std::sqrt(glm::dot(m2, local));
+        return std::pair{value, e.sorted_axes() * (m2 / value) * scale};
+    };
+    const auto [ha, xa] = support(a, -u);
+    const auto [hb, xb] = support(b, u);
+    const double distance = 2.0 * largest * glm::length(half / largest);
+    const glm::dvec3 point = a.center() * 0.5 + b.center() * 0.5 + 0.5 * (xa + xb);
+    return {-(distance - (ha + hb) * scale), u, point};
+}
+
+/// a and b in a's sorted frame at unit scale, or false when their centres are too far apart.
+bool unit_frame(const Ellipsoid& a, const Ellipsoid& b, double& scale, detail::PairFrame& frame) {
+    // Unit scale: the larger semi-axis in [1, 2).
+    scale = std::ldexp(1.0, std::ilogb(std::max(a.sorted_radii().x, b.sorted_radii().x)));
+    const double inv = 1.0 / scale;
+    const glm::dvec3 d_world = (a.center() - b.center()) * inv;
+    const glm::dvec3 d_abs = abs_each(d_world);
+    if (!(std::max({d_abs.x, d_abs.y, d_abs.z}) < kFarField)) return false;
+    const glm::dmat3& axes = a.sorted_axes();
+    frame.ra = raised(a.sorted_radii() * inv);
+    frame.rb = raised(b.sorted_radii() * inv);
+    frame.b_axes = glm::transpose(axes) * b.sorted_axes();
+    frame.d = d_world * axes;  // A^T d
+    return true;
+}
+
+Contact ordered_contact(const Ellipsoid& a, const Ellipsoid& b) {
+    double scale;
+    detail::PairFrame frame;
+    if (!unit_frame(a, b, scale, frame)) return far_field(a, b, scale);
+    const detail::PairSolution s = detail::solve_pair(frame);
+    const glm::dmat3& axes = a.sorted_axes();
+    const glm::dvec3 extreme_a = a.center() + axes * s.extreme_a * scale;
+    const glm::dvec3 extreme_b = b.center() + axes * s.extreme_b * scale;
+    // Halves first: the sum of two points near the largest double would overflow.
+    return {s.depth * scale, -(axes * s.n), 0.5 * extreme_a + 0.5 * extreme_b};
+}
+
+}  // namespace
+
+Contact ellipsoid_ellipsoid_contact(const Ellipsoid& a, const Ellipsoid& b) {
+    if (key(b) < key(a)) {
+        Contact swapped = ordered_contact(b, a);
+        swapped.normal = -swapped.normal;
+        return swapped;
+    }
+    return ordered_contact(a, b);
+}
+
+bool ellipsoids_may_touch(const Ellipsoid& a, const Ellipsoid& b, double reach) {
+    // The distance is at least |d| - r_max,A - r_max,B, and at least the gap along the
+    // centre line u = d / |d|: -h(-u) = |d| - h_A(u) - h_B(u). A negative or NaN reach
+    // answers true.
+    if (!(reach >= 0.0)) return true;
+    const glm::dvec3 d = a.center() - b.center();
+    const double d2 = glm::dot(d, d);  // an overflow to infinity is far apart, rightly
+    const double spheres = a.bounding_radius() + b.bounding_radius() + reach;
+    if (d2 > spheres * spheres) return false;
+    if (!(d2 > 0.0)) return true;
+    const double length = std::sqrt(d2);
+    const glm::dvec3 u = d * (1.0 / length);
+    const auto support = [&u](const Ellipsoid& e) {
+        const glm::dvec3 scaled = e.sorted_radii() * (u * e.sorted_axes());
+        return std::sqrt(glm::dot(scaled, scaled));
+    };
+    return !(length - support(a) - support(b) > reach);
+}
+
+namespace detail {
+
+PairSolution pair_solution(const Ellipsoid& a, const Ellipsoid& b) {
+    const bool swap = key(b) < key(a);
+    double scale;
+    PairFrame frame;
+    if (!unit_frame(swap ? b : a, swap ? a : b, scale, frame))
+        return {0.0, glm::dvec3(0.0), glm::dvec3(0.0), glm::dvec3(0.0), PairPath::far_field, 0};
+    return solve_pair(frame);
+}
+
+}  // namespace detail
+
+}  // namespace trackphys

@@ -1,0 +1,486 @@
+#include "geometry/ellipsoid_pair_kernel.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include <glm/geometric.hpp>
+
+#include "trackphys/math/types.hpp"
+
+// The global minimum of the support function of A - B over the unit sphere
+// (docs/ellipsoid_pair.md).
+//
+// h(n) = d.n + a(n) + b(n) with a(n) = |D_A n| and b(n) = |D_B R^T n| (R = B's axes in A's
+// frame) is the support function of the convex body K = A - B: positively homogeneous and
+// convex on R^3, with gradient p(n) = d + x_A(n) + x_B(n), the point of K's boundary whose
+// outer normal is n (x_A(n) = D_A^2 n / a is A's support point). On the sphere, n is
+// critical when p(n) = h(n) n, i.e. the origin lies on K's normal line through p(n), at
+// signed depth h(n) below the boundary.
+//
+// Three facts make the answer certain:
+// - Separated (a critical point with h < 0): h is convex on the ball and decreases
+//   radially where it is negative, so a local minimum with h < 0 is the minimum over the
+//   ball, hence the global one on the sphere (and the only one).
+// - Overlapping, shallow (inscribed balls, as in Blaschke's rolling theorem): an ellipsoid
+//   holds the ball of radius rho tangent inside at its support point x(n) iff x(n) is the
+//   closest boundary point of that ball's centre x(n) - rho n, i.e. (Eberly's largest root
+//   of the distance equation, t = -rho a(n) > -r_min^2) iff rho <= r_min^2 / a(n), a(n) the
+//   support value. The Minkowski sum of A's such ball and -B's is a ball of radius
+//   rho = r_min,A^2 / a(n) + r_min,B^2 / b(n) inside K, tangent to K at p(n). At a critical
+//   point with 0 <= h <= rho, the ball of radius h about the origin lies inside that one, so
+//   K holds it and no direction has h below: the critical value is the global one.
+// - Otherwise, a branch-and-bound search. For unit c and any n, h(n) >= p(c).n (p(c) is a
+//   point of K), so on the cap of directions within angle theta of c,
+//       h(n) >= (h(c) >= 0 ? cos(theta) h(c) : h(c)) - sin(theta) |p_t(c)|,
+//   p_t the part of p(c) orthogonal to c. The cube's faces, cut into squares, cover the
+//   sphere; a square whose bound cannot beat the best value found so far is dropped, a
+//   square whose centre beats it starts a descent, and the rest are split until the bound
+//   is within the search tolerance. The bound is tight to second order in theta, so only
+//   the squares about minima as low as the best are split deep.
+//
+// Descents are Riemannian Newton steps on the sphere with a positive-definite shift where
+// the Hessian is not, a trust radius and a backtracking line search, all capped.
+
+namespace trackphys::detail {
+namespace {
+
+using glm::dvec3;
+
+/// h, its gradient p and the two support points at a unit direction.
+struct Sample {
+    dvec3 n;
+    double h;
+    dvec3 p;   // d + xa + xb
+    dvec3 xa;  // A's support point in direction n
+    dvec3 xb;  // B's support point in direction n (B's extreme point towards A is -xb)
+    double a, b;          // the support values of A and B
+    double inv_a, inv_b;  // their inverses
+};
+
+/// A symmetric 2x2 form in a tangent basis.
+struct Curvature {
+    double k11, k12, k22;
+};
+
+/// A descent's end: converged when the last Newton step (with a positive-definite Hessian)
+/// was below the step tolerance, i.e. n is a local minimum to rounding.
+struct Descent {
+    Sample at;
+    bool converged;
+};
+
+// A descent stops when its Newton step is this short (rad): the value is then exact to
+// rounding (the error in h is quadratic in the step) and the direction to ~1e-12.
+constexpr double kStepTolerance = 0x1p-40;
+// Longest step of a descent (rad): Newton's quadratic model is trusted this far.
+constexpr double kTrustRadius = 0.5;
+// Newton steps shorter than this (rad), with a positive-definite Hessian, are taken
+// without a line search; one shorter than kLastStep is the last (the direction's error after
+// a step of length L is about L^2, here ~2^-52 rad).
+constexpr double kQuadraticRegion = 0x1p-20;
+constexpr double kLastStep = 0x1p-26;
+constexpr int kDescentCap = 64;
+constexpr int kHalvingCap = 40;
+// The search drops a square whose lower bound is within this of the best value (unit
+// scale: 2^-37 of the larger semi-axis, 7e-12 of it); the answer is then exact to it.
+constexpr double kSearchTolerance = 0x1p-37;
+// Squares are not split below this half-size (1e-9 rad), nor is the search run past this
+// many evaluations (a near-constant h, as of two equal spheres about one centre, defeats
+// any bound; its minimum is then as good as any value).
+constexpr double kSmallestHalf = 0x1p-30;
+constexpr int kEvaluationCap = 40000;
+
+dvec3 unit(const dvec3& v) { return v * (1.0 / std::sqrt(glm::dot(v, v))); }
+
+/// An orthonormal basis (t1, t2) of the plane orthogonal to unit n. Forced inline: every
+/// descent step takes one, and with the search's callers the compiler would make it a call.
+[[gnu::always_inline]] inline void tangent_basis(const dvec3& n, dvec3& t1, dvec3& t2) {
+    const dvec3 m = abs_each(n);
+    const dvec3 raw = m.x <= m.y && m.x <= m.z ? dvec3(0.0, n.z, -n.y)
+                      : m.y <= m.z             ? dvec3(-n.z, 0.0, n.x)
+                                               : dvec3(n.y, -n.x, 0.0);
+    t1 = unit(raw);
+    t2 = glm::cross(n, t1);
+}
+
+class PairFunction {
+public:
+    explicit PairFunction(const PairFrame& frame)
+        : ra2_(frame.ra * frame.ra), rb2_(frame.rb * frame.rb), rb_(frame.rb),
+          cofactor_a_(cofactor(frame.ra)), cofactor_b_(cofactor(frame.rb)),
+          largest_a_(frame.ra.x), b_axes_(frame.b_axes), d_(frame.d) {}
+
+    int evaluations = 0;
+
+    bool centred() const { return d_ == dvec3(0.0); }
+
+    /// The radius of the ball inside K tangent at p(n): r_min,A^2 / a + r_min,B^2 / b.
+    double inscribed(const Sample& s) const { return ra2_.z * s.inv_a + rb2_.z * s.inv_b; }
+
+    Sample at(const dvec3& n) {
+        ++evaluations;
+        Sample s;
+        s.n = n;
+        const dvec3 ma = ra2_ * n;
+        s.a = std::sqrt(glm::dot(ma, n));
+        const dvec3 wb = n * b_axes_;  // B^T n
+        const dvec3 scaled_b = rb_ * wb;
+        s.b = std::sqrt(glm::dot(scaled_b, scaled_b));
+        s.inv_a = 1.0 / s.a;
+        s.inv_b = 1.0 / s.b;
+        s.xa = ma * s.inv_a;
+        s.xb = b_axes_ * (rb2_ * wb) * s.inv_b;
+        s.h = glm::dot(d_, n) + s.a + s.b;
+        s.p = d_ + s.xa + s.xb;
+        return s;
+    }
+
+    /// The Hessian of h on the sphere at s in the tangent basis (t1, t2):
+    /// t_i^T (H_A + H_B) t_j - h delta_ij, H_A = (D_A^2 - x_A x_A^T) / a, H_B alike.
+    std::array<double, 3> tangent_hessian(const Sample& s, const dvec3& t1, const dvec3& t2) const {
+        const double a1 = glm::dot(s.xa, t1), a2 = glm::dot(s.xa, t2);
+        const dvec3 w1 = t1 * b_axes_, w2 = t2 * b_axes_;
+        const double b1 = glm::dot(s.xb, t1), b2 = glm::dot(s.xb, t2);
+        const double inv_a = s.inv_a, inv_b = s.inv_b;
+        const double h11 = (glm::dot(ra2_ * t1, t1) - a1 * a1) * inv_a +
+                           (glm::dot(rb2_ * w1, w1) - b1 * b1) * inv_b - s.h;
+        const double h12 = (glm::dot(ra2_ * t1, t2) - a1 * a2) * inv_a +
+                           (glm::dot(rb2_ * w1, w2) - b1 * b2) * inv_b;
+        const double h22 = (glm::dot(ra2_ * t2, t2) - a2 * a2) * inv_a +
+                           (glm::dot(rb2_ * w2, w2) - b2 * b2) * inv_b - s.h;
+        return {h11, h12, h22};
+    }
+
+    /// A lower bound K of the curvature of h (the convex function on R^3) across the plane
+    /// m = s.n + y, y = y1 t1 + y2 t2 orthogonal to s.n, |y| <= tau: y^T K y <= y^T Hess h(m) y
+    /// at every such m. For a(m) = |D m| and unit t in the plane,
+    ///     t^T Hess a(m) t = |D m x D t|^2 / |D m|^3 = |C (m x t)|^2 / |D m|^3,
+    /// C = cof D = diag(r2 r3, r1 r3, r1 r2); m x t = u + beta n with u = n x t a unit vector
+    /// of the plane and |beta| <= tau, so |C (m x t)|^2 >= |C u|^2 - 2 tau |C u . C n|; also
+    /// |D m| <= a(n) + r1 tau. For B, C = cof(D_B) R^T. Exact at tau = 0.
+    Curvature curvature_floor(const Sample& s, const dvec3& t1, const dvec3& t2,
+                              double tau) const {
+        // n x t1 = t2 and n x t2 = -t1: the form in t is the form in n x t, turned.
+        Curvature k{0.0, 0.0, 0.0};
+        double loss = 0.0;
+        const auto add = [&](const dvec3& c1, const dvec3& c2, const dvec3& cn, double value,
+                             double largest) {
+            const double reach = (value + largest * tau) * (1.0 + 0x1p-46);
+            const double weight = 1.0 / (reach * reach * reach);
+            const double p11 = glm::dot(c1, c1), p12 = glm::dot(c1, c2), p22 = glm::dot(c2, c2);
+            k.k11 += weight * p22;
+            k.k12 -= weight * p12;
+            k.k22 += weight * p11;
+            // 2 tau max |C u . C n| over unit u in the plane.
+            const double q1 = glm::dot(c1, cn), q2 = glm::dot(c2, cn);
+            loss += 2.0 * tau * std::sqrt(q1 * q1 + q2 * q2) * weight;
+        };
+        add(cofactor_a_ * t1, cofactor_a_ * t2, cofactor_a_ * s.n, s.a, largest_a_);
+        add(cofactor_b_ * (t1 * b_axes_), cofactor_b_ * (t2 * b_axes_),
+            cofactor_b_ * (s.n * b_axes_), s.b, rb_.x);
+        // The rounding of the sums is below 2^-50 of their scale; the margin covers it.
+        const double margin = loss * (1.0 + 0x1p-46) + 0x1p-46 * (k.k11 + k.k22);
+        k.k11 -= margin;
+        k.k22 -= margin;
+        return k;
+    }
+
+private:
+    static dvec3 cofactor(const dvec3& r) { return {r.y * r.z, r.x * r.z, r.x * r.y}; }
+
+    dvec3 ra2_, rb2_, rb_;
+    dvec3 cofactor_a_, cofactor_b_;
+    double largest_a_;
+    glm::dmat3 b_axes_;
+    dvec3 d_;
+};
+
+Descent descend(PairFunction& f, Sample s) {
+    for (int iteration = 0; iteration < kDescentCap; ++iteration) {
+        dvec3 t1, t2;
+        tangent_basis(s.n, t1, t2);
+        const double g1 = glm::dot(t1, s.p), g2 = glm::dot(t2, s.p);
+        const auto [h11, h12, h22] = f.tangent_hessian(s, t1, t2);
+        // Eigen-decomposition of the 2x2 Hessian: a positive-definite one gives the Newton
+        // step; otherwise it is shifted to be positive definite (and at a stationary point
+        // that is not a minimum, the step follows the most negative curvature).
+        const double mean = 0.5 * (h11 + h22), half_diff = 0.5 * (h11 - h22);
+        const double radius = std::sqrt(half_diff * half_diff + h12 * h12);
+        const double lowest = mean - radius;
+        const double scale = s.a + s.b + std::abs(s.h);
+        const bool definite = lowest > 0x1p-30 * scale;
+        double s1, s2;
+        if (definite) {
+            const double det = h11 * h22 - h12 * h12;
+            s1 = -(h22 * g1 - h12 * g2) / det;
+            s2 = -(h11 * g2 - h12 * g1) / det;
+        } else {
+            // The shift leaves at least |g| / trust radius of curvature: a flat or concave
+            // direction gets a step of about the trust radius (then halved until h
+            // decreases), not a crawl along a long flat valley.
+            const double shift = std::sqrt(g1 * g1 + g2 * g2) / kTrustRadius - std::min(lowest, 0.0);
+            const double k11 = h11 + shift, k22 = h22 + shift;
+            const double det = k11 * k22 - h12 * h12;
+            s1 = -(k22 * g1 - h12 * g2) / det;
+            s2 = -(k11 * g2 - h12 * g1) / det;
+            if (std::abs(s1) + std::abs(s2) < kStepTolerance) {
+                // The eigenvector of the lowest eigenvalue: (h12, lowest - h11) or its twin.
+                double v1 = h12, v2 = lowest - h11;
+                if (std::abs(v1) + std::abs(v2) < 0x1p-60 * scale) {
+                    v1 = lowest - h22;
+                    v2 = h12;
+                }
+                if (std::abs(v1) + std::abs(v2) < 0x1p-60 * scale) {
+                    v1 = 1.0;
+                    v2 = 0.0;
+                }
+                const double norm = std::sqrt(v1 * v1 + v2 * v2);
+                s1 = 0.125 * v1 / norm;
+                s2 = 0.125 * v2 / norm;
+            }
+        }
+        const double length = std::sqrt(s1 * s1 + s2 * s2);
+        if (definite && length < kStepTolerance) return {s, true};
+        if (length > kTrustRadius) {
+            s1 *= kTrustRadius / length;
+            s2 *= kTrustRadius / length;
+        }
+        // Near a minimum, h cannot tell the last Newton steps apart (it changes by the
+        // square of the step, below its rounding once the step is under ~1e-8 rad), while
+        // the gradient still can: there the step is taken without the decrease test.
+        // Newton's error after a step is about the square of the step, so a step below
+        // 2^-26 rad leaves n within ~2^-50 rad of the minimum: it is the last one.
+        if (definite && length < kQuadraticRegion) {
+            s = f.at(unit(s.n + s1 * t1 + s2 * t2));
+            if (length < kLastStep) return {s, true};
+            continue;
+        }
+        bool moved = false;
+        for (int halving = 0; halving < kHalvingCap; ++halving) {
+            const Sample next = f.at(unit(s.n + s1 * t1 + s2 * t2));
+            if (next.h <= s.h) {
+                moved = next.n != s.n;
+                s = next;
+                break;
+            }
+            s1 *= 0.5;
+            s2 *= 0.5;
+        }
+        // No decrease at all: n is a minimum to rounding (when the Hessian is definite).
+        if (!moved) return {s, definite};
+    }
+    return {s, false};
+}
+
+/// A square of a cube face: points q = sign e_axis + u e_(axis+1) + v e_(axis+2) with
+/// |u - cu|, |v - cv| <= half, and the lower bound of h over the directions through it.
+struct Square {
+    double bound;
+    double cu, cv, half;
+    int axis;
+    double sign;
+};
+
+dvec3 face_point(int axis, double sign, double u, double v) {
+    dvec3 p(0.0);
+    p[axis] = sign;
+    p[(axis + 1) % 3] = u;
+    p[(axis + 2) % 3] = v;
+    return p;
+}
+
+/// A lower bound of h over the directions within angle atan(tau) of s.n that loses only
+/// the third order at a minimiser, where the ball's bound loses (h - rho) theta^2 / 2 (and
+/// would split the squares about it down to ~2^-18 rad). On the plane through c = s.n,
+/// g(y) = h(c + y) (y orthogonal to c, r = |y| <= tau) is convex with Hessian >= K
+/// (curvature_floor), so with G = (p.t1, p.t2) the gradient,
+///     g(y) >= N(y) = h(c) + G.y + y^T K y / 2,
+/// and h((c + y) / |c + y|) = g / sqrt(1 + r^2) >= N - max(N, 0) r^2 / 2
+///     >= h(c) + G.y + y^T W y / 2,  W = K - (max(h, 0) + |G| tau + max(l_max(K), 0) tau^2 / 2) I.
+/// When W is positive definite the least value over the plane, h - G^T W^-1 G / 2, bounds the
+/// disc; with nu the least eigenvalue of W, so does the least of h - |G| r + nu r^2 / 2 over
+/// r in [0, tau].
+double curved_bound(const PairFunction& f, const Sample& s, double tau) {
+    dvec3 t1, t2;
+    tangent_basis(s.n, t1, t2);
+    const double g1 = glm::dot(s.p, t1), g2 = glm::dot(s.p, t2);
+    const double slope = std::sqrt(g1 * g1 + g2 * g2);
+    const Curvature k = f.curvature_floor(s, t1, t2, tau);
+    const auto eigen = [](double m11, double m12, double m22, double sign) {
+        const double half_diff = 0.5 * (m11 - m22);
+        return 0.5 * (m11 + m22) + sign * std::sqrt(half_diff * half_diff + m12 * m12);
+    };
+    const double shift = std::max(s.h, 0.0) + slope * tau +
+                         0.5 * std::max(eigen(k.k11, k.k12, k.k22, 1.0), 0.0) * tau * tau;
+    const double w11 = k.k11 - shift, w22 = k.k22 - shift;
+    const double highest = eigen(w11, k.k12, w22, 1.0);
+    // The eigenvalue's rounding is below 2^-50 of the largest one; the margin covers it.
+    const double nu = eigen(w11, k.k12, w22, -1.0) - 0x1p-46 * std::abs(highest);
+    const double at_edge = s.h - slope * tau + 0.5 * nu * tau * tau;
+    double bound = std::min(at_edge, s.h);  // a NaN edge stays NaN
+    if (nu > 0.0) {
+        // G^T adj(W) G / det(W), the numerator raised by its rounding, det(W) = nu highest.
+        const double adjugate = w22 * g1 * g1 - 2.0 * k.k12 * g1 * g2 + w11 * g2 * g2 +
+                                0x1p-46 * highest * slope * slope;
+        const double plane = s.h - 0.5 * adjugate / (nu * highest);
+        bound = slope > nu * tau ? std::max(plane, at_edge) : plane;
+    }
+    // Every such bound is at most h(c); a NaN (from extreme radii overflowing) bounds nothing.
+    return bound <= s.h ? bound : -std::numeric_limits<double>::infinity();
+}
+
+/// A cap of directions about a sample's where h is certified no lower than a floor:
+/// cos of its angular radius, above 1 when none is.
+struct Cap {
+    dvec3 centre;
+    double cos_radius;
+
+    /// Whether the cap holds every direction within angle theta of unit c.
+    bool holds(const dvec3& c, double sin_theta, double cos_theta) const {
+        const double cos_phi = glm::dot(c, centre);
+        if (!(cos_phi > cos_radius)) return false;  // c itself is outside
+        const double sin_phi = glm::length(glm::cross(c, centre));
+        return cos_phi * cos_theta - sin_phi * sin_theta >= cos_radius + 0x1p-44;
+    }
+};
+
+/// The widest cap about s (of radius atan(tau), tau = 2^-2 .. 2^-12) whose curved bound
+/// reaches the floor. About a minimiser the curved bound is h there, less rounding, as long
+/// as the curvature floor exceeds h: a cap of about its least eigenvalue over the rate at
+/// which the floor falls, which drops the squares about the minimiser a few levels down
+/// instead of splitting them until the ball's bound is within tolerance.
+Cap certified_cap(const PairFunction& f, const Sample& s, double floor) {
+    for (double tau = 0x1p-2; tau >= 0x1p-12; tau *= 0.7071067811865476)
+        if (curved_bound(f, s, tau) >= floor)
+            return {s.n, (1.0 + 0x1p-46) / std::sqrt(1.0 + tau * tau)};
+    return {s.n, 2.0};
+}
+
+/// The branch-and-bound search from the best descent so far (see the head of the file),
+/// lowest bound first, so that it stops as soon as no square can beat the best value.
+Descent search(PairFunction& f, Descent best) {
+    std::vector<Square> heap;
+    heap.reserve(256);
+    const auto later = [](const Square& x, const Square& y) { return x.bound > y.bound; };
+    // Evaluates a square: a centre below the best starts a descent; a square that may still
+    // hold a lower value is queued.
+    // The best minimiser's certified cap (and, when h is even, its antipode's) drops the
+    // squares inside it unseen.
+    const bool even = f.centred();
+    Cap cap = certified_cap(f, best.at, best.at.h - kSearchTolerance);
+    const auto visit = [&](double cu, double cv, double half, int axis, double sign) {
+        const dvec3 q = face_point(axis, sign, cu, cv);
+        const double inv_length = 1.0 / std::sqrt(glm::dot(q, q));
+        const dvec3 c = q * inv_length;
+        // Every point x of the square is within angle theta < pi/2 of its centre direction
+        // c = q / |q|, with sin(theta) <= |x - q| / |q| <= sqrt 2 half / |q| (the law of
+        // sines in the triangle 0, q, x). K holds the ball of radius rho inscribed at p(c)
+        // (see the head of the file), whose support rho + (p(c) - rho c).n bounds h below:
+        // the plane bound with h(c) - rho for h(c).
+        const double sin_theta = 1.4142135623730952 * half * inv_length * (1.0 + 0x1p-46);
+        const double cos_theta = std::sqrt(1.0 - sin_theta * sin_theta);
+        if (cap.holds(c, sin_theta, cos_theta) || (even && cap.holds(-c, sin_theta, cos_theta)))
+            return;
+        const Sample s = f.at(c);
+        if (s.h < best.at.h) {
+            const Descent found = descend(f, s);
+            if (found.at.h < best.at.h) {
+                best = found;
+                cap = certified_cap(f, best.at, best.at.h - kSearchTolerance);
+            }
+        }
+        const dvec3 tangential = s.p - glm::dot(s.p, s.n) * s.n;
+        const double slope = std::sqrt(glm::dot(tangential, tangential));
+        const double rho = std::min(f.inscribed(s), std::max(s.h, 0.0));
+        const double above = s.h - rho;
+        double bound = rho + (above >= 0.0 ? cos_theta * above : above) - sin_theta * slope;
+        // The curved bound is at most h(c): no use below the best.
+        if (bound < best.at.h - kSearchTolerance && s.h >= best.at.h - kSearchTolerance &&
+            half >= kSmallestHalf) {
+            const double curved = curved_bound(f, s, sin_theta / cos_theta * (1.0 + 0x1p-46));
+            if (curved > bound) bound = curved;  // never a NaN
+        }
+        if (bound < best.at.h - kSearchTolerance && half >= kSmallestHalf) {
+            heap.push_back({bound, cu, cv, half, axis, sign});
+            std::push_heap(heap.begin(), heap.end(), later);
+        }
+    };
+    // With both centres at one point h is even, h(-n) = h(n) to the bit, so the faces on
+    // one side of the cube cover every value.
+    const int sides = even ? 1 : 2;
+    for (int axis = 0; axis < 3; ++axis)
+        for (int side = 0; side < sides; ++side)
+            for (const double cu : {-0.5, 0.5})
+                for (const double cv : {-0.5, 0.5})
+                    visit(cu, cv, 0.5, axis, side == 0 ? 1.0 : -1.0);
+    while (!heap.empty() && f.evaluations < kEvaluationCap) {
+        std::pop_heap(heap.begin(), heap.end(), later);
+        const Square q = heap.back();
+        heap.pop_back();
+        if (q.bound >= best.at.h - kSearchTolerance) break;  // so is every queued square
+        const double half = 0.5 * q.half;
+        for (const double du : {-half, half})
+            for (const double dv : {-half, half}) visit(q.cu + du, q.cv + dv, half, q.axis, q.sign);
+    }
+    return best;
+}
+
+/// Where the minimiser would be if A - B were the ellipsoid E = {x^T M^-1 x <= 1} with
+/// M = 2 (M_A + M_B) (A - B itself for two equal spheres): the normal (M + t I)^-1 d at the
+/// point of E closest to -d, t >= 0 its Lagrange multiplier, about the distance times E's
+/// mean radius s: 0 on the surface (the normal on the centre line), large far away (the
+/// centre line itself).
+dvec3 first_guess(const PairFrame& frame) {
+    // m = M / 2 = D_A^2 + B D_B^2 B^T (symmetric), then (m + t / 2 I)^-1 d by the adjugate
+    // (positive definite; its determinant and the scale go with the normalisation).
+    const glm::dmat3& b = frame.b_axes;
+    const dvec3 rb2 = frame.rb * frame.rb;
+    double m[3][3];
+    for (int i = 0; i < 3; ++i)
+        for (int j = i; j < 3; ++j) {
+            m[i][j] = rb2.x * b[0][i] * b[0][j] + rb2.y * b[1][i] * b[1][j] +
+                      rb2.z * b[2][i] * b[2][j];
+            m[j][i] = m[i][j];
+        }
+    m[0][0] += frame.ra.x * frame.ra.x;
+    m[1][1] += frame.ra.y * frame.ra.y;
+    m[2][2] += frame.ra.z * frame.ra.z;
+    const dvec3& d = frame.d;
+    const double s2 = 2.0 * (m[0][0] + m[1][1] + m[2][2]) / 3.0;  // trace(M) / 3
+    const double half_t = std::max(0.0, 0.5 * (std::sqrt(s2 * glm::dot(d, d)) - s2));
+    for (int i = 0; i < 3; ++i) m[i][i] += half_t;
+    const dvec3 solved(
+        (m[1][1] * m[2][2] - m[1][2] * m[1][2]) * d.x + (m[0][2] * m[1][2] - m[0][1] * m[2][2]) * d.y +
+            (m[0][1] * m[1][2] - m[0][2] * m[1][1]) * d.z,
+        (m[0][2] * m[1][2] - m[0][1] * m[2][2]) * d.x + (m[0][0] * m[2][2] - m[0][2] * m[0][2]) * d.y +
+            (m[0][1] * m[0][2] - m[0][0] * m[1][2]) * d.z,
+        (m[0][1] * m[1][2] - m[0][2] * m[1][1]) * d.x + (m[0][1] * m[0][2] - m[0][0] * m[1][2]) * d.y +
+            (m[0][0] * m[1][1] - m[0][1] * m[0][1]) * d.z);
+    const double length2 = glm::dot(solved, solved);
+    if (!(length2 > 0x1p-600 && length2 < 0x1p600)) {
+        const double d2 = glm::dot(d, d);
+        return d2 > 0x1p-600 ? -d * (1.0 / std::sqrt(d2)) : dvec3(0.0, 0.0, 1.0);
+    }
+    return -solved * (1.0 / std::sqrt(length2));
+}
+
+}  // namespace
+
+PairSolution solve_pair(const PairFrame& frame) {
+    PairFunction f(frame);
+    Descent result = descend(f, f.at(first_guess(frame)));
+    PairPath path = PairPath::searched;
+    const Sample& at = result.at;
+    if (result.converged && at.h < 0.0)
+        path = PairPath::separated;
+    else if (result.converged && at.h <= f.inscribed(at) + kSearchTolerance)
+        path = PairPath::inscribed_balls;
+    else
+        result = search(f, result);
+    return {result.at.h, result.at.n, result.at.xa, -result.at.xb, path, f.evaluations};
+}
+
+}  // namespace trackphys::detail

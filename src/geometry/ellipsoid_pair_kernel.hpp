@@ -1,0 +1,48 @@
+#pragma once
+
+// The ellipsoid-ellipsoid contact in the first ellipsoid's sorted frame at unit scale
+// (internal; the public entry is ellipsoid_pair.hpp). Exposed for the tests and the
+// benchmark, which check which path answered.
+
+#include <glm/mat3x3.hpp>
+#include <glm/vec3.hpp>
+
+#include "trackphys/geometry/ellipsoid.hpp"
+
+namespace trackphys::detail {
+
+/// How the global minimum was established.
+enum class PairPath {
+    separated,     ///< a local minimum below zero: h is convex there, so it is the only one
+    inscribed_balls,  ///< a critical point no deeper than the balls inscribed at its support points
+    searched,      ///< the branch-and-bound search over the sphere of directions
+    far_field,     ///< centres too far apart for the solver: the closed form along them
+};
+
+/// A pair seen from A's sorted frame, lengths divided by a power of two so that the
+/// largest semi-axis of the two lies in [1, 2).
+struct PairFrame {
+    glm::dvec3 ra;        ///< A's radii, sorted descending
+    glm::dvec3 rb;        ///< B's radii, sorted descending
+    glm::dmat3 b_axes;    ///< B's sorted axes in A's frame (columns, a rotation)
+    glm::dvec3 d;         ///< cA - cB in A's frame
+};
+
+struct PairSolution {
+    double depth;          ///< min over unit n of h(n), at the frame's scale
+    glm::dvec3 n;          ///< the unit minimiser (from A towards B); normal = -n
+    glm::dvec3 extreme_a;  ///< A's support point in direction n, relative to cA
+    glm::dvec3 extreme_b;  ///< B's support point in direction -n, relative to cB
+    PairPath path;
+    int evaluations;  ///< evaluations of h over every descent and the search
+};
+
+/// The global minimum of h. Radii must be finite, sorted, >= 2^-200 and <= 2; d finite
+/// with every component below 2^500 in magnitude.
+PairSolution solve_pair(const PairFrame& frame);
+
+/// How ellipsoid_ellipsoid_contact(a, b) establishes its answer, and how many evaluations
+/// of h it takes (for the tests and the benchmark).
+PairSolution pair_solution(const Ellipsoid& a, const Ellipsoid& b);
+
+}  // namespace trackphys::detail
