@@ -21,6 +21,8 @@ required=(
                 # and double builds; optional: without it those programs are not built
   libfcl-dev # peer benchmarks (bench/peers): FCL's ellipsoid-triangle contact (libccd and
              # its own GJK); optional like libbullet-dev
+  libmujoco-dev # peer benchmark (bench/peers): MuJoCo's ellipsoid-ellipsoid collision;
+                # optional like libbullet-dev
   clang # the second compiler: scripts/determinism.sh checks that g++ and clang++ builds
         # give the same state hash, and the fuzzers (fuzz preset) need clang's libFuzzer
   libclang-rt-14-dev # clang's runtimes: libFuzzer (-fsanitize=fuzzer) and its sanitizers;
