@@ -32,7 +32,8 @@ constexpr double kTravel = 2.8;
 constexpr double kMargin = 0.25;
 
 std::uint32_t segments_for(std::int64_t triangles) {
-    return static_cast<std::uint32_t>(std::max<std::int64_t>(3, triangles / (2 * BankedLoop::kAcross)));
+    return static_cast<std::uint32_t>(
+        std::max<std::int64_t>(3, triangles / (2 * BankedLoop::kAcross)));
 }
 
 // The size sweep keeps the triangle density of the 300k-triangle loop at scale 2 (3.6 km,
@@ -46,8 +47,9 @@ const TriangleMesh& loop_mesh(std::int64_t triangles, double scale) {
     static std::map<std::pair<std::int64_t, double>, TriangleMesh> cache;
     auto it = cache.find({triangles, scale});
     if (it == cache.end())
-        it = cache.emplace(std::pair{triangles, scale},
-                           BankedLoop{scale}.mesh(segments_for(triangles)))
+        it = cache
+                 .emplace(std::pair{triangles, scale},
+                          BankedLoop{scale}.mesh(segments_for(triangles)))
                  .first;
     return it->second;
 }
@@ -98,8 +100,8 @@ void BM_CarBoxQuery(benchmark::State& state) {
         const double loop_length = loop.scale * 1820.0;  // m, BankedLoop's perimeter
         boxes.clear();
         for (int k = 0; k < 10000; ++k)
-            boxes.push_back(loop.car_box(std::fmod(0.37 + k * kTravel / loop_length, 1.0),
-                                         kTravel, kMargin));
+            boxes.push_back(
+                loop.car_box(std::fmod(0.37 + k * kTravel / loop_length, 1.0), kTravel, kMargin));
     }
     std::vector<std::uint32_t> out;
     std::size_t i = 0, found = 0;
@@ -174,14 +176,16 @@ void BM_WorldCarBox(benchmark::State& state) {
     const std::size_t per_chunk = (mesh.triangles.size() + chunks - 1) / chunks;
     for (std::size_t c = 0; c < chunks; ++c) {
         TriangleMesh chunk{mesh.vertices, {}};
-        for (std::size_t t = c * per_chunk; t < std::min(mesh.triangles.size(), (c + 1) * per_chunk); ++t)
+        for (std::size_t t = c * per_chunk;
+             t < std::min(mesh.triangles.size(), (c + 1) * per_chunk); ++t)
             chunk.triangles.push_back(mesh.triangles[t]);
         world.add(std::make_shared<const StaticCollider>(chunk));
     }
     const double loop_length = loop.scale * 1820.0;
     std::vector<Aabb> boxes;
     for (int k = 0; k < 10000; ++k)
-        boxes.push_back(loop.car_box(std::fmod(0.37 + k * kTravel / loop_length, 1.0), kTravel, kMargin));
+        boxes.push_back(
+            loop.car_box(std::fmod(0.37 + k * kTravel / loop_length, 1.0), kTravel, kMargin));
     std::vector<TriangleRef> out;
     std::size_t i = 0, found = 0;
     for (auto _ : state) {
@@ -252,20 +256,28 @@ void BM_Track300k_BvhVsBruteForce(benchmark::State& state) {
     state.counters["candidates_mean"] = double(candidates) / double(boxes.size());
 }
 
-BENCHMARK(BM_Build)->RangeMultiplier(10)->Range(1000, 1000000)->Arg(300000)
+BENCHMARK(BM_Build)
+    ->RangeMultiplier(10)
+    ->Range(1000, 1000000)
+    ->Arg(300000)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CarBoxQuery)->ArgsProduct({{1000, 10000, 100000, 300000, 1000000}, {0, 1}});
 BENCHMARK(BM_Raycast)->RangeMultiplier(10)->Range(1000, 1000000)->Arg(300000);
 BENCHMARK(BM_WorldCarBox)->Arg(1)->Arg(16)->Arg(256);
 BENCHMARK(BM_SphereQuery)->Args({300000, 0})->Args({300000, 1});
-BENCHMARK(BM_Track300k_BvhVsBruteForce)->Arg(10)->Arg(20)->Iterations(1)
+BENCHMARK(BM_Track300k_BvhVsBruteForce)
+    ->Arg(10)
+    ->Arg(20)
+    ->Iterations(1)
     ->Unit(benchmark::kMillisecond);
 
 // 1e7 triangles: ~1.5 GB and tens of seconds, so only on request, each timed once.
 [[maybe_unused]] const bool kHuge = [] {
     const char* flag = std::getenv("TRACKPHYS_BENCH_10M");
     if (flag && flag[0] == '1') {
-        benchmark::RegisterBenchmark("BM_Build_10M", BM_Build)->Arg(10000000)->Iterations(1)
+        benchmark::RegisterBenchmark("BM_Build_10M", BM_Build)
+            ->Arg(10000000)
+            ->Iterations(1)
             ->Unit(benchmark::kMillisecond);
         benchmark::RegisterBenchmark("BM_CarBoxQuery_10M", BM_CarBoxQuery)
             ->Args({10000000, 0})

@@ -6,14 +6,14 @@
 // caches and predictors) and report the median, 90th percentile and maximum over cases.
 //   build/release/bench/bench_contact --benchmark_min_time=0.5
 
-#include <benchmark/benchmark.h>
-
 #include <algorithm>
 #include <chrono>
 #include <vector>
 
-#include "support/contact_cases.hpp"
+#include <benchmark/benchmark.h>
+
 #include "point_queries.hpp"
+#include "support/contact_cases.hpp"
 #include "trackphys/geometry/contact.hpp"
 #include "trackphys/geometry/point_ellipsoid.hpp"
 

@@ -6,11 +6,11 @@
 // on its own (32 back-to-back calls) and report the median, 90th percentile and maximum.
 //   build/release/bench/bench_ellipsoid_pair --benchmark_min_time=0.5
 
-#include <benchmark/benchmark.h>
-
 #include <algorithm>
 #include <chrono>
 #include <vector>
+
+#include <benchmark/benchmark.h>
 
 #include "geometry/ellipsoid_pair_kernel.hpp"
 #include "support/ellipsoid_pair_cases.hpp"
@@ -89,9 +89,9 @@ void BM_PairLatency(benchmark::State& state, PairKind kind) {
 void register_all() {
     benchmark::RegisterBenchmark("BM_MayTouch/far", BM_MayTouch, PairKind::far);
     benchmark::RegisterBenchmark("BM_MayTouch/car_like", BM_MayTouch, PairKind::car_like);
-    for (const PairKind kind : {PairKind::car_like, PairKind::grazing, PairKind::far,
-                                PairKind::sphere_ellipsoid, PairKind::deep, PairKind::elongated,
-                                PairKind::crossing, PairKind::coincident}) {
+    for (const PairKind kind :
+         {PairKind::car_like, PairKind::grazing, PairKind::far, PairKind::sphere_ellipsoid,
+          PairKind::deep, PairKind::elongated, PairKind::crossing, PairKind::coincident}) {
         const std::string name = test::pair_kind_name(kind);
         benchmark::RegisterBenchmark(("BM_Pair/" + name).c_str(), BM_Pair, kind);
         benchmark::RegisterBenchmark(("BM_PairLatency/" + name).c_str(), BM_PairLatency, kind)

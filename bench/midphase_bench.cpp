@@ -80,7 +80,8 @@ void BM_ModeRatios(benchmark::State& state) {
     for (auto _ : state) {
         for (std::size_t v = 0; v < n; ++v) {
             auto mid = make_mid_phase(variants[v].mode);
-            begin_us[v] = best_of([&] { mid->begin_update(bench::tightest_turn_scene().update_box); });
+            begin_us[v] =
+                best_of([&] { mid->begin_update(bench::tightest_turn_scene().update_box); });
             std::size_t total = 0;
             mid_us[v] = best_of([&] { total = run_update(*mid, variants[v], false, lists, kept); });
             cull_us[v] = best_of([&] { total = run_update(*mid, variants[v], true, lists, kept); });
@@ -100,7 +101,11 @@ void BM_ModeRatios(benchmark::State& state) {
     state.counters["writeup/ours_mid+cull"] = cull_us[kWriteupVariant] / cull_us[kDefaultVariant];
     std::string legend;
     for (std::size_t v = 0; v < n; ++v)
-        legend.append("v").append(std::to_string(v)).append(" ").append(variants[v].name).append("; ");
+        legend.append("v")
+            .append(std::to_string(v))
+            .append(" ")
+            .append(variants[v].name)
+            .append("; ");
     state.SetLabel(legend);
 }
 

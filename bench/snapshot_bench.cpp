@@ -28,14 +28,16 @@ const Scene& scene() {
         params.seed = 7;
         const Track track = generate_track(params);
         auto statics = std::make_shared<StaticWorld>();
-        for (const TrackChunk& chunk : track.chunks) statics->add(std::make_shared<StaticCollider>(chunk.mesh));
+        for (const TrackChunk& chunk : track.chunks)
+            statics->add(std::make_shared<StaticCollider>(chunk.mesh));
         Scene s;
         s.world = std::make_unique<World>(statics);
         const CarSpec spec = CarSpec::default_car();
         const CenterlineSample& start = track.centerline.front();
         RigidBodyState state;
         state.position = start.position + start.up * (spec.lowest_point_depth() + 0.001);
-        state.orientation = glm::normalize(glm::quat_cast(glm::dmat3(start.left, start.up, start.tangent)));
+        state.orientation =
+            glm::normalize(glm::quat_cast(glm::dmat3(start.left, start.up, start.tangent)));
         s.world->add_car(spec, state);
         Autopilot pilot(track, spec);
         for (int i = 0; i < 200; ++i) {
@@ -77,7 +79,8 @@ BENCHMARK(BM_DecodeSnapshot)->Unit(benchmark::kMicrosecond);
 
 void BM_SaveSnapshotFile(benchmark::State& state) {
     const Scene& s = scene();
-    const std::filesystem::path path = std::filesystem::temp_directory_path() / "trackphys_bench.snap";
+    const std::filesystem::path path =
+        std::filesystem::temp_directory_path() / "trackphys_bench.snap";
     for (auto _ : state) save_snapshot(path, s.snapshot);
     std::filesystem::remove(path);
 }

@@ -29,12 +29,13 @@ void run_cull(benchmark::State& state, CullVariant variant) {
     const double tests = double(scene().tests());
     state.counters["candidates"] = double(scene().longest_edge_origin.size());
     state.counters["kept_%"] = 100.0 * double(kept) / tests;
-    state.counters["ns_per_test"] =
-        benchmark::Counter(tests, benchmark::Counter::kIsIterationInvariantRate |
-                                      benchmark::Counter::kInvert);
+    state.counters["ns_per_test"] = benchmark::Counter(
+        tests, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
-void BM_Cull1_ArbitraryOrigin_XYZ(benchmark::State& state) { run_cull(state, CullVariant::xyz_order); }
+void BM_Cull1_ArbitraryOrigin_XYZ(benchmark::State& state) {
+    run_cull(state, CullVariant::xyz_order);
+}
 void BM_Cull2_ArbitraryOrigin_NormalFirst(benchmark::State& state) {
     run_cull(state, CullVariant::normal_first);
 }
@@ -42,8 +43,17 @@ void BM_Cull3_LongestEdge_NormalFirst(benchmark::State& state) {
     run_cull(state, CullVariant::longest_edge_normal_first);
 }
 
-BENCHMARK(BM_Cull1_ArbitraryOrigin_XYZ)->Unit(benchmark::kMicrosecond)->Repetitions(5)->ReportAggregatesOnly(true);
-BENCHMARK(BM_Cull2_ArbitraryOrigin_NormalFirst)->Unit(benchmark::kMicrosecond)->Repetitions(5)->ReportAggregatesOnly(true);
-BENCHMARK(BM_Cull3_LongestEdge_NormalFirst)->Unit(benchmark::kMicrosecond)->Repetitions(5)->ReportAggregatesOnly(true);
+BENCHMARK(BM_Cull1_ArbitraryOrigin_XYZ)
+    ->Unit(benchmark::kMicrosecond)
+    ->Repetitions(5)
+    ->ReportAggregatesOnly(true);
+BENCHMARK(BM_Cull2_ArbitraryOrigin_NormalFirst)
+    ->Unit(benchmark::kMicrosecond)
+    ->Repetitions(5)
+    ->ReportAggregatesOnly(true);
+BENCHMARK(BM_Cull3_LongestEdge_NormalFirst)
+    ->Unit(benchmark::kMicrosecond)
+    ->Repetitions(5)
+    ->ReportAggregatesOnly(true);
 
 }  // namespace

@@ -18,7 +18,10 @@ void BM_GenerateDefaultTrack(benchmark::State& state) {
     }
     state.counters["triangles"] = static_cast<double>(triangles);
 }
-BENCHMARK(BM_GenerateDefaultTrack)->Unit(benchmark::kMillisecond)->Repetitions(5)->ReportAggregatesOnly(true);
+BENCHMARK(BM_GenerateDefaultTrack)
+    ->Unit(benchmark::kMillisecond)
+    ->Repetitions(5)
+    ->ReportAggregatesOnly(true);
 
 void BM_UpdateBoxCountTightestTurn(benchmark::State& state) {
     trackphys::TrackParams params;

@@ -142,8 +142,8 @@ double segment_distance(const dvec3& a, const dvec3& b) {
 // nearly degenerate triangle the rounded normal is meaningless, and the plane distance it
 // gives could be far below the true one, while a point of the triangle never is.
 double origin_distance(const std::array<dvec3, 3>& s) {
-    double d = std::min({segment_distance(s[0], s[1]), segment_distance(s[1], s[2]),
-                         segment_distance(s[2], s[0])});
+    double d = std::min(
+        {segment_distance(s[0], s[1]), segment_distance(s[1], s[2]), segment_distance(s[2], s[0])});
     const dvec3 ab = s[1] - s[0], ac = s[2] - s[0];
     const dvec3 n = glm::cross(ab, ac);
     const double n2 = glm::dot(n, n);
@@ -197,8 +197,8 @@ void check_normal(const Ellipsoid& e, const Triangle& t, const Contact& c) {
     // A normal off the optimal direction by an angle a moves the result by up to
     // |depth| a (depth is 1-Lipschitz): the contract allows a = 1e-6 rad (README.md). And
     // translating by depth rounds the center: a few ulps of its size.
-    const double slack = 1e-6 * std::abs(c.depth) +
-                         8.0 * kEps * (glm::length(e.center()) + std::abs(c.depth));
+    const double slack =
+        1e-6 * std::abs(c.depth) + 8.0 * kEps * (glm::length(e.center()) + std::abs(c.depth));
     if (!(std::abs(touching.depth) <= 2.0 * kContract + slack))
         finding("moving by depth along the normal does not leave them touching", e, t, c);
 }

@@ -146,7 +146,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         probes[4 + i] = b->sorted_axes()[i];
     }
     for (const dvec3& n : probes)
-        if (!(support(*a, *b, n) >= c.depth - tolerance && support(*a, *b, -n) >= c.depth - tolerance))
+        if (!(support(*a, *b, n) >= c.depth - tolerance &&
+              support(*a, *b, -n) >= c.depth - tolerance))
             finding("a probed direction is below the depth", *a, *b, c);
     const Ellipsoid moved(a->center() + c.depth * c.normal, a->orientation(), a->semi_axes());
     const Contact touching = trackphys::ellipsoid_ellipsoid_contact(moved, *b);

@@ -22,25 +22,29 @@
 namespace {
 
 [[noreturn]] void finding(const char* what, const std::string& first, const std::string& second) {
-    std::fprintf(stderr, "fuzz_json_files: %s\n--- written:\n%s\n--- written again:\n%s\n", what, first.c_str(),
-                 second.c_str());
+    std::fprintf(stderr, "fuzz_json_files: %s\n--- written:\n%s\n--- written again:\n%s\n", what,
+                 first.c_str(), second.c_str());
     std::abort();
 }
 
 void check_scenario(std::string_view text) {
     const trackphys::Scenario scenario = trackphys::parse_scenario(text);
-    if (!scenario.validate().empty()) finding("an accepted scenario does not validate", scenario.validate(), "");
+    if (!scenario.validate().empty())
+        finding("an accepted scenario does not validate", scenario.validate(), "");
     const std::string written = trackphys::scenario_to_json(scenario);
     const std::string again = trackphys::scenario_to_json(trackphys::parse_scenario(written));
-    if (again != written) finding("scenario: written, read and written again differs", written, again);
+    if (again != written)
+        finding("scenario: written, read and written again differs", written, again);
 }
 
 void check_car_spec(std::string_view text) {
     const trackphys::CarSpec spec = trackphys::parse_car_spec(text);
-    if (!spec.validate().empty()) finding("an accepted car spec does not validate", spec.validate(), "");
+    if (!spec.validate().empty())
+        finding("an accepted car spec does not validate", spec.validate(), "");
     const std::string written = trackphys::car_spec_to_json(spec);
     const std::string again = trackphys::car_spec_to_json(trackphys::parse_car_spec(written));
-    if (again != written) finding("car spec: written, read and written again differs", written, again);
+    if (again != written)
+        finding("car spec: written, read and written again differs", written, again);
 }
 
 }  // namespace

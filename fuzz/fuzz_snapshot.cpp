@@ -40,7 +40,8 @@ constexpr int kUpdates = 5;
 const std::shared_ptr<const trackphys::StaticWorld>& statics() {
     static const std::shared_ptr<const trackphys::StaticWorld> built = [] {
         auto world = std::make_shared<trackphys::StaticWorld>();
-        world->add(std::make_shared<trackphys::StaticCollider>(trackphys::load_mesh(TRACKPHYS_FUZZ_GROUND)));
+        world->add(std::make_shared<trackphys::StaticCollider>(
+            trackphys::load_mesh(TRACKPHYS_FUZZ_GROUND)));
         return world;
     }();
     return built;

@@ -84,7 +84,7 @@ RigidBodyState decode_start(const trackphys::Track& track, const std::uint8_t* d
     const double speed = read<std::int16_t>(data, size, 5) / 100.0;  // +-328 m/s
     const double slip = read<std::int16_t>(data, size, 7) / 1000.0;  // +-33 m/s sideways
     state.linear_velocity = at.tangent * speed + at.left * slip;
-    const double yaw_rate = read<std::int16_t>(data, size, 9) / 8192.0;   // +-4 rad/s
+    const double yaw_rate = read<std::int16_t>(data, size, 9) / 8192.0;  // +-4 rad/s
     const double roll_rate = read<std::int16_t>(data, size, 11) / 8192.0;
     state.angular_velocity = at.up * yaw_rate + at.tangent * roll_rate;
     return state;

@@ -9,13 +9,15 @@ namespace trackphys::cli {
 
 void add_bench_command(CLI::App& app) {
     CLI::App* command = app.add_subcommand(
-        "bench", "Moved: the benchmark suite is the trackphys-bench program (built with the benchmarks)");
+        "bench",
+        "Moved: the benchmark suite is the trackphys-bench program (built with the benchmarks)");
     command->allow_extras();
     command->callback([] {
-        throw Error("the benchmark suite is its own program now: trackphys-bench, built with "
-                    "-DTRACKPHYS_BUILD_BENCHMARKS=ON (the default for a top-level build) as "
-                    "build/<preset>/bench/trackphys-bench, not installed; "
-                    "run trackphys-bench --help");
+        throw Error(
+            "the benchmark suite is its own program now: trackphys-bench, built with "
+            "-DTRACKPHYS_BUILD_BENCHMARKS=ON (the default for a top-level build) as "
+            "build/<preset>/bench/trackphys-bench, not installed; "
+            "run trackphys-bench --help");
     });
 }
 

@@ -12,7 +12,9 @@ namespace trackphys::cli {
 /// Rejects a leading minus sign: CLI11 reads "-1" into an unsigned option as 2^64 - 1.
 inline CLI::Validator not_negative() {
     return CLI::Validator(
-        [](const std::string& text) { return text.rfind('-', 0) == 0 ? std::string("must be >= 0, got " + text) : ""; },
+        [](const std::string& text) {
+            return text.rfind('-', 0) == 0 ? std::string("must be >= 0, got " + text) : "";
+        },
         "UINT", "not_negative");
 }
 

@@ -58,10 +58,14 @@ constexpr double kMaxSecondsPerLap = 600.0;
 
 // The option that sets each Scenario field, to name it in Scenario::validate()'s messages.
 constexpr std::pair<const char*, const char*> kFieldOptions[] = {
-    {"Scenario.mesh", "--mesh"},          {"Scenario.spawn", "--spawn"},
-    {"Scenario.heading_deg", "--heading"}, {"Scenario.target_speed_kmh", "--target-speed"},
-    {"Scenario.inputs.throttle", "--throttle"}, {"Scenario.inputs.steer", "--steer"},
-    {"Scenario.laps", "--laps"},           {"Scenario.seconds", "--seconds"},
+    {"Scenario.mesh", "--mesh"},
+    {"Scenario.spawn", "--spawn"},
+    {"Scenario.heading_deg", "--heading"},
+    {"Scenario.target_speed_kmh", "--target-speed"},
+    {"Scenario.inputs.throttle", "--throttle"},
+    {"Scenario.inputs.steer", "--steer"},
+    {"Scenario.laps", "--laps"},
+    {"Scenario.seconds", "--seconds"},
 };
 
 // The scenario file (or the defaults) with the car file and every scene option given on
@@ -83,25 +87,29 @@ Scenario build_scenario(const DriveOptions& o, const CLI::App& command) {
     if (given("--seconds")) s.seconds = f.seconds;
 
     if (given("--seed") && !s.mesh.empty())
-        throw Error("--seed picks a generated track, but this drive is on the mesh '" + s.mesh.string() + "'");
+        throw Error("--seed picks a generated track, but this drive is on the mesh '" +
+                    s.mesh.string() + "'");
     if (given("--target-speed") && s.free_mode())
-        throw Error("--target-speed sets the autopilot, which does not drive in free mode (a spawn point): "
-                    "use --throttle and --steer");
+        throw Error(
+            "--target-speed sets the autopilot, which does not drive in free mode (a spawn point): "
+            "use --throttle and --steer");
     for (const char* option : {"--throttle", "--steer", "--heading"})
         if (given(option) && !s.free_mode())
-            throw Error(std::string(option) + " applies in free mode only: add --spawn x,y,z (without a spawn "
+            throw Error(std::string(option) +
+                        " applies in free mode only: add --spawn x,y,z (without a spawn "
                         "point the autopilot drives the generated track from its start line)");
     std::string why = s.validate();
     if (why.empty()) return s;
     for (const auto& [field, option] : kFieldOptions)
-        if (why.rfind(field, 0) == 0 && given(option)) throw Error(std::string(option) + ": " + why);
+        if (why.rfind(field, 0) == 0 && given(option))
+            throw Error(std::string(option) + ": " + why);
     if (!o.scenario_file.empty()) why = "scenario '" + o.scenario_file.string() + "': " + why;
     throw Error(why);
 }
 
 // A progress bar on stderr, only when stderr is a terminal (never in logs or CI).
 class Progress {
-public:
+  public:
     explicit Progress(double total) : total_(total), enabled_(total > 0.0 && isatty(2)) {}
     void show(double done, double speed_kmh) {
         if (!enabled_) return;
@@ -117,7 +125,7 @@ public:
         if (enabled_ && last_ >= 0) std::fprintf(stderr, "\n");
     }
 
-private:
+  private:
     double total_;
     bool enabled_;
     int last_ = -1;
@@ -136,12 +144,14 @@ std::optional<SavePoint> parse_save_at(const DriveOptions& o, double drive_secon
     if (used != time.size() || !std::isfinite(point.seconds) || point.seconds < 0.0)
         throw Error("--save-at '" + time + "': the time must be a finite number of seconds >= 0");
     if (drive_seconds > 0.0 && point.seconds > drive_seconds + 1e-9)
-        throw Error("--save-at " + time + " is after the drive's end (--seconds " + std::to_string(drive_seconds) + ")");
+        throw Error("--save-at " + time + " is after the drive's end (--seconds " +
+                    std::to_string(drive_seconds) + ")");
     return point;
 }
 
 void run(const DriveOptions& o, const CLI::App& command) {
-    if (o.track != "default") throw Error("--track '" + o.track + "': the only generated track is 'default'");
+    if (o.track != "default")
+        throw Error("--track '" + o.track + "': the only generated track is 'default'");
     const Scenario s = build_scenario(o, command);
     if (o.print_car) {
         std::fputs(car_spec_to_json(s.car).c_str(), stdout);
@@ -162,11 +172,14 @@ void run(const DriveOptions& o, const CLI::App& command) {
     const auto stage = [&](const std::filesystem::path& path, const char* option) {
         return path.empty() ? path : outputs.stage(path, option);
     };
-    const std::filesystem::path json = stage(o.json, "--json"), trace_file = stage(o.trace, "--trace"),
+    const std::filesystem::path json = stage(o.json, "--json"),
+                                trace_file = stage(o.trace, "--trace"),
                                 record = stage(o.record, "--record"), svg = stage(o.svg, "--svg");
     std::optional<SavePoint> save_at = parse_save_at(o, s.seconds);
     if (save_at) save_at->staged = stage(save_at->file, "--save-at");
-    DriveSession session{s.free_mode(), s.seed, s.target_speed_kmh, s.inputs.throttle, s.inputs.steer, {}, 0.0, 0.0, {}};
+    DriveSession session{
+        s.free_mode(), s.seed, s.target_speed_kmh, s.inputs.throttle, s.inputs.steer, {}, 0.0,
+        0.0,           {}};
     std::optional<SnapshotFile> resume;
     if (!o.resume.empty()) {
         resume = load_snapshot(o.resume);
@@ -177,8 +190,9 @@ void run(const DriveOptions& o, const CLI::App& command) {
 
     const DriveScene scene = s.mesh.empty() ? make_track_scene(s.seed) : make_mesh_scene(s.mesh);
     World world(scene.statics);
-    const RigidBodyState start = s.free_mode() ? spawn_on_surface(*scene.statics, s.car, *s.spawn, s.heading_deg)
-                                               : start_on_track(*scene.track, s.car);
+    const RigidBodyState start =
+        s.free_mode() ? spawn_on_surface(*scene.statics, s.car, *s.spawn, s.heading_deg)
+                      : start_on_track(*scene.track, s.car);
     world.add_car(s.car, start);
     // Resuming: the same static world, settings and car (restore_state checks their
     // fingerprints), then the snapshot's state, update count and time.
@@ -201,7 +215,8 @@ void run(const DriveOptions& o, const CLI::App& command) {
     }
     std::unique_ptr<RecordingWriter> recording;
     if (!record.empty())
-        recording = std::make_unique<RecordingWriter>(record, world.settings().dt_update, 1, scene.description);
+        recording = std::make_unique<RecordingWriter>(record, world.settings().dt_update, 1,
+                                                      scene.description);
 
     DriveReport report;
     report.scene = scene.description;
@@ -255,13 +270,15 @@ void run(const DriveOptions& o, const CLI::App& command) {
             recording->add_car(state.position, state.orientation, car.speed(), world.contacts(0));
             recording->end_frame();
         }
-        progress.show(laps > 0 ? autopilot->laps() + autopilot->distance_along() / scene.track->length_m -
+        progress.show(laps > 0 ? autopilot->laps() +
+                                     autopilot->distance_along() / scene.track->length_m -
                                      autopilot->laps()
                                : world.time(),
                       car.speed() * 3.6);
         save_if_due();
     }
-    report.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+    report.wall_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
     report.updates = world.update_count();
     report.simulated_s = world.time();
     report.laps_completed = autopilot ? autopilot->laps() : 0;
@@ -272,11 +289,12 @@ void run(const DriveOptions& o, const CLI::App& command) {
 
     print_drive_report(report);
     if (save_at && !saved)
-        throw Error("--save-at " + o.save_at.first + ": the drive ended at " + std::to_string(world.time()) +
-                    " s, before that time; no snapshot written");
+        throw Error("--save-at " + o.save_at.first + ": the drive ended at " +
+                    std::to_string(world.time()) + " s, before that time; no snapshot written");
     if (laps > 0 && report.laps_completed < laps)
         throw Error("the car completed " + std::to_string(report.laps_completed) + " of " +
-                    std::to_string(laps) + " laps in " + std::to_string(seconds) + " simulated seconds");
+                    std::to_string(laps) + " laps in " + std::to_string(seconds) +
+                    " simulated seconds");
     if (!json.empty()) write_drive_json(report, json);
     if (!svg.empty()) write_drive_svg(plot, scene.track, svg);
     if (trace) {
@@ -293,47 +311,70 @@ void run(const DriveOptions& o, const CLI::App& command) {
 void add_drive_command(CLI::App& app) {
     auto o = std::make_shared<DriveOptions>();
     CLI::App* command = app.add_subcommand(
-        "drive", "Drive the default car (or --car, or a --scenario file): laps of a generated track by "
-                 "autopilot, or free on any mesh; prints lap time, top speed and the per-phase profile of "
-                 "every update. Options given with --scenario override the file's values");
-    command->add_option("--scenario", o->scenario_file,
-                        "Read track, car, driver and duration from this JSON file (see README, 'Scenario files')");
-    command->add_option("--car", o->car_file, "Read the car spec from this JSON file (see --print-car)");
-    CLI::Option* print_car =
-        command->add_flag("--print-car", o->print_car,
-                          "Print the car spec (default, --car or the scenario's) as JSON and exit: a starting "
-                          "point for a --car file");
+        "drive",
+        "Drive the default car (or --car, or a --scenario file): laps of a generated track by "
+        "autopilot, or free on any mesh; prints lap time, top speed and the per-phase profile of "
+        "every update. Options given with --scenario override the file's values");
+    command->add_option(
+        "--scenario", o->scenario_file,
+        "Read track, car, driver and duration from this JSON file (see README, 'Scenario files')");
+    command->add_option("--car", o->car_file,
+                        "Read the car spec from this JSON file (see --print-car)");
+    CLI::Option* print_car = command->add_flag(
+        "--print-car", o->print_car,
+        "Print the car spec (default, --car or the scenario's) as JSON and exit: a starting "
+        "point for a --car file");
     command
-        ->add_flag("--print-scenario", o->print_scenario,
-                   "Print the scenario these options describe as JSON and exit: a starting point for a "
-                   "--scenario file")
+        ->add_flag(
+            "--print-scenario", o->print_scenario,
+            "Print the scenario these options describe as JSON and exit: a starting point for a "
+            "--scenario file")
         ->excludes(print_car);
-    command->add_option("--track", o->track, "Generated track to drive (default)")->capture_default_str();
+    command->add_option("--track", o->track, "Generated track to drive (default)")
+        ->capture_default_str();
     command->add_option("--seed", o->flags.seed, "Seed of the generated track")
         ->check(not_negative())
         ->capture_default_str();
-    command->add_option("--mesh", o->flags.mesh, "Drive on this mesh file instead (free mode, needs --spawn)");
-    command->add_option("--laps", o->flags.laps, "Laps to drive by autopilot (default 1 without --seconds)");
+    command->add_option("--mesh", o->flags.mesh,
+                        "Drive on this mesh file instead (free mode, needs --spawn)");
+    command->add_option("--laps", o->flags.laps,
+                        "Laps to drive by autopilot (default 1 without --seconds)");
     command->add_option("--seconds", o->flags.seconds, "Simulated seconds to drive");
-    command->add_option("--target-speed", o->flags.target_speed_kmh, "Autopilot speed on straights (km/h)")
+    command
+        ->add_option("--target-speed", o->flags.target_speed_kmh,
+                     "Autopilot speed on straights (km/h)")
         ->capture_default_str();
-    command->add_option("--spawn", o->spawn, "Free mode: start above x,y,z (the car lands on the surface below)")
+    command
+        ->add_option("--spawn", o->spawn,
+                     "Free mode: start above x,y,z (the car lands on the surface below)")
         ->delimiter(',')
         ->expected(3);
-    command->add_option("--heading", o->flags.heading_deg, "Free mode: heading about +Y in degrees (0 = +X, 90 = -Z)")
+    command
+        ->add_option("--heading", o->flags.heading_deg,
+                     "Free mode: heading about +Y in degrees (0 = +X, 90 = -Z)")
         ->capture_default_str();
-    command->add_option("--throttle", o->flags.inputs.throttle, "Free mode: fixed throttle 0..1")->capture_default_str();
-    command->add_option("--steer", o->flags.inputs.steer, "Free mode: fixed steering -1..1 (+1 = left)")->capture_default_str();
+    command->add_option("--throttle", o->flags.inputs.throttle, "Free mode: fixed throttle 0..1")
+        ->capture_default_str();
+    command
+        ->add_option("--steer", o->flags.inputs.steer,
+                     "Free mode: fixed steering -1..1 (+1 = left)")
+        ->capture_default_str();
     command->add_option("--json", o->json, "Write the figures as JSON");
-    command->add_option("--trace", o->trace, "Write a Chrome trace (Perfetto) of every update's phases");
-    command->add_option("--record", o->record, "Write car poses and contacts per update (JSON Lines) for a viewer");
+    command->add_option("--trace", o->trace,
+                        "Write a Chrome trace (Perfetto) of every update's phases");
+    command->add_option("--record", o->record,
+                        "Write car poses and contacts per update (JSON Lines) for a viewer");
     command->add_option("--svg", o->svg, "Plot the path over the track and the update times");
-    command->add_option("--save-at", o->save_at,
-                        "Save a snapshot to FILE when the simulated time reaches T seconds, and keep driving")
+    command
+        ->add_option(
+            "--save-at", o->save_at,
+            "Save a snapshot to FILE when the simulated time reaches T seconds, and keep driving")
         ->type_name("T FILE");
-    command->add_option("--resume", o->resume,
-                        "Continue the drive saved in this snapshot (give the original drive's options; "
-                        "--seconds and --laps count from the original start)")
+    command
+        ->add_option(
+            "--resume", o->resume,
+            "Continue the drive saved in this snapshot (give the original drive's options; "
+            "--seconds and --laps count from the original start)")
         ->type_name("FILE");
     command->callback([o, command] { run(*o, *command); });
 }

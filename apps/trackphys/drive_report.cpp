@@ -44,13 +44,14 @@ void print_drive_report(const DriveReport& r) {
         print_row(phase_name(static_cast<Phase>(p)), r.profile.phase_us(static_cast<Phase>(p)));
     std::printf("  write-up budget: %.0f us typical, %.0f us spikes\n", kWriteupTypicalUs,
                 kWriteupSpikeUs);
-    std::printf("counts per update: %.1f mid-phase queries, %.1f candidates, %.1f tested per "
-                "ellipsoid sub-step, %.1f exact tests, %.1f contacts\n",
-                r.profile.mean_mid_queries(), r.profile.mean_candidates(),
-                r.profile.mean_tested_per_ellipsoid_substep(),
-                r.profile.mean_exact_tests(), r.profile.mean_contacts());
-    std::printf("resets       %" PRIu64 "%s%s\n", r.resets, r.last_reset.empty() ? "" : ", last at ",
-                r.last_reset.c_str());
+    std::printf(
+        "counts per update: %.1f mid-phase queries, %.1f candidates, %.1f tested per "
+        "ellipsoid sub-step, %.1f exact tests, %.1f contacts\n",
+        r.profile.mean_mid_queries(), r.profile.mean_candidates(),
+        r.profile.mean_tested_per_ellipsoid_substep(), r.profile.mean_exact_tests(),
+        r.profile.mean_contacts());
+    std::printf("resets       %" PRIu64 "%s%s\n", r.resets,
+                r.last_reset.empty() ? "" : ", last at ", r.last_reset.c_str());
     std::printf("state hash   %s\n", hash_hex(r.state_hash).c_str());
 }
 
@@ -62,7 +63,8 @@ void write_drive_json(const DriveReport& r, const std::filesystem::path& path) {
     json["simulated_s"] = r.simulated_s;
     json["wall_s"] = r.wall_s;
     json["laps_completed"] = r.laps_completed;
-    json["lap_time_s"] = r.lap_times_s.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.lap_times_s.front());
+    json["lap_time_s"] =
+        r.lap_times_s.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.lap_times_s.front());
     json["lap_times_s"] = r.lap_times_s;
     json["top_speed_kmh"] = r.top_speed_kmh;
     json["distance_m"] = r.distance_m;
@@ -73,11 +75,12 @@ void write_drive_json(const DriveReport& r, const std::filesystem::path& path) {
     for (std::size_t p = 0; p < phase_count; ++p)
         json["phases_us"][phase_name(static_cast<Phase>(p))] =
             summary_json(r.profile.phase_us(static_cast<Phase>(p)));
-    json["counts"] = {{"mid_queries", r.profile.mean_mid_queries()},
-                      {"candidates", r.profile.mean_candidates()},
-                      {"tested_per_ellipsoid_substep", r.profile.mean_tested_per_ellipsoid_substep()},
-                      {"exact_tests", r.profile.mean_exact_tests()},
-                      {"contacts", r.profile.mean_contacts()}};
+    json["counts"] = {
+        {"mid_queries", r.profile.mean_mid_queries()},
+        {"candidates", r.profile.mean_candidates()},
+        {"tested_per_ellipsoid_substep", r.profile.mean_tested_per_ellipsoid_substep()},
+        {"exact_tests", r.profile.mean_exact_tests()},
+        {"contacts", r.profile.mean_contacts()}};
     json["writeup_budget_us"] = {{"typical", kWriteupTypicalUs}, {"spikes", kWriteupSpikeUs}};
 
     write_json_file(json, path);

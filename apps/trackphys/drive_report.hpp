@@ -27,8 +27,8 @@ struct DriveReport {
     double distance_m = 0.0;
     glm::dvec3 final_position{0.0};
     std::uint64_t state_hash = 0;
-    std::uint64_t resets = 0;    ///< World::car_resets (the reset policy)
-    std::string last_reset;      ///< its last reason, or empty
+    std::uint64_t resets = 0;  ///< World::car_resets (the reset policy)
+    std::string last_reset;    ///< its last reason, or empty
     ProfileStatistics profile;
 };
 

@@ -57,7 +57,8 @@ RigidBodyState start_on_track(const Track& track, const CarSpec& car) {
     RigidBodyState state;
     state.position = start.position + start.up * ride_height(car);
     // Body axes +X left, +Y up, +Z forward onto the road frame at the start line.
-    state.orientation = glm::normalize(glm::quat_cast(glm::dmat3(start.left, start.up, start.tangent)));
+    state.orientation =
+        glm::normalize(glm::quat_cast(glm::dmat3(start.left, start.up, start.tangent)));
     return state;
 }
 

@@ -8,8 +8,8 @@
 #include <glm/vec3.hpp>
 
 #include "trackphys/collision/static_world.hpp"
-#include "trackphys/dynamics/rigid_body.hpp"
 #include "trackphys/dynamics/car_spec.hpp"
+#include "trackphys/dynamics/rigid_body.hpp"
 #include "trackphys/track/track.hpp"
 
 namespace trackphys::cli {
@@ -17,10 +17,10 @@ namespace trackphys::cli {
 /// Where `trackphys drive` drives: a generated track (with its centreline, for the
 /// autopilot) or any mesh file (free mode), as static colliders.
 struct DriveScene {
-    std::optional<Track> track;                ///< set for a generated track
+    std::optional<Track> track;  ///< set for a generated track
     std::shared_ptr<const StaticWorld> statics;
     std::size_t triangle_count = 0;
-    std::string description;                   ///< for the report
+    std::string description;  ///< for the report
 };
 
 /// The generated track of that seed, one collider per chunk.

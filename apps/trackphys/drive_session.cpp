@@ -57,16 +57,19 @@ DriveSession parse_session(std::string_view text) {
 void check_same_drive(const DriveSession& saved, const DriveSession& now) {
     std::ostringstream why;
     if (saved.free_mode != now.free_mode)
-        why << "the snapshot was made " << (saved.free_mode ? "in free mode (--mesh, --spawn)" : "on a generated track");
+        why << "the snapshot was made "
+            << (saved.free_mode ? "in free mode (--mesh, --spawn)" : "on a generated track");
     else if (!saved.free_mode && saved.seed != now.seed)
-        why << "the snapshot was made with --seed " << saved.seed << ", this drive has " << now.seed;
+        why << "the snapshot was made with --seed " << saved.seed << ", this drive has "
+            << now.seed;
     else if (!saved.free_mode && saved.target_speed_kmh != now.target_speed_kmh)
-        why << "the snapshot was made with --target-speed " << saved.target_speed_kmh << ", this drive has "
-            << now.target_speed_kmh;
+        why << "the snapshot was made with --target-speed " << saved.target_speed_kmh
+            << ", this drive has " << now.target_speed_kmh;
     else if (saved.free_mode && (saved.throttle != now.throttle || saved.steer != now.steer))
-        why << "the snapshot was made with --throttle " << saved.throttle << " --steer " << saved.steer
-            << ", this drive has " << now.throttle << ' ' << now.steer;
-    if (why.tellp() > 0) throw Error("--resume: " + why.str() + " (resume with the original drive's options)");
+        why << "the snapshot was made with --throttle " << saved.throttle << " --steer "
+            << saved.steer << ", this drive has " << now.throttle << ' ' << now.steer;
+    if (why.tellp() > 0)
+        throw Error("--resume: " + why.str() + " (resume with the original drive's options)");
 }
 
 }  // namespace trackphys::cli

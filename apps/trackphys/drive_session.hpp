@@ -16,9 +16,9 @@ namespace trackphys::cli {
 /// reports it whole.
 struct DriveSession {
     bool free_mode = false;
-    std::uint64_t seed = 0;           ///< generated track (not in free mode)
-    double target_speed_kmh = 0.0;    ///< autopilot (not in free mode)
-    double throttle = 0.0;            ///< free mode's fixed inputs
+    std::uint64_t seed = 0;         ///< generated track (not in free mode)
+    double target_speed_kmh = 0.0;  ///< autopilot (not in free mode)
+    double throttle = 0.0;          ///< free mode's fixed inputs
     double steer = 0.0;
     std::optional<AutopilotProgress> autopilot;
     double distance_m = 0.0;

@@ -13,10 +13,10 @@ namespace trackphys::cli {
 /// What a drive's picture shows: the car's path (one point per update, with its speed) and
 /// the time every update took.
 struct DrivePlot {
-    std::vector<glm::dvec3> path;       ///< car position after each update (m)
-    std::vector<double> speed_kmh;      ///< speed after each update
-    std::vector<double> update_us;      ///< wall-clock time of each update
-    double dt = 0.01;                   ///< simulated seconds per update
+    std::vector<glm::dvec3> path;   ///< car position after each update (m)
+    std::vector<double> speed_kmh;  ///< speed after each update
+    std::vector<double> update_us;  ///< wall-clock time of each update
+    double dt = 0.01;               ///< simulated seconds per update
 };
 
 /// Writes an SVG with two panels: the top view of the path coloured by speed, over the

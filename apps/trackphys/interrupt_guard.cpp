@@ -32,8 +32,8 @@ InterruptGuard::~InterruptGuard() {
 
 void InterruptGuard::check() {
     if (g_signal != 0)
-        throw Error("interrupted by signal " + std::to_string(g_signal) + " (" + strsignal(g_signal) +
-                    "): no output written");
+        throw Error("interrupted by signal " + std::to_string(g_signal) + " (" +
+                    strsignal(g_signal) + "): no output written");
 }
 
 }  // namespace trackphys::cli

@@ -7,7 +7,7 @@ namespace trackphys::cli {
 /// like any other, so the command's staged outputs (staged_outputs.hpp) are removed rather
 /// than left behind as temporary files. The previous handlers come back in the destructor.
 class InterruptGuard {
-public:
+  public:
     InterruptGuard();
     ~InterruptGuard();
     InterruptGuard(const InterruptGuard&) = delete;

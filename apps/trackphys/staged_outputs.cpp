@@ -20,11 +20,13 @@ StagedOutputs::~StagedOutputs() {
 
 void check_destination(const fs::path& destination, const std::string& option) {
     const std::string name = option + " '" + destination.string() + "'";
-    if (destination.filename().empty() || destination.filename() == "." || destination.filename() == "..")
+    if (destination.filename().empty() || destination.filename() == "." ||
+        destination.filename() == "..")
         throw Error(name + ": not a file name");
     std::error_code error;
     const fs::path folder = destination.has_parent_path() ? destination.parent_path() : ".";
-    if (!fs::is_directory(folder, error)) throw Error(name + ": folder '" + folder.string() + "' does not exist");
+    if (!fs::is_directory(folder, error))
+        throw Error(name + ": folder '" + folder.string() + "' does not exist");
     const fs::file_status existing = fs::symlink_status(destination, error);
     if (fs::is_directory(existing)) throw Error(name + ": is a folder");
     // The rename would replace it: never a device (/dev/null as root), a pipe or a link.

@@ -20,7 +20,7 @@ void check_destination(const std::filesystem::path& destination, const std::stri
 /// its laps, a full disk while writing the third file) leaves no output file behind, and
 /// an existing file of that name untouched.
 class StagedOutputs {
-public:
+  public:
     StagedOutputs() = default;
     StagedOutputs(const StagedOutputs&) = delete;
     StagedOutputs& operator=(const StagedOutputs&) = delete;
@@ -28,13 +28,14 @@ public:
 
     /// The temporary file to write for destination (named by option, e.g. "--json", in
     /// messages). Throws trackphys::Error naming the option, the path and the reason.
-    std::filesystem::path stage(const std::filesystem::path& destination, const std::string& option);
+    std::filesystem::path stage(const std::filesystem::path& destination,
+                                const std::string& option);
 
     /// Renames every staged file into place. Throws trackphys::Error when one cannot be;
     /// those renamed before it are removed again.
     void commit();
 
-private:
+  private:
     struct Staged {
         std::filesystem::path destination;
         std::filesystem::path temporary;

@@ -23,7 +23,6 @@ struct TrackOptions {
     std::filesystem::path svg;  ///< picture, empty for none
 };
 
-
 // All chunks as one mesh, in driving order (each chunk's indices offset by the vertices
 // before it). Chunk boundary rows stay duplicated: exporters keep them as they are.
 TriangleMesh merge_chunks(const Track& track) {
@@ -34,8 +33,10 @@ TriangleMesh merge_chunks(const Track& track) {
     merged.triangles.reserve(track.triangle_count());
     for (const TrackChunk& chunk : track.chunks) {
         const auto offset = static_cast<std::uint32_t>(merged.vertices.size());
-        merged.vertices.insert(merged.vertices.end(), chunk.mesh.vertices.begin(), chunk.mesh.vertices.end());
-        for (const auto& t : chunk.mesh.triangles) merged.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+        merged.vertices.insert(merged.vertices.end(), chunk.mesh.vertices.begin(),
+                               chunk.mesh.vertices.end());
+        for (const auto& t : chunk.mesh.triangles)
+            merged.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
     }
     return merged;
 }
@@ -49,23 +50,29 @@ void print_summary(const Track& track, double seconds) {
     const TrackStats stats = compute_track_stats(track);
     const UpdateBoxSpec box_spec;
     const CenterlineSample& tightest = track.centerline[stats.tightest_sample];
-    const BoxTriangleCount in_box = count_triangles_in_box(track, car_update_box(tightest, box_spec));
+    const BoxTriangleCount in_box =
+        count_triangles_in_box(track, car_update_box(tightest, box_spec));
     const TrackParams& p = track.params;
     std::printf("track        seed %llu, %d Bezier segments (%d shapes rejected first)\n",
-                static_cast<unsigned long long>(p.seed), static_cast<int>(track.bezier_segment_count),
-                track.rejected_shapes);
-    std::printf("length       %.3f m, %.1f m wide, %zu rows\n", stats.length_m, p.width_m, track.centerline.size());
+                static_cast<unsigned long long>(p.seed),
+                static_cast<int>(track.bezier_segment_count), track.rejected_shapes);
+    std::printf("length       %.3f m, %.1f m wide, %zu rows\n", stats.length_m, p.width_m,
+                track.centerline.size());
     std::printf("triangles    %zu (road %zu, walls %zu), %zu vertices\n", stats.triangle_count,
-                stats.road_triangle_count, stats.triangle_count - stats.road_triangle_count, stats.vertex_count);
+                stats.road_triangle_count, stats.triangle_count - stats.road_triangle_count,
+                stats.vertex_count);
     std::printf("colliders    %zu chunks of ~%.0f m\n", stats.chunk_count, p.chunk_length_m);
     std::printf("bank         %.1f .. %.1f deg\n", stats.min_bank_deg, stats.max_bank_deg);
     std::printf("elevation    %.2f .. %.2f m\n", stats.min_elevation_m, stats.max_elevation_m);
-    std::printf("road edges   %.3f .. %.3f m along the track\n", stats.min_road_edge_m, stats.max_road_edge_m);
-    std::printf("tightest     radius %.1f m at %.1f m along\n", stats.min_turn_radius_m, tightest.distance);
-    std::printf("update box   %zu road + %zu wall triangles overlap a %.1f x %.1f x %.1f m car's box swept "
-                "for %.0f km/h over %.0f ms, in the tightest turn\n",
-                in_box.road, in_box.wall, box_spec.car_size.z, box_spec.car_size.x, box_spec.car_size.y,
-                box_spec.speed_mps * 3.6, box_spec.update_dt_s * 1000.0);
+    std::printf("road edges   %.3f .. %.3f m along the track\n", stats.min_road_edge_m,
+                stats.max_road_edge_m);
+    std::printf("tightest     radius %.1f m at %.1f m along\n", stats.min_turn_radius_m,
+                tightest.distance);
+    std::printf(
+        "update box   %zu road + %zu wall triangles overlap a %.1f x %.1f x %.1f m car's box swept "
+        "for %.0f km/h over %.0f ms, in the tightest turn\n",
+        in_box.road, in_box.wall, box_spec.car_size.z, box_spec.car_size.x, box_spec.car_size.y,
+        box_spec.speed_mps * 3.6, box_spec.update_dt_s * 1000.0);
     std::printf("mesh hash    %016llx\n", static_cast<unsigned long long>(stats.mesh_hash));
     std::printf("generated in %.1f ms\n", seconds * 1000.0);
 }
@@ -79,10 +86,12 @@ void run(const TrackOptions& options) {
     // The picture is staged and put in place with the mesh (save_mesh is atomic itself), so
     // a failure leaves neither (staged_outputs.hpp).
     StagedOutputs outputs;
-    const std::filesystem::path svg = options.svg.empty() ? options.svg : outputs.stage(options.svg, "--svg");
+    const std::filesystem::path svg =
+        options.svg.empty() ? options.svg : outputs.stage(options.svg, "--svg");
     const auto start = std::chrono::steady_clock::now();
     const Track track = generate_track(options.params);
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     print_summary(track, seconds);
     if (!svg.empty()) write_track_svg(track, svg);
     if (!options.out.empty()) write_track_mesh(track, options.out);
@@ -103,31 +112,49 @@ void add_track_command(CLI::App& app) {
     auto options = std::make_shared<TrackOptions>();
     TrackParams& p = options->params;
     CLI::App* command = app.add_subcommand(
-        "track", "Generate a closed, banked race track (Bezier loop) and print its figures; "
-                 "optionally write its mesh and a top-view picture");
+        "track",
+        "Generate a closed, banked race track (Bezier loop) and print its figures; "
+        "optionally write its mesh and a top-view picture");
     command->add_option("--seed", p.seed, "Random seed (same seed, same track)")
         ->check(not_negative())
         ->capture_default_str();
     command->add_option("--length", p.length_m, "Centreline length (m)")->capture_default_str();
     command->add_option("--width", p.width_m, "Road width (m)")->capture_default_str();
-    command->add_option("--max-bank", p.max_bank_deg, "Largest bank angle (degrees)")->capture_default_str();
-    command->add_option("--full-bank-radius", p.full_bank_radius_m, "Turns this tight or tighter get the full bank (m)")
+    command->add_option("--max-bank", p.max_bank_deg, "Largest bank angle (degrees)")
         ->capture_default_str();
-    command->add_option("--elevation", p.elevation_amplitude_m, "Height amplitude of the control points (m)")
+    command
+        ->add_option("--full-bank-radius", p.full_bank_radius_m,
+                     "Turns this tight or tighter get the full bank (m)")
+        ->capture_default_str();
+    command
+        ->add_option("--elevation", p.elevation_amplitude_m,
+                     "Height amplitude of the control points (m)")
         ->capture_default_str();
     command->add_option("--wall-height", p.wall_height_m, "Wall height (m)")->capture_default_str();
-    command->add_option("--min-radius", p.min_turn_radius_m, "Tightest allowed turn radius (m)")->capture_default_str();
-    command->add_option("--edge-tight", p.edge_tight_m, "Density: road edge length along the track in tight turns (m)")
+    command->add_option("--min-radius", p.min_turn_radius_m, "Tightest allowed turn radius (m)")
         ->capture_default_str();
-    command->add_option("--edge-straight", p.edge_straight_m, "Density: road edge length on straights (m)")
+    command
+        ->add_option("--edge-tight", p.edge_tight_m,
+                     "Density: road edge length along the track in tight turns (m)")
         ->capture_default_str();
-    command->add_option("--tight-radius", p.tight_radius_m, "Density: turns this tight or tighter get --edge-tight (m)")
+    command
+        ->add_option("--edge-straight", p.edge_straight_m,
+                     "Density: road edge length on straights (m)")
         ->capture_default_str();
-    command->add_option("--strips", p.strips, "Density: road strips across the width")->capture_default_str();
-    command->add_option("--chunk-length", p.chunk_length_m, "Collider chunk length along the track (m)")
+    command
+        ->add_option("--tight-radius", p.tight_radius_m,
+                     "Density: turns this tight or tighter get --edge-tight (m)")
         ->capture_default_str();
-    command->add_option("--out", options->out, "Write the track mesh (FILE.glb, .gltf, .obj, .ply or .stl)");
-    command->add_option("--svg", options->svg, "Write a top view coloured by bank angle (FILE.svg)");
+    command->add_option("--strips", p.strips, "Density: road strips across the width")
+        ->capture_default_str();
+    command
+        ->add_option("--chunk-length", p.chunk_length_m,
+                     "Collider chunk length along the track (m)")
+        ->capture_default_str();
+    command->add_option("--out", options->out,
+                        "Write the track mesh (FILE.glb, .gltf, .obj, .ply or .stl)");
+    command->add_option("--svg", options->svg,
+                        "Write a top view coloured by bank angle (FILE.svg)");
     command->callback([options] { run(*options); });
 }
 

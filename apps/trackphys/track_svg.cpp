@@ -31,7 +31,8 @@ std::string bank_colour(double t) {
     const std::array<double, 3>& end = t < 0.0 ? blue : red;
     const double f = std::min(1.0, std::abs(t));
     char text[8];
-    std::snprintf(text, sizeof text, "#%02x%02x%02x", static_cast<int>(std::lround(grey[0] + f * (end[0] - grey[0]))),
+    std::snprintf(text, sizeof text, "#%02x%02x%02x",
+                  static_cast<int>(std::lround(grey[0] + f * (end[0] - grey[0]))),
                   static_cast<int>(std::lround(grey[1] + f * (end[1] - grey[1]))),
                   static_cast<int>(std::lround(grey[2] + f * (end[2] - grey[2]))));
     return text;
@@ -48,7 +49,8 @@ double step_fraction(int step) { return 2.0 * step / (kBankSteps - 1) - 1.0; }
 struct View {
     double min_x, min_z, scale;
     glm::dvec2 operator()(const glm::dvec3& p) const {
-        return {kMarginPx + (p.x - min_x) * scale, kCaptionHeightPx + kMarginPx + (p.z - min_z) * scale};
+        return {kMarginPx + (p.x - min_x) * scale,
+                kCaptionHeightPx + kMarginPx + (p.z - min_z) * scale};
     }
 };
 
@@ -91,15 +93,17 @@ std::string track_svg(const Track& track) {
     out.setf(std::ios::fixed);
     out.precision(1);
     out << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
-        << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width_px << "\" height=\"" << height_px
-        << "\" viewBox=\"0 0 " << width_px << ' ' << height_px << "\" font-family=\"sans-serif\">\n"
+        << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width_px << "\" height=\""
+        << height_px << "\" viewBox=\"0 0 " << width_px << ' ' << height_px
+        << "\" font-family=\"sans-serif\">\n"
         << "<rect width=\"100%\" height=\"100%\" fill=\"#eef3e6\"/>\n";
 
     // Caption.
-    out << "<text x=\"" << kMarginPx << "\" y=\"28\" font-size=\"18\">trackphys track: seed " << params.seed
-        << ", " << track.length_m << " m, " << params.width_m << " m wide, " << track.triangle_count()
-        << " triangles, " << track.chunks.size() << " colliders</text>\n"
-        << "<text x=\"" << kMarginPx << "\" y=\"46\" font-size=\"12\" fill=\"#555\">top view: x right, z down;"
+    out << "<text x=\"" << kMarginPx << "\" y=\"28\" font-size=\"18\">trackphys track: seed "
+        << params.seed << ", " << track.length_m << " m, " << params.width_m << " m wide, "
+        << track.triangle_count() << " triangles, " << track.chunks.size() << " colliders</text>\n"
+        << "<text x=\"" << kMarginPx
+        << "\" y=\"46\" font-size=\"12\" fill=\"#555\">top view: x right, z down;"
         << " colour = bank angle; dark lines = walls</text>\n";
 
     // Road: consecutive row steps of one colour step make one polygon (left edge forward,
@@ -121,7 +125,8 @@ std::string track_svg(const Track& track) {
 
     // Walls: closed paths through the wall centre lines, points closer than a pixel skipped.
     for (const auto* wall : {&left_wall, &right_wall}) {
-        out << "<polygon fill=\"none\" stroke=\"#333\" stroke-width=\"1.3\" stroke-linejoin=\"round\" points=\"";
+        out << "<polygon fill=\"none\" stroke=\"#333\" stroke-width=\"1.3\" "
+               "stroke-linejoin=\"round\" points=\"";
         glm::dvec2 last = view((*wall)[0]);
         point(out, last);
         for (const glm::dvec3& p : *wall) {
@@ -137,8 +142,9 @@ std::string track_svg(const Track& track) {
     // arrow along the direction of travel, and the label beside the road.
     const glm::dvec2 start_left = view(left_wall[0]), start_right = view(right_wall[0]);
     for (const char* style : {"stroke=\"#000\"", "stroke=\"#fff\" stroke-dasharray=\"3 3\""})
-        out << "<line x1=\"" << start_left.x << "\" y1=\"" << start_left.y << "\" x2=\"" << start_right.x
-            << "\" y2=\"" << start_right.y << "\" " << style << " stroke-width=\"6\"/>\n";
+        out << "<line x1=\"" << start_left.x << "\" y1=\"" << start_left.y << "\" x2=\""
+            << start_right.x << "\" y2=\"" << start_right.y << "\" " << style
+            << " stroke-width=\"6\"/>\n";
     const glm::dvec2 centre = view(rows[0].position);
     const glm::dvec2 forward = glm::normalize(glm::dvec2(rows[0].tangent.x, rows[0].tangent.z));
     const glm::dvec2 side = glm::normalize(start_left - start_right);
@@ -154,26 +160,33 @@ std::string track_svg(const Track& track) {
 
     // Legend: bank colour bar from +max (top) to -max (bottom), ticks every quarter.
     const double legend_x = width_px - kLegendWidthPx + 20.0;
-    const double bar_top = kCaptionHeightPx + kMarginPx + 30.0, bar_height = 300.0, bar_width = 24.0;
-    out << "<text x=\"" << legend_x << "\" y=\"" << bar_top - 14.0 << "\" font-size=\"14\">bank angle</text>\n";
+    const double bar_top = kCaptionHeightPx + kMarginPx + 30.0, bar_height = 300.0,
+                 bar_width = 24.0;
+    out << "<text x=\"" << legend_x << "\" y=\"" << bar_top - 14.0
+        << "\" font-size=\"14\">bank angle</text>\n";
     for (int step = 0; step < kBankSteps; ++step) {
         const double y = bar_top + bar_height * (kBankSteps - 1 - step) / kBankSteps;
-        out << "<rect x=\"" << legend_x << "\" y=\"" << y << "\" width=\"" << bar_width << "\" height=\""
-            << bar_height / kBankSteps + 0.5 << "\" fill=\"" << bank_colour(step_fraction(step)) << "\"/>\n";
+        out << "<rect x=\"" << legend_x << "\" y=\"" << y << "\" width=\"" << bar_width
+            << "\" height=\"" << bar_height / kBankSteps + 0.5 << "\" fill=\""
+            << bank_colour(step_fraction(step)) << "\"/>\n";
     }
-    out << "<rect x=\"" << legend_x << "\" y=\"" << bar_top << "\" width=\"" << bar_width << "\" height=\""
-        << bar_height << "\" fill=\"none\" stroke=\"#333\"/>\n";
+    out << "<rect x=\"" << legend_x << "\" y=\"" << bar_top << "\" width=\"" << bar_width
+        << "\" height=\"" << bar_height << "\" fill=\"none\" stroke=\"#333\"/>\n";
     for (int tick = 0; tick <= 4; ++tick) {
         const double fraction = 1.0 - 0.5 * tick;  // +1 .. -1
-        const double y = bar_top + bar_height * (0.5 - 0.5 * fraction * (kBankSteps - 1) / kBankSteps) ;
-        out << "<line x1=\"" << legend_x + bar_width << "\" y1=\"" << y << "\" x2=\"" << legend_x + bar_width + 5
-            << "\" y2=\"" << y << "\" stroke=\"#333\"/>\n"
-            << "<text x=\"" << legend_x + bar_width + 9 << "\" y=\"" << y + 4 << "\" font-size=\"12\">"
-            << (fraction > 0 ? "+" : "") << fraction * params.max_bank_deg << "\u00b0</text>\n";
+        const double y =
+            bar_top + bar_height * (0.5 - 0.5 * fraction * (kBankSteps - 1) / kBankSteps);
+        out << "<line x1=\"" << legend_x + bar_width << "\" y1=\"" << y << "\" x2=\""
+            << legend_x + bar_width + 5 << "\" y2=\"" << y << "\" stroke=\"#333\"/>\n"
+            << "<text x=\"" << legend_x + bar_width + 9 << "\" y=\"" << y + 4
+            << "\" font-size=\"12\">" << (fraction > 0 ? "+" : "") << fraction * params.max_bank_deg
+            << "\u00b0</text>\n";
     }
-    out << "<text x=\"" << legend_x << "\" y=\"" << bar_top + bar_height + 22 << "\" font-size=\"11\" fill=\"#555\">"
+    out << "<text x=\"" << legend_x << "\" y=\"" << bar_top + bar_height + 22
+        << "\" font-size=\"11\" fill=\"#555\">"
         << "+ : left side low (left turn)</text>\n"
-        << "<text x=\"" << legend_x << "\" y=\"" << bar_top + bar_height + 38 << "\" font-size=\"11\" fill=\"#555\">"
+        << "<text x=\"" << legend_x << "\" y=\"" << bar_top + bar_height + 38
+        << "\" font-size=\"11\" fill=\"#555\">"
         << "\u2212 : right side low</text>\n";
 
     // Scale bar: the largest of 1-2-5 x 10^k metres that fits in 150 px.
@@ -184,9 +197,11 @@ std::string track_svg(const Track& track) {
     else if (bar_m * 2.0 * view.scale <= 150.0)
         bar_m *= 2.0;
     const double scale_y = bar_top + bar_height + 80.0;
-    out << "<line x1=\"" << legend_x << "\" y1=\"" << scale_y << "\" x2=\"" << legend_x + bar_m * view.scale
-        << "\" y2=\"" << scale_y << "\" stroke=\"#000\" stroke-width=\"3\"/>\n"
-        << "<text x=\"" << legend_x << "\" y=\"" << scale_y + 18 << "\" font-size=\"12\">" << bar_m << " m</text>\n";
+    out << "<line x1=\"" << legend_x << "\" y1=\"" << scale_y << "\" x2=\""
+        << legend_x + bar_m * view.scale << "\" y2=\"" << scale_y
+        << "\" stroke=\"#000\" stroke-width=\"3\"/>\n"
+        << "<text x=\"" << legend_x << "\" y=\"" << scale_y + 18 << "\" font-size=\"12\">" << bar_m
+        << " m</text>\n";
     out << "</svg>\n";
     return out.str();
 }

@@ -53,8 +53,11 @@ void BulletCarLoop::update(Car& car) {
 }
 
 BulletNarrowPhaseLoop::BulletNarrowPhaseLoop(std::shared_ptr<const StaticWorld> statics,
-                                             const WorldSettings& settings, ColliderPlaneTrees trees)
-    : statics_(std::move(statics)), settings_(settings), mid_(settings.mid_phase, *statics_, std::move(trees)) {}
+                                             const WorldSettings& settings,
+                                             ColliderPlaneTrees trees)
+    : statics_(std::move(statics)),
+      settings_(settings),
+      mid_(settings.mid_phase, *statics_, std::move(trees)) {}
 
 // The update box, the steps and the look-ahead lists as World::update_car and
 // World::list_step_candidates make them (src/world/world.cpp).
@@ -62,7 +65,8 @@ void BulletNarrowPhaseLoop::update(Car& car) {
     listed_.resize(car.ellipsoid_count());
     deepest_.resize(car.ellipsoid_count());
     Aabb box;
-    for (std::size_t i = 0; i < car.ellipsoid_count(); ++i) box.expand(car.world_ellipsoid(i).bounds());
+    for (std::size_t i = 0; i < car.ellipsoid_count(); ++i)
+        box.expand(car.world_ellipsoid(i).bounds());
     const double dt = settings_.dt_update;
     const RigidBodyState& state = car.state();
     const double margin = settings_.broad_phase_margin +
@@ -103,9 +107,10 @@ void BulletNarrowPhaseLoop::list_step_candidates(const Car& car, int steps_left)
         const SweptEllipsoid step_shape{ellipsoid, ellipsoid.center() + velocity * step_dt, margin};
         LookAheadList& listed = listed_[i];
         if (listed.covers(step_shape)) continue;
-        SweptEllipsoid wanted = look_ahead(step_shape, velocity, step_dt,
-                                           listed.steps_ahead(settings_.mid_phase_look_ahead, steps_left),
-                                           settings_.mid_phase_slack);
+        SweptEllipsoid wanted =
+            look_ahead(step_shape, velocity, step_dt,
+                       listed.steps_ahead(settings_.mid_phase_look_ahead, steps_left),
+                       settings_.mid_phase_slack);
         if (!update_box_.contains(wanted.bounds())) wanted = step_shape;
         if (!update_box_.contains(wanted.bounds())) {
             Aabb wider = update_box_;

@@ -38,7 +38,7 @@ struct GjkEpaCounts {
 };
 
 class BulletCarLoop {
-public:
+  public:
     /// Builds Bullet's BVH over `mesh` (one shape for the whole track).
     BulletCarLoop(const TriangleMesh& mesh, const WorldSettings& settings);
 
@@ -49,7 +49,7 @@ public:
     const GjkEpaCounts& counts() const { return counts_; }
     double build_ms() const { return mesh_.build_ms; }
 
-private:
+  private:
     BulletMesh mesh_;
     WorldSettings settings_;
     std::vector<Contact> deepest_;
@@ -57,7 +57,7 @@ private:
 };
 
 class BulletNarrowPhaseLoop {
-public:
+  public:
     /// Our mid phase over `statics` in settings.mid_phase mode (with `trees` when that is
     /// precomputed_tree, e.g. a World's plane_trees()).
     BulletNarrowPhaseLoop(std::shared_ptr<const StaticWorld> statics, const WorldSettings& settings,
@@ -69,7 +69,7 @@ public:
     /// Since construction.
     const GjkEpaCounts& counts() const { return counts_; }
 
-private:
+  private:
     void begin_update(const Aabb& box);
     void list_step_candidates(const Car& car, int steps_left);
 

@@ -29,7 +29,7 @@ namespace trackphys::peers {
 /// A solid ellipsoid with semi-axes `radii` along its local axes, for Bullet's convex
 /// algorithms: the exact support point in every direction.
 ATTRIBUTE_ALIGNED16(class) BulletEllipsoidShape : public btConvexInternalShape {
-public:
+  public:
     BT_DECLARE_ALIGNED_ALLOCATOR();
 
     explicit BulletEllipsoidShape(const btVector3& radii) {
@@ -48,8 +48,7 @@ public:
         return m_implicitShapeDimensions * du / length;
     }
 
-    void batchedUnitVectorGetSupportingVertexWithoutMargin(const btVector3* vectors,
-                                                           btVector3* out,
+    void batchedUnitVectorGetSupportingVertexWithoutMargin(const btVector3* vectors, btVector3* out,
                                                            int count) const override {
         for (int i = 0; i < count; ++i) out[i] = localGetSupportingVertexWithoutMargin(vectors[i]);
     }
@@ -65,7 +64,7 @@ public:
     }
 
     /// Solid ellipsoid: I_x = m (b^2 + c^2) / 5, and so on.
-    void calculateLocalInertia(btScalar mass, btVector3& inertia) const override {
+    void calculateLocalInertia(btScalar mass, btVector3 & inertia) const override {
         const btVector3 d2 = m_implicitShapeDimensions * m_implicitShapeDimensions;
         inertia = btVector3(d2.y() + d2.z(), d2.x() + d2.z(), d2.x() + d2.y()) * (mass / 5);
     }
@@ -102,7 +101,8 @@ inline BulletContact bullet_gjk_epa(const Ellipsoid& e, const Triangle& t) {
     const btVector3 guess = to_bullet(centroid - e.center());
     btGjkEpaSolver2::sResults results;
     const bool answered =
-        btGjkEpaSolver2::Distance(&ellipsoid, ellipsoid_pose, &triangle, identity, guess, results) ||
+        btGjkEpaSolver2::Distance(&ellipsoid, ellipsoid_pose, &triangle, identity, guess,
+                                  results) ||
         btGjkEpaSolver2::Penetration(&ellipsoid, ellipsoid_pose, &triangle, identity, guess,
                                      results, /*usemargins=*/false);
     if (!answered) return {{0.0, {0.0, 1.0, 0.0}, e.center()}, true};

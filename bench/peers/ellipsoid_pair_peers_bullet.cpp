@@ -38,7 +38,8 @@ PairPeerDepth bullet_pair(const Ellipsoid& a, const Ellipsoid& b) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    const std::string program = std::string("bench_peers_ellipsoid_pair_bullet_") + bullet_precision();
+    const std::string program =
+        std::string("bench_peers_ellipsoid_pair_bullet_") + bullet_precision();
     const std::string method = std::string("bullet_") + bullet_precision() + "_gjk_epa";
     return run_pair_peers(argc, argv, program.c_str(), {{method, bullet_pair}});
 }

@@ -12,8 +12,9 @@
 #include <cstdio>
 #include <cstring>
 
-#include <glm/geometric.hpp>
 #include <mujoco/mujoco.h>
+
+#include <glm/geometric.hpp>
 
 #include "peers/ellipsoid_pair_peer_harness.hpp"
 
@@ -39,7 +40,8 @@ struct Scene {
         mj_defaultVFS(&vfs);
         const int size = static_cast<int>(std::strlen(kModel));
         const int slot = mj_makeEmptyFileVFS(&vfs, "pair.xml", size);
-        if (slot == 0) std::memcpy(vfs.filedata[vfs.nfile - 1], kModel, static_cast<std::size_t>(size));
+        if (slot == 0)
+            std::memcpy(vfs.filedata[vfs.nfile - 1], kModel, static_cast<std::size_t>(size));
         char error[1000] = "";
         model = mj_loadXML("pair.xml", &vfs, error, sizeof error);
         mj_deleteVFS(&vfs);
@@ -86,6 +88,7 @@ int main(int argc, char** argv) {
     static Scene scene;
     if (!scene.data) return 1;
     return run_pair_peers(argc, argv, "bench_peers_ellipsoid_pair_mujoco",
-                          {{"mujoco_2.2_convex_mpr",
-                            [](const Ellipsoid& a, const Ellipsoid& b) { return scene.depth(a, b); }}});
+                          {{"mujoco_2.2_convex_mpr", [](const Ellipsoid& a, const Ellipsoid& b) {
+                                return scene.depth(a, b);
+                            }}});
 }

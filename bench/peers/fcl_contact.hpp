@@ -30,9 +30,9 @@
 #include <fcl/geometry/shape/convex.h>
 #include <fcl/geometry/shape/ellipsoid.h>
 #include <fcl/narrowphase/collision.h>
-#include <fcl/narrowphase/distance.h>
 #include <fcl/narrowphase/detail/gjk_solver_indep.h>
 #include <fcl/narrowphase/detail/gjk_solver_libccd.h>
+#include <fcl/narrowphase/distance.h>
 
 #include "peers/contact_peer_harness.hpp"
 
@@ -84,8 +84,8 @@ inline double gap(const Pose& pose, const fcl::Convexd& convex, fcl::GJKSolverTy
     request.enable_signed_distance = signed_distance;
     request.gjk_solver_type = solver;
     fcl::DistanceResultd result;
-    fcl::distance(&pose.ellipsoid, pose.transform, &convex, fcl::Transform3d::Identity(),
-                  request, result);
+    fcl::distance(&pose.ellipsoid, pose.transform, &convex, fcl::Transform3d::Identity(), request,
+                  result);
     return result.min_distance;
 }
 
@@ -93,7 +93,8 @@ inline double gap(const Pose& pose, const fcl::Convexd& convex, fcl::GJKSolverTy
 inline Peer convex_peer(std::string name, fcl::GJKSolverType solver, bool signed_distance) {
     return {std::move(name), [=](const CaseSet& set) {
                 auto convexes = std::make_shared<std::vector<fcl::Convexd>>();
-                for (const PeerCase& c : set.cases) convexes->push_back(convex_triangle(c.triangle));
+                for (const PeerCase& c : set.cases)
+                    convexes->push_back(convex_triangle(c.triangle));
                 return std::function<PeerDepth(std::size_t)>([=, &set](std::size_t i) {
                     const Pose pose(set.cases[i].ellipsoid);
                     const fcl::Convexd& convex = (*convexes)[i];
@@ -121,8 +122,10 @@ inline std::vector<Peer> fcl_contact_peers() {
     using fcl::GJKSolverType;
     const auto libccd = std::make_shared<const fcl::detail::GJKSolver_libccdd>();
     const auto indep = std::make_shared<const fcl::detail::GJKSolver_indepd>();
-    return {per_case("fcl_libccd_triangle", [libccd](const PeerCase& c) { return triangle_query(*libccd, c); }),
-            per_case("fcl_indep_triangle", [indep](const PeerCase& c) { return triangle_query(*indep, c); }),
+    return {per_case("fcl_libccd_triangle",
+                     [libccd](const PeerCase& c) { return triangle_query(*libccd, c); }),
+            per_case("fcl_indep_triangle",
+                     [indep](const PeerCase& c) { return triangle_query(*indep, c); }),
             convex_peer("fcl_libccd_convex_signed", GJKSolverType::GST_LIBCCD, true),
             convex_peer("fcl_libccd_convex_collide", GJKSolverType::GST_LIBCCD, false),
             convex_peer("fcl_indep_convex_collide", GJKSolverType::GST_INDEP, false)};

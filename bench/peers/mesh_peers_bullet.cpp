@@ -17,20 +17,21 @@ namespace {
 using namespace trackphys::peers;
 
 void print(const std::vector<SceneResult>& results) {
-    std::printf("%-27s %7s %6s | %8s %8s | %6s %8s %7s | %6s %7s %8s %6s %7s | %6s %6s %6s %4s "
-                "%7s %6s\n",
-                "scene", "tris", "boxes", "build_ms", "bt_ms", "B/tri", "bt_nodeB", "bt_allB",
-                "us", "bt_node", "bt_exact", "x_node", "x_exact", "found", "bt_fnd", "extras",
-                "miss", "gap_max", "slack");
+    std::printf(
+        "%-27s %7s %6s | %8s %8s | %6s %8s %7s | %6s %7s %8s %6s %7s | %6s %6s %6s %4s "
+        "%7s %6s\n",
+        "scene", "tris", "boxes", "build_ms", "bt_ms", "B/tri", "bt_nodeB", "bt_allB", "us",
+        "bt_node", "bt_exact", "x_node", "x_exact", "found", "bt_fnd", "extras", "miss", "gap_max",
+        "slack");
     for (const SceneResult& r : results)
-        std::printf("%-27s %7zu %6zu | %8.1f %8.1f | %6.1f %8.1f %7.1f | %6.2f %7.2f %8.2f "
-                    "%6.2f %7.2f | %6.1f %6.1f %6zu %4zu %7.4f %6.4f\n",
-                    r.scene.c_str(), r.triangles, r.boxes, r.ours_build_ms, r.bullet_build_ms,
-                    r.ours_bytes_per_tri, r.bullet_node_bytes_per_tri,
-                    r.bullet_total_bytes_per_tri, r.ours_us, r.bullet_nodes_us,
-                    r.bullet_exact_us, r.bullet_nodes_us / r.ours_us,
-                    r.bullet_exact_us / r.ours_us, r.ours_found_mean, r.bullet_found_mean,
-                    r.extras, r.missing + r.ours_missed, r.extra_gap_max, r.slack);
+        std::printf(
+            "%-27s %7zu %6zu | %8.1f %8.1f | %6.1f %8.1f %7.1f | %6.2f %7.2f %8.2f "
+            "%6.2f %7.2f | %6.1f %6.1f %6zu %4zu %7.4f %6.4f\n",
+            r.scene.c_str(), r.triangles, r.boxes, r.ours_build_ms, r.bullet_build_ms,
+            r.ours_bytes_per_tri, r.bullet_node_bytes_per_tri, r.bullet_total_bytes_per_tri,
+            r.ours_us, r.bullet_nodes_us, r.bullet_exact_us, r.bullet_nodes_us / r.ours_us,
+            r.bullet_exact_us / r.ours_us, r.ours_found_mean, r.bullet_found_mean, r.extras,
+            r.missing + r.ours_missed, r.extra_gap_max, r.slack);
 }
 
 bool write_json(const std::string& path, const char* program,
@@ -44,20 +45,20 @@ bool write_json(const std::string& path, const char* program,
     std::fprintf(f, "  \"results\": [\n");
     for (std::size_t i = 0; i < results.size(); ++i) {
         const SceneResult& r = results[i];
-        std::fprintf(
-            f,
-            "    {\"scene\": \"%s\", \"triangles\": %zu, \"boxes\": %zu, "
-            "\"ours_build_ms\": %.6g, \"bullet_build_ms\": %.6g, "
-            "\"ours_bytes_per_triangle\": %.6g, \"bullet_node_bytes_per_triangle\": %.6g, "
-            "\"bullet_total_bytes_per_triangle\": %.6g, \"ours_median_us\": %.6g, "
-            "\"bullet_nodes_median_us\": %.6g, \"bullet_exact_median_us\": %.6g, "
-            "\"ours_found_mean\": %.6g, \"bullet_found_mean\": %.6g, \"missing\": %zu, "
-            "\"extras\": %zu, \"ours_missed\": %zu, \"extra_gap_max_m\": %.6g, \"slack_m\": %.6g}%s\n",
-            r.scene.c_str(), r.triangles, r.boxes, r.ours_build_ms, r.bullet_build_ms,
-            r.ours_bytes_per_tri, r.bullet_node_bytes_per_tri, r.bullet_total_bytes_per_tri,
-            r.ours_us, r.bullet_nodes_us, r.bullet_exact_us, r.ours_found_mean,
-            r.bullet_found_mean, r.missing, r.extras, r.ours_missed, r.extra_gap_max, r.slack,
-            i + 1 < results.size() ? "," : "");
+        std::fprintf(f,
+                     "    {\"scene\": \"%s\", \"triangles\": %zu, \"boxes\": %zu, "
+                     "\"ours_build_ms\": %.6g, \"bullet_build_ms\": %.6g, "
+                     "\"ours_bytes_per_triangle\": %.6g, \"bullet_node_bytes_per_triangle\": %.6g, "
+                     "\"bullet_total_bytes_per_triangle\": %.6g, \"ours_median_us\": %.6g, "
+                     "\"bullet_nodes_median_us\": %.6g, \"bullet_exact_median_us\": %.6g, "
+                     "\"ours_found_mean\": %.6g, \"bullet_found_mean\": %.6g, \"missing\": %zu, "
+                     "\"extras\": %zu, \"ours_missed\": %zu, \"extra_gap_max_m\": %.6g, "
+                     "\"slack_m\": %.6g}%s\n",
+                     r.scene.c_str(), r.triangles, r.boxes, r.ours_build_ms, r.bullet_build_ms,
+                     r.ours_bytes_per_tri, r.bullet_node_bytes_per_tri,
+                     r.bullet_total_bytes_per_tri, r.ours_us, r.bullet_nodes_us, r.bullet_exact_us,
+                     r.ours_found_mean, r.bullet_found_mean, r.missing, r.extras, r.ours_missed,
+                     r.extra_gap_max, r.slack, i + 1 < results.size() ? "," : "");
     }
     std::fprintf(f, "  ]\n}\n");
     return std::fclose(f) == 0;

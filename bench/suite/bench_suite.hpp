@@ -11,8 +11,8 @@
 #include <cstddef>
 #include <deque>
 #include <filesystem>
-#include <string>
 #include <functional>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -38,9 +38,9 @@ struct BenchRow {
     std::string name;
     double median_ns = 0.0;
     double ratio = 1.0;
-    std::string versus;                                  ///< empty: the group's reference row
+    std::string versus;                                   ///< empty: the group's reference row
     std::vector<std::pair<std::string, double>> figures;  ///< extra numbers (units in the key)
-    std::string note;                                    ///< what the write-up said, a caveat
+    std::string note;                                     ///< what the write-up said, a caveat
 };
 
 /// A target of the issue, checked on this run. A speed ratio is met only together with the
@@ -58,8 +58,8 @@ struct BenchTarget {
 
 /// A peer library and whether this build has it.
 struct PeerStatus {
-    std::string key;     ///< "bullet" or "fcl" (the JSON key)
-    std::string name;    ///< with the version found, e.g. "Bullet 3.24"
+    std::string key;   ///< "bullet" or "fcl" (the JSON key)
+    std::string name;  ///< with the version found, e.g. "Bullet 3.24"
     bool built = false;
     std::string detail;  ///< what `built` covers, or how to get it
 };
@@ -67,7 +67,7 @@ struct PeerStatus {
 /// The run's settings, its rows and targets, and the progress line on stderr (shown only
 /// when stderr is a terminal, as drive's progress bar).
 class BenchRun {
-public:
+  public:
     explicit BenchRun(bool quick);
 
     bool quick() const { return quick_; }
@@ -88,7 +88,7 @@ public:
     const BenchRow& row(const std::string& group, const std::string& name) const;
     void end_progress();
 
-private:
+  private:
     bool quick_;
     bool terminal_;
     std::deque<BenchRow> rows_;  // a deque: add() hands out references that stay valid
@@ -134,12 +134,14 @@ inline std::vector<double> median_call_ns_in_turns(const std::vector<std::functi
     using Clock = std::chrono::steady_clock;
     for (const auto& f : fs)
         for (int k = 0; k < calls; ++k) f();
-    std::vector<std::vector<double>> ns(fs.size(), std::vector<double>(static_cast<std::size_t>(batches)));
+    std::vector<std::vector<double>> ns(fs.size(),
+                                        std::vector<double>(static_cast<std::size_t>(batches)));
     for (std::size_t b = 0; b < static_cast<std::size_t>(batches); ++b)
         for (std::size_t i = 0; i < fs.size(); ++i) {
             const auto start = Clock::now();
             for (int k = 0; k < calls; ++k) fs[i]();
-            ns[i][b] = std::chrono::duration<double, std::nano>(Clock::now() - start).count() / calls;
+            ns[i][b] =
+                std::chrono::duration<double, std::nano>(Clock::now() - start).count() / calls;
         }
     std::vector<double> medians;
     for (std::vector<double>& sample : ns) {
@@ -151,8 +153,8 @@ inline std::vector<double> median_call_ns_in_turns(const std::vector<std::functi
 
 /// A car driven by autopilot, each update timed.
 struct TimedDrive {
-    std::vector<double> update_ns;        ///< per update: the thread's CPU time
-    std::vector<glm::dvec3> positions;    ///< the car's centre of mass after each update (m)
+    std::vector<double> update_ns;      ///< per update: the thread's CPU time
+    std::vector<glm::dvec3> positions;  ///< the car's centre of mass after each update (m)
     double final_speed_kmh = 0.0;
 };
 
@@ -166,7 +168,8 @@ struct Driver {
 /// (default settings), taking turns by blocks of 10 updates: a busy moment of the shared
 /// machine falls on all of them alike, while each block runs with its own data in cache (an
 /// update-by-update lockstep would hand ours, ~0.1 ms, the caches Bullet's 6 ms left behind).
-std::vector<TimedDrive> drive_timed(const Track& track, const std::vector<Driver>& drivers, int updates);
+std::vector<TimedDrive> drive_timed(const Track& track, const std::vector<Driver>& drivers,
+                                    int updates);
 
 /// Median, 99th percentile and maximum of a sample.
 struct Spread {

@@ -63,22 +63,21 @@ struct Group {
 };
 
 // Table order: the write-up's improvements, then the peers.
-constexpr Group kGroups[] = {{"cull", bench_cull},
-                             {"roots", bench_roots},
-                             {"broad", bench_broad_phase},
-                             {"mid", bench_mid_phase},
-                             {"update", bench_update},
-                             {"contact", bench_contact_peers},
-                             {"mesh", bench_mesh_peers},
-                             {"bullet_update", bench_update_peers}};
+constexpr Group kGroups[] = {{"cull", bench_cull},         {"roots", bench_roots},
+                             {"broad", bench_broad_phase}, {"mid", bench_mid_phase},
+                             {"update", bench_update},     {"contact", bench_contact_peers},
+                             {"mesh", bench_mesh_peers},   {"bullet_update", bench_update_peers}};
 
 /// A time with a readable unit: 812 ns, 3.41 us, 2.05 ms.
 std::string format_time(double ns) {
     char text[32];
     if (ns <= 0.0) return "-";
-    if (ns < 1e3) std::snprintf(text, sizeof text, "%.0f ns", ns);
-    else if (ns < 1e6) std::snprintf(text, sizeof text, "%.3g us", ns * 1e-3);
-    else std::snprintf(text, sizeof text, "%.3g ms", ns * 1e-6);
+    if (ns < 1e3)
+        std::snprintf(text, sizeof text, "%.0f ns", ns);
+    else if (ns < 1e6)
+        std::snprintf(text, sizeof text, "%.3g us", ns * 1e-3);
+    else
+        std::snprintf(text, sizeof text, "%.3g ms", ns * 1e-6);
     return text;
 }
 
@@ -95,36 +94,42 @@ std::string format_figures(const BenchRow& row) {
 
 /// Printed before the run, so the peers found are known while it runs.
 void print_header(bool quick, const std::vector<PeerStatus>& peers) {
-    std::printf("trackphys-bench%s: median time of one call; x = median / the 'vs' row's median\n"
-                "  (update groups: the thread's CPU time per update, so that a busy machine's\n"
-                "  other processes do not count)\n",
-                quick ? " --quick" : "");
+    std::printf(
+        "trackphys-bench%s: median time of one call; x = median / the 'vs' row's median\n"
+        "  (update groups: the thread's CPU time per update, so that a busy machine's\n"
+        "  other processes do not count)\n",
+        quick ? " --quick" : "");
     std::printf("  trackphys built for %s; the peers are Debian's builds (x86-64 baseline)\n",
                 trackphys::build_target());
     for (const PeerStatus& p : peers)
-        std::printf("  peer %-14s %s (%s)\n", p.name.c_str(), p.built ? "built" : "not built", p.detail.c_str());
+        std::printf("  peer %-14s %s (%s)\n", p.name.c_str(), p.built ? "built" : "not built",
+                    p.detail.c_str());
     std::fflush(stdout);
 }
 
 void print_table(const BenchRun& run, double wall_s) {
-    std::printf("\n%-14s %-52s %10s %9s  %-34s %s\n", "group", "case", "median", "x", "vs", "figures");
+    std::printf("\n%-14s %-52s %10s %9s  %-34s %s\n", "group", "case", "median", "x", "vs",
+                "figures");
     std::string last_group;
     for (const BenchRow& r : run.rows()) {
         if (r.group != last_group && !last_group.empty()) std::printf("\n");
         last_group = r.group;
         char ratio[32] = "";
-        if (!r.versus.empty() && r.median_ns > 0.0) std::snprintf(ratio, sizeof ratio, "%.3g", r.ratio);
+        if (!r.versus.empty() && r.median_ns > 0.0)
+            std::snprintf(ratio, sizeof ratio, "%.3g", r.ratio);
         std::printf("%-14s %-52s %10s %9s  %-34s %s\n", r.group.c_str(), r.name.c_str(),
-                    format_time(r.median_ns).c_str(), ratio, r.versus.c_str(), format_figures(r).c_str());
+                    format_time(r.median_ns).c_str(), ratio, r.versus.c_str(),
+                    format_figures(r).c_str());
     }
     if (!run.targets().empty())
-        std::printf("\nthe issues' targets on this machine%s:\n",
-                    run.quick() ? " (--quick: fewer cases on colder caches; the full run decides)"
-                                : "");
+        std::printf(
+            "\nthe issues' targets on this machine%s:\n",
+            run.quick() ? " (--quick: fewer cases on colder caches; the full run decides)" : "");
     for (const BenchTarget& t : run.targets()) {
         std::printf("  %-4s %-70s %10.3g  (target >= %g)", t.met() ? "met" : "MISS", t.what.c_str(),
                     t.value, t.target);
-        if (!t.evidence.empty()) std::printf("  %s%s", t.correct ? "" : "NOT CORRECT: ", t.evidence.c_str());
+        if (!t.evidence.empty())
+            std::printf("  %s%s", t.correct ? "" : "NOT CORRECT: ", t.evidence.c_str());
         std::printf("\n");
     }
     std::printf("\nwall time %.1f s\n", wall_s);
@@ -135,17 +140,19 @@ nlohmann::json to_json(const BenchRun& run, const std::vector<PeerStatus>& peers
     json["quick"] = run.quick();
     json["build_target"] = trackphys::build_target();
     json["wall_s"] = wall_s;
-    json["writeup_budget_us"] = {{"typical", cli::kWriteupTypicalUs}, {"spikes", cli::kWriteupSpikeUs}};
+    json["writeup_budget_us"] = {{"typical", cli::kWriteupTypicalUs},
+                                 {"spikes", cli::kWriteupSpikeUs}};
     for (const PeerStatus& p : peers)
         json["peers"][p.key] = {{"name", p.name}, {"built", p.built}, {"detail", p.detail}};
     json["rows"] = nlohmann::json::array();
     for (const BenchRow& r : run.rows()) {
-        nlohmann::json row = {{"group", r.group}, {"case", r.name}, {"median_ns", r.median_ns},
+        nlohmann::json row = {{"group", r.group}, {"case", r.name},     {"median_ns", r.median_ns},
                               {"ratio", r.ratio}, {"versus", r.versus}, {"note", r.note}};
         row["figures"] = nlohmann::json::object();
         // JSON has no NaN or infinity: a figure that is not finite is written as null.
         for (const auto& [key, value] : r.figures)
-            row["figures"][key] = std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
+            row["figures"][key] =
+                std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
         json["rows"].push_back(std::move(row));
     }
     json["targets"] = nlohmann::json::array();
@@ -166,8 +173,9 @@ int run_bench(const BenchOptions& o) {
         bool known = false;
         for (const Group& g : kGroups) known = known || name == g.name;
         if (!known)
-            throw Error("--only '" + name +
-                        "': not a group (cull, roots, broad, mid, update, contact, mesh, bullet_update)");
+            throw Error(
+                "--only '" + name +
+                "': not a group (cull, roots, broad, mid, update, contact, mesh, bullet_update)");
     }
     // Checked and staged before minutes of measuring; put in place only after the run.
     cli::StagedOutputs outputs;
@@ -182,7 +190,8 @@ int run_bench(const BenchOptions& o) {
         if (selected) g.run(run);
     }
     run.end_progress();
-    const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double wall_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     print_table(run, wall_s);
     if (!json.empty()) {
         cli::write_json_file(to_json(run, peers, wall_s), json);
@@ -208,20 +217,24 @@ int main(int argc, char** argv) {
         return 1;
     }
     suite::BenchOptions o;
-    CLI::App app{"trackphys-bench: every comparison of the benchmarks on this machine in one run: the "
-                 "write-up's improvements (cull, roots, broad and mid phase, whole update vs its "
-                 "budget) and the peers (Bullet, FCL) where built; prints one table of medians and "
-                 "ratios and the target lines",
-                 "trackphys-bench"};
-    app.add_flag("--quick", o.quick, "Fewer cases and repeats, colder caches: a smoke run, not the measure");
-    app.add_option("--only", o.only, "Run only these groups (cull, roots, broad, mid, update, contact, "
-                                     "mesh, bullet_update), comma-separated")
+    CLI::App app{
+        "trackphys-bench: every comparison of the benchmarks on this machine in one run: the "
+        "write-up's improvements (cull, roots, broad and mid phase, whole update vs its "
+        "budget) and the peers (Bullet, FCL) where built; prints one table of medians and "
+        "ratios and the target lines",
+        "trackphys-bench"};
+    app.add_flag("--quick", o.quick,
+                 "Fewer cases and repeats, colder caches: a smoke run, not the measure");
+    app.add_option("--only", o.only,
+                   "Run only these groups (cull, roots, broad, mid, update, contact, "
+                   "mesh, bullet_update), comma-separated")
         ->delimiter(',');
     app.add_option("--json", o.json, "Write the table as JSON (atomically)");
     app.add_flag("--check", o.check, "Fail on a MISS in any mode (a full run always does)");
-    app.footer("Exit status: 0 when every target line printed is met; 3 when one says MISS in a full "
-               "run, or in a --quick run with --check (without --check a --quick run reports MISS "
-               "and exits 0: its cold caches do not decide); 1 on an error.");
+    app.footer(
+        "Exit status: 0 when every target line printed is met; 3 when one says MISS in a full "
+        "run, or in a --quick run with --check (without --check a --quick run reports MISS "
+        "and exits 0: its cold caches do not decide); 1 on an error.");
     try {
         app.parse(argc, argv);
         const int missed = suite::run_bench(o);

@@ -46,7 +46,8 @@ namespace {
 std::vector<PeerStatus> peer_status() {
     std::vector<PeerStatus> peers;
 #if TRACKPHYS_HAVE_BULLET
-    peers.push_back({"bullet", "Bullet " + std::to_string(BT_BULLET_VERSION / 100) + "." +
+    peers.push_back({"bullet",
+                     "Bullet " + std::to_string(BT_BULLET_VERSION / 100) + "." +
                          std::to_string(BT_BULLET_VERSION % 100),
                      true,
                      std::string(peers::bullet_precision()) +
@@ -69,7 +70,8 @@ void bench_contact_peers(BenchRun& run) {
 #if TRACKPHYS_HAVE_BULLET || TRACKPHYS_HAVE_FCL
     std::vector<peers::Peer> methods;
 #if TRACKPHYS_HAVE_BULLET
-    methods.push_back(peers::bullet_contact_peer(std::string("Bullet GJK/EPA (") + peers::bullet_precision() + ")"));
+    methods.push_back(peers::bullet_contact_peer(std::string("Bullet GJK/EPA (") +
+                                                 peers::bullet_precision() + ")"));
 #else
     not_built(run, "contact", "Bullet GJK/EPA");
 #endif
@@ -92,7 +94,8 @@ void bench_contact_peers(BenchRun& run) {
         run.progress("contact", set.name + ": ours");
         const peers::MethodResult ours = peers::measure_ours(set);
         const std::string ours_name = set.name + ": trackphys";
-        const auto add = [&](const std::string& name, const peers::MethodResult& r, const std::string& versus) {
+        const auto add = [&](const std::string& name, const peers::MethodResult& r,
+                             const std::string& versus) {
             BenchRow& row = run.add("contact", name, r.median_ns, versus);
             row.figures = {{"cases", double(r.cases)},
                            {"err_median_m", r.error_median},
@@ -105,7 +108,8 @@ void bench_contact_peers(BenchRun& run) {
         if (set.name == "hard_mix") {
             ours_holds = ours.error_max <= kDepthContract && ours.failures == 0;
             char text[96];
-            std::snprintf(text, sizeof text, "ours: err_max %.2g m, %zu failures in %zu cases; peers' failures:",
+            std::snprintf(text, sizeof text,
+                          "ours: err_max %.2g m, %zu failures in %zu cases; peers' failures:",
                           ours.error_max, ours.failures, ours.cases);
             evidence = text;
         }
@@ -116,7 +120,8 @@ void bench_contact_peers(BenchRun& run) {
             // The targets are on the 20k hard-mix cases. Our errors are ~1e-16 m or
             // exactly 0: a floor of 1e-15 m keeps the ratio finite.
             if (set.name != "hard_mix") continue;
-            evidence += (evidence.back() == ':' ? " " : ", ") + peer.name + " " + std::to_string(r.failures);
+            evidence += (evidence.back() == ':' ? " " : ", ") + peer.name + " " +
+                        std::to_string(r.failures);
             const double speedup = r.median_ns / ours.median_ns;
             const double accuracy = r.error_max / std::max(ours.error_max, 1e-15);
             if (speedup < slowest_speedup) slowest_speedup = speedup, slowest = peer.name;
@@ -124,10 +129,10 @@ void bench_contact_peers(BenchRun& run) {
         }
     }
     if (!methods.empty()) {
-        run.add_target("contact, hard mix: fastest peer's time / ours (" + slowest + ")", slowest_speedup, 10.0,
-                       ours_holds, evidence);
-        run.add_target("contact, hard mix: most accurate peer's max error / ours (" + least + ")", least_accuracy,
-                       100.0, ours_holds, evidence);
+        run.add_target("contact, hard mix: fastest peer's time / ours (" + slowest + ")",
+                       slowest_speedup, 10.0, ours_holds, evidence);
+        run.add_target("contact, hard mix: most accurate peer's max error / ours (" + least + ")",
+                       least_accuracy, 100.0, ours_holds, evidence);
     }
 #else
     not_built(run, "contact", "Bullet GJK/EPA");
@@ -157,7 +162,8 @@ void bench_mesh_peers(BenchRun& run) {
                         {"build_ms", r.ours_build_ms},
                         {"bytes_per_tri", r.ours_bytes_per_tri},
                         {"found_mean", r.ours_found_mean}};
-        BenchRow& nodes = run.add("mesh", r.scene + ": Bullet quantized BVH", r.bullet_nodes_us * 1e3, ours_name);
+        BenchRow& nodes =
+            run.add("mesh", r.scene + ": Bullet quantized BVH", r.bullet_nodes_us * 1e3, ours_name);
         nodes.figures = {{"build_ms", r.bullet_build_ms},
                          {"node_bytes_per_tri", r.bullet_node_bytes_per_tri},
                          {"all_bytes_per_tri", r.bullet_total_bytes_per_tri},
@@ -169,7 +175,8 @@ void bench_mesh_peers(BenchRun& run) {
         differ += same_sets ? 0 : 1;
         run.add("mesh", r.scene + ": Bullet exact set", r.bullet_exact_us * 1e3, ours_name).note =
             "processAllTriangles + box filter: ours' set";
-        if (r.bullet_nodes_us / r.ours_us < least) least = r.bullet_nodes_us / r.ours_us, where = r.scene;
+        if (r.bullet_nodes_us / r.ours_us < least)
+            least = r.bullet_nodes_us / r.ours_us, where = r.scene;
     }
     run.add_target("mesh query: Bullet nodes / ours (" + where + ")", least, 3.0, differ == 0,
                    differ == 0 ? "triangle sets match in every scene"
@@ -212,7 +219,9 @@ void bench_update_peers(BenchRun& run) {
     const Spread us = spread(ours.update_ns);
     const std::string ours_name = "World::update (ours)";
     BenchRow& row = run.add("bullet update", ours_name, us.median);
-    row.figures = {{"p99_us", us.p99 * 1e-3}, {"updates", double(updates)}, {"final_kmh", ours.final_speed_kmh}};
+    row.figures = {{"p99_us", us.p99 * 1e-3},
+                   {"updates", double(updates)},
+                   {"final_kmh", ours.final_speed_kmh}};
 
     struct Drift {
         double after_all = 0.0, max = 0.0;
@@ -223,7 +232,8 @@ void bench_update_peers(BenchRun& run) {
             return glm::length(ours.positions[n - 1] - theirs.positions[n - 1]);
         };
         Drift drift{drift_after(std::size_t(updates)), 0.0};
-        for (std::size_t n = 1; n <= ours.positions.size(); ++n) drift.max = std::max(drift.max, drift_after(n));
+        for (std::size_t n = 1; n <= ours.positions.size(); ++n)
+            drift.max = std::max(drift.max, drift_after(n));
         const Spread them = spread(theirs.update_ns);
         BenchRow& peer = run.add("bullet update", name, them.median, ours_name);
         peer.figures = {{"p99_us", them.p99 * 1e-3},
@@ -237,18 +247,21 @@ void bench_update_peers(BenchRun& run) {
         return drift;
     };
     const std::string precision = std::string(" (") + peers::bullet_precision() + ")";
-    add_peer(drives[1], narrow.counts(), "our BVH + mid phase, GJK/EPA per mid-phase candidate" + precision,
+    add_peer(drives[1], narrow.counts(),
+             "our BVH + mid phase, GJK/EPA per mid-phase candidate" + precision,
              "the narrow phases alone: our lists, Bullet's GJK/EPA on every listed triangle");
-    const Drift drift = add_peer(drives[2], bullet.counts(), "GJK/EPA per broad-phase candidate" + precision,
-                                 "Bullet's BVH per ellipsoid per sub-step, GJK/EPA on every triangle it reports");
+    const Drift drift =
+        add_peer(drives[2], bullet.counts(), "GJK/EPA per broad-phase candidate" + precision,
+                 "Bullet's BVH per ellipsoid per sub-step, GJK/EPA on every triangle it reports");
     char evidence[160];
-    std::snprintf(evidence, sizeof evidence,
-                  "drift from ours %.3g m after %d updates (max %.3g m); Bullet failures %zu of %zu GJK/EPA",
-                  drift.after_all, updates, drift.max, bullet.counts().failures, bullet.counts().pair_tests);
+    std::snprintf(
+        evidence, sizeof evidence,
+        "drift from ours %.3g m after %d updates (max %.3g m); Bullet failures %zu of %zu GJK/EPA",
+        drift.after_all, updates, drift.max, bullet.counts().failures, bullet.counts().pair_tests);
     // Reported only when both trajectories are: a car lost to NaN has no drift to show.
     const bool reported = std::isfinite(drift.after_all) && std::isfinite(drift.max);
-    run.add_target("whole update: GJK/EPA per broad-phase candidate / ours", spread(drives[2].update_ns).median / us.median,
-                   20.0, reported, evidence);
+    run.add_target("whole update: GJK/EPA per broad-phase candidate / ours",
+                   spread(drives[2].update_ns).median / us.median, 20.0, reported, evidence);
 #else
     not_built(run, "bullet update", "GJK/EPA per broad-phase candidate");
 #endif

@@ -29,7 +29,9 @@ namespace trackphys::suite {
 Spread spread(std::vector<double> sample) {
     if (sample.empty()) throw Error("bench: an empty sample has no spread");
     std::sort(sample.begin(), sample.end());
-    const auto at = [&](double q) { return sample[static_cast<std::size_t>(q * double(sample.size() - 1))]; };
+    const auto at = [&](double q) {
+        return sample[static_cast<std::size_t>(q * double(sample.size() - 1))];
+    };
     return {at(0.5), at(0.99), sample.back()};
 }
 
@@ -39,7 +41,8 @@ double thread_cpu_ns() {
     return double(now.tv_sec) * 1e9 + double(now.tv_nsec);
 }
 
-std::vector<TimedDrive> drive_timed(const Track& track, const std::vector<Driver>& drivers, int updates) {
+std::vector<TimedDrive> drive_timed(const Track& track, const std::vector<Driver>& drivers,
+                                    int updates) {
     std::vector<Autopilot> autopilots;
     for (const Driver& d : drivers) autopilots.emplace_back(track, d.car->spec());
     std::vector<TimedDrive> drives(drivers.size());
@@ -54,7 +57,8 @@ std::vector<TimedDrive> drive_timed(const Track& track, const std::vector<Driver
                 drives[i].update_ns.push_back(thread_cpu_ns() - start);
                 drives[i].positions.push_back(car.state().position);
             }
-    for (std::size_t i = 0; i < drivers.size(); ++i) drives[i].final_speed_kmh = drivers[i].car->speed() * 3.6;
+    for (std::size_t i = 0; i < drivers.size(); ++i)
+        drives[i].final_speed_kmh = drivers[i].car->speed() * 3.6;
     return drives;
 }
 
@@ -70,7 +74,8 @@ void bench_cull(BenchRun& run) {
         const char* note;
     };
     const Variant variants[] = {
-        {bench::CullVariant::xyz_order, "x-y-z order, first-vertex origin", "the write-up's first cull"},
+        {bench::CullVariant::xyz_order, "x-y-z order, first-vertex origin",
+         "the write-up's first cull"},
         {bench::CullVariant::normal_first, "normal first", "write-up: about half the cull time"},
         {bench::CullVariant::longest_edge_normal_first, "normal first + longest-edge origin",
          "write-up: a little more; ours"}};
@@ -85,7 +90,8 @@ void bench_cull(BenchRun& run) {
     for (std::size_t i = 0; i < std::size(variants); ++i) {
         const Variant& v = variants[i];
         const double ns = medians[i];
-        BenchRow& row = run.add("cull", v.name, ns, v.variant == bench::CullVariant::xyz_order ? "" : variants[0].name);
+        BenchRow& row = run.add("cull", v.name, ns,
+                                v.variant == bench::CullVariant::xyz_order ? "" : variants[0].name);
         row.figures = {{"ns_per_test", ns / tests},
                        {"candidates", double(scene.longest_edge_origin.size())},
                        {"kept_pct", 100.0 * double(kept[i]) / tests}};
@@ -132,7 +138,8 @@ void bench_roots(BenchRun& run) {
             error.push_back(std::abs(r.distance - exact[k]));
         }
         const Spread e = spread(error);
-        BenchRow& row = run.add("roots", f.name, ns, f.finder == bench::RootFinder::bisection ? "" : finders[0].name);
+        BenchRow& row = run.add("roots", f.name, ns,
+                                f.finder == bench::RootFinder::bisection ? "" : finders[0].name);
         row.figures = {{"steps_mean", steps / double(queries.size())},
                        {"steps_max", worst_steps},
                        {"err_median_m", e.median},
@@ -184,10 +191,12 @@ void bench_broad_phase(BenchRun& run) {
     const double triangles = double(everything.triangle_count());
     run.add("broad", "brute force, every triangle", all_ns).figures = {
         {"candidates", double(all_found)}, {"triangles", triangles}};
-    BenchRow& first = run.add("broad", "brute force in hit colliders", colliders_ns, "brute force, every triangle");
+    BenchRow& first = run.add("broad", "brute force in hit colliders", colliders_ns,
+                              "brute force, every triangle");
     first.figures = {{"candidates", double(colliders_found)}};
     first.note = "the write-up's first: ~2 ms";
-    BenchRow& ours = run.add("broad", "BVH per collider (ours)", bvh_ns, "brute force, every triangle");
+    BenchRow& ours =
+        run.add("broad", "BVH per collider (ours)", bvh_ns, "brute force, every triangle");
     ours.figures = {{"candidates", double(refs.size())},
                     {"x_faster_than_hit_colliders", colliders_ns / bvh_ns}};
     ours.note = refs.size() == all_found && refs.size() == colliders_found
@@ -222,7 +231,8 @@ void bench_mid_phase(BenchRun& run) {
         mid->reset_counters();
         const double ns = timed(false);
         const double updates = double(mid->counters().updates);
-        BenchRow& row = run.add("mid", variant.name, ns, v == bench::kWriteupVariant ? "" : reference);
+        BenchRow& row =
+            run.add("mid", variant.name, ns, v == bench::kWriteupVariant ? "" : reference);
         row.figures = {{"tested_per_ellipsoid_substep", bench::tested_per_ellipsoid_substep(total)},
                        {"queries_per_update", double(mid->counters().queries) / updates},
                        {"with_cull_us", with_cull_ns * 1e-3}};
@@ -235,11 +245,13 @@ void bench_mid_phase(BenchRun& run) {
             // but more sub-step tests, so the mid phase alone would flatter it.
             const BenchRow& writeup = run.row("mid", reference);
             char evidence[128];
-            std::snprintf(evidence, sizeof evidence,
-                          "with the sub-step cull: write-up %.3g us, ours %.3g us; mid phase alone %.3gx",
-                          writeup_with_cull_ns * 1e-3, with_cull_ns * 1e-3, writeup.median_ns / ns);
-            run.add_target("mid phase + sub-step cull per update: write-up's per-update tree / ours",
-                           writeup_with_cull_ns / with_cull_ns, 10.0, true, evidence);
+            std::snprintf(
+                evidence, sizeof evidence,
+                "with the sub-step cull: write-up %.3g us, ours %.3g us; mid phase alone %.3gx",
+                writeup_with_cull_ns * 1e-3, with_cull_ns * 1e-3, writeup.median_ns / ns);
+            run.add_target(
+                "mid phase + sub-step cull per update: write-up's per-update tree / ours",
+                writeup_with_cull_ns / with_cull_ns, 10.0, true, evidence);
             row.figures.push_back({"writeup_with_cull_x", writeup_with_cull_ns / with_cull_ns});
         }
     }
@@ -268,12 +280,14 @@ void bench_update(BenchRun& run) {
         {MidPhaseMode::none, 1, false, "mid phase none"},
         {MidPhaseMode::per_update_tree, 1, false, "per-update PCA tree, every step (write-up)"},
         {MidPhaseMode::precomputed_tree, 1, false, "precomputed trees, every step"},
-        {MidPhaseMode::precomputed_tree, look_ahead, false, "precomputed trees, looking ahead (default)"},
+        {MidPhaseMode::precomputed_tree, look_ahead, false,
+         "precomputed trees, looking ahead (default)"},
         {MidPhaseMode::precomputed_tree, look_ahead, true, "default, profile on"}};
     run.progress("update", "worlds and precomputed trees");
     std::vector<std::unique_ptr<World>> worlds;
     std::vector<Driver> drivers;
-    std::vector<std::uint64_t> tested(std::size(combinations), 0), substeps(std::size(combinations), 0);
+    std::vector<std::uint64_t> tested(std::size(combinations), 0),
+        substeps(std::size(combinations), 0);
     for (const Combination& c : combinations) {
         WorldSettings settings;
         settings.mid_phase = c.mode;
@@ -303,9 +317,8 @@ void bench_update(BenchRun& run) {
                        {"tested_per_ellipsoid_substep", double(tested[i]) / double(substeps[i])},
                        {"updates", double(updates)},
                        {"final_kmh", drives[i].final_speed_kmh}};
-        row.note = us.max <= cli::kWriteupSpikeUs * 1e3
-                       ? "max within the 8 ms spike budget"
-                       : "max over the 8 ms spike budget";
+        row.note = us.max <= cli::kWriteupSpikeUs * 1e3 ? "max within the 8 ms spike budget"
+                                                        : "max over the 8 ms spike budget";
     }
 }
 

@@ -12,9 +12,9 @@
 #include <utility>
 #include <vector>
 
+#include "geometry/sphere_cull_variants.hpp"
 #include "tightest_turn_scene.hpp"
 #include "trackphys/geometry/normalized_triangle.hpp"
-#include "geometry/sphere_cull_variants.hpp"
 
 namespace trackphys::bench {
 

@@ -20,7 +20,8 @@ MidScene::MidScene() {
         std::max_element(per_collider.begin(), per_collider.end()) - per_collider.begin());
 
     for (int sub = 0; sub < TightestTurnScene::kSubsteps; ++sub)
-        for (std::size_t e = 0; e < s.car.ellipsoids.size(); ++e) centers.push_back(s.center(e, sub));
+        for (std::size_t e = 0; e < s.car.ellipsoids.size(); ++e)
+            centers.push_back(s.center(e, sub));
     constexpr int kSteps = TightestTurnScene::kSubsteps / TightestTurnScene::kStepSubsteps;
     for (int step = 0; step < kSteps; ++step) {
         const int first = step * TightestTurnScene::kStepSubsteps;
@@ -38,16 +39,16 @@ const MidScene& mid_scene() {
 
 std::unique_ptr<MidPhase> make_mid_phase(MidPhaseMode mode) {
     const MidScene& m = mid_scene();
-    return std::make_unique<MidPhase>(mode, m.world,
-                                      mode == MidPhaseMode::precomputed_tree ? m.trees
-                                                                             : ColliderPlaneTrees{});
+    return std::make_unique<MidPhase>(
+        mode, m.world, mode == MidPhaseMode::precomputed_tree ? m.trees : ColliderPlaneTrees{});
 }
 
 const std::vector<MidVariant>& mid_variants() {
     static const std::vector<MidVariant> variants = {
         {MidPhaseMode::per_update_tree, Shape::sphere, 1, "write-up: per-update PCA tree, spheres",
          "the write-up's WIP, queried every step: ~1.25 ms to build there"},
-        {MidPhaseMode::none, Shape::ellipsoid, 1, "none", "every ellipsoid scans the broad-phase list"},
+        {MidPhaseMode::none, Shape::ellipsoid, 1, "none",
+         "every ellipsoid scans the broad-phase list"},
         {MidPhaseMode::per_update_tree, Shape::ellipsoid, 1, "per-update PCA tree, ellipsoids", ""},
         {MidPhaseMode::precomputed_tree, Shape::sphere, 1, "precomputed, spheres",
          "the write-up's swept spheres"},
@@ -58,8 +59,8 @@ const std::vector<MidVariant>& mid_variants() {
     return variants;
 }
 
-std::size_t run_update(MidPhase& mid, const MidVariant& variant, bool cull,
-                       UpdateLists& lists, std::size_t& kept) {
+std::size_t run_update(MidPhase& mid, const MidVariant& variant, bool cull, UpdateLists& lists,
+                       std::size_t& kept) {
     const TightestTurnScene& s = tightest_turn_scene();
     const MidScene& m = mid_scene();
     constexpr double kStepDt = TightestTurnScene::kSubstepDt * TightestTurnScene::kStepSubsteps;

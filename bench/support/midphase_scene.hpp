@@ -15,8 +15,8 @@
 #include "tightest_turn_scene.hpp"
 #include "trackphys/collision/look_ahead_list.hpp"
 #include "trackphys/collision/mid_phase.hpp"
-#include "trackphys/detail/plane_tree_builder.hpp"
 #include "trackphys/collision/static_world.hpp"
+#include "trackphys/detail/plane_tree_builder.hpp"
 #include "trackphys/world/world_settings.hpp"
 
 namespace trackphys::bench {
@@ -39,9 +39,9 @@ struct StepQuery {
 /// tightest turn's step queries. Built once, on first use.
 struct MidScene {
     StaticWorld world;
-    ColliderPlaneTrees trees;             // cost_based (the precomputed default)
-    std::uint32_t turn_collider = 0;      // the collider with most candidates
-    std::vector<StepQuery> queries;       // 10 steps x 8 ellipsoids
+    ColliderPlaneTrees trees;         // cost_based (the precomputed default)
+    std::uint32_t turn_collider = 0;  // the collider with most candidates
+    std::vector<StepQuery> queries;   // 10 steps x 8 ellipsoids
     /// Each sub-step's ellipsoid centres (40 x 8): the cull's inputs, as World has them from
     /// integrating, so that the cull is timed without the scene's kinematics.
     std::vector<glm::dvec3> centers;
@@ -82,8 +82,8 @@ struct UpdateLists {
 /// within the update box) and is reused while the step stays inside. With `cull`, also each
 /// sub-step's bounding-sphere cull over the step's list (the loop's next stage), so the time
 /// shows what the lists cost downstream. Returns the list lengths summed over the steps.
-std::size_t run_update(MidPhase& mid, const MidVariant& variant, bool cull,
-                       UpdateLists& lists, std::size_t& kept);
+std::size_t run_update(MidPhase& mid, const MidVariant& variant, bool cull, UpdateLists& lists,
+                       std::size_t& kept);
 
 /// The average list length: each step's list is tested in each of its 4 sub-steps.
 double tested_per_ellipsoid_substep(std::size_t total_per_update);

@@ -18,7 +18,8 @@ std::vector<PointQuery> point_queries(test::PointClass kind, std::size_t count) 
 PointEllipsoid closest_point(const PointQuery& q, RootFinder finder) {
     switch (finder) {
         case RootFinder::bisection:
-            return detail::writeup_closest_point(q.radii, q.p, detail::WriteupRootFinder::bisection);
+            return detail::writeup_closest_point(q.radii, q.p,
+                                                 detail::WriteupRootFinder::bisection);
         case RootFinder::writeup_newton:
             return detail::writeup_closest_point(q.radii, q.p, detail::WriteupRootFinder::newton);
         case RootFinder::ours:

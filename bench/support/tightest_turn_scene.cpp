@@ -6,8 +6,10 @@ TriangleMesh merged_track_mesh(const Track& track) {
     TriangleMesh mesh;
     for (const TrackChunk& chunk : track.chunks) {
         const auto base = static_cast<std::uint32_t>(mesh.vertices.size());
-        mesh.vertices.insert(mesh.vertices.end(), chunk.mesh.vertices.begin(), chunk.mesh.vertices.end());
-        for (const auto& t : chunk.mesh.triangles) mesh.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+        mesh.vertices.insert(mesh.vertices.end(), chunk.mesh.vertices.begin(),
+                             chunk.mesh.vertices.end());
+        for (const auto& t : chunk.mesh.triangles)
+            mesh.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
     }
     return mesh;
 }

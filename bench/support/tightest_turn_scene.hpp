@@ -34,8 +34,8 @@ struct BoundingSphere {
 };
 
 struct TightestTurnScene {
-    static constexpr int kSubsteps = 40;      ///< one 10 ms update
-    static constexpr int kStepSubsteps = 4;   ///< sub-steps per step (10 steps)
+    static constexpr int kSubsteps = 40;     ///< one 10 ms update
+    static constexpr int kStepSubsteps = 4;  ///< sub-steps per step (10 steps)
     static constexpr double kSpeed = 1000.0 / 3.6;
     static constexpr double kSubstepDt = 0.01 / kSubsteps;
     /// Height of the centre of mass above the road (m): the car's lowest point (its wheels,
@@ -44,7 +44,7 @@ struct TightestTurnScene {
 
     Track track;
     CenterlineSample turn;
-    Aabb update_box;   ///< car_update_box(turn): the broad-phase box of the update
+    Aabb update_box;  ///< car_update_box(turn): the broad-phase box of the update
     CarSpec car = CarSpec::default_car();
     glm::dquat car_orientation{1.0, 0.0, 0.0, 0.0};  ///< world from body
 
@@ -53,8 +53,8 @@ struct TightestTurnScene {
     /// World center of ellipsoid `e` at the start of sub-step `substep` (0..kSubsteps).
     glm::dvec3 center(std::size_t e, int substep) const {
         const CarEllipsoid& ce = car.ellipsoids[e];
-        const glm::dvec3 origin = turn.position + turn.tangent * (kSpeed * kSubstepDt * substep) +
-                                  turn.up * ride_height;
+        const glm::dvec3 origin =
+            turn.position + turn.tangent * (kSpeed * kSubstepDt * substep) + turn.up * ride_height;
         return origin + turn.left * ce.center.x + turn.up * ce.center.y +
                turn.tangent * ce.center.z;
     }

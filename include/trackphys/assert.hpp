@@ -24,9 +24,9 @@ TRACKPHYS_API void assert_failed(const char* condition, const char* message, con
 }  // namespace trackphys
 
 #if !defined(NDEBUG) || defined(TRACKPHYS_ENABLE_ASSERT)
-#define TP_ASSERT(condition, message)                                                   \
-    do {                                                                                \
-        if (!(condition))                                                               \
+#define TP_ASSERT(condition, message)                                                    \
+    do {                                                                                 \
+        if (!(condition))                                                                \
             ::trackphys::detail::assert_failed(#condition, message, __FILE__, __LINE__); \
     } while (false)
 #else

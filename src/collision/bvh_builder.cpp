@@ -122,7 +122,8 @@ Split best_binned_split(const std::vector<BuildPrimitive>& prims, const WorkItem
     if (!splittable[0] && !splittable[1] && !splittable[2]) return best;
 
     // One pass bins (a sample of) the primitives along all three axes.
-    const std::uint32_t stride = std::max<std::uint32_t>(1, (item.end - item.begin) / kSampleTarget);
+    const std::uint32_t stride =
+        std::max<std::uint32_t>(1, (item.end - item.begin) / kSampleTarget);
     std::uint32_t total = 0;
     for (std::uint32_t i = item.begin; i < item.end; i += stride, ++total) {
         const VBox box = VBox::of(prims[i]);
@@ -166,8 +167,8 @@ Split best_binned_split(const std::vector<BuildPrimitive>& prims, const WorkItem
 // Hoare partition of [begin, end) by `is_left`, accumulating each side's box and centroid
 // bounds on the way (the children's boxes and binning ranges): no extra pass is needed.
 template <class IsLeft>
-std::uint32_t partition(std::vector<BuildPrimitive>& prims, std::uint32_t begin,
-                        std::uint32_t end, IsLeft&& is_left, VBox (&left)[2], VBox (&right)[2]) {
+std::uint32_t partition(std::vector<BuildPrimitive>& prims, std::uint32_t begin, std::uint32_t end,
+                        IsLeft&& is_left, VBox (&left)[2], VBox (&right)[2]) {
     left[0] = left[1] = right[0] = right[1] = VBox{};
     auto take = [&prims](std::uint32_t k, VBox(&side)[2]) {
         side[0].grow(VBox::of(prims[k]));

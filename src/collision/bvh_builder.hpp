@@ -8,8 +8,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "trackphys/detail/bvh_node.hpp"
 #include "float_bounds.hpp"
+#include "trackphys/detail/bvh_node.hpp"
 #include "trackphys/geometry/aabb.hpp"
 
 namespace trackphys::collision_detail {
@@ -51,11 +51,10 @@ inline constexpr int kMaxSahDepth = 48;
 inline constexpr int kMaxTreeDepth = kMaxSahDepth + 32;
 /// Most entries a depth-first traversal of the wide tree keeps pending: each level down
 /// leaves at most kWidth - 1 siblings behind, plus the children of the last node.
-inline constexpr int kMaxTraversalStack =
-    (BvhNode::kWidth - 1) * kMaxTreeDepth + BvhNode::kWidth;
+inline constexpr int kMaxTraversalStack = (BvhNode::kWidth - 1) * kMaxTreeDepth + BvhNode::kWidth;
 
 struct BuiltBvh {
-    std::vector<BvhNode> nodes;  ///< eight-wide, root at 0
+    std::vector<BvhNode> nodes;        ///< eight-wide, root at 0
     std::vector<std::uint32_t> order;  ///< leaf slot -> index of the primitive given
 };
 

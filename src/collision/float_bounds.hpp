@@ -5,11 +5,11 @@
 // boxes with those floats through a box rounded both ways: outward for tests that may only
 // err toward "maybe", inward for tests that must be sure.
 
-#include <emmintrin.h>
-
 #include <bit>
 #include <cstdint>
 #include <limits>
+
+#include <emmintrin.h>
 
 #include "trackphys/geometry/aabb.hpp"
 
@@ -91,8 +91,8 @@ namespace rounding_detail {
 inline __m128i below_bits(__m128i bits) {
     const __m128i negative = _mm_srai_epi32(bits, 31);
     // +1 for negative floats (and -0), -1 for positive ones; +0 goes to -denorm_min.
-    const __m128i step = _mm_sub_epi32(_mm_and_si128(negative, _mm_set1_epi32(2)),
-                                       _mm_set1_epi32(1));
+    const __m128i step =
+        _mm_sub_epi32(_mm_and_si128(negative, _mm_set1_epi32(2)), _mm_set1_epi32(1));
     const __m128i zero = _mm_cmpeq_epi32(bits, _mm_setzero_si128());
     const __m128i below = _mm_add_epi32(bits, step);
     return _mm_or_si128(_mm_andnot_si128(zero, below),
@@ -112,8 +112,8 @@ inline void round_lanes(__m128d x01, __m128d x23, __m128& down, __m128& up) {
     const __m128i sign = _mm_set1_epi32(static_cast<int>(0x8000'0000u));
     const __m128i bits = _mm_castps_si128(f);
     const __m128 step_down = _mm_castsi128_ps(below_bits(bits));
-    const __m128 step_up = _mm_castsi128_ps(
-        _mm_xor_si128(below_bits(_mm_xor_si128(bits, sign)), sign));  // -below(-f)
+    const __m128 step_up =
+        _mm_castsi128_ps(_mm_xor_si128(below_bits(_mm_xor_si128(bits, sign)), sign));  // -below(-f)
     down = _mm_or_ps(_mm_and_ps(above_x, step_down), _mm_andnot_ps(above_x, f));
     up = _mm_or_ps(_mm_and_ps(below_x, step_up), _mm_andnot_ps(below_x, f));
 }
@@ -125,8 +125,8 @@ inline void round_lanes(__m128d x01, __m128d x23, __m128& down, __m128& up) {
 inline void round_both_ways(const Aabb& box, FloatBox& outward, FloatBox& inward) {
     alignas(16) float down[8], up[8];  // min x, y, z, max x | max y, z, -, -
     __m128 d, u;
-    rounding_detail::round_lanes(_mm_set_pd(box.min.y, box.min.x),
-                                 _mm_set_pd(box.max.x, box.min.z), d, u);
+    rounding_detail::round_lanes(_mm_set_pd(box.min.y, box.min.x), _mm_set_pd(box.max.x, box.min.z),
+                                 d, u);
     _mm_store_ps(down, d);
     _mm_store_ps(up, u);
     rounding_detail::round_lanes(_mm_set_pd(box.max.z, box.max.y), _mm_setzero_pd(), d, u);

@@ -12,9 +12,12 @@ namespace trackphys {
 
 std::string_view to_string(MidPhaseMode mode) {
     switch (mode) {
-        case MidPhaseMode::none: return "none";
-        case MidPhaseMode::per_update_tree: return "per_update_tree";
-        case MidPhaseMode::precomputed_tree: return "precomputed_tree";
+        case MidPhaseMode::none:
+            return "none";
+        case MidPhaseMode::per_update_tree:
+            return "per_update_tree";
+        case MidPhaseMode::precomputed_tree:
+            return "precomputed_tree";
     }
     return "unknown";
 }
@@ -31,8 +34,8 @@ ColliderPlaneTrees make_collider_plane_trees(const StaticWorld& world,
     ColliderPlaneTrees trees;
     trees.reserve(world.size());
     for (std::uint32_t id = 0; id < world.size(); ++id)
-        trees.push_back(
-            std::make_shared<const PlaneTree>(make_collider_plane_tree(world.collider(id), settings)));
+        trees.push_back(std::make_shared<const PlaneTree>(
+            make_collider_plane_tree(world.collider(id), settings)));
     return trees;
 }
 
@@ -88,7 +91,8 @@ void MidPhase::query(Query&& query_tree, std::vector<MidPhaseCandidate>& out) {
     };
     switch (mode_) {
         case MidPhaseMode::none:
-            for (std::size_t i = 0; i < refs_.size(); ++i) out.push_back({refs_[i], &triangles_[i]});
+            for (std::size_t i = 0; i < refs_.size(); ++i)
+                out.push_back({refs_[i], &triangles_[i]});
             break;
         case MidPhaseMode::per_update_tree:
             slots_.clear();
@@ -124,8 +128,9 @@ void MidPhase::query_swept_sphere(const glm::dvec3& start, const glm::dvec3& end
 void MidPhase::query_swept_ellipsoid(const Ellipsoid& ellipsoid, const glm::dvec3& end,
                                      double margin, std::vector<MidPhaseCandidate>& out) {
     if (!is_finite(end) || !std::isfinite(margin) || !(margin >= 0.0))
-        throw Error("MidPhase::query_swept_ellipsoid: end must be finite and margin finite and "
-                    ">= 0");
+        throw Error(
+            "MidPhase::query_swept_ellipsoid: end must be finite and margin finite and "
+            ">= 0");
     query(
         [&](const PlaneTree& tree, std::vector<std::uint32_t>& slots, std::uint32_t from) {
             return tree.query_swept_ellipsoid(ellipsoid, end, margin, slots, from);

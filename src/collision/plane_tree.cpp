@@ -57,8 +57,7 @@ PlaneTreeQueryCounts PlaneTree::query_sphere(const glm::dvec3& center, double ra
 }
 
 PlaneTreeQueryCounts PlaneTree::query_swept_sphere(const glm::dvec3& start, const glm::dvec3& end,
-                                                   double radius,
-                                                   std::vector<std::uint32_t>& out,
+                                                   double radius, std::vector<std::uint32_t>& out,
                                                    std::uint32_t from_node) const {
     return visit(SphereShape<true>(start, end, radius), out, from_node);
 }
@@ -73,8 +72,8 @@ PlaneTreeQueryCounts PlaneTree::query_swept_ellipsoid(const Ellipsoid& ellipsoid
 std::uint32_t PlaneTree::entry_node(const Aabb& box) const {
     if (nodes_.empty() || box.empty()) return 0;
     const glm::dvec3 center = box.center(), half = 0.5 * box.extent();
-    const double slack = collision_detail::kPlaneSlack *
-                         (1.0 + collision_detail::max_abs(center) + collision_detail::max_abs(half));
+    const double slack = collision_detail::kPlaneSlack * (1.0 + collision_detail::max_abs(center) +
+                                                          collision_detail::max_abs(half));
     // The box reaches {n.x <= offset} when its lowest corner along n does.
     auto reaches = [&](const PlaneTreeNode& node) {
         const glm::dvec3 n = collision_detail::node_normal(node);
@@ -102,8 +101,7 @@ std::uint32_t PlaneTree::id(std::uint32_t slot) const {
 }
 
 std::size_t PlaneTree::bytes_used() const {
-    return nodes_.capacity() * sizeof(PlaneTreeNode) +
-           slabs_.capacity() * sizeof(PlaneTreeSlab) +
+    return nodes_.capacity() * sizeof(PlaneTreeNode) + slabs_.capacity() * sizeof(PlaneTreeSlab) +
            triangles_.capacity() * sizeof(NormalizedTriangle) +
            ids_.capacity() * sizeof(std::uint32_t);
 }

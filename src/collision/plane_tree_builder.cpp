@@ -72,8 +72,8 @@ void check_settings(const PlaneTreeSettings& s) {
 }  // namespace
 
 void PlaneTreeBuilder::build(std::span<const NormalizedTriangle> triangles,
-                             std::span<const std::uint32_t> ids,
-                             const PlaneTreeSettings& settings, PlaneTree& tree) {
+                             std::span<const std::uint32_t> ids, const PlaneTreeSettings& settings,
+                             PlaneTree& tree) {
     if (triangles.size() != ids.size())
         throw Error("PlaneTreeBuilder::build: " + std::to_string(triangles.size()) +
                     " triangles but " + std::to_string(ids.size()) + " ids");
@@ -232,8 +232,7 @@ bool PlaneTreeBuilder::cost_based_split(std::size_t begin, std::size_t end, Spli
     for (const glm::dvec3& direction : candidates) evaluate_direction(begin, end, direction, best);
     if (!(best.cost < std::numeric_limits<double>::infinity())) return false;
     // Small nodes split only when the model predicts less work than testing them all.
-    if (count <= std::size_t(settings_.max_leaf_size) && !(best.cost < double(count)))
-        return false;
+    if (count <= std::size_t(settings_.max_leaf_size) && !(best.cost < double(count))) return false;
     split = best;
     return true;
 }
@@ -271,7 +270,8 @@ void PlaneTreeBuilder::evaluate_direction(std::size_t begin, std::size_t end,
         return order_[begin + a] < order_[begin + b];
     });
     suffix_low_[count] = std::numeric_limits<double>::infinity();
-    for (std::size_t k = count; k-- > 0;) suffix_low_[k] = std::min(suffix_low_[k + 1], lows_[sorted_[k]]);
+    for (std::size_t k = count; k-- > 0;)
+        suffix_low_[k] = std::min(suffix_low_[k + 1], lows_[sorted_[k]]);
 
     // A query that reaches this node is taken as uniform along n over [low - r, high + r];
     // it reaches the left half-space (n.x <= left_high) with probability
@@ -306,15 +306,16 @@ void PlaneTreeBuilder::order_along(std::size_t begin, std::size_t end, const glm
     };
     const auto first = order_.begin() + std::ptrdiff_t(begin);
     // Only the cut matters: the smallest left_count items along n go left.
-    std::nth_element(first, first + std::ptrdiff_t(left_count), order_.begin() + std::ptrdiff_t(end),
-                     less);
+    std::nth_element(first, first + std::ptrdiff_t(left_count),
+                     order_.begin() + std::ptrdiff_t(end), less);
 }
 
 void PlaneTreeBuilder::set_plane(PlaneTreeNode& node, std::size_t begin, std::size_t end,
                                  const glm::dvec3& normal) const {
     double high = -std::numeric_limits<double>::infinity();
     for (std::size_t i = begin; i < end; ++i)
-        for (const glm::dvec3& v : items_[order_[i]].vertices) high = std::max(high, glm::dot(normal, v));
+        for (const glm::dvec3& v : items_[order_[i]].vertices)
+            high = std::max(high, glm::dot(normal, v));
     for (int k = 0; k < 3; ++k) node.normal[k] = static_cast<float>(normal[k]);
     node.offset = float_up(high);
 }

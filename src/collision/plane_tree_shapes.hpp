@@ -186,8 +186,8 @@ struct EllipsoidShape {
     /// is already inside passes at once, otherwise compare squares of non-negative sides.
     bool reaches(const PlaneTreeNode& node) const {
         const glm::dvec3 n = node_normal(node);
-        const double gap = std::min(glm::dot(n, start), glm::dot(n, end)) - slack -
-                           double(node.offset);
+        const double gap =
+            std::min(glm::dot(n, start), glm::dot(n, end)) - slack - double(node.offset);
         return gap <= 0.0 || gap * gap <= support_squared(n);
     }
 
@@ -215,8 +215,7 @@ struct EllipsoidShape {
         // likewise for the other edge), where the ellipsoid reaches h(u).
         const double ex = t.x2 - t.x1;
         const double e1 = std::min(t.x2 * a.y - t.y2 * a.x, t.x2 * b.y - t.y2 * b.x);
-        const double e2 =
-            std::min((a.x - t.x1) * t.y2 - a.y * ex, (b.x - t.x1) * t.y2 - b.y * ex);
+        const double e2 = std::min((a.x - t.x1) * t.y2 - a.y * ex, (b.x - t.x1) * t.y2 - b.y * ex);
         if ((e1 > 0.0 && e1 * e1 > support_squared(t.x2 * t.dir_y - t.y2 * t.dir_x)) ||
             (e2 > 0.0 && e2 * e2 > support_squared(t.y2 * t.dir_x - ex * t.dir_y)))
             return false;
@@ -231,10 +230,11 @@ struct EllipsoidShape {
             const double side = lo.z > 0.0 ? 1.0 : -1.0;
             auto separated = [&](double ux, double uy, double offset, double lambda) {
                 const double sl = side * lambda;
-                const double m = std::min(ux * a.x + uy * a.y + sl * a.z,
-                                          ux * b.x + uy * b.y + sl * b.z) - offset;
-                return m > 0.0 && m * m > support_squared(ux * t.dir_x + uy * t.dir_y +
-                                                          sl * t.normal);
+                const double m =
+                    std::min(ux * a.x + uy * a.y + sl * a.z, ux * b.x + uy * b.y + sl * b.z) -
+                    offset;
+                return m > 0.0 &&
+                       m * m > support_squared(ux * t.dir_x + uy * t.dir_y + sl * t.normal);
             };
             if (separated(0.0, -t.x1, 0.0, t.x1) ||
                 separated(-t.y2, t.x2, 0.0, std::abs(t.x2) + t.y2) ||
@@ -261,9 +261,12 @@ struct EllipsoidShape {
         // Keeps the t with f(t) = fa + t (fb - fa) <= 0.
         auto keep_below = [&](double fa, double fb) {
             if (fa <= 0.0 && fb <= 0.0) return;
-            if (fa > 0.0 && fb > 0.0) first = 2.0;
-            else if (fa > 0.0) first = std::max(first, fa / (fa - fb));
-            else last = std::min(last, fa / (fa - fb));
+            if (fa > 0.0 && fb > 0.0)
+                first = 2.0;
+            else if (fa > 0.0)
+                first = std::max(first, fa / (fa - fb));
+            else
+                last = std::min(last, fa / (fa - fb));
         };
         keep_below(a.z - h, b.z - h);
         keep_below(-a.z - h, -b.z - h);

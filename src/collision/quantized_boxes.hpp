@@ -27,12 +27,12 @@
 // extent into the index range, and never below that float spacing; a box flat on an axis
 // (zero extent) gets the float spacing there (2^-149 at 0): no division by its extent.
 
-#include <emmintrin.h>
-
 #include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
+
+#include <emmintrin.h>
 
 #include "float_bounds.hpp"
 #include "trackphys/detail/bvh_node.hpp"

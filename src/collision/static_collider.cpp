@@ -9,9 +9,9 @@
 
 #include "bvh_builder.hpp"
 #include "bvh_lanes.hpp"
+#include "core/fnv1a.hpp"
 #include "lane_compaction.hpp"
 #include "quantized_boxes.hpp"
-#include "core/fnv1a.hpp"
 #include "trackphys/assert.hpp"
 #include "trackphys/error.hpp"
 #include "triangle_predicates.hpp"
@@ -229,8 +229,8 @@ void StaticCollider::visit_aabb(const Aabb& box, Sink& sink) const {
     const QueryLanes q(outward, inward);
     const collision_detail::QueryBounds bounds(outward, inward);
     const glm::dvec3 extent = box.extent();
-    const bool inside_shortcut = extent.x >= inside_extent_[0] &&
-                                 extent.y >= inside_extent_[1] && extent.z >= inside_extent_[2];
+    const bool inside_shortcut = extent.x >= inside_extent_[0] && extent.y >= inside_extent_[1] &&
+                                 extent.z >= inside_extent_[2];
     struct Entry {
         std::uint32_t node, end;
     };
@@ -286,10 +286,10 @@ void StaticCollider::visit_aabb(const Aabb& box, Sink& sink) const {
                     const unsigned maybe = tested & in_run;
                     unsigned keep = (tested >> kBlockSlots) & maybe;
                     for (unsigned k = maybe & ~keep; k != 0; k &= k - 1) [[unlikely]] {
-                        const int lane = lowest_lane(k);
-                        if (triangle_box_overlaps(s + static_cast<std::uint32_t>(lane), box))
-                            keep |= 1u << lane;
-                    }
+                            const int lane = lowest_lane(k);
+                            if (triangle_box_overlaps(s + static_cast<std::uint32_t>(lane), box))
+                                keep |= 1u << lane;
+                        }
                     to = sink.slots(to, s, keep);
                 });
                 sink.commit(to);
@@ -336,7 +336,7 @@ struct RefElement {
 // bulk: a reported triangle costs a store, not a push_back.
 template <class Element>
 class BufferedOutput {
-public:
+  public:
     using T = typename Element::T;
     BufferedOutput(std::vector<T>& out, const BvhSlotBlock* blocks, Element element)
         : out_(out), blocks_(blocks), element_(element) {}
@@ -386,7 +386,7 @@ public:
         used_ += end - first;
     }
 
-private:
+  private:
     // A run of leaf lanes (at most a node's worth) fits after a flush: room is checked per
     // run rather than per block, and flushes are fewer, which car-box queries feel.
     static constexpr unsigned kSize =
@@ -525,8 +525,8 @@ std::optional<RayHit> StaticCollider::raycast(const glm::dvec3& origin, const gl
             // A hit in this lane lies on the ray within the lane's span (its box holds the
             // triangle's), so a slot whose 16-bit box misses the box around that part of the
             // ray holds none: one block test culls a leaf lane's slots eight at a time.
-            const std::optional<Aabb> segment = collision_detail::ray_segment_box(
-                ray, entry.t_near, std::min(entry.t_far, best_t));
+            const std::optional<Aabb> segment =
+                collision_detail::ray_segment_box(ray, entry.t_near, std::min(entry.t_far, best_t));
             QuantizedQuery qq;
             if (segment) {
                 collision_detail::FloatBox outward, inward;
@@ -550,8 +550,8 @@ std::optional<RayHit> StaticCollider::raycast(const glm::dvec3& origin, const gl
                 const auto& tri = slot_vertices_[slot];
                 const std::optional<double> t = collision_detail::ray_triangle(
                     ray, vertices_[tri[0]], vertices_[tri[1]], vertices_[tri[2]]);
-                if (t && collision_detail::better_hit(*t, block.triangle[lane], best_t,
-                                                      best_triangle)) {
+                if (t &&
+                    collision_detail::better_hit(*t, block.triangle[lane], best_t, best_triangle)) {
                     best_t = *t;
                     best_triangle = block.triangle[lane];
                     best_slot = slot;
@@ -569,16 +569,16 @@ std::optional<RayHit> StaticCollider::raycast(const glm::dvec3& origin, const gl
             int count = 0;
             for (int i = 0; i < BvhNode::kWidth; ++i) {
                 double t_near, t_far;
-                if (n.is_empty(i) || !collision_detail::ray_box_span(ray, lane_min(n, i),
-                                                                     lane_max(n, i), best_t,
-                                                                     t_near, t_far))
+                if (n.is_empty(i) ||
+                    !collision_detail::ray_box_span(ray, lane_min(n, i), lane_max(n, i), best_t,
+                                                    t_near, t_far))
                     continue;
                 // Insertion by decreasing entry distance (of equal ones, the lower lane is
                 // taken first).
                 int at = count++;
                 for (; at > 0 && hits[at - 1].t_near <= t_near; --at) hits[at] = hits[at - 1];
-                hits[at] = {n.child[i], n.first[i], n.end(i, entry.end),
-                            entry.child, t_near, t_far};
+                hits[at] = {n.child[i],  n.first[i], n.end(i, entry.end),
+                            entry.child, t_near,     t_far};
             }
             for (int k = 0; k < count; ++k) stack[top++] = hits[k];
         }
@@ -616,8 +616,7 @@ NormalizedTriangle StaticCollider::normalized_triangle(std::uint32_t index) cons
 std::size_t StaticCollider::bytes_used() const {
     return sizeof(*this) + capacity_bytes(vertices_) + capacity_bytes(slot_vertices_) +
            capacity_bytes(triangle_to_slot_) + capacity_bytes(slot_blocks_) +
-           capacity_bytes(nodes_) + capacity_bytes(grids_) +
-           capacity_bytes(node_grid_);
+           capacity_bytes(nodes_) + capacity_bytes(grids_) + capacity_bytes(node_grid_);
 }
 
 }  // namespace trackphys

@@ -12,8 +12,10 @@ namespace trackphys {
 
 Aabb swept_box(const Aabb& box, const glm::dvec3& displacement, double margin) {
     if (!is_finite(displacement) || !std::isfinite(margin) || !(margin >= 0.0))
-        throw Error("swept_box: displacement must be finite and margin finite and >= 0, got "
-                    "margin " + std::to_string(margin));
+        throw Error(
+            "swept_box: displacement must be finite and margin finite and >= 0, got "
+            "margin " +
+            std::to_string(margin));
     Aabb swept = box;
     swept.expand(Aabb{box.min + displacement, box.max + displacement});
     return swept.padded(margin);
@@ -50,9 +52,8 @@ std::optional<WorldRayHit> StaticWorld::raycast(const glm::dvec3& origin,
     double limit = ray.max_distance;
     for (std::size_t i = 0; i < colliders_.size(); ++i) {
         double t_near, t_far;
-        if (bounds_[i].empty() ||
-            !collision_detail::ray_box_span(ray, bounds_[i].min, bounds_[i].max, limit, t_near,
-                                            t_far))
+        if (bounds_[i].empty() || !collision_detail::ray_box_span(
+                                      ray, bounds_[i].min, bounds_[i].max, limit, t_near, t_far))
             continue;
         // Searching up to the best distance so far; only a strictly nearer hit replaces it.
         const std::optional<RayHit> hit = colliders_[i]->raycast(origin, unit_dir, limit);

@@ -31,19 +31,18 @@ CapsuleQuery make_capsule_query(const glm::dvec3& start, const glm::dvec3& end, 
     return q;
 }
 
-RayQuery make_ray_query(const glm::dvec3& origin, const glm::dvec3& unit_dir,
-                        double max_distance) {
+RayQuery make_ray_query(const glm::dvec3& origin, const glm::dvec3& unit_dir, double max_distance) {
     if (!is_finite(origin) || !is_finite(unit_dir))
-        throw Error("raycast: origin " + describe(origin) + " or direction " +
-                    describe(unit_dir) + " is not finite");
+        throw Error("raycast: origin " + describe(origin) + " or direction " + describe(unit_dir) +
+                    " is not finite");
     if (!(std::abs(glm::dot(unit_dir, unit_dir) - 1.0) <= 2e-6))
         throw Error("raycast: direction " + describe(unit_dir) + " is not unit length");
     if (!(max_distance >= 0.0))
         throw Error("raycast: max_distance must be >= 0, got " + std::to_string(max_distance));
     RayQuery ray{origin, unit_dir, {}, max_distance};
     for (int a = 0; a < 3; ++a)
-        ray.inv_dir[a] = unit_dir[a] != 0.0 ? 1.0 / unit_dir[a]
-                                            : std::numeric_limits<double>::infinity();
+        ray.inv_dir[a] =
+            unit_dir[a] != 0.0 ? 1.0 / unit_dir[a] : std::numeric_limits<double>::infinity();
     return ray;
 }
 

@@ -31,8 +31,8 @@ double clamp_input(const char* name, double value, double low, double high) {
 
 // The inputs clamped to their ranges; throws for NaN.
 CarInputs clamped(const CarInputs& in) {
-    return {clamp_input("throttle", in.throttle, 0.0, 1.0), clamp_input("brake", in.brake, 0.0, 1.0),
-            clamp_input("steer", in.steer, -1.0, 1.0)};
+    return {clamp_input("throttle", in.throttle, 0.0, 1.0),
+            clamp_input("brake", in.brake, 0.0, 1.0), clamp_input("steer", in.steer, -1.0, 1.0)};
 }
 
 }  // namespace
@@ -44,8 +44,8 @@ Car::Car(CarSpec spec, const RigidBodyState& initial_state) : spec_(std::move(sp
         body_ellipsoids_.emplace_back(e.center, e.orientation, e.semi_axes);
         suspension_.push_back(0.0);
         wheel_loads_.push_back(0.0);
-        bounding_radius_ = std::max(bounding_radius_, glm::length(e.center) +
-                                                          body_ellipsoids_.back().bounding_radius());
+        bounding_radius_ = std::max(
+            bounding_radius_, glm::length(e.center) + body_ellipsoids_.back().bounding_radius());
         wheels_ += e.role != EllipsoidRole::body;
         front_wheels_ += e.role == EllipsoidRole::front_wheel;
     }
@@ -57,9 +57,7 @@ void Car::set_state(const RigidBodyState& state) {
     state_.orientation = glm::normalize(state.orientation);
 }
 
-void Car::set_inputs(const CarInputs& inputs) {
-    inputs_ = clamped(inputs);
-}
+void Car::set_inputs(const CarInputs& inputs) { inputs_ = clamped(inputs); }
 
 void Car::restore(const RigidBodyState& state, const CarInputs& inputs,
                   std::span<const double> suspension) {
@@ -83,8 +81,9 @@ void Car::set_suspension(std::span<const double> travel) {
         const double limit =
             spec_.ellipsoids[i].role == EllipsoidRole::body ? 0.0 : spec_.suspension.travel;
         if (!(travel[i] >= 0.0 && travel[i] <= limit))
-            throw Error("car suspension: ellipsoid " + std::to_string(i) + "'s travel must be in [0, " +
-                        std::to_string(limit) + "] m, got " + std::to_string(travel[i]));
+            throw Error("car suspension: ellipsoid " + std::to_string(i) +
+                        "'s travel must be in [0, " + std::to_string(limit) + "] m, got " +
+                        std::to_string(travel[i]));
     }
     std::copy(travel.begin(), travel.end(), suspension_.begin());
 }
@@ -93,7 +92,8 @@ double Car::speed() const { return glm::length(state_.linear_velocity); }
 
 ContactMaterial Car::wheel_material(std::size_t i) const {
     ContactMaterial material = spec_.wheel_contact;
-    if (spec_.ellipsoids[i].role == EllipsoidRole::rear_wheel) material.friction *= spec_.rear_grip_factor;
+    if (spec_.ellipsoids[i].role == EllipsoidRole::rear_wheel)
+        material.friction *= spec_.rear_grip_factor;
     return material;
 }
 
@@ -117,8 +117,7 @@ WheelCommand Car::wheel_command(std::size_t i, double axle_normal_force) const {
         std::min(spec_.max_drive_force, spec_.max_drive_power / std::max(speed(), 1.0));
     command.drive_force = inputs_.throttle * available * drive_share / axle_wheels;
     command.brake_force = inputs_.brake * spec_.max_brake_force * brake_share / axle_wheels;
-    command.max_along_force =
-        spec_.traction_limit * wheel_material(i).friction * axle_normal_force;
+    command.max_along_force = spec_.traction_limit * wheel_material(i).friction * axle_normal_force;
     return command;
 }
 
@@ -132,10 +131,11 @@ void Car::advance(std::span<const Contact> deepest, const glm::dvec3& gravity, d
 
 void Car::measure_wheel_loads(std::span<const Contact> deepest) {
     for (std::size_t i = 0; i < deepest.size(); ++i)
-        wheel_loads_[i] = spec_.ellipsoids[i].role == EllipsoidRole::body
-                              ? 0.0
-                              : normal_force(spec_.wheel_contact, deepest[i].depth, deepest[i].normal,
-                                             point_velocity(state_, deepest[i].point));
+        wheel_loads_[i] =
+            spec_.ellipsoids[i].role == EllipsoidRole::body
+                ? 0.0
+                : normal_force(spec_.wheel_contact, deepest[i].depth, deepest[i].normal,
+                               point_velocity(state_, deepest[i].point));
 }
 
 Wrench Car::contact_wrench(std::span<const Contact> deepest) const {
@@ -160,7 +160,8 @@ Wrench Car::contact_wrench(std::span<const Contact> deepest) const {
                 ? body_contact_force(spec_.body_contact, contact.depth, contact.normal, velocity)
                 : wheel_contact_force(
                       wheel_material(i), contact.depth, contact.normal, velocity,
-                      wheel_command(i, role == EllipsoidRole::front_wheel ? front_load : rear_load));
+                      wheel_command(i,
+                                    role == EllipsoidRole::front_wheel ? front_load : rear_load));
         wrench.add_at_point(force, contact.point, state_.position);
     }
     add_aero_force(wrench);
@@ -185,7 +186,8 @@ void Car::resolve_deep_contacts(std::span<const Contact> deepest) {
         if (!(contact.depth > 0.0)) continue;
         // The ellipsoid's half-extent along the contact normal (its support h(n)).
         const Ellipsoid& e = body_ellipsoids_[i];
-        const glm::dvec3 n_local = glm::conjugate(state_.orientation) * contact.normal * e.sorted_axes();
+        const glm::dvec3 n_local =
+            glm::conjugate(state_.orientation) * contact.normal * e.sorted_axes();
         const double extent = glm::length(e.sorted_radii() * n_local);
         if (!(contact.depth > spec_.deep_contact_fraction * extent)) continue;
         const glm::dvec3 lever = contact.point - state_.position;
@@ -193,7 +195,8 @@ void Car::resolve_deep_contacts(std::span<const Contact> deepest) {
         if (approach >= 0.0) continue;
         // Impulse j n with the point's normal velocity brought to zero:
         // j = -v_n / (1/m + n . ((I^-1 (r x n)) x r)).
-        const glm::dvec3 body_axis = glm::conjugate(state_.orientation) * glm::cross(lever, contact.normal);
+        const glm::dvec3 body_axis =
+            glm::conjugate(state_.orientation) * glm::cross(lever, contact.normal);
         const glm::dvec3 turn = state_.orientation * (body_axis / spec_.mass.principal_inertia);
         const double inverse_mass =
             1.0 / spec_.mass.mass + glm::dot(contact.normal, glm::cross(turn, lever));
@@ -212,8 +215,8 @@ void Car::add_aero_force(Wrench& wrench) const {
     const glm::dvec3 forward = state_.orientation * glm::dvec3(0.0, 0.0, 1.0);
     const double forward_speed = glm::dot(v, forward);
     const glm::dvec3 down = state_.orientation * glm::dvec3(0.0, -1.0, 0.0);
-    wrench.force += down * (0.5 * spec_.air_density * forward_speed * forward_speed *
-                            spec_.downforce_area);
+    wrench.force +=
+        down * (0.5 * spec_.air_density * forward_speed * forward_speed * spec_.downforce_area);
 }
 
 }  // namespace trackphys

@@ -22,16 +22,20 @@ CarSpec CarSpec::default_car() {
     // sideways with full grip slides instead of tripping over its outer wheels.
     const double wheel_y = -0.15;
     for (double side : {1.0, -1.0}) {
-        spec.ellipsoids.push_back({{0.9 * side, wheel_y, 1.45}, wheel_axes, {1, 0, 0, 0},
-                                   EllipsoidRole::front_wheel});
-        spec.ellipsoids.push_back({{0.9 * side, wheel_y, -1.35}, wheel_axes, {1, 0, 0, 0},
-                                   EllipsoidRole::rear_wheel});
+        spec.ellipsoids.push_back(
+            {{0.9 * side, wheel_y, 1.45}, wheel_axes, {1, 0, 0, 0}, EllipsoidRole::front_wheel});
+        spec.ellipsoids.push_back(
+            {{0.9 * side, wheel_y, -1.35}, wheel_axes, {1, 0, 0, 0}, EllipsoidRole::rear_wheel});
     }
     // Body: nose, cabin, tail and a wide floor pan, all clear of the road at rest.
-    spec.ellipsoids.push_back({{0.0, 0.05, 1.70}, {0.80, 0.25, 0.60}, {1, 0, 0, 0}, EllipsoidRole::body});
-    spec.ellipsoids.push_back({{0.0, 0.35, 0.00}, {0.75, 0.40, 1.20}, {1, 0, 0, 0}, EllipsoidRole::body});
-    spec.ellipsoids.push_back({{0.0, 0.10, -1.70}, {0.85, 0.30, 0.55}, {1, 0, 0, 0}, EllipsoidRole::body});
-    spec.ellipsoids.push_back({{0.0, -0.05, 0.00}, {0.95, 0.20, 1.90}, {1, 0, 0, 0}, EllipsoidRole::body});
+    spec.ellipsoids.push_back(
+        {{0.0, 0.05, 1.70}, {0.80, 0.25, 0.60}, {1, 0, 0, 0}, EllipsoidRole::body});
+    spec.ellipsoids.push_back(
+        {{0.0, 0.35, 0.00}, {0.75, 0.40, 1.20}, {1, 0, 0, 0}, EllipsoidRole::body});
+    spec.ellipsoids.push_back(
+        {{0.0, 0.10, -1.70}, {0.85, 0.30, 0.55}, {1, 0, 0, 0}, EllipsoidRole::body});
+    spec.ellipsoids.push_back(
+        {{0.0, -0.05, 0.00}, {0.95, 0.20, 1.90}, {1, 0, 0, 0}, EllipsoidRole::body});
 
     // Per wheel load m g / 4 = 2943 N; k = 4e5 N/m (a racing tyre) sags 0.74 cm; critical
     // damping for a quarter car is 2 sqrt(k m / 4) = 2.2e4 N s/m. A 2e5 N/m tyre sank 7 cm
@@ -85,8 +89,7 @@ std::string CarSpec::validate() const {
         const CarEllipsoid& e = ellipsoids[i];
         const std::string prefix = "ellipsoids[" + std::to_string(i) + "].";
         static constexpr const char* axis[3] = {"x", "y", "z"};
-        if (!is_finite(e.center))
-            why << "CarSpec." << prefix << "center is not finite";
+        if (!is_finite(e.center)) why << "CarSpec." << prefix << "center is not finite";
         for (int k = 0; k < 3; ++k)
             check_positive(why, (prefix + "semi_axes." + axis[k]).c_str(), e.semi_axes[k]);
         if (why.tellp() == 0 && !(is_finite(e.orientation) && glm::length(e.orientation) > 0.5))

@@ -53,10 +53,10 @@ glm::dvec3 wheel_contact_force(const ContactMaterial& material, double depth,
 
     const double rolling_speed = glm::dot(slip, forward);
     const double sideways_speed = glm::dot(slip, lateral);
-    const double brake = command.brake_force *
-                         std::clamp(rolling_speed / material.slip_speed, -1.0, 1.0);
-    double along = std::clamp(command.drive_force - brake, -command.max_along_force,
-                              command.max_along_force);
+    const double brake =
+        command.brake_force * std::clamp(rolling_speed / material.slip_speed, -1.0, 1.0);
+    double along =
+        std::clamp(command.drive_force - brake, -command.max_along_force, command.max_along_force);
     double across = -grip * std::clamp(sideways_speed / material.slip_speed, -1.0, 1.0);
 
     // Friction circle: the tyre cannot transmit more than mu F_n in total.

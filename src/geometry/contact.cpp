@@ -55,8 +55,8 @@ struct Problem {
     dvec3 r;   // radii
     dvec3 r2;  // squared radii
     double r_min2;
-    std::array<double, 3> pole;  // (r_i - r_z)(r_i + r_z): offsets of the poles of f from -r_z^2
-    dvec3 inv_r;                 // 1 / r_i
+    std::array<double, 3> pole;    // (r_i - r_z)(r_i + r_z): offsets of the poles of f from -r_z^2
+    dvec3 inv_r;                   // 1 / r_i
     std::array<double, 3> inv_r2;  // 1 / r_i^2
     const LocalTriangle* tri;
 
@@ -90,8 +90,8 @@ struct Best {
 /// never exceeds r_small (so the level is only computed when best is below that). Tested
 /// without a square root or a division: (1 - l) r >= best <=> l <= 1 - best / r, and for
 /// l >= 0 that is 1 - best / r >= 0 and l^2 <= (1 - best / r)^2.
-bool depth_at_least(double best, const dvec3& p, const dvec3& inv, double r_small,
-                    double inv_small, double inv_large) {
+bool depth_at_least(double best, const dvec3& p, const dvec3& inv, double r_small, double inv_small,
+                    double inv_large) {
     if (best > r_small) return false;
     const dvec3 scaled = p * inv;
     const double level2 = glm::dot(scaled, scaled);
@@ -157,7 +157,8 @@ EdgeShadow make_shadow(const Problem& pb, int i) {
 /// The closest point by the general solver (a coordinate of p is 0), in the form of
 /// closest_direction_fast: a unit m.
 template <int N>
-ClosestDirection<N> closest_by_solver(const std::array<double, N>& r, const std::array<double, N>& p) {
+ClosestDirection<N> closest_by_solver(const std::array<double, N>& r,
+                                      const std::array<double, N>& p) {
     CriticalSolver<N> solver(r, p);
     CriticalPoints<N> found;
     solver.solve(CriticalSet::closest, found);
@@ -168,7 +169,7 @@ ClosestDirection<N> closest_by_solver(const std::array<double, N>& r, const std:
 }
 
 class Solver {
-public:
+  public:
     Solver(const dvec3& radii, const LocalTriangle& tri) {
         pb_.r = radii;
         pb_.r2 = radii * radii;
@@ -219,8 +220,8 @@ public:
             // wrong face 1.4e-4 m off: found by fuzz_contact), so the angle between the edges
             // must also be clear of rounding: sin > 1e-10, n2 = |e0|^2 |e2|^2 sin^2.
             const double scale = pb_.r.x + tri.extent;
-            const double sliver = 1e-20 * glm::dot(tri.edge[0], tri.edge[0]) *
-                                  glm::dot(tri.edge[2], tri.edge[2]);
+            const double sliver =
+                1e-20 * glm::dot(tri.edge[0], tri.edge[0]) * glm::dot(tri.edge[2], tri.edge[2]);
             const bool inside = side0 >= 0.0 && side1 >= 0.0 && side2 >= 0.0 &&
                                 spread * inv_length <= 1e-14 * scale && n2 > sliver;
             if (inside & pb_.closest_regime(g, h))
@@ -239,7 +240,7 @@ public:
         return edges_and_vertices(inner);
     }
 
-private:
+  private:
     /// The state of the search past the face, set up only when the face did not answer.
     void begin_search() {
         const dvec3& r = pb_.r;

@@ -159,7 +159,8 @@ Contact detail::rescaled_contact(const Ellipsoid& ellipsoid, const std::array<gl
     const glm::dvec3 sum = abs_each(local.q[0]) + abs_each(local.q[1]) + abs_each(local.q[2]);
     local.extent = sum.x + sum.y + sum.z;
     for (int i = 0; i < 3; ++i) local.edge[i] = local.q[(i + 1) % 3] - local.q[i];
-    const detail::LocalContact solved = detail::contact_in_sorted_frame(local_radii * unit.inverse, local);
+    const detail::LocalContact solved =
+        detail::contact_in_sorted_frame(local_radii * unit.inverse, local);
     const double back = unit.value * scale;  // a power of two: exact
     // The point as the center plus its offset, unless the offset alone leaves double's range
     // (a center near -1.6e308 and a triangle near 1e308): then formed in units of back, where

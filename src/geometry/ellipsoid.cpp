@@ -38,8 +38,7 @@ std::string Ellipsoid::validate(const glm::dvec3& center, const glm::dquat& orie
 Ellipsoid::Ellipsoid(const glm::dvec3& center, const glm::dquat& orientation,
                      const glm::dvec3& semi_axes)
     : Ellipsoid(Unchecked{}, center, orientation, semi_axes) {
-    if (std::string why = validate(center, orientation, semi_axes); !why.empty())
-        throw Error(why);
+    if (std::string why = validate(center, orientation, semi_axes); !why.empty()) throw Error(why);
 }
 
 std::optional<Ellipsoid> Ellipsoid::make(const glm::dvec3& center, const glm::dquat& orientation,
@@ -78,8 +77,7 @@ Ellipsoid::Ellipsoid(Unchecked, const glm::dvec3& center, const glm::dquat& orie
         sorted_axes_[2] = -sorted_axes_[2];
 }
 
-Ellipsoid Ellipsoid::transformed(const glm::dquat& rotation,
-                                  const glm::dvec3& translation) const {
+Ellipsoid Ellipsoid::transformed(const glm::dquat& rotation, const glm::dvec3& translation) const {
     Ellipsoid moved = *this;
     const glm::dmat3 matrix = glm::mat3_cast(rotation);
     moved.center_ = matrix * center_ + translation;

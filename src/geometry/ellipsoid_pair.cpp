@@ -39,9 +39,7 @@ constexpr double kSmallestRadius = 0x1p-200;
 // along the centre line is exact to far below an ulp of the distance.
 constexpr double kFarField = 0x1p500;
 
-glm::dvec3 raised(const glm::dvec3& r) {
-    return glm::max(r, glm::dvec3(kSmallestRadius));
-}
+glm::dvec3 raised(const glm::dvec3& r) { return glm::max(r, glm::dvec3(kSmallestRadius)); }
 
 /// Both centres so far apart (relative to the radii) that the solver's products would
 /// overflow: the minimiser is the centre line to within 2^-500 rad.

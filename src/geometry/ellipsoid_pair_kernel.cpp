@@ -53,9 +53,9 @@ using glm::dvec3;
 struct Sample {
     dvec3 n;
     double h;
-    dvec3 p;   // d + xa + xb
-    dvec3 xa;  // A's support point in direction n
-    dvec3 xb;  // B's support point in direction n (B's extreme point towards A is -xb)
+    dvec3 p;              // d + xa + xb
+    dvec3 xa;             // A's support point in direction n
+    dvec3 xb;             // B's support point in direction n (B's extreme point towards A is -xb)
     double a, b;          // the support values of A and B
     double inv_a, inv_b;  // their inverses
 };
@@ -107,11 +107,16 @@ dvec3 unit(const dvec3& v) { return v * (1.0 / std::sqrt(glm::dot(v, v))); }
 }
 
 class PairFunction {
-public:
+  public:
     explicit PairFunction(const PairFrame& frame)
-        : ra2_(frame.ra * frame.ra), rb2_(frame.rb * frame.rb), rb_(frame.rb),
-          cofactor_a_(cofactor(frame.ra)), cofactor_b_(cofactor(frame.rb)),
-          largest_a_(frame.ra.x), b_axes_(frame.b_axes), d_(frame.d) {}
+        : ra2_(frame.ra * frame.ra),
+          rb2_(frame.rb * frame.rb),
+          rb_(frame.rb),
+          cofactor_a_(cofactor(frame.ra)),
+          cofactor_b_(cofactor(frame.rb)),
+          largest_a_(frame.ra.x),
+          b_axes_(frame.b_axes),
+          d_(frame.d) {}
 
     int evaluations = 0;
 
@@ -161,8 +166,7 @@ public:
     /// C = cof D = diag(r2 r3, r1 r3, r1 r2); m x t = u + beta n with u = n x t a unit vector
     /// of the plane and |beta| <= tau, so |C (m x t)|^2 >= |C u|^2 - 2 tau |C u . C n|; also
     /// |D m| <= a(n) + r1 tau. For B, C = cof(D_B) R^T. Exact at tau = 0.
-    Curvature curvature_floor(const Sample& s, const dvec3& t1, const dvec3& t2,
-                              double tau) const {
+    Curvature curvature_floor(const Sample& s, const dvec3& t1, const dvec3& t2, double tau) const {
         // n x t1 = t2 and n x t2 = -t1: the form in t is the form in n x t, turned.
         Curvature k{0.0, 0.0, 0.0};
         double loss = 0.0;
@@ -188,7 +192,7 @@ public:
         return k;
     }
 
-private:
+  private:
     static dvec3 cofactor(const dvec3& r) { return {r.y * r.z, r.x * r.z, r.x * r.y}; }
 
     dvec3 ra2_, rb2_, rb_;
@@ -221,7 +225,8 @@ Descent descend(PairFunction& f, Sample s) {
             // The shift leaves at least |g| / trust radius of curvature: a flat or concave
             // direction gets a step of about the trust radius (then halved until h
             // decreases), not a crawl along a long flat valley.
-            const double shift = std::sqrt(g1 * g1 + g2 * g2) / kTrustRadius - std::min(lowest, 0.0);
+            const double shift =
+                std::sqrt(g1 * g1 + g2 * g2) / kTrustRadius - std::min(lowest, 0.0);
             const double k11 = h11 + shift, k22 = h22 + shift;
             const double det = k11 * k22 - h12 * h12;
             s1 = -(k22 * g1 - h12 * g2) / det;
@@ -441,8 +446,8 @@ dvec3 first_guess(const PairFrame& frame) {
     double m[3][3];
     for (int i = 0; i < 3; ++i)
         for (int j = i; j < 3; ++j) {
-            m[i][j] = rb2.x * b[0][i] * b[0][j] + rb2.y * b[1][i] * b[1][j] +
-                      rb2.z * b[2][i] * b[2][j];
+            m[i][j] =
+                rb2.x * b[0][i] * b[0][j] + rb2.y * b[1][i] * b[1][j] + rb2.z * b[2][i] * b[2][j];
             m[j][i] = m[i][j];
         }
     m[0][0] += frame.ra.x * frame.ra.x;
@@ -452,13 +457,15 @@ dvec3 first_guess(const PairFrame& frame) {
     const double s2 = 2.0 * (m[0][0] + m[1][1] + m[2][2]) / 3.0;  // trace(M) / 3
     const double half_t = std::max(0.0, 0.5 * (std::sqrt(s2 * glm::dot(d, d)) - s2));
     for (int i = 0; i < 3; ++i) m[i][i] += half_t;
-    const dvec3 solved(
-        (m[1][1] * m[2][2] - m[1][2] * m[1][2]) * d.x + (m[0][2] * m[1][2] - m[0][1] * m[2][2]) * d.y +
-            (m[0][1] * m[1][2] - m[0][2] * m[1][1]) * d.z,
-        (m[0][2] * m[1][2] - m[0][1] * m[2][2]) * d.x + (m[0][0] * m[2][2] - m[0][2] * m[0][2]) * d.y +
-            (m[0][1] * m[0][2] - m[0][0] * m[1][2]) * d.z,
-        (m[0][1] * m[1][2] - m[0][2] * m[1][1]) * d.x + (m[0][1] * m[0][2] - m[0][0] * m[1][2]) * d.y +
-            (m[0][0] * m[1][1] - m[0][1] * m[0][1]) * d.z);
+    const dvec3 solved((m[1][1] * m[2][2] - m[1][2] * m[1][2]) * d.x +
+                           (m[0][2] * m[1][2] - m[0][1] * m[2][2]) * d.y +
+                           (m[0][1] * m[1][2] - m[0][2] * m[1][1]) * d.z,
+                       (m[0][2] * m[1][2] - m[0][1] * m[2][2]) * d.x +
+                           (m[0][0] * m[2][2] - m[0][2] * m[0][2]) * d.y +
+                           (m[0][1] * m[0][2] - m[0][0] * m[1][2]) * d.z,
+                       (m[0][1] * m[1][2] - m[0][2] * m[1][1]) * d.x +
+                           (m[0][1] * m[0][2] - m[0][0] * m[1][2]) * d.y +
+                           (m[0][0] * m[1][1] - m[0][1] * m[0][1]) * d.z);
     const double length2 = glm::dot(solved, solved);
     if (!(length2 > 0x1p-600 && length2 < 0x1p600)) {
         const double d2 = glm::dot(d, d);

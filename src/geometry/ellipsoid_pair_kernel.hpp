@@ -13,19 +13,19 @@ namespace trackphys::detail {
 
 /// How the global minimum was established.
 enum class PairPath {
-    separated,     ///< a local minimum below zero: h is convex there, so it is the only one
+    separated,        ///< a local minimum below zero: h is convex there, so it is the only one
     inscribed_balls,  ///< a critical point no deeper than the balls inscribed at its support points
-    searched,      ///< the branch-and-bound search over the sphere of directions
-    far_field,     ///< centres too far apart for the solver: the closed form along them
+    searched,         ///< the branch-and-bound search over the sphere of directions
+    far_field,        ///< centres too far apart for the solver: the closed form along them
 };
 
 /// A pair seen from A's sorted frame, lengths divided by a power of two so that the
 /// largest semi-axis of the two lies in [1, 2).
 struct PairFrame {
-    glm::dvec3 ra;        ///< A's radii, sorted descending
-    glm::dvec3 rb;        ///< B's radii, sorted descending
-    glm::dmat3 b_axes;    ///< B's sorted axes in A's frame (columns, a rotation)
-    glm::dvec3 d;         ///< cA - cB in A's frame
+    glm::dvec3 ra;      ///< A's radii, sorted descending
+    glm::dvec3 rb;      ///< B's radii, sorted descending
+    glm::dmat3 b_axes;  ///< B's sorted axes in A's frame (columns, a rotation)
+    glm::dvec3 d;       ///< cA - cB in A's frame
 };
 
 struct PairSolution {

@@ -121,8 +121,8 @@ inline ClimbResult climb(const std::array<double, N>& a, const std::array<double
 /// at hand for its guess.
 template <int N>
 inline ClimbResult climb_from_guess(const std::array<double, N>& a, const std::array<double, N>& c,
-                                    double eta0, double guess,
-                                    const std::array<double, N>& inv_w, double predicted) {
+                                    double eta0, double guess, const std::array<double, N>& inv_w,
+                                    double predicted) {
     const double infinity = std::numeric_limits<double>::infinity();
     if (!(guess > eta0)) return climb<N>(a, c, eta0, infinity, predicted);
     const NewtonStep n = newton_step<N>(a, inv_w);
@@ -244,7 +244,7 @@ enum class CriticalSet {
 
 template <int N>
 class CriticalSolver {
-public:
+  public:
     /// r: radii sorted descending, all > 0 and finite; p: any finite point.
     CriticalSolver(const std::array<double, N>& r, const std::array<double, N>& p) {
         // Scale by a power of two (exact) when lengths leave the comfortable range, so that
@@ -301,7 +301,7 @@ public:
         if (which == CriticalSet::closest) keep_closest(out);
     }
 
-private:
+  private:
     int negatives(double t_offset_sign, int pole, double eta) const {
         // Number of factors r_i^2 + t < 0 at t = -r_pole^2 + s eta.
         int count = 0;

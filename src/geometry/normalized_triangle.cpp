@@ -13,8 +13,8 @@ NormalizedTriangle::NormalizedTriangle(const Triangle& triangle) {
     int start = 0;
     double longest_squared = -1.0;
     for (int i = 0; i < 3; ++i) {
-        const double length_squared = glm::dot(triangle[(i + 1) % 3] - triangle[i],
-                                               triangle[(i + 1) % 3] - triangle[i]);
+        const double length_squared =
+            glm::dot(triangle[(i + 1) % 3] - triangle[i], triangle[(i + 1) % 3] - triangle[i]);
         if (length_squared > longest_squared) {
             longest_squared = length_squared;
             start = i;
@@ -35,9 +35,12 @@ NormalizedTriangle::NormalizedTriangle(const Triangle& triangle) {
 
 glm::dvec3 NormalizedTriangle::vertex(int i) const {
     switch (i) {
-        case 0: return origin;
-        case 1: return origin + dir_x * x1;
-        default: return origin + dir_x * x2 + dir_y * y2;
+        case 0:
+            return origin;
+        case 1:
+            return origin + dir_x * x1;
+        default:
+            return origin + dir_x * x2 + dir_y * y2;
     }
 }
 

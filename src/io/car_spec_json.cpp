@@ -31,7 +31,8 @@ EllipsoidRole role_from_json(ObjectReader& in) {
          "unknown role '" + name + "' (expected body, front_wheel or rear_wheel)");
 }
 
-CarEllipsoid ellipsoid_from_json(const Json& value, const std::string& path, const std::string& source) {
+CarEllipsoid ellipsoid_from_json(const Json& value, const std::string& path,
+                                 const std::string& source) {
     ObjectReader in(value, path, source);
     CarEllipsoid e;
     // No default car ellipsoid to fall back on: where and how big it is must be said.
@@ -56,7 +57,10 @@ void material_from_json(ObjectReader& parent, const char* key, ContactMaterial& 
 }
 
 Json material_to_json(const ContactMaterial& m) {
-    return {{"stiffness", m.stiffness}, {"damping", m.damping}, {"friction", m.friction}, {"slip_speed", m.slip_speed}};
+    return {{"stiffness", m.stiffness},
+            {"damping", m.damping},
+            {"friction", m.friction},
+            {"slip_speed", m.slip_speed}};
 }
 
 Json vector_to_json(const glm::dvec3& v) { return Json::array({v.x, v.y, v.z}); }
@@ -73,10 +77,12 @@ CarSpec car_spec_from_json(const Json& value, const std::string& path, const std
         m.finish();
     }
     if (const Json* list = in.find("ellipsoids")) {
-        if (!list->is_array()) fail(source, in.path_of("ellipsoids"), "expected an array of ellipsoids");
+        if (!list->is_array())
+            fail(source, in.path_of("ellipsoids"), "expected an array of ellipsoids");
         spec.ellipsoids.clear();
         for (std::size_t i = 0; i < list->size(); ++i)
-            spec.ellipsoids.push_back(ellipsoid_from_json((*list)[i], index_path(in.path_of("ellipsoids"), i), source));
+            spec.ellipsoids.push_back(
+                ellipsoid_from_json((*list)[i], index_path(in.path_of("ellipsoids"), i), source));
     }
     material_from_json(in, "body_contact", spec.body_contact);
     material_from_json(in, "wheel_contact", spec.wheel_contact);
@@ -110,17 +116,20 @@ Json car_spec_to_json_value(const CarSpec& spec) {
     for (const CarEllipsoid& e : spec.ellipsoids)
         ellipsoids.push_back({{"center", vector_to_json(e.center)},
                               {"semi_axes", vector_to_json(e.semi_axes)},
-                              {"orientation", Json::array({e.orientation.w, e.orientation.x, e.orientation.y,
-                                                           e.orientation.z})},
+                              {"orientation", Json::array({e.orientation.w, e.orientation.x,
+                                                           e.orientation.y, e.orientation.z})},
                               {"role", role_name(e.role)}});
     return {
-        {"mass", {{"mass", spec.mass.mass}, {"principal_inertia", vector_to_json(spec.mass.principal_inertia)}}},
+        {"mass",
+         {{"mass", spec.mass.mass},
+          {"principal_inertia", vector_to_json(spec.mass.principal_inertia)}}},
         {"ellipsoids", std::move(ellipsoids)},
         {"body_contact", material_to_json(spec.body_contact)},
         {"wheel_contact", material_to_json(spec.wheel_contact)},
-        {"suspension", {{"stiffness", spec.suspension.stiffness},
-                        {"damping", spec.suspension.damping},
-                        {"travel", spec.suspension.travel}}},
+        {"suspension",
+         {{"stiffness", spec.suspension.stiffness},
+          {"damping", spec.suspension.damping},
+          {"travel", spec.suspension.travel}}},
         {"rear_grip_factor", spec.rear_grip_factor},
         {"max_drive_force", spec.max_drive_force},
         {"front_drive_share", spec.front_drive_share},
@@ -147,6 +156,8 @@ CarSpec load_car_spec(const std::filesystem::path& file) {
     return parse_car_spec(json_io::read_text_file(file, "car spec"), source);
 }
 
-std::string car_spec_to_json(const CarSpec& spec) { return json_io::car_spec_to_json_value(spec).dump(2) + "\n"; }
+std::string car_spec_to_json(const CarSpec& spec) {
+    return json_io::car_spec_to_json_value(spec).dump(2) + "\n";
+}
 
 }  // namespace trackphys

@@ -33,7 +33,8 @@ std::string frames_path(const std::vector<Frame>& frames) {
 // nlohmann's messages start with "[json.exception.parse_error.101] ": keep what follows.
 std::string without_exception_id(const std::string& what) {
     const std::size_t end = what.find("] ");
-    return what.rfind("[json.exception.", 0) == 0 && end != std::string::npos ? what.substr(end + 2) : what;
+    return what.rfind("[json.exception.", 0) == 0 && end != std::string::npos ? what.substr(end + 2)
+                                                                              : what;
 }
 
 std::string describe(const Json& value) {
@@ -98,7 +99,9 @@ Json parse_document(std::string_view text, const std::string& source) {
             const std::string& key = parsed.get_ref<const std::string&>();
             if (std::find(keys.begin(), keys.end(), key) != keys.end()) {
                 const std::string where = frames_path(frames);
-                fail(source, "", "duplicate key '" + key + "' in " + (where.empty() ? "the top-level object" : where));
+                fail(source, "",
+                     "duplicate key '" + key + "' in " +
+                         (where.empty() ? "the top-level object" : where));
             }
             keys.push_back(key);
         }
@@ -124,11 +127,13 @@ double to_number(const Json& value, const std::string& path, const std::string& 
 std::vector<double> to_numbers(const Json& value, std::size_t n, const std::string& path,
                                const std::string& source) {
     if (!value.is_array() || value.size() != n)
-        fail(source, path, "expected an array of " + std::to_string(n) + " numbers, got " +
-                               (value.is_array() ? "an array of " + std::to_string(value.size())
-                                                 : describe(value)));
+        fail(source, path,
+             "expected an array of " + std::to_string(n) + " numbers, got " +
+                 (value.is_array() ? "an array of " + std::to_string(value.size())
+                                   : describe(value)));
     std::vector<double> numbers;
-    for (std::size_t i = 0; i < n; ++i) numbers.push_back(to_number(value[i], index_path(path, i), source));
+    for (std::size_t i = 0; i < n; ++i)
+        numbers.push_back(to_number(value[i], index_path(path, i), source));
     return numbers;
 }
 
@@ -170,9 +175,13 @@ void ObjectReader::read(std::string_view key, int& out) {
     const Json* value = find(key);
     if (value == nullptr) return;
     const bool fits = value->is_number_unsigned()
-                          ? value->get<std::uint64_t>() <= static_cast<std::uint64_t>(std::numeric_limits<int>::max())
-                          : value->is_number_integer() && value->get<std::int64_t>() >= std::numeric_limits<int>::min();
-    if (!fits) fail(source_, path_of(key), "expected a whole number in int's range, got " + describe(*value));
+                          ? value->get<std::uint64_t>() <=
+                                static_cast<std::uint64_t>(std::numeric_limits<int>::max())
+                          : value->is_number_integer() &&
+                                value->get<std::int64_t>() >= std::numeric_limits<int>::min();
+    if (!fits)
+        fail(source_, path_of(key),
+             "expected a whole number in int's range, got " + describe(*value));
     out = value->get<int>();
 }
 
@@ -193,7 +202,8 @@ void ObjectReader::read(std::string_view key, glm::dquat& out) {
 void ObjectReader::read(std::string_view key, std::string& out) {
     const Json* value = find(key);
     if (value == nullptr) return;
-    if (!value->is_string()) fail(source_, path_of(key), "expected a string, got " + describe(*value));
+    if (!value->is_string())
+        fail(source_, path_of(key), "expected a string, got " + describe(*value));
     out = value->get<std::string>();
 }
 
@@ -202,7 +212,8 @@ void ObjectReader::finish() const {
         if (std::find(known_.begin(), known_.end(), key) != known_.end()) continue;
         std::string expected;
         for (const std::string& k : known_) expected += (expected.empty() ? "" : ", ") + k;
-        fail(source_, path_of(key), "unknown key" + (expected.empty() ? "" : " (expected one of: " + expected + ")"));
+        fail(source_, path_of(key),
+             "unknown key" + (expected.empty() ? "" : " (expected one of: " + expected + ")"));
     }
 }
 

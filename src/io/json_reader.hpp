@@ -39,13 +39,14 @@ std::string join_path(const std::string& parent, std::string_view key);
 std::string index_path(const std::string& parent, std::size_t index);
 
 /// Throws trackphys::Error "<source>: <path>: <reason>" (or "<source>: <reason>" at the root).
-[[noreturn]] void fail(const std::string& source, const std::string& path, const std::string& reason);
+[[noreturn]] void fail(const std::string& source, const std::string& path,
+                       const std::string& reason);
 
 /// One JSON object being read. Each read names the key it looks for; a key that is absent
 /// leaves the destination as it was (the documented default). finish() rejects every key of
 /// the object that no read named, listing the ones it knows.
 class ObjectReader {
-public:
+  public:
     /// Throws when value is not an object.
     ObjectReader(const Json& value, std::string path, std::string source);
 
@@ -75,7 +76,7 @@ public:
     /// Throws for the first key of the object that no read above named.
     void finish() const;
 
-private:
+  private:
     const Json& value_;
     std::string path_;
     std::string source_;

@@ -1,5 +1,3 @@
-#include "trackphys/io/mesh_io.hpp"
-
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
@@ -12,11 +10,13 @@
 #include <system_error>
 #include <vector>
 
-#include <assimp/Exporter.hpp>
 #include <assimp/material.h>
 #include <assimp/scene.h>
 
+#include <assimp/Exporter.hpp>
+
 #include "trackphys/error.hpp"
+#include "trackphys/io/mesh_io.hpp"
 #include "trackphys/math/types.hpp"
 
 namespace trackphys {
@@ -78,11 +78,11 @@ std::unique_ptr<aiScene> make_scene(const TriangleMesh& mesh, const std::string&
     scene->mRootNode->mMeshes = new unsigned[1]{0};
 
     scene->mNumMaterials = 1;
-    scene->mMaterials = new aiMaterial*[1]{new aiMaterial()};
+    scene->mMaterials = new aiMaterial* [1] { new aiMaterial() };
 
     auto* out = new aiMesh();
     scene->mNumMeshes = 1;
-    scene->mMeshes = new aiMesh*[1]{out};
+    scene->mMeshes = new aiMesh* [1] { out };
     out->mName = aiString(name);
     out->mMaterialIndex = 0;
     out->mPrimitiveTypes = aiPrimitiveType_TRIANGLE;
@@ -91,16 +91,16 @@ std::unique_ptr<aiScene> make_scene(const TriangleMesh& mesh, const std::string&
     for (std::size_t v = 0; v < mesh.vertices.size(); ++v) {
         const glm::dvec3& p = mesh.vertices[v];
         // Nearest float32: the only precision assimp's formats hold (see mesh_io.hpp).
-        out->mVertices[v] = aiVector3D(static_cast<float>(p.x), static_cast<float>(p.y),
-                                       static_cast<float>(p.z));
+        out->mVertices[v] =
+            aiVector3D(static_cast<float>(p.x), static_cast<float>(p.y), static_cast<float>(p.z));
     }
     out->mNumFaces = static_cast<unsigned>(mesh.triangles.size());
     out->mFaces = new aiFace[mesh.triangles.size()];
     for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
         aiFace& face = out->mFaces[t];
         face.mNumIndices = 3;
-        face.mIndices = new unsigned[3]{mesh.triangles[t][0], mesh.triangles[t][1],
-                                        mesh.triangles[t][2]};
+        face.mIndices =
+            new unsigned[3]{mesh.triangles[t][0], mesh.triangles[t][1], mesh.triangles[t][2]};
     }
     return scene;
 }
@@ -110,7 +110,7 @@ std::unique_ptr<aiScene> make_scene(const TriangleMesh& mesh, const std::string&
 // (the .bin of a .gltf) carry the names the main file refers to. commit() renames them into
 // place, companions first; anything not committed is removed with the folder.
 class StagingFolder {
-public:
+  public:
     explicit StagingFolder(const fs::path& destination) : destination_(destination) {
         const fs::path parent = destination.has_parent_path() ? destination.parent_path() : ".";
         // Appended piecewise: GCC 12 warns falsely (-Wrestrict) on "." + std::string.
@@ -154,7 +154,7 @@ public:
         }
     }
 
-private:
+  private:
     fs::path destination_;
     fs::path folder_;
 };

@@ -1,5 +1,3 @@
-#include "trackphys/io/mesh_io.hpp"
-
 #include <array>
 #include <cctype>
 #include <cmath>
@@ -15,10 +13,11 @@
 #include <utility>
 #include <vector>
 
-#include <assimp/Importer.hpp>
 #include <assimp/config.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+
+#include <assimp/Importer.hpp>
 #include <glm/mat4x4.hpp>
 #include <glm/matrix.hpp>
 
@@ -26,6 +25,7 @@
 #include "io/ply_header_check.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/geometry/triangle.hpp"
+#include "trackphys/io/mesh_io.hpp"
 #include "trackphys/math/types.hpp"
 
 namespace trackphys {
@@ -123,7 +123,7 @@ bool is_finite(const glm::dmat4& m) {
 // gives a connected mesh. Exact equality only: welding near-equal points would move
 // geometry. Indices are handed out in first-use order, so the result is deterministic.
 class VertexWelder {
-public:
+  public:
     explicit VertexWelder(std::vector<glm::dvec3>& vertices) : vertices_(vertices) {}
 
     /// The index of p in vertices, appending it on first use; false when the index would
@@ -140,7 +140,7 @@ public:
         return true;
     }
 
-private:
+  private:
     struct Key {
         glm::dvec3 p;
         bool operator==(const Key& other) const { return p == other.p; }
@@ -163,7 +163,7 @@ private:
 // triangulation, so that a NaN is reported against the file's own vertex numbering, and
 // merging after it).
 class SceneMerger {
-public:
+  public:
     SceneMerger(const fs::path& path, MeshLoadReport& report)
         : path_(path), report_(report), welder_(mesh_.vertices) {}
 
@@ -183,8 +183,8 @@ public:
             for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
                 const unsigned n = mesh.mFaces[f].mNumIndices;
                 if (n == 0)
-                    fail(path_, mesh_label(mesh, m) + ", face " + std::to_string(f) +
-                                    " has no indices");
+                    fail(path_,
+                         mesh_label(mesh, m) + ", face " + std::to_string(f) + " has no indices");
                 if (n >= 3) expected_triangles_[m] += n - 2;
             }
         }
@@ -209,8 +209,7 @@ public:
             for (unsigned i = 0; i < node.mNumMeshes; ++i) {
                 const unsigned m = node.mMeshes[i];
                 if (m >= scene.mNumMeshes)
-                    fail(path_, node_label(node) + " refers to missing mesh #" +
-                                    std::to_string(m));
+                    fail(path_, node_label(node) + " refers to missing mesh #" + std::to_string(m));
                 add_instance(*scene.mMeshes[m], m, world, node);
             }
             // Children in reverse so that they pop in file order: deterministic output.
@@ -222,7 +221,7 @@ public:
         return std::move(mesh_);
     }
 
-private:
+  private:
     void add_instance(const aiMesh& mesh, unsigned m, const glm::dmat4& to_world,
                       const aiNode& node) {
         ++report_.mesh_instances;
@@ -250,8 +249,7 @@ private:
             }
             if (face.mNumIndices != 3)
                 fail(path_, mesh_label(mesh, m) + ", face " + std::to_string(f) + " has " +
-                                std::to_string(face.mNumIndices) +
-                                " indices after triangulation");
+                                std::to_string(face.mNumIndices) + " indices after triangulation");
             ++triangles_found;
             std::array<unsigned, 3> corner{face.mIndices[0], face.mIndices[1], face.mIndices[2]};
             if (mirrored) std::swap(corner[1], corner[2]);
@@ -313,13 +311,15 @@ TriangleMesh load_mesh(const fs::path& path, MeshLoadReport& report) {
         const aiScene* scene = importer.ReadFile(path.string(), aiProcess_ValidateDataStructure);
         // assimp's own words ("OBJ-file is too small.", "An unknown error occurred during
         // converting"), said to come from the reader: they may not name what is wrong.
-        if (scene == nullptr) fail(path, std::string("assimp cannot read it: ") + importer.GetErrorString());
+        if (scene == nullptr)
+            fail(path, std::string("assimp cannot read it: ") + importer.GetErrorString());
         merger.inspect_before_triangulation(*scene);
         // The importer owns the scene and hands it out const; it is ours to fix until the
         // next call (the scene itself was never const).
         set_primitive_types_from_faces(const_cast<aiScene&>(*scene));
         scene = importer.ApplyPostProcessing(aiProcess_Triangulate);
-        if (scene == nullptr) fail(path, std::string("assimp cannot triangulate it: ") + importer.GetErrorString());
+        if (scene == nullptr)
+            fail(path, std::string("assimp cannot triangulate it: ") + importer.GetErrorString());
         TriangleMesh mesh = merger.merge(*scene);
         if (mesh.triangles.empty())
             fail(path, "contains no triangles (" + std::to_string(report.degenerate_dropped) +

@@ -7,7 +7,7 @@ namespace {
 
 // The header as assimp's OFF reader walks it: a cursor over the file's first bytes.
 class HeaderCursor {
-public:
+  public:
     explicit HeaderCursor(std::string text) : text_(std::move(text)) {}
 
     // Blanks and line ends, then whole lines that start with '#' (comments) or are empty.
@@ -28,12 +28,15 @@ public:
     // Decimal digits from here, as unsigned 32-bit arithmetic wraps them (strtoul10).
     std::uint32_t number() {
         std::uint32_t value = 0;
-        for (; at_digit(); ++at_) value = value * 10u + static_cast<std::uint32_t>(text_[at_] - '0');
+        for (; at_digit(); ++at_)
+            value = value * 10u + static_cast<std::uint32_t>(text_[at_] - '0');
         return value;
     }
 
-private:
-    static bool is_line_end(char ch) { return ch == '\n' || ch == '\r' || ch == '\0' || ch == '\f'; }
+  private:
+    static bool is_line_end(char ch) {
+        return ch == '\n' || ch == '\r' || ch == '\0' || ch == '\f';
+    }
     void skip_spaces_and_line_ends() {
         while (at_ < text_.size() &&
                (text_[at_] == ' ' || text_[at_] == '\t' || is_line_end(text_[at_])))

@@ -72,8 +72,7 @@ std::optional<std::string> ply_header_problem(std::istream& in, std::uintmax_t f
         // More than 20 digits overflows any count; otherwise compare as numbers.
         if (count.size() <= 19 && std::stoull(count) <= file_size) return std::nullopt;
         return "PLY element '" + element + "' claims " + count +
-               " instances, more than the file's " + std::to_string(file_size) +
-               " bytes can hold";
+               " instances, more than the file's " + std::to_string(file_size) + " bytes can hold";
     };
     for (Line read = next_line(it, line); read != Line::none; read = next_line(it, line)) {
         const std::vector<std::string> words = words_of(line);

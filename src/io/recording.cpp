@@ -33,9 +33,12 @@ RecordingWriter::RecordingWriter(const std::filesystem::path& path, double dt, s
     put(out_, dt);
     out_ << ",\"cars\":" << cars << ",\"scene\":\"";
     for (char c : scene) {  // a JSON string: escape quotes, backslashes and controls
-        if (c == '"' || c == '\\') out_ << '\\' << c;
-        else if (static_cast<unsigned char>(c) < 0x20) out_ << ' ';
-        else out_ << c;
+        if (c == '"' || c == '\\')
+            out_ << '\\' << c;
+        else if (static_cast<unsigned char>(c) < 0x20)
+            out_ << ' ';
+        else
+            out_ << c;
     }
     out_ << "\"}\n";
 }
@@ -74,7 +77,8 @@ void RecordingWriter::add_car(const glm::dvec3& position, const glm::dquat& orie
         first = false;
         put(out_, c.point.x), out_ << ',', put(out_, c.point.y), out_ << ',', put(out_, c.point.z);
         out_ << ',';
-        put(out_, c.normal.x), out_ << ',', put(out_, c.normal.y), out_ << ',', put(out_, c.normal.z);
+        put(out_, c.normal.x), out_ << ',', put(out_, c.normal.y), out_ << ',',
+            put(out_, c.normal.z);
         out_ << ',';
         put(out_, c.depth);
         out_ << ']';

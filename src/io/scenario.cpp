@@ -31,7 +31,8 @@ void read_track(ObjectReader& scenario, Scenario& s, const std::filesystem::path
     track.read("seed", s.seed);
     std::string mesh;
     track.read("mesh", mesh);
-    if (track.has("mesh") && mesh.empty()) json_io::fail(track.source(), track.path_of("mesh"), "empty file name");
+    if (track.has("mesh") && mesh.empty())
+        json_io::fail(track.source(), track.path_of("mesh"), "empty file name");
     if (!mesh.empty()) s.mesh = base / mesh;
     if (track.has("spawn")) {
         glm::dvec3 spawn(0.0);
@@ -50,7 +51,8 @@ void read_car(ObjectReader& scenario, Scenario& s, const std::filesystem::path& 
     if (value == nullptr) return;
     if (value->is_string()) {
         const std::string file = value->get<std::string>();
-        if (file.empty()) json_io::fail(scenario.source(), scenario.path_of("car"), "empty file name");
+        if (file.empty())
+            json_io::fail(scenario.source(), scenario.path_of("car"), "empty file name");
         try {
             s.car = load_car_spec(base / file);
         } catch (const Error& e) {
@@ -70,7 +72,8 @@ void read_driver(ObjectReader& scenario, Scenario& s) {
     if (autopilot != nullptr) {
         if (s.free_mode())
             json_io::fail(source, scenario.path_of("autopilot"),
-                          "the autopilot drives the generated track from its start line: not with track.spawn "
+                          "the autopilot drives the generated track from its start line: not with "
+                          "track.spawn "
                           "(free mode drives by 'inputs')");
         ObjectReader in(*autopilot, scenario.path_of("autopilot"), source);
         in.read("target_speed_kmh", s.target_speed_kmh);
@@ -78,9 +81,10 @@ void read_driver(ObjectReader& scenario, Scenario& s) {
     }
     if (inputs != nullptr) {
         if (!s.free_mode())
-            json_io::fail(source, scenario.path_of("inputs"),
-                          "fixed inputs drive in free mode: add track.spawn (the generated track without a "
-                          "spawn point is driven by the autopilot)");
+            json_io::fail(
+                source, scenario.path_of("inputs"),
+                "fixed inputs drive in free mode: add track.spawn (the generated track without a "
+                "spawn point is driven by the autopilot)");
         ObjectReader in(*inputs, scenario.path_of("inputs"), source);
         in.read("throttle", s.inputs.throttle);
         in.read("brake", s.inputs.brake);
@@ -96,25 +100,31 @@ std::string Scenario::validate() const {
     if (!mesh.empty() && !spawn)
         why << "Scenario.mesh needs a spawn point (Scenario.spawn) to place the car on it";
     if (why.tellp() == 0 && spawn && !is_finite(*spawn))
-        why << "Scenario.spawn must be finite, got (" << spawn->x << ", " << spawn->y << ", " << spawn->z << ")";
-    if (why.tellp() == 0 && !std::isfinite(heading_deg)) why << "Scenario.heading_deg must be finite, got " << heading_deg;
+        why << "Scenario.spawn must be finite, got (" << spawn->x << ", " << spawn->y << ", "
+            << spawn->z << ")";
+    if (why.tellp() == 0 && !std::isfinite(heading_deg))
+        why << "Scenario.heading_deg must be finite, got " << heading_deg;
     if (why.tellp() == 0 && !(target_speed_kmh > 0.0 && target_speed_kmh <= max_target_speed_kmh))
-        why << "Scenario.target_speed_kmh must be in (0, " << max_target_speed_kmh << "], got " << target_speed_kmh;
+        why << "Scenario.target_speed_kmh must be in (0, " << max_target_speed_kmh << "], got "
+            << target_speed_kmh;
     check_range(why, "inputs.throttle", inputs.throttle, 0.0, 1.0);
     check_range(why, "inputs.brake", inputs.brake, 0.0, 1.0);
     check_range(why, "inputs.steer", inputs.steer, -1.0, 1.0);
     check_range(why, "laps", laps, 0.0, max_scenario_laps);
     check_range(why, "seconds", seconds, 0.0, max_scenario_seconds);
     if (why.tellp() == 0 && free_mode() && laps > 0)
-        why << "Scenario.laps needs the generated track's centreline: free mode (a spawn point) drives for "
+        why << "Scenario.laps needs the generated track's centreline: free mode (a spawn point) "
+               "drives for "
                "Scenario.seconds";
     if (why.tellp() == 0 && free_mode() && seconds == 0.0)
-        why << "Scenario.seconds must be > 0 in free mode (a spawn point): laps need the generated track";
+        why << "Scenario.seconds must be > 0 in free mode (a spawn point): laps need the generated "
+               "track";
     if (why.tellp() == 0) why << car.validate();
     return why.str();
 }
 
-Scenario parse_scenario(std::string_view json_text, const std::string& source, const std::filesystem::path& base_folder) {
+Scenario parse_scenario(std::string_view json_text, const std::string& source,
+                        const std::filesystem::path& base_folder) {
     const Json document = json_io::parse_document(json_text, source);
     ObjectReader in(document, "", source);
     Scenario s;
@@ -145,7 +155,8 @@ std::string scenario_to_json(const Scenario& s) {
     }
     Json out = {{"track", std::move(track)}, {"car", json_io::car_spec_to_json_value(s.car)}};
     if (s.free_mode())
-        out["inputs"] = {{"throttle", s.inputs.throttle}, {"brake", s.inputs.brake}, {"steer", s.inputs.steer}};
+        out["inputs"] = {
+            {"throttle", s.inputs.throttle}, {"brake", s.inputs.brake}, {"steer", s.inputs.steer}};
     else
         out["autopilot"] = {{"target_speed_kmh", s.target_speed_kmh}};
     out["laps"] = s.laps;

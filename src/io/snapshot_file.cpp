@@ -30,7 +30,7 @@ std::uint64_t checksum(std::string_view bytes) {
 
 // Little-endian, whatever the host's byte order.
 class Writer {
-public:
+  public:
     void u32(std::uint32_t x) { put(x, 4); }
     void u64(std::uint64_t x) { put(x, 8); }
     void f64(double x) { put(std::bit_cast<std::uint64_t>(x), 8); }
@@ -38,7 +38,7 @@ public:
     void bytes(std::string_view b) { out_.append(b); }
     std::string& out() { return out_; }
 
-private:
+  private:
     void put(std::uint64_t x, int n) {
         for (int i = 0; i < n; ++i) out_.push_back(static_cast<char>((x >> (8 * i)) & 0xff));
     }
@@ -46,7 +46,7 @@ private:
 };
 
 class Reader {
-public:
+  public:
     explicit Reader(std::string_view in) : in_(in) {}
     std::uint32_t u32(const char* what) { return static_cast<std::uint32_t>(get(4, what)); }
     std::uint64_t u64(const char* what) { return get(8, what); }
@@ -71,7 +71,7 @@ public:
     }
     std::size_t left() const { return in_.size() - at_; }
 
-private:
+  private:
     void need(std::size_t n, const char* what) const {
         if (in_.size() - at_ < n)
             throw Error(std::string("snapshot: the payload is truncated at byte ") +
@@ -81,7 +81,8 @@ private:
         need(static_cast<std::size_t>(n), what);
         std::uint64_t x = 0;
         for (int i = 0; i < n; ++i)
-            x |= static_cast<std::uint64_t>(static_cast<unsigned char>(in_[at_ + static_cast<std::size_t>(i)]))
+            x |= static_cast<std::uint64_t>(
+                     static_cast<unsigned char>(in_[at_ + static_cast<std::size_t>(i)]))
                  << (8 * i);
         at_ += static_cast<std::size_t>(n);
         return x;
@@ -117,7 +118,8 @@ WorldSettings read_settings(Reader& r) {
     s.broad_phase_margin = r.f64("settings.broad_phase_margin");
     const std::uint32_t mode = r.u32("settings.mid_phase");
     if (mode > static_cast<std::uint32_t>(MidPhaseMode::precomputed_tree))
-        throw Error("snapshot: settings.mid_phase " + std::to_string(mode) + " is not a mid-phase mode");
+        throw Error("snapshot: settings.mid_phase " + std::to_string(mode) +
+                    " is not a mid-phase mode");
     s.mid_phase = static_cast<MidPhaseMode>(mode);
     s.mid_phase_look_ahead = static_cast<int>(r.u32("settings.mid_phase_look_ahead"));
     s.mid_phase_slack = r.f64("settings.mid_phase_slack");
@@ -211,10 +213,11 @@ SnapshotFile decode_snapshot(std::string_view bytes) {
     Reader header(bytes.substr(sizeof kMagic, kHeaderBytes - sizeof kMagic));
     const std::uint32_t version = header.u32("format version");
     if (version != kSnapshotFormatVersion)
-        throw Error("snapshot: format version " + std::to_string(version) + ", this build reads only version " +
-                    std::to_string(kSnapshotFormatVersion));
+        throw Error("snapshot: format version " + std::to_string(version) +
+                    ", this build reads only version " + std::to_string(kSnapshotFormatVersion));
     if (const std::uint32_t reserved = header.u32("reserved"); reserved != 0)
-        throw Error("snapshot: the reserved header field is " + std::to_string(reserved) + ", not 0");
+        throw Error("snapshot: the reserved header field is " + std::to_string(reserved) +
+                    ", not 0");
     const std::uint64_t length = header.u64("payload length");
     const std::uint64_t expected = header.u64("checksum");
     const std::size_t available = bytes.size() - kHeaderBytes;
@@ -225,7 +228,8 @@ SnapshotFile decode_snapshot(std::string_view bytes) {
         throw Error("snapshot: " + std::to_string(available - length) +
                     " bytes of trailing garbage after the payload");
     const std::string_view payload = bytes.substr(kHeaderBytes);
-    if (checksum(payload) != expected) throw Error("snapshot: checksum mismatch (the file is corrupted)");
+    if (checksum(payload) != expected)
+        throw Error("snapshot: checksum mismatch (the file is corrupted)");
 
     Reader r(payload);
     SnapshotFile file;
@@ -244,8 +248,10 @@ SnapshotFile decode_snapshot(std::string_view bytes) {
     const std::size_t user = r.count(r.u64("user data length"), 1, "user data byte");
     file.user_data = std::string(r.bytes(user, "user data"));
     if (r.left() != 0)
-        throw Error("snapshot: " + std::to_string(r.left()) + " unread bytes at the end of the payload");
-    if (std::string why = s.validate(); !why.empty()) throw Error("snapshot: invalid contents: " + why);
+        throw Error("snapshot: " + std::to_string(r.left()) +
+                    " unread bytes at the end of the payload");
+    if (std::string why = s.validate(); !why.empty())
+        throw Error("snapshot: invalid contents: " + why);
     return file;
 }
 
@@ -270,7 +276,8 @@ void save_snapshot(const std::filesystem::path& path, const WorldSnapshot& snaps
     std::filesystem::rename(temporary, path, error);
     if (error) {
         std::filesystem::remove(temporary, ignored);
-        throw Error("cannot move the snapshot into place at '" + path.string() + "': " + error.message());
+        throw Error("cannot move the snapshot into place at '" + path.string() +
+                    "': " + error.message());
     }
 }
 

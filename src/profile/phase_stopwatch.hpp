@@ -11,11 +11,13 @@ namespace trackphys {
 /// the previous lap to that phase, and records it as a zone when a trace is given.
 /// Disabled, it never reads the clock, so profiling costs nothing when it is off.
 class PhaseStopwatch {
-public:
+  public:
     using Clock = std::chrono::steady_clock;
 
     PhaseStopwatch(UpdateProfile& profile, bool enabled, TraceRecorder* trace = nullptr)
-        : profile_(profile), enabled_(enabled), trace_(enabled ? trace : nullptr),
+        : profile_(profile),
+          enabled_(enabled),
+          trace_(enabled ? trace : nullptr),
           last_(enabled ? Clock::now() : Clock::time_point{}) {}
 
     void lap(Phase phase) {
@@ -26,7 +28,7 @@ public:
         last_ = now;
     }
 
-private:
+  private:
     UpdateProfile& profile_;
     bool enabled_;
     TraceRecorder* trace_;

@@ -34,9 +34,13 @@ double ratio(double a, double b) { return b > 0.0 ? a / b : 0.0; }
 }  // namespace
 
 double ProfileStatistics::mean_candidates() const { return ratio(candidates_, double(updates())); }
-double ProfileStatistics::mean_exact_tests() const { return ratio(exact_tests_, double(updates())); }
+double ProfileStatistics::mean_exact_tests() const {
+    return ratio(exact_tests_, double(updates()));
+}
 double ProfileStatistics::mean_contacts() const { return ratio(contacts_, double(updates())); }
-double ProfileStatistics::mean_mid_queries() const { return ratio(mid_queries_, double(updates())); }
+double ProfileStatistics::mean_mid_queries() const {
+    return ratio(mid_queries_, double(updates()));
+}
 double ProfileStatistics::mean_tested_per_ellipsoid_substep() const {
     return ratio(culled_tests_, ellipsoid_substeps_);
 }

@@ -20,7 +20,7 @@ namespace trackphys::track_detail {
 /// integrated with 8-point Gauss-Legendre (the speed |B'(t)| is smooth there, so this is
 /// near machine precision); s -> t inverts that with safeguarded Newton.
 class BezierLoop {
-public:
+  public:
     /// Position, derivatives with respect to arc length (unit tangent d1 and curvature
     /// vector d2) at some distance along the loop.
     struct Point {
@@ -54,7 +54,7 @@ public:
 
     static constexpr int kSubintervals = 32;
 
-private:
+  private:
     /// Arc length of segment i between parameters a and b (Gauss-Legendre, 8 points).
     double arc_length(std::size_t i, double a, double b) const;
 

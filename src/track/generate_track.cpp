@@ -29,7 +29,8 @@ namespace {
 // tangent so that for b > 0 the left edge goes down (the inside of a left turn):
 //     left = cos b left_flat - sin b up_flat,   up = sin b left_flat + cos b up_flat,
 // which keeps left = up x tangent.
-CenterlineSample make_sample(const track_detail::BezierLoop::Point& point, double distance, double bank) {
+CenterlineSample make_sample(const track_detail::BezierLoop::Point& point, double distance,
+                             double bank) {
     CenterlineSample sample;
     sample.position = point.position;
     sample.tangent = point.tangent;

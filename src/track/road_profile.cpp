@@ -49,7 +49,8 @@ double RoadProfile::bank_at(double s) const {
 
 RoadProfile make_road_profile(const BezierLoop& loop, const TrackParams& params) {
     const double length = loop.length();
-    const std::size_t n = std::max<std::size_t>(16, static_cast<std::size_t>(std::ceil(length / kGridSpacing)));
+    const std::size_t n =
+        std::max<std::size_t>(16, static_cast<std::size_t>(std::ceil(length / kGridSpacing)));
     RoadProfile profile;
     profile.grid_spacing = length / static_cast<double>(n);
 
@@ -57,7 +58,8 @@ RoadProfile make_road_profile(const BezierLoop& loop, const TrackParams& params)
     for (std::size_t k = 0; k < n; ++k)
         curvature[k] = loop.at(static_cast<double>(k) * profile.grid_spacing).horizontal_curvature;
 
-    const auto half = static_cast<std::size_t>(std::lround(kBankSmoothingHalfWidth / profile.grid_spacing));
+    const auto half =
+        static_cast<std::size_t>(std::lround(kBankSmoothingHalfWidth / profile.grid_spacing));
     const std::vector<double> smooth = box_filter(box_filter(curvature, half), half);
 
     const double max_bank = params.max_bank_deg * std::numbers::pi / 180.0;
@@ -72,14 +74,16 @@ RoadProfile make_road_profile(const BezierLoop& loop, const TrackParams& params)
     // (trapezoids) over the closed loop.
     const auto density = [&](std::size_t k) {
         const double kappa = std::max(std::abs(curvature[k]), std::abs(smooth[k]));
-        const double edge = kappa > 0.0 ? std::clamp(params.edge_tight_m / std::sqrt(kappa * params.tight_radius_m),
-                                                     params.edge_tight_m, params.edge_straight_m)
-                                        : params.edge_straight_m;
+        const double edge =
+            kappa > 0.0 ? std::clamp(params.edge_tight_m / std::sqrt(kappa * params.tight_radius_m),
+                                     params.edge_tight_m, params.edge_straight_m)
+                        : params.edge_straight_m;
         return (1.0 + kappa * 0.5 * params.width_m) / edge;
     };
     std::vector<double> integral(n + 1, 0.0);
     for (std::size_t k = 0; k < n; ++k)
-        integral[k + 1] = integral[k] + 0.5 * (density(k) + density((k + 1) % n)) * profile.grid_spacing;
+        integral[k + 1] =
+            integral[k] + 0.5 * (density(k) + density((k + 1) % n)) * profile.grid_spacing;
 
     const double total = integral[n];
     const auto rows = static_cast<std::size_t>(std::ceil(total));

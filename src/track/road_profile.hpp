@@ -22,9 +22,9 @@ namespace trackphys::track_detail {
 /// larger of the raw and smoothed curvature. Rows sit where the integral of rho reaches
 /// whole multiples of its total / row count, which closes the loop with no odd last row.
 struct RoadProfile {
-    double grid_spacing = 0.0;        ///< arc length between grid points (m)
-    std::vector<double> bank;         ///< bank (rad) at grid point k (distance k * spacing)
-    std::vector<double> row_distance; ///< distance of each row, increasing, first 0, < length
+    double grid_spacing = 0.0;         ///< arc length between grid points (m)
+    std::vector<double> bank;          ///< bank (rad) at grid point k (distance k * spacing)
+    std::vector<double> row_distance;  ///< distance of each row, increasing, first 0, < length
 
     /// Bank at distance s (linear between grid points, periodic).
     double bank_at(double s) const;

@@ -13,7 +13,8 @@ namespace trackphys::track_detail {
 std::vector<glm::dvec3> cross_section(const CenterlineSample& sample, const TrackParams& params) {
     const glm::dvec3 up_world(0.0, 1.0, 0.0);
     // Horizontal left, for the walls: +Y x tangent, flattened.
-    const glm::dvec3 left_flat = glm::normalize(glm::dvec3(sample.tangent.z, 0.0, -sample.tangent.x));
+    const glm::dvec3 left_flat =
+        glm::normalize(glm::dvec3(sample.tangent.z, 0.0, -sample.tangent.x));
     const glm::dvec3 wall_up = params.wall_height_m * up_world;
     const glm::dvec3 thickness = params.wall_thickness_m * left_flat;
 
@@ -45,7 +46,8 @@ std::vector<TrackChunk> build_chunks(const std::vector<CenterlineSample>& rows, 
     for (std::size_t r = 0; r < row_count; ++r) sections[r] = cross_section(rows[r], params);
 
     // Chunk c starts at the first row at or past c * length / count.
-    const auto count = static_cast<std::size_t>(std::max(1L, std::lround(length_m / params.chunk_length_m)));
+    const auto count =
+        static_cast<std::size_t>(std::max(1L, std::lround(length_m / params.chunk_length_m)));
     std::vector<std::size_t> start(count + 1, row_count);
     std::size_t r = 0;
     for (std::size_t c = 0; c < count; ++c) {

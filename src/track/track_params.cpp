@@ -1,3 +1,5 @@
+#include "trackphys/track/track_params.hpp"
+
 #include <cmath>
 #include <numbers>
 #include <sstream>
@@ -5,7 +7,6 @@
 
 #include "track/track_shape.hpp"
 #include "trackphys/error.hpp"
-#include "trackphys/track/track_params.hpp"
 
 namespace trackphys {
 namespace {
@@ -47,15 +48,16 @@ void validate_track_params(const TrackParams& p) {
     check_range("edge_straight_m", p.edge_straight_m, 0.05, 100.0, "m");
     check_range("tight_radius_m", p.tight_radius_m, 0.0, 1e6, "m", true);
     check_range("chunk_length_m", p.chunk_length_m, 0.0, 1e6, "m", true);
-    if (p.strips < 1 || p.strips > 256)
-        fail("strips", "must be in [1, 256]", p.strips);
+    if (p.strips < 1 || p.strips > 256) fail("strips", "must be in [1, 256]", p.strips);
 
     if (p.edge_straight_m < p.edge_tight_m)
-        fail("edge_straight_m", "must be >= edge_tight_m (" + std::to_string(p.edge_tight_m) + " m)",
+        fail("edge_straight_m",
+             "must be >= edge_tight_m (" + std::to_string(p.edge_tight_m) + " m)",
              p.edge_straight_m);
     if (p.chunk_length_m < 4.0 * p.edge_straight_m)
         fail("chunk_length_m",
-             "must be at least 4 x edge_straight_m (" + std::to_string(4.0 * p.edge_straight_m) + " m)",
+             "must be at least 4 x edge_straight_m (" + std::to_string(4.0 * p.edge_straight_m) +
+                 " m)",
              p.chunk_length_m);
 
     // Two parts of the track keep a clearance of both roads with walls and a gap between
@@ -64,7 +66,8 @@ void validate_track_params(const TrackParams& p) {
     const double clearance = track_detail::required_clearance(p);
     if (p.min_turn_radius_m < 0.5 * clearance)
         fail("min_turn_radius_m",
-             "must be at least 0.75 x width_m + wall_thickness_m (" + std::to_string(0.5 * clearance) +
+             "must be at least 0.75 x width_m + wall_thickness_m (" +
+                 std::to_string(0.5 * clearance) +
                  " m) so that a turn's inner edge does not fold and its two sides keep clear",
              p.min_turn_radius_m);
     // A circle is the generator's last resort; it must itself be a valid track, with room

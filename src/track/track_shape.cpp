@@ -27,10 +27,10 @@ constexpr double kControlSpacing = 300.0;
 struct CheckPoint {
     glm::dvec3 position;
     double curvature;
-    double distance;    // chord-sum distance from the start (m)
+    double distance;  // chord-sum distance from the start (m)
     std::size_t segment;
-    double t;           // parameter in the segment
-    double step;        // parameter step between this segment's points
+    double t;     // parameter in the segment
+    double step;  // parameter step between this segment's points
 };
 
 std::vector<CheckPoint> sample_for_check(const BezierLoop& loop) {
@@ -41,15 +41,16 @@ std::vector<CheckPoint> sample_for_check(const BezierLoop& loop) {
         // A segment's arc is longer than its chord but, for these gentle cubics, well
         // under twice as long: twice the chord's worth of points keeps the spacing at or
         // below kCheckSpacing.
-        const double chord = glm::distance(loop.points()[i],
-                                           loop.points()[(i + 1) % loop.segment_count()]);
+        const double chord =
+            glm::distance(loop.points()[i], loop.points()[(i + 1) % loop.segment_count()]);
         const int steps = std::max(8, static_cast<int>(std::ceil(2.0 * chord / kCheckSpacing)));
         for (int k = 0; k < steps; ++k) {
             const double t = static_cast<double>(k) / steps;
             const glm::dvec3 p = loop.segment_position(i, t);
             distance += glm::distance(previous, p);
             previous = p;
-            out.push_back({p, loop.segment_horizontal_curvature(i, t), distance, i, t, 1.0 / steps});
+            out.push_back(
+                {p, loop.segment_horizontal_curvature(i, t), distance, i, t, 1.0 / steps});
         }
     }
     return out;
@@ -71,8 +72,8 @@ double max_abs_curvature(const BezierLoop& loop, const std::vector<CheckPoint>& 
         const CheckPoint& s = samples[i];
         const double here = std::isnan(s.curvature) ? infinity : std::abs(s.curvature);
         largest = std::max(largest, here);
-        if (here < std::abs(samples[(i + n - 1) % n].curvature) || here < std::abs(samples[(i + 1) % n].curvature) ||
-            here == infinity)
+        if (here < std::abs(samples[(i + n - 1) % n].curvature) ||
+            here < std::abs(samples[(i + 1) % n].curvature) || here == infinity)
             continue;
         constexpr double golden = 0.6180339887498949;
         double lo = std::max(0.0, s.t - s.step), hi = std::min(1.0, s.t + s.step);
@@ -109,7 +110,8 @@ double elevation_amplitude(const TrackParams& params) {
     // Neighbouring control points differ in height by up to 2a over one spacing; 4% of
     // the spacing keeps grades near 8% (Catmull-Rom adds up to half again), and keeps the
     // horizontal shape from shrinking much when the loop is scaled to its 3-D length.
-    return std::min(params.elevation_amplitude_m, 0.04 * params.length_m / control_point_count(params));
+    return std::min(params.elevation_amplitude_m,
+                    0.04 * params.length_m / control_point_count(params));
 }
 
 int control_point_count(const TrackParams& params) {
@@ -130,8 +132,7 @@ std::vector<glm::dvec3> draw_control_points(const TrackParams& params, double re
     std::vector<glm::dvec3> points;
     points.reserve(static_cast<std::size_t>(count));
     for (int i = 0; i < count; ++i) {
-        const double angle =
-            2.0 * std::numbers::pi * (i + relax * uniform(-0.3, 0.3)) / count;
+        const double angle = 2.0 * std::numbers::pi * (i + relax * uniform(-0.3, 0.3)) / count;
         const double r = radius * (1.0 + relax * uniform(-0.45, 0.45));
         const double height = amplitude * uniform(-1.0, 1.0);
         points.emplace_back(r * std::cos(angle), height, r * std::sin(angle));
@@ -175,8 +176,8 @@ std::string shape_problem(const BezierLoop& loop, const TrackParams& params) {
     const double clearance = required_clearance(params);
     const double r = params.min_turn_radius_m;
     const double d_local = 2.0 * r * std::asin(std::min(1.0, clearance / (2.0 * r)));
-    const double total = samples.back().distance + glm::distance(samples.back().position,
-                                                                 samples.front().position);
+    const double total =
+        samples.back().distance + glm::distance(samples.back().position, samples.front().position);
 
     // Bucket the check points on a horizontal grid with cells of one clearance, so each
     // point only meets the 3 x 3 cells around it. Sorting by cell (then index) keeps the

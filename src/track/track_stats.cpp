@@ -9,7 +9,6 @@
 
 #include <glm/geometric.hpp>
 
-
 namespace trackphys {
 namespace {
 
@@ -65,8 +64,10 @@ TrackStats compute_track_stats(const Track& track) {
         // The outer road edge of the step to the next row: both edges, the longer one.
         const CenterlineSample& next = track.centerline[(r + 1) % rows];
         const double half = 0.5 * track.params.width_m;
-        const double left = glm::distance(s.position + half * s.left, next.position + half * next.left);
-        const double right = glm::distance(s.position - half * s.left, next.position - half * next.left);
+        const double left =
+            glm::distance(s.position + half * s.left, next.position + half * next.left);
+        const double right =
+            glm::distance(s.position - half * s.left, next.position - half * next.left);
         min_edge = std::min(min_edge, std::max(left, right));
         max_edge = std::max(max_edge, std::max(left, right));
     }

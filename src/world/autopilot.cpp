@@ -85,7 +85,8 @@ Autopilot::Autopilot(const Track& track, const CarSpec& car, AutopilotSettings s
         if (gap <= 0.0) gap += length_;
         const double v_next = planned_speed_[next];
         const double decel = settings_.braking + k * v_next * v_next * mu;
-        planned_speed_[i] = std::min(planned_speed_[i], std::sqrt(v_next * v_next + 2.0 * decel * gap));
+        planned_speed_[i] =
+            std::min(planned_speed_[i], std::sqrt(v_next * v_next + 2.0 * decel * gap));
     }
 }
 
@@ -141,7 +142,8 @@ void Autopilot::locate(const Car& car) {
 void Autopilot::set_progress(const AutopilotProgress& progress) {
     if (progress.nearest_sample >= centerline_.size())
         throw Error("Autopilot progress: sample " + std::to_string(progress.nearest_sample) +
-                    " is beyond the centreline's " + std::to_string(centerline_.size()) + " samples");
+                    " is beyond the centreline's " + std::to_string(centerline_.size()) +
+                    " samples");
     if (progress.laps < 0) throw Error("Autopilot progress: laps must be >= 0");
     nearest_ = progress.nearest_sample;
     laps_ = progress.laps;

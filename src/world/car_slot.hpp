@@ -27,12 +27,12 @@ struct World::CarSlot {
 
     Car car;
     MidPhase mid;
-    Aabb update_box;                                      // what mid.begin_update covers
-    std::vector<LookAheadList> listed;                    // per ellipsoid, this step
-    std::vector<Ellipsoid> placed;                        // the ellipsoids, this sub-step
-    std::vector<std::vector<Survivor>> kept;              // per ellipsoid: culled survivors
-    std::vector<Contact> deepest;                         // per ellipsoid, this sub-step
-    std::vector<TriangleRef> deepest_ref;                 // its triangle, tried first next
+    Aabb update_box;                          // what mid.begin_update covers
+    std::vector<LookAheadList> listed;        // per ellipsoid, this step
+    std::vector<Ellipsoid> placed;            // the ellipsoids, this sub-step
+    std::vector<std::vector<Survivor>> kept;  // per ellipsoid: culled survivors
+    std::vector<Contact> deepest;             // per ellipsoid, this sub-step
+    std::vector<TriangleRef> deepest_ref;     // its triangle, tried first next
     // The reset policy's memory: the state at the start of this update, the resets.
     RigidBodyState start_state;
     std::vector<double> start_suspension;

@@ -41,7 +41,7 @@ struct Deepest {
 
 // The car's ellipsoids (wheels at full droop) at a given centre-of-mass position.
 class CarProbe {
-public:
+  public:
     CarProbe(const StaticWorld& statics, const Car& car, double clearance)
         : statics_(statics), car_(car), clearance_(clearance) {}
 
@@ -56,10 +56,9 @@ public:
             refs_.clear();
             statics_.query_aabb(e.bounds().padded(clearance_), refs_);
             for (const TriangleRef& ref : refs_) {
-                const double depth =
-                    ellipsoid_triangle_contact(
-                        e, statics_.collider(ref.collider).triangle(ref.triangle))
-                        .depth;
+                const double depth = ellipsoid_triangle_contact(
+                                         e, statics_.collider(ref.collider).triangle(ref.triangle))
+                                         .depth;
                 if (depth > deepest.depth) deepest = {depth, i, ref};
             }
         }
@@ -74,15 +73,15 @@ public:
     std::optional<double> drop_bound(const glm::dvec3& position) const {
         std::optional<double> drop;
         for (std::size_t i = 0; i < car_.ellipsoid_count(); ++i) {
-            const auto hit = statics_.raycast(lowest_point(ellipsoid(i, position)),
-                                              glm::dvec3(0.0, -1.0, 0.0),
-                                              std::numeric_limits<double>::infinity());
+            const auto hit =
+                statics_.raycast(lowest_point(ellipsoid(i, position)), glm::dvec3(0.0, -1.0, 0.0),
+                                 std::numeric_limits<double>::infinity());
             if (hit && (!drop || hit->hit.distance < *drop)) drop = hit->hit.distance;
         }
         return drop;
     }
 
-private:
+  private:
     // The ellipsoid's point of least y: for the ellipsoid's matrix A = R diag(r^2) R^T it is
     // c - A e_y / sqrt(e_y . A e_y).
     static glm::dvec3 lowest_point(const Ellipsoid& e) {
@@ -129,8 +128,7 @@ RigidBodyState place_car_on_surface(const StaticWorld& statics, const CarSpec& s
     if (start.depth <= -clearance) {
         const std::optional<double> drop = probe.drop_bound(position);
         if (!drop)
-            throw Error("place_car_on_surface: no surface below the car at " +
-                        describe(position) +
+            throw Error("place_car_on_surface: no surface below the car at " + describe(position) +
                         " (rays cast straight down from its ellipsoids hit nothing)");
         clear_y = position.y;
         // A little further and a lowest point is inside the surface it reached.
@@ -147,9 +145,9 @@ RigidBodyState place_car_on_surface(const StaticWorld& statics, const CarSpec& s
                 std::ostringstream why;
                 why << "place_car_on_surface: the car at " << describe(position)
                     << " is inside geometry and stays so raised by " << max_rise
-                    << " m (twice its bounding radius): ellipsoid " << deepest.ellipsoid
-                    << " is " << deepest.depth << " m deep in collider "
-                    << deepest.triangle.collider << "'s triangle " << deepest.triangle.triangle;
+                    << " m (twice its bounding radius): ellipsoid " << deepest.ellipsoid << " is "
+                    << deepest.depth << " m deep in collider " << deepest.triangle.collider
+                    << "'s triangle " << deepest.triangle.triangle;
                 throw Error(why.str());
             }
             rise = std::min(2.0 * rise, max_rise);

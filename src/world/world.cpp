@@ -51,9 +51,7 @@ Car& World::car(std::size_t i) { return cars_.at(i).car; }
 const Car& World::car(std::size_t i) const { return cars_.at(i).car; }
 std::span<const Contact> World::contacts(std::size_t i) const { return cars_.at(i).deepest; }
 std::uint64_t World::car_resets(std::size_t i) const { return cars_.at(i).resets; }
-const std::string& World::last_reset_reason(std::size_t i) const {
-    return cars_.at(i).last_reset;
-}
+const std::string& World::last_reset_reason(std::size_t i) const { return cars_.at(i).last_reset; }
 
 void World::update() {
     profile_ = UpdateProfile{};
@@ -74,7 +72,8 @@ void World::update() {
 void World::update_car(CarSlot& slot, PhaseStopwatch& watch) {
     const Car& car = slot.car;
     Aabb box;
-    for (std::size_t i = 0; i < car.ellipsoid_count(); ++i) box.expand(car.world_ellipsoid(i).bounds());
+    for (std::size_t i = 0; i < car.ellipsoid_count(); ++i)
+        box.expand(car.world_ellipsoid(i).bounds());
     const double dt = settings_.dt_update;
     const RigidBodyState& state = car.state();
     // Any body point moves at most |omega| R dt by rotation; gravity alone bends the path by
@@ -176,12 +175,13 @@ void World::substep(CarSlot& slot, PhaseStopwatch& watch) {
         // Last sub-step's deepest triangle is most likely the deepest again; else the one
         // with the deepest bound.
         auto first = std::find_if(kept.begin(), kept.end(), [&](const Survivor& s) {
-            return s.ref.collider == slot.deepest_ref[i].collider && s.ref.triangle == slot.deepest_ref[i].triangle;
+            return s.ref.collider == slot.deepest_ref[i].collider &&
+                   s.ref.triangle == slot.deepest_ref[i].triangle;
         });
         if (first == kept.end())
-            first = std::max_element(kept.begin(), kept.end(), [](const Survivor& a, const Survivor& b) {
-                return a.depth_bound < b.depth_bound;
-            });
+            first = std::max_element(
+                kept.begin(), kept.end(),
+                [](const Survivor& a, const Survivor& b) { return a.depth_bound < b.depth_bound; });
         std::iter_swap(kept.begin(), first);
         // After the first contact, the bound along its normal skips the neighbours that
         // cannot beat it (ties within kDepthTie, far below the 1e-9 m contract, included).
@@ -220,7 +220,8 @@ std::uint64_t World::state_hash() const {
         hash.add(s.orientation);
         hash.add(s.linear_velocity);
         hash.add(s.angular_velocity);
-        for (std::size_t i = 0; i < slot.car.ellipsoid_count(); ++i) hash.add(slot.car.suspension(i));
+        for (std::size_t i = 0; i < slot.car.ellipsoid_count(); ++i)
+            hash.add(slot.car.suspension(i));
         const CarInputs& in = slot.car.inputs();
         hash.add(in.throttle), hash.add(in.brake), hash.add(in.steer);
     }

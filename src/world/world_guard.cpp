@@ -22,9 +22,12 @@ namespace {
 
 const char* role_name(EllipsoidRole role) {
     switch (role) {
-        case EllipsoidRole::body: return "body";
-        case EllipsoidRole::front_wheel: return "front wheel";
-        case EllipsoidRole::rear_wheel: return "rear wheel";
+        case EllipsoidRole::body:
+            return "body";
+        case EllipsoidRole::front_wheel:
+            return "front wheel";
+        case EllipsoidRole::rear_wheel:
+            return "rear wheel";
     }
     return "ellipsoid";
 }
@@ -46,12 +49,17 @@ std::string World::impossible_state(const RigidBodyState& s) const {
         w <= settings_.max_car_angular_speed)
         return {};
     std::ostringstream why;
-    if (!is_finite(s.position)) why << "position is not finite";
-    else if (!is_finite(s.orientation)) why << "orientation is not finite";
-    else if (!is_finite(s.linear_velocity)) why << "linear velocity is not finite";
-    else if (!is_finite(s.angular_velocity)) why << "angular velocity is not finite";
+    if (!is_finite(s.position))
+        why << "position is not finite";
+    else if (!is_finite(s.orientation))
+        why << "orientation is not finite";
+    else if (!is_finite(s.linear_velocity))
+        why << "linear velocity is not finite";
+    else if (!is_finite(s.angular_velocity))
+        why << "angular velocity is not finite";
     else if (!(v <= settings_.max_car_speed))
-        why << "speed " << v << " m/s is above WorldSettings.max_car_speed " << settings_.max_car_speed;
+        why << "speed " << v << " m/s is above WorldSettings.max_car_speed "
+            << settings_.max_car_speed;
     else
         why << "angular speed " << w << " rad/s is above WorldSettings.max_car_angular_speed "
             << settings_.max_car_angular_speed;
@@ -60,7 +68,8 @@ std::string World::impossible_state(const RigidBodyState& s) const {
 
 void World::check_placement(const Car& car) const {
     const RigidBodyState& state = car.state();
-    if (std::string why = impossible_state(state); !why.empty()) throw Error("World::add_car: " + why);
+    if (std::string why = impossible_state(state); !why.empty())
+        throw Error("World::add_car: " + why);
 
     // Far outside the map: farther than max_spawn_distance from every collider's box.
     double nearest = std::numeric_limits<double>::infinity();
@@ -86,13 +95,14 @@ void World::check_placement(const Car& car) const {
         refs.clear();
         statics_->query_aabb(ellipsoid.bounds(), refs);
         for (const TriangleRef& ref : refs) {
-            const Contact contact =
-                ellipsoid_triangle_contact(ellipsoid, statics_->collider(ref.collider).triangle(ref.triangle));
+            const Contact contact = ellipsoid_triangle_contact(
+                ellipsoid, statics_->collider(ref.collider).triangle(ref.triangle));
             if (contact.depth > limit) {
                 std::ostringstream why;
-                why << "World::add_car: ellipsoid " << i << " (" << role_name(car.spec().ellipsoids[i].role)
-                    << ") is " << contact.depth << " m deep in collider " << ref.collider << "'s triangle "
-                    << ref.triangle << ", more than half its smallest semi-axis (" << limit
+                why << "World::add_car: ellipsoid " << i << " ("
+                    << role_name(car.spec().ellipsoids[i].role) << ") is " << contact.depth
+                    << " m deep in collider " << ref.collider << "'s triangle " << ref.triangle
+                    << ", more than half its smallest semi-axis (" << limit
                     << " m): the car starts inside geometry";
                 throw Error(why.str());
             }
@@ -125,7 +135,8 @@ void World::update_car_or_reset(CarSlot& slot, PhaseStopwatch& watch) {
     // Car::restore re-checks the start state: if even that were impossible it throws, loudly.
     slot.car.restore(reset, slot.car.inputs(), slot.start_suspension);
     for (Contact& contact : slot.deepest)
-        contact = Contact{-std::numeric_limits<double>::infinity(), glm::dvec3(0.0), glm::dvec3(0.0)};
+        contact =
+            Contact{-std::numeric_limits<double>::infinity(), glm::dvec3(0.0), glm::dvec3(0.0)};
     for (TriangleRef& ref : slot.deepest_ref) ref = TriangleRef{~0u, ~0u};
     ++slot.resets;
     slot.last_reset = "update " + std::to_string(updates_ + 1) + ": " + why;

@@ -19,7 +19,8 @@ std::string WorldSettings::validate() const {
         why << "WorldSettings.substeps must be in [1, 10000], got " << substeps;
     else if (!(is_finite(gravity) && glm::length(gravity) <= kMaxGravity))
         why << "WorldSettings.gravity must be finite and at most " << kMaxGravity
-            << " m/s^2 in magnitude, got (" << gravity.x << ", " << gravity.y << ", " << gravity.z << ")";
+            << " m/s^2 in magnitude, got (" << gravity.x << ", " << gravity.y << ", " << gravity.z
+            << ")";
     else if (!(std::isfinite(broad_phase_margin) && broad_phase_margin >= 0.0))
         why << "WorldSettings.broad_phase_margin must be finite and >= 0, got "
             << broad_phase_margin;

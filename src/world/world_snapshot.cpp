@@ -27,7 +27,8 @@ void add(core::Fnv1a& hash, const ContactMaterial& m) {
 // Every field of CarSpec goes into its fingerprint. The size checks fail to compile when a
 // field is added, as a reminder to hash it too (then update the sizes).
 static_assert(sizeof(CarSpec) == 240, "a new CarSpec field must join fingerprint(CarSpec)");
-static_assert(sizeof(CarEllipsoid) == 88, "a new CarEllipsoid field must join fingerprint(CarSpec)");
+static_assert(sizeof(CarEllipsoid) == 88,
+              "a new CarEllipsoid field must join fingerprint(CarSpec)");
 
 std::string describe(const ColliderFingerprint& f) {
     std::ostringstream text;
@@ -36,16 +37,21 @@ std::string describe(const ColliderFingerprint& f) {
     return text.str();
 }
 
-bool same(double x, double y) { return std::bit_cast<std::uint64_t>(x) == std::bit_cast<std::uint64_t>(y); }
+bool same(double x, double y) {
+    return std::bit_cast<std::uint64_t>(x) == std::bit_cast<std::uint64_t>(y);
+}
 
 // The first stepping setting that differs, or empty. `profile` does not change results.
 static_assert(sizeof(WorldSettings) == 96,
               "a new WorldSettings field must join settings_difference and the snapshot file");
 std::string settings_difference(const WorldSettings& a, const WorldSettings& b) {
     std::ostringstream why;
-    if (!same(a.dt_update, b.dt_update)) why << "dt_update " << a.dt_update << " vs " << b.dt_update;
-    else if (a.steps != b.steps) why << "steps " << a.steps << " vs " << b.steps;
-    else if (a.substeps != b.substeps) why << "substeps " << a.substeps << " vs " << b.substeps;
+    if (!same(a.dt_update, b.dt_update))
+        why << "dt_update " << a.dt_update << " vs " << b.dt_update;
+    else if (a.steps != b.steps)
+        why << "steps " << a.steps << " vs " << b.steps;
+    else if (a.substeps != b.substeps)
+        why << "substeps " << a.substeps << " vs " << b.substeps;
     else if (!same(a.gravity.x, b.gravity.x) || !same(a.gravity.y, b.gravity.y) ||
              !same(a.gravity.z, b.gravity.z))
         why << "gravity";
@@ -54,7 +60,8 @@ std::string settings_difference(const WorldSettings& a, const WorldSettings& b) 
     else if (a.mid_phase != b.mid_phase)
         why << "mid_phase " << to_string(a.mid_phase) << " vs " << to_string(b.mid_phase);
     else if (a.mid_phase_look_ahead != b.mid_phase_look_ahead)
-        why << "mid_phase_look_ahead " << a.mid_phase_look_ahead << " vs " << b.mid_phase_look_ahead;
+        why << "mid_phase_look_ahead " << a.mid_phase_look_ahead << " vs "
+            << b.mid_phase_look_ahead;
     else if (!same(a.mid_phase_slack, b.mid_phase_slack))
         why << "mid_phase_slack " << a.mid_phase_slack << " vs " << b.mid_phase_slack;
     else if (!same(a.max_car_speed, b.max_car_speed))
@@ -82,7 +89,8 @@ std::string car_problem(const CarSnapshot& car) {
     if (!(in.brake >= 0.0 && in.brake <= 1.0)) return "brake is not in [0, 1]";
     if (!(in.steer >= -1.0 && in.steer <= 1.0)) return "steer is not in [-1, 1]";
     if (car.suspension.empty()) return "it has no ellipsoids";
-    if (car.contacts.size() != car.suspension.size() || car.deepest_refs.size() != car.suspension.size())
+    if (car.contacts.size() != car.suspension.size() ||
+        car.deepest_refs.size() != car.suspension.size())
         return "its per-ellipsoid lists differ in length";
     for (std::size_t i = 0; i < car.suspension.size(); ++i) {
         if (!(std::isfinite(car.suspension[i]) && car.suspension[i] >= 0.0))
@@ -120,11 +128,12 @@ std::uint64_t fingerprint(const CarSpec& spec) {
     add(hash, spec.body_contact);
     add(hash, spec.wheel_contact);
     hash.add(spec.rear_grip_factor);
-    hash.add(spec.suspension.stiffness), hash.add(spec.suspension.damping), hash.add(spec.suspension.travel);
-    for (const double x : {spec.max_drive_force, spec.front_drive_share, spec.traction_limit,
-                           spec.max_drive_power, spec.max_brake_force, spec.front_brake_share,
-                           spec.max_steer_angle, spec.deep_contact_fraction, spec.drag_area,
-                           spec.downforce_area, spec.air_density})
+    hash.add(spec.suspension.stiffness), hash.add(spec.suspension.damping),
+        hash.add(spec.suspension.travel);
+    for (const double x :
+         {spec.max_drive_force, spec.front_drive_share, spec.traction_limit, spec.max_drive_power,
+          spec.max_brake_force, spec.front_brake_share, spec.max_steer_angle,
+          spec.deep_contact_fraction, spec.drag_area, spec.downforce_area, spec.air_density})
         hash.add(x);
     return hash.value;
 }
@@ -144,9 +153,13 @@ WorldSnapshot World::save_state() const {
     snapshot.update_count = updates_;
     for (const CarSlot& slot : cars_) {
         const std::span<const double> suspension = slot.car.suspension();
-        snapshot.cars.push_back({fingerprint(slot.car.spec()), slot.car.state(), slot.car.inputs(),
-                                 {suspension.begin(), suspension.end()}, slot.deepest,
-                                 slot.deepest_ref, slot.resets});
+        snapshot.cars.push_back({fingerprint(slot.car.spec()),
+                                 slot.car.state(),
+                                 slot.car.inputs(),
+                                 {suspension.begin(), suspension.end()},
+                                 slot.deepest,
+                                 slot.deepest_ref,
+                                 slot.resets});
     }
     return snapshot;
 }
@@ -155,7 +168,8 @@ WorldSnapshot World::save_state() const {
 // rejected snapshot leaves the World as it was.
 void World::restore_state(const WorldSnapshot& snapshot) {
     const auto reject = [](const std::string& why) { throw Error("World::restore_state: " + why); };
-    if (std::string why = snapshot.validate(); !why.empty()) reject("the snapshot is invalid: " + why);
+    if (std::string why = snapshot.validate(); !why.empty())
+        reject("the snapshot is invalid: " + why);
 
     const std::vector<ColliderFingerprint> colliders = fingerprint(*statics_);
     if (snapshot.colliders.size() != colliders.size())

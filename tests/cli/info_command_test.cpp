@@ -3,9 +3,10 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
-#include <sys/wait.h>
 
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+
 #include <nlohmann/json.hpp>
 
 #include "io/io_test_support.hpp"
@@ -21,7 +22,7 @@ struct CommandResult {
 };
 
 class InfoCommand : public test::ScratchFolderTest {
-protected:
+  protected:
     // Runs `trackphys <arguments>` (TRACKPHYS_CLI is the executable's path, from CMake).
     CommandResult run(const std::string& arguments) const {
         const std::string err_path = file("stderr.txt").string();

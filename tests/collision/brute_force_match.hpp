@@ -13,8 +13,9 @@
 #include <random>
 #include <vector>
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+
+#include <glm/geometric.hpp>
 
 #include "trackphys/collision/brute_force_collider.hpp"
 #include "trackphys/collision/static_collider.hpp"
@@ -29,14 +30,18 @@ constexpr int kQueries = 10000;
 // Random query material for one mesh: points near its vertices, edges and faces (where
 // the predicates' boundaries are), uniform in its padded bounds, and far away.
 class QueryGenerator {
-public:
+  public:
     QueryGenerator(const TriangleMesh& mesh, std::uint64_t seed) : mesh_(mesh), rng_(seed) {
         for (const glm::dvec3& v : mesh.vertices) bounds_.expand(v);
         scale_ = glm::length(bounds_.extent());
     }
 
-    double uniform(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng_); }
-    double log_uniform(double lo, double hi) { return std::exp(uniform(std::log(lo), std::log(hi))); }
+    double uniform(double lo, double hi) {
+        return std::uniform_real_distribution<double>(lo, hi)(rng_);
+    }
+    double log_uniform(double lo, double hi) {
+        return std::exp(uniform(std::log(lo), std::log(hi)));
+    }
     int pick(int n) { return std::uniform_int_distribution<int>(0, n - 1)(rng_); }
 
     glm::dvec3 unit_vector() {
@@ -53,12 +58,15 @@ public:
 
     // A point on a random triangle: a vertex, an edge point or an interior point.
     glm::dvec3 surface_point() {
-        const auto& tri = mesh_.triangles[static_cast<std::size_t>(pick(int(mesh_.triangles.size())))];
+        const auto& tri =
+            mesh_.triangles[static_cast<std::size_t>(pick(int(mesh_.triangles.size())))];
         const glm::dvec3 a = mesh_.vertices[tri[0]], b = mesh_.vertices[tri[1]],
                          c = mesh_.vertices[tri[2]];
         switch (pick(3)) {
-            case 0: return a;
-            case 1: return a + (b - a) * uniform(0.0, 1.0);
+            case 0:
+                return a;
+            case 1:
+                return a + (b - a) * uniform(0.0, 1.0);
             default: {
                 double u = uniform(0.0, 1.0), v = uniform(0.0, 1.0);
                 if (u + v > 1.0) u = 1.0 - u, v = 1.0 - v;
@@ -69,15 +77,18 @@ public:
 
     glm::dvec3 point() {
         switch (pick(10)) {
-            case 0: return bounds_.center() + unit_vector() * (scale_ * 1e4);
+            case 0:
+                return bounds_.center() + unit_vector() * (scale_ * 1e4);
             case 1:
             case 2: {
                 const Aabb b = bounds_.padded(0.1 * scale_);
                 return {uniform(b.min.x, b.max.x), uniform(b.min.y, b.max.y),
                         uniform(b.min.z, b.max.z)};
             }
-            case 3: return surface_point();  // exactly on the surface
-            default: return surface_point() + unit_vector() * log_uniform(1e-6, 0.05) * scale_;
+            case 3:
+                return surface_point();  // exactly on the surface
+            default:
+                return surface_point() + unit_vector() * log_uniform(1e-6, 0.05) * scale_;
         }
     }
 
@@ -86,7 +97,8 @@ public:
     Aabb box() {
         const glm::dvec3 c = point();
         if (pick(5) == 0) {  // corner exactly on a vertex: touching boxes
-            const glm::dvec3 v = mesh_.vertices[static_cast<std::size_t>(pick(int(mesh_.vertices.size())))];
+            const glm::dvec3 v =
+                mesh_.vertices[static_cast<std::size_t>(pick(int(mesh_.vertices.size())))];
             const glm::dvec3 size(log_uniform(1e-3, 0.3) * scale_);
             return pick(2) ? Aabb{v, v + size} : Aabb{v - size, v};
         }
@@ -119,7 +131,7 @@ public:
         return r;
     }
 
-private:
+  private:
     const TriangleMesh& mesh_;
     std::mt19937_64 rng_;
     Aabb bounds_;
@@ -181,13 +193,12 @@ inline ::testing::AssertionResult same_ray_hit(const StaticCollider& bvh,
     const glm::dvec3 point = ray.origin + ray.dir * w->distance;
     const double off_plane = std::abs(glm::dot(point - t[0], w->normal));
     // The normal of a sliver is only as good as 1 / sin of its angle.
-    const double conditioning =
-        glm::length(e1) * glm::length(e2) / glm::length(glm::cross(e1, e2));
-    const double scale = 1.0 + glm::length(ray.origin - t[0]) + w->distance + glm::length(e1) +
-                         glm::length(e2);
+    const double conditioning = glm::length(e1) * glm::length(e2) / glm::length(glm::cross(e1, e2));
+    const double scale =
+        1.0 + glm::length(ray.origin - t[0]) + w->distance + glm::length(e1) + glm::length(e2);
     if (!(off_plane <= 1e-9 * scale * conditioning))
-        return failure() << "hit on triangle " << w->triangle << " at " << w->distance
-                         << " is " << off_plane << " m off its plane";
+        return failure() << "hit on triangle " << w->triangle << " at " << w->distance << " is "
+                         << off_plane << " m off its plane";
     return ::testing::AssertionSuccess();
 }
 

@@ -1,11 +1,12 @@
 // Every StaticCollider query against its BruteForceCollider twin: the same triangle sets
 // and the same closest hits, on >= 10k random queries per kind and mesh.
 
+#include "collision/brute_force_match.hpp"
+
 #include <vector>
 
 #include <gtest/gtest.h>
 
-#include "collision/brute_force_match.hpp"
 #include "collision/collision_meshes.hpp"
 #include "trackphys/collision/static_collider.hpp"
 #include "trackphys/track/track.hpp"
@@ -37,13 +38,15 @@ TEST(BruteForceMatch, DefaultTrackTightestTurn) {
     const Track track = generate_track(params);
     const std::size_t tightest = compute_track_stats(track).tightest_sample;
     std::size_t chunk = 0;
-    while (chunk + 1 < track.chunks.size() && track.chunks[chunk + 1].first_sample <= tightest) ++chunk;
+    while (chunk + 1 < track.chunks.size() && track.chunks[chunk + 1].first_sample <= tightest)
+        ++chunk;
     TriangleMesh mesh;
     for (std::size_t c : {chunk, (chunk + 1) % track.chunks.size()}) {
         const TriangleMesh& part = track.chunks[c].mesh;
         const auto base = static_cast<std::uint32_t>(mesh.vertices.size());
         mesh.vertices.insert(mesh.vertices.end(), part.vertices.begin(), part.vertices.end());
-        for (const auto& t : part.triangles) mesh.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+        for (const auto& t : part.triangles)
+            mesh.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
     }
     expect_same_everywhere(mesh, 55);
 }

@@ -106,8 +106,7 @@ inline TriangleMesh nasty_mesh(std::uint64_t seed, std::size_t* degenerate = nul
 /// cross-sections evenly spaced along the loop (scale * 1.82 km), 24 quads across (20 road,
 /// 2 per wall): 48 * segments triangles sharing vertices.
 struct BankedLoop {
-    static constexpr double kHalfX = 400.0, kHalfZ = 150.0, kRoadWidth = 12.0,
-                            kWallHeight = 1.0;
+    static constexpr double kHalfX = 400.0, kHalfZ = 150.0, kRoadWidth = 12.0, kWallHeight = 1.0;
     static constexpr std::uint32_t kAcross = 24;
 
     double scale = 1.0;
@@ -121,10 +120,10 @@ struct BankedLoop {
         const double theta = 2.0 * std::numbers::pi * u;
         Frame f;
         f.center = glm::dvec3(kHalfX * std::cos(theta), 10.0 * std::sin(2.0 * theta),
-                              kHalfZ * std::sin(theta)) * scale;
-        f.tangent = glm::normalize(glm::dvec3(-kHalfX * std::sin(theta),
-                                              20.0 * std::cos(2.0 * theta),
-                                              kHalfZ * std::cos(theta)));
+                              kHalfZ * std::sin(theta)) *
+                   scale;
+        f.tangent = glm::normalize(glm::dvec3(
+            -kHalfX * std::sin(theta), 20.0 * std::cos(2.0 * theta), kHalfZ * std::cos(theta)));
         const glm::dvec3 flat_left = glm::normalize(glm::cross(glm::dvec3(0, 1, 0), f.tangent));
         const glm::dvec3 flat_up = glm::cross(f.tangent, flat_left);
         // Bank toward the inside of the turn, strongest at the tight ends (theta = 0, pi).
@@ -166,8 +165,7 @@ struct BankedLoop {
                 if (k <= 2) {  // left wall, top down
                     p = f.center + f.left * half + f.up * (kWallHeight * (2 - k) / 2.0);
                 } else if (k >= kAcross - 2) {  // right wall, bottom up
-                    p = f.center - f.left * half +
-                        f.up * (kWallHeight * (k - (kAcross - 2)) / 2.0);
+                    p = f.center - f.left * half + f.up * (kWallHeight * (k - (kAcross - 2)) / 2.0);
                 } else {
                     const double s = double(k - 2) / (kAcross - 4);
                     p = f.center + f.left * (half - s * kRoadWidth);
@@ -190,8 +188,8 @@ struct BankedLoop {
     /// along the tangent and padded by `margin` m.
     Aabb car_box(double u, double travel, double margin) const {
         const Frame f = frame(u);
-        const glm::dvec3 half_extent = glm::abs(f.tangent) * 2.25 + glm::abs(f.up) * 0.6 +
-                                       glm::abs(f.left) * 1.0;
+        const glm::dvec3 half_extent =
+            glm::abs(f.tangent) * 2.25 + glm::abs(f.up) * 0.6 + glm::abs(f.left) * 1.0;
         const glm::dvec3 center = f.center + f.up * 0.6;
         Aabb box{center - half_extent, center + half_extent};
         box.expand(Aabb{box.min + f.tangent * travel, box.max + f.tangent * travel});

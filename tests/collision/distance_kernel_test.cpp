@@ -5,8 +5,9 @@
 #include <cmath>
 #include <random>
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+
+#include <glm/geometric.hpp>
 
 #include "collision/triangle_predicates.hpp"
 #include "support/closest_point_reference.hpp"
@@ -81,10 +82,14 @@ TEST(DistanceKernels, SegmentThroughTheTriangleIsAtDistanceZero) {
 TEST(DistanceKernels, SegmentSegmentSpecialCases) {
     // Crossing, parallel, collinear apart, and point cases.
     EXPECT_EQ(segment_segment_distance_squared({-1, 0, 0}, {1, 0, 0}, {0, -1, 0}, {0, 1, 0}), 0.0);
-    EXPECT_DOUBLE_EQ(segment_segment_distance_squared({0, 0, 0}, {1, 0, 0}, {0, 2, 0}, {1, 2, 0}), 4.0);
-    EXPECT_DOUBLE_EQ(segment_segment_distance_squared({0, 0, 0}, {1, 0, 0}, {3, 0, 0}, {4, 0, 0}), 4.0);
-    EXPECT_DOUBLE_EQ(segment_segment_distance_squared({0, 0, 0}, {0, 0, 0}, {3, 0, 0}, {4, 0, 0}), 9.0);
-    EXPECT_DOUBLE_EQ(segment_segment_distance_squared({0, 1, 0}, {0, 1, 0}, {2, 1, 0}, {2, 1, 0}), 4.0);
+    EXPECT_DOUBLE_EQ(segment_segment_distance_squared({0, 0, 0}, {1, 0, 0}, {0, 2, 0}, {1, 2, 0}),
+                     4.0);
+    EXPECT_DOUBLE_EQ(segment_segment_distance_squared({0, 0, 0}, {1, 0, 0}, {3, 0, 0}, {4, 0, 0}),
+                     4.0);
+    EXPECT_DOUBLE_EQ(segment_segment_distance_squared({0, 0, 0}, {0, 0, 0}, {3, 0, 0}, {4, 0, 0}),
+                     9.0);
+    EXPECT_DOUBLE_EQ(segment_segment_distance_squared({0, 1, 0}, {0, 1, 0}, {2, 1, 0}, {2, 1, 0}),
+                     4.0);
 }
 
 }  // namespace

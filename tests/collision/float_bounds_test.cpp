@@ -2,6 +2,8 @@
 // must be rounded the right way and tightly (a float step further breaks the sure-overlap
 // test, a step short breaks containment).
 
+#include "collision/float_bounds.hpp"
+
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -10,8 +12,6 @@
 #include <vector>
 
 #include <gtest/gtest.h>
-
-#include "collision/float_bounds.hpp"
 
 namespace trackphys {
 namespace {
@@ -38,9 +38,9 @@ void expect_tight(double x) {
 }
 
 TEST(FloatBounds, RoundsEachWayTightly) {
-    for (double x : {0.1, -0.1, 1.0 / 3.0, -2.0 / 3.0, 0.25, -0.25, 1.0, 16777217.0, -16777217.0,
-                     1e-30, -1e-30, 1e-45, -1e-45, 123456.789, -98765.4321, 1e18, -1e18, 3.4e38,
-                     -3.4e38})
+    for (double x :
+         {0.1, -0.1, 1.0 / 3.0, -2.0 / 3.0, 0.25, -0.25, 1.0, 16777217.0, -16777217.0, 1e-30,
+          -1e-30, 1e-45, -1e-45, 123456.789, -98765.4321, 1e18, -1e18, 3.4e38, -3.4e38})
         expect_tight(x);
     // Around coordinates of a large world, where a float step is millimetres.
     std::mt19937_64 rng(3);
@@ -84,10 +84,10 @@ TEST(FloatBounds, BoxesRoundEveryComponent) {
 // magnitude from below the float denormals to beyond the float range.
 TEST(FloatBounds, BothWaysMatchesScalar) {
     const double inf = std::numeric_limits<double>::infinity();
-    std::vector<double> values{0.0,   -0.0,   0.1,    -0.1,   1.0 / 3.0, 16777217.0, -16777217.0,
-                               1e-30, -1e-30, 1e-45,  -1e-45, 1e-300,    -1e-300,    1e18,
-                               -1e18, 3.4e38, -3.4e38, 1e300, -1e300,    inf,        -inf,
-                               std::nan("")};
+    std::vector<double> values{0.0,         -0.0,  0.1,    -0.1,        1.0 / 3.0, 16777217.0,
+                               -16777217.0, 1e-30, -1e-30, 1e-45,       -1e-45,    1e-300,
+                               -1e-300,     1e18,  -1e18,  3.4e38,      -3.4e38,   1e300,
+                               -1e300,      inf,   -inf,   std::nan("")};
     std::mt19937_64 rng(5);
     std::uniform_real_distribution<double> mantissa(-1.0, 1.0);
     std::uniform_int_distribution<int> exponent(-160, 140);

@@ -2,12 +2,13 @@
 // tables, and the byte shuffle of the x86-64-v2 build, against a plain statement of it for
 // every mask.
 
+#include "collision/lane_compaction.hpp"
+
 #include <cstdint>
 #include <vector>
 
 #include <gtest/gtest.h>
 
-#include "collision/lane_compaction.hpp"
 #include "trackphys/build_target.hpp"
 
 namespace trackphys {

@@ -23,7 +23,8 @@ std::shared_ptr<const StaticWorld> ground() {
     TriangleMesh mesh;
     constexpr int kCells = 80;
     for (int i = 0; i <= kCells; ++i)
-        for (int k = 0; k <= kCells; ++k) mesh.vertices.push_back({-20.0 + 0.5 * i, 0.0, -20.0 + 0.5 * k});
+        for (int k = 0; k <= kCells; ++k)
+            mesh.vertices.push_back({-20.0 + 0.5 * i, 0.0, -20.0 + 0.5 * k});
     const auto at = [](int i, int k) { return std::uint32_t(i * (kCells + 1) + k); };
     for (int i = 0; i < kCells; ++i)
         for (int k = 0; k < kCells; ++k) {
@@ -37,8 +38,8 @@ std::shared_ptr<const StaticWorld> ground() {
 
 // The wheel rolling along +x at `speed` (m/s), 1 cm into the ground, after `steps` steps.
 SweptEllipsoid wheel_step(double speed, int steps, double height = 0.34) {
-    const Ellipsoid wheel(glm::dvec3(-3.0 + speed * kStepDt * steps, height, 0.0), glm::dquat(1, 0, 0, 0),
-                          kWheel);
+    const Ellipsoid wheel(glm::dvec3(-3.0 + speed * kStepDt * steps, height, 0.0),
+                          glm::dquat(1, 0, 0, 0), kWheel);
     return {wheel, wheel.center() + glm::dvec3(speed * kStepDt, 0.0, 0.0), 0.01};
 }
 
@@ -61,9 +62,11 @@ TEST(LookAhead, OneStepIsTheStepItself) {
 
 TEST(LookAhead, CoversTheStepsOfAStraightPathAndNoMore) {
     for (const double speed : {0.5, 30.0, 278.0}) {
-        const SweptEllipsoid ahead = look_ahead(wheel_step(speed, 0), {speed, 0.0, 0.0}, kStepDt, 3, kSlack);
+        const SweptEllipsoid ahead =
+            look_ahead(wheel_step(speed, 0), {speed, 0.0, 0.0}, kStepDt, 3, kSlack);
         EXPECT_GT(ahead.margin, wheel_step(speed, 0).margin);
-        for (int step = 0; step < 3; ++step) EXPECT_TRUE(ahead.contains(wheel_step(speed, step))) << speed;
+        for (int step = 0; step < 3; ++step)
+            EXPECT_TRUE(ahead.contains(wheel_step(speed, step))) << speed;
         // A step beyond (farther than the slack) needs a new query.
         if (speed * kStepDt > kSlack) {
             EXPECT_FALSE(ahead.contains(wheel_step(speed, 4))) << speed;

@@ -7,9 +7,10 @@
 #include <random>
 #include <vector>
 
+#include <gtest/gtest.h>
+
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
-#include <gtest/gtest.h>
 
 #include "collision/plane_tree_reference.hpp"
 #include "trackphys/collision/mid_phase.hpp"
@@ -87,7 +88,8 @@ TEST(MidPhase, EveryModeKeepsWhatTheCarTouchesOnTheDefaultTrack) {
     std::vector<std::unique_ptr<MidPhase>> mids;
     for (const MidPhaseMode mode : modes)
         mids.push_back(std::make_unique<MidPhase>(
-            mode, w.world, mode == MidPhaseMode::precomputed_tree ? w.trees : ColliderPlaneTrees{}));
+            mode, w.world,
+            mode == MidPhaseMode::precomputed_tree ? w.trees : ColliderPlaneTrees{}));
 
     std::mt19937_64 rng(3);
     std::uniform_int_distribution<std::size_t> sample(0, w.track.centerline.size() - 1);
@@ -171,10 +173,10 @@ TEST(MidPhase, PrecomputedModeNeedsOneTreePerCollider) {
 TEST(MidPhase, QueriesRejectBadInputInEveryMode) {
     const TrackWorld& w = track_world();
     std::vector<MidPhaseCandidate> out;
-    for (const MidPhaseMode mode : {MidPhaseMode::none, MidPhaseMode::per_update_tree,
-                                    MidPhaseMode::precomputed_tree}) {
-        MidPhase mid(mode, w.world, mode == MidPhaseMode::precomputed_tree ? w.trees
-                                                                            : ColliderPlaneTrees{});
+    for (const MidPhaseMode mode :
+         {MidPhaseMode::none, MidPhaseMode::per_update_tree, MidPhaseMode::precomputed_tree}) {
+        MidPhase mid(mode, w.world,
+                     mode == MidPhaseMode::precomputed_tree ? w.trees : ColliderPlaneTrees{});
         mid.begin_update(car_update_box(w.track.centerline[0]));
         EXPECT_THROW(mid.query_swept_sphere({0, 0, 0}, {0, 0, 0}, -1.0, out), Error);
         const Ellipsoid e(w.track.centerline[0].position, {1, 0, 0, 0}, {1, 1, 1});
@@ -183,8 +185,8 @@ TEST(MidPhase, QueriesRejectBadInputInEveryMode) {
 }
 
 TEST(MidPhase, ModeNamesRoundTrip) {
-    for (const MidPhaseMode mode : {MidPhaseMode::none, MidPhaseMode::per_update_tree,
-                                    MidPhaseMode::precomputed_tree})
+    for (const MidPhaseMode mode :
+         {MidPhaseMode::none, MidPhaseMode::per_update_tree, MidPhaseMode::precomputed_tree})
         EXPECT_EQ(parse_mid_phase_mode(to_string(mode)), mode);
     EXPECT_FALSE(parse_mid_phase_mode("bvh").has_value());
 }

@@ -44,8 +44,8 @@ inline long double swept_sphere_distance(const glm::dvec3& start, const glm::dve
 
 /// The swept ellipsoid (scaled about its center by `scale`) touches the triangle iff this
 /// is <= 1: the segment-triangle distance in the frame x -> D^-1 Q^T (x - center).
-inline long double swept_ellipsoid_distance(const Ellipsoid& e, double scale,
-                                            const glm::dvec3& end, const Triangle& t) {
+inline long double swept_ellipsoid_distance(const Ellipsoid& e, double scale, const glm::dvec3& end,
+                                            const Triangle& t) {
     const glm::dmat3& q = e.sorted_axes();
     auto map = [&](const glm::dvec3& p) {
         const LVec d = lvec(p) - lvec(e.center());

@@ -1,6 +1,8 @@
 // PlaneTree: queries equal a brute-force scan with the tree's own filter, and that filter is
 // the exact contact test (long-double references); node planes hold their triangles; builds
 // are deterministic, bounded in depth and reuse storage; bad input is rejected.
+#include "trackphys/collision/plane_tree.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -10,15 +12,15 @@
 #include <utility>
 #include <vector>
 
+#include <gtest/gtest.h>
+
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
-#include <gtest/gtest.h>
 
 #include "collision/collision_meshes.hpp"
 #include "collision/plane_tree_reference.hpp"
-#include "trackphys/collision/plane_tree.hpp"
-#include "trackphys/detail/plane_tree_builder.hpp"
 #include "trackphys/collision/static_collider.hpp"
+#include "trackphys/detail/plane_tree_builder.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/track/track.hpp"
 #include "trackphys/track/track_stats.hpp"
@@ -86,12 +88,14 @@ void check(const PlaneTree& tree, const Query& q, Tally& tally) {
         near = near.padded(q.ellipsoid->bounding_radius() * scale + 1e-6);
     } else if (q.start == q.end) {
         tree.query_sphere(q.start, q.radius, out);
-        const auto slots = test::brute_force_slots(tree, SphereShape<false>(q.start, q.end, q.radius));
+        const auto slots =
+            test::brute_force_slots(tree, SphereShape<false>(q.start, q.end, q.radius));
         expected.insert(expected.end(), slots.begin(), slots.end());
         near = near.padded(q.radius + 1e-6);
     } else {
         tree.query_swept_sphere(q.start, q.end, q.radius, out);
-        const auto slots = test::brute_force_slots(tree, SphereShape<true>(q.start, q.end, q.radius));
+        const auto slots =
+            test::brute_force_slots(tree, SphereShape<true>(q.start, q.end, q.radius));
         expected.insert(expected.end(), slots.begin(), slots.end());
         near = near.padded(q.radius + 1e-6);
     }
@@ -113,8 +117,8 @@ void check(const PlaneTree& tree, const Query& q, Tally& tally) {
                                   << " <= " << double(limit);
         } else if (d >= limit + kTolerance) {
             ++tally.judged;
-            EXPECT_FALSE(reported) << "slot " << slot << " at distance " << double(d) << " > "
-                                   << double(limit);
+            EXPECT_FALSE(reported)
+                << "slot " << slot << " at distance " << double(d) << " > " << double(limit);
         }
     }
 }
@@ -144,7 +148,8 @@ std::vector<Query> queries_near(const Soup& soup, std::size_t count, std::uint64
         q.end = kind == 0 ? q.start : q.start + glm::dvec3(sym(rng), sym(rng), sym(rng)) * 2.0;
         q.radius = r;
         if (kind == 2) {
-            const glm::dvec3 axes(r * (0.2 + unit(rng)), r * (0.2 + unit(rng)), r * (0.2 + unit(rng)));
+            const glm::dvec3 axes(r * (0.2 + unit(rng)), r * (0.2 + unit(rng)),
+                                  r * (0.2 + unit(rng)));
             q.ellipsoid.emplace(q.start, random_rotation(rng), axes);
             q.margin = (i % 2 == 0) ? 0.0 : 0.1 * r * unit(rng);
         }
@@ -193,10 +198,12 @@ const TrackChunkCase& track_chunk_case() {
             ++chunk;
         TrackChunkCase c;
         c.soup = normalized(track.chunks[chunk].mesh);
-        const std::size_t end = chunk + 1 < track.chunks.size() ? track.chunks[chunk + 1].first_sample
-                                                                : track.centerline.size();
+        const std::size_t end = chunk + 1 < track.chunks.size()
+                                    ? track.chunks[chunk + 1].first_sample
+                                    : track.centerline.size();
         std::mt19937_64 rng(8);
-        std::uniform_int_distribution<std::size_t> sample(track.chunks[chunk].first_sample, end - 1);
+        std::uniform_int_distribution<std::size_t> sample(track.chunks[chunk].first_sample,
+                                                          end - 1);
         std::uniform_real_distribution<double> lateral(-7.5, 7.5), height(-0.2, 1.5),
             radius(0.2, 2.0), sweep(0.0, 0.3), unit(0.0, 1.0);
         for (int i = 0; i < 240; ++i) {
@@ -207,8 +214,9 @@ const TrackChunkCase& track_chunk_case() {
             q.radius = radius(rng);
             if (i % 3 == 2) {
                 const glm::dquat frame = glm::quat_cast(glm::dmat3(s.left, s.up, s.tangent));
-                q.ellipsoid.emplace(q.start, frame,
-                                    glm::dvec3(0.2 + unit(rng), 0.15 + 0.3 * unit(rng), 0.3 + 1.5 * unit(rng)));
+                q.ellipsoid.emplace(
+                    q.start, frame,
+                    glm::dvec3(0.2 + unit(rng), 0.15 + 0.3 * unit(rng), 0.3 + 1.5 * unit(rng)));
                 q.margin = 0.02;
             }
             c.queries.push_back(q);
@@ -320,7 +328,8 @@ TEST(PlaneTree, NodePlanesHoldTheirTrianglesAndSlotsArePermutation) {
         EXPECT_EQ(range.second, tree.triangle_count());
         EXPECT_EQ(max_depth, tree.depth());
         std::vector<std::uint32_t> ids;
-        for (std::uint32_t slot = 0; slot < tree.triangle_count(); ++slot) ids.push_back(tree.id(slot));
+        for (std::uint32_t slot = 0; slot < tree.triangle_count(); ++slot)
+            ids.push_back(tree.id(slot));
         std::sort(ids.begin(), ids.end());
         EXPECT_EQ(ids, soup.ids);
         if (settings.rule == PlaneSplitRule::pca_median) {
@@ -349,8 +358,8 @@ TEST(PlaneTree, BuildIsDeterministicAndRebuildReusesStorage) {
             const PlaneTreeNode& a = reused.nodes()[i];
             const PlaneTreeNode& b = fresh.nodes()[i];
             EXPECT_TRUE(a.normal[0] == b.normal[0] && a.normal[1] == b.normal[1] &&
-                        a.normal[2] == b.normal[2] && a.offset == b.offset &&
-                        a.first == b.first && a.packed == b.packed)
+                        a.normal[2] == b.normal[2] && a.offset == b.offset && a.first == b.first &&
+                        a.packed == b.packed)
                 << "node " << i;
         }
         for (std::uint32_t slot = 0; slot < fresh.triangle_count(); ++slot)

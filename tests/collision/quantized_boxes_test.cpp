@@ -4,6 +4,8 @@
 // the block test's two answers against exact double overlap ("may" never misses, "surely"
 // never lies), at box borders, on flat boxes and at huge coordinates.
 
+#include "collision/quantized_boxes.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -14,13 +16,12 @@
 #include <gtest/gtest.h>
 
 #include "collision/float_bounds.hpp"
-#include "collision/quantized_boxes.hpp"
 
 namespace trackphys {
 namespace {
 
-using collision_detail::AxisGrid;
 using collision_detail::axis_grid;
+using collision_detail::AxisGrid;
 using collision_detail::grid_value;
 using collision_detail::kIndexBias;
 using collision_detail::kIndexLimit;
@@ -32,9 +33,9 @@ constexpr float kFloatInf = std::numeric_limits<float>::infinity();
 // Grids of [lo, hi] boxes: ordinary, at huge coordinates, straddling 0, and flat ones
 // (zero extent: at 0, at a denormal, at 1e18, at a negative value).
 const std::vector<std::pair<float, float>> kBoxes = {
-    {-3.25f, 7.5f},      {1000.0f, 1000.125f}, {-1e18f, 1e18f},  {9.9e17f, 1e18f},
-    {-1e-3f, 2e-3f},     {0.0f, 0.0f},         {1e-44f, 1e-44f}, {1e18f, 1e18f},
-    {-5.5f, -5.5f},      {-1e6f, -999999.9f},  {0.0f, 1e-40f},   {-7.0f, 0.0f},
+    {-3.25f, 7.5f},  {1000.0f, 1000.125f}, {-1e18f, 1e18f},  {9.9e17f, 1e18f},
+    {-1e-3f, 2e-3f}, {0.0f, 0.0f},         {1e-44f, 1e-44f}, {1e18f, 1e18f},
+    {-5.5f, -5.5f},  {-1e6f, -999999.9f},  {0.0f, 1e-40f},   {-7.0f, 0.0f},
 };
 
 // A grid's step is a power of two, at least the float spacing at the box's magnitude and
@@ -108,14 +109,24 @@ TEST(QuantizedBoxes, QueryQuantizationMatchesScalar) {
         const BvhNodeGrid node = collision_detail::node_grid(grids);
         const double span = std::max(double(hi) - double(lo), 1e-30);
         std::uniform_real_distribution<double> u(double(lo) - span, double(hi) + span);
-        std::vector<float> xs = {lo, hi, std::nextafter(lo, -kFloatInf), std::nextafter(hi, kFloatInf),
-                                 0.0f, -0.0f, kFloatInf, -kFloatInf, 3e38f, -3e38f, 1e-45f, -1e-45f};
+        std::vector<float> xs = {lo,
+                                 hi,
+                                 std::nextafter(lo, -kFloatInf),
+                                 std::nextafter(hi, kFloatInf),
+                                 0.0f,
+                                 -0.0f,
+                                 kFloatInf,
+                                 -kFloatInf,
+                                 3e38f,
+                                 -3e38f,
+                                 1e-45f,
+                                 -1e-45f};
         for (int i = 0; i < 500; ++i) xs.push_back(static_cast<float>(u(rng)));
         for (const float x : xs) {
             // The same bound as every query bound: each lane's rounding shows in isolation.
             const collision_detail::FloatBox box{{x, x, x}, {x, x, x}};
-            const collision_detail::QuantizedQuery q = collision_detail::quantize_query(
-                collision_detail::QueryBounds(box, box), node);
+            const collision_detail::QuantizedQuery q =
+                collision_detail::quantize_query(collision_detail::QueryBounds(box, box), node);
             const double scaled = double(x) * axis.inv_step;
             const double floor_rel = std::floor(scaled) - axis.base;
             const double ceil_rel = std::ceil(scaled) - axis.base;
@@ -157,8 +168,10 @@ TEST(QuantizedBoxes, BlockTestIsConservativeBothWays) {
                 }
                 const collision_detail::FloatBox f = collision_detail::outward_float_box(tris[t]);
                 for (int a = 0; a < 3; ++a) {
-                    block[a][t] = static_cast<std::int16_t>(quantize_down(f.min[a], axis) - kIndexBias);
-                    block[3 + a][t] = static_cast<std::int16_t>(quantize_up(f.max[a], axis) - kIndexBias);
+                    block[a][t] =
+                        static_cast<std::int16_t>(quantize_down(f.min[a], axis) - kIndexBias);
+                    block[3 + a][t] =
+                        static_cast<std::int16_t>(quantize_up(f.max[a], axis) - kIndexBias);
                 }
             }
             // Query bounds: random, or exactly at / just beyond a triangle's bound.
@@ -168,10 +181,17 @@ TEST(QuantizedBoxes, BlockTestIsConservativeBothWays) {
                 if (p > r) std::swap(p, r);
                 const Aabb& t = tris[rng() % 8];
                 switch (rng() % 4) {
-                    case 0: r = std::max(p, t.min[a]); break;                         // touches
-                    case 1: r = std::max(p, std::nextafter(t.min[a], -1e300)); break;  // just misses
-                    case 2: p = std::min(r, t.max[a]); break;
-                    default: break;
+                    case 0:
+                        r = std::max(p, t.min[a]);
+                        break;  // touches
+                    case 1:
+                        r = std::max(p, std::nextafter(t.min[a], -1e300));
+                        break;  // just misses
+                    case 2:
+                        p = std::min(r, t.max[a]);
+                        break;
+                    default:
+                        break;
                 }
                 query.min[a] = p;
                 query.max[a] = r;
@@ -186,8 +206,8 @@ TEST(QuantizedBoxes, BlockTestIsConservativeBothWays) {
                 const bool may = ((bits >> t) & 1u) != 0, surely = ((bits >> (8 + t)) & 1u) != 0;
                 bool deep = true, far = false;
                 for (int a = 0; a < 3; ++a) {
-                    const double in_overlap = std::min(query.max[a] - tris[t].min[a],
-                                                       tris[t].max[a] - query.min[a]);
+                    const double in_overlap =
+                        std::min(query.max[a] - tris[t].min[a], tris[t].max[a] - query.min[a]);
                     deep = deep && in_overlap >= margin;
                     far = far || in_overlap <= -margin;
                 }

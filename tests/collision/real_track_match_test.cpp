@@ -12,8 +12,9 @@
 #include <string>
 #include <vector>
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+
+#include <glm/geometric.hpp>
 
 #include "collision/brute_force_match.hpp"
 #include "support/real_tracks.hpp"
@@ -87,16 +88,18 @@ TEST_P(RealTrackMatch, RaysFromAboveTheSurface) {
         const double azimuth = 2.0 * std::numbers::pi * unit(rng);
         const glm::dvec3 oblique(std::sin(tilt) * std::cos(azimuth), -std::cos(tilt),
                                  std::sin(tilt) * std::sin(azimuth));
-        ASSERT_TRUE(test::same_ray_hit(bvh, brute, {above, glm::normalize(oblique), max_distance},
-                                       &hit))
+        ASSERT_TRUE(
+            test::same_ray_hit(bvh, brute, {above, glm::normalize(oblique), max_distance}, &hit))
             << "oblique ray " << i;
         hits[1] += hit;
 
         // Along an axis: horizontal (at walls, barriers, slopes) or straight up (bridges).
         glm::dvec3 axis(0.0);
         const int which = static_cast<int>(unit(rng) * 5.0);
-        if (which == 4) axis.y = 1.0;
-        else axis[which % 2 == 0 ? 0 : 2] = which < 2 ? 1.0 : -1.0;
+        if (which == 4)
+            axis.y = 1.0;
+        else
+            axis[which % 2 == 0 ? 0 : 2] = which < 2 ? 1.0 : -1.0;
         ASSERT_TRUE(test::same_ray_hit(bvh, brute, {above, axis, max_distance}, &hit))
             << "axis ray " << i;
         hits[2] += hit;

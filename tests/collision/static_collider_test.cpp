@@ -1,15 +1,16 @@
 #include "trackphys/collision/static_collider.hpp"
 
 #include <algorithm>
-#include <cstring>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <numeric>
 #include <string>
 #include <vector>
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+
+#include <glm/geometric.hpp>
 
 #include "collision/bvh_builder.hpp"
 #include "collision/collision_meshes.hpp"
@@ -102,7 +103,7 @@ TEST(StaticCollider, SingleTriangle) {
     EXPECT_EQ(hit->normal, glm::dvec3(0, 1, 0));
     EXPECT_FALSE(collider.raycast({0.25, 2.0, -0.25}, {0, -1, 0}, 1.999));
     EXPECT_TRUE(collider.raycast({0.25, 2.0, -0.25}, {0, -1, 0}, 2.0));
-    EXPECT_FALSE(collider.raycast({0.25, 2.0, -0.25}, {0, 1, 0}, kInf));  // pointing away
+    EXPECT_FALSE(collider.raycast({0.25, 2.0, -0.25}, {0, 1, 0}, kInf));   // pointing away
     EXPECT_FALSE(collider.raycast({0.75, 2.0, -0.75}, {0, -1, 0}, kInf));  // beside it
 }
 
@@ -162,7 +163,8 @@ TEST(StaticCollider, KeepsTrianglesAsGivenAndDropsDegenerateOnes) {
     EXPECT_EQ(collider.mesh_triangle_count(), mesh.triangles.size());
     std::size_t kept = 0;
     for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t) {
-        const Triangle given(mesh.vertices[mesh.triangles[t][0]], mesh.vertices[mesh.triangles[t][1]],
+        const Triangle given(mesh.vertices[mesh.triangles[t][0]],
+                             mesh.vertices[mesh.triangles[t][1]],
                              mesh.vertices[mesh.triangles[t][2]]);
         ASSERT_EQ(collider.has_triangle(t), !given.is_degenerate()) << "triangle " << t;
         if (!collider.has_triangle(t)) {
@@ -261,7 +263,8 @@ TEST(StaticCollider, BuildsAreDeterministic) {
     const TriangleMesh mesh = test::random_soup(5000, 77);
     const StaticCollider a(mesh), b(mesh);
     ASSERT_EQ(a.nodes().size(), b.nodes().size());
-    EXPECT_EQ(std::memcmp(a.nodes().data(), b.nodes().data(), a.nodes().size() * sizeof(BvhNode)), 0);
+    EXPECT_EQ(std::memcmp(a.nodes().data(), b.nodes().data(), a.nodes().size() * sizeof(BvhNode)),
+              0);
     std::vector<std::uint32_t> out_a, out_b;
     a.query_aabb({glm::dvec3(-50.0), glm::dvec3(20.0)}, out_a);
     b.query_aabb({glm::dvec3(-50.0), glm::dvec3(20.0)}, out_b);
@@ -281,8 +284,8 @@ TEST(StaticCollider, ReusedBuffersDoNotReallocate) {
         out.clear();
         collider.query_aabb(loop.car_box(i / 200.0, 2.8, 0.5), out);
         ASSERT_FALSE(out.empty());
-        collider.query_capsule(loop.frame(i / 200.0).center, loop.frame(i / 200.0).center + 0.3, 0.5,
-                               out);
+        collider.query_capsule(loop.frame(i / 200.0).center, loop.frame(i / 200.0).center + 0.3,
+                               0.5, out);
         ASSERT_EQ(out.data(), storage);
     }
 }

@@ -46,10 +46,11 @@ TEST(StaticWorld, MatchesBruteForceOverColliders) {
     std::vector<std::uint32_t> ids;
     std::size_t found = 0, hits = 0;
     for (int i = 0; i < 10000; ++i) {
-        const Aabb box = i % 5 == 0 ? Aabb{glm::dvec3(unit(rng), unit(rng), unit(rng)) * 120.0,
-                                           glm::dvec3(unit(rng), unit(rng), unit(rng)) * 120.0 +
-                                               glm::dvec3(30.0)}
-                                    : test::BankedLoop{}.car_box(u01(rng), 2.8, 0.5);
+        const Aabb box =
+            i % 5 == 0
+                ? Aabb{glm::dvec3(unit(rng), unit(rng), unit(rng)) * 120.0,
+                       glm::dvec3(unit(rng), unit(rng), unit(rng)) * 120.0 + glm::dvec3(30.0)}
+                : test::BankedLoop{}.car_box(u01(rng), 2.8, 0.5);
         got.clear();
         want.clear();
         world.query_aabb(box, got);

@@ -24,16 +24,23 @@ TEST(CarSpec, ValidationNamesTheField) {
         const char* expected;
     };
     const Case cases[] = {
-        {[](CarSpec& c) { c.mass.mass = -1.0; }, "CarSpec.mass.mass must be finite and > 0, got -1"},
+        {[](CarSpec& c) { c.mass.mass = -1.0; },
+         "CarSpec.mass.mass must be finite and > 0, got -1"},
         {[](CarSpec& c) { c.mass.principal_inertia.z = 0.0; }, "CarSpec.mass.principal_inertia.z"},
         {[](CarSpec& c) { c.ellipsoids.clear(); }, "CarSpec.ellipsoids must hold 1 to 64"},
-        {[](CarSpec& c) { c.ellipsoids[2].semi_axes.y = 0.0; }, "CarSpec.ellipsoids[2].semi_axes.y must be finite and > 0, got 0"},
-        {[](CarSpec& c) { c.ellipsoids[5].center.x = std::numeric_limits<double>::quiet_NaN(); }, "CarSpec.ellipsoids[5].center is not finite"},
-        {[](CarSpec& c) { c.ellipsoids[1].orientation = {0, 0, 0, 0}; }, "CarSpec.ellipsoids[1].orientation"},
+        {[](CarSpec& c) { c.ellipsoids[2].semi_axes.y = 0.0; },
+         "CarSpec.ellipsoids[2].semi_axes.y must be finite and > 0, got 0"},
+        {[](CarSpec& c) { c.ellipsoids[5].center.x = std::numeric_limits<double>::quiet_NaN(); },
+         "CarSpec.ellipsoids[5].center is not finite"},
+        {[](CarSpec& c) {
+             c.ellipsoids[1].orientation = {0, 0, 0, 0};
+         },
+         "CarSpec.ellipsoids[1].orientation"},
         {[](CarSpec& c) { c.wheel_contact.stiffness = 0.0; }, "CarSpec.wheel_contact.stiffness"},
         {[](CarSpec& c) { c.body_contact.friction = -0.1; }, "CarSpec.body_contact.friction"},
         {[](CarSpec& c) { c.max_steer_angle = 2.0; }, "CarSpec.max_steer_angle must be below 1.5"},
-        {[](CarSpec& c) { c.drag_area = std::numeric_limits<double>::infinity(); }, "CarSpec.drag_area"},
+        {[](CarSpec& c) { c.drag_area = std::numeric_limits<double>::infinity(); },
+         "CarSpec.drag_area"},
     };
     for (const Case& c : cases) {
         CarSpec spec = CarSpec::default_car();

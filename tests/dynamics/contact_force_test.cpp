@@ -3,8 +3,9 @@
 #include <cmath>
 #include <random>
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+
+#include <glm/geometric.hpp>
 
 namespace trackphys {
 namespace {
@@ -15,8 +16,8 @@ const ContactMaterial material{2.0e5, 1.5e4, 1.2, 0.05};
 TEST(ContactForce, SpringAndDamperNeverPull) {
     EXPECT_DOUBLE_EQ(normal_force(material, 0.01, up, glm::dvec3(0.0)), 2000.0);
     EXPECT_DOUBLE_EQ(normal_force(material, 0.01, up, {0, -0.1, 0}), 2000.0 + 1500.0);
-    EXPECT_EQ(normal_force(material, 0.01, up, {0, 1.0, 0}), 0.0);  // separating fast
-    EXPECT_EQ(normal_force(material, -0.01, up, {0, -1.0, 0}), 0.0); // not touching
+    EXPECT_EQ(normal_force(material, 0.01, up, {0, 1.0, 0}), 0.0);    // separating fast
+    EXPECT_EQ(normal_force(material, -0.01, up, {0, -1.0, 0}), 0.0);  // not touching
     EXPECT_EQ(normal_force(material, 0.0, up, {0, -1.0, 0}), 0.0);
 }
 

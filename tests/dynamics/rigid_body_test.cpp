@@ -2,9 +2,10 @@
 
 #include <cmath>
 
+#include <gtest/gtest.h>
+
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
-#include <gtest/gtest.h>
 
 namespace trackphys {
 namespace {
@@ -48,11 +49,13 @@ TEST(RigidBody, TorqueFreeSpinKeepsEnergyAndMomentum) {
     state.angular_velocity = {0.3, 5.0, 0.2};  // near the stable major axis
     const MassProperties mass{1.0, {1.0, 2.0, 3.0}};
     const double energy0 = kinetic_energy(state, mass);
-    const glm::dvec3 momentum0 = state.orientation * (mass.principal_inertia *
-                                 (glm::conjugate(state.orientation) * state.angular_velocity));
+    const glm::dvec3 momentum0 =
+        state.orientation *
+        (mass.principal_inertia * (glm::conjugate(state.orientation) * state.angular_velocity));
     for (int i = 0; i < 20000; ++i) integrate(state, mass, Wrench{}, glm::dvec3(0.0), 1e-4);
-    const glm::dvec3 momentum = state.orientation * (mass.principal_inertia *
-                                (glm::conjugate(state.orientation) * state.angular_velocity));
+    const glm::dvec3 momentum =
+        state.orientation *
+        (mass.principal_inertia * (glm::conjugate(state.orientation) * state.angular_velocity));
     EXPECT_NEAR(kinetic_energy(state, mass) / energy0, 1.0, 2e-3);
     EXPECT_LT(glm::length(momentum - momentum0) / glm::length(momentum0), 2e-3);
 }

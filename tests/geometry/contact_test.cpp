@@ -8,8 +8,9 @@
 #include <map>
 #include <string>
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+
+#include <glm/geometric.hpp>
 
 #include "geometry/contact_kernel.hpp"
 #include "support/contact_cases.hpp"
@@ -91,8 +92,7 @@ constexpr double kEpsilon = std::numeric_limits<double>::epsilon();
 /// The largest distance from the ellipsoid's center to a vertex (m).
 double reach(const ContactCase& c) {
     double r = 0;
-    for (int i = 0; i < 3; ++i)
-        r = std::max(r, glm::distance(c.triangle[i], c.ellipsoid.center()));
+    for (int i = 0; i < 3; ++i) r = std::max(r, glm::distance(c.triangle[i], c.ellipsoid.center()));
     return r;
 }
 
@@ -103,16 +103,16 @@ void check_case(const ContactCase& c, KindStats& stats) {
     // The reference is a true minimum: no sampled direction is lower.
     ASSERT_GE(double(ref.contact.sampled_min - ref.contact.depth), -1e-12) << describe(c);
     const double depth_error = std::abs(got.depth - double(ref.contact.depth));
-    // The contract (DESIGN.md), then the accuracy the README reports: 1e-12 m, or, where
-    // that is larger, 2 eps times the triangle's reach from the center. The vertices' offsets
-    // from the center, where any double computation starts, are only known to eps / 2 of that
-    // reach, which lifts the bound above 1e-12 m for the huge family's kilometre-sized
-    // triangles alone.
+    // The contract (docs/design.md#exactness-promises-and-their-tests), then the accuracy
+    // the README reports: 1e-12 m, or, where that is larger, 2 eps times the triangle's reach
+    // from the center. The vertices' offsets from the center, where any double computation
+    // starts, are only known to eps / 2 of that reach, which lifts the bound above 1e-12 m
+    // for the huge family's kilometre-sized triangles alone.
     ASSERT_LE(depth_error, 1e-9) << describe(c) << " got " << got.depth << " want "
                                  << double(ref.contact.depth);
     const double measured = std::max(1e-12, 2.0 * kEpsilon * reach(c));
-    ASSERT_LE(depth_error, measured) << describe(c) << " got " << got.depth << " want "
-                                     << double(ref.contact.depth);
+    ASSERT_LE(depth_error, measured)
+        << describe(c) << " got " << got.depth << " want " << double(ref.contact.depth);
     ++stats.cases;
     stats.depth_error = std::max(stats.depth_error, depth_error);
     // Unique: the runner-up is 1e-6 m worse and g curves up by >= 1e-2 m/rad^2 around the
@@ -162,7 +162,8 @@ TEST(Contact, MatchesTheLongDoubleReferenceOnTheHardMix) {
 /// with several minimisers, vertices on axes, at the center and on the surface.
 TEST(Contact, MatchesTheReferenceOnAxisAlignedGrids) {
     ContactCaseGenerator generator(17);
-    const glm::dvec3 shapes[] = {{0.15, 0.35, 0.35}, {1.0, 0.5, 2.0}, {0.5, 0.5, 0.5}, {0.3, 0.2, 0.1}};
+    const glm::dvec3 shapes[] = {
+        {0.15, 0.35, 0.35}, {1.0, 0.5, 2.0}, {0.5, 0.5, 0.5}, {0.3, 0.2, 0.1}};
     const double grid[] = {-0.5, -0.35, -0.15, 0.0, 0.0, 0.1, 0.15, 0.35, 0.5, 1.0};
     KindStats stats;
     for (int k = 0; k < 3000; ++k) {
@@ -354,7 +355,8 @@ TEST(Contact, FuzzFoundExtremesStayFinite) {
          glm::dquat(3.4148698114093743e-96, 6.1912347778923578e-313, 0, 1),
          {7.2911220195563975e-304, 1.7383389519587511e-310, 3770908679.3887939},
          {glm::dvec3(0), glm::dvec3(0), glm::dvec3(0)}},
-        {glm::dvec3(4.4759381595361623e-91), glm::dquat(0.5, 0.5, 0.5, 0.5),
+        {glm::dvec3(4.4759381595361623e-91),
+         glm::dquat(0.5, 0.5, 0.5, 0.5),
          {4.4207816532211201e+262, 4.4207816532211711e+262, 4.4207816532211711e+262},
          {glm::dvec3(4.4759381595362021e-91, 7.9050503334599447e-323, 5.7326436886959837e-320),
           glm::dvec3(0), glm::dvec3(0)}},
@@ -444,9 +446,7 @@ Ellipsoid scaled(double s, const Ellipsoid& e) {
     return Ellipsoid(s * e.center(), e.orientation(), s * e.semi_axes());
 }
 
-Triangle scaled(double s, const Triangle& t) {
-    return Triangle(s * t[0], s * t[1], s * t[2]);
-}
+Triangle scaled(double s, const Triangle& t) { return Triangle(s * t[0], s * t[1], s * t[2]); }
 
 // Issue 8: fuzz_contact found normals 0.987 long (semi-axes ~6e257 beside a vertex at
 // -3.5e296) and 4.3e-9 off unit (coordinates ~1e209, radii ~1e170). The rescaled path
@@ -474,7 +474,9 @@ TEST(Contact, PowerOfTwoScalesScaleTheContact) {
 // from the origin, its triangle's vertices within a few of its radii, or far out.
 TEST(Contact, HugeAndTinyScalesFarOutKeepAUnitNormal) {
     ContactCaseGenerator generator(20);
-    const auto power = [&](double lo, double hi) { return std::pow(10.0, generator.uniform(lo, hi)); };
+    const auto power = [&](double lo, double hi) {
+        return std::pow(10.0, generator.uniform(lo, hi));
+    };
     // The two findings of issue 8, as closely as the lost reports describe them.
     const std::array<std::pair<Ellipsoid, Triangle>, 2> findings = {{
         {Ellipsoid({1e296, -2e296, 3e295}, generator.rotation(), {6e257, 5.9e257, 6.1e257}),
@@ -496,15 +498,17 @@ TEST(Contact, HugeAndTinyScalesFarOutKeepAUnitNormal) {
         const double reach = std::max({radii.x, radii.y, radii.z});
         std::array<glm::dvec3, 3> v;
         for (glm::dvec3& x : v)
-            x = generator.pick(8) == 0 ? power(-10, 300) * generator.direction()
-                                       : center + reach * generator.uniform(0, 3) * generator.direction();
+            x = generator.pick(8) == 0
+                    ? power(-10, 300) * generator.direction()
+                    : center + reach * generator.uniform(0, 3) * generator.direction();
         const Triangle t(v[0], v[1], v[2]);
         const Contact got = ellipsoid_triangle_contact(e, t);
         ASSERT_TRUE(finite(got)) << k;
         ASSERT_TRUE(std::isfinite(got.depth)) << k;
         ASSERT_NEAR(glm::length(got.normal), 1.0, 1e-12)
             << "radii " << radii.x << " " << radii.y << " " << radii.z << " center " << center.x
-            << " " << center.y << " " << center.z << " v " << v[0].x << " " << v[1].x << " " << v[2].x;
+            << " " << center.y << " " << center.z << " v " << v[0].x << " " << v[1].x << " "
+            << v[2].x;
     }
 }
 

@@ -4,6 +4,7 @@
 #include <random>
 
 #include <gtest/gtest.h>
+
 #include <glm/geometric.hpp>
 
 #include "support/contact_cases.hpp"
@@ -18,7 +19,8 @@ TEST(EllipsoidCull, NeverRejectsAnOverlappingPair) {
     test::ContactCaseGenerator cases(4242);
     int overlapping = 0, rejected = 0;
     for (int i = 0; i < 60000; ++i) {
-        const auto kind = static_cast<test::ContactKind>(i % static_cast<int>(test::ContactKind::count));
+        const auto kind =
+            static_cast<test::ContactKind>(i % static_cast<int>(test::ContactKind::count));
         const test::ContactCase c = cases.make(kind);
         if (c.triangle.is_degenerate()) continue;
         const NormalizedTriangle normalized(c.triangle);
@@ -44,11 +46,13 @@ TEST(EllipsoidCull, DepthBoundAlongAnyDirectionHoldsAndIsTightAtTheContactNormal
     std::normal_distribution<double> gauss;
     int tight = 0;
     for (int i = 0; i < 20000; ++i) {
-        const auto kind = static_cast<test::ContactKind>(i % static_cast<int>(test::ContactKind::count));
+        const auto kind =
+            static_cast<test::ContactKind>(i % static_cast<int>(test::ContactKind::count));
         const test::ContactCase c = cases.make(kind);
         const Contact contact = ellipsoid_triangle_contact(c.ellipsoid, c.triangle);
-        const double scale = 1e-12 * (1.0 + c.ellipsoid.sorted_radii().x + glm::length(c.ellipsoid.center()) +
-                                      glm::length(c.triangle[0]));
+        const double scale =
+            1e-12 * (1.0 + c.ellipsoid.sorted_radii().x + glm::length(c.ellipsoid.center()) +
+                     glm::length(c.triangle[0]));
         const glm::dvec3 u = glm::normalize(glm::dvec3(gauss(rng), gauss(rng), gauss(rng)));
         ASSERT_GE(depth_bound_along(c.triangle, c.ellipsoid, u, support_extent(c.ellipsoid, u)),
                   contact.depth - scale)
@@ -66,7 +70,8 @@ TEST(EllipsoidCull, SupportExtentIsTheHalfWidthAlongADirection) {
     EXPECT_NEAR(support_extent(wheel, {1, 0, 0}), 0.15, 1e-15);
     EXPECT_NEAR(support_extent(wheel, {0, 1, 0}), 0.35, 1e-15);
     const glm::dvec3 diagonal = glm::normalize(glm::dvec3(1, 1, 0));
-    EXPECT_NEAR(support_extent(wheel, diagonal), std::sqrt(0.5 * (0.15 * 0.15 + 0.35 * 0.35)), 1e-15);
+    EXPECT_NEAR(support_extent(wheel, diagonal), std::sqrt(0.5 * (0.15 * 0.15 + 0.35 * 0.35)),
+                1e-15);
 }
 
 }  // namespace

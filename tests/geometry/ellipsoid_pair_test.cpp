@@ -4,16 +4,17 @@
 #include <array>
 #include <bit>
 #include <cmath>
-#include <cstdio>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <limits>
 #include <map>
 #include <string>
 #include <vector>
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+
+#include <glm/geometric.hpp>
 
 #include "geometry/ellipsoid_pair_kernel.hpp"
 #include "support/ellipsoid_pair_cases.hpp"

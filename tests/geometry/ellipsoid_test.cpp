@@ -4,9 +4,10 @@
 #include <limits>
 #include <random>
 
+#include <gtest/gtest.h>
+
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
-#include <gtest/gtest.h>
 
 #include "trackphys/error.hpp"
 
@@ -21,7 +22,8 @@ TEST(Ellipsoid, SortsAxesDescendingAndKeepsAProperRotation) {
     std::normal_distribution<double> normal;
     for (int i = 0; i < 1000; ++i) {
         const glm::dvec3 axes(radius(rng), radius(rng), radius(rng));
-        const glm::dquat q = glm::normalize(glm::dquat(normal(rng), normal(rng), normal(rng), normal(rng)));
+        const glm::dquat q =
+            glm::normalize(glm::dquat(normal(rng), normal(rng), normal(rng), normal(rng)));
         const Ellipsoid e({1, 2, 3}, q, axes);
         const glm::dvec3 r = e.sorted_radii();
         ASSERT_GE(r.x, r.y);
@@ -32,7 +34,8 @@ TEST(Ellipsoid, SortsAxesDescendingAndKeepsAProperRotation) {
         const glm::dmat3 rotation = glm::mat3_cast(q);
         for (int k = 0; k < 3; ++k) {
             int given = 0;
-            while (axes[given] != r[k] || std::abs(std::abs(glm::dot(rotation[given], m[k])) - 1.0) > 1e-12) {
+            while (axes[given] != r[k] ||
+                   std::abs(std::abs(glm::dot(rotation[given], m[k])) - 1.0) > 1e-12) {
                 ++given;
                 ASSERT_LT(given, 3) << "sorted axis " << k << " matches no given axis";
             }
@@ -67,8 +70,10 @@ TEST(Ellipsoid, TransformedEqualsBuildingTheMovedEllipsoid) {
     std::mt19937_64 rng(7);
     std::normal_distribution<double> normal;
     for (int i = 0; i < 1000; ++i) {
-        const glm::dquat local = glm::normalize(glm::dquat(normal(rng), normal(rng), normal(rng), normal(rng)));
-        const glm::dquat motion = glm::normalize(glm::dquat(normal(rng), normal(rng), normal(rng), normal(rng)));
+        const glm::dquat local =
+            glm::normalize(glm::dquat(normal(rng), normal(rng), normal(rng), normal(rng)));
+        const glm::dquat motion =
+            glm::normalize(glm::dquat(normal(rng), normal(rng), normal(rng), normal(rng)));
         const glm::dvec3 center(normal(rng), normal(rng), normal(rng));
         const glm::dvec3 translation(normal(rng) * 100.0, normal(rng), normal(rng));
         const glm::dvec3 axes(0.35, 0.15, 0.35);
@@ -107,7 +112,8 @@ TEST(Ellipsoid, RejectsInvalidInputWithAMessage) {
             Ellipsoid(c.center, c.orientation, c.axes);
             ADD_FAILURE() << "accepted an invalid ellipsoid: " << c.expected;
         } catch (const Error& error) {
-            EXPECT_NE(std::string(error.what()).find(c.expected), std::string::npos) << error.what();
+            EXPECT_NE(std::string(error.what()).find(c.expected), std::string::npos)
+                << error.what();
         }
         std::string why;
         EXPECT_FALSE(Ellipsoid::make(c.center, c.orientation, c.axes, &why).has_value());

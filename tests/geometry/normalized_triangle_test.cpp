@@ -4,11 +4,12 @@
 #include <cmath>
 #include <random>
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
-#include "support/closest_point_reference.hpp"
+#include <glm/geometric.hpp>
+
 #include "geometry/sphere_cull_variants.hpp"
+#include "support/closest_point_reference.hpp"
 
 namespace trackphys {
 namespace {
@@ -41,7 +42,9 @@ Triangle random_triangle(std::mt19937_64& rng, int kind) {
     return {a, b, c};
 }
 
-double max_abs(const glm::dvec3& v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); }
+double max_abs(const glm::dvec3& v) {
+    return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+}
 
 TEST(NormalizedTriangle, FrameInvariantsAndReconstruction) {
     std::mt19937_64 rng(12345);
@@ -68,10 +71,9 @@ TEST(NormalizedTriangle, FrameInvariantsAndReconstruction) {
             ASSERT_LE(glm::length(n.vertex(k) - triangle[(shift + k) % 3]), 1e-12 * scale)
                 << "vertex " << k << " of triangle " << i;
         // Both normals carry rounding amplified by the triangle's aspect ratio.
-        const double condition = triangle.longest_edge() * triangle.longest_edge() /
-                                 glm::length(triangle.area_normal());
-        ASSERT_LE(glm::length(n.normal - triangle.normal()), 1e-14 * condition)
-            << "triangle " << i;
+        const double condition =
+            triangle.longest_edge() * triangle.longest_edge() / glm::length(triangle.area_normal());
+        ASSERT_LE(glm::length(n.normal - triangle.normal()), 1e-14 * condition) << "triangle " << i;
     }
     EXPECT_GT(checked, 90000);
 }
@@ -88,8 +90,8 @@ TEST(NormalizedTriangle, SphereCullNeverRejectsATouchingSphere) {
 
         // A center near the triangle: a point on it plus an offset of comparable size.
         const double w0 = unit01(rng), w1 = unit01(rng) * (1.0 - w0);
-        const glm::dvec3 on = triangle[0] + (triangle[1] - triangle[0]) * w0 +
-                              (triangle[2] - triangle[0]) * w1;
+        const glm::dvec3 on =
+            triangle[0] + (triangle[1] - triangle[0]) * w0 + (triangle[2] - triangle[0]) * w1;
         const double reach = triangle.longest_edge() * std::pow(10.0, -3.0 * unit01(rng));
         const glm::dvec3 center = on + random_unit(rng) * (reach * 2.0 * unit01(rng));
         const double distance = static_cast<double>(
@@ -120,12 +122,12 @@ TEST(NormalizedTriangle, RejectsSpheresFarFromThePlaneOrBeyondTheEdges) {
     const NormalizedTriangle n(Triangle({0, 0, 0}, {4, 0, 0}, {1, 0, -2}));
     EXPECT_NEAR(n.normal.y, 1.0, 1e-15);
     EXPECT_TRUE(n.may_touch_sphere({1, 0.5, -0.5}, 0.6));
-    EXPECT_FALSE(n.may_touch_sphere({1, 0.7, -0.5}, 0.6));    // above the plane
-    EXPECT_FALSE(n.may_touch_sphere({1, -0.7, -0.5}, 0.6));   // below the plane
-    EXPECT_FALSE(n.may_touch_sphere({-0.7, 0.0, -0.5}, 0.6)); // before the longest edge starts
-    EXPECT_FALSE(n.may_touch_sphere({4.7, 0.0, -0.5}, 0.6));  // past its end
-    EXPECT_FALSE(n.may_touch_sphere({1, 0.0, 0.7}, 0.6));     // behind the longest edge
-    EXPECT_FALSE(n.may_touch_sphere({1, 0.0, -2.7}, 0.6));    // beyond the third vertex
+    EXPECT_FALSE(n.may_touch_sphere({1, 0.7, -0.5}, 0.6));     // above the plane
+    EXPECT_FALSE(n.may_touch_sphere({1, -0.7, -0.5}, 0.6));    // below the plane
+    EXPECT_FALSE(n.may_touch_sphere({-0.7, 0.0, -0.5}, 0.6));  // before the longest edge starts
+    EXPECT_FALSE(n.may_touch_sphere({4.7, 0.0, -0.5}, 0.6));   // past its end
+    EXPECT_FALSE(n.may_touch_sphere({1, 0.0, 0.7}, 0.6));      // behind the longest edge
+    EXPECT_FALSE(n.may_touch_sphere({1, 0.0, -2.7}, 0.6));     // beyond the third vertex
 }
 
 }  // namespace

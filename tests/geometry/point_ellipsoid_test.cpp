@@ -1,16 +1,17 @@
-#include "trackphys/geometry/point_ellipse.hpp"
 #include "trackphys/geometry/point_ellipsoid.hpp"
 
 #include <cmath>
 #include <cstdio>
 #include <map>
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+
+#include <glm/geometric.hpp>
 
 #include "geometry/writeup_root_finders.hpp"
 #include "support/ellipsoid_reference.hpp"
 #include "support/point_cases.hpp"
+#include "trackphys/geometry/point_ellipse.hpp"
 
 namespace trackphys {
 namespace {

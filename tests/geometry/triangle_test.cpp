@@ -1,7 +1,8 @@
 #include "trackphys/geometry/triangle.hpp"
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+
+#include <glm/geometric.hpp>
 
 namespace trackphys {
 namespace {

@@ -24,7 +24,7 @@ namespace fs = std::filesystem;
 
 /// A fresh, empty folder for each test, removed with everything in it afterwards.
 class ScratchFolderTest : public ::testing::Test {
-protected:
+  protected:
     void SetUp() override {
         std::string pattern = (fs::temp_directory_path() / "trackphys-io-XXXXXX").string();
         ASSERT_NE(::mkdtemp(pattern.data()), nullptr);
@@ -125,9 +125,8 @@ inline void write_gltf(const fs::path& path, const std::vector<float>& positions
         R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[)" + scene_roots +
         R"(]}],"nodes":[)" + nodes +
         R"(],"meshes":[{"name":"road","primitives":[{"attributes":{"POSITION":0},)" +
-        R"("indices":1,"mode":)" +
-        std::to_string(mode) + R"(}]}],"buffers":[{"uri":")" + bin.filename().string() +
-        R"(","byteLength":)" + std::to_string(bytes.size()) +
+        R"("indices":1,"mode":)" + std::to_string(mode) + R"(}]}],"buffers":[{"uri":")" +
+        bin.filename().string() + R"(","byteLength":)" + std::to_string(bytes.size()) +
         R"(}],"bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":)" +
         std::to_string(position_bytes) + R"(},{"buffer":0,"byteOffset":)" +
         std::to_string(position_bytes) + R"(,"byteLength":)" +

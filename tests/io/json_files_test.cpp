@@ -49,8 +49,10 @@ TEST(CarSpecJson, DefaultCarRoundTripsBitForBit) {
 }
 
 TEST(CarSpecJson, KeysLeftOutKeepTheDefaultCar) {
-    const CarSpec spec = parse_car_spec(R"({"mass": {"mass": 900}, "wheel_contact": {"friction": 1.4},
-                                           "ellipsoids": [{)" + kBall + R"(, "orientation": [0, 0, 1, 0]}]})");
+    const CarSpec spec =
+        parse_car_spec(R"({"mass": {"mass": 900}, "wheel_contact": {"friction": 1.4},
+                                           "ellipsoids": [{)" +
+                       kBall + R"(, "orientation": [0, 0, 1, 0]}]})");
     const CarSpec base = CarSpec::default_car();
     EXPECT_EQ(spec.mass.mass, 900.0);
     EXPECT_EQ(spec.mass.principal_inertia, base.mass.principal_inertia);
@@ -64,7 +66,8 @@ TEST(CarSpecJson, KeysLeftOutKeepTheDefaultCar) {
 
 TEST(CarSpecJson, EveryBadFileNamesTheKeyAndTheReason) {
     const std::vector<std::pair<std::string, std::string>> cases = {
-        {R"({"mass": {"mass": -5}})", "car spec 'c.json': CarSpec.mass.mass must be finite and > 0, got -5"},
+        {R"({"mass": {"mass": -5}})",
+         "car spec 'c.json': CarSpec.mass.mass must be finite and > 0, got -5"},
         {R"({"mass": {"mass": 0}})", "CarSpec.mass.mass must be finite and > 0, got 0"},
         {R"({"ellipsoids": [{"center": [0,0,0], "semi_axes": [0.3, 0, 0.3], "role": "body"}]})",
          "CarSpec.ellipsoids[0].semi_axes.y must be finite and > 0, got 0"},
@@ -73,29 +76,36 @@ TEST(CarSpecJson, EveryBadFileNamesTheKeyAndTheReason) {
         {R"({"ellipsoids": []})", "CarSpec.ellipsoids must hold 1 to 64 ellipsoids, got 0"},
         {R"({"ellipsoids": [{)" + kBall + R"(, "orientation": [0, 0, 0, 0]}]})",
          "ellipsoids[0].orientation must be a finite unit quaternion"},
-        {R"({"masss": 1})", "car spec 'c.json': masss: unknown key (expected one of: mass, ellipsoids,"},
+        {R"({"masss": 1})",
+         "car spec 'c.json': masss: unknown key (expected one of: mass, ellipsoids,"},
         {R"({"ellipsoids": [{)" + kBall + R"(}, {)" + kBall + R"(, "colour": "red"}]})",
-         "ellipsoids[1].colour: unknown key (expected one of: center, semi_axes, role, orientation)"},
+         "ellipsoids[1].colour: unknown key (expected one of: center, semi_axes, role, "
+         "orientation)"},
         {R"({"suspension": {"travel": 0.1, "stiffnes": 5}})", "suspension.stiffnes: unknown key"},
-        {R"({"mass": {"mass": "heavy"}})", "mass.mass: expected a number, got the string \"heavy\""},
+        {R"({"mass": {"mass": "heavy"}})",
+         "mass.mass: expected a number, got the string \"heavy\""},
         {R"({"drag_area": null})", "drag_area: expected a number, got null"},
         {R"({"drag_area": true})", "drag_area: expected a number, got a boolean"},
         {R"({"mass": 1200})", "mass: expected an object, got the number 1200"},
         {R"({"ellipsoids": {"center": [0, 0, 0]}})", "ellipsoids: expected an array of ellipsoids"},
-        {R"({"ellipsoids": [{"center": [0, 0, 0], "role": "body"}]})", "ellipsoids[0]: missing key 'semi_axes'"},
+        {R"({"ellipsoids": [{"center": [0, 0, 0], "role": "body"}]})",
+         "ellipsoids[0]: missing key 'semi_axes'"},
         {R"({"ellipsoids": [{"center": [0, 0, 0], "semi_axes": [1, 1], "role": "body"}]})",
          "ellipsoids[0].semi_axes: expected an array of 3 numbers, got an array of 2"},
         {R"({"ellipsoids": [{"center": [0, "x", 0], "semi_axes": [1, 1, 1], "role": "body"}]})",
          "ellipsoids[0].center[1]: expected a number, got the string \"x\""},
         {R"({"ellipsoids": [{"center": [0, 0, 0], "semi_axes": [1, 1, 1], "role": "wing"}]})",
          "ellipsoids[0].role: unknown role 'wing' (expected body, front_wheel or rear_wheel)"},
-        {R"({"drag_area": 1e999})", "car spec 'c.json': malformed JSON, number overflow parsing '1e999'"},
+        {R"({"drag_area": 1e999})",
+         "car spec 'c.json': malformed JSON, number overflow parsing '1e999'"},
         {R"({"drag_area": NaN})", "malformed JSON, parse error at line 1, column 15"},
         {R"({"mass": {"mass": 1}, "mass": {}})", "duplicate key 'mass' in the top-level object"},
         {R"({"ellipsoids": [{}, {"center": [0, 0, 0], "center": [1, 1, 1]}]})",
          "duplicate key 'center' in ellipsoids[1]"},
         {"{\n  \"mass\": {\"mass\": 1200,}\n}", "malformed JSON, parse error at line 2, column 25"},
-        {"{\"mass\": ", "malformed JSON, parse error at line 1, column 10: syntax error while parsing value - unexpected end of input"},
+        {"{\"mass\": ",
+         "malformed JSON, parse error at line 1, column 10: syntax error while parsing value - "
+         "unexpected end of input"},
         {"", "malformed JSON, parse error at line 1, column 1"},
         {"[1, 2]", "car spec 'c.json': expected an object, got an array"},
         {"{} {}", "malformed JSON, parse error at line 1, column 4"},
@@ -135,55 +145,70 @@ TEST(ScenarioJson, ReadsEveryKeyAndRoundTrips) {
     const std::string text = scenario_to_json(s);
     EXPECT_EQ(scenario_to_json(parse_scenario(text)), text);
 
-    const Scenario autopilot = parse_scenario(R"({"track": {"seed": 3}, "autopilot": {"target_speed_kmh": 1000},
+    const Scenario autopilot =
+        parse_scenario(R"({"track": {"seed": 3}, "autopilot": {"target_speed_kmh": 1000},
                                                  "laps": 2, "seconds": 500})");
     EXPECT_EQ(autopilot.seed, 3u);
     EXPECT_EQ(autopilot.target_speed_kmh, 1000.0);
     EXPECT_EQ(autopilot.laps, 2);
-    EXPECT_EQ(scenario_to_json(parse_scenario(scenario_to_json(autopilot))), scenario_to_json(autopilot));
+    EXPECT_EQ(scenario_to_json(parse_scenario(scenario_to_json(autopilot))),
+              scenario_to_json(autopilot));
 }
 
 TEST(ScenarioJson, EveryBadFileNamesTheKeyAndTheReason) {
     const std::vector<std::pair<std::string, std::string>> cases = {
         {R"({"track": {"seed": 7, "mesh": "a.obj", "spawn": [0, 1, 0]}, "seconds": 1})",
-         "scenario 's.json': track: give either 'seed' (a generated track) or 'mesh' (a mesh file), not both"},
+         "scenario 's.json': track: give either 'seed' (a generated track) or 'mesh' (a mesh "
+         "file), not both"},
         {R"({"track": {"seed": -3}})", "track.seed: must be >= 0, got -3"},
         {R"({"track": {"seed": 2.5}})", "track.seed: expected a whole number, got the number 2.5"},
         {R"({"track": {"mesh": "a.obj"}})", "Scenario.mesh needs a spawn point"},
         {R"({"track": {"mesh": ""}})", "track.mesh: empty file name"},
-        {R"({"track": {"heading_deg": 10}})", "track.heading_deg: a heading applies to a spawn point"},
-        {R"({"track": {"spawn": [0, 1]}})", "track.spawn: expected an array of 3 numbers, got an array of 2"},
+        {R"({"track": {"heading_deg": 10}})",
+         "track.heading_deg: a heading applies to a spawn point"},
+        {R"({"track": {"spawn": [0, 1]}})",
+         "track.spawn: expected an array of 3 numbers, got an array of 2"},
         {R"({"track": {"spawn": [0, 1, 0]}, "autopilot": {}, "seconds": 1})",
          "autopilot: the autopilot drives the generated track from its start line"},
-        {R"({"inputs": {"throttle": 1}})", "inputs: fixed inputs drive in free mode: add track.spawn"},
-        {R"({"track": {"spawn": [0, 1, 0]}, "inputs": {}, "autopilot": {}})", "give either 'autopilot' or 'inputs'"},
+        {R"({"inputs": {"throttle": 1}})",
+         "inputs: fixed inputs drive in free mode: add track.spawn"},
+        {R"({"track": {"spawn": [0, 1, 0]}, "inputs": {}, "autopilot": {}})",
+         "give either 'autopilot' or 'inputs'"},
         {R"({"track": {"spawn": [0, 1, 0]}, "inputs": {"throttle": 1.5}, "seconds": 1})",
          "Scenario.inputs.throttle must be in [0, 1], got 1.5"},
         {R"({"track": {"spawn": [0, 1, 0]}, "inputs": {"steer": -2}, "seconds": 1})",
          "Scenario.inputs.steer must be in [-1, 1], got -2"},
-        {R"({"track": {"spawn": [0, 1, 0]}, "inputs": {"gear": 2}, "seconds": 1})", "inputs.gear: unknown key"},
+        {R"({"track": {"spawn": [0, 1, 0]}, "inputs": {"gear": 2}, "seconds": 1})",
+         "inputs.gear: unknown key"},
         {R"({"track": {"spawn": [0, 1, 0]}})", "Scenario.seconds must be > 0 in free mode"},
-        {R"({"track": {"spawn": [0, 1, 0]}, "laps": 1, "seconds": 5})", "Scenario.laps needs the generated track"},
-        {R"({"autopilot": {"target_speed_kmh": 0}})", "Scenario.target_speed_kmh must be in (0, 1500], got 0"},
-        {R"({"autopilot": {"target_speed_kmh": 2000}})", "Scenario.target_speed_kmh must be in (0, 1500], got 2000"},
-        {R"({"autopilot": {"speed": 200}})", "autopilot.speed: unknown key (expected one of: target_speed_kmh)"},
+        {R"({"track": {"spawn": [0, 1, 0]}, "laps": 1, "seconds": 5})",
+         "Scenario.laps needs the generated track"},
+        {R"({"autopilot": {"target_speed_kmh": 0}})",
+         "Scenario.target_speed_kmh must be in (0, 1500], got 0"},
+        {R"({"autopilot": {"target_speed_kmh": 2000}})",
+         "Scenario.target_speed_kmh must be in (0, 1500], got 2000"},
+        {R"({"autopilot": {"speed": 200}})",
+         "autopilot.speed: unknown key (expected one of: target_speed_kmh)"},
         {R"({"laps": -1})", "Scenario.laps must be in [0, 1000], got -1"},
         {R"({"laps": 5000000000})", "laps: expected a whole number in int's range"},
         {R"({"seconds": -1})", "Scenario.seconds must be in [0, 86400], got -1"},
         {R"({"seconds": "10"})", "seconds: expected a number, got the string \"10\""},
-        {R"({"car": {"mass": {"mass": -1}}})", "scenario 's.json': car: CarSpec.mass.mass must be finite and > 0"},
+        {R"({"car": {"mass": {"mass": -1}}})",
+         "scenario 's.json': car: CarSpec.mass.mass must be finite and > 0"},
         {R"({"car": {"ellipsoids": [{"center": [0, 0, 0], "role": "body"}]}})",
          "car.ellipsoids[0]: missing key 'semi_axes'"},
         {R"({"car": {"masss": {}}})", "car.masss: unknown key"},
         {R"({"car": 5})", "car: expected an object, got the number 5"},
         {R"({"car": ""})", "car: empty file name"},
-        {R"({"duration": 10})", "duration: unknown key (expected one of: track, car, autopilot, inputs, laps, seconds)"},
+        {R"({"duration": 10})",
+         "duration: unknown key (expected one of: track, car, autopilot, inputs, laps, seconds)"},
         {R"({"laps": 1, "laps": 2})", "duplicate key 'laps' in the top-level object"},
         {"{\"laps\": 1\n\"seconds\": 2}", "malformed JSON, parse error at line 2, column 9"},
     };
     for (const auto& [text, expected] : cases)
         EXPECT_NE(scenario_error(text).find(expected), std::string::npos)
-            << "input: " << text << "\nmessage: " << scenario_error(text) << "\nexpected: " << expected;
+            << "input: " << text << "\nmessage: " << scenario_error(text)
+            << "\nexpected: " << expected;
 }
 
 class JsonFiles : public test::ScratchFolderTest {};
@@ -208,12 +233,13 @@ TEST_F(JsonFiles, FilesAreReadRelativeToTheScenarioAndBadFilesNamed) {
     test::write_file(file("bad_car.json"), R"({"car": "missing.json"})");
     EXPECT_EQ(message([&] { load_car_spec(file("none.json")); }),
               "car spec '" + file("none.json").string() + "': no such file");
-    EXPECT_EQ(message([&] { load_car_spec(folder_); }), "car spec '" + folder_.string() + "': is a folder, not a file");
+    EXPECT_EQ(message([&] { load_car_spec(folder_); }),
+              "car spec '" + folder_.string() + "': is a folder, not a file");
     EXPECT_EQ(message([&] { load_scenario(file("empty.json")); }),
               "scenario '" + file("empty.json").string() + "': the file is empty");
     EXPECT_EQ(message([&] { load_scenario(file("bad_car.json")); }),
-              "scenario '" + file("bad_car.json").string() + "': car: car spec '" + file("missing.json").string() +
-                  "': no such file");
+              "scenario '" + file("bad_car.json").string() + "': car: car spec '" +
+                  file("missing.json").string() + "': no such file");
 }
 
 }  // namespace

@@ -77,8 +77,8 @@ TEST_F(MeshLoadErrors, EmptyFile) {
 TEST_F(MeshLoadErrors, GarbageBytes) {
     // Random bytes under every extension assimp might dispatch on, in three sizes.
     std::uint32_t seed = 1;
-    for (const char* ext : {".glb", ".gltf", ".obj", ".ply", ".stl", ".fbx", ".ac", ".dae",
-                            ".3ds", ".blend", ".x", ".off", ""})
+    for (const char* ext : {".glb", ".gltf", ".obj", ".ply", ".stl", ".fbx", ".ac", ".dae", ".3ds",
+                            ".blend", ".x", ".off", ""})
         for (const std::size_t size : {std::size_t{7}, std::size_t{1000}, std::size_t{65536}}) {
             const fs::path path = file("garbage" + std::to_string(size) + ext);
             test::write_file(path, random_bytes(size, seed++));
@@ -96,8 +96,9 @@ TEST_F(MeshLoadErrors, GarbageAfterAValidLookingHeader) {
         // Claims a million vertices (12 MB) and holds a few hundred. assimp would allocate
         // what the header claims before it finds out, and leak that mesh on this error path
         // (assimp 5.2.5, issue #5717); load_mesh refuses the claim first (ply_header_check).
-        {"h.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 1000000\n"
-                  "property float x\nproperty float y\nproperty float z\nend_header\n"},
+        {"h.ply",
+         "ply\nformat binary_little_endian 1.0\nelement vertex 1000000\n"
+         "property float x\nproperty float y\nproperty float z\nend_header\n"},
         {"h.stl", std::string(80, ' ') + std::string("\xff\xff\xff\x0f", 4)},
         {"h.obj", "v 1 2\nf 1 2 3 4 5 6 7 8 9\nf -9 -10 -11\n"},
         {"h.fbx", std::string("Kaydara FBX Binary  \x00\x1a\x00\xe8\x1c\x00\x00", 27)},
@@ -113,8 +114,9 @@ TEST_F(MeshLoadErrors, GarbageAfterAValidLookingHeader) {
 TEST_F(MeshLoadErrors, PlyHeaderWithoutEndHeaderIsRejectedNotHung) {
     // assimp 5.2.5's PLY reader never returns on these (found by fuzz_mesh_import); it takes
     // them by content under .gltf, .glb and unknown extensions too. A timeout here is the bug.
-    const std::string body = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
-                             "property float y\nproperty float z\n";
+    const std::string body =
+        "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+        "property float y\nproperty float z\n";
     const std::vector<std::pair<std::string, std::string>> cases{
         {"bare.ply", "ply\nformat ascii 1.0\n"},
         {"upper.ply", "PLY\nformat ascii 1.0\n"},
@@ -141,9 +143,10 @@ TEST_F(MeshLoadErrors, PlyHeaderWithoutEndHeaderIsRejectedNotHung) {
     }
     // A header line with leading blanks or CR LF line ends still ends the header.
     for (const char* end : {"  end_header\n", "end_header\r\n"}) {
-        test::write_file(file("ok.ply"), body + "element face 1\nproperty list uchar int "
-                                                "vertex_indices\n" + end +
-                                             "0 0 0\n1 0 0\n0 0 1\n3 0 1 2\n");
+        test::write_file(file("ok.ply"), body +
+                                             "element face 1\nproperty list uchar int "
+                                             "vertex_indices\n" +
+                                             end + "0 0 0\n1 0 0\n0 0 1\n3 0 1 2\n");
         EXPECT_EQ(load_mesh(file("ok.ply")).triangles.size(), 1u) << end;
     }
 }
@@ -167,8 +170,9 @@ TEST_F(MeshLoadErrors, OffCountsBeyondTheFileAreRejectedBeforeAllocating) {
         EXPECT_NE(message.find("OFF header claims"), std::string::npos) << message;
     }
     // Counts the file can hold load; a headerless count under another extension is no OFF.
-    test::write_file(file("ok.off"), "OFF\n# square\n4 2 0\n0 0 0\n1 0 0\n1 0 1\n0 0 1\n"
-                                     "3 0 1 2\n3 0 2 3\n");
+    test::write_file(file("ok.off"),
+                     "OFF\n# square\n4 2 0\n0 0 0\n1 0 0\n1 0 1\n0 0 1\n"
+                     "3 0 1 2\n3 0 2 3\n");
     EXPECT_EQ(load_mesh(file("ok.off")).triangles.size(), 2u);
     test::write_file(file("digits.obj"), "4000000000 1 0\nv 0 0 0\nv 1 0 0\nv 0 0 1\nf 1 2 3\n");
     EXPECT_EQ(load_mesh(file("digits.obj")).triangles.size(), 1u);

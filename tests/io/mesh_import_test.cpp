@@ -3,8 +3,9 @@
 #include <string>
 #include <vector>
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+
+#include <glm/geometric.hpp>
 
 #include "io_test_support.hpp"
 #include "trackphys/geometry/triangle.hpp"
@@ -70,8 +71,8 @@ TEST_F(MeshImport, DegenerateTrianglesAreDroppedAndCounted) {
     test::write_file(file("d.obj"),
                      "v 0 0 0\nv 1 0 0\nv 0 0 -1\nv 1 0 -1\n"  // 1-4: two good triangles
                      "v 2 0 0\nv 3 0 0\nv 4 0 0\n"             // 5-7: collinear
-                     "v 0.5 1e-14 0\n"                          // 8: 1e-14 off the edge 1-2
-                     "v 7 7 7\n"                                // 9: only in dropped triangles
+                     "v 0.5 1e-14 0\n"                         // 8: 1e-14 off the edge 1-2
+                     "v 7 7 7\n"                               // 9: only in dropped triangles
                      "f 1 2 3\nf 2 4 3\n"
                      "f 5 6 7\n"    // collinear
                      "f 1 1 3\n"    // repeated corner
@@ -91,8 +92,8 @@ TEST_F(MeshImport, DegenerateTrianglesAreDroppedAndCounted) {
 TEST_F(MeshImport, PointsAndLinesAreSkippedAndCounted) {
     test::write_file(file("pl.obj"),
                      "v 0 0 0\nv 1 0 0\nv 0 0 -1\nv 2 2 2\n"
-                     "p 1 2\n"     // two points
-                     "l 1 2 4\n"   // a polyline: two segments
+                     "p 1 2\n"    // two points
+                     "l 1 2 4\n"  // a polyline: two segments
                      "f 1 2 3\n");
     MeshLoadReport report;
     const TriangleMesh mesh = load_mesh(file("pl.obj"), report);

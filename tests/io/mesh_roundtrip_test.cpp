@@ -6,8 +6,9 @@
 #include <string>
 #include <vector>
 
-#include <glm/common.hpp>
 #include <gtest/gtest.h>
+
+#include <glm/common.hpp>
 
 #include "io_test_support.hpp"
 #include "trackphys/geometry/triangle.hpp"
@@ -26,8 +27,8 @@ TriangleMesh height_field(int nx, int nz, double spacing, const glm::dvec3& orig
     std::uniform_real_distribution<double> noise(-0.3, 0.3);
     for (int k = 0; k <= nz; ++k)
         for (int i = 0; i <= nx; ++i) {
-            glm::dvec3 p = origin + glm::dvec3(i * spacing, 0.25 * ((i * 7 + k * 3) % 5),
-                                                -k * spacing);
+            glm::dvec3 p =
+                origin + glm::dvec3(i * spacing, 0.25 * ((i * 7 + k * 3) % 5), -k * spacing);
             if (jitter != nullptr) {  // one draw per statement: argument order is unspecified
                 p.x += noise(*jitter);
                 p.y += noise(*jitter);

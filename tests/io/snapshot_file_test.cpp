@@ -1,6 +1,8 @@
 // Snapshot files: bit-exact round trips, and every truncation, every bit flip, another
 // version, trailing bytes and invalid contents rejected with an error; an atomic write that
 // leaves no file behind when it fails.
+#include "trackphys/io/snapshot_file.hpp"
+
 #include <bit>
 #include <cstring>
 #include <filesystem>
@@ -10,11 +12,9 @@
 
 #include <gtest/gtest.h>
 
-#include "support/error_message.hpp"
-
 #include "core/fnv1a.hpp"
+#include "support/error_message.hpp"
 #include "trackphys/error.hpp"
-#include "trackphys/io/snapshot_file.hpp"
 #include "trackphys/world/world.hpp"
 #include "world/world_scenes.hpp"
 
@@ -39,12 +39,14 @@ WorldSnapshot small_snapshot() {
 
 // Rewrites a header field and the checksum, as a tool writing another version would.
 std::string with_u32_at(std::string bytes, std::size_t offset, std::uint32_t value) {
-    for (int i = 0; i < 4; ++i) bytes[offset + static_cast<std::size_t>(i)] = static_cast<char>(value >> (8 * i));
+    for (int i = 0; i < 4; ++i)
+        bytes[offset + static_cast<std::size_t>(i)] = static_cast<char>(value >> (8 * i));
     return bytes;
 }
 
 fs::path fresh_folder(const char* name) {
-    const fs::path folder = fs::temp_directory_path() / ("trackphys_snapshot_test_" + std::string(name));
+    const fs::path folder =
+        fs::temp_directory_path() / ("trackphys_snapshot_test_" + std::string(name));
     fs::remove_all(folder);
     fs::create_directories(folder);
     return folder;
@@ -74,9 +76,11 @@ TEST(SnapshotFile, EveryTruncationIsRejected) {
     const std::string bytes = encode_snapshot(small_snapshot(), kUserData);
     ASSERT_GT(bytes.size(), 400u);
     for (std::size_t n = 0; n < bytes.size(); ++n)
-        EXPECT_THROW(decode_snapshot(std::string_view(bytes).substr(0, n)), Error) << "first " << n << " bytes";
-    EXPECT_NE(error_of([&] { decode_snapshot(std::string_view(bytes).substr(0, bytes.size() - 1)); })
-                  .find("truncated"),
+        EXPECT_THROW(decode_snapshot(std::string_view(bytes).substr(0, n)), Error)
+            << "first " << n << " bytes";
+    EXPECT_NE(error_of([&] {
+                  decode_snapshot(std::string_view(bytes).substr(0, bytes.size() - 1));
+              }).find("truncated"),
               std::string::npos);
 }
 
@@ -90,31 +94,39 @@ TEST(SnapshotFile, EveryBitFlipIsRejected) {
         }
     std::string corrupted = bytes;
     corrupted[200] = static_cast<char>(corrupted[200] ^ 0x10);
-    EXPECT_NE(error_of([&] { decode_snapshot(corrupted); }).find("checksum mismatch"), std::string::npos);
+    EXPECT_NE(error_of([&] { decode_snapshot(corrupted); }).find("checksum mismatch"),
+              std::string::npos);
 }
 
 TEST(SnapshotFile, OtherVersionsMagicAndTrailingBytesAreRejected) {
     const std::string bytes = encode_snapshot(small_snapshot());
     EXPECT_NE(error_of([&] { decode_snapshot(with_u32_at(bytes, 8, 2)); }).find("format version 2"),
               std::string::npos);
-    EXPECT_NE(error_of([&] { decode_snapshot(with_u32_at(bytes, 12, 1)); }).find("reserved"), std::string::npos);
-    EXPECT_NE(error_of([&] { decode_snapshot("v -50 0 -50\nv 50 0 -50\nv 50 0 50\nf 1 2 3\n"); }).find("wrong magic"),
+    EXPECT_NE(error_of([&] { decode_snapshot(with_u32_at(bytes, 12, 1)); }).find("reserved"),
               std::string::npos);
-    EXPECT_NE(error_of([&] { decode_snapshot(bytes + "x"); }).find("1 bytes of trailing garbage"), std::string::npos);
-    EXPECT_NE(error_of([&] { decode_snapshot(""); }).find("shorter than the 32-byte header"), std::string::npos);
+    EXPECT_NE(error_of([&] {
+                  decode_snapshot("v -50 0 -50\nv 50 0 -50\nv 50 0 50\nf 1 2 3\n");
+              }).find("wrong magic"),
+              std::string::npos);
+    EXPECT_NE(error_of([&] { decode_snapshot(bytes + "x"); }).find("1 bytes of trailing garbage"),
+              std::string::npos);
+    EXPECT_NE(error_of([&] { decode_snapshot(""); }).find("shorter than the 32-byte header"),
+              std::string::npos);
 }
 
 // A payload that checks out but holds what no world could: rejected at load, whoever wrote it.
 TEST(SnapshotFile, InvalidContentsAreRejected) {
     WorldSnapshot nan_velocity = small_snapshot();
     nan_velocity.cars[0].state.linear_velocity.z = std::numeric_limits<double>::quiet_NaN();
-    EXPECT_NE(error_of([&] { decode_snapshot(encode_snapshot(nan_velocity)); })
-                  .find("invalid contents: car 0: linear_velocity is not finite"),
+    EXPECT_NE(error_of([&] {
+                  decode_snapshot(encode_snapshot(nan_velocity));
+              }).find("invalid contents: car 0: linear_velocity is not finite"),
               std::string::npos);
     WorldSnapshot bad_mode = small_snapshot();
     bad_mode.settings.mid_phase = static_cast<MidPhaseMode>(7);
-    EXPECT_NE(error_of([&] { decode_snapshot(encode_snapshot(bad_mode)); }).find("not a mid-phase mode"),
-              std::string::npos);
+    EXPECT_NE(
+        error_of([&] { decode_snapshot(encode_snapshot(bad_mode)); }).find("not a mid-phase mode"),
+        std::string::npos);
 }
 
 // A count that claims more records than the bytes left fails before allocating them.
@@ -126,8 +138,10 @@ TEST(SnapshotFile, HugeCountsAreRejectedWithoutAllocating) {
     bytes = with_u32_at(bytes, 32, 0xffffffffu);
     core::Fnv1a hash;
     hash.add(bytes.data() + 32, bytes.size() - 32);
-    for (int i = 0; i < 8; ++i) bytes[24 + static_cast<std::size_t>(i)] = static_cast<char>(hash.value >> (8 * i));
-    EXPECT_NE(error_of([&] { decode_snapshot(bytes); }).find("collider count 4294967295"), std::string::npos);
+    for (int i = 0; i < 8; ++i)
+        bytes[24 + static_cast<std::size_t>(i)] = static_cast<char>(hash.value >> (8 * i));
+    EXPECT_NE(error_of([&] { decode_snapshot(bytes); }).find("collider count 4294967295"),
+              std::string::npos);
 }
 
 TEST(SnapshotFile, AFailedWriteLeavesNoFile) {
@@ -136,17 +150,21 @@ TEST(SnapshotFile, AFailedWriteLeavesNoFile) {
 
     // The output folder does not exist.
     const fs::path missing = folder / "no" / "such" / "folder" / "a.snap";
-    EXPECT_NE(error_of([&] { save_snapshot(missing, snapshot); }).find("cannot write the snapshot"), std::string::npos);
+    EXPECT_NE(error_of([&] { save_snapshot(missing, snapshot); }).find("cannot write the snapshot"),
+              std::string::npos);
     EXPECT_FALSE(fs::exists(folder / "no"));
 
     // The destination is a folder: the rename fails, the temporary file is removed.
     fs::create_directories(folder / "taken" / "inside");
-    EXPECT_NE(error_of([&] { save_snapshot(folder / "taken", snapshot); }).find("cannot move the snapshot"),
+    EXPECT_NE(error_of([&] {
+                  save_snapshot(folder / "taken", snapshot);
+              }).find("cannot move the snapshot"),
               std::string::npos);
     EXPECT_FALSE(fs::exists(folder / "taken.partial"));
 
     // Loading what is not there.
-    EXPECT_NE(error_of([&] { load_snapshot(folder / "absent.snap"); }).find("cannot open"), std::string::npos);
+    EXPECT_NE(error_of([&] { load_snapshot(folder / "absent.snap"); }).find("cannot open"),
+              std::string::npos);
     // Overwriting a snapshot replaces it whole.
     save_snapshot(folder / "a.snap", snapshot);
     WorldSnapshot later = snapshot;

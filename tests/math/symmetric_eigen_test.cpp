@@ -4,9 +4,10 @@
 #include <limits>
 #include <random>
 
+#include <gtest/gtest.h>
+
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
-#include <gtest/gtest.h>
 
 namespace trackphys {
 namespace {
@@ -17,17 +18,19 @@ TEST(SymmetricEigen, RecoversKnownEigenpairs) {
     std::normal_distribution<double> normal;
     std::uniform_real_distribution<double> value(-10.0, 10.0);
     for (int i = 0; i < 20000; ++i) {
-        const glm::dquat q = glm::normalize(glm::dquat(normal(rng), normal(rng), normal(rng), normal(rng)));
+        const glm::dquat q =
+            glm::normalize(glm::dquat(normal(rng), normal(rng), normal(rng), normal(rng)));
         const glm::dmat3 r = glm::mat3_cast(q);
         glm::dvec3 lambda(value(rng), value(rng), value(rng));
-        if (i % 4 == 1) lambda.y = lambda.x;             // repeated pair
-        if (i % 4 == 2) lambda = glm::dvec3(lambda.x);   // all equal
-        if (i % 4 == 3) lambda.z = 0.0;                  // singular
-        const glm::dmat3 a = r * glm::dmat3(lambda.x, 0, 0, 0, lambda.y, 0, 0, 0, lambda.z) *
-                             glm::transpose(r);
+        if (i % 4 == 1) lambda.y = lambda.x;            // repeated pair
+        if (i % 4 == 2) lambda = glm::dvec3(lambda.x);  // all equal
+        if (i % 4 == 3) lambda.z = 0.0;                 // singular
+        const glm::dmat3 a =
+            r * glm::dmat3(lambda.x, 0, 0, 0, lambda.y, 0, 0, 0, lambda.z) * glm::transpose(r);
 
         const SymmetricEigen3 e = symmetric_eigen(a);
-        const double scale = std::max({std::abs(lambda.x), std::abs(lambda.y), std::abs(lambda.z), 1.0});
+        const double scale =
+            std::max({std::abs(lambda.x), std::abs(lambda.y), std::abs(lambda.z), 1.0});
         ASSERT_GE(e.values.x, e.values.y);
         ASSERT_GE(e.values.y, e.values.z);
         // Sorted values match the sorted inputs.

@@ -1,9 +1,10 @@
-#include "profile/phase_stopwatch.hpp"
 #include "trackphys/profile/profile_statistics.hpp"
 
 #include <thread>
 
 #include <gtest/gtest.h>
+
+#include "profile/phase_stopwatch.hpp"
 
 namespace trackphys {
 namespace {

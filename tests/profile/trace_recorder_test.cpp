@@ -21,7 +21,8 @@ TEST(TraceRecorder, WritesCompleteEventsAndDropsBeyondItsCapacity) {
     trace.write_chrome_trace(out);
     const std::string json = out.str();
     EXPECT_EQ(json.rfind("{\"displayTimeUnit\":\"ns\",\"traceEvents\":[", 0), 0u);
-    EXPECT_NE(json.find("{\"name\":\"broad\",\"ph\":\"X\",\"pid\":1,\"tid\":0,"), std::string::npos);
+    EXPECT_NE(json.find("{\"name\":\"broad\",\"ph\":\"X\",\"pid\":1,\"tid\":0,"),
+              std::string::npos);
     EXPECT_NE(json.find("\"dur\":5.000}"), std::string::npos);
     EXPECT_NE(json.find("\"name\":\"update\""), std::string::npos);
     EXPECT_EQ(json.find("exact"), std::string::npos);

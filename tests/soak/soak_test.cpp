@@ -18,10 +18,10 @@
 #include <optional>
 #include <random>
 
+#include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <glm/geometric.hpp>
-#include <gtest/gtest.h>
 
 #include "drive_scene.hpp"
 #include "trackphys/math/types.hpp"
@@ -46,7 +46,8 @@ bool finite_state(const RigidBodyState& s) {
 
 // Distance from p straight down to the surface, nullopt when nothing is below.
 std::optional<double> height_above_surface(const StaticWorld& statics, const glm::dvec3& p) {
-    const auto hit = statics.raycast(p, glm::dvec3(0.0, -1.0, 0.0), std::numeric_limits<double>::infinity());
+    const auto hit =
+        statics.raycast(p, glm::dvec3(0.0, -1.0, 0.0), std::numeric_limits<double>::infinity());
     if (!hit) return std::nullopt;
     return hit->hit.distance;
 }
@@ -57,28 +58,32 @@ struct SoakFigures {
     double wall_s = 0.0;
     double max_speed_kmh = 0.0;
     double min_height_m = std::numeric_limits<double>::infinity();  // ray straight down
-    double max_energy_gain_j = -std::numeric_limits<double>::infinity();  // per update, beyond the engine
+    double max_energy_gain_j =
+        -std::numeric_limits<double>::infinity();  // per update, beyond the engine
     double rss_early_mb = 0.0;
     double rss_end_mb = 0.0;
 
     void print(const char* name) const {
-        std::printf("%s: %llu updates, %.1f s wall clock, max speed %.1f km/h, min height of the centre of mass "
-                    "above the surface %.3f m, max energy gain beyond the engine's work %.1f J per update, "
-                    "RSS %.1f MB early -> %.1f MB at the end\n",
-                    name, static_cast<unsigned long long>(updates), wall_s, max_speed_kmh, min_height_m,
-                    max_energy_gain_j, rss_early_mb, rss_end_mb);
+        std::printf(
+            "%s: %llu updates, %.1f s wall clock, max speed %.1f km/h, min height of the centre of "
+            "mass "
+            "above the surface %.3f m, max energy gain beyond the engine's work %.1f J per update, "
+            "RSS %.1f MB early -> %.1f MB at the end\n",
+            name, static_cast<unsigned long long>(updates), wall_s, max_speed_kmh, min_height_m,
+            max_energy_gain_j, rss_early_mb, rss_end_mb);
     }
 };
 
 // Mechanical energy (J): kinetic (translation and rotation) plus potential in gravity.
 double mechanical_energy(const Car& car, const glm::dvec3& gravity) {
-    return kinetic_energy(car.state(), car.spec().mass) - car.spec().mass.mass * glm::dot(gravity, car.state().position);
+    return kinetic_energy(car.state(), car.spec().mass) -
+           car.spec().mass.mass * glm::dot(gravity, car.state().position);
 }
 
 // The checks shared by both soaks after each update; returns false (after recording a
 // test failure) on the first one that fails, so a broken run stops at once.
 class UpdateChecker {
-public:
+  public:
     UpdateChecker(const World& world, SoakFigures& figures) : world_(world), figures_(figures) {
         energy_ = mechanical_energy(world.car(0), world.settings().gravity);
         speed_ = world.car(0).speed();
@@ -92,7 +97,8 @@ public:
             return false;
         }
         figures_.max_speed_kmh = std::max(figures_.max_speed_kmh, car.speed() * 3.6);
-        const std::optional<double> height = height_above_surface(world_.statics(), car.state().position);
+        const std::optional<double> height =
+            height_above_surface(world_.statics(), car.state().position);
         if (!height) {
             ADD_FAILURE() << "no surface below the car at t = " << t << " s, position ("
                           << car.state().position.x << ", " << car.state().position.y << ", "
@@ -107,13 +113,15 @@ public:
         const double energy = mechanical_energy(car, world_.settings().gravity);
         const CarSpec& spec = car.spec();
         const double speed = std::max(speed_, car.speed());
-        const double engine = std::min(spec.max_drive_force * speed, spec.max_drive_power) * world_.settings().dt_update;
+        const double engine = std::min(spec.max_drive_force * speed, spec.max_drive_power) *
+                              world_.settings().dt_update;
         const double gain = energy - energy_ - engine;
         energy_ = energy;
         speed_ = car.speed();
         figures_.max_energy_gain_j = std::max(figures_.max_energy_gain_j, gain);
         if (gain > kSpringAllowanceJ) {
-            ADD_FAILURE() << "the car gained " << gain << " J beyond the engine's power in one update at t = " << t;
+            ADD_FAILURE() << "the car gained " << gain
+                          << " J beyond the engine's power in one update at t = " << t;
             return false;
         }
         return true;
@@ -121,7 +129,7 @@ public:
 
     static constexpr double kSpringAllowanceJ = 2.0e4;
 
-private:
+  private:
     const World& world_;
     SoakFigures& figures_;
     double energy_;
@@ -162,20 +170,23 @@ TEST(Soak, DefaultTrackOneSimulatedHourByAutopilotUpTo1000KmH) {
         min_plane_height = std::min(min_plane_height, glm::dot(offset, s.up));
         max_lateral = std::max(max_lateral, std::abs(glm::dot(offset, s.left)));
         if (min_plane_height <= 0.0 || max_lateral >= half_width) {
-            ADD_FAILURE() << "the car left the road at t = " << world.time() << " s: height above the road plane "
-                          << glm::dot(offset, s.up) << " m, lateral offset " << glm::dot(offset, s.left) << " m";
+            ADD_FAILURE() << "the car left the road at t = " << world.time()
+                          << " s: height above the road plane " << glm::dot(offset, s.up)
+                          << " m, lateral offset " << glm::dot(offset, s.left) << " m";
             break;
         }
         if (autopilot.laps() > 0) autopilot = autopilot_for_lap(++lap);  // next lap, next target
         if (world.update_count() == 60000) figures.rss_early_mb = resident_bytes() / 1e6;  // 10 min
     }
-    figures.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+    figures.wall_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
     figures.updates = world.update_count();
     figures.rss_end_mb = resident_bytes() / 1e6;
     figures.print("default track, 1 h");
-    std::printf("default track, 1 h: %zu laps, min height above the road plane %.3f m, max lateral offset "
-                "%.3f m (walls at %.1f m)\n",
-                lap, min_plane_height, max_lateral, half_width);
+    std::printf(
+        "default track, 1 h: %zu laps, min height above the road plane %.3f m, max lateral offset "
+        "%.3f m (walls at %.1f m)\n",
+        lap, min_plane_height, max_lateral, half_width);
     EXPECT_NEAR(world.time(), kSeconds, 1e-6);
     EXPECT_GE(lap, 20u) << "an hour is more than twenty laps even at 250 km/h";
     // Steady driving allocates nothing: the hour's last 50 minutes add no memory (a page or
@@ -201,11 +212,13 @@ TEST(Soak, RealWorldTrackMeshFreeDriving) {
     // throttle and brake every 2 s (fixed seed): it accelerates, brakes, turns both ways,
     // climbs, and bumps into whatever stands in its way.
     const Aabb& bounds = scene.statics->collider(0).bounds();
-    const glm::dvec3 centre = 0.5 * (bounds.min + bounds.max), reach = (bounds.max - bounds.min) / 3.0;
+    const glm::dvec3 centre = 0.5 * (bounds.min + bounds.max),
+                     reach = (bounds.max - bounds.min) / 3.0;
     std::mt19937 random(8);
     std::uniform_real_distribution<double> unit(0.0, 1.0);
     const auto next_waypoint = [&] {
-        return centre + glm::dvec3((2.0 * unit(random) - 1.0) * reach.x, 0.0, (2.0 * unit(random) - 1.0) * reach.z);
+        return centre + glm::dvec3((2.0 * unit(random) - 1.0) * reach.x, 0.0,
+                                   (2.0 * unit(random) - 1.0) * reach.z);
     };
     glm::dvec3 waypoint = next_waypoint();
     CarInputs inputs;
@@ -217,7 +230,8 @@ TEST(Soak, RealWorldTrackMeshFreeDriving) {
         const RigidBodyState& state = car.state();
         glm::dvec3 to_waypoint = waypoint - state.position;
         to_waypoint.y = 0.0;
-        if (glm::length(to_waypoint) < 20.0 || world.update_count() % 3000 == 0) waypoint = next_waypoint();
+        if (glm::length(to_waypoint) < 20.0 || world.update_count() % 3000 == 0)
+            waypoint = next_waypoint();
         if (world.update_count() % 200 == 0) {
             const bool braking = unit(random) < 0.2;
             inputs.throttle = braking ? 0.0 : 0.2 + 0.8 * unit(random);
@@ -226,14 +240,16 @@ TEST(Soak, RealWorldTrackMeshFreeDriving) {
         // Steer towards the waypoint: +1 is full left (body +X), the angle seen from above.
         const glm::dvec3 forward = state.orientation * glm::dvec3(0.0, 0.0, 1.0);
         const glm::dvec3 left = state.orientation * glm::dvec3(1.0, 0.0, 0.0);
-        const double angle = std::atan2(glm::dot(to_waypoint, left), glm::dot(to_waypoint, forward));
+        const double angle =
+            std::atan2(glm::dot(to_waypoint, left), glm::dot(to_waypoint, forward));
         inputs.steer = std::clamp(angle / 0.6, -1.0, 1.0);
         car.set_inputs(inputs);
         world.update();
         if (!checker.check()) break;
         if (world.update_count() == 6000) figures.rss_early_mb = resident_bytes() / 1e6;  // 1 min
     }
-    figures.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+    figures.wall_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
     figures.updates = world.update_count();
     figures.rss_end_mb = resident_bytes() / 1e6;
     std::printf("real track: %s, %zu triangles\n", mesh, scene.triangle_count);

@@ -48,7 +48,7 @@ struct ContactCase {
 };
 
 class ContactCaseGenerator {
-public:
+  public:
     /// wheel_and_body: only the car's two shapes (the benchmark); else also random radii.
     explicit ContactCaseGenerator(std::uint64_t seed, bool wheel_and_body = false)
         : rng_(seed), wheel_and_body_(wheel_and_body) {}
@@ -94,7 +94,7 @@ public:
             glm::dquat(normal_(rng_), normal_(rng_), normal_(rng_), normal_(rng_)));
     }
 
-private:
+  private:
     Ellipsoid ellipsoid() {
         glm::dvec3 axes;
         switch (pick(wheel_and_body_ ? 2 : 4)) {

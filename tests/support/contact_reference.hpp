@@ -47,7 +47,7 @@ struct ReferenceContact {
 };
 
 class ContactReference {
-public:
+  public:
     /// radii: any order (the frame's axes); q: the triangle in the ellipsoid's frame.
     ContactReference(const std::array<R, 3>& radii, const std::array<V3, 3>& q) : q_(q) {
         d2_ = {radii[0] * radii[0], radii[1] * radii[1], radii[2] * radii[2]};
@@ -95,7 +95,7 @@ public:
     R h(V3 u) const { return std::sqrt(d2_.x * u.x * u.x + d2_.y * u.y * u.y + d2_.z * u.z * u.z); }
     R g(V3 u) const { return std::max({dot(u, q_[0]), dot(u, q_[1]), dot(u, q_[2])}) + h(u); }
 
-private:
+  private:
     static V3 fibonacci(int k, int count) {
         const R golden = R(3.883222077450933154693131L);  // pi (3 - sqrt 5)
         const R z = 1 - (2 * R(k) + 1) / R(count);

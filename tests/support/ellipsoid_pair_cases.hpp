@@ -31,9 +31,9 @@ enum class PairKind {
 };
 
 inline const char* pair_kind_name(PairKind k) {
-    static const char* names[] = {"spheres",    "sphere_ellipsoid", "car_like", "grazing",
-                                  "deep",       "elongated",        "crossing", "coincident",
-                                  "identical",  "scaled",           "far"};
+    static const char* names[] = {"spheres",   "sphere_ellipsoid", "car_like", "grazing",
+                                  "deep",      "elongated",        "crossing", "coincident",
+                                  "identical", "scaled",           "far"};
     return names[static_cast<int>(k)];
 }
 
@@ -43,11 +43,15 @@ struct PairCase {
 };
 
 class PairCaseGenerator {
-public:
+  public:
     explicit PairCaseGenerator(std::uint64_t seed) : rng_(seed) {}
 
-    double uniform(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng_); }
-    double log_uniform(double lo, double hi) { return std::exp(uniform(std::log(lo), std::log(hi))); }
+    double uniform(double lo, double hi) {
+        return std::uniform_real_distribution<double>(lo, hi)(rng_);
+    }
+    double log_uniform(double lo, double hi) {
+        return std::exp(uniform(std::log(lo), std::log(hi)));
+    }
 
     glm::dvec3 unit_vector() {
         std::normal_distribution<double> g;
@@ -85,77 +89,81 @@ public:
 
     PairCase make(PairKind kind) {
         switch (kind) {
-        case PairKind::spheres: {
-            const double ra = uniform(0.1, 3.0), rb = uniform(0.1, 3.0);
-            const Ellipsoid b(origin(), rotation(), glm::dvec3(rb));
-            const glm::dvec3 c = b.center() + unit_vector() * uniform(0.0, ra + rb + 1.0);
-            return {Ellipsoid(c, rotation(), glm::dvec3(ra)), b, kind};
-        }
-        case PairKind::sphere_ellipsoid: {
-            const Ellipsoid b(origin(), rotation(), car_axes());
-            return {placed(glm::dvec3(uniform(0.2, 2.0)), rotation(), b, uniform(-0.5, 0.5)), b,
-                    kind};
-        }
-        case PairKind::car_like: {
-            const Ellipsoid b(origin(), rotation(), car_axes());
-            return {placed(car_axes(), rotation(), b, uniform(-0.3, 0.3)), b, kind};
-        }
-        case PairKind::grazing: {
-            const Ellipsoid b(origin(), rotation(), car_axes());
-            const double depth = (uniform(0, 1) < 0.5 ? -1 : 1) * log_uniform(1e-12, 1e-6);
-            return {placed(car_axes(), rotation(), b, depth), b, kind};
-        }
-        case PairKind::deep: {
-            const Ellipsoid b(origin(), rotation(), car_axes());
-            const glm::dvec3 inside = b.sorted_axes() * (b.sorted_radii() * unit_vector() *
-                                                         uniform(0.0, 0.99));
-            return {Ellipsoid(b.center() + inside, rotation(), car_axes()), b, kind};
-        }
-        case PairKind::elongated: {
-            const Ellipsoid b(origin(), rotation(), elongated_axes(100.0));
-            if (uniform(0, 1) < 0.5)
-                return {placed(elongated_axes(100.0), rotation(), b, uniform(-0.3, 0.3)), b, kind};
-            const glm::dvec3 inside = b.sorted_axes() * (b.sorted_radii() * unit_vector() *
-                                                         uniform(0.0, 1.2));
-            return {Ellipsoid(b.center() + inside, rotation(), elongated_axes(100.0)), b, kind};
-        }
-        case PairKind::crossing: {
-            const glm::dquat qb = rotation();
-            const Ellipsoid b(origin(), qb, elongated_axes(100.0));
-            // a's long axis about orthogonal to b's: a quarter turn about b's middle axis,
-            // tilted a little.
-            const glm::dquat turn = glm::angleAxis(1.5707963267948966 + uniform(-0.3, 0.3),
-                                                   b.sorted_axes()[1]);
-            const glm::dquat qa = glm::normalize(turn * glm::angleAxis(uniform(-0.3, 0.3),
-                                                                       unit_vector()) * qb);
-            const double reach = b.sorted_radii().y + b.sorted_radii().z;
-            const glm::dvec3 offset = unit_vector() * uniform(0.0, reach);
-            return {Ellipsoid(b.center() + offset, qa, elongated_axes(100.0)), b, kind};
-        }
-        case PairKind::coincident: {
-            const glm::dvec3 c = origin();
-            const glm::dvec3 ra = uniform(0, 1) < 0.5 ? car_axes() : elongated_axes(100.0);
-            return {Ellipsoid(c, rotation(), ra), Ellipsoid(c, rotation(), car_axes()), kind};
-        }
-        case PairKind::identical: {
-            const glm::dvec3 axes = uniform(0, 1) < 0.5 ? car_axes() : elongated_axes(100.0);
-            const glm::dquat q = rotation();
-            const Ellipsoid b(origin(), q, axes);
-            const glm::dvec3 c = b.center() + unit_vector() * uniform(0.0, 2.2 * axes.x);
-            return {Ellipsoid(c, q, axes), b, kind};
-        }
-        case PairKind::scaled: {
-            const PairCase base = make(uniform(0, 1) < 0.5 ? PairKind::car_like : PairKind::deep);
-            const double s = log_uniform(1e-3, 1e3);
-            return {Ellipsoid(base.a.center() * s, base.a.orientation(), base.a.semi_axes() * s),
+            case PairKind::spheres: {
+                const double ra = uniform(0.1, 3.0), rb = uniform(0.1, 3.0);
+                const Ellipsoid b(origin(), rotation(), glm::dvec3(rb));
+                const glm::dvec3 c = b.center() + unit_vector() * uniform(0.0, ra + rb + 1.0);
+                return {Ellipsoid(c, rotation(), glm::dvec3(ra)), b, kind};
+            }
+            case PairKind::sphere_ellipsoid: {
+                const Ellipsoid b(origin(), rotation(), car_axes());
+                return {placed(glm::dvec3(uniform(0.2, 2.0)), rotation(), b, uniform(-0.5, 0.5)), b,
+                        kind};
+            }
+            case PairKind::car_like: {
+                const Ellipsoid b(origin(), rotation(), car_axes());
+                return {placed(car_axes(), rotation(), b, uniform(-0.3, 0.3)), b, kind};
+            }
+            case PairKind::grazing: {
+                const Ellipsoid b(origin(), rotation(), car_axes());
+                const double depth = (uniform(0, 1) < 0.5 ? -1 : 1) * log_uniform(1e-12, 1e-6);
+                return {placed(car_axes(), rotation(), b, depth), b, kind};
+            }
+            case PairKind::deep: {
+                const Ellipsoid b(origin(), rotation(), car_axes());
+                const glm::dvec3 inside =
+                    b.sorted_axes() * (b.sorted_radii() * unit_vector() * uniform(0.0, 0.99));
+                return {Ellipsoid(b.center() + inside, rotation(), car_axes()), b, kind};
+            }
+            case PairKind::elongated: {
+                const Ellipsoid b(origin(), rotation(), elongated_axes(100.0));
+                if (uniform(0, 1) < 0.5)
+                    return {placed(elongated_axes(100.0), rotation(), b, uniform(-0.3, 0.3)), b,
+                            kind};
+                const glm::dvec3 inside =
+                    b.sorted_axes() * (b.sorted_radii() * unit_vector() * uniform(0.0, 1.2));
+                return {Ellipsoid(b.center() + inside, rotation(), elongated_axes(100.0)), b, kind};
+            }
+            case PairKind::crossing: {
+                const glm::dquat qb = rotation();
+                const Ellipsoid b(origin(), qb, elongated_axes(100.0));
+                // a's long axis about orthogonal to b's: a quarter turn about b's middle axis,
+                // tilted a little.
+                const glm::dquat turn =
+                    glm::angleAxis(1.5707963267948966 + uniform(-0.3, 0.3), b.sorted_axes()[1]);
+                const glm::dquat qa =
+                    glm::normalize(turn * glm::angleAxis(uniform(-0.3, 0.3), unit_vector()) * qb);
+                const double reach = b.sorted_radii().y + b.sorted_radii().z;
+                const glm::dvec3 offset = unit_vector() * uniform(0.0, reach);
+                return {Ellipsoid(b.center() + offset, qa, elongated_axes(100.0)), b, kind};
+            }
+            case PairKind::coincident: {
+                const glm::dvec3 c = origin();
+                const glm::dvec3 ra = uniform(0, 1) < 0.5 ? car_axes() : elongated_axes(100.0);
+                return {Ellipsoid(c, rotation(), ra), Ellipsoid(c, rotation(), car_axes()), kind};
+            }
+            case PairKind::identical: {
+                const glm::dvec3 axes = uniform(0, 1) < 0.5 ? car_axes() : elongated_axes(100.0);
+                const glm::dquat q = rotation();
+                const Ellipsoid b(origin(), q, axes);
+                const glm::dvec3 c = b.center() + unit_vector() * uniform(0.0, 2.2 * axes.x);
+                return {Ellipsoid(c, q, axes), b, kind};
+            }
+            case PairKind::scaled: {
+                const PairCase base =
+                    make(uniform(0, 1) < 0.5 ? PairKind::car_like : PairKind::deep);
+                const double s = log_uniform(1e-3, 1e3);
+                return {
+                    Ellipsoid(base.a.center() * s, base.a.orientation(), base.a.semi_axes() * s),
                     Ellipsoid(base.b.center() * s, base.b.orientation(), base.b.semi_axes() * s),
                     kind};
-        }
-        case PairKind::far: {
-            const Ellipsoid b(unit_vector() * uniform(0.0, 1000.0), rotation(), car_axes());
-            return {placed(car_axes(), rotation(), b, -log_uniform(10.0, 1e4)), b, kind};
-        }
-        default: break;
+            }
+            case PairKind::far: {
+                const Ellipsoid b(unit_vector() * uniform(0.0, 1000.0), rotation(), car_axes());
+                return {placed(car_axes(), rotation(), b, -log_uniform(10.0, 1e4)), b, kind};
+            }
+            default:
+                break;
         }
         return make(PairKind::car_like);
     }
@@ -168,7 +176,7 @@ public:
         return e.center() + e.sorted_axes() * (r2 * local / value);
     }
 
-private:
+  private:
     glm::dvec3 origin() { return {uniform(-50.0, 50.0), uniform(-5.0, 5.0), uniform(-50.0, 50.0)}; }
 
     std::mt19937_64 rng_;

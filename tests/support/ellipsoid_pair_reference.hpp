@@ -68,7 +68,7 @@ struct PairReferenceResult {
 };
 
 class PairReference {
-public:
+  public:
     using R = pair_reference::R;
     using V3 = pair_reference::V3;
 
@@ -168,7 +168,7 @@ public:
         return out;
     }
 
-private:
+  private:
     static void basis(V3 n, V3& t1, V3& t2) {
         const V3 helper = std::fabs(n.x) < 0.6L ? V3{1, 0, 0} : V3{0, 1, 0};
         t1 = pair_reference::unit(pair_reference::cross(n, helper));

@@ -26,7 +26,7 @@ struct RefCriticalPoint {
 
 template <int N>
 class ReferenceSolver {
-public:
+  public:
     ReferenceSolver(const std::array<double, N>& r, const std::array<double, N>& p) {
         for (int i = 0; i < N; ++i) {
             r_[i] = r[i];
@@ -72,7 +72,7 @@ public:
         });
     }
 
-private:
+  private:
     // S(eta) = sum (a_i / (c_i + eta))^2 with c_i = s (r_i^2 - r_pole^2).
     Real c_of(int i, int pole, int s) const { return s * (r_[i] - r_[pole]) * (r_[i] + r_[pole]); }
     Real S(int pole, int s, Real eta) const {

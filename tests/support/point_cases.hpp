@@ -32,7 +32,7 @@ struct PointCase {
 
 template <int N>
 class PointCaseGenerator {
-public:
+  public:
     explicit PointCaseGenerator(std::uint64_t seed) : rng_(seed) {}
 
     PointCase<N> next() {
@@ -85,7 +85,7 @@ public:
         return c;
     }
 
-private:
+  private:
     std::array<double, N> radii() {
         std::array<double, N> r;
         switch (pick(6)) {

@@ -33,7 +33,8 @@ inline const TriangleMesh* real_track(const std::string& name, std::string* why)
     if (auto it = loaded.find(name); it != loaded.end()) return &it->second;
     const std::filesystem::path path = std::filesystem::path(TRACKPHYS_TORCS_DIR) / (name + ".ac");
     if (!std::filesystem::exists(path)) {
-        *why = path.string() + " is missing: scripts/fetch_torcs_track.sh " TRACKPHYS_TORCS_DIR
+        *why = path.string() +
+               " is missing: scripts/fetch_torcs_track.sh " TRACKPHYS_TORCS_DIR
                " fetches it (from an installed torcs-data, else with apt-get download, which "
                "needs network)";
         return nullptr;
@@ -44,8 +45,8 @@ inline const TriangleMesh* real_track(const std::string& name, std::string* why)
 }  // namespace trackphys::test
 
 /// Declares `const TriangleMesh& mesh` for the track `name`, or skips the test saying why.
-#define TRACKPHYS_REAL_TRACK_OR_SKIP(mesh, name)                                  \
-    std::string mesh##_missing;                                                  \
+#define TRACKPHYS_REAL_TRACK_OR_SKIP(mesh, name)                                               \
+    std::string mesh##_missing;                                                                \
     const TriangleMesh* mesh##_pointer = ::trackphys::test::real_track(name, &mesh##_missing); \
-    if (mesh##_pointer == nullptr) GTEST_SKIP() << mesh##_missing;               \
+    if (mesh##_pointer == nullptr) GTEST_SKIP() << mesh##_missing;                             \
     const TriangleMesh& mesh = *mesh##_pointer

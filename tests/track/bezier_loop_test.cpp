@@ -4,8 +4,9 @@
 #include <numbers>
 #include <vector>
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+
+#include <glm/geometric.hpp>
 
 namespace trackphys::track_detail {
 namespace {
@@ -21,7 +22,8 @@ TEST(BezierLoop, IsC1AtEveryJoint) {
     for (std::size_t i = 0; i < n; ++i) {
         const std::size_t next = (i + 1) % n;
         // Position and first derivative agree where segment i ends and segment i+1 starts.
-        EXPECT_NEAR(glm::distance(loop.segment_position(i, 1.0), loop.segment_position(next, 0.0)), 0.0, 1e-12);
+        EXPECT_NEAR(glm::distance(loop.segment_position(i, 1.0), loop.segment_position(next, 0.0)),
+                    0.0, 1e-12);
         const glm::dvec3 end = loop.segment_derivative(i, 1.0);
         const glm::dvec3 start = loop.segment_derivative(next, 0.0);
         EXPECT_LE(glm::distance(end, start), 1e-12 * glm::length(start)) << "joint " << next;

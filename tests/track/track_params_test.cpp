@@ -45,9 +45,14 @@ TEST(TrackParams, EachBadFieldIsNamed) {
         {"elevation_amplitude_m", [](TrackParams& p) { p.elevation_amplitude_m = -2.0; }},
         {"wall_height_m", [](TrackParams& p) { p.wall_height_m = 0.0; }},
         {"wall_thickness_m", [=](TrackParams& p) { p.wall_thickness_m = nan; }},
-        {"min_turn_radius_m", [](TrackParams& p) { p.min_turn_radius_m = 8.0; }},  // inner edge folds
+        {"min_turn_radius_m",
+         [](TrackParams& p) { p.min_turn_radius_m = 8.0; }},  // inner edge folds
         {"edge_tight_m", [](TrackParams& p) { p.edge_tight_m = 0.0; }},
-        {"edge_tight_m", [](TrackParams& p) { p.edge_tight_m = 0.05; p.strips = 200; }},  // budget
+        {"edge_tight_m",
+         [](TrackParams& p) {
+             p.edge_tight_m = 0.05;
+             p.strips = 200;
+         }},                                                                   // budget
         {"edge_straight_m", [](TrackParams& p) { p.edge_straight_m = 0.2; }},  // < edge_tight_m
         {"tight_radius_m", [](TrackParams& p) { p.tight_radius_m = -5.0; }},
         {"strips", [](TrackParams& p) { p.strips = 0; }},

@@ -5,8 +5,9 @@
 #include <numbers>
 #include <vector>
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+
+#include <glm/geometric.hpp>
 
 #include "trackphys/geometry/triangle.hpp"
 #include "trackphys/track/track_stats.hpp"
@@ -30,7 +31,8 @@ Triangle triangle_of(const TriangleMesh& mesh, std::size_t t) {
 // Vertices per row of a chunk mesh (rows are stored one after the other).
 std::size_t row_size(const Track& track) {
     const std::size_t rows = track.chunks[0].mesh.vertices.size();
-    const std::size_t steps = track.chunks.size() > 1 ? track.chunks[1].first_sample : track.centerline.size();
+    const std::size_t steps =
+        track.chunks.size() > 1 ? track.chunks[1].first_sample : track.centerline.size();
     return rows / (steps + 1);
 }
 
@@ -114,8 +116,10 @@ TEST(Track, WidthAndBankStayWithinBounds) {
             const glm::dvec3& left = chunk.mesh.vertices[row * width + 3];
             const glm::dvec3& right = chunk.mesh.vertices[row * width + 3 + track.params.strips];
             ASSERT_NEAR(glm::distance(left, right), track.params.width_m, 1e-9);
-            const double drop = (right.y - left.y) / track.params.width_m;  // sin(bank) for a level road
-            const CenterlineSample& s = track.centerline[(chunk.first_sample + row) % track.centerline.size()];
+            const double drop =
+                (right.y - left.y) / track.params.width_m;  // sin(bank) for a level road
+            const CenterlineSample& s =
+                track.centerline[(chunk.first_sample + row) % track.centerline.size()];
             ASSERT_NEAR(drop, std::sin(s.bank) * std::sqrt(1.0 - s.tangent.y * s.tangent.y), 1e-9);
         }
     }
@@ -131,7 +135,8 @@ TEST(Track, RoadTrianglesAreSoundAndFaceUp) {
             const Triangle tri = triangle_of(chunk.mesh, t);
             ASSERT_FALSE(tri.is_degenerate(0.05)) << "road triangle " << t;
             ASSERT_GT(tri.area(), 0.05);
-            ASSERT_GT(tri.normal().y, min_up) << "road triangle " << t << " is flipped or too steep";
+            ASSERT_GT(tri.normal().y, min_up)
+                << "road triangle " << t << " is flipped or too steep";
             ++checked;
         }
     }
@@ -158,7 +163,8 @@ TEST(Track, WallsStandAtBothEdgesAndFaceTheRoad) {
             ASSERT_LT(std::abs(n.y), 1e-9) << "wall faces are vertical";
             // The centreline point of the row this triangle starts on.
             const std::size_t row = mesh.triangles[t][0] / width;
-            const CenterlineSample& s = track.centerline[(chunk.first_sample + row) % track.centerline.size()];
+            const CenterlineSample& s =
+                track.centerline[(chunk.first_sample + row) % track.centerline.size()];
             const glm::dvec3 centroid = (tri[0] + tri[1] + tri[2]) / 3.0;
             glm::dvec3 towards = s.position - centroid;
             towards.y = 0.0;
@@ -174,7 +180,8 @@ TEST(Track, WallsStandAtBothEdgesAndFaceTheRoad) {
                 ++outer;
                 ASSERT_GT(distance, 0.5 * p.width_m * std::cos(p.max_bank_deg * kDegrees));
             }
-            const double height = std::max({tri[0].y, tri[1].y, tri[2].y}) - std::min({tri[0].y, tri[1].y, tri[2].y});
+            const double height =
+                std::max({tri[0].y, tri[1].y, tri[2].y}) - std::min({tri[0].y, tri[1].y, tri[2].y});
             ASSERT_GT(height, 0.99 * p.wall_height_m);
         }
     }
@@ -201,8 +208,9 @@ TEST(Track, ChunkBoundsHoldTheirTriangles) {
     // Chunks are about chunk_length_m of centreline each.
     for (std::size_t c = 0; c < track.chunks.size(); ++c) {
         const double from = track.centerline[track.chunks[c].first_sample].distance;
-        const double to = c + 1 < track.chunks.size() ? track.centerline[track.chunks[c + 1].first_sample].distance
-                                                      : track.length_m;
+        const double to = c + 1 < track.chunks.size()
+                              ? track.centerline[track.chunks[c + 1].first_sample].distance
+                              : track.length_m;
         EXPECT_NEAR(to - from, track.params.chunk_length_m, 1.0) << "chunk " << c;
     }
 }
@@ -241,8 +249,9 @@ TEST(Track, RowsAreDenserInTightTurns) {
         const CenterlineSample& s = track.centerline[r];
         const CenterlineSample& next = track.centerline[(r + 1) % rows];
         // The outer road edge of this row step (the longer of the two edges).
-        const double edge = std::max(glm::distance(s.position + half * s.left, next.position + half * next.left),
-                                     glm::distance(s.position - half * s.left, next.position - half * next.left));
+        const double edge =
+            std::max(glm::distance(s.position + half * s.left, next.position + half * next.left),
+                     glm::distance(s.position - half * s.left, next.position - half * next.left));
         const double radius = 1.0 / std::max(std::abs(s.curvature), 1e-12);
         if (radius <= params.tight_radius_m) {
             tight_sum += edge;
@@ -279,7 +288,8 @@ TEST(Track, ElevationFollowsTheAmplitude) {
     EXPECT_GT(stats.min_elevation_m, -1.3 * 2000.0 / 12 * 0.04);
     double max_grade = 0.0;
     for (const CenterlineSample& s : hilly.centerline)
-        max_grade = std::max(max_grade, std::abs(s.tangent.y) / std::hypot(s.tangent.x, s.tangent.z));
+        max_grade =
+            std::max(max_grade, std::abs(s.tangent.y) / std::hypot(s.tangent.x, s.tangent.z));
     EXPECT_LT(max_grade, 0.15);
 }
 
@@ -290,11 +300,13 @@ TEST(Track, NeverComesCloseToItself) {
     const TrackParams& p = track.params;
     const double clearance = p.width_m + 2.0 * p.wall_thickness_m;
     std::vector<const CenterlineSample*> points;
-    for (std::size_t r = 0; r < track.centerline.size(); r += 4) points.push_back(&track.centerline[r]);
+    for (std::size_t r = 0; r < track.centerline.size(); r += 4)
+        points.push_back(&track.centerline[r]);
     for (std::size_t i = 0; i < points.size(); ++i) {
         for (std::size_t j = i + 1; j < points.size(); ++j) {
             const double along = points[j]->distance - points[i]->distance;
-            if (std::min(along, track.length_m - along) < std::numbers::pi * p.min_turn_radius_m) continue;
+            if (std::min(along, track.length_m - along) < std::numbers::pi * p.min_turn_radius_m)
+                continue;
             const glm::dvec3 d = points[j]->position - points[i]->position;
             ASSERT_GE(std::hypot(d.x, d.z), clearance)
                 << "at " << points[i]->distance << " m and " << points[j]->distance << " m";
@@ -313,7 +325,8 @@ TEST(Track, OtherParametersMakeValidTracksToo) {
     const Track track = generate_track(params);
     EXPECT_NEAR(track.length_m, 1200.0, 1e-3);
     EXPECT_EQ(track.chunks.size(), 32u);
-    for (const CenterlineSample& s : track.centerline) ASSERT_LE(std::abs(s.bank), 10.0 * kDegrees + 1e-12);
+    for (const CenterlineSample& s : track.centerline)
+        ASSERT_LE(std::abs(s.bank), 10.0 * kDegrees + 1e-12);
     for (const TrackChunk& chunk : track.chunks)
         for (std::size_t t = 0; t < chunk.road_triangle_count; ++t)
             ASSERT_GT(triangle_of(chunk.mesh, t).normal().y, 0.9);

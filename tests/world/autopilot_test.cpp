@@ -1,13 +1,15 @@
 // The autopilot drives whole laps of the default track, and a car reaches 1000 km/h on a
 // long straight and brakes to a stop, all without leaving the road.
+#include "trackphys/world/autopilot.hpp"
+
 #include <cmath>
+
+#include <gtest/gtest.h>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
-#include <gtest/gtest.h>
 
 #include "trackphys/track/track.hpp"
-#include "trackphys/world/autopilot.hpp"
 #include "trackphys/world/world.hpp"
 #include "world/track_world.hpp"
 #include "world/world_scenes.hpp"
@@ -15,10 +17,10 @@
 namespace trackphys {
 namespace {
 
-using test::TrackWorld;
 using test::default_track;
 using test::make_track_world;
 using test::on_start_line;
+using test::TrackWorld;
 
 void drive_a_lap(double target_kmh, const TrackWorld& tw = default_track()) {
     const CarSpec spec = CarSpec::default_car();
@@ -39,11 +41,14 @@ void drive_a_lap(double target_kmh, const TrackWorld& tw = default_track()) {
         const CenterlineSample& s = tw.track.centerline[pilot.nearest_sample()];
         for (std::size_t e = 0; e < car.ellipsoid_count(); ++e) {
             const glm::dvec3 offset = car.world_ellipsoid(e).center() - s.position;
-            ASSERT_LT(std::abs(glm::dot(offset, s.left)), half_width) << "ellipsoid " << e << " at " << s.distance << " m";
-            ASSERT_GT(glm::dot(offset, s.up), 0.0) << "ellipsoid " << e << " below the road at " << s.distance << " m";
+            ASSERT_LT(std::abs(glm::dot(offset, s.left)), half_width)
+                << "ellipsoid " << e << " at " << s.distance << " m";
+            ASSERT_GT(glm::dot(offset, s.up), 0.0)
+                << "ellipsoid " << e << " below the road at " << s.distance << " m";
         }
         top = std::max(top, car.speed());
-        worst_overshoot = std::max(worst_overshoot, car.speed() - pilot.planned_speed(pilot.nearest_sample()));
+        worst_overshoot =
+            std::max(worst_overshoot, car.speed() - pilot.planned_speed(pilot.nearest_sample()));
     }
     EXPECT_EQ(pilot.laps(), 1) << "the lap did not finish";
     // It follows the computed profile: never much faster than planned, and fast where it may.
@@ -64,7 +69,8 @@ TEST(Autopilot, PlannedSpeedFallsInTightTurnsAndRespectsTheTarget) {
     std::size_t tightest = 0;
     double fastest = 0.0;
     for (std::size_t i = 0; i < tw.track.centerline.size(); ++i) {
-        if (std::abs(tw.track.centerline[i].curvature) > std::abs(tw.track.centerline[tightest].curvature))
+        if (std::abs(tw.track.centerline[i].curvature) >
+            std::abs(tw.track.centerline[tightest].curvature))
             tightest = i;
         fastest = std::max(fastest, pilot.planned_speed(i));
         ASSERT_LE(pilot.planned_speed(i), settings.target_speed);

@@ -4,9 +4,10 @@
 #include <cmath>
 #include <limits>
 
+#include <gtest/gtest.h>
+
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
-#include <gtest/gtest.h>
 
 #include "trackphys/error.hpp"
 #include "trackphys/world/world.hpp"
@@ -86,7 +87,8 @@ TEST(CarPhysics, FrictionStopsASlidingCarWhereCoulombSays) {
     sled.mass = MassProperties::solid_box(800.0, {1.8, 0.6, 4.0});
     for (double x : {-0.7, 0.7})
         for (double z : {-1.5, 1.5})
-            sled.ellipsoids.push_back({{x, -0.2, z}, {0.2, 0.1, 0.4}, {1, 0, 0, 0}, EllipsoidRole::body});
+            sled.ellipsoids.push_back(
+                {{x, -0.2, z}, {0.2, 0.1, 0.4}, {1, 0, 0, 0}, EllipsoidRole::body});
     sled.body_contact = {4.0e5, 2.5e4, 0.5, 0.05};
     sled.drag_area = sled.downforce_area = 0.0;
     World world(test::static_world_of(test::flat_grid(120.0, 120)));
@@ -106,7 +108,8 @@ TEST(CarPhysics, NoTunnellingIntoAWallAt1000KmH) {
     const TriangleMesh barrier = test::wall(wall_z, 20.0, 3.0);
     const auto base = static_cast<std::uint32_t>(scene.vertices.size());
     scene.vertices.insert(scene.vertices.end(), barrier.vertices.begin(), barrier.vertices.end());
-    for (auto t : barrier.triangles) scene.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+    for (auto t : barrier.triangles)
+        scene.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
 
     World world(test::static_world_of(scene));
     world.add_car(CarSpec::default_car(), at_height(0.52, {0.0, 0.0, 1000.0 / 3.6}));
@@ -114,7 +117,8 @@ TEST(CarPhysics, NoTunnellingIntoAWallAt1000KmH) {
         world.update();
         const Car& car = world.car(0);
         for (std::size_t e = 0; e < car.ellipsoid_count(); ++e)
-            ASSERT_LT(car.world_ellipsoid(e).center().z, wall_z) << "ellipsoid " << e << " update " << i;
+            ASSERT_LT(car.world_ellipsoid(e).center().z, wall_z)
+                << "ellipsoid " << e << " update " << i;
     }
     EXPECT_LT(world.car(0).state().linear_velocity.z, 1.0) << "the wall stopped the car";
 }
@@ -129,9 +133,11 @@ TEST(CarPhysics, NoTunnellingThroughASingleTriangleRoadFrom100m) {
         world.update();
         const Car& car = world.car(0);
         for (std::size_t e = 0; e < car.ellipsoid_count(); ++e)
-            ASSERT_GT(car.world_ellipsoid(e).center().y, 0.0) << "ellipsoid " << e << " update " << i;
+            ASSERT_GT(car.world_ellipsoid(e).center().y, 0.0)
+                << "ellipsoid " << e << " update " << i;
     }
-    EXPECT_LT(glm::length(world.car(0).state().linear_velocity), 0.5) << "it came to rest on the road";
+    EXPECT_LT(glm::length(world.car(0).state().linear_velocity), 0.5)
+        << "it came to rest on the road";
 }
 
 // Sliding and driving straight across the seams of a finely triangulated flat road: the

@@ -13,8 +13,9 @@
 #include <string>
 #include <vector>
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+
+#include <glm/geometric.hpp>
 
 #include "support/error_message.hpp"
 #include "support/real_tracks.hpp"
@@ -45,9 +46,9 @@ double deepest_contact(const StaticWorld& statics, const CarSpec& spec,
         statics.query_aabb(e.bounds().padded(1.0), refs);
         for (const TriangleRef& ref : refs)
             deepest = std::max(
-                deepest, ellipsoid_triangle_contact(
-                             e, statics.collider(ref.collider).triangle(ref.triangle))
-                             .depth);
+                deepest,
+                ellipsoid_triangle_contact(e, statics.collider(ref.collider).triangle(ref.triangle))
+                    .depth);
     }
     return deepest;
 }
@@ -119,15 +120,17 @@ TEST(Spawn, KerbUnderOneWheelLiftsTheCar) {
 TEST(Spawn, RejectsNothingBelowAWallAndBadInput) {
     const CarSpec spec = CarSpec::default_car();
     const auto ground = test::static_world_of(test::flat_grid(20.0, 4));
-    EXPECT_NE(test::error_of([&] { place_car_on_surface(*ground, spec, {100, 3, 0}, heading(0)); })
-                  .find("no surface below the car at (100, 3, 0)"),
+    EXPECT_NE(test::error_of([&] {
+                  place_car_on_surface(*ground, spec, {100, 3, 0}, heading(0));
+              }).find("no surface below the car at (100, 3, 0)"),
               std::string::npos);
     // A pillar 30 m tall through the car: no rise by twice the car's size clears it.
     TriangleMesh pillar = test::flat_grid(20.0, 4);
     add_box(pillar, {-0.5, 0.0, -0.5}, {0.5, 30.0, 0.5});
     const auto inside = test::static_world_of(pillar);
-    const std::string message =
-        test::error_of([&] { place_car_on_surface(*inside, spec, {0, 3, 0}, heading(0)); });
+    const std::string message = test::error_of([&] {
+        place_car_on_surface(*inside, spec, {0, 3, 0}, heading(0));
+    });
     EXPECT_NE(message.find("is inside geometry and stays so raised by"), std::string::npos)
         << message;
     EXPECT_NE(test::error_of([&] {
@@ -136,8 +139,9 @@ TEST(Spawn, RejectsNothingBelowAWallAndBadInput) {
               std::string::npos);
     CarSpec bad = spec;
     bad.ellipsoids[0].semi_axes.y = 0.0;
-    EXPECT_NE(test::error_of([&] { place_car_on_surface(*ground, bad, {0, 3, 0}, heading(0)); })
-                  .find("semi_axes.y"),
+    EXPECT_NE(test::error_of([&] {
+                  place_car_on_surface(*ground, bad, {0, 3, 0}, heading(0));
+              }).find("semi_axes.y"),
               std::string::npos);
 }
 

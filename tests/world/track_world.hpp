@@ -28,7 +28,8 @@ inline TrackWorld make_track_world(std::uint64_t seed) {
     params.seed = seed;
     TrackWorld tw{generate_track(params), nullptr, {}};
     auto statics = std::make_shared<StaticWorld>();
-    for (const TrackChunk& chunk : tw.track.chunks) statics->add(std::make_shared<StaticCollider>(chunk.mesh));
+    for (const TrackChunk& chunk : tw.track.chunks)
+        statics->add(std::make_shared<StaticCollider>(chunk.mesh));
     tw.statics = std::move(statics);
     tw.trees = make_collider_plane_trees(*tw.statics);
     return tw;

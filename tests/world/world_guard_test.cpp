@@ -4,12 +4,12 @@
 #include <limits>
 #include <string>
 
-#include <glm/geometric.hpp>
-#include <glm/gtc/quaternion.hpp>
 #include <gtest/gtest.h>
 
-#include "support/error_message.hpp"
+#include <glm/geometric.hpp>
+#include <glm/gtc/quaternion.hpp>
 
+#include "support/error_message.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/math/types.hpp"
 #include "trackphys/world/world.hpp"
@@ -57,8 +57,10 @@ TEST(ResetPolicy, ANonFiniteCarIsResetToItsStartAtRest) {
         EXPECT_EQ(world.car(0).inputs().throttle, 0.7) << "inputs are kept";
         for (const Contact& c : world.contacts(0)) EXPECT_EQ(c.depth, -kInf);
     }
-    EXPECT_NE(world.last_reset_reason(0).find("update 5: "), std::string::npos) << world.last_reset_reason(0);
-    EXPECT_NE(world.last_reset_reason(0).find("not finite"), std::string::npos) << world.last_reset_reason(0);
+    EXPECT_NE(world.last_reset_reason(0).find("update 5: "), std::string::npos)
+        << world.last_reset_reason(0);
+    EXPECT_NE(world.last_reset_reason(0).find("not finite"), std::string::npos)
+        << world.last_reset_reason(0);
 }
 
 // A strong gravity (300 g) pulls a car falling at 540 m/s past twice the design speed
@@ -72,7 +74,8 @@ TEST(ResetPolicy, AnOverSpeedCarIsResetOnce) {
     world.update();
     EXPECT_EQ(world.car_resets(0), 1u);
     EXPECT_EQ(world.car(0).state().position, start.position);
-    EXPECT_NE(world.last_reset_reason(0).find("above WorldSettings.max_car_speed"), std::string::npos)
+    EXPECT_NE(world.last_reset_reason(0).find("above WorldSettings.max_car_speed"),
+              std::string::npos)
         << world.last_reset_reason(0);
     world.update();
     EXPECT_EQ(world.car_resets(0), 1u);
@@ -90,7 +93,8 @@ TEST(ResetPolicy, AnOverSpinningCarIsReset) {
     world.add_car(CarSpec::default_car(), start);
     for (int i = 0; i < 10 && world.car_resets(0) == 0; ++i) world.update();
     EXPECT_GE(world.car_resets(0), 1u);
-    EXPECT_NE(world.last_reset_reason(0).find("angular speed"), std::string::npos) << world.last_reset_reason(0);
+    EXPECT_NE(world.last_reset_reason(0).find("angular speed"), std::string::npos)
+        << world.last_reset_reason(0);
     EXPECT_LE(glm::length(world.car(0).state().angular_velocity), 5.0);
 }
 
@@ -114,28 +118,50 @@ TEST(Preconditions, WorldSettingsNameTheFieldAndTheReason) {
         return error_of([&] { World world(statics, settings); });
     };
     for (const double dt : {0.0, -0.01, kNaN, kInf})
-        EXPECT_NE(message([dt](WorldSettings& s) { s.dt_update = dt; }).find("WorldSettings.dt_update must be in (0, 1]"),
-                  std::string::npos) << dt;
-    EXPECT_NE(message([](WorldSettings& s) { s.steps = 0; }).find("WorldSettings.steps"), std::string::npos);
-    EXPECT_NE(message([](WorldSettings& s) { s.substeps = -1; }).find("WorldSettings.substeps"), std::string::npos);
-    EXPECT_NE(message([](WorldSettings& s) { s.gravity.y = kNaN; }).find("WorldSettings.gravity"), std::string::npos);
-    EXPECT_NE(message([](WorldSettings& s) { s.gravity.y = -1e300; }).find("WorldSettings.gravity must be finite and at most"),
+        EXPECT_NE(message([dt](WorldSettings& s) {
+                      s.dt_update = dt;
+                  }).find("WorldSettings.dt_update must be in (0, 1]"),
+                  std::string::npos)
+            << dt;
+    EXPECT_NE(message([](WorldSettings& s) { s.steps = 0; }).find("WorldSettings.steps"),
               std::string::npos);
-    EXPECT_NE(message([](WorldSettings& s) { s.max_car_speed = 0.0; }).find("WorldSettings.max_car_speed"),
+    EXPECT_NE(message([](WorldSettings& s) { s.substeps = -1; }).find("WorldSettings.substeps"),
               std::string::npos);
-    EXPECT_NE(message([](WorldSettings& s) { s.max_car_angular_speed = kNaN; })
-                  .find("WorldSettings.max_car_angular_speed"),
+    EXPECT_NE(message([](WorldSettings& s) { s.gravity.y = kNaN; }).find("WorldSettings.gravity"),
               std::string::npos);
-    EXPECT_NE(message([](WorldSettings& s) { s.max_spawn_distance = -1.0; }).find("WorldSettings.max_spawn_distance"),
+    EXPECT_NE(message([](WorldSettings& s) {
+                  s.gravity.y = -1e300;
+              }).find("WorldSettings.gravity must be finite and at most"),
+              std::string::npos);
+    EXPECT_NE(message([](WorldSettings& s) {
+                  s.max_car_speed = 0.0;
+              }).find("WorldSettings.max_car_speed"),
+              std::string::npos);
+    EXPECT_NE(message([](WorldSettings& s) {
+                  s.max_car_angular_speed = kNaN;
+              }).find("WorldSettings.max_car_angular_speed"),
+              std::string::npos);
+    EXPECT_NE(message([](WorldSettings& s) {
+                  s.max_spawn_distance = -1.0;
+              }).find("WorldSettings.max_spawn_distance"),
               std::string::npos);
 }
 
 TEST(Preconditions, NaNInputsAreRejectedAndInfinitiesClamped) {
     Car car(CarSpec::default_car(), RigidBodyState{});
     car.set_inputs({0.5, 0.25, -0.5});
-    EXPECT_NE(error_of([&] { car.set_inputs({kNaN, 0.0, 0.0}); }).find("throttle is NaN"), std::string::npos);
-    EXPECT_NE(error_of([&] { car.set_inputs({0.0, kNaN, 0.0}); }).find("brake is NaN"), std::string::npos);
-    EXPECT_NE(error_of([&] { car.set_inputs({0.0, 0.0, kNaN}); }).find("steer is NaN"), std::string::npos);
+    EXPECT_NE(error_of([&] {
+                  car.set_inputs({kNaN, 0.0, 0.0});
+              }).find("throttle is NaN"),
+              std::string::npos);
+    EXPECT_NE(error_of([&] {
+                  car.set_inputs({0.0, kNaN, 0.0});
+              }).find("brake is NaN"),
+              std::string::npos);
+    EXPECT_NE(error_of([&] {
+                  car.set_inputs({0.0, 0.0, kNaN});
+              }).find("steer is NaN"),
+              std::string::npos);
     EXPECT_EQ(car.inputs().throttle, 0.5) << "a rejected input changes nothing";
     car.set_inputs({kInf, -kInf, kInf});
     EXPECT_EQ(car.inputs().throttle, 1.0);
@@ -148,15 +174,20 @@ TEST(Preconditions, ACarInsideGeometryIsRejected) {
     const TriangleMesh barrier = test::wall(5.0, 10.0, 3.0);
     const auto base = static_cast<std::uint32_t>(scene.vertices.size());
     scene.vertices.insert(scene.vertices.end(), barrier.vertices.begin(), barrier.vertices.end());
-    for (auto t : barrier.triangles) scene.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+    for (auto t : barrier.triangles)
+        scene.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
     World world(test::static_world_of(scene));
 
     // Wheels 20 cm into the ground (more than half of their 15 cm half-width).
-    const std::string sunk = error_of([&] { world.add_car(CarSpec::default_car(), at({0.0, 0.3, 0.0})); });
+    const std::string sunk = error_of([&] {
+        world.add_car(CarSpec::default_car(), at({0.0, 0.3, 0.0}));
+    });
     EXPECT_NE(sunk.find("inside geometry"), std::string::npos) << sunk;
     EXPECT_NE(sunk.find("wheel"), std::string::npos) << sunk;
     // Through the wall.
-    const std::string walled = error_of([&] { world.add_car(CarSpec::default_car(), at({0.0, 0.52, 5.0})); });
+    const std::string walled = error_of([&] {
+        world.add_car(CarSpec::default_car(), at({0.0, 0.52, 5.0}));
+    });
     EXPECT_NE(walled.find("inside geometry"), std::string::npos) << walled;
     EXPECT_EQ(world.car_count(), 0u);
     // Resting on the ground with its wheels 1 cm deep, or a millimetre above it: fine.
@@ -166,7 +197,9 @@ TEST(Preconditions, ACarInsideGeometryIsRejected) {
 
 TEST(Preconditions, ACarFarOutsideTheMapIsRejected) {
     World world(test::static_world_of(test::flat_grid(40.0, 8)));
-    const std::string far = error_of([&] { world.add_car(CarSpec::default_car(), at({5000.0, 1.0, 0.0})); });
+    const std::string far = error_of([&] {
+        world.add_car(CarSpec::default_car(), at({5000.0, 1.0, 0.0}));
+    });
     EXPECT_NE(far.find("far outside the map"), std::string::npos) << far;
     EXPECT_NE(far.find("WorldSettings.max_spawn_distance"), std::string::npos) << far;
     EXPECT_NO_THROW(world.add_car(CarSpec::default_car(), at({0.0, 900.0, 0.0})));
@@ -179,13 +212,15 @@ TEST(Preconditions, ACarFarOutsideTheMapIsRejected) {
 
 TEST(Preconditions, ImpossibleStartsAreRejected) {
     World world(test::static_world_of(test::flat_grid(40.0, 8)));
-    EXPECT_NE(error_of([&] { world.add_car(CarSpec::default_car(), at({0.0, 5.0, 0.0}, {600.0, 0.0, 0.0})); })
-                  .find("above WorldSettings.max_car_speed"),
+    EXPECT_NE(error_of([&] {
+                  world.add_car(CarSpec::default_car(), at({0.0, 5.0, 0.0}, {600.0, 0.0, 0.0}));
+              }).find("above WorldSettings.max_car_speed"),
               std::string::npos);
     RigidBodyState spinning = at({0.0, 5.0, 0.0});
     spinning.angular_velocity = {0.0, 600.0, 0.0};
-    EXPECT_NE(error_of([&] { world.add_car(CarSpec::default_car(), spinning); }).find("angular speed"),
-              std::string::npos);
+    EXPECT_NE(
+        error_of([&] { world.add_car(CarSpec::default_car(), spinning); }).find("angular speed"),
+        std::string::npos);
 }
 
 }  // namespace

@@ -44,8 +44,10 @@ inline TriangleMesh straight_road(double length, double width, double cell) {
 /// width wide and height tall, as two triangles.
 inline TriangleMesh wall(double z0, double width, double height) {
     TriangleMesh mesh;
-    mesh.vertices = {{-0.5 * width, -1.0, z0}, {0.5 * width, -1.0, z0},
-                     {0.5 * width, height, z0}, {-0.5 * width, height, z0}};
+    mesh.vertices = {{-0.5 * width, -1.0, z0},
+                     {0.5 * width, -1.0, z0},
+                     {0.5 * width, height, z0},
+                     {-0.5 * width, height, z0}};
     mesh.triangles = {{0, 2, 1}, {0, 3, 2}};
     return mesh;
 }

@@ -9,7 +9,6 @@
 #include <gtest/gtest.h>
 
 #include "support/error_message.hpp"
-
 #include "trackphys/error.hpp"
 #include "trackphys/io/snapshot_file.hpp"
 #include "trackphys/world/autopilot.hpp"
@@ -114,7 +113,8 @@ TEST(WorldSnapshot, AnotherWorldIsRejectedNamingWhatDiffers) {
     moved.vertices[3].y += 0.001;
     World other_mesh(test::static_world_of(moved));
     other_mesh.add_car(CarSpec::default_car(), a.world.car(0).state());
-    EXPECT_NE(error_of([&] { other_mesh.restore_state(saved); }).find("collider 0 differs"), std::string::npos);
+    EXPECT_NE(error_of([&] { other_mesh.restore_state(saved); }).find("collider 0 differs"),
+              std::string::npos);
 
     // Another number of colliders.
     auto two = std::make_shared<StaticWorld>();
@@ -122,7 +122,9 @@ TEST(WorldSnapshot, AnotherWorldIsRejectedNamingWhatDiffers) {
     two->add(std::make_shared<StaticCollider>(test::wall(15.0, 10.0, 2.0)));
     World two_colliders(two);
     two_colliders.add_car(CarSpec::default_car(), a.world.car(0).state());
-    EXPECT_NE(error_of([&] { two_colliders.restore_state(saved); }).find("made over 1 colliders, this world has 2"),
+    EXPECT_NE(error_of([&] {
+                  two_colliders.restore_state(saved);
+              }).find("made over 1 colliders, this world has 2"),
               std::string::npos);
 
     // Another car spec.
@@ -130,11 +132,14 @@ TEST(WorldSnapshot, AnotherWorldIsRejectedNamingWhatDiffers) {
     heavier.mass.mass += 1.0;
     World other_car(a.statics);
     other_car.add_car(heavier, a.world.car(0).state());
-    EXPECT_NE(error_of([&] { other_car.restore_state(saved); }).find("car 0 has another CarSpec"), std::string::npos);
+    EXPECT_NE(error_of([&] { other_car.restore_state(saved); }).find("car 0 has another CarSpec"),
+              std::string::npos);
 
     // Another number of cars.
     World no_car(a.statics);
-    EXPECT_NE(error_of([&] { no_car.restore_state(saved); }).find("the snapshot has 1 cars, this world 0"),
+    EXPECT_NE(error_of([&] {
+                  no_car.restore_state(saved);
+              }).find("the snapshot has 1 cars, this world 0"),
               std::string::npos);
 
     // Other settings.
@@ -142,7 +147,8 @@ TEST(WorldSnapshot, AnotherWorldIsRejectedNamingWhatDiffers) {
     finer.substeps = 5;
     World other_settings(a.statics, finer);
     other_settings.add_car(CarSpec::default_car(), a.world.car(0).state());
-    EXPECT_NE(error_of([&] { other_settings.restore_state(saved); }).find("substeps 4 vs 5"), std::string::npos);
+    EXPECT_NE(error_of([&] { other_settings.restore_state(saved); }).find("substeps 4 vs 5"),
+              std::string::npos);
 }
 
 TEST(WorldSnapshot, InvalidStatesAreRejectedAndChangeNothing) {
@@ -160,18 +166,25 @@ TEST(WorldSnapshot, InvalidStatesAreRejectedAndChangeNothing) {
     const Case cases[] = {
         {"NaN velocity", [](WorldSnapshot& s, double n) { s.cars[0].state.linear_velocity.x = n; },
          "linear_velocity is not finite"},
-        {"over-speed", [](WorldSnapshot& s, double) { s.cars[0].state.linear_velocity = {0.0, 0.0, 600.0}; },
+        {"over-speed",
+         [](WorldSnapshot& s, double) {
+             s.cars[0].state.linear_velocity = {0.0, 0.0, 600.0};
+         },
          "above WorldSettings.max_car_speed"},
-        {"not a unit quaternion", [](WorldSnapshot& s, double) { s.cars[0].state.orientation.w = 2.0; },
-         "unit quaternion"},
-        {"NaN throttle", [](WorldSnapshot& s, double n) { s.cars[0].inputs.throttle = n; }, "throttle"},
-        {"steer out of range", [](WorldSnapshot& s, double) { s.cars[0].inputs.steer = 1.5; }, "steer"},
-        {"suspension beyond its travel", [](WorldSnapshot& s, double) { s.cars[0].suspension[0] = 0.5; },
-         "travel must be in"},
-        {"suspension on a body ellipsoid", [](WorldSnapshot& s, double) { s.cars[0].suspension[7] = 0.01; },
-         "ellipsoid 7"},
-        {"NaN contact", [](WorldSnapshot& s, double n) { s.cars[0].contacts[2].point.y = n; }, "contact"},
-        {"short list", [](WorldSnapshot& s, double) { s.cars[0].contacts.pop_back(); }, "lists differ"},
+        {"not a unit quaternion",
+         [](WorldSnapshot& s, double) { s.cars[0].state.orientation.w = 2.0; }, "unit quaternion"},
+        {"NaN throttle", [](WorldSnapshot& s, double n) { s.cars[0].inputs.throttle = n; },
+         "throttle"},
+        {"steer out of range", [](WorldSnapshot& s, double) { s.cars[0].inputs.steer = 1.5; },
+         "steer"},
+        {"suspension beyond its travel",
+         [](WorldSnapshot& s, double) { s.cars[0].suspension[0] = 0.5; }, "travel must be in"},
+        {"suspension on a body ellipsoid",
+         [](WorldSnapshot& s, double) { s.cars[0].suspension[7] = 0.01; }, "ellipsoid 7"},
+        {"NaN contact", [](WorldSnapshot& s, double n) { s.cars[0].contacts[2].point.y = n; },
+         "contact"},
+        {"short list", [](WorldSnapshot& s, double) { s.cars[0].contacts.pop_back(); },
+         "lists differ"},
         {"bad dt", [](WorldSnapshot& s, double) { s.settings.dt_update = -1.0; }, "dt_update"},
     };
     for (const Case& c : cases) {

@@ -74,7 +74,8 @@ inline std::vector<CaseSet> make_case_sets(std::size_t hard, std::size_t road) {
             {c.ellipsoid, c.triangle, reference_depth(c.ellipsoid, c.triangle), c.kind});
     };
     for (std::size_t i = 0; i < hard; ++i) add(sets[0], hard_generator.hard_mix());
-    for (std::size_t i = 0; i < road; ++i) add(sets[1], road_generator.make(test::ContactKind::road));
+    for (std::size_t i = 0; i < road; ++i)
+        add(sets[1], road_generator.make(test::ContactKind::road));
     return sets;
 }
 
@@ -91,7 +92,7 @@ struct MethodResult {
     std::size_t cases = 0;
     double median_ns = 0, mean_ns = 0;
     double error_median = 0, error_p99 = 0, error_max = 0;  ///< |depth - reference| (m)
-    std::size_t touch_disagreements = 0;  ///< (depth > 0) != (reference > 0)
+    std::size_t touch_disagreements = 0;                    ///< (depth > 0) != (reference > 0)
     std::size_t over_1mm = 0;  ///< cases whose depth is off by more than 1 mm
     std::size_t failures = 0;  ///< the peer reported a failure (its depth counted as 0)
     std::array<KindErrors, std::size_t(test::ContactKind::count)> by_kind{};
@@ -188,10 +189,10 @@ inline void print_table(const std::vector<MethodResult>& results) {
         const double slower = ours ? r.median_ns / ours->median_ns : 0.0;
         // Our errors are ~1e-16 m or exactly 0: a floor of 1e-15 m keeps the ratio finite.
         const double worse = ours ? r.error_max / std::max(ours->error_max, 1e-15) : 0.0;
-        std::printf("%-26s %-13s %6zu %9.1f %9.1f %10.3g %10.3g %10.3g %6zu %6zu %5zu %8.1f %9.3g\n",
-                    r.method.c_str(), r.set.c_str(), r.cases, r.median_ns, r.mean_ns,
-                    r.error_median, r.error_p99, r.error_max, r.over_1mm, r.touch_disagreements,
-                    r.failures, slower, worse);
+        std::printf(
+            "%-26s %-13s %6zu %9.1f %9.1f %10.3g %10.3g %10.3g %6zu %6zu %5zu %8.1f %9.3g\n",
+            r.method.c_str(), r.set.c_str(), r.cases, r.median_ns, r.mean_ns, r.error_median,
+            r.error_p99, r.error_max, r.over_1mm, r.touch_disagreements, r.failures, slower, worse);
     }
     std::printf("\nby kind: max |depth error| (m) / cases off by more than 1 mm / cases\n");
     for (const MethodResult& r : results) {
@@ -224,8 +225,8 @@ inline bool write_json(const std::string& path, const char* program,
                      "\"depth_error_over_1mm\": %zu, \"touch_disagreements\": %zu, "
                      "\"failures\": %zu, \"by_kind\": {",
                      r.method.c_str(), r.set.c_str(), r.cases, r.median_ns, r.mean_ns,
-                     r.error_median, r.error_p99, r.error_max, r.over_1mm,
-                     r.touch_disagreements, r.failures);
+                     r.error_median, r.error_p99, r.error_max, r.over_1mm, r.touch_disagreements,
+                     r.failures);
         const char* separator = "";
         for (std::size_t k = 0; k < r.by_kind.size(); ++k)
             if (r.by_kind[k].cases > 0) {
@@ -263,8 +264,7 @@ inline int run_contact_peers(int argc, char** argv, const char* program,
                              const std::vector<Peer>& peers) {
     const Options options = parse_options(argc, argv, program);
     std::fprintf(stderr, "%s: generating cases and long-double references...\n", program);
-    const std::vector<CaseSet> sets =
-        make_case_sets(options.hard_cases(), options.road_cases());
+    const std::vector<CaseSet> sets = make_case_sets(options.hard_cases(), options.road_cases());
     std::vector<MethodResult> results;
     for (const CaseSet& set : sets) {
         std::fprintf(stderr, "%s: %s (%zu cases)\n", program, set.name.c_str(), set.cases.size());

@@ -92,9 +92,10 @@ inline int run_pair_peers(int argc, char** argv, const char* program, std::vecto
         }
     }
     const int per_family = quick ? 40 : 1000;
-    peers.insert(peers.begin(), PairPeer{"trackphys", [](const Ellipsoid& a, const Ellipsoid& b) {
-                                             return PairPeerDepth{ellipsoid_ellipsoid_contact(a, b).depth, false};
-                                         }});
+    peers.insert(peers.begin(),
+                 PairPeer{"trackphys", [](const Ellipsoid& a, const Ellipsoid& b) {
+                              return PairPeerDepth{ellipsoid_ellipsoid_contact(a, b).depth, false};
+                          }});
     std::vector<PairFamily> families;
     test::PairCaseGenerator generator(2026);
     for (const test::PairKind kind :
@@ -140,18 +141,22 @@ inline int run_pair_peers(int argc, char** argv, const char* program, std::vecto
                 verdict(ours <= 150.0));
     if (peers.size() > 1) {
         double fastest = INFINITY, most_accurate = INFINITY, our_error = 0;
-        for (std::size_t p = 1; p < peers.size(); ++p) fastest = std::min(fastest, scores[p][0].median_ns);
+        for (std::size_t p = 1; p < peers.size(); ++p)
+            fastest = std::min(fastest, scores[p][0].median_ns);
         for (std::size_t p = 1; p < peers.size(); ++p) {
             double worst = 0;
-            for (const PairScore& s : scores[p]) worst = std::max(worst, s.failures ? INFINITY : s.max_error);
+            for (const PairScore& s : scores[p])
+                worst = std::max(worst, s.failures ? INFINITY : s.max_error);
             most_accurate = std::min(most_accurate, worst);
         }
         for (const PairScore& s : scores[0]) our_error = std::max(our_error, s.max_error);
-        std::printf("target: >= 10x faster than the fastest peer here (car-like medians): %.1fx: %s\n",
-                    fastest / ours, verdict(fastest >= 10.0 * ours));
-        std::printf("target: >= 100x more accurate than the most accurate peer here (max error "
-                    "over every family, a failure counting as infinite): %.3g m vs %.3g m: %s\n",
-                    our_error, most_accurate, verdict(most_accurate >= 100.0 * our_error));
+        std::printf(
+            "target: >= 10x faster than the fastest peer here (car-like medians): %.1fx: %s\n",
+            fastest / ours, verdict(fastest >= 10.0 * ours));
+        std::printf(
+            "target: >= 100x more accurate than the most accurate peer here (max error "
+            "over every family, a failure counting as infinite): %.3g m vs %.3g m: %s\n",
+            our_error, most_accurate, verdict(most_accurate >= 100.0 * our_error));
     }
     if (json) {
         std::FILE* out = std::fopen(json, "w");
@@ -159,8 +164,9 @@ inline int run_pair_peers(int argc, char** argv, const char* program, std::vecto
             std::fprintf(stderr, "%s: cannot write %s\n", program, json);
             return 1;
         }
-        std::fprintf(out, "{\"program\": \"%s\", \"pairs_per_family\": %d, \"contract_held\": %s, "
-                          "\"rows\": [",
+        std::fprintf(out,
+                     "{\"program\": \"%s\", \"pairs_per_family\": %d, \"contract_held\": %s, "
+                     "\"rows\": [",
                      program, per_family, contract ? "true" : "false");
         const char* separator = "";
         for (std::size_t p = 0; p < peers.size(); ++p)

@@ -26,10 +26,6 @@
 //
 //   (header-only: bench_peers_mesh_bullet_* and trackphys-bench run the same queries)
 
-#include <BulletCollision/CollisionShapes/btBvhTriangleMeshShape.h>
-#include <BulletCollision/CollisionShapes/btTriangleIndexVertexArray.h>
-#include <BulletCollision/CollisionShapes/btTriangleCallback.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -40,6 +36,10 @@
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include <BulletCollision/CollisionShapes/btBvhTriangleMeshShape.h>
+#include <BulletCollision/CollisionShapes/btTriangleCallback.h>
+#include <BulletCollision/CollisionShapes/btTriangleIndexVertexArray.h>
 
 #include "collision/collision_meshes.hpp"
 #include "peers/bullet_contact.hpp"
@@ -57,10 +57,9 @@ constexpr double kMargin = 0.25;
 
 /// A car's swept, padded box on a road frame, as BankedLoop::car_box: a 4.5 x 1.2 x 2 m box
 /// resting on the road, moved kTravel along the tangent, padded by kMargin.
-inline Aabb car_box(const glm::dvec3& center, const glm::dvec3& tangent,
-                   const glm::dvec3& left, const glm::dvec3& up) {
-    const glm::dvec3 half =
-        glm::abs(tangent) * 2.25 + glm::abs(up) * 0.6 + glm::abs(left) * 1.0;
+inline Aabb car_box(const glm::dvec3& center, const glm::dvec3& tangent, const glm::dvec3& left,
+                    const glm::dvec3& up) {
+    const glm::dvec3 half = glm::abs(tangent) * 2.25 + glm::abs(up) * 0.6 + glm::abs(left) * 1.0;
     const glm::dvec3 c = center + up * 0.6;
     Aabb box{c - half, c + half};
     box.expand(Aabb{box.min + tangent * kTravel, box.max + tangent * kTravel});
@@ -206,11 +205,11 @@ struct SceneResult {
     double ours_bytes_per_tri = 0, bullet_node_bytes_per_tri = 0, bullet_total_bytes_per_tri = 0;
     double ours_us = 0, bullet_nodes_us = 0, bullet_exact_us = 0;
     double ours_found_mean = 0, bullet_found_mean = 0;
-    std::size_t missing = 0;  ///< triangles ours found and Bullet did not (must be 0)
-    std::size_t extras = 0;   ///< triangles Bullet found and ours did not
+    std::size_t missing = 0;      ///< triangles ours found and Bullet did not (must be 0)
+    std::size_t extras = 0;       ///< triangles Bullet found and ours did not
     std::size_t ours_missed = 0;  ///< extras that overlap the box and ours keeps (must be 0)
-    double extra_gap_max = 0; ///< the farthest extra's box from the query box (m)
-    double slack = 0;         ///< the quantisation slack the extras must stay within (m)
+    double extra_gap_max = 0;     ///< the farthest extra's box from the query box (m)
+    double slack = 0;             ///< the quantisation slack the extras must stay within (m)
 };
 
 /// One box set on a built scene: times and the triangle-set check.

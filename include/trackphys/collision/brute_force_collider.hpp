@@ -18,20 +18,19 @@ namespace trackphys {
 /// provide them with the same meaning (see StaticCollider), so tests and benchmarks can
 /// run either.
 template <class T>
-concept TriangleQuerySource =
-    requires(const T& c, const Aabb& box, const glm::dvec3& p, double r,
-             std::vector<std::uint32_t>& out) {
-        c.query_aabb(box, out);
-        c.query_sphere(p, r, out);
-        c.query_capsule(p, p, r, out);
-        { c.raycast(p, p, r) } -> std::same_as<std::optional<RayHit>>;
-    };
+concept TriangleQuerySource = requires(const T& c, const Aabb& box, const glm::dvec3& p, double r,
+                                       std::vector<std::uint32_t>& out) {
+    c.query_aabb(box, out);
+    c.query_sphere(p, r, out);
+    c.query_capsule(p, p, r, out);
+    { c.raycast(p, p, r) } -> std::same_as<std::optional<RayHit>>;
+};
 
 /// The reference for StaticCollider: the same validation, the same kept triangles and the
 /// same per-triangle predicates, applied to every triangle in mesh order. O(n) a query;
 /// for tests and benchmarks.
 class TRACKPHYS_API BruteForceCollider {
-public:
+  public:
     /// Validates like StaticCollider (same errors) and keeps a copy of the mesh.
     explicit BruteForceCollider(const TriangleMesh& mesh);
 
@@ -46,7 +45,7 @@ public:
     /// Number of non-degenerate triangles.
     std::size_t triangle_count() const { return kept_.size(); }
 
-private:
+  private:
     TriangleMesh mesh_;
     std::vector<std::uint32_t> kept_;  ///< non-degenerate triangles, mesh order
 };

@@ -32,7 +32,7 @@ TRACKPHYS_API SweptEllipsoid look_ahead(const SweptEllipsoid& step, const glm::d
 ///
 /// Reuse never loses a triangle: a list holds every triangle of any shape its own contains().
 class TRACKPHYS_API LookAheadList {
-public:
+  public:
     /// True when the list holds every triangle `step` can touch.
     bool covers(const SweptEllipsoid& step) const { return shape_ && shape_->contains(step); }
     /// Replaces the list by mid's candidates for `shape`.
@@ -51,7 +51,7 @@ public:
 
     const std::vector<MidPhaseCandidate>& candidates() const { return candidates_; }
 
-private:
+  private:
     std::vector<MidPhaseCandidate> candidates_;
     std::optional<SweptEllipsoid> shape_;
 };

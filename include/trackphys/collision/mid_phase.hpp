@@ -21,8 +21,8 @@ namespace trackphys {
 
 /// One triangle a mid-phase query hands to the sub-step loop.
 struct MidPhaseCandidate {
-    TriangleRef ref;                       ///< 8 bytes: collider id and mesh triangle index
-    const NormalizedTriangle* triangle;    ///< 8 bytes: for the cull and the exact contact
+    TriangleRef ref;                     ///< 8 bytes: collider id and mesh triangle index
+    const NormalizedTriangle* triangle;  ///< 8 bytes: for the cull and the exact contact
 };
 static_assert(sizeof(MidPhaseCandidate) == 16, "MidPhaseCandidate is 16 bytes");
 
@@ -31,9 +31,9 @@ struct MidPhaseCounters {
     std::size_t updates = 0;
     std::size_t broad_phase_candidates = 0;  ///< summed over updates (none, per_update_tree)
     std::size_t queries = 0;
-    std::size_t candidates = 0;              ///< returned by queries, summed
-    std::size_t planes_tested = 0;           ///< tree queries only
-    std::size_t triangles_filtered = 0;      ///< tree queries only
+    std::size_t candidates = 0;          ///< returned by queries, summed
+    std::size_t planes_tested = 0;       ///< tree queries only
+    std::size_t triangles_filtered = 0;  ///< tree queries only
 };
 
 /// Builds make_collider_plane_tree for every collider of `world`, in id order.
@@ -57,7 +57,7 @@ TRACKPHYS_API ColliderPlaneTrees make_collider_plane_trees(
 /// until the next begin_update (none, per_update_tree) or as long as the trees live
 /// (precomputed_tree). No allocation once the buffers have grown.
 class TRACKPHYS_API MidPhase {
-public:
+  public:
     /// Throws trackphys::Error when mode is precomputed_tree and `trees` does not hold one
     /// non-null tree per collider of `world` (checked again at each begin_update, since
     /// colliders can be added to the world later).
@@ -89,7 +89,7 @@ public:
     /// Bytes of per-update storage and scratch (not the shared trees).
     std::size_t bytes_used() const;
 
-private:
+  private:
     template <class Query>
     void query(Query&& query_tree, std::vector<MidPhaseCandidate>& out);
     void check_trees() const;

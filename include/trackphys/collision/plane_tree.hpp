@@ -148,7 +148,7 @@ struct PlaneTreeQueryCounts {
 /// whose box corner the sphere reaches while some node plane through the triangle's vertex
 /// already excludes the sphere.
 class TRACKPHYS_API PlaneTree {
-public:
+  public:
     /// An empty tree (every query reports nothing).
     PlaneTree() = default;
 
@@ -198,7 +198,7 @@ public:
     /// Releases spare capacity (for a tree kept for long; per-update trees keep it).
     void shrink_to_fit();
 
-private:
+  private:
     friend class PlaneTreeBuilder;
 
     template <class Shape>
@@ -217,8 +217,8 @@ private:
 /// PlaneTree::id(slot) is what StaticCollider::triangle() takes. Built from the collider
 /// rather than stored in it: StaticCollider stays the broad phase's compact structure
 /// (~48 bytes a triangle) and worlds that use no precomputed mid phase pay nothing.
-TRACKPHYS_API PlaneTree make_collider_plane_tree(
-    const StaticCollider& collider,
-    const PlaneTreeSettings& settings = PlaneTreeSettings::precomputed());
+TRACKPHYS_API PlaneTree
+make_collider_plane_tree(const StaticCollider& collider,
+                         const PlaneTreeSettings& settings = PlaneTreeSettings::precomputed());
 
 }  // namespace trackphys

@@ -67,7 +67,7 @@ struct TriangleRef {
 /// budget, and every exact predicate needs the double vertices anyway. The mid phase builds
 /// the few hundred frames it culls per update with normalized_triangle().
 class TRACKPHYS_API StaticCollider {
-public:
+  public:
     /// Largest accepted |coordinate| (m): node bounds are float, and 1e18 m keeps every
     /// bound, area and SAH cost finite.
     static constexpr double kMaxCoordinate = 1e18;
@@ -128,7 +128,7 @@ public:
     /// Bytes of every structure the collider keeps (vector capacities included).
     std::size_t bytes_used() const;
 
-private:
+  private:
     // Leaf slot s holds mesh triangle slot_triangle(s); its vertices are
     // vertices_[slot_vertices_[s][k]], in the mesh's order (winding kept).
     template <class Sink>
@@ -152,7 +152,7 @@ private:
     // Slot boxes, quantized in their leaf's grid, and mesh indices, eight slots a block.
     std::vector<BvhSlotBlock> slot_blocks_;
     std::vector<BvhNode> nodes_;
-    std::vector<BvhNodeGrid> grids_;  // the grids of the slot boxes, shared by node groups
+    std::vector<BvhNodeGrid> grids_;        // the grids of the slot boxes, shared by node groups
     std::vector<std::uint32_t> node_grid_;  // per node with leaf lanes: its grids_ index
     double inside_extent_[3] = {0.0, 0.0, 0.0};  // box extents to look for whole lanes from
     Aabb bounds_;

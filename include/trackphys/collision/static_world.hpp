@@ -29,7 +29,7 @@ TRACKPHYS_API Aabb swept_box(const Aabb& box, const glm::dvec3& displacement, do
 /// Colliders are shared read-only (one track chunk can sit in several worlds); queries
 /// are const and allocation-free once the caller's buffers have grown.
 class TRACKPHYS_API StaticWorld {
-public:
+  public:
     /// Adds a collider; returns its id (0, 1, 2... in order of addition). Throws
     /// trackphys::Error on a null pointer.
     std::uint32_t add(std::shared_ptr<const StaticCollider> collider);
@@ -48,7 +48,7 @@ public:
     std::optional<WorldRayHit> raycast(const glm::dvec3& origin, const glm::dvec3& unit_dir,
                                        double max_distance) const;
 
-private:
+  private:
     std::vector<std::shared_ptr<const StaticCollider>> colliders_;
     std::vector<Aabb> bounds_;  ///< colliders_[i]->bounds(), packed for the first test
 };

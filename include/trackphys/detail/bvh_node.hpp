@@ -27,10 +27,10 @@ struct alignas(64) BvhNode {
     /// `child` of a leaf (or empty) lane: no node below.
     static constexpr std::uint32_t kLeaf = 0x8000'0000u;
 
-    float min[3][kWidth];           ///< 96 bytes: min[axis][lane] (m), rounded down
-    float max[3][kWidth];           ///< 96 bytes: max[axis][lane] (m), rounded up
-    std::uint32_t child[kWidth];    ///< 32 bytes: inner lane: child node index; else kLeaf
-    std::uint32_t first[kWidth];    ///< 32 bytes: first triangle slot of each lane's range
+    float min[3][kWidth];         ///< 96 bytes: min[axis][lane] (m), rounded down
+    float max[3][kWidth];         ///< 96 bytes: max[axis][lane] (m), rounded up
+    std::uint32_t child[kWidth];  ///< 32 bytes: inner lane: child node index; else kLeaf
+    std::uint32_t first[kWidth];  ///< 32 bytes: first triangle slot of each lane's range
 
     bool is_leaf(int lane) const { return (child[lane] & kLeaf) != 0; }
     /// True for an unused lane (NaN bounds).
@@ -61,8 +61,8 @@ static_assert(sizeof(BvhNodeGrid) == 48);
 /// caches). Lanes past the last slot hold zeros (never read as a slot). 128 bytes.
 struct alignas(64) BvhSlotBlock {
     static constexpr int kLanes = 8;
-    std::int16_t box[6][kLanes];      ///< 96 bytes: min x, y, z, max x, y, z, biased indices
-    std::uint32_t triangle[kLanes];   ///< 32 bytes: the mesh index of each slot's triangle
+    std::int16_t box[6][kLanes];     ///< 96 bytes: min x, y, z, max x, y, z, biased indices
+    std::uint32_t triangle[kLanes];  ///< 32 bytes: the mesh index of each slot's triangle
 };
 static_assert(sizeof(BvhSlotBlock) == 128, "BvhSlotBlock is 128 bytes: two cache lines");
 

@@ -20,7 +20,7 @@ namespace trackphys {
 /// similar number of triangles does not allocate.
 /// Deterministic: same triangles, ids and settings -> the same tree, bit for bit.
 class TRACKPHYS_API PlaneTreeBuilder {
-public:
+  public:
     /// Rebuilds `tree` over `triangles` (non-degenerate, finite), each tagged with the
     /// matching entry of `ids` (reported back by PlaneTree::id). Throws trackphys::Error when
     /// the spans differ in size, there are 2^30 triangles or more, or a setting is out of
@@ -31,14 +31,14 @@ public:
     /// Bytes of scratch held between builds.
     std::size_t bytes_used() const;
 
-private:
+  private:
     struct Item {
         std::array<glm::dvec3, 3> vertices;
         glm::dvec3 centroid;
         glm::dvec3 area_normal;  ///< cross(b - a, c - a)
     };
     struct Split {
-        glm::dvec3 normal{0.0};   ///< float-exact direction
+        glm::dvec3 normal{0.0};  ///< float-exact direction
         std::size_t left_count = 0;
         double cost = 0.0;
     };

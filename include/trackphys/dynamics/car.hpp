@@ -27,7 +27,7 @@ struct CarInputs {
 /// A car: its spec (validated), its rigid-body state and its inputs, and the force laws
 /// that turn the contacts of its ellipsoids into a wrench on the body.
 class TRACKPHYS_API Car {
-public:
+  public:
     /// Throws trackphys::Error with CarSpec::validate()'s message for an invalid spec, or
     /// naming the field of a non-finite initial state.
     Car(CarSpec spec, const RigidBodyState& initial_state);
@@ -91,7 +91,7 @@ public:
     ///   (see Suspension).
     void advance(std::span<const Contact> deepest, const glm::dvec3& gravity, double h);
 
-private:
+  private:
     void resolve_deep_contacts(std::span<const Contact> deepest);
     /// The tyre's normal force of each wheel (0 for the body) into wheel_loads_.
     void measure_wheel_loads(std::span<const Contact> deepest);

@@ -13,28 +13,28 @@ namespace trackphys {
 
 /// What one of the car's ellipsoids does when it touches the road.
 enum class EllipsoidRole {
-    body,        ///< chassis: spring-damper contact with plain Coulomb friction
-    front_wheel, ///< steered wheel: rolls along its heading, drive, brake, lateral grip
-    rear_wheel,  ///< fixed wheel: rolls, drive, brake, lateral grip
+    body,         ///< chassis: spring-damper contact with plain Coulomb friction
+    front_wheel,  ///< steered wheel: rolls along its heading, drive, brake, lateral grip
+    rear_wheel,   ///< fixed wheel: rolls, drive, brake, lateral grip
 };
 
 /// One ellipsoid of the car, fixed in the body frame (+Z forward, +Y up, +X left), relative
 /// to the centre of mass. Wheels do not spin as bodies of their own: rolling, drive, brake
 /// and grip are forces at the contact (docs/design.md#dynamics).
 struct CarEllipsoid {
-    glm::dvec3 center{0.0};                       ///< body frame (m)
-    glm::dvec3 semi_axes{0.3};                    ///< along its own local axes (m), all > 0
-    glm::dquat orientation{1.0, 0.0, 0.0, 0.0};   ///< body from ellipsoid local
+    glm::dvec3 center{0.0};                      ///< body frame (m)
+    glm::dvec3 semi_axes{0.3};                   ///< along its own local axes (m), all > 0
+    glm::dquat orientation{1.0, 0.0, 0.0, 0.0};  ///< body from ellipsoid local
     EllipsoidRole role = EllipsoidRole::body;
 };
 
 /// Penalty contact law (per ellipsoid): normal force max(0, k d - c v_n) and regularised
 /// Coulomb friction mu F_n, full strength beyond slip_speed.
 struct ContactMaterial {
-    double stiffness = 2.0e5;   ///< k, N/m
-    double damping = 1.5e4;     ///< c, N s/m
-    double friction = 1.0;      ///< mu, dimensionless
-    double slip_speed = 0.05;   ///< m/s of slip at which friction reaches mu F_n
+    double stiffness = 2.0e5;  ///< k, N/m
+    double damping = 1.5e4;    ///< c, N s/m
+    double friction = 1.0;     ///< mu, dimensionless
+    double slip_speed = 0.05;  ///< m/s of slip at which friction reaches mu F_n
 };
 
 /// Each wheel hangs on a spring-damper that lets it move along the body's up axis, so that
@@ -60,26 +60,26 @@ struct TRACKPHYS_API CarSpec {
     /// understeer instead, as road cars are set up to.
     double rear_grip_factor = 1.15;
     Suspension suspension;
-    double max_drive_force = 2.0e4;     ///< N over all wheels, below the power limit
+    double max_drive_force = 2.0e4;  ///< N over all wheels, below the power limit
     /// Share of the drive force at the front wheels (0 = rear-wheel drive, 1 = front).
     double front_drive_share = 0.4;
     /// Traction control and anti-lock brakes: a wheel's drive or brake force is at most
     /// this share of its grip mu F_n, so that a spinning or locked wheel never uses up the
     /// lateral grip that keeps the car on its line.
     double traction_limit = 0.8;
-    double max_drive_power = 6.0e6;     ///< W: drive force is min(max_drive_force, P / v)
-    double max_brake_force = 3.0e4;     ///< N over all wheels, bounded by grip
+    double max_drive_power = 6.0e6;  ///< W: drive force is min(max_drive_force, P / v)
+    double max_brake_force = 3.0e4;  ///< N over all wheels, bounded by grip
     /// Share of the brake force at the front wheels: more than half, so that the rear
     /// keeps its grip under braking and the car stays straight.
     double front_brake_share = 0.6;
-    double max_steer_angle = 0.6;       ///< rad at full steer, at low speed
+    double max_steer_angle = 0.6;  ///< rad at full steer, at low speed
     /// A contact deeper than this share of the ellipsoid's half-extent along the contact
     /// normal, still approaching, is stopped by an impulse (see Car::advance).
     /// Half of a wheel's radius is 17 cm, twice its compression under 5 g of cornering.
     double deep_contact_fraction = 0.5;
-    double drag_area = 0.35;            ///< C_d A (m^2): drag 1/2 rho C_d A v^2
-    double downforce_area = 0.9;        ///< C_l A (m^2): downforce 1/2 rho C_l A v^2
-    double air_density = 1.2;           ///< kg/m^3
+    double drag_area = 0.35;      ///< C_d A (m^2): drag 1/2 rho C_d A v^2
+    double downforce_area = 0.9;  ///< C_l A (m^2): downforce 1/2 rho C_l A v^2
+    double air_density = 1.2;     ///< kg/m^3
 
     /// A 1200 kg car, 4.5 m long and 2 m wide: four wheels (0.35 m radius, 0.15 m half
     /// width) and four body ellipsoids, tyres of 0.74 cm static sag, damping near

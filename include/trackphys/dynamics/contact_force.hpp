@@ -22,8 +22,7 @@ TRACKPHYS_API double normal_force(const ContactMaterial& material, double depth,
 /// tangential slip, mu F_n beyond material.slip_speed and linear below it (so a car at rest
 /// stays at rest instead of chattering).
 TRACKPHYS_API glm::dvec3 body_contact_force(const ContactMaterial& material, double depth,
-                                            const glm::dvec3& normal,
-                                            const glm::dvec3& velocity);
+                                            const glm::dvec3& normal, const glm::dvec3& velocity);
 
 /// What a wheel asks of the road this sub-step.
 struct WheelCommand {
@@ -39,8 +38,7 @@ struct WheelCommand {
 /// heading projected onto the contact plane; lateral grip as regularised Coulomb friction against sideways slip; the
 /// tangential total limited to the friction circle mu F_n.
 TRACKPHYS_API glm::dvec3 wheel_contact_force(const ContactMaterial& material, double depth,
-                                             const glm::dvec3& normal,
-                                             const glm::dvec3& velocity,
+                                             const glm::dvec3& normal, const glm::dvec3& velocity,
                                              const WheelCommand& command);
 
 }  // namespace trackphys

@@ -21,16 +21,14 @@ namespace trackphys {
 /// (columns, a proper rotation). to_sorted_local() maps a world point into that frame,
 /// where the ellipsoid is x^2/rx^2 + y^2/ry^2 + z^2/rz^2 <= 1.
 class TRACKPHYS_API Ellipsoid {
-public:
+  public:
     /// orientation: any non-zero finite quaternion (it is normalised); semi_axes: all
     /// finite and > 0, in metres. Throws trackphys::Error naming the problem otherwise.
-    Ellipsoid(const glm::dvec3& center, const glm::dquat& orientation,
-              const glm::dvec3& semi_axes);
+    Ellipsoid(const glm::dvec3& center, const glm::dquat& orientation, const glm::dvec3& semi_axes);
 
     /// The non-throwing factory: the ellipsoid, or nullopt with the reason in *error.
     static std::optional<Ellipsoid> make(const glm::dvec3& center, const glm::dquat& orientation,
-                                         const glm::dvec3& semi_axes,
-                                         std::string* error = nullptr);
+                                         const glm::dvec3& semi_axes, std::string* error = nullptr);
 
     /// Why these arguments would not make an ellipsoid; empty when they would.
     static std::string validate(const glm::dvec3& center, const glm::dquat& orientation,
@@ -63,7 +61,7 @@ public:
     /// The tight axis-aligned world box.
     Aabb bounds() const;
 
-private:
+  private:
     struct Unchecked {};
     Ellipsoid(Unchecked, const glm::dvec3& center, const glm::dquat& orientation,
               const glm::dvec3& semi_axes);

@@ -26,7 +26,6 @@ TRACKPHYS_API Contact ellipsoid_ellipsoid_contact(const Ellipsoid& a, const Elli
 /// < -reach; true proves nothing. The certificates, cheapest first: the bounding spheres,
 /// then the gap along the centre line (|d| minus both supports along it, a lower bound of
 /// the distance). The cheap rejection in front of the exact contact for a pair phase.
-TRACKPHYS_API bool ellipsoids_may_touch(const Ellipsoid& a, const Ellipsoid& b,
-                                        double reach = 0.0);
+TRACKPHYS_API bool ellipsoids_may_touch(const Ellipsoid& a, const Ellipsoid& b, double reach = 0.0);
 
 }  // namespace trackphys

@@ -41,7 +41,8 @@ namespace trackphys {
 /// - a value of the wrong type, a non-finite number, an ellipsoid without center,
 ///   semi_axes or role, an unknown role: the JSON path of the value;
 /// - a spec CarSpec::validate() rejects (mass <= 0, a semi-axis <= 0...): its message.
-TRACKPHYS_API CarSpec parse_car_spec(std::string_view json_text, const std::string& source = "car spec");
+TRACKPHYS_API CarSpec parse_car_spec(std::string_view json_text,
+                                     const std::string& source = "car spec");
 
 /// parse_car_spec of a file's contents; the message also names the file when it is
 /// missing, a folder or a device, unreadable, empty or larger than 16 MiB.

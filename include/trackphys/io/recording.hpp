@@ -25,7 +25,7 @@ namespace trackphys {
 /// the world. The file is written under a temporary name and renamed by finish(), so a
 /// run that fails never leaves a partial recording behind.
 class TRACKPHYS_API RecordingWriter {
-public:
+  public:
     /// Opens path's temporary sibling; throws trackphys::Error when it cannot.
     RecordingWriter(const std::filesystem::path& path, double dt, std::size_t cars,
                     const std::string& scene);
@@ -45,7 +45,7 @@ public:
     /// Flushes and renames the file into place; throws trackphys::Error on failure.
     void finish();
 
-private:
+  private:
     std::filesystem::path path_;
     std::filesystem::path temporary_;
     std::ofstream out_;

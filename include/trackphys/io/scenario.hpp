@@ -41,15 +41,15 @@ inline constexpr double max_target_speed_kmh = 1500.0;
 
 /// One drive: the track, the car, who drives it and for how long.
 struct TRACKPHYS_API Scenario {
-    std::uint64_t seed = 7;              ///< the generated track's seed (when mesh is empty)
-    std::filesystem::path mesh;          ///< drive on this mesh file instead (needs spawn)
+    std::uint64_t seed = 7;      ///< the generated track's seed (when mesh is empty)
+    std::filesystem::path mesh;  ///< drive on this mesh file instead (needs spawn)
     /// Free mode: the car starts upright above this point (m) and lands on the surface
     /// below it; it drives with `inputs` instead of the autopilot.
     std::optional<glm::dvec3> spawn;
-    double heading_deg = 0.0;            ///< free mode: about +Y, 0 = +X, 90 = -Z (degrees)
+    double heading_deg = 0.0;  ///< free mode: about +Y, 0 = +X, 90 = -Z (degrees)
     CarSpec car = CarSpec::default_car();
-    double target_speed_kmh = 600.0;     ///< autopilot: speed on straights, (0, 1500]
-    CarInputs inputs{0.5, 0.0, 0.0};     ///< free mode: fixed throttle, brake, steer
+    double target_speed_kmh = 600.0;  ///< autopilot: speed on straights, (0, 1500]
+    CarInputs inputs{0.5, 0.0, 0.0};  ///< free mode: fixed throttle, brake, steer
     /// Duration: laps of the generated track (autopilot only) and/or simulated seconds,
     /// whichever ends first; both 0 means one lap (autopilot). Free mode needs seconds.
     int laps = 0;
@@ -69,7 +69,8 @@ struct TRACKPHYS_API Scenario {
 /// both track.seed and track.mesh, both "autopilot" and "inputs", "autopilot" with a spawn
 /// point, "inputs" or track.heading_deg without one, the car (see parse_car_spec), or
 /// whatever Scenario::validate() rejects.
-TRACKPHYS_API Scenario parse_scenario(std::string_view json_text, const std::string& source = "scenario",
+TRACKPHYS_API Scenario parse_scenario(std::string_view json_text,
+                                      const std::string& source = "scenario",
                                       const std::filesystem::path& base_folder = {});
 
 /// parse_scenario of a file's contents, relative names taken from the file's folder; the

@@ -38,7 +38,8 @@ inline constexpr std::uint32_t kSnapshotFormatVersion = 1;
 ///                               f64 normal[3], f64 point[3], u32 collider, u32 triangle},
 ///                               u64 resets}
 ///               u64 user data length, the user data
-TRACKPHYS_API std::string encode_snapshot(const WorldSnapshot& snapshot, std::string_view user_data = {});
+TRACKPHYS_API std::string encode_snapshot(const WorldSnapshot& snapshot,
+                                          std::string_view user_data = {});
 
 /// Reads encode_snapshot's bytes back. Throws trackphys::Error, naming the problem, for a
 /// wrong magic, another format version, a checksum that does not match, a payload that is

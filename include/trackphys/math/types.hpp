@@ -4,11 +4,11 @@
 /// velocities keep 1e-5 m anywhere in a 20 km world only in double precision. glm's double
 /// types are the public vocabulary: glm::dvec3, glm::dquat (local -> world), glm::dmat3.
 
+#include <cmath>
+
 #include <glm/gtc/quaternion.hpp>
 #include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
-
-#include <cmath>
 
 namespace trackphys {
 

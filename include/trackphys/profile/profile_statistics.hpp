@@ -23,7 +23,7 @@ TRACKPHYS_API Summary summarize(std::vector<double> values);
 /// Collects UpdateProfiles over a run and summarises them: per-update time, per-phase
 /// time, and the mean counts per update.
 class TRACKPHYS_API ProfileStatistics {
-public:
+  public:
     void add(const UpdateProfile& profile);
 
     std::size_t updates() const { return update_us_.size(); }
@@ -40,7 +40,7 @@ public:
     /// Sphere culls per ellipsoid per sub-step, averaged over the run.
     double mean_tested_per_ellipsoid_substep() const;
 
-private:
+  private:
     std::vector<double> update_us_;
     std::array<std::vector<double>, phase_count> phase_us_;
     double candidates_ = 0.0, culled_tests_ = 0.0, exact_tests_ = 0.0, contacts_ = 0.0,

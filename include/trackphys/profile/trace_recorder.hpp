@@ -15,7 +15,7 @@ namespace trackphys {
 /// literals (or outlive the recorder). It keeps at most max_events zones and counts the
 /// rest as dropped, so a long run cannot exhaust memory.
 class TRACKPHYS_API TraceRecorder {
-public:
+  public:
     using Clock = std::chrono::steady_clock;
 
     explicit TraceRecorder(std::size_t max_events = 2'000'000);
@@ -29,12 +29,12 @@ public:
     /// Writes the trace; timestamps are microseconds since the recorder was made.
     void write_chrome_trace(std::ostream& out) const;
 
-private:
-    struct Event {                     // 32 bytes
-        const char* name;              // 8
-        std::int64_t begin_ns;         // 8, since epoch_
-        std::int64_t duration_ns;      // 8
-        std::uint32_t thread;          // 4 (+4 padding)
+  private:
+    struct Event {                 // 32 bytes
+        const char* name;          // 8
+        std::int64_t begin_ns;     // 8, since epoch_
+        std::int64_t duration_ns;  // 8
+        std::uint32_t thread;      // 4 (+4 padding)
     };
     static_assert(sizeof(Event) == 32);
 
@@ -46,9 +46,10 @@ private:
 
 /// Times the enclosing scope into a recorder (nothing when the recorder is null).
 class ScopedTraceZone {
-public:
+  public:
     ScopedTraceZone(TraceRecorder* recorder, const char* name)
-        : recorder_(recorder), name_(name),
+        : recorder_(recorder),
+          name_(name),
           begin_(recorder ? TraceRecorder::Clock::now() : TraceRecorder::Clock::time_point{}) {}
     ~ScopedTraceZone() {
         if (recorder_) recorder_->record(name_, begin_, TraceRecorder::Clock::now());
@@ -56,7 +57,7 @@ public:
     ScopedTraceZone(const ScopedTraceZone&) = delete;
     ScopedTraceZone& operator=(const ScopedTraceZone&) = delete;
 
-private:
+  private:
     TraceRecorder* recorder_;
     const char* name_;
     TraceRecorder::Clock::time_point begin_;

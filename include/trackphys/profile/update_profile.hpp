@@ -25,13 +25,13 @@ constexpr const char* phase_name(Phase phase) {
 /// What one update did: time per phase (microseconds) and how much work it saw.
 struct UpdateProfile {
     std::array<double, phase_count> phase_us{};
-    double update_us = 0.0;              ///< the whole update, wall clock
-    std::uint64_t candidates = 0;        ///< broad-phase triangles, summed over cars
-    std::uint64_t mid_queries = 0;       ///< mid-phase queries (the others reused a list)
-    std::uint64_t culled_tests = 0;      ///< sphere culls run (per ellipsoid per sub-step)
-    std::uint64_t exact_tests = 0;       ///< exact contacts computed
-    std::uint64_t contacts = 0;          ///< ellipsoids in contact, summed over sub-steps
-    std::uint64_t ellipsoid_substeps = 0;///< ellipsoids x sub-steps, to average per ellipsoid
+    double update_us = 0.0;                ///< the whole update, wall clock
+    std::uint64_t candidates = 0;          ///< broad-phase triangles, summed over cars
+    std::uint64_t mid_queries = 0;         ///< mid-phase queries (the others reused a list)
+    std::uint64_t culled_tests = 0;        ///< sphere culls run (per ellipsoid per sub-step)
+    std::uint64_t exact_tests = 0;         ///< exact contacts computed
+    std::uint64_t contacts = 0;            ///< ellipsoids in contact, summed over sub-steps
+    std::uint64_t ellipsoid_substeps = 0;  ///< ellipsoids x sub-steps, to average per ellipsoid
 
     double& operator[](Phase phase) { return phase_us[static_cast<std::size_t>(phase)]; }
     double operator[](Phase phase) const { return phase_us[static_cast<std::size_t>(phase)]; }

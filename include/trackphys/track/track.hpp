@@ -33,16 +33,16 @@ struct CenterlineSample {
 /// (inner faces look at the road, tops up, outer faces away). Neighbouring chunks share
 /// their boundary row of vertices exactly (equal coordinates, duplicated).
 struct TrackChunk {
-    TriangleMesh mesh;                      ///< world-space vertices (m), CCW triangles
-    Aabb bounds;                            ///< tight box of mesh.vertices
-    std::size_t road_triangle_count = 0;    ///< triangles [0, this) are road
-    std::size_t first_sample = 0;           ///< centreline sample of the chunk's first row
+    TriangleMesh mesh;                    ///< world-space vertices (m), CCW triangles
+    Aabb bounds;                          ///< tight box of mesh.vertices
+    std::size_t road_triangle_count = 0;  ///< triangles [0, this) are road
+    std::size_t first_sample = 0;         ///< centreline sample of the chunk's first row
 };
 
 /// A generated closed track: collider chunks in driving order and the centreline.
 struct Track {
-    TrackParams params;                     ///< the (validated) parameters it came from
-    double length_m = 0.0;                  ///< centreline length (m), 3-D arc length
+    TrackParams params;     ///< the (validated) parameters it came from
+    double length_m = 0.0;  ///< centreline length (m), 3-D arc length
     /// One sample per row of mesh vertices, in driving order; row spacing adapts to the
     /// curvature (denser in tight turns). The loop closes: the row after the last sample
     /// is sample 0 again (its vertices are exactly sample 0's).

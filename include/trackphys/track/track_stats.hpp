@@ -13,19 +13,19 @@ namespace trackphys {
 
 /// Summary figures of a generated track (what `trackphys track` prints).
 struct TrackStats {
-    double length_m = 0.0;               ///< centreline length (m)
-    std::size_t triangle_count = 0;      ///< all triangles, road and walls
+    double length_m = 0.0;           ///< centreline length (m)
+    std::size_t triangle_count = 0;  ///< all triangles, road and walls
     std::size_t road_triangle_count = 0;
-    std::size_t vertex_count = 0;        ///< over all chunks (boundary rows counted twice)
-    std::size_t chunk_count = 0;         ///< collider count
-    double min_bank_deg = 0.0;           ///< most negative bank (right-hand turns), degrees
+    std::size_t vertex_count = 0;  ///< over all chunks (boundary rows counted twice)
+    std::size_t chunk_count = 0;   ///< collider count
+    double min_bank_deg = 0.0;     ///< most negative bank (right-hand turns), degrees
     double max_bank_deg = 0.0;
-    double min_elevation_m = 0.0;        ///< lowest centreline point (y, m)
+    double min_elevation_m = 0.0;  ///< lowest centreline point (y, m)
     double max_elevation_m = 0.0;
-    double min_turn_radius_m = 0.0;      ///< tightest centreline radius seen from above (m)
-    std::size_t tightest_sample = 0;     ///< centreline sample with the largest |curvature|
-    double min_road_edge_m = 0.0;        ///< shortest along-track road edge (outer edge, m)
-    double max_road_edge_m = 0.0;        ///< longest along-track road edge (outer edge, m)
+    double min_turn_radius_m = 0.0;   ///< tightest centreline radius seen from above (m)
+    std::size_t tightest_sample = 0;  ///< centreline sample with the largest |curvature|
+    double min_road_edge_m = 0.0;     ///< shortest along-track road edge (outer edge, m)
+    double max_road_edge_m = 0.0;     ///< longest along-track road edge (outer edge, m)
     /// FNV-1a hash of every chunk's vertex bits and indices: equal hashes mean the same
     /// meshes, bit for bit (a quick check that a seed reproduces its track).
     std::uint64_t mesh_hash = 0;
@@ -42,9 +42,9 @@ struct UpdateBoxSpec {
     /// Car box size (m): x = width (along left), y = height (along up), z = length (along
     /// the tangent).
     glm::dvec3 car_size{2.0, 1.2, 4.5};
-    double speed_mps = 1000.0 / 3.6;     ///< top speed (m/s): 1000 km/h
-    double update_dt_s = 0.01;           ///< one physics update (s)
-    double margin_m = 0.1;               ///< extra padding (m)
+    double speed_mps = 1000.0 / 3.6;  ///< top speed (m/s): 1000 km/h
+    double update_dt_s = 0.01;        ///< one physics update (s)
+    double margin_m = 0.1;            ///< extra padding (m)
 };
 
 /// The padded world box of a car standing on the road at sample (see UpdateBoxSpec).

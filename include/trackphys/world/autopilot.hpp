@@ -17,8 +17,8 @@ struct AutopilotSettings {
     double grip_use = 0.75;
     /// Deceleration the profile plans for braking into turns (m/s^2, before downforce).
     double braking = 6.0;
-    double lookahead_min = 10.0;        ///< m ahead of the car at low speed
-    double lookahead_time = 0.45;       ///< s of travel added to the look-ahead distance
+    double lookahead_min = 10.0;   ///< m ahead of the car at low speed
+    double lookahead_time = 0.45;  ///< s of travel added to the look-ahead distance
     /// Gain of the yaw-rate feedback in the steering (0 = pure pursuit only).
     double yaw_damping = 0.5;
 };
@@ -37,7 +37,7 @@ struct AutopilotProgress {
 /// braking distance before it), throttle and brake to follow it, and pure-pursuit steering
 /// towards a point on the centreline ahead.
 class TRACKPHYS_API Autopilot {
-public:
+  public:
     Autopilot(const Track& track, const CarSpec& car, AutopilotSettings settings = {});
 
     /// Inputs for the car's current state; also advances the progress along the track.
@@ -61,7 +61,7 @@ public:
     /// this track's centreline or laps is negative.
     void set_progress(const AutopilotProgress& progress);
 
-private:
+  private:
     std::size_t find_nearest(const glm::dvec3& position) const;
     std::size_t sample_ahead(std::size_t from, double distance) const;
 

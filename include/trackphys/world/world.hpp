@@ -39,7 +39,7 @@ class TraceRecorder;
 /// checked when it was reached, so the reset state is always possible. The other cars are
 /// not affected.
 class TRACKPHYS_API World {
-public:
+  public:
     /// Throws trackphys::Error on a null static world or invalid settings. In the
     /// precomputed_tree mid-phase mode the colliders' plane trees are built here (the
     /// costliest part of making a World) unless `trees` holds them already (one per collider,
@@ -107,7 +107,7 @@ public:
     /// outlive its use here.
     void set_trace(TraceRecorder* trace) { trace_ = trace; }
 
-private:
+  private:
     // A car and its per-update working memory (src/world/car_slot.hpp): defined out of line so
     // that the mid phase and its lists stay out of every user's includes.
     struct CarSlot;

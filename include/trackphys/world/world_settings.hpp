@@ -12,13 +12,13 @@ namespace trackphys {
 /// How a World steps (docs/design.md#the-update-loop). The defaults are the
 /// write-up's: 100 updates a second, 10 steps of 4 sub-steps, so h = 0.25 ms.
 struct TRACKPHYS_API WorldSettings {
-    double dt_update = 0.01;                    ///< seconds per update()
-    int steps = 10;                             ///< steps per update
-    int substeps = 4;                           ///< sub-steps per step (integration steps)
+    double dt_update = 0.01;  ///< seconds per update()
+    int steps = 10;           ///< steps per update
+    int substeps = 4;         ///< sub-steps per step (integration steps)
     /// The largest gravity validate() accepts (m/s^2, 100,000 g): beyond it the update's
     /// margins, which square it, stop being finite.
     static constexpr double kMaxGravity = 1e6;
-    glm::dvec3 gravity{0.0, -9.81, 0.0};        ///< m/s^2, world +Y is up
+    glm::dvec3 gravity{0.0, -9.81, 0.0};  ///< m/s^2, world +Y is up
     /// Extra broad-phase padding (m) beyond what the car can move in one update.
     double broad_phase_margin = 0.05;
     /// How each step's candidates are found (see MidPhaseMode; the default was measured

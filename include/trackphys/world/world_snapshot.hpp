@@ -38,13 +38,13 @@ struct CarSnapshot {
     RigidBodyState state;
     CarInputs inputs;
     /// Per ellipsoid, in CarSpec order (all three the same length):
-    std::vector<double> suspension;      ///< Car::suspension(i), m
+    std::vector<double> suspension;  ///< Car::suspension(i), m
     /// The deepest contact of the last sub-step (World::contacts; depth -infinity for none).
     std::vector<Contact> contacts;
     /// The triangle of that contact, which the next sub-step tests first: it decides the
     /// order of the exact tests, so it is state too. {~0u, ~0u} for none.
     std::vector<TriangleRef> deepest_refs;
-    std::uint64_t resets = 0;            ///< World::car_resets
+    std::uint64_t resets = 0;  ///< World::car_resets
 };
 
 /// The complete dynamic state of a World: restore_state() of it, then update(), gives
