@@ -180,7 +180,6 @@ struct EllipsoidShape {
         return m00 * u.x * u.x + m11 * u.y * u.y + m22 * u.z * u.z +
                2.0 * (m01 * u.x * u.y + m02 * u.x * u.z + m12 * u.y * u.z);
     }
-    double support(const glm::dvec3& u) const { return std::sqrt(support_squared(u)); }
 
     /// low - h(n) - slack <= offset, without the square root: a shape whose lowest center
     /// is already inside passes at once, otherwise compare squares of non-negative sides.
@@ -191,10 +190,15 @@ struct EllipsoidShape {
         return gap <= 0.0 || gap * gap <= support_squared(n);
     }
 
+    /// The slab is missed when the shape's interval along its normal lies beyond one of its
+    /// faces by more than h(n) + slack; at most one of the two gaps is positive, and as in
+    /// reaches() the squares are compared instead of taking the square root.
     bool reaches_slab(const PlaneTreeSlab& slab) const {
         const glm::dvec3 n(slab.normal[0], slab.normal[1], slab.normal[2]);
         const double a = glm::dot(n, start), b = glm::dot(n, end);
-        return meets_slab(std::min(a, b), std::max(a, b), support(n) + slack, slab);
+        const double gap = std::max(std::min(a, b) - slack - double(slab.high),
+                                    double(slab.low) - std::max(a, b) - slack);
+        return gap <= 0.0 || gap * gap <= support_squared(n);
     }
 
     /// The filter: the triangle's plane and local box first (the ellipsoid's reach along
@@ -206,7 +210,10 @@ struct EllipsoidShape {
         const double z_gap = std::max({lo.z, -hi.z, 0.0});
         const double x_gap = std::max({lo.x - t.x1, -hi.x, 0.0});
         const double y_gap = std::max({lo.y - t.y2, -hi.y, 0.0});
-        if ((z_gap > 0.0 && z_gap * z_gap > support_squared(t.normal)) ||
+        // h(n)^2, which the sure accept below needs too: a wheel's shape lies above its
+        // road, so the plane test nearly always pays for it anyway.
+        const double h_sq = support_squared(t.normal);
+        if ((z_gap > 0.0 && z_gap * z_gap > h_sq) ||
             (x_gap > 0.0 && x_gap * x_gap > support_squared(t.dir_x)) ||
             (y_gap > 0.0 && y_gap * y_gap > support_squared(t.dir_y)))
             return false;
@@ -249,7 +256,6 @@ struct EllipsoidShape {
         // form an interval: [0, 1] clipped by |z(t)| <= h(n) and the three edges'
         // half-planes. It catches the triangles a wheel rolls over mid-sweep, not only
         // those under its ends.
-        const double h_sq = support_squared(t.normal);
         const double h = std::sqrt(h_sq);
         const glm::dvec3 mn(m00 * t.normal.x + m01 * t.normal.y + m02 * t.normal.z,
                             m01 * t.normal.x + m11 * t.normal.y + m12 * t.normal.z,
