@@ -205,18 +205,23 @@ struct EllipsoidShape {
     /// each frame axis is its support there; squares compared only for positive gaps), then
     /// the exact test in the unit-ball frame.
     bool touches(const NormalizedTriangle& t) const {
-        const glm::dvec3 a = to_local(t, start), b = to_local(t, end);
-        const glm::dvec3 lo = glm::min(a, b), hi = glm::max(a, b);
-        const double z_gap = std::max({lo.z, -hi.z, 0.0});
-        const double x_gap = std::max({lo.x - t.x1, -hi.x, 0.0});
-        const double y_gap = std::max({lo.y - t.y2, -hi.y, 0.0});
+        // One frame axis at a time, each rejecting before the next is computed: the same
+        // values as to_local's.
+        const glm::dvec3 from_a = start - t.origin, from_b = end - t.origin;
+        const double az = glm::dot(t.normal, from_a), bz = glm::dot(t.normal, from_b);
+        const double z_lo = std::min(az, bz), z_hi = std::max(az, bz);
+        const double z_gap = std::max({z_lo, -z_hi, 0.0});
         // h(n)^2, which the sure accept below needs too: a wheel's shape lies above its
         // road, so the plane test nearly always pays for it anyway.
         const double h_sq = support_squared(t.normal);
-        if ((z_gap > 0.0 && z_gap * z_gap > h_sq) ||
-            (x_gap > 0.0 && x_gap * x_gap > support_squared(t.dir_x)) ||
-            (y_gap > 0.0 && y_gap * y_gap > support_squared(t.dir_y)))
-            return false;
+        if (z_gap > 0.0 && z_gap * z_gap > h_sq) return false;
+        const double ax = glm::dot(t.dir_x, from_a), bx = glm::dot(t.dir_x, from_b);
+        const double x_gap = std::max({std::min(ax, bx) - t.x1, -std::max(ax, bx), 0.0});
+        if (x_gap > 0.0 && x_gap * x_gap > support_squared(t.dir_x)) return false;
+        const double ay = glm::dot(t.dir_y, from_a), by = glm::dot(t.dir_y, from_b);
+        const double y_gap = std::max({std::min(ay, by) - t.y2, -std::max(ay, by), 0.0});
+        if (y_gap > 0.0 && y_gap * y_gap > support_squared(t.dir_y)) return false;
+        const glm::dvec3 a(ax, ay, az), b(bx, by, bz);
         // The slanted edges' half-planes: e / |edge| is the in-plane distance beyond the
         // edge's line along the world direction u = (x2 dir_y - y2 dir_x) / |edge| (and
         // likewise for the other edge), where the ellipsoid reaches h(u).
@@ -234,8 +239,8 @@ struct EllipsoidShape {
         // down to min over the ends of (U.p + s lambda z) - h(d). This separates a wheel
         // from the triangle beside the one it stands on, which the plane and the edge
         // alone do not.
-        if (lo.z > 0.0 || hi.z < 0.0) {
-            const double side = lo.z > 0.0 ? 1.0 : -1.0;
+        if (z_lo > 0.0 || z_hi < 0.0) {
+            const double side = z_lo > 0.0 ? 1.0 : -1.0;
             auto separated = [&](double ux, double uy, double offset, double lambda) {
                 const double sl = side * lambda;
                 const double m = std::min(ux * a.x + uy * a.y + sl * a.z,
