@@ -180,7 +180,6 @@ struct EllipsoidShape {
         return m00 * u.x * u.x + m11 * u.y * u.y + m22 * u.z * u.z +
                2.0 * (m01 * u.x * u.y + m02 * u.x * u.z + m12 * u.y * u.z);
     }
-    double support(const glm::dvec3& u) const { return std::sqrt(support_squared(u)); }
 
     /// low - h(n) - slack <= offset, without the square root: a shape whose lowest center
     /// is already inside passes at once, otherwise compare squares of non-negative sides.
@@ -191,25 +190,38 @@ struct EllipsoidShape {
         return gap <= 0.0 || gap * gap <= support_squared(n);
     }
 
+    /// The slab is missed when the shape's interval along its normal lies beyond one of its
+    /// faces by more than h(n) + slack; at most one of the two gaps is positive, and as in
+    /// reaches() the squares are compared instead of taking the square root.
     bool reaches_slab(const PlaneTreeSlab& slab) const {
         const glm::dvec3 n(slab.normal[0], slab.normal[1], slab.normal[2]);
         const double a = glm::dot(n, start), b = glm::dot(n, end);
-        return meets_slab(std::min(a, b), std::max(a, b), support(n) + slack, slab);
+        const double gap = std::max(std::min(a, b) - slack - double(slab.high),
+                                    double(slab.low) - std::max(a, b) - slack);
+        return gap <= 0.0 || gap * gap <= support_squared(n);
     }
 
     /// The filter: the triangle's plane and local box first (the ellipsoid's reach along
     /// each frame axis is its support there; squares compared only for positive gaps), then
     /// the exact test in the unit-ball frame.
     bool touches(const NormalizedTriangle& t) const {
-        const glm::dvec3 a = to_local(t, start), b = to_local(t, end);
-        const glm::dvec3 lo = glm::min(a, b), hi = glm::max(a, b);
-        const double z_gap = std::max({lo.z, -hi.z, 0.0});
-        const double x_gap = std::max({lo.x - t.x1, -hi.x, 0.0});
-        const double y_gap = std::max({lo.y - t.y2, -hi.y, 0.0});
-        if ((z_gap > 0.0 && z_gap * z_gap > support_squared(t.normal)) ||
-            (x_gap > 0.0 && x_gap * x_gap > support_squared(t.dir_x)) ||
-            (y_gap > 0.0 && y_gap * y_gap > support_squared(t.dir_y)))
-            return false;
+        // One frame axis at a time, each rejecting before the next is computed: the same
+        // values as to_local's.
+        const glm::dvec3 from_a = start - t.origin, from_b = end - t.origin;
+        const double az = glm::dot(t.normal, from_a), bz = glm::dot(t.normal, from_b);
+        const double z_lo = std::min(az, bz), z_hi = std::max(az, bz);
+        const double z_gap = std::max({z_lo, -z_hi, 0.0});
+        // h(n)^2, which the sure accept below needs too: a wheel's shape lies above its
+        // road, so the plane test nearly always pays for it anyway.
+        const double h_sq = support_squared(t.normal);
+        if (z_gap > 0.0 && z_gap * z_gap > h_sq) return false;
+        const double ax = glm::dot(t.dir_x, from_a), bx = glm::dot(t.dir_x, from_b);
+        const double x_gap = std::max({std::min(ax, bx) - t.x1, -std::max(ax, bx), 0.0});
+        if (x_gap > 0.0 && x_gap * x_gap > support_squared(t.dir_x)) return false;
+        const double ay = glm::dot(t.dir_y, from_a), by = glm::dot(t.dir_y, from_b);
+        const double y_gap = std::max({std::min(ay, by) - t.y2, -std::max(ay, by), 0.0});
+        if (y_gap > 0.0 && y_gap * y_gap > support_squared(t.dir_y)) return false;
+        const glm::dvec3 a(ax, ay, az), b(bx, by, bz);
         // The slanted edges' half-planes: e / |edge| is the in-plane distance beyond the
         // edge's line along the world direction u = (x2 dir_y - y2 dir_x) / |edge| (and
         // likewise for the other edge), where the ellipsoid reaches h(u).
@@ -226,8 +238,8 @@ struct EllipsoidShape {
         // down to min over the ends of (U.p + s lambda z) - h(d). This separates a wheel
         // from the triangle beside the one it stands on, which the plane and the edge
         // alone do not.
-        if (lo.z > 0.0 || hi.z < 0.0) {
-            const double side = lo.z > 0.0 ? 1.0 : -1.0;
+        if (z_lo > 0.0 || z_hi < 0.0) {
+            const double side = z_lo > 0.0 ? 1.0 : -1.0;
             auto separated = [&](double ux, double uy, double offset, double lambda) {
                 const double sl = side * lambda;
                 const double m =
@@ -249,7 +261,6 @@ struct EllipsoidShape {
         // form an interval: [0, 1] clipped by |z(t)| <= h(n) and the three edges'
         // half-planes. It catches the triangles a wheel rolls over mid-sweep, not only
         // those under its ends.
-        const double h_sq = support_squared(t.normal);
         const double h = std::sqrt(h_sq);
         const glm::dvec3 mn(m00 * t.normal.x + m01 * t.normal.y + m02 * t.normal.z,
                             m01 * t.normal.x + m11 * t.normal.y + m12 * t.normal.z,

@@ -9,14 +9,22 @@ namespace trackphys {
 
 namespace {
 
-/// Squared distance from p to the segment [a, b].
-double distance_squared_to_segment(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b) {
-    const glm::dvec3 along = b - a;
-    const double length2 = glm::dot(along, along);
-    const double t = length2 > 0.0 ? std::clamp(glm::dot(p - a, along) / length2, 0.0, 1.0) : 0.0;
-    const glm::dvec3 gap = p - (a + t * along);
-    return glm::dot(gap, gap);
-}
+/// The segment [a, b], set up once for the distances of both ends of the inner segment.
+struct Segment {
+    glm::dvec3 a, along;
+    double length2;
+
+    Segment(const glm::dvec3& start, const glm::dvec3& end)
+        : a(start), along(end - start), length2(glm::dot(along, along)) {}
+
+    /// Squared distance from p to the segment.
+    double distance_squared(const glm::dvec3& p) const {
+        const double t =
+            length2 > 0.0 ? std::clamp(glm::dot(p - a, along) / length2, 0.0, 1.0) : 0.0;
+        const glm::dvec3 gap = p - (a + t * along);
+        return glm::dot(gap, gap);
+    }
+};
 
 }  // namespace
 
@@ -51,10 +59,10 @@ bool SweptEllipsoid::contains(const SweptEllipsoid& inner) const {
                       glm::dot(turn[2], turn[2])) *
             inner.scale() * radii.x;
     if (!(room >= 0.0)) return false;
-    const glm::dvec3& a = ellipsoid.center();
+    const Segment segment(ellipsoid.center(), end);
     const double room_squared = room * room;
-    return distance_squared_to_segment(inner.ellipsoid.center(), a, end) <= room_squared &&
-           distance_squared_to_segment(inner.end, a, end) <= room_squared;
+    return segment.distance_squared(inner.ellipsoid.center()) <= room_squared &&
+           segment.distance_squared(inner.end) <= room_squared;
 }
 
 }  // namespace trackphys

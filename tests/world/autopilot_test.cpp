@@ -143,7 +143,7 @@ TEST(Autopilot, LookingAheadInTheMidPhaseDrivesTheSame) {
     const CarSpec spec = CarSpec::default_car();
     std::vector<glm::dvec3> finals;
     std::vector<std::uint64_t> queries;
-    for (const int look_ahead : {1, 3, 10}) {
+    for (const int look_ahead : {1, WorldSettings{}.mid_phase_look_ahead, 10}) {
         WorldSettings settings;
         settings.mid_phase_look_ahead = look_ahead;
         World world(tw.statics, settings, tw.trees);

@@ -28,10 +28,12 @@ struct TRACKPHYS_API WorldSettings {
     /// that far ahead with mid_phase_slack more margin (look_ahead), and the following steps
     /// of the update reuse its list while their own swept ellipsoid stays inside; a list
     /// that came back empty (a body above the road) looks to the end of the update
-    /// (LookAheadList). 1 queries every step for that step alone, as the write-up's loop did;
-    /// 3 makes about a quarter as many queries on the default lap, for a fraction of a
-    /// triangle more culled a sub-step.
-    int mid_phase_look_ahead = 3;
+    /// (LookAheadList). 1 queries every step for that step alone, as the write-up's loop did.
+    /// The default, half of the default update's steps, lists a wheel in two queries an
+    /// update; looking further ahead saves fewer queries than its longer lists cost the
+    /// sub-step cull, and shorter looks make more queries, each costing more than the
+    /// triangles it spares the cull (docs/benchmarks.md).
+    int mid_phase_look_ahead = 5;
     /// Extra margin (m, finite, >= 0) of a query that looks ahead, which a step's small
     /// deviations from the straight path (a turn, a bump) spend before a new query.
     double mid_phase_slack = 0.005;
