@@ -222,10 +222,44 @@ struct EllipsoidShape {
         const double y_gap = std::max({std::min(ay, by) - t.y2, -std::max(ay, by), 0.0});
         if (y_gap > 0.0 && y_gap * y_gap > support_squared(t.dir_y)) return false;
         const glm::dvec3 a(ax, ay, az), b(bx, by, bz);
+        const double ex = t.x2 - t.x1;
+        // Sure accept, the common wheel-on-road case: from a center c at height z over the
+        // plane, the chord x = c - (z / n^T M n) M n stays in the ellipsoid while
+        // z^2 <= n^T M n (its M^-1 norm is |z| / h(n)) and ends on the plane; if it ends over
+        // the triangle, they touch. Along the sweep c(t) = a + t (b - a) the chord's foot
+        // moves linearly in t, so the t in [0, 1] where it exists and lies over the triangle
+        // form an interval: [0, 1] clipped by |z(t)| <= h(n) and the three edges'
+        // half-planes. It catches the triangles a wheel rolls over mid-sweep, not only
+        // those under its ends. It comes before the edge and tilted-axis rejections below:
+        // those are exact bounds too, so the order leaves every answer unchanged, and far
+        // more calls end here than there.
+        const double h = std::sqrt(h_sq);
+        const glm::dvec3 mn(m00 * t.normal.x + m01 * t.normal.y + m02 * t.normal.z,
+                            m01 * t.normal.x + m11 * t.normal.y + m12 * t.normal.z,
+                            m02 * t.normal.x + m12 * t.normal.y + m22 * t.normal.z);
+        const double mn_x = glm::dot(t.dir_x, mn) / h_sq, mn_y = glm::dot(t.dir_y, mn) / h_sq;
+        const double xa = a.x - a.z * mn_x, ya = a.y - a.z * mn_y;
+        const double xb = b.x - b.z * mn_x, yb = b.y - b.z * mn_y;
+        double first = 0.0, last = 1.0;
+        // Keeps the t with f(t) = fa + t (fb - fa) <= 0.
+        auto keep_below = [&](double fa, double fb) {
+            if (fa <= 0.0 && fb <= 0.0) return;
+            if (fa > 0.0 && fb > 0.0)
+                first = 2.0;
+            else if (fa > 0.0)
+                first = std::max(first, fa / (fa - fb));
+            else
+                last = std::min(last, fa / (fa - fb));
+        };
+        keep_below(a.z - h, b.z - h);
+        keep_below(-a.z - h, -b.z - h);
+        keep_below(-ya, -yb);
+        keep_below(t.x2 * ya - t.y2 * xa, t.x2 * yb - t.y2 * xb);
+        keep_below((xa - t.x1) * t.y2 - ya * ex, (xb - t.x1) * t.y2 - yb * ex);
+        if (first <= last) return true;
         // The slanted edges' half-planes: e / |edge| is the in-plane distance beyond the
         // edge's line along the world direction u = (x2 dir_y - y2 dir_x) / |edge| (and
         // likewise for the other edge), where the ellipsoid reaches h(u).
-        const double ex = t.x2 - t.x1;
         const double e1 = std::min(t.x2 * a.y - t.y2 * a.x, t.x2 * b.y - t.y2 * b.x);
         const double e2 = std::min((a.x - t.x1) * t.y2 - a.y * ex, (b.x - t.x1) * t.y2 - b.y * ex);
         if ((e1 > 0.0 && e1 * e1 > support_squared(t.x2 * t.dir_y - t.y2 * t.dir_x)) ||
@@ -253,38 +287,6 @@ struct EllipsoidShape {
                 separated(t.y2, -ex, t.x1 * t.y2, std::abs(ex) + t.y2))
                 return false;
         }
-        // Sure accept, the common wheel-on-road case: from a center c at height z over the
-        // plane, the chord x = c - (z / n^T M n) M n stays in the ellipsoid while
-        // z^2 <= n^T M n (its M^-1 norm is |z| / h(n)) and ends on the plane; if it ends over
-        // the triangle, they touch. Along the sweep c(t) = a + t (b - a) the chord's foot
-        // moves linearly in t, so the t in [0, 1] where it exists and lies over the triangle
-        // form an interval: [0, 1] clipped by |z(t)| <= h(n) and the three edges'
-        // half-planes. It catches the triangles a wheel rolls over mid-sweep, not only
-        // those under its ends.
-        const double h = std::sqrt(h_sq);
-        const glm::dvec3 mn(m00 * t.normal.x + m01 * t.normal.y + m02 * t.normal.z,
-                            m01 * t.normal.x + m11 * t.normal.y + m12 * t.normal.z,
-                            m02 * t.normal.x + m12 * t.normal.y + m22 * t.normal.z);
-        const double mn_x = glm::dot(t.dir_x, mn) / h_sq, mn_y = glm::dot(t.dir_y, mn) / h_sq;
-        const double xa = a.x - a.z * mn_x, ya = a.y - a.z * mn_y;
-        const double xb = b.x - b.z * mn_x, yb = b.y - b.z * mn_y;
-        double first = 0.0, last = 1.0;
-        // Keeps the t with f(t) = fa + t (fb - fa) <= 0.
-        auto keep_below = [&](double fa, double fb) {
-            if (fa <= 0.0 && fb <= 0.0) return;
-            if (fa > 0.0 && fb > 0.0)
-                first = 2.0;
-            else if (fa > 0.0)
-                first = std::max(first, fa / (fa - fb));
-            else
-                last = std::min(last, fa / (fa - fb));
-        };
-        keep_below(a.z - h, b.z - h);
-        keep_below(-a.z - h, -b.z - h);
-        keep_below(-ya, -yb);
-        keep_below(t.x2 * ya - t.y2 * xa, t.x2 * yb - t.y2 * xb);
-        keep_below((xa - t.x1) * t.y2 - ya * ex, (xb - t.x1) * t.y2 - yb * ex);
-        if (first <= last) return true;
         return segment_within(glm::dvec3(0.0), unit_end, to_unit * (t.vertex(0) - start),
                               to_unit * (t.vertex(1) - start), to_unit * (t.vertex(2) - start),
                               1.0);
