@@ -142,6 +142,7 @@ struct EllipsoidShape {
     glm::dmat3 to_unit;                   // D^-1 Q^T
     glm::dvec3 unit_end;                  // to_unit * (end - start)
     double slack;
+    double reach_squared;  // above support_squared(u) for any |u| <= 1
 
     /// The ellipsoid scaled about its center by 1 + margin / (smallest semi-axis). Throws
     /// trackphys::Error on a non-finite end or a bad margin.
@@ -174,6 +175,11 @@ struct EllipsoidShape {
         // stretch world lengths by up to 1 / (smallest radius): the slack scales with it.
         slack = kPlaneSlack * (1.0 + std::max(max_abs(start), max_abs(end)) + radii.x) *
                 (radii.x / radii.z);
+        // h(u) <= r_x |u|, and every direction tested against it has |u| <= 1 (the tree's
+        // normals are rounded toward zero, the triangle's axes are unit) up to rounding far
+        // below the factor's room: a gap beyond it is rejected without computing h(u)^2,
+        // only where the comparison with h(u)^2 would reject it too.
+        reach_squared = radii.x * radii.x * (1.0 + 1e-6);
     }
 
     double support_squared(const glm::dvec3& u) const {
@@ -187,7 +193,7 @@ struct EllipsoidShape {
         const glm::dvec3 n = node_normal(node);
         const double gap =
             std::min(glm::dot(n, start), glm::dot(n, end)) - slack - double(node.offset);
-        return gap <= 0.0 || gap * gap <= support_squared(n);
+        return gap <= 0.0 || (gap * gap <= reach_squared && gap * gap <= support_squared(n));
     }
 
     /// The slab is missed when the shape's interval along its normal lies beyond one of its
@@ -198,7 +204,7 @@ struct EllipsoidShape {
         const double a = glm::dot(n, start), b = glm::dot(n, end);
         const double gap = std::max(std::min(a, b) - slack - double(slab.high),
                                     double(slab.low) - std::max(a, b) - slack);
-        return gap <= 0.0 || gap * gap <= support_squared(n);
+        return gap <= 0.0 || (gap * gap <= reach_squared && gap * gap <= support_squared(n));
     }
 
     /// The filter: the triangle's plane and local box first (the ellipsoid's reach along
@@ -217,10 +223,14 @@ struct EllipsoidShape {
         if (z_gap > 0.0 && z_gap * z_gap > h_sq) return false;
         const double ax = glm::dot(t.dir_x, from_a), bx = glm::dot(t.dir_x, from_b);
         const double x_gap = std::max({std::min(ax, bx) - t.x1, -std::max(ax, bx), 0.0});
-        if (x_gap > 0.0 && x_gap * x_gap > support_squared(t.dir_x)) return false;
+        if (x_gap > 0.0 &&
+            (x_gap * x_gap > reach_squared || x_gap * x_gap > support_squared(t.dir_x)))
+            return false;
         const double ay = glm::dot(t.dir_y, from_a), by = glm::dot(t.dir_y, from_b);
         const double y_gap = std::max({std::min(ay, by) - t.y2, -std::max(ay, by), 0.0});
-        if (y_gap > 0.0 && y_gap * y_gap > support_squared(t.dir_y)) return false;
+        if (y_gap > 0.0 &&
+            (y_gap * y_gap > reach_squared || y_gap * y_gap > support_squared(t.dir_y)))
+            return false;
         const glm::dvec3 a(ax, ay, az), b(bx, by, bz);
         const double ex = t.x2 - t.x1;
         // Sure accept, the common wheel-on-road case: from a center c at height z over the
