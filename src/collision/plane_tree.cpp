@@ -90,16 +90,6 @@ std::uint32_t PlaneTree::entry_node(const Aabb& box) const {
     return index;
 }
 
-const NormalizedTriangle& PlaneTree::triangle(std::uint32_t slot) const {
-    TP_ASSERT(slot < triangles_.size(), "plane tree slot out of range");
-    return triangles_[slot];
-}
-
-std::uint32_t PlaneTree::id(std::uint32_t slot) const {
-    TP_ASSERT(slot < ids_.size(), "plane tree slot out of range");
-    return ids_[slot];
-}
-
 std::size_t PlaneTree::bytes_used() const {
     return nodes_.capacity() * sizeof(PlaneTreeNode) + slabs_.capacity() * sizeof(PlaneTreeSlab) +
            triangles_.capacity() * sizeof(NormalizedTriangle) +

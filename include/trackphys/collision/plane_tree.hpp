@@ -7,6 +7,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/vec3.hpp>
 
+#include "trackphys/assert.hpp"
 #include "trackphys/export.hpp"
 #include "trackphys/geometry/ellipsoid.hpp"
 #include "trackphys/geometry/normalized_triangle.hpp"
@@ -182,10 +183,17 @@ class TRACKPHYS_API PlaneTree {
 
     /// Number of triangles (slots are 0 .. triangle_count() - 1).
     std::size_t triangle_count() const { return triangles_.size(); }
-    /// The triangle in leaf slot `slot` (TP_ASSERT on range).
-    const NormalizedTriangle& triangle(std::uint32_t slot) const;
+    /// The triangle in leaf slot `slot` (TP_ASSERT on range). Inline, as id(): the mid
+    /// phase reads both for every slot a query reports.
+    const NormalizedTriangle& triangle(std::uint32_t slot) const {
+        TP_ASSERT(slot < triangles_.size(), "plane tree slot out of range");
+        return triangles_[slot];
+    }
     /// The caller's id of the triangle in slot `slot`, as given to the builder.
-    std::uint32_t id(std::uint32_t slot) const;
+    std::uint32_t id(std::uint32_t slot) const {
+        TP_ASSERT(slot < ids_.size(), "plane tree slot out of range");
+        return ids_[slot];
+    }
     /// The nodes, root at 0.
     const std::vector<PlaneTreeNode>& nodes() const { return nodes_; }
     /// One slab per node when the tree was built with slabs (read where has_slab()), else
