@@ -298,6 +298,29 @@ TEST(EllipsoidPair, ShallowAndSeparatedPairsAreCertifiedWithoutSearch) {
     }
 }
 
+// fuzz_ellipsoid_pair's -seed=1 finding (fuzz/seeds/fuzz_ellipsoid_pair/
+// centred_needle_through_spheroid.seed): one centre, a 2 mm spheroid across a 27.8 m needle.
+// h's minima lie in a valley 3.5e-5 rad wide about the circle orthogonal to the needle;
+// the search ran out of evaluations along it and answered the saddle along the spheroid's
+// long axis (3 * 2^-10) instead of the minimum across it (2^-9).
+TEST(EllipsoidPair, CentredNeedleThroughASpheroidFindsTheValleyMinimum) {
+    const Ellipsoid a({0.0, 0.0, 0.0},
+                      glm::dquat(0x1.ffff0000bfff6p-9, 0.0, 0x1.ffff0000bfff6p-1, 0.0),
+                      {0x1p-10, 0x1p-9, 0x1p-10});
+    const Ellipsoid b({0.0, 0.0, 0.0}, glm::dquat(0.0, 0.0, 0.0, 1.0),
+                      {0x1p-10, 0x1p-10, 0x1.bd04p+4});
+    for (const bool swap : {false, true}) {
+        const Contact got =
+            swap ? ellipsoid_ellipsoid_contact(b, a) : ellipsoid_ellipsoid_contact(a, b);
+        test::PairReference solver(swap ? b : a, swap ? a : b);
+        const test::PairReferenceResult ref = solver.solve();
+        EXPECT_NEAR(double(ref.depth), 0x1p-9, 1e-12);
+        EXPECT_NEAR(got.depth, double(ref.depth), depth_tolerance(largest_axis(a, b)));
+        EXPECT_NEAR(std::abs(got.normal.y), 0.0, 1e-6);
+        EXPECT_NEAR(std::abs(got.normal.z), 0.0, 1e-6);
+    }
+}
+
 TEST(EllipsoidPair, KnownAnswers) {
     const glm::dquat identity(1.0, 0.0, 0.0, 0.0);
     // Two boxes' worth of car bodies side by side along x, 0.1 m apart.
