@@ -16,24 +16,9 @@
 #include <cmath>
 #include <vector>
 
+#include "support/long_double_vector.hpp"
+
 namespace trackphys::test {
-
-using R = long double;
-
-struct V3 {
-    R x = 0, y = 0, z = 0;
-    R operator[](int i) const { return i == 0 ? x : i == 1 ? y : z; }
-};
-inline V3 operator+(V3 a, V3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-inline V3 operator-(V3 a, V3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-inline V3 operator*(V3 a, R s) { return {a.x * s, a.y * s, a.z * s}; }
-inline V3 operator*(R s, V3 a) { return a * s; }
-inline R dot(V3 a, V3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-inline V3 cross(V3 a, V3 b) {
-    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-inline R norm(V3 a) { return std::sqrt(dot(a, a)); }
-inline V3 unit(V3 a) { return a * (1 / norm(a)); }
 
 struct ReferenceContact {
     R depth;        ///< sigma
@@ -205,19 +190,9 @@ class ContactReference {
                 s1 *= 0.5L / length;
                 s2 *= 0.5L / length;
             }
-            const R now = phi(u);
-            bool moved = false;
-            for (int halving = 0; halving < 60; ++halving) {
-                const V3 next = unit(u + t1 * s1 + t2 * s2);
-                if (phi(next) <= now) {
-                    moved = !(next.x == u.x && next.y == u.y && next.z == u.z);
-                    u = next;
-                    break;
-                }
-                s1 /= 2;
-                s2 /= 2;
-            }
-            if (!moved) break;
+            if (!step_downhill_on_sphere(
+                    u, t1, t2, s1, s2, [&](V3 v) { return phi(v); }, 60))
+                break;
         }
         return u;
     }

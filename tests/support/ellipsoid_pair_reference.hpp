@@ -16,25 +16,12 @@
 #include <cmath>
 #include <vector>
 
+#include "support/long_double_vector.hpp"
 #include "trackphys/geometry/ellipsoid.hpp"
 
 namespace trackphys::test {
 
 namespace pair_reference {
-
-using R = long double;
-
-struct V3 {
-    R x = 0, y = 0, z = 0;
-};
-inline V3 operator+(V3 a, V3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-inline V3 operator-(V3 a, V3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-inline V3 operator*(V3 a, R s) { return {a.x * s, a.y * s, a.z * s}; }
-inline R dot(V3 a, V3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-inline V3 cross(V3 a, V3 b) {
-    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-inline V3 unit(V3 a) { return a * (1 / std::sqrt(dot(a, a))); }
 
 /// One ellipsoid: centre, sorted axes (columns as rows here: axis[i]) and radii.
 struct Body {
@@ -58,10 +45,10 @@ inline Body body(const Ellipsoid& e) {
 
 struct PairReferenceResult {
     long double depth;
-    pair_reference::V3 n;      ///< the minimiser (from A towards B): normal = -n
-    pair_reference::V3 point;  ///< the contact point (world)
-    long double runner_up;     ///< lowest local minimum more than 1e-4 rad from n
-    long double sampled_min;   ///< the grid's minimum (>= depth)
+    V3 n;                     ///< the minimiser (from A towards B): normal = -n
+    V3 point;                 ///< the contact point (world)
+    long double runner_up;    ///< lowest local minimum more than 1e-4 rad from n
+    long double sampled_min;  ///< the grid's minimum (>= depth)
     /// The least rise of h 1e-4 rad away from n (8 directions): a minimum flat to second
     /// order fixes its direction only to ~eps^(1/4).
     long double rise;
@@ -69,9 +56,6 @@ struct PairReferenceResult {
 
 class PairReference {
   public:
-    using R = pair_reference::R;
-    using V3 = pair_reference::V3;
-
     PairReference(const Ellipsoid& a, const Ellipsoid& b)
         : a_(pair_reference::body(a)), b_(pair_reference::body(b)), d_(a_.c - b_.c) {}
 
@@ -92,7 +76,6 @@ class PairReference {
     R h(V3 n) const { return dot(d_, n) + support(a_, n) + support(b_, n); }
 
     PairReferenceResult solve() {
-        using pair_reference::unit;
         minima_.clear();
         // Grid.
         constexpr int lat = 40, lon = 80;
@@ -171,8 +154,8 @@ class PairReference {
   private:
     static void basis(V3 n, V3& t1, V3& t2) {
         const V3 helper = std::fabs(n.x) < 0.6L ? V3{1, 0, 0} : V3{0, 1, 0};
-        t1 = pair_reference::unit(pair_reference::cross(n, helper));
-        t2 = pair_reference::cross(n, t1);
+        t1 = unit(cross(n, helper));
+        t2 = cross(n, t1);
     }
 
     void circle_minima(V3 axis, std::vector<V3>& starts) const {
@@ -214,7 +197,6 @@ class PairReference {
     }
 
     V3 descend(V3 n) const {
-        using pair_reference::unit;
         for (int it = 0; it < 100; ++it) {
             V3 t1, t2;
             basis(n, t1, t2);
@@ -244,19 +226,9 @@ class PairReference {
                 n = unit(n + t1 * s1 + t2 * s2);
                 continue;
             }
-            const R now = h(n);
-            bool moved = false;
-            for (int halving = 0; halving < 80; ++halving) {
-                const V3 next = unit(n + t1 * s1 + t2 * s2);
-                if (h(next) <= now) {
-                    moved = !(next.x == n.x && next.y == n.y && next.z == n.z);
-                    n = next;
-                    break;
-                }
-                s1 /= 2;
-                s2 /= 2;
-            }
-            if (!moved) break;
+            if (!step_downhill_on_sphere(
+                    n, t1, t2, s1, s2, [&](V3 v) { return h(v); }, 80))
+                break;
         }
         return n;
     }
