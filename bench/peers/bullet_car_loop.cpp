@@ -5,6 +5,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "world/update_box.hpp"
+
 namespace trackphys::peers {
 namespace {
 
@@ -64,15 +66,7 @@ BulletNarrowPhaseLoop::BulletNarrowPhaseLoop(std::shared_ptr<const StaticWorld> 
 void BulletNarrowPhaseLoop::update(Car& car) {
     listed_.resize(car.ellipsoid_count());
     deepest_.resize(car.ellipsoid_count());
-    Aabb box;
-    for (std::size_t i = 0; i < car.ellipsoid_count(); ++i)
-        box.expand(car.world_ellipsoid(i).bounds());
-    const double dt = settings_.dt_update;
-    const RigidBodyState& state = car.state();
-    const double margin = settings_.broad_phase_margin +
-                          glm::length(state.angular_velocity) * car.bounding_radius() * dt +
-                          0.5 * glm::length(settings_.gravity) * dt * dt;
-    begin_update(swept_box(box, state.linear_velocity * dt, margin));
+    begin_update(detail::car_update_box(car, settings_));
     DeepestContact deepest;
     deepest.counts = &counts_;
     for (int step = 0; step < settings_.steps; ++step) {

@@ -13,6 +13,7 @@
 #include "trackphys/geometry/contact.hpp"
 #include "trackphys/geometry/ellipsoid_cull.hpp"
 #include "world/car_slot.hpp"
+#include "world/update_box.hpp"
 
 namespace trackphys {
 
@@ -66,22 +67,10 @@ void World::update() {
     }
 }
 
-// The broad phase covers every triangle the car can touch during the update: the union of
-// its ellipsoids' boxes, swept by its velocity over the update and padded by what rotation
-// and a changing velocity can add. Then steps of sub-steps, each step with its own lists.
+// The broad phase covers every triangle the car can touch during the update
+// (car_update_box); then steps of sub-steps, each step with its own lists.
 void World::update_car(CarSlot& slot, PhaseStopwatch& watch) {
-    const Car& car = slot.car;
-    Aabb box;
-    for (std::size_t i = 0; i < car.ellipsoid_count(); ++i)
-        box.expand(car.world_ellipsoid(i).bounds());
-    const double dt = settings_.dt_update;
-    const RigidBodyState& state = car.state();
-    // Any body point moves at most |omega| R dt by rotation; gravity alone bends the path by
-    // |g| dt^2 / 2.
-    const double margin = settings_.broad_phase_margin +
-                          glm::length(state.angular_velocity) * car.bounding_radius() * dt +
-                          0.5 * glm::length(settings_.gravity) * dt * dt;
-    begin_update(slot, swept_box(box, state.linear_velocity * dt, margin), watch);
+    begin_update(slot, detail::car_update_box(slot.car, settings_), watch);
 
     for (int step = 0; step < settings_.steps; ++step) {
         list_step_candidates(slot, settings_.steps - step, watch);
