@@ -62,10 +62,16 @@ Contact far_field(const Ellipsoid& a, const Ellipsoid& b, double scale) {
     return {-(distance - (ha + hb) * scale), u, point};
 }
 
+/// The power of two that brings r (> 0, finite) into [1, 2): its exponent bits, or for a
+/// subnormal r the library's ldexp (a call, and rare).
+double unit_scale(double r) {
+    const std::uint64_t exponent = std::bit_cast<std::uint64_t>(r) & 0x7ff0000000000000u;
+    return exponent != 0 ? std::bit_cast<double>(exponent) : std::ldexp(1.0, std::ilogb(r));
+}
+
 /// a and b in a's sorted frame at unit scale, or false when their centres are too far apart.
 bool unit_frame(const Ellipsoid& a, const Ellipsoid& b, double& scale, detail::PairFrame& frame) {
-    // Unit scale: the larger semi-axis in [1, 2).
-    scale = std::ldexp(1.0, std::ilogb(std::max(a.sorted_radii().x, b.sorted_radii().x)));
+    scale = unit_scale(std::max(a.sorted_radii().x, b.sorted_radii().x));
     const double inv = 1.0 / scale;
     const glm::dvec3 d_world = (a.center() - b.center()) * inv;
     const glm::dvec3 d_abs = abs_each(d_world);
