@@ -133,7 +133,8 @@ PairSolution pair_solution(const Ellipsoid& a, const Ellipsoid& b) {
     double scale;
     PairFrame frame;
     if (!unit_frame(swap ? b : a, swap ? a : b, scale, frame))
-        return {0.0, glm::dvec3(0.0), glm::dvec3(0.0), glm::dvec3(0.0), PairPath::far_field, 0};
+        return {0.0, glm::dvec3(0.0), glm::dvec3(0.0), glm::dvec3(0.0), PairPath::far_field, 0,
+                0.0};
     return solve_pair(frame);
 }
 

@@ -94,7 +94,8 @@ constexpr double kSearchTolerance = 0x1p-37;
 // Squares are not split below this half-size (1e-9 rad), nor is the search run past this
 // many evaluations (a near-constant h, as of two equal spheres about one centre, defeats
 // any bound; its minimum is then as good as any value). A needle's valley reaches it too,
-// uncertified: the descents from the axes (from_axes) run first to land in that valley.
+// uncertified: the descents from the axes (from_axes) run first to land in that valley,
+// and solve_pair reports the answer as PairPath::unproven with the bound left unresolved.
 constexpr double kSmallestHalf = 0x1p-30;
 constexpr int kEvaluationCap = 40000;
 
@@ -458,7 +459,7 @@ Cap certified_cap(const PairFunction& f, const Sample& s, double floor) {
 
 /// The branch-and-bound search from the best descent so far (see the head of the file),
 /// lowest bound first, so that it stops as soon as no square can beat the best value.
-Descent search(PairFunction& f, Descent best) {
+Descent search(PairFunction& f, Descent best, double& unresolved) {
     std::vector<Square> heap;
     heap.reserve(256);
     const auto later = [](const Square& x, const Square& y) { return x.bound > y.bound; };
@@ -500,9 +501,13 @@ Descent search(PairFunction& f, Descent best) {
             const double curved = curved_bound(f, s, sin_theta / cos_theta * (1.0 + 0x1p-46));
             if (curved > bound) bound = curved;  // never a NaN
         }
-        if (bound < best.at.h - kSearchTolerance && half >= kSmallestHalf) {
-            heap.push_back({bound, cu, cv, half, axis, sign});
-            std::push_heap(heap.begin(), heap.end(), later);
+        if (bound < best.at.h - kSearchTolerance) {
+            if (half >= kSmallestHalf) {
+                heap.push_back({bound, cu, cv, half, axis, sign});
+                std::push_heap(heap.begin(), heap.end(), later);
+            } else {
+                unresolved = std::min(unresolved, bound);
+            }
         }
     };
     // With both centres at one point h is even, h(-n) = h(n) to the bit, so the faces on
@@ -522,6 +527,8 @@ Descent search(PairFunction& f, Descent best) {
         for (const double du : {-half, half})
             for (const double dv : {-half, half}) visit(q.cu + du, q.cv + dv, half, q.axis, q.sign);
     }
+    // Stopped by the cap: the queued squares' bounds are all that is known below the best.
+    if (!heap.empty()) unresolved = std::min(unresolved, heap.front().bound);
     return best;
 }
 
@@ -583,9 +590,15 @@ PairSolution solve_pair(const PairFrame& frame) {
         path = PairPath::separated;
     else if (result.converged && at.h <= f.inscribed(at) + kSearchTolerance)
         path = PairPath::inscribed_balls;
-    else
-        result = search(f, from_axes(f, result, frame));
-    return {result.at.h, result.at.n, result.at.xa, -result.at.xb, path, f.evaluations};
+    double lower_bound = result.at.h;
+    if (path == PairPath::searched) {
+        double unresolved = std::numeric_limits<double>::infinity();
+        result = search(f, from_axes(f, result, frame), unresolved);
+        lower_bound = std::min(result.at.h - kSearchTolerance, unresolved);
+        if (unresolved < result.at.h - kSearchTolerance) path = PairPath::unproven;
+    }
+    return {result.at.h, result.at.n,   result.at.xa, -result.at.xb,
+            path,        f.evaluations, lower_bound};
 }
 
 }  // namespace trackphys::detail
