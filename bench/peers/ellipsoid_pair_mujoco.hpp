@@ -64,8 +64,7 @@ class MujocoPairScene {
         mj_collision(model_, data_);
         if (data_->ncon == 0) return {0.0, true};
         double dist = data_->contact[0].dist;
-        for (int i = 1; i < data_->ncon; ++i)
-            dist = std::min(dist, double(data_->contact[i].dist));
+        for (int i = 1; i < data_->ncon; ++i) dist = std::min(dist, double(data_->contact[i].dist));
         return {-dist, false};
     }
 
