@@ -52,8 +52,9 @@ RejectionSets rejection_sets(int count) {
     for (int i = 0; i < count; ++i) {
         const Ellipsoid b(glm::dvec3(0.0), generator.rotation(), generator.car_axes());
         const double gap = generator.log_uniform(0.06, 5.0);
-        const test::PairCase c{generator.placed(generator.car_axes(), generator.rotation(), b, -gap),
-                               b, test::PairKind::car_like};
+        const test::PairCase c{
+            generator.placed(generator.car_axes(), generator.rotation(), b, -gap), b,
+            test::PairKind::car_like};
         if (ellipsoids_may_touch(c.a, c.b, kReach)) {
             ++sets.kept;
             continue;
@@ -158,9 +159,8 @@ void bench_pair_peers(BenchRun& run) {
                        std::to_string(int(std::lround(ours_ns))) + " ns)",
                    150.0 / ours_ns, 1.0, contract, pair_evidence);
     const double slower_rejection = std::max(spheres_ns, gap_ns);
-    std::snprintf(evidence, sizeof evidence,
-                  "spheres %.1f ns, gap %.1f ns; %zu rejected pairs, %s", spheres_ns, gap_ns,
-                  rejections.by_spheres.size() + rejections.by_gap.size(),
+    std::snprintf(evidence, sizeof evidence, "spheres %.1f ns, gap %.1f ns; %zu rejected pairs, %s",
+                  spheres_ns, gap_ns, rejections.by_spheres.size() + rejections.by_gap.size(),
                   rejections.proven ? "every one beyond reach by the reference"
                                     : "ONE WITHIN REACH by the reference");
     run.add_target("ellipsoid pair rejection: 20 ns / the slower certificate's median",
@@ -171,9 +171,9 @@ void bench_pair_peers(BenchRun& run) {
             if (car_like_ns[m] < car_like_ns[fastest]) fastest = m;
             if (worst_error[m] < worst_error[most_accurate]) most_accurate = m;
         }
-        run.add_target("ellipsoid pair, car-like: fastest peer's time / ours (" +
-                           methods[fastest].name + ")",
-                       car_like_ns[fastest] / ours_ns, 10.0, contract, pair_evidence);
+        run.add_target(
+            "ellipsoid pair, car-like: fastest peer's time / ours (" + methods[fastest].name + ")",
+            car_like_ns[fastest] / ours_ns, 10.0, contract, pair_evidence);
         // Our errors are ~1e-15 m or exactly 0: a floor of 1e-15 m keeps the ratio finite.
         run.add_target("ellipsoid pair: most accurate peer's max error / ours (" +
                            methods[most_accurate].name + ")",

@@ -109,21 +109,20 @@ Contact ellipsoid_ellipsoid_contact(const Ellipsoid& a, const Ellipsoid& b) {
 
 bool ellipsoids_may_touch(const Ellipsoid& a, const Ellipsoid& b, double reach) {
     // The distance is at least |d| - r_max,A - r_max,B, and at least the gap along the
-    // centre line u = d / |d|: -h(-u) = |d| - h_A(u) - h_B(u). A negative or NaN reach
-    // answers true.
+    // centre line u = d / |d|: -h(-u) = |d| - h_A(u) - h_B(u). Times |d|, the gap test
+    // needs no division and its three roots are independent: |d|^2 - h_A(d) - h_B(d) >
+    // reach |d|. A negative or NaN reach answers true.
     if (!(reach >= 0.0)) return true;
     const glm::dvec3 d = a.center() - b.center();
     const double d2 = glm::dot(d, d);  // an overflow to infinity is far apart, rightly
     const double spheres = a.bounding_radius() + b.bounding_radius() + reach;
     if (d2 > spheres * spheres) return false;
     if (!(d2 > 0.0)) return true;
-    const double length = std::sqrt(d2);
-    const glm::dvec3 u = d * (1.0 / length);
-    const auto support = [&u](const Ellipsoid& e) {
-        const glm::dvec3 scaled = e.sorted_radii() * (u * e.sorted_axes());
+    const auto support = [&d](const Ellipsoid& e) {
+        const glm::dvec3 scaled = e.sorted_radii() * (d * e.sorted_axes());
         return std::sqrt(glm::dot(scaled, scaled));
     };
-    return !(length - support(a) - support(b) > reach);
+    return !(d2 - support(a) - support(b) > reach * std::sqrt(d2));
 }
 
 namespace detail {
