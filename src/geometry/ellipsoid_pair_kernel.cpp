@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <vector>
 
@@ -334,29 +336,35 @@ dvec3 shifted_step(const PairFunction& f, const Sample& s) {
 }
 
 Descent descend(PairFunction& f, Sample s) {
-    double previous = 0.0;  // the last step's length, 0 before the first
+    // Lengths are compared squared: the next evaluation need not wait for the step's root.
+    double previous2 = 0.0;  // the last step's squared length, 0 before the first
     for (int iteration = 0; iteration < kDescentCap; ++iteration) {
         // A positive-definite Hessian gives the Newton step; otherwise it is shifted.
         const double scale = s.a + s.b + std::abs(s.h);
         dvec3 step;
         const bool definite = f.definite_step(s, 0x1p-30 * scale, step);
         if (!definite) step = shifted_step(f, s);
-        const double length = std::sqrt(glm::dot(step, step));
-        if (definite && length < kStepTolerance) return {s, true};
-        if (length > kTrustRadius) step *= kTrustRadius / length;
+        double length2 = glm::dot(step, step);
+        if (definite && length2 < kStepTolerance * kStepTolerance) return {s, true};
+        if (length2 > kTrustRadius * kTrustRadius) {
+            step *= kTrustRadius / std::sqrt(length2);
+            length2 = kTrustRadius * kTrustRadius;
+        }
         // Near a minimum, h cannot tell the last Newton steps apart (it changes by the
         // square of the step, below its rounding once the step is under ~1e-8 rad), while
         // the gradient still can: there the step is taken without the decrease test.
-        if (definite && length < kQuadraticRegion) {
-            if (length < kLastStep ||
-                length * length * length <= kDirectionTolerance * previous * previous)
+        if (definite && length2 < kQuadraticRegion * kQuadraticRegion) {
+            // L^3 <= tolerance L_prev^2, squared.
+            if (length2 < kLastStep * kLastStep ||
+                length2 * length2 * length2 <=
+                    kDirectionTolerance * kDirectionTolerance * previous2 * previous2)
                 return {f.stepped(s, step), true};
             s = f.at(s.n + step);
-            previous = length;
+            previous2 = length2;
             continue;
         }
         bool moved = false;
-        previous = std::min(length, kTrustRadius);
+        previous2 = length2;
         for (int halving = 0; halving < kHalvingCap; ++halving) {
             const Sample next = f.at(s.n + step);
             if (next.h <= s.h) {
@@ -365,7 +373,7 @@ Descent descend(PairFunction& f, Sample s) {
                 break;
             }
             step *= 0.5;
-            previous *= 0.5;
+            previous2 *= 0.25;
         }
         // No decrease at all: n is a minimum to rounding (when the Hessian is definite).
         if (!moved) return {s, definite};
@@ -536,13 +544,15 @@ Descent search(PairFunction& f, Descent best, double& unresolved) {
 /// M = 2 (M_A + M_B) (A - B itself for two equal spheres): the normal (M + t I)^-1 d at the
 /// point of E closest to -d, t >= 0 its Lagrange multiplier, about the distance times E's
 /// mean radius s: 0 on the surface (the normal on the centre line), large far away (the
-/// centre line itself).
+/// centre line itself). Not normalised (the evaluation does that): its length is brought
+/// within 2^-4..2^4 by a power of two, without a root or a division on the way.
 dvec3 first_guess(const PairFrame& frame, const std::array<double, 6>& mb) {
     // m = M / 2 = D_A^2 + M_B (symmetric), then (m + t / 2 I)^-1 d by the adjugate
-    // (positive definite; its determinant and the scale go with the normalisation).
-    const dvec3 ra2 = frame.ra * frame.ra;
+    // (positive definite; its determinant and the scale go with the normalisation). The
+    // traces of M_A and M_B are the sums of the squared radii.
+    const dvec3 ra2 = frame.ra * frame.ra, rb2 = frame.rb * frame.rb;
     const double m01 = mb[3], m02 = mb[4], m12 = mb[5];
-    const double trace = ra2.x + ra2.y + ra2.z + mb[0] + mb[1] + mb[2];
+    const double trace = ra2.x + ra2.y + ra2.z + rb2.x + rb2.y + rb2.z;
     const dvec3& d = frame.d;
     const double s2 = 2.0 * trace / 3.0;  // trace(M) / 3
     const double half_t = std::max(0.0, 0.5 * (std::sqrt(s2 * glm::dot(d, d)) - s2));
@@ -558,7 +568,11 @@ dvec3 first_guess(const PairFrame& frame, const std::array<double, 6>& mb) {
         const double d2 = glm::dot(d, d);
         return d2 > 0x1p-600 ? -d * (1.0 / std::sqrt(d2)) : dvec3(0.0, 0.0, 1.0);
     }
-    return -solved * (1.0 / std::sqrt(length2));
+    // 2^-e for length2 in [2^2e, 2^(2e+2)): the exponent of length2, halved and negated.
+    const auto exponent = int((std::bit_cast<std::uint64_t>(length2) >> 52) & 0x7ff) - 1023;
+    const double scale =
+        std::bit_cast<double>(std::uint64_t(1023 - (exponent >> 1)) << 52);  // exact
+    return -solved * scale;
 }
 
 /// The lowest of best and the descents from both ellipsoids' axes (one way when h is even).
