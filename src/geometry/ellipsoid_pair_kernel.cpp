@@ -137,16 +137,20 @@ class PairFunction {
     /// The sample at the direction of m (any nonzero vector, |m| within 2^-100..2^100).
     /// One division serves the three inverses: with l = |m|, A = a(m) and B = b(m),
     /// q = 1 / (l A B) gives 1 / l = A B q, 1 / a(n) = l / A = l^2 B q and 1 / b(n) alike.
+    /// It divides by the product of the squares, so that it runs beside the roots rather
+    /// than after them: q = l A B / (l^2 A^2 B^2).
     Sample at(const dvec3& m) {
         ++evaluations;
         Sample s;
-        const double l = std::sqrt(glm::dot(m, m));
+        const double l2 = glm::dot(m, m);
         const dvec3 ma = ra2_ * m;
-        const double big_a = std::sqrt(glm::dot(ma, m));
+        const double a2 = glm::dot(ma, m);
         const dvec3 wb = m * b_axes_;  // B^T m
         const dvec3 scaled_b = rb_ * wb;
-        const double big_b = std::sqrt(glm::dot(scaled_b, scaled_b));
-        const double q = 1.0 / (l * big_a * big_b);
+        const double b2 = glm::dot(scaled_b, scaled_b);
+        const double inverse_square = 1.0 / (l2 * a2 * b2);
+        const double l = std::sqrt(l2), big_a = std::sqrt(a2), big_b = std::sqrt(b2);
+        const double q = l * big_a * big_b * inverse_square;
         const double inv_l = big_a * big_b * q;
         const double l2q = l * l * q;
         s.n = m * inv_l;
