@@ -134,7 +134,8 @@ class PairFunction {
     /// The radius of the ball inside K tangent at p(n): r_min,A^2 / a + r_min,B^2 / b.
     double inscribed(const Sample& s) const { return ra2_.z * s.inv_a + rb2_.z * s.inv_b; }
 
-    /// The sample at the direction of m (any nonzero vector, |m| within 2^-100..2^100).
+    /// The sample at the direction of m (|m| within 2^-30..2^30: with radii of 2^-200..2,
+    /// l^2 A^2 B^2 below stays a normal number).
     /// One division serves the three inverses: with l = |m|, A = a(m) and B = b(m),
     /// q = 1 / (l A B) gives 1 / l = A B q, 1 / a(n) = l / A = l^2 B q and 1 / b(n) alike.
     /// It divides by the product of the squares, so that it runs beside the roots rather
