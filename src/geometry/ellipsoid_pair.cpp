@@ -69,10 +69,18 @@ double unit_scale(double r) {
     return exponent != 0 ? std::bit_cast<double>(exponent) : std::ldexp(1.0, std::ilogb(r));
 }
 
+/// 1 / s for a power of two s, exactly: from its exponent bits when 1 / s is a normal
+/// number (every frame but the most extreme), so that the frame need not wait on a division.
+double inverse_power_of_two(double s) {
+    const std::uint64_t exponent = (std::bit_cast<std::uint64_t>(s) >> 52) & 0x7ff;
+    return exponent >= 1 && exponent <= 2045 ? std::bit_cast<double>((2046 - exponent) << 52)
+                                             : 1.0 / s;
+}
+
 /// a and b in a's sorted frame at unit scale, or false when their centres are too far apart.
 bool unit_frame(const Ellipsoid& a, const Ellipsoid& b, double& scale, detail::PairFrame& frame) {
     scale = unit_scale(std::max(a.sorted_radii().x, b.sorted_radii().x));
-    const double inv = 1.0 / scale;
+    const double inv = inverse_power_of_two(scale);
     const glm::dvec3 d_world = (a.center() - b.center()) * inv;
     const glm::dvec3 d_abs = abs_each(d_world);
     if (!(std::max({d_abs.x, d_abs.y, d_abs.z}) < kFarField)) return false;

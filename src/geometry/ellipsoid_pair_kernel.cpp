@@ -559,7 +559,7 @@ dvec3 first_guess(const PairFrame& frame, const std::array<double, 6>& mb) {
     const double m01 = mb[3], m02 = mb[4], m12 = mb[5];
     const double trace = ra2.x + ra2.y + ra2.z + rb2.x + rb2.y + rb2.z;
     const dvec3& d = frame.d;
-    const double s2 = 2.0 * trace / 3.0;  // trace(M) / 3
+    const double s2 = trace * (2.0 / 3.0);  // trace(M) / 3, no division on the way
     const double half_t = std::max(0.0, 0.5 * (std::sqrt(s2 * glm::dot(d, d)) - s2));
     const double m00 = ra2.x + mb[0] + half_t, m11 = ra2.y + mb[1] + half_t,
                  m22 = ra2.z + mb[2] + half_t;
