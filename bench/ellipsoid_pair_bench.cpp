@@ -40,7 +40,7 @@ void BM_Pair(benchmark::State& state, PairKind kind) {
         benchmark::DoNotOptimize(c);
         i = i + 1 == cases.size() ? 0 : i + 1;
     }
-    long paths[4] = {0, 0, 0, 0}, evaluations = 0;
+    long paths[5] = {0, 0, 0, 0, 0}, evaluations = 0;
     for (const PairCase& c : cases) {
         const detail::PairSolution s = detail::pair_solution(c.a, c.b);
         ++paths[static_cast<int>(s.path)];
@@ -49,6 +49,7 @@ void BM_Pair(benchmark::State& state, PairKind kind) {
     state.counters["separated"] = double(paths[0]) / kCases;
     state.counters["inscribed"] = double(paths[1]) / kCases;
     state.counters["searched"] = double(paths[2]) / kCases;
+    state.counters["unproven"] = double(paths[3]) / kCases;
     state.counters["evals"] = double(evaluations) / kCases;
 }
 

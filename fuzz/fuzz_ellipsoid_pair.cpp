@@ -17,6 +17,9 @@
 //    axes of both, the normal itself) gives less, and -normal gives depth itself.
 // 3. The normal is the minimum translation direction: moving a by depth along it leaves
 //    them just touching (depth 0), overlapping or apart.
+// 4. The solver's proven lower bound (detail::pair_solution, also for an answer the search
+//    could not prove, PairPath::unproven) is at most the depth and at most h in every
+//    probed direction.
 
 #include <algorithm>
 #include <array>
@@ -33,6 +36,7 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include "geometry/ellipsoid_pair_kernel.hpp"
 #include "trackphys/geometry/ellipsoid_pair.hpp"
 
 namespace {
@@ -139,16 +143,26 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         finding("depth outside the bounding balls' bounds", *a, *b, c);
     if (!(std::abs(support(*a, *b, -c.normal) - c.depth) <= tolerance))
         finding("h at the normal is not the depth", *a, *b, c);
+    // The solution is at the frame's power-of-two scale: the ratio of the depths is it.
+    const trackphys::detail::PairSolution solution = trackphys::detail::pair_solution(*a, *b);
+    const double unit = c.depth / solution.depth;
+    const bool scaled = std::isfinite(unit) && unit > 0.0;
+    const double floor = scaled ? solution.lower_bound * unit : -INFINITY;
+    if (!(solution.lower_bound <= solution.depth))
+        finding("the proven lower bound is above the depth", *a, *b, c);
     std::array<dvec3, 7> probes{};
     probes[0] = distance > 0 ? (b->center() - a->center()) / distance : dvec3(1.0, 0.0, 0.0);
     for (int i = 0; i < 3; ++i) {
         probes[1 + i] = a->sorted_axes()[i];
         probes[4 + i] = b->sorted_axes()[i];
     }
-    for (const dvec3& n : probes)
+    for (const dvec3& n : probes) {
         if (!(support(*a, *b, n) >= c.depth - tolerance &&
               support(*a, *b, -n) >= c.depth - tolerance))
             finding("a probed direction is below the depth", *a, *b, c);
+        if (!(support(*a, *b, n) >= floor - tolerance && support(*a, *b, -n) >= floor - tolerance))
+            finding("a probed direction is below the proven lower bound", *a, *b, c);
+    }
     const Ellipsoid moved(a->center() + c.depth * c.normal, a->orientation(), a->semi_axes());
     const Contact touching = trackphys::ellipsoid_ellipsoid_contact(moved, *b);
     if (!(std::abs(touching.depth) <= tolerance + 1e-12 * std::abs(c.depth)))

@@ -183,11 +183,15 @@ void bench_roots(BenchRun& run);
 void bench_broad_phase(BenchRun& run);
 void bench_mid_phase(BenchRun& run);
 void bench_update(BenchRun& run);
-// The peers (bench_peer_groups.cpp); each adds a "not built" row when its library is absent.
+// The peers (peer_groups.cpp, pair_group.cpp); each adds a "not built" row when its library
+// is absent.
 void bench_contact_peers(BenchRun& run);
+void bench_pair_peers(BenchRun& run);
 void bench_mesh_peers(BenchRun& run);
 void bench_update_peers(BenchRun& run);
 /// Which peers this build has.
 std::vector<PeerStatus> peer_status();
+/// The row that says a peer of `group` is not in this build.
+void not_built(BenchRun& run, const std::string& group, const std::string& peer);
 
 }  // namespace trackphys::suite

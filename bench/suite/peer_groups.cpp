@@ -1,7 +1,8 @@
-// The peers, each optional (TRACKPHYS_HAVE_BULLET, TRACKPHYS_HAVE_FCL: set by CMake when
-// libbullet-dev / libfcl-dev are found): ellipsoid-triangle contact against Bullet's GJK/EPA
-// and FCL, mesh box queries against Bullet's quantized BVH, and the whole update with Bullet
-// doing the collision work. The cases, adapters and checks are bench/peers' own.
+// The peers, each optional (TRACKPHYS_HAVE_BULLET, TRACKPHYS_HAVE_FCL, TRACKPHYS_HAVE_MUJOCO:
+// set by CMake when libbullet-dev / libfcl-dev / libmujoco-dev are found): ellipsoid-triangle
+// contact against Bullet's GJK/EPA and FCL, mesh box queries against Bullet's quantized BVH,
+// and the whole update with Bullet doing the collision work (the ellipsoid pair's peers are
+// pair_group.cpp's). The cases, adapters and checks are bench/peers' own.
 //
 // Bullet is linked in its float build (libBulletCollision, what most users get): its double
 // build has the same symbol names, so it cannot share this process; the bench_peers_*_double
@@ -33,15 +34,15 @@
 #if TRACKPHYS_HAVE_BULLET || TRACKPHYS_HAVE_FCL
 #include "peers/contact_peer_harness.hpp"
 #endif
+#if TRACKPHYS_HAVE_MUJOCO
+#include <mujoco/mujoco.h>
+#endif
 
 namespace trackphys::suite {
-namespace {
 
-[[maybe_unused]] void not_built(BenchRun& run, const std::string& group, const std::string& peer) {
+void not_built(BenchRun& run, const std::string& group, const std::string& peer) {
     run.add(group, peer, 0.0).note = "not built (install the peer's -dev package and reconfigure)";
 }
-
-}  // namespace
 
 std::vector<PeerStatus> peer_status() {
     std::vector<PeerStatus> peers;
@@ -59,6 +60,15 @@ std::vector<PeerStatus> peer_status() {
     peers.push_back({"fcl", std::string("FCL ") + FCL_VERSION, true, "libccd and its own GJK"});
 #else
     peers.push_back({"fcl", "FCL", false, "install libfcl-dev and reconfigure"});
+#endif
+#if TRACKPHYS_HAVE_MUJOCO
+    peers.push_back({"mujoco",
+                     "MuJoCo " + std::to_string(mjVERSION_HEADER / 100) + "." +
+                         std::to_string(mjVERSION_HEADER / 10 % 10) + "." +
+                         std::to_string(mjVERSION_HEADER % 10),
+                     true, "its convex collider (libccd MPR), ellipsoid pairs only"});
+#else
+    peers.push_back({"mujoco", "MuJoCo", false, "install libmujoco-dev and reconfigure"});
 #endif
     return peers;
 }

@@ -62,11 +62,25 @@ Contact far_field(const Ellipsoid& a, const Ellipsoid& b, double scale) {
     return {-(distance - (ha + hb) * scale), u, point};
 }
 
+/// The power of two that brings r (> 0, finite) into [1, 2): its exponent bits, or for a
+/// subnormal r the library's ldexp (a call, and rare).
+double unit_scale(double r) {
+    const std::uint64_t exponent = std::bit_cast<std::uint64_t>(r) & 0x7ff0000000000000u;
+    return exponent != 0 ? std::bit_cast<double>(exponent) : std::ldexp(1.0, std::ilogb(r));
+}
+
+/// 1 / s for a power of two s, exactly: from its exponent bits when 1 / s is a normal
+/// number (every frame but the most extreme), so that the frame need not wait on a division.
+double inverse_power_of_two(double s) {
+    const std::uint64_t exponent = (std::bit_cast<std::uint64_t>(s) >> 52) & 0x7ff;
+    return exponent >= 1 && exponent <= 2045 ? std::bit_cast<double>((2046 - exponent) << 52)
+                                             : 1.0 / s;
+}
+
 /// a and b in a's sorted frame at unit scale, or false when their centres are too far apart.
 bool unit_frame(const Ellipsoid& a, const Ellipsoid& b, double& scale, detail::PairFrame& frame) {
-    // Unit scale: the larger semi-axis in [1, 2).
-    scale = std::ldexp(1.0, std::ilogb(std::max(a.sorted_radii().x, b.sorted_radii().x)));
-    const double inv = 1.0 / scale;
+    scale = unit_scale(std::max(a.sorted_radii().x, b.sorted_radii().x));
+    const double inv = inverse_power_of_two(scale);
     const glm::dvec3 d_world = (a.center() - b.center()) * inv;
     const glm::dvec3 d_abs = abs_each(d_world);
     if (!(std::max({d_abs.x, d_abs.y, d_abs.z}) < kFarField)) return false;
@@ -103,21 +117,20 @@ Contact ellipsoid_ellipsoid_contact(const Ellipsoid& a, const Ellipsoid& b) {
 
 bool ellipsoids_may_touch(const Ellipsoid& a, const Ellipsoid& b, double reach) {
     // The distance is at least |d| - r_max,A - r_max,B, and at least the gap along the
-    // centre line u = d / |d|: -h(-u) = |d| - h_A(u) - h_B(u). A negative or NaN reach
-    // answers true.
+    // centre line u = d / |d|: -h(-u) = |d| - h_A(u) - h_B(u). Times |d|, the gap test
+    // needs no division and its three roots are independent: |d|^2 - h_A(d) - h_B(d) >
+    // reach |d|. A negative or NaN reach answers true.
     if (!(reach >= 0.0)) return true;
     const glm::dvec3 d = a.center() - b.center();
     const double d2 = glm::dot(d, d);  // an overflow to infinity is far apart, rightly
     const double spheres = a.bounding_radius() + b.bounding_radius() + reach;
     if (d2 > spheres * spheres) return false;
     if (!(d2 > 0.0)) return true;
-    const double length = std::sqrt(d2);
-    const glm::dvec3 u = d * (1.0 / length);
-    const auto support = [&u](const Ellipsoid& e) {
-        const glm::dvec3 scaled = e.sorted_radii() * (u * e.sorted_axes());
+    const auto support = [&d](const Ellipsoid& e) {
+        const glm::dvec3 scaled = e.sorted_radii() * (d * e.sorted_axes());
         return std::sqrt(glm::dot(scaled, scaled));
     };
-    return !(length - support(a) - support(b) > reach);
+    return !(d2 - support(a) - support(b) > reach * std::sqrt(d2));
 }
 
 namespace detail {
@@ -127,7 +140,8 @@ PairSolution pair_solution(const Ellipsoid& a, const Ellipsoid& b) {
     double scale;
     PairFrame frame;
     if (!unit_frame(swap ? b : a, swap ? a : b, scale, frame))
-        return {0.0, glm::dvec3(0.0), glm::dvec3(0.0), glm::dvec3(0.0), PairPath::far_field, 0};
+        return {0.0, glm::dvec3(0.0), glm::dvec3(0.0), glm::dvec3(0.0), PairPath::far_field, 0,
+                0.0};
     return solve_pair(frame);
 }
 

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <vector>
 
@@ -78,9 +80,13 @@ constexpr double kStepTolerance = 0x1p-40;
 // Longest step of a descent (rad): Newton's quadratic model is trusted this far.
 constexpr double kTrustRadius = 0.5;
 // Newton steps shorter than this (rad), with a positive-definite Hessian, are taken
-// without a line search; one shorter than kLastStep is the last (the direction's error after
-// a step of length L is about L^2, here ~2^-52 rad).
+// without a line search. Newton's error after a step of length L is about K L^2, K
+// estimated from the step before as L / L_prev^2: a step that leaves it below
+// kDirectionTolerance, or is itself shorter than kLastStep (~2^-52 rad after it even with no
+// estimate), is the last, and the descent ends at its second-order model
+// (PairFunction::stepped) without evaluating h there.
 constexpr double kQuadraticRegion = 0x1p-20;
+constexpr double kDirectionTolerance = 0x1p-40;
 constexpr double kLastStep = 0x1p-26;
 constexpr int kDescentCap = 64;
 constexpr int kHalvingCap = 40;
@@ -90,7 +96,8 @@ constexpr double kSearchTolerance = 0x1p-37;
 // Squares are not split below this half-size (1e-9 rad), nor is the search run past this
 // many evaluations (a near-constant h, as of two equal spheres about one centre, defeats
 // any bound; its minimum is then as good as any value). A needle's valley reaches it too,
-// uncertified: the descents from the axes (from_axes) run first to land in that valley.
+// uncertified: the descents from the axes (from_axes) run first to land in that valley,
+// and solve_pair reports the answer as PairPath::unproven with the bound left unresolved.
 constexpr double kSmallestHalf = 0x1p-30;
 constexpr int kEvaluationCap = 40000;
 
@@ -117,7 +124,8 @@ class PairFunction {
           cofactor_b_(cofactor(frame.rb)),
           largest_a_(frame.ra.x),
           b_axes_(frame.b_axes),
-          d_(frame.d) {}
+          d_(frame.d),
+          mb_(support_matrix(frame.b_axes, rb2_)) {}
 
     int evaluations = 0;
 
@@ -126,22 +134,74 @@ class PairFunction {
     /// The radius of the ball inside K tangent at p(n): r_min,A^2 / a + r_min,B^2 / b.
     double inscribed(const Sample& s) const { return ra2_.z * s.inv_a + rb2_.z * s.inv_b; }
 
-    Sample at(const dvec3& n) {
+    /// The sample at the direction of m (|m| within 2^-30..2^30: with radii of 2^-200..2,
+    /// l^2 A^2 B^2 below stays a normal number).
+    /// One division serves the three inverses: with l = |m|, A = a(m) and B = b(m),
+    /// q = 1 / (l A B) gives 1 / l = A B q, 1 / a(n) = l / A = l^2 B q and 1 / b(n) alike.
+    /// It divides by the product of the squares, so that it runs beside the roots rather
+    /// than after them: q = l A B / (l^2 A^2 B^2).
+    Sample at(const dvec3& m) {
         ++evaluations;
         Sample s;
-        s.n = n;
-        const dvec3 ma = ra2_ * n;
-        s.a = std::sqrt(glm::dot(ma, n));
-        const dvec3 wb = n * b_axes_;  // B^T n
+        const double l2 = glm::dot(m, m);
+        const dvec3 ma = ra2_ * m;
+        const double a2 = glm::dot(ma, m);
+        const dvec3 wb = m * b_axes_;  // B^T m
         const dvec3 scaled_b = rb_ * wb;
-        s.b = std::sqrt(glm::dot(scaled_b, scaled_b));
-        s.inv_a = 1.0 / s.a;
-        s.inv_b = 1.0 / s.b;
-        s.xa = ma * s.inv_a;
-        s.xb = b_axes_ * (rb2_ * wb) * s.inv_b;
-        s.h = glm::dot(d_, n) + s.a + s.b;
+        const double b2 = glm::dot(scaled_b, scaled_b);
+        const double inverse_square = 1.0 / (l2 * a2 * b2);
+        const double l = std::sqrt(l2), big_a = std::sqrt(a2), big_b = std::sqrt(b2);
+        const double q = l * big_a * big_b * inverse_square;
+        const double inv_l = big_a * big_b * q;
+        const double l2q = l * l * q;
+        s.n = m * inv_l;
+        s.a = big_a * inv_l;
+        s.b = big_b * inv_l;
+        s.inv_a = l2q * big_b;
+        s.inv_b = l2q * big_a;
+        // x_A(n) = D_A^2 n / a(n) = D_A^2 m / A, x_B alike.
+        const double inv_big_a = l * big_b * q, inv_big_b = l * big_a * q;
+        s.xa = ma * inv_big_a;
+        s.xb = b_axes_ * (rb2_ * wb) * inv_big_b;
+        s.h = glm::dot(d_, s.n) + s.a + s.b;
         s.p = d_ + s.xa + s.xb;
         return s;
+    }
+
+    /// The Newton step on the sphere at s, when the Hessian there is positive definite with
+    /// its least eigenvalue above `floor`: false otherwise. No tangent basis: the Hessian of
+    /// h on R^3, H = (D_A^2 - x_A x_A^T) / a + (M_B - x_B x_B^T) / b, has n in its kernel,
+    /// so S = H - h I + (h + a + b) n n^T is the Riemannian Hessian on the plane orthogonal
+    /// to n and a + b along n, and S step = -(p - h n) has the tangent Newton step as its
+    /// solution. The tangent eigenvalues sum to trace S - (a + b) and multiply to
+    /// det S / (a + b); both above floor, with their product above floor (sum - floor),
+    /// says the least one is.
+    bool definite_step(const Sample& s, double floor, dvec3& step) const {
+        const dvec3 fa = s.xa * s.inv_a, fb = s.xb * s.inv_b;
+        const double along = s.h + s.a + s.b;
+        const dvec3 fn = s.n * along;
+        const double s00 = (ra2_.x * s.inv_a - s.h) + mb_[0] * s.inv_b - fa.x * s.xa.x -
+                           fb.x * s.xb.x + fn.x * s.n.x;
+        const double s11 = (ra2_.y * s.inv_a - s.h) + mb_[1] * s.inv_b - fa.y * s.xa.y -
+                           fb.y * s.xb.y + fn.y * s.n.y;
+        const double s22 = (ra2_.z * s.inv_a - s.h) + mb_[2] * s.inv_b - fa.z * s.xa.z -
+                           fb.z * s.xb.z + fn.z * s.n.z;
+        const double s01 = mb_[3] * s.inv_b - fa.x * s.xa.y - fb.x * s.xb.y + fn.x * s.n.y;
+        const double s02 = mb_[4] * s.inv_b - fa.x * s.xa.z - fb.x * s.xb.z + fn.x * s.n.z;
+        const double s12 = mb_[5] * s.inv_b - fa.y * s.xa.z - fb.y * s.xb.z + fn.y * s.n.z;
+        const double c00 = s11 * s22 - s12 * s12, c01 = s02 * s12 - s01 * s22,
+                     c02 = s01 * s12 - s02 * s11, c11 = s00 * s22 - s02 * s02,
+                     c12 = s01 * s02 - s00 * s12, c22 = s00 * s11 - s01 * s01;
+        const double det = s00 * c00 + s01 * c01 + s02 * c02;
+        const double normal_part = s.a + s.b;
+        const double sum = s00 + s11 + s22 - normal_part;
+        if (!(sum > 2.0 * floor && det > normal_part * floor * (sum - floor))) return false;
+        const dvec3 g = s.p - s.h * s.n;
+        const double scale = -1.0 / det;
+        step = dvec3(c00 * g.x + c01 * g.y + c02 * g.z, c01 * g.x + c11 * g.y + c12 * g.z,
+                     c02 * g.x + c12 * g.y + c22 * g.z) *
+               scale;
+        return true;
     }
 
     /// The Hessian of h on the sphere at s in the tangent basis (t1, t2):
@@ -193,87 +253,132 @@ class PairFunction {
         return k;
     }
 
+    /// The sample at n + step for a Newton step short enough (below 2^-20 rad) that its
+    /// second-order model is exact to rounding: h by the model's minimum h + g.step / 2
+    /// (g = p - h n, and Hess step = -g; its error is the third order, ~2^-60), the support
+    /// points by their first-order change x + Hess_A step, the support values by a + x_A.step
+    /// (both within ~|step|^2 of the rest of the scale). Saves an evaluation's three roots
+    /// and its division at the end of each descent.
+    Sample stepped(const Sample& s, const dvec3& step) const {
+        Sample t;
+        const dvec3 m = s.n + step;
+        // |m|^2 = 1 + |step|^2 to within 2^-40: one Newton step of 1 / sqrt from 1 is exact.
+        t.n = m * (1.5 - 0.5 * glm::dot(m, m));
+        const double da = glm::dot(s.xa, step), db = glm::dot(s.xb, step);
+        t.xa = s.xa + (ra2_ * step - s.xa * da) * s.inv_a;
+        t.xb = s.xb + (mb(step) - s.xb * db) * s.inv_b;
+        t.a = s.a + da;
+        t.b = s.b + db;
+        t.inv_a = s.inv_a * (1.0 - da * s.inv_a);
+        t.inv_b = s.inv_b * (1.0 - db * s.inv_b);
+        t.h = s.h + 0.5 * glm::dot(s.p - s.h * s.n, step);
+        t.p = d_ + t.xa + t.xb;
+        return t;
+    }
+
+    /// B's support matrix M_B = R D_B^2 R^T in A's frame: xx, yy, zz, xy, xz, yz.
+    const std::array<double, 6>& support_matrix_b() const { return mb_; }
+
   private:
+    dvec3 mb(const dvec3& v) const {
+        return {mb_[0] * v.x + mb_[3] * v.y + mb_[4] * v.z,
+                mb_[3] * v.x + mb_[1] * v.y + mb_[5] * v.z,
+                mb_[4] * v.x + mb_[5] * v.y + mb_[2] * v.z};
+    }
+
     static dvec3 cofactor(const dvec3& r) { return {r.y * r.z, r.x * r.z, r.x * r.y}; }
+
+    static std::array<double, 6> support_matrix(const glm::dmat3& axes, const dvec3& r2) {
+        const auto entry = [&](int i, int j) {
+            return r2.x * axes[0][i] * axes[0][j] + r2.y * axes[1][i] * axes[1][j] +
+                   r2.z * axes[2][i] * axes[2][j];
+        };
+        return {entry(0, 0), entry(1, 1), entry(2, 2), entry(0, 1), entry(0, 2), entry(1, 2)};
+    }
 
     dvec3 ra2_, rb2_, rb_;
     dvec3 cofactor_a_, cofactor_b_;
     double largest_a_;
     glm::dmat3 b_axes_;
     dvec3 d_;
+    std::array<double, 6> mb_;
 };
 
-Descent descend(PairFunction& f, Sample s) {
-    for (int iteration = 0; iteration < kDescentCap; ++iteration) {
-        dvec3 t1, t2;
-        tangent_basis(s.n, t1, t2);
-        const double g1 = glm::dot(t1, s.p), g2 = glm::dot(t2, s.p);
-        const auto [h11, h12, h22] = f.tangent_hessian(s, t1, t2);
-        // Eigen-decomposition of the 2x2 Hessian: a positive-definite one gives the Newton
-        // step; otherwise it is shifted to be positive definite (and at a stationary point
-        // that is not a minimum, the step follows the most negative curvature).
-        const double mean = 0.5 * (h11 + h22), half_diff = 0.5 * (h11 - h22);
-        const double radius = std::sqrt(half_diff * half_diff + h12 * h12);
-        const double lowest = mean - radius;
+/// The step where the Hessian on the sphere is not safely positive definite, in a tangent
+/// basis: shifted until its lowest eigenvalue is |gradient| / the trust radius, so that a flat
+/// or concave direction gets a step of about the trust radius (then halved until h
+/// decreases) rather than a crawl along a long flat valley; at a stationary point that is not
+/// a minimum, along the most negative curvature.
+dvec3 shifted_step(const PairFunction& f, const Sample& s) {
+    dvec3 t1, t2;
+    tangent_basis(s.n, t1, t2);
+    const double g1 = glm::dot(t1, s.p), g2 = glm::dot(t2, s.p);
+    const auto [h11, h12, h22] = f.tangent_hessian(s, t1, t2);
+    const double mean = 0.5 * (h11 + h22), half_diff = 0.5 * (h11 - h22);
+    const double lowest = mean - std::sqrt(half_diff * half_diff + h12 * h12);
+    const double shift = std::sqrt(g1 * g1 + g2 * g2) / kTrustRadius - std::min(lowest, 0.0);
+    const double k11 = h11 + shift, k22 = h22 + shift;
+    const double det = k11 * k22 - h12 * h12;
+    double s1 = -(k22 * g1 - h12 * g2) / det;
+    double s2 = -(k11 * g2 - h12 * g1) / det;
+    if (std::abs(s1) + std::abs(s2) < kStepTolerance) {
+        // The eigenvector of the lowest eigenvalue: (h12, lowest - h11) or its twin.
         const double scale = s.a + s.b + std::abs(s.h);
-        const bool definite = lowest > 0x1p-30 * scale;
-        double s1, s2;
-        if (definite) {
-            const double det = h11 * h22 - h12 * h12;
-            s1 = -(h22 * g1 - h12 * g2) / det;
-            s2 = -(h11 * g2 - h12 * g1) / det;
-        } else {
-            // The shift leaves at least |g| / trust radius of curvature: a flat or concave
-            // direction gets a step of about the trust radius (then halved until h
-            // decreases), not a crawl along a long flat valley.
-            const double shift =
-                std::sqrt(g1 * g1 + g2 * g2) / kTrustRadius - std::min(lowest, 0.0);
-            const double k11 = h11 + shift, k22 = h22 + shift;
-            const double det = k11 * k22 - h12 * h12;
-            s1 = -(k22 * g1 - h12 * g2) / det;
-            s2 = -(k11 * g2 - h12 * g1) / det;
-            if (std::abs(s1) + std::abs(s2) < kStepTolerance) {
-                // The eigenvector of the lowest eigenvalue: (h12, lowest - h11) or its twin.
-                double v1 = h12, v2 = lowest - h11;
-                if (std::abs(v1) + std::abs(v2) < 0x1p-60 * scale) {
-                    v1 = lowest - h22;
-                    v2 = h12;
-                }
-                if (std::abs(v1) + std::abs(v2) < 0x1p-60 * scale) {
-                    v1 = 1.0;
-                    v2 = 0.0;
-                }
-                const double norm = std::sqrt(v1 * v1 + v2 * v2);
-                s1 = 0.125 * v1 / norm;
-                s2 = 0.125 * v2 / norm;
-            }
+        double v1 = h12, v2 = lowest - h11;
+        if (std::abs(v1) + std::abs(v2) < 0x1p-60 * scale) {
+            v1 = lowest - h22;
+            v2 = h12;
         }
-        const double length = std::sqrt(s1 * s1 + s2 * s2);
-        if (definite && length < kStepTolerance) return {s, true};
-        if (length > kTrustRadius) {
-            s1 *= kTrustRadius / length;
-            s2 *= kTrustRadius / length;
+        if (std::abs(v1) + std::abs(v2) < 0x1p-60 * scale) {
+            v1 = 1.0;
+            v2 = 0.0;
+        }
+        const double norm = std::sqrt(v1 * v1 + v2 * v2);
+        s1 = 0.125 * v1 / norm;
+        s2 = 0.125 * v2 / norm;
+    }
+    return s1 * t1 + s2 * t2;
+}
+
+Descent descend(PairFunction& f, Sample s) {
+    // Lengths are compared squared: the next evaluation need not wait for the step's root.
+    double previous2 = 0.0;  // the last step's squared length, 0 before the first
+    for (int iteration = 0; iteration < kDescentCap; ++iteration) {
+        // A positive-definite Hessian gives the Newton step; otherwise it is shifted.
+        const double scale = s.a + s.b + std::abs(s.h);
+        dvec3 step;
+        const bool definite = f.definite_step(s, 0x1p-30 * scale, step);
+        if (!definite) step = shifted_step(f, s);
+        double length2 = glm::dot(step, step);
+        if (definite && length2 < kStepTolerance * kStepTolerance) return {s, true};
+        if (length2 > kTrustRadius * kTrustRadius) {
+            step *= kTrustRadius / std::sqrt(length2);
+            length2 = kTrustRadius * kTrustRadius;
         }
         // Near a minimum, h cannot tell the last Newton steps apart (it changes by the
         // square of the step, below its rounding once the step is under ~1e-8 rad), while
         // the gradient still can: there the step is taken without the decrease test.
-        // Newton's error after a step is about the square of the step, so a step below
-        // 2^-26 rad leaves n within ~2^-50 rad of the minimum: it is the last one.
-        if (definite && length < kQuadraticRegion) {
-            s = f.at(unit(s.n + s1 * t1 + s2 * t2));
-            if (length < kLastStep) return {s, true};
+        if (definite && length2 < kQuadraticRegion * kQuadraticRegion) {
+            // L^3 <= tolerance L_prev^2, squared.
+            if (length2 < kLastStep * kLastStep ||
+                length2 * length2 * length2 <=
+                    kDirectionTolerance * kDirectionTolerance * previous2 * previous2)
+                return {f.stepped(s, step), true};
+            s = f.at(s.n + step);
+            previous2 = length2;
             continue;
         }
         bool moved = false;
+        previous2 = length2;
         for (int halving = 0; halving < kHalvingCap; ++halving) {
-            const Sample next = f.at(unit(s.n + s1 * t1 + s2 * t2));
+            const Sample next = f.at(s.n + step);
             if (next.h <= s.h) {
                 moved = next.n != s.n;
                 s = next;
                 break;
             }
-            s1 *= 0.5;
-            s2 *= 0.5;
+            step *= 0.5;
+            previous2 *= 0.25;
         }
         // No decrease at all: n is a minimum to rounding (when the Hessian is definite).
         if (!moved) return {s, definite};
@@ -367,7 +472,7 @@ Cap certified_cap(const PairFunction& f, const Sample& s, double floor) {
 
 /// The branch-and-bound search from the best descent so far (see the head of the file),
 /// lowest bound first, so that it stops as soon as no square can beat the best value.
-Descent search(PairFunction& f, Descent best) {
+Descent search(PairFunction& f, Descent best, double& unresolved) {
     std::vector<Square> heap;
     heap.reserve(256);
     const auto later = [](const Square& x, const Square& y) { return x.bound > y.bound; };
@@ -409,9 +514,13 @@ Descent search(PairFunction& f, Descent best) {
             const double curved = curved_bound(f, s, sin_theta / cos_theta * (1.0 + 0x1p-46));
             if (curved > bound) bound = curved;  // never a NaN
         }
-        if (bound < best.at.h - kSearchTolerance && half >= kSmallestHalf) {
-            heap.push_back({bound, cu, cv, half, axis, sign});
-            std::push_heap(heap.begin(), heap.end(), later);
+        if (bound < best.at.h - kSearchTolerance) {
+            if (half >= kSmallestHalf) {
+                heap.push_back({bound, cu, cv, half, axis, sign});
+                std::push_heap(heap.begin(), heap.end(), later);
+            } else {
+                unresolved = std::min(unresolved, bound);
+            }
         }
     };
     // With both centres at one point h is even, h(-n) = h(n) to the bit, so the faces on
@@ -431,6 +540,8 @@ Descent search(PairFunction& f, Descent best) {
         for (const double du : {-half, half})
             for (const double dv : {-half, half}) visit(q.cu + du, q.cv + dv, half, q.axis, q.sign);
     }
+    // Stopped by the cap: the queued squares' bounds are all that is known below the best.
+    if (!heap.empty()) unresolved = std::min(unresolved, heap.front().bound);
     return best;
 }
 
@@ -438,41 +549,35 @@ Descent search(PairFunction& f, Descent best) {
 /// M = 2 (M_A + M_B) (A - B itself for two equal spheres): the normal (M + t I)^-1 d at the
 /// point of E closest to -d, t >= 0 its Lagrange multiplier, about the distance times E's
 /// mean radius s: 0 on the surface (the normal on the centre line), large far away (the
-/// centre line itself).
-dvec3 first_guess(const PairFrame& frame) {
-    // m = M / 2 = D_A^2 + B D_B^2 B^T (symmetric), then (m + t / 2 I)^-1 d by the adjugate
-    // (positive definite; its determinant and the scale go with the normalisation).
-    const glm::dmat3& b = frame.b_axes;
-    const dvec3 rb2 = frame.rb * frame.rb;
-    double m[3][3];
-    for (int i = 0; i < 3; ++i)
-        for (int j = i; j < 3; ++j) {
-            m[i][j] =
-                rb2.x * b[0][i] * b[0][j] + rb2.y * b[1][i] * b[1][j] + rb2.z * b[2][i] * b[2][j];
-            m[j][i] = m[i][j];
-        }
-    m[0][0] += frame.ra.x * frame.ra.x;
-    m[1][1] += frame.ra.y * frame.ra.y;
-    m[2][2] += frame.ra.z * frame.ra.z;
+/// centre line itself). Not normalised (the evaluation does that): its length is brought
+/// within 2^-4..2^4 by a power of two, without a root or a division on the way.
+dvec3 first_guess(const PairFrame& frame, const std::array<double, 6>& mb) {
+    // m = M / 2 = D_A^2 + M_B (symmetric), then (m + t / 2 I)^-1 d by the adjugate
+    // (positive definite; its determinant and the scale go with the normalisation). The
+    // traces of M_A and M_B are the sums of the squared radii.
+    const dvec3 ra2 = frame.ra * frame.ra, rb2 = frame.rb * frame.rb;
+    const double m01 = mb[3], m02 = mb[4], m12 = mb[5];
+    const double trace = ra2.x + ra2.y + ra2.z + rb2.x + rb2.y + rb2.z;
     const dvec3& d = frame.d;
-    const double s2 = 2.0 * (m[0][0] + m[1][1] + m[2][2]) / 3.0;  // trace(M) / 3
+    const double s2 = trace * (2.0 / 3.0);  // trace(M) / 3, no division on the way
     const double half_t = std::max(0.0, 0.5 * (std::sqrt(s2 * glm::dot(d, d)) - s2));
-    for (int i = 0; i < 3; ++i) m[i][i] += half_t;
-    const dvec3 solved((m[1][1] * m[2][2] - m[1][2] * m[1][2]) * d.x +
-                           (m[0][2] * m[1][2] - m[0][1] * m[2][2]) * d.y +
-                           (m[0][1] * m[1][2] - m[0][2] * m[1][1]) * d.z,
-                       (m[0][2] * m[1][2] - m[0][1] * m[2][2]) * d.x +
-                           (m[0][0] * m[2][2] - m[0][2] * m[0][2]) * d.y +
-                           (m[0][1] * m[0][2] - m[0][0] * m[1][2]) * d.z,
-                       (m[0][1] * m[1][2] - m[0][2] * m[1][1]) * d.x +
-                           (m[0][1] * m[0][2] - m[0][0] * m[1][2]) * d.y +
-                           (m[0][0] * m[1][1] - m[0][1] * m[0][1]) * d.z);
+    const double m00 = ra2.x + mb[0] + half_t, m11 = ra2.y + mb[1] + half_t,
+                 m22 = ra2.z + mb[2] + half_t;
+    const double c00 = m11 * m22 - m12 * m12, c01 = m02 * m12 - m01 * m22,
+                 c02 = m01 * m12 - m02 * m11, c11 = m00 * m22 - m02 * m02,
+                 c12 = m01 * m02 - m00 * m12, c22 = m00 * m11 - m01 * m01;
+    const dvec3 solved(c00 * d.x + c01 * d.y + c02 * d.z, c01 * d.x + c11 * d.y + c12 * d.z,
+                       c02 * d.x + c12 * d.y + c22 * d.z);
     const double length2 = glm::dot(solved, solved);
     if (!(length2 > 0x1p-600 && length2 < 0x1p600)) {
         const double d2 = glm::dot(d, d);
         return d2 > 0x1p-600 ? -d * (1.0 / std::sqrt(d2)) : dvec3(0.0, 0.0, 1.0);
     }
-    return -solved * (1.0 / std::sqrt(length2));
+    // 2^-e for length2 in [2^2e, 2^(2e+2)): the exponent of length2, halved and negated.
+    const auto exponent = int((std::bit_cast<std::uint64_t>(length2) >> 52) & 0x7ff) - 1023;
+    const double scale =
+        std::bit_cast<double>(std::uint64_t(1023 - (exponent >> 1)) << 52);  // exact
+    return -solved * scale;
 }
 
 /// The lowest of best and the descents from both ellipsoids' axes (one way when h is even).
@@ -497,16 +602,22 @@ Descent from_axes(PairFunction& f, Descent best, const PairFrame& frame) {
 
 PairSolution solve_pair(const PairFrame& frame) {
     PairFunction f(frame);
-    Descent result = descend(f, f.at(first_guess(frame)));
+    Descent result = descend(f, f.at(first_guess(frame, f.support_matrix_b())));
     PairPath path = PairPath::searched;
     const Sample& at = result.at;
     if (result.converged && at.h < 0.0)
         path = PairPath::separated;
     else if (result.converged && at.h <= f.inscribed(at) + kSearchTolerance)
         path = PairPath::inscribed_balls;
-    else
-        result = search(f, from_axes(f, result, frame));
-    return {result.at.h, result.at.n, result.at.xa, -result.at.xb, path, f.evaluations};
+    double lower_bound = result.at.h;
+    if (path == PairPath::searched) {
+        double unresolved = std::numeric_limits<double>::infinity();
+        result = search(f, from_axes(f, result, frame), unresolved);
+        lower_bound = std::min(result.at.h - kSearchTolerance, unresolved);
+        if (unresolved < result.at.h - kSearchTolerance) path = PairPath::unproven;
+    }
+    return {result.at.h, result.at.n,   result.at.xa, -result.at.xb,
+            path,        f.evaluations, lower_bound};
 }
 
 }  // namespace trackphys::detail

@@ -16,7 +16,11 @@ enum class PairPath {
     separated,        ///< a local minimum below zero: h is convex there, so it is the only one
     inscribed_balls,  ///< a critical point no deeper than the balls inscribed at its support points
     searched,         ///< the branch-and-bound search over the sphere of directions
-    far_field,        ///< centres too far apart for the solver: the closed form along them
+    /// the search stopped at its evaluation cap (or at its smallest squares) with squares
+    /// whose bounds are below the best value: the lowest value its descents found, not
+    /// proven the global minimum (lower_bound says how far below it could be)
+    unproven,
+    far_field,  ///< centres too far apart for the solver: the closed form along them
 };
 
 /// A pair seen from A's sorted frame, lengths divided by a power of two so that the
@@ -35,6 +39,10 @@ struct PairSolution {
     glm::dvec3 extreme_b;  ///< B's support point in direction -n, relative to cB
     PairPath path;
     int evaluations;  ///< evaluations of h over every descent and the search
+    /// A proven lower bound of the minimum: depth itself for a certified critical point,
+    /// depth less the search's tolerance (2^-37 at unit scale) for a finished search, the
+    /// lowest bound left unresolved for an unproven one.
+    double lower_bound;
 };
 
 /// The global minimum of h. Radii must be finite, sorted, >= 2^-200 and <= 2; d finite

@@ -8,8 +8,9 @@
 // (1e-9 m, 1e-11 relative beyond 100 m) held on every pair of the run.
 //
 // Peers whose libraries share symbol names (Bullet float and double) live in separate
-// programs, so each program compares ours with its own peers; `trackphys bench` is where
-// all of them will meet in one run.
+// programs, so each program compares ours with its own peers; trackphys-bench's "pair"
+// group (bench/suite/pair_group.cpp) runs ours, Bullet float, FCL and MuJoCo in one run on
+// the same families.
 
 #include <algorithm>
 #include <chrono>
@@ -77,6 +78,42 @@ inline PairScore score(const PairPeer& peer, const PairFamily& family) {
     return s;
 }
 
+/// Ours, as a method of the comparison.
+inline PairPeer ours_pair_peer() {
+    return {"trackphys", [](const Ellipsoid& a, const Ellipsoid& b) {
+                return PairPeerDepth{ellipsoid_ellipsoid_contact(a, b).depth, false};
+            }};
+}
+
+/// The families every comparison runs on (car-like first), `per_family` pairs each from one
+/// seed, with their long-double references.
+inline std::vector<PairFamily> make_pair_families(int per_family) {
+    std::vector<PairFamily> families;
+    test::PairCaseGenerator generator(2026);
+    for (const test::PairKind kind :
+         {test::PairKind::car_like, test::PairKind::grazing, test::PairKind::far,
+          test::PairKind::sphere_ellipsoid, test::PairKind::deep, test::PairKind::elongated,
+          test::PairKind::crossing, test::PairKind::coincident}) {
+        PairFamily family{kind, {}, {}};
+        for (int i = 0; i < per_family; ++i) {
+            family.cases.push_back(generator.make(kind));
+            test::PairReference reference(family.cases.back().a, family.cases.back().b);
+            family.reference.push_back(double(reference.solve().depth));
+        }
+        families.push_back(std::move(family));
+    }
+    return families;
+}
+
+/// Whether a score holds our depth contract on its family: no failure, every error within
+/// 1e-9 m (1e-11 relative beyond 100 m).
+inline bool holds_contract(const PairScore& s, const PairFamily& family) {
+    double largest = 0;
+    for (const test::PairCase& c : family.cases)
+        largest = std::max({largest, c.a.bounding_radius(), c.b.bounding_radius()});
+    return s.failures == 0 && s.max_error <= std::max(1e-9, 1e-11 * largest);
+}
+
 /// Runs ours and `peers` on every family; returns the exit code (0 unless an argument is bad).
 inline int run_pair_peers(int argc, char** argv, const char* program, std::vector<PairPeer> peers) {
     bool quick = false;
@@ -92,24 +129,8 @@ inline int run_pair_peers(int argc, char** argv, const char* program, std::vecto
         }
     }
     const int per_family = quick ? 40 : 1000;
-    peers.insert(peers.begin(),
-                 PairPeer{"trackphys", [](const Ellipsoid& a, const Ellipsoid& b) {
-                              return PairPeerDepth{ellipsoid_ellipsoid_contact(a, b).depth, false};
-                          }});
-    std::vector<PairFamily> families;
-    test::PairCaseGenerator generator(2026);
-    for (const test::PairKind kind :
-         {test::PairKind::car_like, test::PairKind::grazing, test::PairKind::far,
-          test::PairKind::sphere_ellipsoid, test::PairKind::deep, test::PairKind::elongated,
-          test::PairKind::crossing, test::PairKind::coincident}) {
-        PairFamily family{kind, {}, {}};
-        for (int i = 0; i < per_family; ++i) {
-            family.cases.push_back(generator.make(kind));
-            test::PairReference reference(family.cases.back().a, family.cases.back().b);
-            family.reference.push_back(double(reference.solve().depth));
-        }
-        families.push_back(std::move(family));
-    }
+    peers.insert(peers.begin(), ours_pair_peer());
+    const std::vector<PairFamily> families = make_pair_families(per_family);
     std::printf("%s: %d pairs per family%s\n", program, per_family, quick ? " (--quick)" : "");
     std::printf("%-17s %-26s %12s %14s %9s\n", "family", "method", "median ns", "max |err| m",
                 "failures");
@@ -121,13 +142,7 @@ inline int run_pair_peers(int argc, char** argv, const char* program, std::vecto
             scores[p].push_back(s);
             std::printf("%-17s %-26s %12.1f %14.3g %9d\n", test::pair_kind_name(family.kind),
                         peers[p].name.c_str(), s.median_ns, s.max_error, s.failures);
-            if (p == 0) {
-                double largest = 0;
-                for (const test::PairCase& c : family.cases)
-                    largest = std::max({largest, c.a.bounding_radius(), c.b.bounding_radius()});
-                if (s.failures > 0 || !(s.max_error <= std::max(1e-9, 1e-11 * largest)))
-                    contract = false;
-            }
+            if (p == 0 && !holds_contract(s, family)) contract = false;
         }
     for (std::size_t p = 1; p < peers.size(); ++p)
         for (std::size_t f = 0; f < families.size(); ++f)

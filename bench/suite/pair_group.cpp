@@ -1,0 +1,185 @@
+// The ellipsoid-ellipsoid contact against its peers (issue 15): ours, Bullet's GJK/EPA
+// (float, the build trackphys-bench links; bench_peers_ellipsoid_pair_bullet_double has the
+// double one), FCL's two solvers and MuJoCo's convex collider on the same families of pairs
+// (peers/ellipsoid_pair_peer_harness.hpp: 1000 pairs each, 40 with --quick), each pair
+// timed over 16 back-to-back calls and its depth checked against the long-double
+// reference; then ellipsoids_may_touch on pairs it rejects, by each certificate. Adds the
+// issue's four target lines, each met only while ours holds its depth contract on every
+// family (and the rejections only while every rejected pair is beyond reach).
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include <glm/geometric.hpp>
+
+#include "bench_suite.hpp"
+#include "peers/ellipsoid_pair_peer_harness.hpp"
+#include "support/ellipsoid_pair_cases.hpp"
+#include "support/ellipsoid_pair_reference.hpp"
+#include "trackphys/geometry/ellipsoid_pair.hpp"
+
+#if TRACKPHYS_HAVE_BULLET
+#include "peers/ellipsoid_pair_bullet.hpp"
+#endif
+#if TRACKPHYS_HAVE_FCL
+#include "peers/ellipsoid_pair_fcl.hpp"
+#endif
+#if TRACKPHYS_HAVE_MUJOCO
+#include "peers/ellipsoid_pair_mujoco.hpp"
+#endif
+
+namespace trackphys::suite {
+namespace {
+
+constexpr const char* kGroup = "pair";
+// How far a pair phase looks around each pair (m): ellipsoids_may_touch's reach.
+constexpr double kReach = 0.05;
+
+/// Car-like pairs 0.06 to 5 m apart (log-uniform), the pairs a pair phase sees near a car,
+/// split by the certificate that rejects them; the rest may touch within kReach.
+struct RejectionSets {
+    std::vector<test::PairCase> by_spheres, by_gap;
+    int kept = 0;
+    bool proven = true;  ///< every rejected pair is beyond reach by the long-double reference
+};
+
+RejectionSets rejection_sets(int count) {
+    test::PairCaseGenerator generator(1515);
+    RejectionSets sets;
+    for (int i = 0; i < count; ++i) {
+        const Ellipsoid b(glm::dvec3(0.0), generator.rotation(), generator.car_axes());
+        const double gap = generator.log_uniform(0.06, 5.0);
+        const test::PairCase c{
+            generator.placed(generator.car_axes(), generator.rotation(), b, -gap), b,
+            test::PairKind::car_like};
+        if (ellipsoids_may_touch(c.a, c.b, kReach)) {
+            ++sets.kept;
+            continue;
+        }
+        test::PairReference reference(c.a, c.b);
+        if (!(double(reference.solve().depth) < -kReach)) sets.proven = false;
+        const double spheres = c.a.bounding_radius() + c.b.bounding_radius() + kReach;
+        (glm::distance(c.a.center(), c.b.center()) > spheres ? sets.by_spheres : sets.by_gap)
+            .push_back(c);
+    }
+    return sets;
+}
+
+/// Median time of one rejection over the set, cycled (ns).
+double rejection_ns(const std::vector<test::PairCase>& cases, const BenchRun& run) {
+    if (cases.empty()) return 0.0;
+    std::size_t i = 0;
+    return median_call_ns(
+        [&] {
+            keep(ellipsoids_may_touch(cases[i].a, cases[i].b, kReach));
+            i = i + 1 == cases.size() ? 0 : i + 1;
+        },
+        int(cases.size()), run.batches(21, 101));
+}
+
+}  // namespace
+
+void bench_pair_peers(BenchRun& run) {
+    std::vector<peers::PairPeer> methods{peers::ours_pair_peer()};
+#if TRACKPHYS_HAVE_BULLET
+    methods.push_back(peers::bullet_pair_peer());
+#else
+    not_built(run, kGroup, "Bullet GJK/EPA");
+#endif
+#if TRACKPHYS_HAVE_FCL
+    for (peers::PairPeer& p : peers::fcl_pair_peers()) methods.push_back(std::move(p));
+#else
+    not_built(run, kGroup, "FCL");
+#endif
+#if TRACKPHYS_HAVE_MUJOCO
+    peers::MujocoPairScene mujoco;
+    if (mujoco.loaded()) methods.push_back(peers::mujoco_pair_peer(mujoco));
+#else
+    not_built(run, kGroup, "MuJoCo");
+#endif
+    run.progress(kGroup, "families and long-double references");
+    const std::vector<peers::PairFamily> families =
+        peers::make_pair_families(run.quick() ? 40 : 1000);
+    bool contract = true;
+    double our_error = 0.0;
+    // Per peer: its car-like median and its largest error over every family (a failure
+    // counts as infinite).
+    std::vector<double> car_like_ns(methods.size()), worst_error(methods.size(), 0.0);
+    std::vector<int> failures(methods.size(), 0);
+    for (const peers::PairFamily& family : families) {
+        const std::string name = test::pair_kind_name(family.kind);
+        const std::string ours_name = name + ": trackphys";
+        for (std::size_t m = 0; m < methods.size(); ++m) {
+            run.progress(kGroup, name + ": " + methods[m].name);
+            const peers::PairScore s = peers::score(methods[m], family);
+            BenchRow& row =
+                run.add(kGroup, name + ": " + methods[m].name, s.median_ns, m ? ours_name : "");
+            row.figures = {{"pairs", double(family.cases.size())},
+                           {"err_max_m", s.max_error},
+                           {"failures", double(s.failures)}};
+            if (m > 0 && !s.worst.empty()) row.note = "worst " + s.worst;
+            if (family.kind == test::PairKind::car_like) car_like_ns[m] = s.median_ns;
+            worst_error[m] = std::max(worst_error[m], s.failures ? INFINITY : s.max_error);
+            failures[m] += s.failures;
+            if (m == 0) {
+                contract = contract && peers::holds_contract(s, family);
+                our_error = std::max(our_error, s.max_error);
+            }
+        }
+    }
+
+    run.progress(kGroup, "rejections and their references");
+    const RejectionSets rejections = rejection_sets(run.quick() ? 300 : 3000);
+    const double spheres_ns = rejection_ns(rejections.by_spheres, run);
+    const double gap_ns = rejection_ns(rejections.by_gap, run);
+    const double considered =
+        double(rejections.by_spheres.size() + rejections.by_gap.size()) + rejections.kept;
+    run.add(kGroup, "may_touch: rejected by the bounding spheres", spheres_ns).figures = {
+        {"pairs", double(rejections.by_spheres.size())},
+        {"share_pct", 100.0 * double(rejections.by_spheres.size()) / considered}};
+    run.add(kGroup, "may_touch: rejected by the centre-line gap", gap_ns).figures = {
+        {"pairs", double(rejections.by_gap.size())},
+        {"share_pct", 100.0 * double(rejections.by_gap.size()) / considered},
+        {"kept_pct", 100.0 * rejections.kept / considered}};
+
+    char evidence[200];
+    std::snprintf(evidence, sizeof evidence,
+                  "ours: err_max %.2g m over %zu families of %zu pairs, %d failures", our_error,
+                  families.size(), families.front().cases.size(), failures[0]);
+    std::string peer_failures = "; peers' failures:";
+    for (std::size_t m = 1; m < methods.size(); ++m)
+        peer_failures += (m > 1 ? ", " : " ") + methods[m].name + " " + std::to_string(failures[m]);
+    const std::string pair_evidence =
+        evidence + (methods.size() > 1 ? peer_failures : std::string());
+    const double ours_ns = car_like_ns[0];
+    run.add_target("ellipsoid pair, car-like: 150 ns / our median (" +
+                       std::to_string(int(std::lround(ours_ns))) + " ns)",
+                   150.0 / ours_ns, 1.0, contract, pair_evidence);
+    const double slower_rejection = std::max(spheres_ns, gap_ns);
+    std::snprintf(evidence, sizeof evidence, "spheres %.1f ns, gap %.1f ns; %zu rejected pairs, %s",
+                  spheres_ns, gap_ns, rejections.by_spheres.size() + rejections.by_gap.size(),
+                  rejections.proven ? "every one beyond reach by the reference"
+                                    : "ONE WITHIN REACH by the reference");
+    run.add_target("ellipsoid pair rejection: 20 ns / the slower certificate's median",
+                   20.0 / slower_rejection, 1.0, rejections.proven, evidence);
+    if (methods.size() > 1) {
+        std::size_t fastest = 1, most_accurate = 1;
+        for (std::size_t m = 2; m < methods.size(); ++m) {
+            if (car_like_ns[m] < car_like_ns[fastest]) fastest = m;
+            if (worst_error[m] < worst_error[most_accurate]) most_accurate = m;
+        }
+        run.add_target(
+            "ellipsoid pair, car-like: fastest peer's time / ours (" + methods[fastest].name + ")",
+            car_like_ns[fastest] / ours_ns, 10.0, contract, pair_evidence);
+        // Our errors are ~1e-15 m or exactly 0: a floor of 1e-15 m keeps the ratio finite.
+        run.add_target("ellipsoid pair: most accurate peer's max error / ours (" +
+                           methods[most_accurate].name + ")",
+                       worst_error[most_accurate] / std::max(our_error, 1e-15), 100.0, contract,
+                       pair_evidence);
+    }
+}
+
+}  // namespace trackphys::suite
