@@ -4,8 +4,8 @@ namespace trackphys::cli {
 
 DriveRecordingPlan plan_drive_recording(const std::filesystem::path& record,
                                         const DriveScene& scene,
-                                        const std::filesystem::path& mesh_file,
-                                        const CarSpec& car, double dt) {
+                                        const std::filesystem::path& mesh_file, const CarSpec& car,
+                                        double dt) {
     namespace fs = std::filesystem;
     DriveRecordingPlan plan;
     plan.header.dt = dt;

@@ -18,7 +18,7 @@ struct DriveRecordingPlan {
 
 DriveRecordingPlan plan_drive_recording(const std::filesystem::path& record,
                                         const DriveScene& scene,
-                                        const std::filesystem::path& mesh_file,
-                                        const CarSpec& car, double dt);
+                                        const std::filesystem::path& mesh_file, const CarSpec& car,
+                                        double dt);
 
 }  // namespace trackphys::cli

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+
 #include <nlohmann/json.hpp>
 
 #include "io_test_support.hpp"
@@ -59,12 +60,12 @@ TEST_F(RecordingTest, HeaderNamesTheTrackAndEveryCarsEllipsoids) {
     ASSERT_EQ(h["car_ellipsoids"][0].size(), first.size());
     for (std::size_t i = 0; i < first.size(); ++i) {
         const Json& e = h["car_ellipsoids"][0][i];
-        EXPECT_EQ(e["center"], Json::array({first[i].center.x, first[i].center.y,
-                                            first[i].center.z}));
+        EXPECT_EQ(e["center"],
+                  Json::array({first[i].center.x, first[i].center.y, first[i].center.z}));
         EXPECT_EQ(e["semi_axes"][1], first[i].semi_axes.y);
-        EXPECT_EQ(e["role"], first[i].role == EllipsoidRole::body ? "body"
+        EXPECT_EQ(e["role"], first[i].role == EllipsoidRole::body          ? "body"
                              : first[i].role == EllipsoidRole::front_wheel ? "front_wheel"
-                                                                            : "rear_wheel");
+                                                                           : "rear_wheel");
     }
     EXPECT_EQ(h["car_ellipsoids"][1][0]["role"], "body");
 }
@@ -113,8 +114,8 @@ TEST_F(RecordingTest, FramesCarryEveryCarBitForBit) {
     EXPECT_EQ(car["lap"], 3);
     // Only the overlapping contact, tagged with its ellipsoid's index.
     ASSERT_EQ(car["contacts"].size(), 1u);
-    EXPECT_EQ(car["contacts"][0], Json::array({1.0 / 3.0, 2.0, -7.25, 0.0, 1.0, 0.0,
-                                               0.012345678901234567, 1.0}));
+    EXPECT_EQ(car["contacts"][0],
+              Json::array({1.0 / 3.0, 2.0, -7.25, 0.0, 1.0, 0.0, 0.012345678901234567, 1.0}));
     const Json& other = frame["cars"][1];
     EXPECT_FALSE(other.contains("in"));
     EXPECT_FALSE(other.contains("lap"));
