@@ -1,13 +1,13 @@
 #include "replay_page.hpp"
 
-#include <zlib.h>
-
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
 #include <iterator>
 #include <vector>
+
+#include <zlib.h>
 
 #include <nlohmann/json.hpp>
 
@@ -45,8 +45,8 @@ std::string deflate(std::string_view bytes) {
     const int status = compress2(reinterpret_cast<Bytef*>(out.data()), &size,
                                  reinterpret_cast<const Bytef*>(bytes.data()),
                                  static_cast<uLong>(bytes.size()), Z_DEFAULT_COMPRESSION);
-    if (status != Z_OK) throw Error("cannot compress the replay's data (zlib " +
-                                    std::to_string(status) + ")");
+    if (status != Z_OK)
+        throw Error("cannot compress the replay's data (zlib " + std::to_string(status) + ")");
     out.resize(size);
     return out;
 }
@@ -123,11 +123,12 @@ std::string make_replay_page(const std::filesystem::path& recording, std::string
             throw Error("recording '" + recording.string() + "': its track: " + e.what());
         }
         stats.track_triangles = mesh.triangles.size();
-        track = "<script type=\"application/x-trackphys-track\" id=\"trackphys-track\" "
-                "data-vertices=\"" +
-                std::to_string(mesh.vertices.size()) + "\" data-triangles=\"" +
-                std::to_string(mesh.triangles.size()) + "\">" + base64(deflate(pack_track(mesh))) +
-                "</script>\n";
+        track =
+            "<script type=\"application/x-trackphys-track\" id=\"trackphys-track\" "
+            "data-vertices=\"" +
+            std::to_string(mesh.vertices.size()) + "\" data-triangles=\"" +
+            std::to_string(mesh.triangles.size()) + "\">" + base64(deflate(pack_track(mesh))) +
+            "</script>\n";
     }
 
     std::string page =
@@ -138,9 +139,10 @@ std::string make_replay_page(const std::filesystem::path& recording, std::string
         "script-src 'unsafe-inline'; style-src 'unsafe-inline'; img-src data: blob:\">\n"
         "<title>trackphys replay: " +
         name + "</title>\n</head>\n<body>\n";
-    page += "<script type=\"application/x-trackphys-recording\" id=\"trackphys-recording\" "
-            "data-name=\"" +
-            name + "\">" + base64(deflate(text)) + "</script>\n";
+    page +=
+        "<script type=\"application/x-trackphys-recording\" id=\"trackphys-recording\" "
+        "data-name=\"" +
+        name + "\">" + base64(deflate(text)) + "</script>\n";
     page += track;
     page += "<script>";
     page += bundle;

@@ -22,9 +22,10 @@ struct ViewOptions {
 void run(const ViewOptions& o) {
     const std::string_view bundle = viewer_bundle();
     if (bundle.empty())
-        throw Error("this trackphys was built without the replay viewer: install Node.js and "
-                    "npm, run scripts/setup.sh (it runs npm ci in viewer/) and build again "
-                    "with -DTRACKPHYS_BUILD_VIEWER=ON");
+        throw Error(
+            "this trackphys was built without the replay viewer: install Node.js and "
+            "npm, run scripts/setup.sh (it runs npm ci in viewer/) and build again "
+            "with -DTRACKPHYS_BUILD_VIEWER=ON");
     StagedOutputs outputs;
     const std::filesystem::path staged = outputs.stage(o.out, "--out");
     const auto start = std::chrono::steady_clock::now();
