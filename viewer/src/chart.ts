@@ -12,8 +12,10 @@ export interface Series {
 export class Chart {
   readonly canvas = document.createElement("canvas");
   private series: Series | null = null;
-  private columns: { min: Float32Array; max: Float32Array; low: number; high: number } | null = null;
+  private columns: { min: Float32Array; max: Float32Array; low: number; high: number; peak: number } | null = null;
   private cursor = 0;
+  /** The series drawn once per size and series; each frame copies it and adds the cursor. */
+  private readonly plot = document.createElement("canvas");
 
   constructor(
     private readonly time: Float64Array,
@@ -60,7 +62,11 @@ export class Chart {
       if (v < low) low = v;
       if (v > high) high = v;
     }
-    this.columns = { min, max, low: Math.min(low, 0), high: Math.max(high, 1e-9) };
+    // A few spikes (the machine doing something else) would flatten the rest: the scale
+    // stops at the 99.5th percentile and taller columns are clipped.
+    const sorted = Float32Array.from(values as ArrayLike<number>).sort();
+    const top = sorted[Math.floor(0.995 * (n - 1))] * 1.25;
+    this.columns = { min, max, low: Math.min(low, 0), high: Math.max(Math.min(high, top), 1e-9), peak: high };
   }
 
   draw(): void {
@@ -68,22 +74,15 @@ export class Chart {
     const width = Math.max(Math.round(this.canvas.clientWidth * ratio), 1);
     const height = Math.max(Math.round(this.canvas.clientHeight * ratio), 1);
     if (this.canvas.width !== width || this.canvas.height !== height) {
-      this.canvas.width = width;
-      this.canvas.height = height;
+      this.canvas.width = this.plot.width = width;
+      this.canvas.height = this.plot.height = height;
       this.columns = null;
     }
     const g = this.canvas.getContext("2d")!;
     g.clearRect(0, 0, width, height);
     if (!this.series || this.series.values.length === 0) return;
-    if (!this.columns) this.summarise(width);
-    const { min, max, low, high } = this.columns!;
-    const y = (v: number) => height - 2 - ((v - low) / (high - low)) * (height - 4);
-    g.fillStyle = this.series.colour;
-    for (let x = 0; x < width; ++x) {
-      if (min[x] > max[x]) continue;
-      const top = y(max[x]);
-      g.fillRect(x, top, 1, Math.max(y(min[x]) - top, 1));
-    }
+    if (!this.columns) this.plotSeries(width, height);
+    g.drawImage(this.plot, 0, 0);
     const n = this.series.values.length;
     const cx = Math.round((this.cursor / Math.max(n - 1, 1)) * (width - 1));
     g.fillStyle = "#ffffff";
@@ -91,6 +90,20 @@ export class Chart {
     g.font = `${11 * ratio}px system-ui, sans-serif`;
     g.fillStyle = "#e8e8e8";
     const value = this.series.values[Math.min(this.cursor, n - 1)];
-    g.fillText(`${this.series.label} ${value.toFixed(1)} ${this.series.unit}   (max ${high.toFixed(0)})`, 6 * ratio, 13 * ratio);
+    g.fillText(`${this.series.label} ${value.toFixed(1)} ${this.series.unit}   (max ${this.columns!.peak.toFixed(0)})`, 6 * ratio, 13 * ratio);
+  }
+
+  private plotSeries(width: number, height: number): void {
+    this.summarise(width);
+    const { min, max, low, high } = this.columns!;
+    const y = (v: number) => Math.max(height - 2 - ((v - low) / (high - low)) * (height - 4), 0);
+    const g = this.plot.getContext("2d")!;
+    g.clearRect(0, 0, width, height);
+    g.fillStyle = this.series!.colour;
+    for (let x = 0; x < width; ++x) {
+      if (min[x] > max[x]) continue;
+      const top = y(max[x]);
+      g.fillRect(x, top, 1, Math.max(y(min[x]) - top, 1));
+    }
   }
 }

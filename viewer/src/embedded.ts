@@ -1,7 +1,11 @@
 // Reads the data `trackphys view` put into the page: base64 text in <script> elements of a
 // non-JavaScript type, each zlib-compressed (docs/viewer.md, "The page").
 
+// Chromium 140+ and Firefox 133+ decode base64 natively, several times faster.
+const fromBase64 = (Uint8Array as unknown as { fromBase64?: (text: string) => Uint8Array }).fromBase64;
+
 function base64Bytes(text: string): Uint8Array {
+  if (fromBase64) return fromBase64(text.trim());
   // atob builds a string of the same length first; decoding directly halves the memory
   // and the time for a 10 MB recording.
   const code = new Uint8Array(128).fill(255);

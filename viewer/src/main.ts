@@ -38,7 +38,7 @@ async function show(recording: Recording, track: TrackData | null): Promise<void
   delete document.body.dataset.ready;
   current?.dispose();
   current = null;
-  renderer ??= new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+  renderer ??= new THREE.WebGLRenderer({ antialias: false, preserveDrawingBuffer: true });
   ui.view.prepend(renderer.domElement);
   const mesh = track ? makeTrackMesh(track.positions, track.indices) : null;
   const view = new ReplayView(recording, mesh, renderer, ui);

@@ -99,7 +99,7 @@ function parseHeader(text: string): Header {
   try {
     h = JSON.parse(text);
   } catch (e) {
-    fail(1, `the header is not JSON (${(e as Error).message})`);
+    fail(0, `not a trackphys recording: its first line is not JSON (${(e as Error).message})`);
   }
   if (!isObject(h) || h.format !== "trackphys-recording")
     fail(0, 'not a trackphys recording: the first line must be a header with "format":"trackphys-recording"');

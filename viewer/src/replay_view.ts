@@ -28,7 +28,7 @@ export class ReplayView {
 
   constructor(
     private readonly recording: Recording,
-    track: THREE.Mesh | null,
+    track: THREE.Object3D | null,
     private readonly renderer: THREE.WebGLRenderer,
     private readonly ui: Layout,
   ) {
