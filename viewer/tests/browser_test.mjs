@@ -4,12 +4,13 @@
 //   node browser_test.mjs --trackphys BIN --demo RECORDING.jsonl --work DIR [--screenshot PNG]
 //
 // RECORDING is the demo's drive (one lap of the seed-7 track); the page is made from it
-// here with `trackphys view`, as are pages of hand-made recordings written into DIR.
+// here with `trackphys view`, as are pages of hand-made recordings and of a 10-minute one
+// (the lap repeated) written into DIR.
 // Prints each check (ok / FAIL) and the load and frame times; exits 1 if any check failed.
 import assert from "node:assert/strict";
 import { execFileSync } from "node:child_process";
-import { mkdirSync, readFileSync, writeFileSync } from "node:fs";
-import { join } from "node:path";
+import { copyFileSync, mkdirSync, readFileSync, writeFileSync } from "node:fs";
+import { dirname, join } from "node:path";
 import { parseArgs } from "node:util";
 import {
   canvasPixels, distinctColours, dropFiles, hud, launchBrowser, meanDifference, openGuardedPage, waitReady,
@@ -210,6 +211,25 @@ await check("a malformed recording, opened or dropped, shows a readable error", 
     assert.notEqual(await page.evaluate(() => document.body.dataset.ready), "1");
     await dropFiles(page, [["notes.txt", "hello"]]);
     await page.waitForFunction(() => document.querySelector('[data-testid="error"]').textContent.includes("not a trackphys recording"));
+  }));
+
+await check("a 10-minute recording (the demo's lap repeated) still opens", () =>
+  withPage(browser, async ({ page, open }) => {
+    // Each repeat's frames shifted by the lap's duration: 60,000 updates of a real drive.
+    const frames = demoLines.slice(1).map((line) => JSON.parse(line));
+    const lap = frames[frames.length - 1].t;
+    const lines = [demoLines[0]];
+    for (let k = 0; lines.length <= 60000; ++k)
+      for (const frame of frames) if (lines.length <= 60000) lines.push(JSON.stringify({ ...frame, t: frame.t + k * lap }));
+    const recording = join(args.work, "ten_minutes.jsonl");
+    writeFileSync(recording, lines.join("\n") + "\n");
+    // Beside the demo recording's track mesh, which the header names relatively.
+    const mesh = JSON.parse(demoLines[0]).track.mesh;
+    copyFileSync(join(dirname(args.demo), mesh), join(args.work, mesh));
+    const pageFile = makePage(recording, "ten_minutes");
+    const ms = await waitReady(page, await open(pageFile, "#t=599"), 60000);
+    console.log(`10 minutes   ${lines.length - 1} updates, page ${(readFileSync(pageFile).length / 1e6).toFixed(1)} MB, ready in ${ms} ms`);
+    assert.equal((await hud(page)).time, 599);
   }));
 
 await browser.close();
