@@ -11,15 +11,15 @@ import { writeFileSync } from "node:fs";
 const out = process.argv[2];
 if (!out) throw new Error("usage: node build.mjs OUT.js|OUT.inc");
 const result = await build({
-  entryPoints: [new URL("src/main.ts", import.meta.url).pathname],
-  bundle: true,
-  minify: true,
-  format: "iife",
-  target: "es2022",
-  loader: { ".css": "text" },
-  legalComments: "none",
-  write: false,
-  logLevel: "warning",
+    entryPoints: [new URL("src/main.ts", import.meta.url).pathname],
+    bundle: true,
+    minify: true,
+    format: "iife",
+    target: "es2022",
+    loader: { ".css": "text" },
+    legalComments: "none",
+    write: false,
+    logLevel: "warning",
 });
 const script = result.outputFiles[0].text;
 if (/<\/script/i.test(script)) throw new Error('the bundle contains "</script"');

@@ -17,7 +17,10 @@ export class CameraRig {
   private readonly lastTarget = new THREE.Vector3();
   private readonly v = new THREE.Vector3();
 
-  constructor(element: HTMLElement, private readonly onChange: () => void) {
+  constructor(
+    element: HTMLElement,
+    private readonly onChange: () => void,
+  ) {
     this.orbit = new OrbitControls(this.camera, element);
     this.orbit.enabled = false;
     this.orbit.addEventListener("change", onChange);

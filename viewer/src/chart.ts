@@ -90,7 +90,11 @@ export class Chart {
     g.font = `${11 * ratio}px system-ui, sans-serif`;
     g.fillStyle = "#e8e8e8";
     const value = this.series.values[Math.min(this.cursor, n - 1)];
-    g.fillText(`${this.series.label} ${value.toFixed(1)} ${this.series.unit}   (max ${this.columns!.peak.toFixed(0)})`, 6 * ratio, 13 * ratio);
+    g.fillText(
+      `${this.series.label} ${value.toFixed(1)} ${this.series.unit}   (max ${this.columns!.peak.toFixed(0)})`,
+      6 * ratio,
+      13 * ratio,
+    );
   }
 
   private plotSeries(width: number, height: number): void {

@@ -14,7 +14,9 @@ const DEEP_COLOUR = new THREE.Color(0xff2d2d);
 
 export function depthColour(depth: number, out: THREE.Color): THREE.Color {
   const x = Math.min(Math.max(depth / DEEP, 0), 1);
-  return x < 0.5 ? out.lerpColors(SHALLOW_COLOUR, MIDDLE_COLOUR, x * 2) : out.lerpColors(MIDDLE_COLOUR, DEEP_COLOUR, x * 2 - 1);
+  return x < 0.5
+    ? out.lerpColors(SHALLOW_COLOUR, MIDDLE_COLOUR, x * 2)
+    : out.lerpColors(MIDDLE_COLOUR, DEEP_COLOUR, x * 2 - 1);
 }
 
 export class ContactsView {
@@ -42,11 +44,17 @@ export class ContactsView {
     const lineGeometry = new THREE.BufferGeometry();
     lineGeometry.setAttribute("position", new THREE.BufferAttribute(this.linePositions, 3));
     lineGeometry.setAttribute("color", new THREE.BufferAttribute(this.lineColours, 3));
-    this.lines = new THREE.LineSegments(lineGeometry, new THREE.LineBasicMaterial({ vertexColors: true, depthTest: false }));
+    this.lines = new THREE.LineSegments(
+      lineGeometry,
+      new THREE.LineBasicMaterial({ vertexColors: true, depthTest: false }),
+    );
     const pointGeometry = new THREE.BufferGeometry();
     pointGeometry.setAttribute("position", new THREE.BufferAttribute(this.pointPositions, 3));
     pointGeometry.setAttribute("color", new THREE.BufferAttribute(this.pointColours, 3));
-    this.points = new THREE.Points(pointGeometry, new THREE.PointsMaterial({ size: 6, sizeAttenuation: false, vertexColors: true, depthTest: false }));
+    this.points = new THREE.Points(
+      pointGeometry,
+      new THREE.PointsMaterial({ size: 6, sizeAttenuation: false, vertexColors: true, depthTest: false }),
+    );
     // Drawn over the road and the wheels that hide them.
     this.lines.renderOrder = this.points.renderOrder = 1;
     this.lines.frustumCulled = this.points.frustumCulled = false;
@@ -62,7 +70,10 @@ export class ContactsView {
         const v = car.contacts.subarray(c * 8, c * 8 + 8);
         const length = v[6] * LENGTH_PER_DEPTH;
         depthColour(v[6], colour);
-        this.linePositions.set([v[0], v[1], v[2], v[0] + v[3] * length, v[1] + v[4] * length, v[2] + v[5] * length], n * 6);
+        this.linePositions.set(
+          [v[0], v[1], v[2], v[0] + v[3] * length, v[1] + v[4] * length, v[2] + v[5] * length],
+          n * 6,
+        );
         this.lineColours.set([colour.r, colour.g, colour.b, colour.r, colour.g, colour.b], n * 6);
         this.pointPositions.set([v[0], v[1], v[2]], n * 3);
         this.pointColours.set([colour.r, colour.g, colour.b], n * 3);

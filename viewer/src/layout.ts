@@ -2,7 +2,11 @@
 // contract: docs/viewer.md lists them.
 import css from "./style.css";
 
-function element<K extends keyof HTMLElementTagNameMap>(tag: K, attributes: Record<string, string> = {}, text = ""): HTMLElementTagNameMap[K] {
+function element<K extends keyof HTMLElementTagNameMap>(
+  tag: K,
+  attributes: Record<string, string> = {},
+  text = "",
+): HTMLElementTagNameMap[K] {
   const e = document.createElement(tag);
   for (const [k, v] of Object.entries(attributes)) e.setAttribute(k, v);
   if (text) e.textContent = text;
@@ -56,8 +60,11 @@ export function buildLayout(): Layout {
   const [cameraRow, camera] = hudRow("camera", "hud-camera", "");
   hud.append(title, timeRow, speedRow, lapRow, usRow, contactsRow, cameraRow);
   const cars = element("div", { id: "cars", class: "panel", "data-testid": "car-list" });
-  const help = element("div", { id: "help", class: "panel" },
-    "space play/pause · ←/→ step · 1 chase · 2 orbit · 3 top · drop a recording (and its .glb) to open it");
+  const help = element(
+    "div",
+    { id: "help", class: "panel" },
+    "space play/pause · ←/→ step · 1 chase · 2 orbit · 3 top · drop a recording (and its .glb) to open it",
+  );
 
   const bottom = element("div", { id: "bottom" });
   const timeline = element("div", { id: "timeline" });
@@ -82,5 +89,25 @@ export function buildLayout(): Layout {
 
   view.append(hud, cars, help);
   document.body.append(view, bottom, error, drop);
-  return { view, title, time, speed, lap, updateUs, camera, contacts, cars, play, back, forward, scrub, rate, clock, charts, error, errorText, drop };
+  return {
+    view,
+    title,
+    time,
+    speed,
+    lap,
+    updateUs,
+    camera,
+    contacts,
+    cars,
+    play,
+    back,
+    forward,
+    scrub,
+    rate,
+    clock,
+    charts,
+    error,
+    errorText,
+    drop,
+  };
 }

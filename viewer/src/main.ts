@@ -68,7 +68,11 @@ async function loadEmbedded(): Promise<void> {
   const parsed = await phase("parse recording", () => parseRecording(new TextDecoder().decode(recording.bytes), name));
   const trackPayload = await phase("decode track", () => embeddedBytes("trackphys-track"));
   const track = trackPayload
-    ? trackFromEmbedded(trackPayload.bytes, Number(trackPayload.element.dataset.vertices), Number(trackPayload.element.dataset.triangles))
+    ? trackFromEmbedded(
+        trackPayload.bytes,
+        Number(trackPayload.element.dataset.vertices),
+        Number(trackPayload.element.dataset.triangles),
+      )
     : null;
   await phase("build scene and draw", () => show(parsed, track));
 }

@@ -104,7 +104,8 @@ function parseHeader(text: string): Header {
   if (!isObject(h) || h.format !== "trackphys-recording")
     fail(0, 'not a trackphys recording: the first line must be a header with "format":"trackphys-recording"');
   const version = h.version;
-  if (version !== 1 && version !== 2) fail(1, `unknown recording version ${JSON.stringify(version)} (this viewer reads 1 and 2)`);
+  if (version !== 1 && version !== 2)
+    fail(1, `unknown recording version ${JSON.stringify(version)} (this viewer reads 1 and 2)`);
   const dt = finite(h.dt, 1, "dt");
   const cars = h.cars;
   if (typeof cars !== "number" || !Number.isInteger(cars) || cars < 1) fail(1, "cars must be a whole number >= 1");
@@ -155,7 +156,10 @@ class CarColumns {
   contacts = new Column((n) => new Float32Array(n));
   hasInputs = true;
   hasLaps = true;
-  constructor(readonly ellipsoids: CarEllipsoid[], readonly shapeKnown: boolean) {
+  constructor(
+    readonly ellipsoids: CarEllipsoid[],
+    readonly shapeKnown: boolean,
+  ) {
     this.contactStart.push(0);
   }
 
