@@ -8,7 +8,7 @@ export const CAMERA_KEYS: Record<string, CameraMode> = { "1": "chase", "2": "orb
 
 const CHASE_OFFSET = new THREE.Vector3(0, 2.6, -8.5); // body frame: behind and above
 const CHASE_LOOK = new THREE.Vector3(0, 0.8, 6); // ahead of the car
-const TOP_HEIGHT = 120; // m above the car
+const TOP_HEIGHT = 60; // m above the car: the car and 100 m of road around it
 
 export class CameraRig {
   readonly camera = new THREE.PerspectiveCamera(55, 1, 0.1, 20000);
@@ -23,6 +23,8 @@ export class CameraRig {
   ) {
     this.orbit = new OrbitControls(this.camera, element);
     this.orbit.enabled = false;
+    // Stay above the car's horizon: from below, the road hides the car.
+    this.orbit.maxPolarAngle = Math.PI * 0.48;
     this.orbit.addEventListener("change", onChange);
   }
 
