@@ -101,6 +101,7 @@ window.addEventListener("dragleave", () => ui.drop.classList.remove("shown"));
 window.addEventListener("drop", (e) => {
   e.preventDefault();
   ui.drop.classList.remove("shown");
+  delete document.body.dataset.ready; // until the dropped recording is drawn
   const files = Array.from(e.dataTransfer?.files ?? []);
   loadDropped(files).catch((error) => showError(describe(error)));
 });

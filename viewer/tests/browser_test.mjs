@@ -241,6 +241,32 @@ await check("a version-1 recording opens; a dropped recording replaces it", () =
     }),
 );
 
+await check("a recording dropped with its .glb track shows the track", () =>
+    withPage(browser, async ({ page, open }) => {
+        const v1 = makePage(writeRecording("version_1", versionOneRecording(3)), "version_1");
+        await waitReady(page, await open(v1));
+        const empty = distinctColours(await canvasPixels(page));
+        const mesh = JSON.parse(demoLines[0]).track.mesh;
+        const glb = readFileSync(join(dirname(args.demo), mesh));
+        await dropFiles(page, [
+            ["demo.jsonl", demoLines.join("\n") + "\n"],
+            [mesh, glb],
+        ]);
+        await page.waitForFunction(() => document.body.dataset.ready === "1", null, {
+            timeout: 30000,
+        });
+        await setHash(page, "#t=20");
+        const shown = await hud(page);
+        expectSpeed(shown.speed, demoSpeedKmh(20), "the dropped demo at 20 s");
+        const pixels = await canvasPixels(page);
+        // The track's elevation colours and shading, against a grid and sky before.
+        assert.ok(
+            distinctColours(pixels) > 2 * empty,
+            `${distinctColours(pixels)} colours, ${empty} without the track`,
+        );
+    }),
+);
+
 await check("a malformed recording, opened or dropped, shows a readable error", () =>
     withPage(browser, async ({ page, open }) => {
         const broken = makePage(writeRecording("malformed", malformedRecording()), "malformed");

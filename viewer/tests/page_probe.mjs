@@ -83,12 +83,17 @@ export async function hud(page) {
     };
 }
 
-/** Drops files (name, text) onto the page as a user's drag-and-drop would. */
+/** Drops files ([name, text or Buffer]) onto the page as a user's drag-and-drop would. */
 export async function dropFiles(page, files) {
+    // Binary contents cross into the page as base64.
+    const encoded = files.map(([name, contents]) =>
+        typeof contents === "string" ? [name, contents, false] : [name, contents.toString("base64"), true],
+    );
     const transfer = await page.evaluateHandle((files) => {
         const data = new DataTransfer();
-        for (const [name, text] of files) data.items.add(new File([text], name));
+        for (const [name, contents, binary] of files)
+            data.items.add(new File([binary ? Uint8Array.fromBase64(contents) : contents], name));
         return data;
-    }, files);
+    }, encoded);
     await page.dispatchEvent("body", "drop", { dataTransfer: transfer });
 }
