@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Installs every Debian package trackphys needs that is missing, and nothing else.
+# Installs every Debian package trackphys needs that is missing, and nothing else, then the
+# replay viewer's npm packages (viewer/package-lock.json) when they are missing or stale.
 # Safe to run again: when everything is present it says so and changes nothing.
 # Needs root (as on the project's machines) only when something is missing.
 set -euo pipefail
@@ -31,6 +32,10 @@ required=(
   clang-format-14 # scripts/check_format.sh (CI's format check): one version, since another
                   # major version breaks lines differently
   llvm # llvm-symbolizer: function names and lines in sanitizer and fuzzer reports
+  nodejs # the replay viewer (viewer/): esbuild bundles it at build time, and its browser
+         # tests run under node
+  chromium # the browser the viewer's tests drive headless (playwright-core never
+           # downloads one of its own)
 )
 
 missing=()
@@ -40,16 +45,32 @@ for package in "${required[@]}"; do
   fi
 done
 
+# npm comes with Debian's nodejs as a package of its own, but inside NodeSource's nodejs;
+# asking apt for npm beside the latter would replace it.
+command -v npm >/dev/null || missing+=(npm)
+
 if [ ${#missing[@]} -eq 0 ]; then
   echo "setup: all ${#required[@]} required packages are installed"
-  exit 0
+else
+  echo "setup: installing ${missing[*]}"
+  sudo_cmd=()
+  [ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
+  export DEBIAN_FRONTEND=noninteractive
+  # The package index of a fresh machine is stale: refresh it before installing.
+  "${sudo_cmd[@]}" apt-get update -q
+  "${sudo_cmd[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}"
+  echo "setup: done"
 fi
 
-echo "setup: installing ${missing[*]}"
-sudo_cmd=()
-[ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
-export DEBIAN_FRONTEND=noninteractive
-# The package index of a fresh machine is stale: refresh it before installing.
-"${sudo_cmd[@]}" apt-get update -q
-"${sudo_cmd[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}"
-echo "setup: done"
+# The viewer's packages, exactly as locked; again only when the lock file changed since.
+viewer="$(dirname "$0")/../viewer"
+stamp="$viewer/node_modules/.trackphys-package-lock.json"
+if cmp -s "$viewer/package-lock.json" "$stamp"; then
+  echo "setup: the viewer's npm packages are installed"
+else
+  echo "setup: installing the viewer's npm packages (npm ci in viewer/)"
+  # playwright-core drives Debian's chromium and must not fetch a browser of its own.
+  # No install scripts: the only one, esbuild's, checks a binary that npm already placed.
+  (cd "$viewer" && PLAYWRIGHT_SKIP_BROWSER_DOWNLOAD=1 npm ci --ignore-scripts --no-audit --no-fund)
+  cp "$viewer/package-lock.json" "$stamp"
+fi

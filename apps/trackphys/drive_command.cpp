@@ -6,6 +6,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <system_error>
 #include <utility>
 #include <vector>
 
@@ -14,14 +15,17 @@
 #include <glm/geometric.hpp>
 
 #include "commands.hpp"
+#include "drive_recording.hpp"
 #include "drive_report.hpp"
 #include "drive_scene.hpp"
 #include "drive_session.hpp"
 #include "drive_svg.hpp"
 #include "interrupt_guard.hpp"
 #include "staged_outputs.hpp"
+#include "track_mesh.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/io/car_spec_json.hpp"
+#include "trackphys/io/mesh_io.hpp"
 #include "trackphys/io/recording.hpp"
 #include "trackphys/io/scenario.hpp"
 #include "trackphys/io/snapshot_file.hpp"
@@ -214,9 +218,14 @@ void run(const DriveOptions& o, const CLI::App& command) {
         world.set_trace(trace.get());
     }
     std::unique_ptr<RecordingWriter> recording;
-    if (!record.empty())
-        recording = std::make_unique<RecordingWriter>(record, world.settings().dt_update, 1,
-                                                      scene.description);
+    DriveRecordingPlan recording_plan;
+    if (!record.empty()) {
+        recording_plan =
+            plan_drive_recording(o.record, scene, s.mesh, s.car, world.settings().dt_update);
+        if (!recording_plan.track_mesh_file.empty())
+            check_destination(recording_plan.track_mesh_file, "--record's track mesh");
+        recording = std::make_unique<RecordingWriter>(record, recording_plan.header);
+    }
 
     DriveReport report;
     report.scene = scene.description;
@@ -266,8 +275,11 @@ void run(const DriveOptions& o, const CLI::App& command) {
         plot.speed_kmh.push_back(car.speed() * 3.6);
         plot.update_us.push_back(world.last_profile().update_us);
         if (recording) {
-            recording->begin_frame(world.time(), world.state_hash());
-            recording->add_car(state.position, state.orientation, car.speed(), world.contacts(0));
+            recording->begin_frame(world.time(), world.state_hash(),
+                                   world.last_profile().update_us);
+            recording->add_car({state.position, state.orientation, car.speed(), car.suspension(),
+                                world.contacts(0), car.inputs(),
+                                autopilot ? std::optional(autopilot->laps()) : std::nullopt});
             recording->end_frame();
         }
         progress.show(laps > 0 ? autopilot->laps() +
@@ -303,7 +315,18 @@ void run(const DriveOptions& o, const CLI::App& command) {
         if (!out.flush()) throw Error("--trace '" + o.trace.string() + "': cannot write the trace");
     }
     if (recording) recording->finish();
-    outputs.commit();
+    // The track mesh is written last and removed again if the outputs cannot be put in
+    // place (save_mesh is atomic itself), as `trackphys track` does with its mesh.
+    if (!recording_plan.track_mesh_file.empty())
+        save_mesh(merge_chunks(*scene.track), recording_plan.track_mesh_file);
+    try {
+        outputs.commit();
+    } catch (const Error&) {
+        std::error_code ignored;
+        if (!recording_plan.track_mesh_file.empty())
+            std::filesystem::remove(recording_plan.track_mesh_file, ignored);
+        throw;
+    }
 }
 
 }  // namespace

@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
     trackphys::cli::add_track_command(app);
     trackphys::cli::add_info_command(app);
     trackphys::cli::add_bench_command(app);
+    trackphys::cli::add_view_command(app);
 
     try {
         app.parse(argc, argv);

@@ -8,6 +8,7 @@
 
 #include "commands.hpp"
 #include "staged_outputs.hpp"
+#include "track_mesh.hpp"
 #include "track_svg.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/io/mesh_io.hpp"
@@ -22,24 +23,6 @@ struct TrackOptions {
     std::filesystem::path out;  ///< mesh file (any format save_mesh writes), empty for none
     std::filesystem::path svg;  ///< picture, empty for none
 };
-
-// All chunks as one mesh, in driving order (each chunk's indices offset by the vertices
-// before it). Chunk boundary rows stay duplicated: exporters keep them as they are.
-TriangleMesh merge_chunks(const Track& track) {
-    TriangleMesh merged;
-    std::size_t vertex_count = 0;
-    for (const TrackChunk& chunk : track.chunks) vertex_count += chunk.mesh.vertices.size();
-    merged.vertices.reserve(vertex_count);
-    merged.triangles.reserve(track.triangle_count());
-    for (const TrackChunk& chunk : track.chunks) {
-        const auto offset = static_cast<std::uint32_t>(merged.vertices.size());
-        merged.vertices.insert(merged.vertices.end(), chunk.mesh.vertices.begin(),
-                               chunk.mesh.vertices.end());
-        for (const auto& t : chunk.mesh.triangles)
-            merged.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
-    }
-    return merged;
-}
 
 // Writes the merged track mesh to path (format by extension).
 void write_track_mesh(const Track& track, const std::filesystem::path& path) {

@@ -111,19 +111,23 @@ CarSpec car_spec_from_json(const Json& value, const std::string& path, const std
     return spec;
 }
 
+Json car_ellipsoids_to_json(std::span<const CarEllipsoid> ellipsoids) {
+    Json out = Json::array();
+    for (const CarEllipsoid& e : ellipsoids)
+        out.push_back({{"center", vector_to_json(e.center)},
+                       {"semi_axes", vector_to_json(e.semi_axes)},
+                       {"orientation", Json::array({e.orientation.w, e.orientation.x,
+                                                    e.orientation.y, e.orientation.z})},
+                       {"role", role_name(e.role)}});
+    return out;
+}
+
 Json car_spec_to_json_value(const CarSpec& spec) {
-    Json ellipsoids = Json::array();
-    for (const CarEllipsoid& e : spec.ellipsoids)
-        ellipsoids.push_back({{"center", vector_to_json(e.center)},
-                              {"semi_axes", vector_to_json(e.semi_axes)},
-                              {"orientation", Json::array({e.orientation.w, e.orientation.x,
-                                                           e.orientation.y, e.orientation.z})},
-                              {"role", role_name(e.role)}});
     return {
         {"mass",
          {{"mass", spec.mass.mass},
           {"principal_inertia", vector_to_json(spec.mass.principal_inertia)}}},
-        {"ellipsoids", std::move(ellipsoids)},
+        {"ellipsoids", car_ellipsoids_to_json(spec.ellipsoids)},
         {"body_contact", material_to_json(spec.body_contact)},
         {"wheel_contact", material_to_json(spec.wheel_contact)},
         {"suspension",

@@ -2,8 +2,10 @@
 
 #include <cinttypes>
 #include <cstdio>
+#include <initializer_list>
 #include <system_error>
 
+#include "car_spec_json_detail.hpp"
 #include "trackphys/error.hpp"
 
 namespace trackphys {
@@ -16,31 +18,38 @@ void put(std::ofstream& out, double x) {
     out << text;
 }
 
-void put(std::ofstream& out, const glm::dvec3& v) {
+void put_list(std::ofstream& out, std::span<const double> values) {
     out << '[';
-    put(out, v.x), out << ',', put(out, v.y), out << ',', put(out, v.z);
+    for (std::size_t i = 0; i < values.size(); ++i) {
+        if (i > 0) out << ',';
+        put(out, values[i]);
+    }
     out << ']';
 }
 
+void put_list(std::ofstream& out, std::initializer_list<double> values) {
+    put_list(out, std::span<const double>(values.begin(), values.size()));
+}
+
+void put(std::ofstream& out, const glm::dvec3& v) { put_list(out, {v.x, v.y, v.z}); }
+
 }  // namespace
 
-RecordingWriter::RecordingWriter(const std::filesystem::path& path, double dt, std::size_t cars,
-                                 const std::string& scene)
+RecordingWriter::RecordingWriter(const std::filesystem::path& path, const RecordingHeader& header)
     : path_(path), temporary_(path.string() + ".partial") {
     out_.open(temporary_, std::ios::binary | std::ios::trunc);
     if (!out_) throw Error("cannot open '" + temporary_.string() + "' to write the recording");
-    out_ << "{\"format\":\"trackphys-recording\",\"version\":1,\"dt\":";
-    put(out_, dt);
-    out_ << ",\"cars\":" << cars << ",\"scene\":\"";
-    for (char c : scene) {  // a JSON string: escape quotes, backslashes and controls
-        if (c == '"' || c == '\\')
-            out_ << '\\' << c;
-        else if (static_cast<unsigned char>(c) < 0x20)
-            out_ << ' ';
-        else
-            out_ << c;
-    }
-    out_ << "\"}\n";
+    json_io::Json line = {{"format", "trackphys-recording"},
+                          {"version", 2},
+                          {"dt", header.dt},
+                          {"cars", header.car_ellipsoids.size()},
+                          {"scene", header.scene}};
+    if (!header.track_mesh.empty()) line["track"] = {{"mesh", header.track_mesh.generic_string()}};
+    line["car_ellipsoids"] = json_io::Json::array();
+    for (const std::vector<CarEllipsoid>& car : header.car_ellipsoids)
+        line["car_ellipsoids"].push_back(json_io::car_ellipsoids_to_json(car));
+    // Invalid UTF-8 in a scene description (a mesh file's name) is replaced, not thrown.
+    out_ << line.dump(-1, ' ', false, json_io::Json::error_handler_t::replace) << '\n';
 }
 
 RecordingWriter::~RecordingWriter() {
@@ -50,38 +59,42 @@ RecordingWriter::~RecordingWriter() {
     std::filesystem::remove(temporary_, ignored);
 }
 
-void RecordingWriter::begin_frame(double t, std::uint64_t state_hash) {
+void RecordingWriter::begin_frame(double t, std::uint64_t state_hash,
+                                  std::optional<double> update_us) {
     char hash[17];
     std::snprintf(hash, sizeof hash, "%016" PRIx64, state_hash);
     out_ << "{\"t\":";
     put(out_, t);
-    out_ << ",\"hash\":\"" << hash << "\",\"cars\":[";
+    out_ << ",\"hash\":\"" << hash << '"';
+    if (update_us) out_ << ",\"us\":", put(out_, *update_us);
+    out_ << ",\"cars\":[";
     first_car_ = true;
 }
 
-void RecordingWriter::add_car(const glm::dvec3& position, const glm::dquat& orientation,
-                              double speed, std::span<const Contact> contacts) {
+void RecordingWriter::add_car(const RecordedCar& car) {
     out_ << (first_car_ ? "" : ",") << "{\"p\":";
     first_car_ = false;
-    put(out_, position);
-    out_ << ",\"q\":[";
-    put(out_, orientation.w), out_ << ',', put(out_, orientation.x), out_ << ',',
-        put(out_, orientation.y), out_ << ',', put(out_, orientation.z);
-    out_ << "],\"v\":";
-    put(out_, speed);
+    put(out_, car.position);
+    out_ << ",\"q\":";
+    put_list(out_, {car.orientation.w, car.orientation.x, car.orientation.y, car.orientation.z});
+    out_ << ",\"v\":";
+    put(out_, car.speed);
+    out_ << ",\"s\":";
+    put_list(out_, car.suspension);
+    if (car.inputs) {
+        out_ << ",\"in\":";
+        put_list(out_, {car.inputs->throttle, car.inputs->brake, car.inputs->steer});
+    }
+    if (car.laps) out_ << ",\"lap\":" << *car.laps;
     out_ << ",\"contacts\":[";
     bool first = true;
-    for (const Contact& c : contacts) {
+    for (std::size_t i = 0; i < car.contacts.size(); ++i) {
+        const Contact& c = car.contacts[i];
         if (!(c.depth > 0.0)) continue;
-        out_ << (first ? "[" : ",[");
+        out_ << (first ? "" : ",");
         first = false;
-        put(out_, c.point.x), out_ << ',', put(out_, c.point.y), out_ << ',', put(out_, c.point.z);
-        out_ << ',';
-        put(out_, c.normal.x), out_ << ',', put(out_, c.normal.y), out_ << ',',
-            put(out_, c.normal.z);
-        out_ << ',';
-        put(out_, c.depth);
-        out_ << ']';
+        put_list(out_, {c.point.x, c.point.y, c.point.z, c.normal.x, c.normal.y, c.normal.z,
+                        c.depth, static_cast<double>(i)});
     }
     out_ << "]}";
 }

@@ -3,43 +3,75 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <span>
 #include <string>
+#include <vector>
 
 #include <glm/gtc/quaternion.hpp>
 #include <glm/vec3.hpp>
 
+#include "trackphys/dynamics/car.hpp"
+#include "trackphys/dynamics/car_spec.hpp"
 #include "trackphys/export.hpp"
 #include "trackphys/geometry/contact.hpp"
 
 namespace trackphys {
 
-/// Writes a drive as JSON Lines for a viewer to replay: a header line, then one line per
-/// recorded update with every car's pose and the contacts of its ellipsoids.
+/// What a recording's header says about the scene: enough for a viewer to draw it without
+/// anything else (docs/recording.md).
+struct RecordingHeader {
+    double dt = 0.01;   ///< seconds between recorded updates
+    std::string scene;  ///< what was driven, for people ("generated track, seed 7, ...")
+    /// The track's mesh file, relative to the recording's folder (a generic path with '/'
+    /// separators is written); empty when the recording carries no track.
+    std::filesystem::path track_mesh;
+    /// Each car's ellipsoids in its body frame, in the order of the frames' cars.
+    std::vector<std::vector<CarEllipsoid>> car_ellipsoids;
+};
+
+/// One car in one recorded update.
+struct RecordedCar {
+    glm::dvec3 position{0.0};                    ///< centre of mass, world (m)
+    glm::dquat orientation{1.0, 0.0, 0.0, 0.0};  ///< world from body
+    double speed = 0.0;                          ///< of the centre of mass (m/s)
+    /// Each ellipsoid's suspension compression (m, CarSpec order; 0 for the body).
+    std::span<const double> suspension;
+    /// Each ellipsoid's deepest contact (CarSpec order); only those that overlap are written.
+    std::span<const Contact> contacts;
+    std::optional<CarInputs> inputs;  ///< the driver's controls during the update
+    std::optional<int> laps;          ///< laps completed, when someone counts them
+};
+
+/// Writes a drive as JSON Lines for a viewer to replay (format version 2, docs/recording.md):
+/// a header line, then one line per recorded update with every car's pose, speed,
+/// suspension, inputs and the contacts of its ellipsoids.
 ///
-///     {"format":"trackphys-recording","version":1,"dt":0.01,"cars":1,"scene":"..."}
-///     {"t":0.01,"hash":"...","cars":[{"p":[x,y,z],"q":[w,x,y,z],"v":speed,
-///       "contacts":[[px,py,pz,nx,ny,nz,depth],...]}]}
+///     {"format":"trackphys-recording","version":2,"dt":0.01,"cars":1,"scene":"...",
+///      "track":{"mesh":"drive.track.glb"},"car_ellipsoids":[[{"center":[..],...}]]}
+///     {"t":0.01,"hash":"...","us":61.2,"cars":[{"p":[x,y,z],"q":[w,x,y,z],"v":speed,
+///       "s":[...],"in":[throttle,brake,steer],"lap":0,
+///       "contacts":[[px,py,pz,nx,ny,nz,depth,ellipsoid],...]}]}
 ///
 /// Units are SI, world +Y up; q maps the car's body frame (+X left, +Y up, +Z forward) to
 /// the world. The file is written under a temporary name and renamed by finish(), so a
 /// run that fails never leaves a partial recording behind.
 class TRACKPHYS_API RecordingWriter {
   public:
-    /// Opens path's temporary sibling; throws trackphys::Error when it cannot.
-    RecordingWriter(const std::filesystem::path& path, double dt, std::size_t cars,
-                    const std::string& scene);
+    /// Opens path's temporary sibling and writes the header; throws trackphys::Error when
+    /// it cannot.
+    RecordingWriter(const std::filesystem::path& path, const RecordingHeader& header);
     /// Removes the temporary file unless finish() succeeded.
     ~RecordingWriter();
     RecordingWriter(const RecordingWriter&) = delete;
     RecordingWriter& operator=(const RecordingWriter&) = delete;
 
-    /// Starts the line of the update that ended at time t (s), with the world's state hash.
-    void begin_frame(double t, std::uint64_t state_hash);
-    /// Adds one car to the current line: pose, speed (m/s) and its ellipsoids' contacts
-    /// (only those that overlap are written).
-    void add_car(const glm::dvec3& position, const glm::dquat& orientation, double speed,
-                 std::span<const Contact> contacts);
+    /// Starts the line of the update that ended at time t (s), with the world's state hash
+    /// and, when measured, how long the update took (us).
+    void begin_frame(double t, std::uint64_t state_hash,
+                     std::optional<double> update_us = std::nullopt);
+    /// Adds the next car to the current line; cars come in the header's order.
+    void add_car(const RecordedCar& car);
     void end_frame();
 
     /// Flushes and renames the file into place; throws trackphys::Error on failure.

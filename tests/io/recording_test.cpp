@@ -1,0 +1,138 @@
+// Recordings (format version 2, docs/recording.md): the header names the track mesh and
+// every car's ellipsoids, each line carries every car with its suspension, inputs, laps and
+// overlapping contacts, numbers read back bit for bit, and the file appears only once
+// finished.
+#include "trackphys/io/recording.hpp"
+
+#include <array>
+#include <limits>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "io_test_support.hpp"
+
+namespace trackphys {
+namespace {
+
+using Json = nlohmann::json;
+
+std::vector<Json> read_lines(const std::filesystem::path& path) {
+    std::istringstream in(test::read_file(path));
+    std::vector<Json> lines;
+    for (std::string line; std::getline(in, line);) lines.push_back(Json::parse(line));
+    return lines;
+}
+
+RecordingHeader two_car_header() {
+    RecordingHeader header;
+    header.dt = 0.01;
+    header.scene = "a \"quoted\" scene";
+    header.track_mesh = std::filesystem::path("meshes") / "track.glb";
+    const CarSpec car = CarSpec::default_car();
+    CarEllipsoid ball;
+    ball.semi_axes = {0.5, 0.5, 0.5};
+    header.car_ellipsoids = {car.ellipsoids, {ball}};
+    return header;
+}
+
+class RecordingTest : public test::ScratchFolderTest {};
+
+TEST_F(RecordingTest, HeaderNamesTheTrackAndEveryCarsEllipsoids) {
+    const RecordingHeader header = two_car_header();
+    RecordingWriter writer(file("r.jsonl"), header);
+    writer.finish();
+    const std::vector<Json> lines = read_lines(file("r.jsonl"));
+    ASSERT_EQ(lines.size(), 1u);
+    const Json& h = lines[0];
+    EXPECT_EQ(h["format"], "trackphys-recording");
+    EXPECT_EQ(h["version"], 2);
+    EXPECT_EQ(h["dt"], 0.01);
+    EXPECT_EQ(h["cars"], 2);
+    EXPECT_EQ(h["scene"], "a \"quoted\" scene");
+    EXPECT_EQ(h["track"]["mesh"], "meshes/track.glb");
+    ASSERT_EQ(h["car_ellipsoids"].size(), 2u);
+    const std::vector<CarEllipsoid>& first = header.car_ellipsoids[0];
+    ASSERT_EQ(h["car_ellipsoids"][0].size(), first.size());
+    for (std::size_t i = 0; i < first.size(); ++i) {
+        const Json& e = h["car_ellipsoids"][0][i];
+        EXPECT_EQ(e["center"],
+                  Json::array({first[i].center.x, first[i].center.y, first[i].center.z}));
+        EXPECT_EQ(e["semi_axes"][1], first[i].semi_axes.y);
+        EXPECT_EQ(e["role"], first[i].role == EllipsoidRole::body          ? "body"
+                             : first[i].role == EllipsoidRole::front_wheel ? "front_wheel"
+                                                                           : "rear_wheel");
+    }
+    EXPECT_EQ(h["car_ellipsoids"][1][0]["role"], "body");
+}
+
+TEST_F(RecordingTest, NoTrackMeansNoTrackKey) {
+    RecordingHeader header = two_car_header();
+    header.track_mesh.clear();
+    RecordingWriter writer(file("r.jsonl"), header);
+    writer.finish();
+    EXPECT_FALSE(read_lines(file("r.jsonl"))[0].contains("track"));
+}
+
+TEST_F(RecordingTest, FramesCarryEveryCarBitForBit) {
+    RecordingWriter writer(file("r.jsonl"), two_car_header());
+    const std::array<double, 2> suspension = {0.1 / 3.0, 0.0};
+    Contact touching{0.012345678901234567, {0.0, 1.0, 0.0}, {1.0 / 3.0, 2.0, -7.25}};
+    Contact apart{-0.5, {0.0, 1.0, 0.0}, {0.0, 0.0, 0.0}};
+    const std::array<Contact, 2> contacts = {apart, touching};
+    writer.begin_frame(0.01, 0xfedcba9876543210ull, 61.25);
+    writer.add_car({{1.0 / 7.0, 2.0, 3.0},
+                    {0.5, 0.5, 0.5, 0.5},
+                    std::numeric_limits<double>::denorm_min(),
+                    suspension,
+                    contacts,
+                    CarInputs{1.0, 0.25, -0.125},
+                    3});
+    writer.add_car({{4.0, 5.0, 6.0}, {1.0, 0.0, 0.0, 0.0}, 20.0, {}, {}, {}, {}});
+    writer.end_frame();
+    writer.begin_frame(0.02, 1);  // no update time measured
+    writer.end_frame();
+    writer.finish();
+
+    const std::vector<Json> lines = read_lines(file("r.jsonl"));
+    ASSERT_EQ(lines.size(), 3u);
+    const Json& frame = lines[1];
+    EXPECT_EQ(frame["t"], 0.01);
+    EXPECT_EQ(frame["hash"], "fedcba9876543210");
+    EXPECT_EQ(frame["us"], 61.25);
+    ASSERT_EQ(frame["cars"].size(), 2u);
+    const Json& car = frame["cars"][0];
+    EXPECT_EQ(car["p"], Json::array({1.0 / 7.0, 2.0, 3.0}));
+    EXPECT_EQ(car["q"], Json::array({0.5, 0.5, 0.5, 0.5}));
+    EXPECT_EQ(car["v"].get<double>(), std::numeric_limits<double>::denorm_min());
+    EXPECT_EQ(car["s"], Json::array({0.1 / 3.0, 0.0}));
+    EXPECT_EQ(car["in"], Json::array({1.0, 0.25, -0.125}));
+    EXPECT_EQ(car["lap"], 3);
+    // Only the overlapping contact, tagged with its ellipsoid's index.
+    ASSERT_EQ(car["contacts"].size(), 1u);
+    EXPECT_EQ(car["contacts"][0],
+              Json::array({1.0 / 3.0, 2.0, -7.25, 0.0, 1.0, 0.0, 0.012345678901234567, 1.0}));
+    const Json& other = frame["cars"][1];
+    EXPECT_FALSE(other.contains("in"));
+    EXPECT_FALSE(other.contains("lap"));
+    EXPECT_EQ(other["contacts"], Json::array());
+    EXPECT_FALSE(lines[2].contains("us"));
+    EXPECT_EQ(lines[2]["cars"], Json::array());
+}
+
+TEST_F(RecordingTest, AppearsOnlyWhenFinished) {
+    {
+        RecordingWriter writer(file("r.jsonl"), two_car_header());
+        writer.begin_frame(0.01, 1);
+        writer.end_frame();
+        EXPECT_FALSE(std::filesystem::exists(file("r.jsonl")));
+    }
+    EXPECT_TRUE(folder_listing().empty());
+}
+
+}  // namespace
+}  // namespace trackphys

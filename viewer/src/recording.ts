@@ -1,0 +1,246 @@
+// Parses a trackphys recording (JSON Lines, versions 1 and 2: docs/recording.md) into
+// typed arrays, one set per car, so that a 10-minute drive stays a few tens of MB.
+
+/** One ellipsoid of a car, in its body frame (+X left, +Y up, +Z forward). */
+export interface CarEllipsoid {
+  center: [number, number, number];
+  semiAxes: [number, number, number];
+  /** w, x, y, z: body from ellipsoid. */
+  orientation: [number, number, number, number];
+  wheel: boolean;
+}
+
+/** Everything one car did, indexed by frame. */
+export interface CarTrack {
+  ellipsoids: CarEllipsoid[];
+  /** Ellipsoids are a stand-in (version 1 recordings carry no car shapes). */
+  shapeKnown: boolean;
+  position: Float64Array; // 3 per frame
+  quaternion: Float64Array; // 4 per frame, x, y, z, w (three.js order)
+  speed: Float64Array; // m/s
+  suspension: Float32Array; // one per ellipsoid per frame (m)
+  inputs: Float32Array | null; // throttle, brake, steer per frame
+  laps: Int32Array | null;
+  contactStart: Uint32Array; // frame f's contacts are [contactStart[f], contactStart[f+1])
+  contacts: Float32Array; // 8 per contact: point, normal, depth, ellipsoid (-1 unknown)
+}
+
+export interface Recording {
+  name: string;
+  version: number;
+  dt: number;
+  scene: string;
+  /** The track mesh's file name relative to the recording, or null. */
+  trackMesh: string | null;
+  frameCount: number;
+  time: Float64Array;
+  updateUs: Float32Array | null;
+  cars: CarTrack[];
+}
+
+/** A recording that cannot be read; the message says where and why, for the page. */
+export class RecordingError extends Error {}
+
+// Version 1 recordings have no car shapes: each car is drawn as one ellipsoid of a
+// typical car's size, marked as a stand-in.
+const STAND_IN_CAR: CarEllipsoid[] = [
+  { center: [0, 0, 0], semiAxes: [0.95, 0.5, 2.2], orientation: [1, 0, 0, 0], wheel: false },
+];
+
+type Json = Record<string, unknown>;
+
+function fail(line: number, why: string): never {
+  throw new RecordingError(line === 0 ? why : `line ${line}: ${why}`);
+}
+
+function isObject(value: unknown): value is Json {
+  return typeof value === "object" && value !== null && !Array.isArray(value);
+}
+
+function numbers(value: unknown, count: number, line: number, what: string): number[] {
+  if (!Array.isArray(value) || value.length !== count || !value.every(Number.isFinite))
+    fail(line, `${what} must be ${count} finite numbers`);
+  return value as number[];
+}
+
+function finite(value: unknown, line: number, what: string): number {
+  if (typeof value !== "number" || !Number.isFinite(value)) fail(line, `${what} must be a finite number`);
+  return value;
+}
+
+function parseEllipsoids(value: unknown, car: number): CarEllipsoid[] {
+  const what = `car_ellipsoids[${car}]`;
+  if (!Array.isArray(value) || value.length === 0) fail(1, `${what} must be a non-empty array`);
+  return value.map((e: unknown, i: number) => {
+    if (!isObject(e)) fail(1, `${what}[${i}] must be an object`);
+    const role = e.role;
+    if (role !== "body" && role !== "front_wheel" && role !== "rear_wheel")
+      fail(1, `${what}[${i}].role must be body, front_wheel or rear_wheel`);
+    const q = e.orientation === undefined ? [1, 0, 0, 0] : numbers(e.orientation, 4, 1, `${what}[${i}].orientation`);
+    return {
+      center: numbers(e.center, 3, 1, `${what}[${i}].center`) as [number, number, number],
+      semiAxes: numbers(e.semi_axes, 3, 1, `${what}[${i}].semi_axes`) as [number, number, number],
+      orientation: q as [number, number, number, number],
+      wheel: role !== "body",
+    };
+  });
+}
+
+interface Header {
+  version: number;
+  dt: number;
+  scene: string;
+  trackMesh: string | null;
+  shapes: CarEllipsoid[][];
+}
+
+function parseHeader(text: string): Header {
+  let h: unknown;
+  try {
+    h = JSON.parse(text);
+  } catch (e) {
+    fail(0, `not a trackphys recording: its first line is not JSON (${(e as Error).message})`);
+  }
+  if (!isObject(h) || h.format !== "trackphys-recording")
+    fail(0, 'not a trackphys recording: the first line must be a header with "format":"trackphys-recording"');
+  const version = h.version;
+  if (version !== 1 && version !== 2)
+    fail(1, `unknown recording version ${JSON.stringify(version)} (this viewer reads 1 and 2)`);
+  const dt = finite(h.dt, 1, "dt");
+  const cars = h.cars;
+  if (typeof cars !== "number" || !Number.isInteger(cars) || cars < 1) fail(1, "cars must be a whole number >= 1");
+  let shapes: CarEllipsoid[][];
+  let trackMesh: string | null = null;
+  if (version === 2) {
+    if (!Array.isArray(h.car_ellipsoids) || h.car_ellipsoids.length !== cars)
+      fail(1, `car_ellipsoids must list the ellipsoids of all ${cars} cars`);
+    shapes = h.car_ellipsoids.map(parseEllipsoids);
+    if (h.track !== undefined) {
+      if (!isObject(h.track) || typeof h.track.mesh !== "string") fail(1, "track.mesh must be a file name");
+      trackMesh = h.track.mesh;
+    }
+  } else {
+    shapes = Array.from({ length: cars }, () => STAND_IN_CAR);
+  }
+  return { version, dt, scene: typeof h.scene === "string" ? h.scene : "", trackMesh, shapes };
+}
+
+// Grows as frames arrive; trimmed to size at the end.
+class Column<T extends Float64Array | Float32Array | Int32Array | Uint32Array> {
+  data: T;
+  length = 0;
+  constructor(private readonly make: (n: number) => T) {
+    this.data = make(1024);
+  }
+  push(...values: number[]): void {
+    if (this.length + values.length > this.data.length) {
+      const bigger = this.make(Math.max(this.data.length * 2, this.length + values.length));
+      bigger.set(this.data);
+      this.data = bigger;
+    }
+    for (const v of values) this.data[this.length++] = v;
+  }
+  trimmed(): T {
+    return this.data.subarray(0, this.length) as T;
+  }
+}
+
+class CarColumns {
+  position = new Column((n) => new Float64Array(n));
+  quaternion = new Column((n) => new Float64Array(n));
+  speed = new Column((n) => new Float64Array(n));
+  suspension = new Column((n) => new Float32Array(n));
+  inputs = new Column((n) => new Float32Array(n));
+  laps = new Column((n) => new Int32Array(n));
+  contactStart = new Column((n) => new Uint32Array(n));
+  contacts = new Column((n) => new Float32Array(n));
+  hasInputs = true;
+  hasLaps = true;
+  constructor(
+    readonly ellipsoids: CarEllipsoid[],
+    readonly shapeKnown: boolean,
+  ) {
+    this.contactStart.push(0);
+  }
+
+  add(car: unknown, line: number, k: number, version: number): void {
+    if (!isObject(car)) fail(line, `cars[${k}] must be an object`);
+    const p = numbers(car.p, 3, line, `cars[${k}].p`);
+    const q = numbers(car.q, 4, line, `cars[${k}].q`);
+    this.position.push(p[0], p[1], p[2]);
+    this.quaternion.push(q[1], q[2], q[3], q[0]);
+    this.speed.push(finite(car.v, line, `cars[${k}].v`));
+    const count = this.ellipsoids.length;
+    const s = car.s === undefined ? new Array<number>(count).fill(0) : numbers(car.s, count, line, `cars[${k}].s`);
+    this.suspension.push(...s);
+    if (car.in === undefined) this.hasInputs = false;
+    else this.inputs.push(...numbers(car.in, 3, line, `cars[${k}].in`));
+    if (typeof car.lap === "number") this.laps.push(car.lap);
+    else this.hasLaps = false;
+    if (!Array.isArray(car.contacts)) fail(line, `cars[${k}].contacts must be an array`);
+    const width = version === 1 ? 7 : 8;
+    car.contacts.forEach((c: unknown, i: number) => {
+      const values = numbers(c, width, line, `cars[${k}].contacts[${i}]`);
+      this.contacts.push(...values);
+      if (width === 7) this.contacts.push(-1);
+    });
+    this.contactStart.push(this.contacts.length / 8);
+  }
+
+  finish(): CarTrack {
+    return {
+      ellipsoids: this.ellipsoids,
+      shapeKnown: this.shapeKnown,
+      position: this.position.trimmed(),
+      quaternion: this.quaternion.trimmed(),
+      speed: this.speed.trimmed(),
+      suspension: this.suspension.trimmed(),
+      inputs: this.hasInputs ? this.inputs.trimmed() : null,
+      laps: this.hasLaps ? this.laps.trimmed() : null,
+      contactStart: this.contactStart.trimmed(),
+      contacts: this.contacts.trimmed(),
+    };
+  }
+}
+
+/** Reads a whole recording; throws RecordingError naming the line and the problem. */
+export function parseRecording(text: string, name: string): Recording {
+  const lines = text.split("\n");
+  if (lines[lines.length - 1] === "") lines.pop();
+  if (lines.length === 0) fail(0, "the file is empty");
+  const header = parseHeader(lines[0]);
+  const cars = header.shapes.map((shape) => new CarColumns(shape, header.version === 2));
+  const time = new Column((n) => new Float64Array(n));
+  const updateUs = new Column((n) => new Float32Array(n));
+  let hasUpdateUs = true;
+  for (let i = 1; i < lines.length; ++i) {
+    const line = i + 1;
+    let frame: unknown;
+    try {
+      frame = JSON.parse(lines[i]);
+    } catch (e) {
+      fail(line, `not JSON (${(e as Error).message})`);
+    }
+    if (!isObject(frame)) fail(line, "a frame must be an object");
+    const t = finite(frame.t, line, "t");
+    if (time.length > 0 && !(t > time.data[time.length - 1])) fail(line, "t must increase from frame to frame");
+    time.push(t);
+    if (typeof frame.us === "number") updateUs.push(frame.us);
+    else hasUpdateUs = false;
+    if (!Array.isArray(frame.cars) || frame.cars.length !== cars.length)
+      fail(line, `cars must list all ${cars.length} cars of the header`);
+    frame.cars.forEach((car: unknown, k: number) => cars[k].add(car, line, k, header.version));
+  }
+  if (time.length === 0) fail(0, "the recording has a header but no frames");
+  return {
+    name,
+    version: header.version,
+    dt: header.dt,
+    scene: header.scene,
+    trackMesh: header.trackMesh,
+    frameCount: time.length,
+    time: time.trimmed(),
+    updateUs: hasUpdateUs ? updateUs.trimmed() : null,
+    cars: cars.map((c) => c.finish()),
+  };
+}

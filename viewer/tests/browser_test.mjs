@@ -1,0 +1,310 @@
+// The replay viewer in a real browser (docs/testing.md, "Browser tests"): Debian's
+// chromium, headless, WebGL through SwiftShader, driven by playwright-core.
+//
+//   node browser_test.mjs --trackphys BIN --demo RECORDING.jsonl --work DIR [--screenshot PNG]
+//
+// RECORDING is the demo's drive (one lap of the seed-7 track); the page is made from it
+// here with `trackphys view`, as are pages of hand-made recordings and of a 10-minute one
+// (the lap repeated) written into DIR.
+// Prints each check (ok / FAIL) and the load and frame times; exits 1 if any check failed.
+import assert from "node:assert/strict";
+import { execFileSync } from "node:child_process";
+import { copyFileSync, mkdirSync, readFileSync, writeFileSync } from "node:fs";
+import { dirname, join } from "node:path";
+import { parseArgs } from "node:util";
+import {
+    canvasPixels,
+    distinctColours,
+    dropFiles,
+    hud,
+    launchBrowser,
+    meanDifference,
+    openGuardedPage,
+    waitReady,
+} from "./page_probe.mjs";
+import { handMadeSpeed, malformedRecording, multiCarRecording, versionOneRecording } from "./recordings.mjs";
+
+const { values: args } = parseArgs({
+    options: {
+        trackphys: { type: "string" },
+        demo: { type: "string" },
+        work: { type: "string" },
+        screenshot: { type: "string" },
+    },
+});
+assert.ok(args.trackphys && args.demo && args.work, "usage: --trackphys BIN --demo RECORDING --work DIR");
+mkdirSync(args.work, { recursive: true });
+
+function makePage(recording, name) {
+    const page = join(args.work, `${name}.html`);
+    execFileSync(args.trackphys, ["view", recording, "--out", page], { stdio: "pipe" });
+    return page;
+}
+
+function writeRecording(name, text) {
+    const file = join(args.work, `${name}.jsonl`);
+    writeFileSync(file, text);
+    return file;
+}
+
+// The demo recording's speed (km/h) of car 0 at the update that ends at t.
+const demoLines = readFileSync(args.demo, "utf8").trimEnd().split("\n");
+const demoDt = JSON.parse(demoLines[0]).dt;
+function demoSpeedKmh(t) {
+    const frame = JSON.parse(demoLines[Math.round(t / demoDt)]);
+    assert.ok(Math.abs(frame.t - t) < demoDt / 2, `the demo's frame for ${t} s is at ${frame.t} s`);
+    return frame.cars[0].v * 3.6;
+}
+
+const nextFrames = (page) =>
+    page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
+
+async function setHash(page, hash) {
+    await page.evaluate((h) => (location.hash = h), hash);
+    await nextFrames(page);
+}
+
+function expectSpeed(shown, expected, what) {
+    assert.ok(
+        Math.abs(shown - expected) <= 1,
+        `${what}: the HUD shows ${shown} km/h, the recording ${expected.toFixed(2)} km/h`,
+    );
+}
+
+/** Share of the central pixels whose hue is within 20 degrees of rgb's (and saturated). */
+function centreHueShare(pixels, w, h, rgb) {
+    const hue = (r, g, b) => {
+        const max = Math.max(r, g, b);
+        const min = Math.min(r, g, b);
+        if (max - min < 40) return null; // grey: road, grid, wheels
+        const d = max - min;
+        const x = max === r ? (g - b) / d : max === g ? 2 + (b - r) / d : 4 + (r - g) / d;
+        return (((x * 60) % 360) + 360) % 360;
+    };
+    const want = hue(...rgb);
+    let hits = 0;
+    let total = 0;
+    for (let y = Math.floor(h * 0.3); y < h * 0.8; ++y) {
+        for (let x = Math.floor(w * 0.3); x < w * 0.7; ++x) {
+            const i = (y * w + x) * 4;
+            const got = hue(pixels[i], pixels[i + 1], pixels[i + 2]);
+            total++;
+            if (got !== null && Math.min(Math.abs(got - want), 360 - Math.abs(got - want)) < 20) hits++;
+        }
+    }
+    return hits / total;
+}
+
+let failures = 0;
+async function check(name, body) {
+    try {
+        await body();
+        console.log(`ok   ${name}`);
+    } catch (error) {
+        failures++;
+        console.log(`FAIL ${name}\n     ${String(error.message).split("\n").join("\n     ")}`);
+    }
+}
+
+async function withPage(browser, body) {
+    const guarded = await openGuardedPage(browser);
+    try {
+        await body(guarded);
+        assert.deepEqual(guarded.problems, [], "console errors, exceptions or requests");
+    } finally {
+        await guarded.context.close();
+    }
+}
+
+const browser = await launchBrowser();
+const demoPage = makePage(args.demo, "demo");
+console.log(`demo page    ${demoPage}: ${(readFileSync(demoPage).length / 1e6).toFixed(1)} MB`);
+
+await check("the demo's replay is ready within 10 s, with no error and no request", () =>
+    withPage(browser, async ({ page, open }) => {
+        const start = await open(demoPage);
+        const ms = await waitReady(page, start);
+        const phases = await page.evaluate(() =>
+            performance
+                .getEntriesByType("measure")
+                .map((m) => `${m.name.replace("trackphys ", "")} ${Math.round(m.duration)} ms`),
+        );
+        console.log(`load time    ${ms} ms to the ready flag (${phases.join(", ")})`);
+    }),
+);
+
+await check("the canvas is not blank and frames at different times differ", () =>
+    withPage(browser, async ({ page, open }) => {
+        await waitReady(page, await open(demoPage, "#t=10"));
+        const early = await canvasPixels(page);
+        await setHash(page, "#t=45");
+        const late = await canvasPixels(page);
+        assert.ok(distinctColours(early) > 100, `only ${distinctColours(early)} colours at 10 s`);
+        assert.ok(meanDifference(early, late) > 3, `frames at 10 s and 45 s differ by ${meanDifference(early, late)}`);
+    }),
+);
+
+await check("#t= seeks on a fresh load and on a hash change, showing the recorded speed", () =>
+    withPage(browser, async ({ page, open }) => {
+        await waitReady(page, await open(demoPage, "#t=30"));
+        let shown = await hud(page);
+        assert.equal(shown.time, 30);
+        expectSpeed(shown.speed, demoSpeedKmh(30), "fresh load at 30 s");
+        await setHash(page, "#t=61.37");
+        shown = await hud(page);
+        assert.equal(shown.time, 61.37);
+        expectSpeed(shown.speed, demoSpeedKmh(61.37), "hash change to 61.37 s");
+        await nextFrames(page);
+        assert.equal((await hud(page)).time, 61.37, "a seek pauses");
+    }),
+);
+
+await check("playing moves time on; keys step and switch cameras (frame times printed)", () =>
+    withPage(browser, async ({ page, open }) => {
+        await waitReady(page, await open(demoPage, "#t=5"));
+        await page.keyboard.press("Space");
+        const stamps = await page.evaluate(
+            () =>
+                new Promise((resolve) => {
+                    const seen = [];
+                    const tick = (t) => {
+                        seen.push(t);
+                        if (t - seen[0] < 4000) requestAnimationFrame(tick);
+                        else resolve(seen);
+                    };
+                    requestAnimationFrame(tick);
+                }),
+        );
+        await page.keyboard.press("Space");
+        const played = (await hud(page)).time;
+        assert.ok(played > 6, `after 4 s of playing the time is ${played} s`);
+        const frames = stamps
+            .slice(1)
+            .map((t, i) => t - stamps[i])
+            .sort((a, b) => a - b);
+        const at = (q) => frames[Math.min(frames.length - 1, Math.floor(q * frames.length))].toFixed(1);
+        const mean = frames.reduce((a, b) => a + b, 0) / frames.length;
+        console.log(
+            `frame times  ${frames.length} frames while playing: mean ${mean.toFixed(1)} ms, p50 ${at(0.5)}, p95 ${at(0.95)}, max ${at(1)} ms`,
+        );
+        await page.keyboard.press("ArrowRight");
+        await nextFrames(page);
+        assert.equal((await hud(page)).time, Math.round(played * 100 + 1) / 100, "→ steps one update");
+        for (const [key, camera] of [
+            ["3", "top"],
+            ["2", "orbit"],
+            ["1", "chase"],
+        ]) {
+            await page.keyboard.press(key);
+            assert.equal((await hud(page)).camera, camera, `key ${key}`);
+        }
+        if (args.screenshot) {
+            await setHash(page, "#t=20");
+            await page.screenshot({ path: args.screenshot });
+            console.log(`screenshot   ${args.screenshot}`);
+        }
+    }),
+);
+
+await check("a recording of three cars lists them all and follows the one picked", () =>
+    withPage(browser, async ({ page, open }) => {
+        const multi = makePage(writeRecording("three_cars", multiCarRecording(3, 5)), "three_cars");
+        await waitReady(page, await open(multi, "#t=2&car=2"));
+        const buttons = page.locator('[data-testid="car-list"] button');
+        assert.equal(await buttons.count(), 3);
+        assert.ok(await page.locator('[data-testid="car-list"]').isVisible(), "the car list is shown");
+        expectSpeed((await hud(page)).speed, handMadeSpeed(2, 2) * 3.6, "car 2 at 2 s");
+        const yellow = centreHueShare(await canvasPixels(page), 96, 54, [0xe0, 0xb2, 0x1a]);
+        assert.ok(yellow > 0.05, `car 2 (yellow) fills ${(yellow * 100).toFixed(1)}% of the view's centre`);
+        await buttons.nth(0).click();
+        await nextFrames(page);
+        expectSpeed((await hud(page)).speed, handMadeSpeed(0, 2) * 3.6, "car 0 picked at 2 s");
+        const pixels = await canvasPixels(page);
+        const red = centreHueShare(pixels, 96, 54, [0xd8, 0x43, 0x2e]);
+        const stillYellow = centreHueShare(pixels, 96, 54, [0xe0, 0xb2, 0x1a]);
+        assert.ok(
+            red > 0.05 && stillYellow < 0.01,
+            `after picking car 0: red ${(red * 100).toFixed(1)}%, yellow ${(stillYellow * 100).toFixed(1)}%`,
+        );
+    }),
+);
+
+await check("a version-1 recording opens; a dropped recording replaces it", () =>
+    withPage(browser, async ({ page, open }) => {
+        const v1 = makePage(writeRecording("version_1", versionOneRecording(3)), "version_1");
+        await waitReady(page, await open(v1, "#t=1.5"));
+        expectSpeed((await hud(page)).speed, handMadeSpeed(0, 1.5) * 3.6, "version 1 at 1.5 s");
+        assert.equal(await page.locator('[data-testid="car-list"] button').count(), 1);
+        await dropFiles(page, [["dropped.jsonl", multiCarRecording(2, 1)]]);
+        await page.waitForFunction(() => document.querySelectorAll('[data-testid="car-list"] button').length === 2);
+        await waitReady(page, Date.now());
+    }),
+);
+
+await check("a recording dropped with its .glb track shows the track", () =>
+    withPage(browser, async ({ page, open }) => {
+        const v1 = makePage(writeRecording("version_1", versionOneRecording(3)), "version_1");
+        await waitReady(page, await open(v1));
+        const empty = distinctColours(await canvasPixels(page));
+        const mesh = JSON.parse(demoLines[0]).track.mesh;
+        const glb = readFileSync(join(dirname(args.demo), mesh));
+        await dropFiles(page, [
+            ["demo.jsonl", demoLines.join("\n") + "\n"],
+            [mesh, glb],
+        ]);
+        await page.waitForFunction(() => document.body.dataset.ready === "1", null, {
+            timeout: 30000,
+        });
+        await setHash(page, "#t=20");
+        const shown = await hud(page);
+        expectSpeed(shown.speed, demoSpeedKmh(20), "the dropped demo at 20 s");
+        const pixels = await canvasPixels(page);
+        // The track's elevation colours and shading, against a grid and sky before.
+        assert.ok(
+            distinctColours(pixels) > 2 * empty,
+            `${distinctColours(pixels)} colours, ${empty} without the track`,
+        );
+    }),
+);
+
+await check("a malformed recording, opened or dropped, shows a readable error", () =>
+    withPage(browser, async ({ page, open }) => {
+        const broken = makePage(writeRecording("malformed", malformedRecording()), "malformed");
+        await open(broken);
+        const error = page.locator('[data-testid="error"]');
+        await error.waitFor({ state: "visible", timeout: 10000 });
+        assert.match(await error.textContent(), /line 3: not JSON/);
+        assert.notEqual(await page.evaluate(() => document.body.dataset.ready), "1");
+        await dropFiles(page, [["notes.txt", "hello"]]);
+        await page.waitForFunction(() =>
+            document.querySelector('[data-testid="error"]').textContent.includes("not a trackphys recording"),
+        );
+    }),
+);
+
+await check("a 10-minute recording (the demo's lap repeated) still opens", () =>
+    withPage(browser, async ({ page, open }) => {
+        // Each repeat's frames shifted by the lap's duration: 60,000 updates of a real drive.
+        const frames = demoLines.slice(1).map((line) => JSON.parse(line));
+        const lap = frames[frames.length - 1].t;
+        const lines = [demoLines[0]];
+        for (let k = 0; lines.length <= 60000; ++k)
+            for (const frame of frames)
+                if (lines.length <= 60000) lines.push(JSON.stringify({ ...frame, t: frame.t + k * lap }));
+        const recording = join(args.work, "ten_minutes.jsonl");
+        writeFileSync(recording, lines.join("\n") + "\n");
+        // Beside the demo recording's track mesh, which the header names relatively.
+        const mesh = JSON.parse(demoLines[0]).track.mesh;
+        copyFileSync(join(dirname(args.demo), mesh), join(args.work, mesh));
+        const pageFile = makePage(recording, "ten_minutes");
+        const ms = await waitReady(page, await open(pageFile, "#t=599"), 60000);
+        console.log(
+            `10 minutes   ${lines.length - 1} updates, page ${(readFileSync(pageFile).length / 1e6).toFixed(1)} MB, ready in ${ms} ms`,
+        );
+        assert.equal((await hud(page)).time, 599);
+    }),
+);
+
+await browser.close();
+console.log(failures === 0 ? "all browser checks passed" : `${failures} browser check(s) failed`);
+process.exit(failures === 0 ? 0 : 1);

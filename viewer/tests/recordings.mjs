@@ -1,0 +1,78 @@
+// Hand-made recordings for the browser tests: several cars (until `trackphys race` writes
+// them), version 1, malformed, and a long drive. Cars run along straight lines on flat
+// ground, so every value the page shows can be computed here.
+
+const DT = 0.01;
+
+function header(version, cars, extra = {}) {
+    return JSON.stringify({ format: "trackphys-recording", version, dt: DT, cars, scene: "hand-made", ...extra });
+}
+
+/** A body and four wheels, in the body frame. */
+function carEllipsoids() {
+    const wheel = (x, z, role) => ({
+        center: [x, -0.15, z],
+        semi_axes: [0.15, 0.35, 0.35],
+        orientation: [1, 0, 0, 0],
+        role,
+    });
+    return [
+        wheel(0.9, 1.45, "front_wheel"),
+        wheel(-0.9, 1.45, "front_wheel"),
+        wheel(0.9, -1.35, "rear_wheel"),
+        wheel(-0.9, -1.35, "rear_wheel"),
+        { center: [0, 0.2, 0], semi_axes: [0.9, 0.4, 2.0], orientation: [1, 0, 0, 0], role: "body" },
+    ];
+}
+
+/** Car k's speed (m/s) at time t: each car its own constant acceleration. */
+export function handMadeSpeed(k, t) {
+    return 5 + (k + 1) * 2 * t;
+}
+
+function position(k, t) {
+    // Driving along +Z, 60 m apart sideways, so that a camera following one sees no other.
+    return [k * 60, 0.5, 5 * t + (k + 1) * t * t];
+}
+
+function frameCar(k, t, version) {
+    const p = position(k, t);
+    const car = { p, q: [1, 0, 0, 0], v: handMadeSpeed(k, t), contacts: [] };
+    const contact = [p[0], 0, p[2], 0, 1, 0, 0.004 + 0.002 * k];
+    car.contacts.push(version === 1 ? contact : [...contact, 4]);
+    if (version === 2) {
+        car.s = [0.01, 0.01, 0.01, 0.01, 0];
+        car.in = [1, 0, 0];
+        car.lap = 0;
+    }
+    return car;
+}
+
+function frames(cars, count, version) {
+    const lines = [];
+    for (let i = 1; i <= count; ++i) {
+        const t = i * DT;
+        const frame = { t, hash: i.toString(16).padStart(16, "0") };
+        if (version === 2) frame.us = 50 + (i % 7);
+        frame.cars = Array.from({ length: cars }, (_, k) => frameCar(k, t, version));
+        lines.push(JSON.stringify(frame));
+    }
+    return lines;
+}
+
+export function multiCarRecording(cars, seconds) {
+    const shapes = Array.from({ length: cars }, carEllipsoids);
+    return (
+        [header(2, cars, { car_ellipsoids: shapes }), ...frames(cars, Math.round(seconds / DT), 2)].join("\n") + "\n"
+    );
+}
+
+export function versionOneRecording(seconds) {
+    return [header(1, 1), ...frames(1, Math.round(seconds / DT), 1)].join("\n") + "\n";
+}
+
+/** A good header and first frame, then a frame cut off in the middle (line 3). */
+export function malformedRecording() {
+    const good = multiCarRecording(1, 0.01).trimEnd();
+    return `${good}\n{"t":0.02,"hash":"0000000000000002","cars":[{"p":[0,0.5\n`;
+}
