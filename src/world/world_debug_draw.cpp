@@ -2,7 +2,6 @@
 // left them, read from each car's slot (no copy, nothing kept for it during update()).
 
 #include "trackphys/world/debug_draw.hpp"
-
 #include "trackphys/world/world.hpp"
 #include "world/car_slot.hpp"
 
@@ -32,7 +31,8 @@ void World::debug_draw(DebugDraw& draw, const DebugDrawOptions& options) const {
         if (options.update_boxes && !slot.update_box.empty())
             draw.draw_update_box(k, slot.update_box);
         const auto triangle = [&](std::size_t i, TriangleRef ref) {
-            return DebugTriangle{k, i, ref, statics_->collider(ref.collider).triangle(ref.triangle)};
+            return DebugTriangle{k, i, ref,
+                                 statics_->collider(ref.collider).triangle(ref.triangle)};
         };
         if (options.listed_triangles)
             for (std::size_t i = 0; i < ellipsoids; ++i)

@@ -17,12 +17,12 @@ namespace trackphys {
 /// pipeline's working memory (update boxes, listed and kept triangles) on request, since a
 /// car near a wall lists hundreds of triangles per ellipsoid.
 struct DebugDrawOptions {
-    bool cars = true;              ///< DebugDraw::draw_car
-    bool ellipsoids = true;        ///< DebugDraw::draw_ellipsoid
-    bool contacts = true;          ///< DebugDraw::draw_contact
-    bool update_boxes = false;     ///< DebugDraw::draw_update_box
-    bool listed_triangles = false; ///< DebugDraw::draw_listed_triangle
-    bool kept_triangles = false;   ///< DebugDraw::draw_kept_triangle
+    bool cars = true;               ///< DebugDraw::draw_car
+    bool ellipsoids = true;         ///< DebugDraw::draw_ellipsoid
+    bool contacts = true;           ///< DebugDraw::draw_contact
+    bool update_boxes = false;      ///< DebugDraw::draw_update_box
+    bool listed_triangles = false;  ///< DebugDraw::draw_listed_triangle
+    bool kept_triangles = false;    ///< DebugDraw::draw_kept_triangle
 
     /// Everything World::debug_draw can report.
     static DebugDrawOptions all() { return {true, true, true, true, true, true}; }
