@@ -67,8 +67,12 @@ struct CallLog final : DebugDraw {
     }
 };
 
-bool same_bits(const glm::dvec3& a, const glm::dvec3& b) { return std::memcmp(&a, &b, sizeof a) == 0; }
-bool same_bits(const glm::dquat& a, const glm::dquat& b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+bool same_bits(const glm::dvec3& a, const glm::dvec3& b) {
+    return std::memcmp(&a, &b, sizeof a) == 0;
+}
+bool same_bits(const glm::dquat& a, const glm::dquat& b) {
+    return std::memcmp(&a, &b, sizeof a) == 0;
+}
 bool same_bits(const Contact& a, const Contact& b) {
     return std::memcmp(&a.depth, &b.depth, sizeof a.depth) == 0 && same_bits(a.normal, b.normal) &&
            same_bits(a.point, b.point);
@@ -112,7 +116,8 @@ void expect_cars_and_contacts(const World& world, const CallLog& log, std::size_
             EXPECT_EQ(log.events[event].kind, 'e');
             EXPECT_EQ(drawn.car, k);
             EXPECT_EQ(drawn.ellipsoid, i);
-            EXPECT_TRUE(same_bits(drawn.shape.center(), placed.center())) << "car " << k << " ellipsoid " << i;
+            EXPECT_TRUE(same_bits(drawn.shape.center(), placed.center()))
+                << "car " << k << " ellipsoid " << i;
             EXPECT_TRUE(same_bits(drawn.shape.orientation(), placed.orientation()));
             EXPECT_TRUE(same_bits(drawn.shape.semi_axes(), placed.semi_axes()));
             EXPECT_EQ(drawn.role, car.spec().ellipsoids[i].role);
@@ -121,7 +126,8 @@ void expect_cars_and_contacts(const World& world, const CallLog& log, std::size_
         const std::span<const Contact> reported = world.contacts(k);
         for (std::size_t i = 0; i < reported.size(); ++i) {
             if (!(reported[i].depth > 0.0)) continue;
-            ASSERT_LT(c, log.contacts.size()) << "car " << k << " ellipsoid " << i << "'s contact is missing";
+            ASSERT_LT(c, log.contacts.size())
+                << "car " << k << " ellipsoid " << i << "'s contact is missing";
             const DebugContact& drawn = log.contacts[c++];
             ASSERT_LT(event, log.events.size());
             EXPECT_EQ(log.events[event++].kind, 'k');
@@ -218,10 +224,11 @@ TEST(DebugDraw, ListsThePipelinesTrianglesAndBoxes) {
         for (int v = 0; v < 3; ++v) EXPECT_TRUE(same_bits(t.triangle[v], stored[v]));
     }
     for (const DebugContact& c : log.contacts) {
-        const bool on_kept = std::any_of(log.kept.begin(), log.kept.end(), [&](const DebugTriangle& t) {
-            return t.car == c.car && t.ellipsoid == c.ellipsoid;
-        });
-        EXPECT_TRUE(on_kept) << "car " << c.car << " ellipsoid " << c.ellipsoid << " has a contact but no kept triangle";
+        const bool on_kept = std::any_of(
+            log.kept.begin(), log.kept.end(),
+            [&](const DebugTriangle& t) { return t.car == c.car && t.ellipsoid == c.ellipsoid; });
+        EXPECT_TRUE(on_kept) << "car " << c.car << " ellipsoid " << c.ellipsoid
+                             << " has a contact but no kept triangle";
     }
 }
 
