@@ -9,9 +9,9 @@
 //
 //     bench_debug_draw [UPDATES]      (default 9000: 90 simulated seconds, about a lap)
 #include <algorithm>
-#include <ctime>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <memory>
 #include <optional>
 #include <string>
@@ -100,7 +100,8 @@ int main(int argc, char** argv) {
     const auto add_drive = [&](std::string name, std::optional<DebugDrawOptions> drawn) {
         auto world = std::make_unique<World>(statics, WorldSettings{}, trees);
         world->add_car(spec, state);
-        drives.push_back({std::move(name), std::move(world), Autopilot(track, spec), drawn, {}, {}, {}});
+        drives.push_back(
+            {std::move(name), std::move(world), Autopilot(track, spec), drawn, {}, {}, {}});
     };
     add_drive("not drawn", std::nullopt);
     add_drive("drawn, default options", DebugDrawOptions{});
@@ -127,13 +128,12 @@ int main(int argc, char** argv) {
             }
         }
 
-    std::printf("%d updates of the default car on the default track, 3 drives in turns\n",
-                updates);
-    std::printf("%-24s %12s %14s %14s %12s\n", "drive", "update mean", "update median",
-                "draw mean", "calls/draw");
+    std::printf("%d updates of the default car on the default track, 3 drives in turns\n", updates);
+    std::printf("%-24s %12s %14s %14s %12s\n", "drive", "update mean", "update median", "draw mean",
+                "calls/draw");
     for (const Drive& d : drives)
-        std::printf("%-24s %9.2f us %11.2f us %11.2f us %12.1f\n", d.name.c_str(), mean(d.update_us),
-                    median(d.update_us), mean(d.draw_us),
+        std::printf("%-24s %9.2f us %11.2f us %11.2f us %12.1f\n", d.name.c_str(),
+                    mean(d.update_us), median(d.update_us), mean(d.draw_us),
                     d.draw_us.empty() ? 0.0
                                       : static_cast<double>(d.draw.calls) /
                                             static_cast<double>(d.draw_us.size() * kDrawRepeats));
@@ -142,7 +142,8 @@ int main(int argc, char** argv) {
         std::printf("update mean, %s / not drawn: %.3f\n", drives[k].name.c_str(),
                     mean(drives[k].update_us) / base);
     bool same = true;
-    for (const Drive& d : drives) same = same && d.world->state_hash() == drives[0].world->state_hash();
+    for (const Drive& d : drives)
+        same = same && d.world->state_hash() == drives[0].world->state_hash();
     std::printf("state hashes %s (%016llx)\n", same ? "equal" : "DIFFER",
                 static_cast<unsigned long long>(drives[0].world->state_hash()));
     return same ? 0 : 1;
