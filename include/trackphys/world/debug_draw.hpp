@@ -25,7 +25,14 @@ struct DebugDrawOptions {
     bool kept_triangles = false;    ///< DebugDraw::draw_kept_triangle
 
     /// Everything World::debug_draw can report.
-    static DebugDrawOptions all() { return {true, true, true, true, true, true}; }
+    static DebugDrawOptions all() {
+        return {.cars = true,
+                .ellipsoids = true,
+                .contacts = true,
+                .update_boxes = true,
+                .listed_triangles = true,
+                .kept_triangles = true};
+    }
 };
 
 /// One of a car's ellipsoids as the world places it.
