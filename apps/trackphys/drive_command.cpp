@@ -275,12 +275,9 @@ void run(const DriveOptions& o, const CLI::App& command) {
         plot.speed_kmh.push_back(car.speed() * 3.6);
         plot.update_us.push_back(world.last_profile().update_us);
         if (recording) {
-            recording->begin_frame(world.time(), world.state_hash(),
-                                   world.last_profile().update_us);
-            recording->add_car({state.position, state.orientation, car.speed(), car.suspension(),
-                                world.contacts(0), car.inputs(),
-                                autopilot ? std::optional(autopilot->laps()) : std::nullopt});
-            recording->end_frame();
+            const std::optional<int> laps_done =
+                autopilot ? std::optional(autopilot->laps()) : std::nullopt;
+            recording->write_frame(world, {&laps_done, 1});
         }
         progress.show(laps > 0 ? autopilot->laps() +
                                      autopilot->distance_along() / scene.track->length_m -

@@ -42,6 +42,7 @@
 #include "trackphys/track/track_params.hpp"
 #include "trackphys/track/track_stats.hpp"
 #include "trackphys/world/autopilot.hpp"
+#include "trackphys/world/debug_draw.hpp"
 #include "trackphys/world/spawn.hpp"
 #include "trackphys/world/world.hpp"
 #include "trackphys/world/world_settings.hpp"

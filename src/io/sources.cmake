@@ -7,5 +7,6 @@ target_sources(trackphys PRIVATE
   io/off_header_check.cpp
   io/ply_header_check.cpp
   io/recording.cpp
+  io/recording_world.cpp
   io/scenario.cpp
   io/snapshot_file.cpp)

@@ -15,8 +15,11 @@
 #include "trackphys/dynamics/car_spec.hpp"
 #include "trackphys/export.hpp"
 #include "trackphys/geometry/contact.hpp"
+#include "trackphys/world/debug_draw.hpp"
 
 namespace trackphys {
+
+class World;
 
 /// What a recording's header says about the scene: enough for a viewer to draw it without
 /// anything else (docs/recording.md).
@@ -56,7 +59,10 @@ struct RecordedCar {
 /// Units are SI, world +Y up; q maps the car's body frame (+X left, +Y up, +Z forward) to
 /// the world. The file is written under a temporary name and renamed by finish(), so a
 /// run that fails never leaves a partial recording behind.
-class TRACKPHYS_API RecordingWriter {
+///
+/// write_frame records a World through its DebugDraw callbacks, so a recording holds what a
+/// game's debug draw shows; begin_frame, add_car and end_frame write a line by hand.
+class TRACKPHYS_API RecordingWriter : private DebugDraw {
   public:
     /// Opens path's temporary sibling and writes the header; throws trackphys::Error when
     /// it cannot.
@@ -65,6 +71,12 @@ class TRACKPHYS_API RecordingWriter {
     ~RecordingWriter();
     RecordingWriter(const RecordingWriter&) = delete;
     RecordingWriter& operator=(const RecordingWriter&) = delete;
+
+    /// Writes the line of the update `world` ran last: its time, state hash and update time
+    /// (when settings().profile), and each car's pose, speed, suspension, inputs and contacts
+    /// as World::debug_draw reports them. laps[k]: car k's laps completed, when someone
+    /// counts them (empty: no one does). The world's cars must be the header's.
+    void write_frame(const World& world, std::span<const std::optional<int>> laps = {});
 
     /// Starts the line of the update that ended at time t (s), with the world's state hash
     /// and, when measured, how long the update took (us).
@@ -78,11 +90,25 @@ class TRACKPHYS_API RecordingWriter {
     void finish();
 
   private:
+    // write_frame's callbacks: a car's line waits for its ellipsoids and contacts.
+    void draw_car(std::size_t index, const Car& car) override;
+    void draw_ellipsoid(const DebugEllipsoid& ellipsoid) override;
+    void draw_contact(const DebugContact& contact) override;
+    // Writes the car draw_car started, if any.
+    void add_drawn_car();
+
     std::filesystem::path path_;
     std::filesystem::path temporary_;
     std::ofstream out_;
     bool first_car_ = true;
     bool finished_ = false;
+    // The car write_frame is drawing and its laps, suspension and contacts so far (the
+    // vectors keep their capacity: no allocation per frame).
+    const Car* drawn_car_ = nullptr;
+    std::optional<int> drawn_laps_;
+    std::vector<double> drawn_suspension_;
+    std::vector<Contact> drawn_contacts_;
+    std::span<const std::optional<int>> frame_laps_;
 };
 
 }  // namespace trackphys

@@ -14,6 +14,7 @@
 #include "trackphys/export.hpp"
 #include "trackphys/geometry/contact.hpp"
 #include "trackphys/profile/update_profile.hpp"
+#include "trackphys/world/debug_draw.hpp"
 #include "trackphys/world/world_settings.hpp"
 #include "trackphys/world/world_snapshot.hpp"
 
@@ -106,6 +107,13 @@ class TRACKPHYS_API World {
     /// Records every update's phases into trace (or stops, for nullptr). The recorder must
     /// outlive its use here.
     void set_trace(TraceRecorder* trace) { trace_ = trace; }
+
+    /// Shows the cars as the last update left them to `draw` (see DebugDraw for the calls and
+    /// their order), as `options` selects. A pull: update() does nothing for it. The update
+    /// boxes and triangle lists are the working memory of the last update this object ran
+    /// for the car (none before the first; for a reset car, the undone update's; a snapshot
+    /// does not hold them, so after restore_state they predate the restore).
+    void debug_draw(DebugDraw& draw, const DebugDrawOptions& options = {}) const;
 
   private:
     // A car and its per-update working memory (src/world/car_slot.hpp): defined out of line so

@@ -1,0 +1,54 @@
+// RecordingWriter::write_frame: a World's update recorded through its DebugDraw callbacks.
+// World::debug_draw reports a car, then its ellipsoids, then its contacts; the car's line
+// is written once the next car starts or the frame ends.
+
+#include <limits>
+
+#include "trackphys/io/recording.hpp"
+#include "trackphys/world/world.hpp"
+
+namespace trackphys {
+
+void RecordingWriter::write_frame(const World& world, std::span<const std::optional<int>> laps) {
+    const std::optional<double> update_us =
+        world.settings().profile ? std::optional(world.last_profile().update_us) : std::nullopt;
+    begin_frame(world.time(), world.state_hash(), update_us);
+    frame_laps_ = laps;
+    // What the format holds; the pipeline's lists stay out.
+    world.debug_draw(*this, {.cars = true,
+                             .ellipsoids = true,
+                             .contacts = true,
+                             .update_boxes = false,
+                             .listed_triangles = false,
+                             .kept_triangles = false});
+    add_drawn_car();
+    end_frame();
+}
+
+void RecordingWriter::draw_car(std::size_t index, const Car& car) {
+    add_drawn_car();
+    drawn_car_ = &car;
+    drawn_laps_ = index < frame_laps_.size() ? frame_laps_[index] : std::nullopt;
+    drawn_suspension_.clear();
+    // No contact until draw_contact reports one (add_car writes only overlapping ones).
+    drawn_contacts_.assign(car.ellipsoid_count(),
+                           Contact{-std::numeric_limits<double>::infinity(), {}, {}});
+}
+
+void RecordingWriter::draw_ellipsoid(const DebugEllipsoid& ellipsoid) {
+    drawn_suspension_.push_back(ellipsoid.suspension);
+}
+
+void RecordingWriter::draw_contact(const DebugContact& contact) {
+    drawn_contacts_[contact.ellipsoid] = contact.contact;
+}
+
+void RecordingWriter::add_drawn_car() {
+    if (!drawn_car_) return;
+    const RigidBodyState& state = drawn_car_->state();
+    add_car({state.position, state.orientation, drawn_car_->speed(), drawn_suspension_,
+             drawn_contacts_, drawn_car_->inputs(), drawn_laps_});
+    drawn_car_ = nullptr;
+}
+
+}  // namespace trackphys

@@ -1,0 +1,277 @@
+// World::debug_draw: a DebugDraw sees exactly the cars' ellipsoid poses and the contacts
+// World::contacts reports, car by car in the documented order; the optional callbacks run
+// only when asked; and RecordingWriter::write_frame, which records through those callbacks,
+// writes the line a hand-written frame of the same world would.
+#include "trackphys/world/debug_draw.hpp"
+
+#include <algorithm>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <set>
+#include <span>
+#include <sstream>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "trackphys/io/recording.hpp"
+#include "trackphys/world/world.hpp"
+#include "world/world_scenes.hpp"
+
+namespace trackphys {
+namespace {
+
+// Every call, as it came.
+struct CallLog final : DebugDraw {
+    struct Event {
+        char kind;  // 'c'ar, 'e'llipsoid, 'k' contact, 'b'ox, 'l'isted, 'p'assed the cull
+        std::size_t car;
+    };
+    std::vector<Event> events;
+    std::vector<const Car*> cars;
+    std::vector<DebugEllipsoid> ellipsoids;
+    std::vector<DebugContact> contacts;
+    std::vector<Aabb> boxes;
+    std::vector<DebugTriangle> listed;
+    std::vector<DebugTriangle> kept;
+    std::vector<double> kept_bounds;
+
+    void draw_car(std::size_t index, const Car& car) override {
+        events.push_back({'c', index});
+        cars.push_back(&car);
+    }
+    void draw_ellipsoid(const DebugEllipsoid& e) override {
+        events.push_back({'e', e.car});
+        ellipsoids.push_back(e);
+    }
+    void draw_contact(const DebugContact& c) override {
+        events.push_back({'k', c.car});
+        contacts.push_back(c);
+    }
+    void draw_update_box(std::size_t car, const Aabb& box) override {
+        events.push_back({'b', car});
+        boxes.push_back(box);
+    }
+    void draw_listed_triangle(const DebugTriangle& t) override {
+        events.push_back({'l', t.car});
+        listed.push_back(t);
+    }
+    void draw_kept_triangle(const DebugTriangle& t, double depth_bound) override {
+        events.push_back({'p', t.car});
+        kept.push_back(t);
+        kept_bounds.push_back(depth_bound);
+    }
+};
+
+bool same_bits(const glm::dvec3& a, const glm::dvec3& b) {
+    return std::memcmp(&a, &b, sizeof a) == 0;
+}
+bool same_bits(const glm::dquat& a, const glm::dquat& b) {
+    return std::memcmp(&a, &b, sizeof a) == 0;
+}
+bool same_bits(const Contact& a, const Contact& b) {
+    return std::memcmp(&a.depth, &b.depth, sizeof a.depth) == 0 && same_bits(a.normal, b.normal) &&
+           same_bits(a.point, b.point);
+}
+
+// Three default cars on flat ground, rolling towards a wall at different speeds: wheels on
+// the road from the start, the fastest car's body against the wall within half a second.
+World three_cars() {
+    auto statics = std::make_shared<StaticWorld>();
+    statics->add(std::make_shared<StaticCollider>(test::flat_grid(60.0, 30)));
+    statics->add(std::make_shared<StaticCollider>(test::wall(6.0, 60.0, 3.0)));
+    World world(statics);
+    const CarSpec spec = CarSpec::default_car();
+    for (int k = 0; k < 3; ++k) {
+        RigidBodyState state;
+        state.position = {-10.0 + 10.0 * k, spec.lowest_point_depth() + 0.001, 0.0};
+        state.linear_velocity = {0.0, 0.0, 5.0 * (k + 1)};
+        world.add_car(spec, state);
+        world.car(static_cast<std::size_t>(k)).set_inputs({0.5, 0.0, 0.3 * (k - 1)});
+    }
+    return world;
+}
+
+// The log of one update holds every car once, in order, each with exactly its ellipsoids
+// (bit for bit what Car::world_ellipsoid gives) and exactly the overlapping contacts of
+// World::contacts; adds how many contacts it held to `contacts`.
+void expect_cars_and_contacts(const World& world, const CallLog& log, std::size_t& contacts) {
+    std::size_t expected_events = 0;
+    EXPECT_EQ(log.cars.size(), world.car_count());
+    std::size_t e = 0, c = 0, event = 0;
+    for (std::size_t k = 0; k < world.car_count() && k < log.cars.size(); ++k) {
+        const Car& car = world.car(k);
+        EXPECT_EQ(log.cars[k], &car);
+        ASSERT_LE(event + 1 + car.ellipsoid_count(), log.events.size());
+        EXPECT_EQ(log.events[event].kind, 'c');
+        EXPECT_EQ(log.events[event++].car, k);
+        for (std::size_t i = 0; i < car.ellipsoid_count(); ++i, ++e, ++event) {
+            ASSERT_LT(e, log.ellipsoids.size());
+            const DebugEllipsoid& drawn = log.ellipsoids[e];
+            const Ellipsoid placed = car.world_ellipsoid(i);
+            EXPECT_EQ(log.events[event].kind, 'e');
+            EXPECT_EQ(drawn.car, k);
+            EXPECT_EQ(drawn.ellipsoid, i);
+            EXPECT_TRUE(same_bits(drawn.shape.center(), placed.center()))
+                << "car " << k << " ellipsoid " << i;
+            EXPECT_TRUE(same_bits(drawn.shape.orientation(), placed.orientation()));
+            EXPECT_TRUE(same_bits(drawn.shape.semi_axes(), placed.semi_axes()));
+            EXPECT_EQ(drawn.role, car.spec().ellipsoids[i].role);
+            EXPECT_EQ(drawn.suspension, car.suspension(i));
+        }
+        const std::span<const Contact> reported = world.contacts(k);
+        for (std::size_t i = 0; i < reported.size(); ++i) {
+            if (!(reported[i].depth > 0.0)) continue;
+            ASSERT_LT(c, log.contacts.size())
+                << "car " << k << " ellipsoid " << i << "'s contact is missing";
+            const DebugContact& drawn = log.contacts[c++];
+            ASSERT_LT(event, log.events.size());
+            EXPECT_EQ(log.events[event++].kind, 'k');
+            EXPECT_EQ(drawn.car, k);
+            EXPECT_EQ(drawn.ellipsoid, i);
+            EXPECT_TRUE(same_bits(drawn.contact, reported[i])) << "car " << k << " ellipsoid " << i;
+        }
+        expected_events = event;
+    }
+    EXPECT_EQ(e, log.ellipsoids.size());
+    EXPECT_EQ(c, log.contacts.size()) << "contacts that World::contacts does not report";
+    EXPECT_EQ(log.events.size(), expected_events);
+    contacts += c;
+}
+
+TEST(DebugDraw, ReportsExactlyTheEllipsoidsAndTheContactsOfWorldContacts) {
+    World world = three_cars();
+    std::size_t contacts = 0;
+    std::set<std::size_t> touching_cars;
+    for (int update = 0; update < 60; ++update) {
+        world.update();
+        CallLog log;
+        world.debug_draw(log);
+        expect_cars_and_contacts(world, log, contacts);
+        for (const DebugContact& c : log.contacts) touching_cars.insert(c.car);
+        if (HasFatalFailure()) return;
+    }
+    EXPECT_GT(contacts, 60u * 3u) << "the scene should keep wheels on the road";
+    EXPECT_EQ(touching_cars.size(), 3u);
+}
+
+TEST(DebugDraw, BeforeTheFirstUpdateShowsCarsButNoContactsNorLists) {
+    World world = three_cars();
+    CallLog log;
+    world.debug_draw(log, DebugDrawOptions::all());
+    std::size_t contacts = 0;
+    expect_cars_and_contacts(world, log, contacts);
+    EXPECT_EQ(contacts, 0u);
+    EXPECT_TRUE(log.boxes.empty());
+    EXPECT_TRUE(log.listed.empty());
+    EXPECT_TRUE(log.kept.empty());
+}
+
+TEST(DebugDraw, OptionsOffCallNothingOfThem) {
+    World world = three_cars();
+    for (int update = 0; update < 5; ++update) world.update();
+
+    CallLog defaults;
+    world.debug_draw(defaults);
+    EXPECT_FALSE(defaults.contacts.empty());
+    EXPECT_TRUE(defaults.boxes.empty());
+    EXPECT_TRUE(defaults.listed.empty());
+    EXPECT_TRUE(defaults.kept.empty());
+
+    CallLog none;
+    world.debug_draw(none, {.cars = false,
+                            .ellipsoids = false,
+                            .contacts = false,
+                            .update_boxes = false,
+                            .listed_triangles = false,
+                            .kept_triangles = false});
+    EXPECT_TRUE(none.events.empty());
+
+    CallLog only_kept;
+    world.debug_draw(only_kept, {.cars = false,
+                                 .ellipsoids = false,
+                                 .contacts = false,
+                                 .update_boxes = false,
+                                 .listed_triangles = false,
+                                 .kept_triangles = true});
+    EXPECT_FALSE(only_kept.kept.empty());
+    EXPECT_EQ(only_kept.events.size(), only_kept.kept.size());
+}
+
+TEST(DebugDraw, ListsThePipelinesTrianglesAndBoxes) {
+    World world = three_cars();
+    for (int update = 0; update < 5; ++update) world.update();
+    CallLog log;
+    world.debug_draw(log, DebugDrawOptions::all());
+
+    ASSERT_EQ(log.boxes.size(), world.car_count());
+    for (std::size_t k = 0; k < world.car_count(); ++k)
+        EXPECT_TRUE(log.boxes[k].contains(world.car(k).state().position)) << "car " << k;
+    // The kept triangles are listed ones, with a positive depth bound, each the collider's
+    // own triangle; an ellipsoid with a contact kept at least one.
+    std::set<std::tuple<std::size_t, std::size_t, TriangleRef>> listed;
+    for (const DebugTriangle& t : log.listed) listed.insert({t.car, t.ellipsoid, t.ref});
+    ASSERT_FALSE(log.kept.empty());
+    for (std::size_t j = 0; j < log.kept.size(); ++j) {
+        const DebugTriangle& t = log.kept[j];
+        EXPECT_TRUE(listed.contains({t.car, t.ellipsoid, t.ref})) << "kept but not listed";
+        EXPECT_GT(log.kept_bounds[j], 0.0);
+        const Triangle stored = world.statics().collider(t.ref.collider).triangle(t.ref.triangle);
+        for (int v = 0; v < 3; ++v) EXPECT_TRUE(same_bits(t.triangle[v], stored[v]));
+    }
+    for (const DebugContact& c : log.contacts) {
+        const bool on_kept = std::any_of(
+            log.kept.begin(), log.kept.end(),
+            [&](const DebugTriangle& t) { return t.car == c.car && t.ellipsoid == c.ellipsoid; });
+        EXPECT_TRUE(on_kept) << "car " << c.car << " ellipsoid " << c.ellipsoid
+                             << " has a contact but no kept triangle";
+    }
+}
+
+std::string read_file(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
+// write_frame records through the DebugDraw callbacks; the line must be the one written by
+// hand from the same world, byte for byte, laps included.
+TEST(DebugDraw, RecordingWriterWritesTheLineOfAHandWrittenFrame) {
+    World world = three_cars();
+    RecordingHeader header;
+    header.car_ellipsoids.assign(3, CarSpec::default_car().ellipsoids);
+    const std::filesystem::path folder = std::filesystem::temp_directory_path();
+    const std::filesystem::path drawn_file = folder / "trackphys_debug_draw_drawn.jsonl";
+    const std::filesystem::path by_hand_file = folder / "trackphys_debug_draw_by_hand.jsonl";
+    {
+        RecordingWriter drawn(drawn_file, header);
+        RecordingWriter by_hand(by_hand_file, header);
+        const std::vector<std::optional<int>> laps = {2, std::nullopt, 0};
+        for (int update = 0; update < 40; ++update) {
+            world.update();
+            drawn.write_frame(world, laps);
+            by_hand.begin_frame(world.time(), world.state_hash(), world.last_profile().update_us);
+            for (std::size_t k = 0; k < world.car_count(); ++k) {
+                const Car& car = world.car(k);
+                by_hand.add_car({car.state().position, car.state().orientation, car.speed(),
+                                 car.suspension(), world.contacts(k), car.inputs(), laps[k]});
+            }
+            by_hand.end_frame();
+        }
+        drawn.finish();
+        by_hand.finish();
+    }
+    const std::string drawn = read_file(drawn_file), by_hand = read_file(by_hand_file);
+    std::filesystem::remove(drawn_file);
+    std::filesystem::remove(by_hand_file);
+    EXPECT_NE(drawn.find("\"contacts\":[["), std::string::npos) << "no contact recorded";
+    EXPECT_EQ(drawn, by_hand);
+}
+
+}  // namespace
+}  // namespace trackphys
