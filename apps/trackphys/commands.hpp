@@ -22,5 +22,6 @@ void add_drive_command(CLI::App& app);
 void add_track_command(CLI::App& app);
 void add_info_command(CLI::App& app);
 void add_bench_command(CLI::App& app);
+void add_bake_command(CLI::App& app);
 
 }  // namespace trackphys::cli
