@@ -77,10 +77,8 @@ void print_map_info(const std::string& file, bool json) {
                 s.slab_thickness);
     std::printf("%-20s %zu\n", "colliders", f.colliders);
     std::printf("%-20s %zu (%zu kept)\n", "triangles", f.triangles, f.kept);
-    std::printf("%-20s %.3f %.3f %.3f m\n", "bounds min", bounds.min.x, bounds.min.y,
-                bounds.min.z);
-    std::printf("%-20s %.3f %.3f %.3f m\n", "bounds max", bounds.max.x, bounds.max.y,
-                bounds.max.z);
+    std::printf("%-20s %.3f %.3f %.3f m\n", "bounds min", bounds.min.x, bounds.min.y, bounds.min.z);
+    std::printf("%-20s %.3f %.3f %.3f m\n", "bounds max", bounds.max.x, bounds.max.y, bounds.max.z);
     if (map.track)
         std::printf("%-20s seed %llu, %.3f m, %zu centreline samples\n", "track",
                     static_cast<unsigned long long>(map.track->params.seed), map.track->length_m,

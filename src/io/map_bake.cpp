@@ -24,7 +24,8 @@ StaticMap bake_map(std::span<const TriangleMesh> meshes, const PlaneTreeSettings
         for (std::size_t i = next++; i < n; i = next++) {
             try {
                 auto collider = std::make_shared<StaticCollider>(meshes[i]);
-                trees[i] = std::make_shared<PlaneTree>(make_collider_plane_tree(*collider, settings));
+                trees[i] =
+                    std::make_shared<PlaneTree>(make_collider_plane_tree(*collider, settings));
                 colliders[i] = std::move(collider);
             } catch (...) {
                 errors[i] = std::current_exception();
@@ -60,8 +61,9 @@ StaticMap bake_track_map(const Track& track, const PlaneTreeSettings& settings, 
     meshes.reserve(track.chunks.size());
     for (const TrackChunk& chunk : track.chunks) meshes.push_back(chunk.mesh);
     StaticMap map = bake_map(meshes, settings, threads);
-    map.track = Track{track.params,      track.length_m, track.centerline, {},
-                      track.bezier_segment_count, track.rejected_shapes};
+    map.track = Track{
+        track.params,         track.length_m, track.centerline, {}, track.bezier_segment_count,
+        track.rejected_shapes};
     return map;
 }
 

@@ -38,8 +38,8 @@ class MapChecksum {
     std::uint64_t value() const;
 
   private:
-    std::uint64_t lanes_[4] = {0xcbf29ce484222325ull, 0x84222325cbf29ce4ull,
-                               0x9ce484222325cbf2ull, 0x2325cbf29ce48422ull};
+    std::uint64_t lanes_[4] = {0xcbf29ce484222325ull, 0x84222325cbf29ce4ull, 0x9ce484222325cbf2ull,
+                               0x2325cbf29ce48422ull};
     std::uint64_t words_ = 0;
 };
 
@@ -57,7 +57,8 @@ class BodyWriter {
     template <class T>
     void array(const std::vector<T>& values) {
         static_assert(std::is_trivially_copyable_v<T>);
-        pieces_.push_back({reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T)});
+        pieces_.push_back(
+            {reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T)});
     }
 
     /// Body bytes, padding included.

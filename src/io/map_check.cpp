@@ -96,8 +96,7 @@ void MapCodec::check_collider(StaticCollider& c) {
     for (std::size_t s = 0; s < slots; ++s) {
         const std::uint32_t t = c.slot_triangle(static_cast<std::uint32_t>(s));
         if (t >= c.triangle_to_slot_.size() || c.triangle_to_slot_[t] != s)
-            fail(at("slot", s) + "mesh triangle " + std::to_string(t) +
-                 " does not map back to it");
+            fail(at("slot", s) + "mesh triangle " + std::to_string(t) + " does not map back to it");
     }
 
     for (std::size_t g = 0; g < c.grids_.size(); ++g)

@@ -73,7 +73,8 @@ MapCodec::Loaded MapCodec::read(map_detail::BodyReader& body) {
     // The frames the tree's queries read are the collider's own, in the tree's leaf order:
     // derived, so not stored (120 bytes a triangle, more than everything else).
     tree->triangles_.reserve(tree->ids_.size());
-    for (const std::uint32_t id : tree->ids_) tree->triangles_.push_back(c->normalized_triangle(id));
+    for (const std::uint32_t id : tree->ids_)
+        tree->triangles_.push_back(c->normalized_triangle(id));
     return {std::move(c), std::move(tree)};
 }
 

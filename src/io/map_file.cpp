@@ -67,20 +67,11 @@ static_assert(sizeof(TrackParamsRecord) == 112);
 static_assert(sizeof(CenterlineSample) == 120, "a centreline sample is stored as its bytes");
 
 TrackParamsRecord to_record(const TrackParams& p) {
-    return {p.seed,
-            p.length_m,
-            p.width_m,
-            p.max_bank_deg,
-            p.full_bank_radius_m,
-            p.elevation_amplitude_m,
-            p.wall_height_m,
-            p.wall_thickness_m,
-            p.min_turn_radius_m,
-            p.edge_tight_m,
-            p.edge_straight_m,
-            p.tight_radius_m,
-            p.strips,
-            p.chunk_length_m};
+    return {p.seed,          p.length_m,           p.width_m,
+            p.max_bank_deg,  p.full_bank_radius_m, p.elevation_amplitude_m,
+            p.wall_height_m, p.wall_thickness_m,   p.min_turn_radius_m,
+            p.edge_tight_m,  p.edge_straight_m,    p.tight_radius_m,
+            p.strips,        p.chunk_length_m};
 }
 
 TrackParams from_record(const TrackParamsRecord& r) {
@@ -221,7 +212,8 @@ void write_map(std::ostream& out, const StaticMap& map) {
     else
         body.record(record);
     for (std::uint32_t id = 0; id < world.size(); ++id) {
-        if (!map.plane_trees[id]) throw Error("map: collider " + std::to_string(id) + " has no plane tree");
+        if (!map.plane_trees[id])
+            throw Error("map: collider " + std::to_string(id) + " has no plane tree");
         detail::MapCodec::write(body, world.collider(id), *map.plane_trees[id]);
     }
     Header header = make_header(map.plane_tree_settings, body.size());
@@ -238,7 +230,8 @@ StaticMap decode_checked(std::string_view bytes, const std::optional<PlaneTreeSe
     if (bytes.size() >= sizeof kMagic && std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0)
         throw Error("wrong magic (not a trackphys map file)");
     if (bytes.size() < sizeof(Header))
-        throw Error(std::to_string(bytes.size()) + " bytes, shorter than the 64-byte header "
+        throw Error(std::to_string(bytes.size()) +
+                    " bytes, shorter than the 64-byte header "
                     "(truncated or not a map)");
     Header h;
     std::memcpy(&h, bytes.data(), sizeof h);
@@ -355,7 +348,8 @@ StaticMap load_static_world(const std::filesystem::path& path,
     std::string bytes;
     if (std::fseek(file.get(), 0, SEEK_END) != 0) throw Error(source + ": cannot read it");
     const long size = std::ftell(file.get());
-    if (size < 0 || std::fseek(file.get(), 0, SEEK_SET) != 0) throw Error(source + ": cannot read it");
+    if (size < 0 || std::fseek(file.get(), 0, SEEK_SET) != 0)
+        throw Error(source + ": cannot read it");
     bytes.resize(static_cast<std::size_t>(size));
     if (std::fread(bytes.data(), 1, bytes.size(), file.get()) != bytes.size())
         throw Error(source + ": cannot read it");

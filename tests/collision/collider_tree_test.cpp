@@ -43,8 +43,8 @@ std::vector<TriangleRef> brute_aabb(const StaticWorld& w, const Aabb& box) {
         if (w.collider(id).bounds().overlaps(box)) w.collider(id).query_aabb_refs(box, id, out);
     return out;
 }
-std::optional<WorldRayHit> brute_ray(const StaticWorld& w, const glm::dvec3& o,
-                                     const glm::dvec3& d, double max) {
+std::optional<WorldRayHit> brute_ray(const StaticWorld& w, const glm::dvec3& o, const glm::dvec3& d,
+                                     double max) {
     std::optional<WorldRayHit> best;
     for (std::uint32_t id = 0; id < w.size(); ++id) {
         const auto hit = w.collider(id).raycast(o, d, best ? best->hit.distance : max);

@@ -197,9 +197,9 @@ TEST(MapFile, EveryAlteredHeaderFieldIsAnError) {
         std::size_t at, size;
         const char* says;
     } fields[] = {
-        {0, 8, "wrong magic"},         {8, 4, "format version"}, {12, 4, "header claims"},
-        {16, 8, "body bytes"},         {24, 8, "checksum"},      {32, 4, "checksum"},
-        {36, 4, "checksum"},           {40, 8, "checksum"},      {48, 8, "checksum"},
+        {0, 8, "wrong magic"}, {8, 4, "format version"}, {12, 4, "header claims"},
+        {16, 8, "body bytes"}, {24, 8, "checksum"},      {32, 4, "checksum"},
+        {36, 4, "checksum"},   {40, 8, "checksum"},      {48, 8, "checksum"},
         {56, 8, "checksum"},
     };
     for (const auto& f : fields) {
@@ -281,8 +281,9 @@ TEST(MapFile, AnotherVersionOrOtherBuildOptionsAreNamed) {
     std::string bytes = baked_bytes();
     const std::uint32_t version = kMapFormatVersion + 1;
     std::memcpy(bytes.data() + 8, &version, 4);
-    EXPECT_NE(error_of([&] { decode_map(resealed(bytes)); })
-                  .find("format version 2, this build reads only version 1"),
+    EXPECT_NE(error_of([&] {
+                  decode_map(resealed(bytes));
+              }).find("format version 2, this build reads only version 1"),
               std::string::npos);
 
     TriangleMesh quad;

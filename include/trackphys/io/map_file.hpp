@@ -42,16 +42,15 @@ struct StaticMap {
 /// `settings`, on up to `threads` threads (0: std::thread::hardware_concurrency()). The
 /// result does not depend on the thread count. Throws trackphys::Error naming the mesh
 /// when a StaticCollider refuses it.
-TRACKPHYS_API StaticMap bake_map(std::span<const TriangleMesh> meshes,
-                                 const PlaneTreeSettings& settings = PlaneTreeSettings::precomputed(),
-                                 unsigned threads = 0);
+TRACKPHYS_API StaticMap bake_map(
+    std::span<const TriangleMesh> meshes,
+    const PlaneTreeSettings& settings = PlaneTreeSettings::precomputed(), unsigned threads = 0);
 
 /// bake_map over a generated track's chunks (one collider per chunk, as a World built from
 /// the track gets), keeping the track (without its chunks) in the map.
-TRACKPHYS_API StaticMap bake_track_map(const Track& track,
-                                       const PlaneTreeSettings& settings =
-                                           PlaneTreeSettings::precomputed(),
-                                       unsigned threads = 0);
+TRACKPHYS_API StaticMap bake_track_map(
+    const Track& track, const PlaneTreeSettings& settings = PlaneTreeSettings::precomputed(),
+    unsigned threads = 0);
 
 /// The map file's bytes (layout in docs/tpmap.md): a 64-byte header (magic, format version,
 /// body length, checksum, plane-tree build options), then the body: records and raw arrays,
@@ -67,9 +66,9 @@ TRACKPHYS_API std::string encode_map(const StaticMap& map);
 /// cycle, a tree too deep, a coordinate not finite): the structure is verified once, in
 /// time linear in its size, so that no query on a loaded map can read out of bounds or
 /// loop. Nothing is ever half-loaded.
-TRACKPHYS_API StaticMap decode_map(std::string_view bytes, const std::string& source = "map",
-                                   const std::optional<PlaneTreeSettings>& expected =
-                                       PlaneTreeSettings::precomputed());
+TRACKPHYS_API StaticMap
+decode_map(std::string_view bytes, const std::string& source = "map",
+           const std::optional<PlaneTreeSettings>& expected = PlaneTreeSettings::precomputed());
 
 /// Writes the map file atomically (to a temporary file beside `path`, then renamed over
 /// it). Throws trackphys::Error naming the path and the reason.
@@ -77,9 +76,9 @@ TRACKPHYS_API void save_map(const std::filesystem::path& path, const StaticMap& 
 
 /// Reads a map file (one read of the whole file) and decodes it (decode_map, the source
 /// named by its path).
-TRACKPHYS_API StaticMap load_static_world(const std::filesystem::path& path,
-                                          const std::optional<PlaneTreeSettings>& expected =
-                                              PlaneTreeSettings::precomputed());
+TRACKPHYS_API StaticMap load_static_world(
+    const std::filesystem::path& path,
+    const std::optional<PlaneTreeSettings>& expected = PlaneTreeSettings::precomputed());
 
 /// True when the file starts with the map magic (any version): what `trackphys info` uses to
 /// tell a map from a mesh file. False for a file it cannot read.
