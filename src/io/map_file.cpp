@@ -345,15 +345,17 @@ StaticMap load_static_world(const std::filesystem::path& path,
     std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"),
                                                          &std::fclose);
     if (!file) throw Error(source + ": cannot open it");
-    std::string bytes;
     if (std::fseek(file.get(), 0, SEEK_END) != 0) throw Error(source + ": cannot read it");
     const long size = std::ftell(file.get());
     if (size < 0 || std::fseek(file.get(), 0, SEEK_SET) != 0)
         throw Error(source + ": cannot read it");
-    bytes.resize(static_cast<std::size_t>(size));
-    if (std::fread(bytes.data(), 1, bytes.size(), file.get()) != bytes.size())
+    // Not a std::string: its resize would write every byte once before the read does.
+    const auto bytes = std::make_unique_for_overwrite<char[]>(static_cast<std::size_t>(size));
+    if (std::fread(bytes.get(), 1, static_cast<std::size_t>(size), file.get()) !=
+        static_cast<std::size_t>(size))
         throw Error(source + ": cannot read it");
-    return decode_map(bytes, source, expected);
+    return decode_map(std::string_view(bytes.get(), static_cast<std::size_t>(size)), source,
+                      expected);
 }
 
 bool is_map_file(const std::filesystem::path& path) {
