@@ -94,6 +94,7 @@ void add_bake_command(CLI::App& app) {
         ->check(CLI::PositiveNumber)
         ->capture_default_str();
     command->add_option("--threads", o->threads, "threads to build on (0: one per core)")
+        ->check(not_negative())
         ->capture_default_str();
     command->callback([o, command] { run_bake(*o, *command); });
 }

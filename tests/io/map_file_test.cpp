@@ -6,11 +6,13 @@
 
 #include <algorithm>
 #include <cstring>
+#include <filesystem>
 #include <random>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include "io/map_body.hpp"
 #include "io/map_codec.hpp"
@@ -299,6 +301,27 @@ TEST(MapFile, AnotherVersionOrOtherBuildOptionsAreNamed) {
     EXPECT_NE(message.find("slab thickness 0.3 m"), std::string::npos) << message;
     EXPECT_EQ(decode_map(other_bytes, "q", other).plane_tree_settings.slab_thickness, 0.3);
     EXPECT_EQ(decode_map(other_bytes, "q", std::nullopt).statics->size(), 1u);
+}
+
+TEST(MapFile, SaveAndLoadNameTheFileAndLeaveNoPartialFile) {
+    const std::filesystem::path folder = std::filesystem::temp_directory_path() /
+                                         ("trackphys-map-test-" + std::to_string(::getpid()));
+    std::filesystem::create_directories(folder);
+    const std::filesystem::path file = folder / "track.tpmap";
+    save_map(file, baked());
+    EXPECT_EQ(load_static_world(file).statics->size(), baked().statics->size());
+    EXPECT_TRUE(is_map_file(file));
+    EXPECT_EQ(std::filesystem::directory_iterator(folder)->path(), file) << "a leftover file";
+
+    const std::string missing = error_of([&] { load_static_world(folder / "none.tpmap"); });
+    EXPECT_NE(missing.find("none.tpmap': cannot open it"), std::string::npos) << missing;
+    EXPECT_NE(error_of([&] { load_static_world(folder); }).find("is a folder"), std::string::npos);
+    EXPECT_NE(error_of([&] {
+                  save_map(folder / "no" / "such.tpmap", baked());
+              }).find("cannot write the map"),
+              std::string::npos);
+    EXPECT_FALSE(is_map_file(folder / "none.tpmap"));
+    std::filesystem::remove_all(folder);
 }
 
 TEST(MapFile, MeshChunksCoverTheMeshOnce) {
