@@ -92,8 +92,9 @@ void bench_maps(BenchRun& run) {
 
     run.progress("maps", "baking");
     StaticMap map;
-    const auto [bake_ms, bake_cpu_ms] =
-        median_ms(run.batches(1, 3), [&] { map = bake_track_map(track, PlaneTreeSettings::precomputed(), 2); });
+    const auto [bake_ms, bake_cpu_ms] = median_ms(run.batches(1, 3), [&] {
+        map = bake_track_map(track, PlaneTreeSettings::precomputed(), 2);
+    });
     const std::filesystem::path file = std::filesystem::temp_directory_path() /
                                        ("trackphys-bench-" + std::to_string(::getpid()) + ".tpmap");
     const auto [save_ms, save_cpu_ms] = median_ms(1, [&] { save_map(file, map); });
@@ -104,7 +105,8 @@ void bench_maps(BenchRun& run) {
         median_ms(run.batches(3, 11), [&] { keep(load_static_world(file).statics->size()); });
     std::filesystem::remove(file);
 
-    BenchRow& build_row = run.add("maps", "default track: build colliders + plane trees", build_ms * 1e6);
+    BenchRow& build_row =
+        run.add("maps", "default track: build colliders + plane trees", build_ms * 1e6);
     build_row.figures = {{"triangles", triangles},
                          {"collider_bytes_per_triangle", double(collider_bytes) / triangles},
                          {"plane_tree_bytes_per_triangle", double(tree_bytes) / triangles}};
@@ -114,11 +116,13 @@ void bench_maps(BenchRun& run) {
     bake_row.figures = {{"write_ms", save_ms}};
     BenchRow& load_row = run.add("maps", "default track: load the map", load_ms * 1e6,
                                  "default track: build colliders + plane trees");
-    load_row.figures = {{"cpu_ms", load_cpu_ms}, {"file_bytes_per_triangle", file_bytes / triangles}};
+    load_row.figures = {{"cpu_ms", load_cpu_ms},
+                        {"file_bytes_per_triangle", file_bytes / triangles}};
     load_row.note = "one read, arrays copied, frames derived";
     // CPU time for the load: the machine is shared, and wall time counts others' turns.
-    run.add_target("default track: load a baked map <= 50 ms (thread CPU)", 50.0 / load_cpu_ms, 1.0,
-                   true, std::to_string(load_cpu_ms) + " ms CPU, " + std::to_string(load_ms) + " ms wall");
+    run.add_target(
+        "default track: load a baked map <= 50 ms (thread CPU)", 50.0 / load_cpu_ms, 1.0, true,
+        std::to_string(load_cpu_ms) + " ms CPU, " + std::to_string(load_ms) + " ms wall");
     run.add_target("default track: bake <= 0.5 s", 500.0 / bake_ms, 1.0, true,
                    std::to_string(bake_ms) + " ms on 2 threads");
 }
@@ -178,8 +182,8 @@ void bench_many_colliders(BenchRun& run) {
     run.add("colliders", "car box, 10,000 colliders, every box tested",
             loop_ns / double(boxes.size()), "car box, 49 colliders")
         .note = "StaticWorld before its top-level tree";
-    run.add_target("10,000 colliders: car-box query within 2x of 50", 2.0 * per_query_few / per_query_many,
-                   1.0, found_few == found_many,
+    run.add_target("10,000 colliders: car-box query within 2x of 50",
+                   2.0 * per_query_few / per_query_many, 1.0, found_few == found_many,
                    std::to_string(found_few) + " vs " + std::to_string(found_many) + " triangles");
 }
 
