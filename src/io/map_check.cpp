@@ -118,45 +118,46 @@ void MapCodec::check_collider(StaticCollider& c) {
         const Entry e = stack.back();
         stack.pop_back();
         const BvhNode& n = c.nodes_[e.node];
-        const std::string where = at("BVH node", e.node);
+        // Messages are built only on failure (these run per node).
+        const auto where = [&] { return at("BVH node", e.node); };
         if (e.depth >= collision_detail::kMaxTreeDepth)
-            fail(where + "deeper than " + std::to_string(collision_detail::kMaxTreeDepth));
+            fail(where() + "deeper than " + std::to_string(collision_detail::kMaxTreeDepth));
         if (n.first[0] != e.begin)
-            fail(where + "lane 0 starts at slot " + std::to_string(n.first[0]) + ", not " +
+            fail(where() + "lane 0 starts at slot " + std::to_string(n.first[0]) + ", not " +
                  std::to_string(e.begin));
         bool has_leaf = false;
         for (int i = 0; i < BvhNode::kWidth; ++i) {
-            const std::string lane = where + "lane " + std::to_string(i) + ": ";
+            const auto lane = [&] { return where() + "lane " + std::to_string(i) + ": "; };
             const std::uint32_t first = n.first[i], end = n.end(i, e.end);
             if (!(first <= end && end <= e.end))
-                fail(lane + "slots [" + std::to_string(first) + ", " + std::to_string(end) +
+                fail(lane() + "slots [" + std::to_string(first) + ", " + std::to_string(end) +
                      ") outside the node's [" + std::to_string(e.begin) + ", " +
                      std::to_string(e.end) + ")");
             if (is_nan_lane(n, i)) {
                 if (first != end || n.child[i] != BvhNode::kLeaf)
-                    fail(lane + "an empty lane with slots or a child");
+                    fail(lane() + "an empty lane with slots or a child");
                 continue;
             }
-            if (!is_box_lane(n, i)) fail(lane + "bounds neither a box nor empty (NaN)");
-            if (first == end) fail(lane + "a box over no slots");
+            if (!is_box_lane(n, i)) fail(lane() + "bounds neither a box nor empty (NaN)");
+            if (first == end) fail(lane() + "a box over no slots");
             if (n.child[i] == BvhNode::kLeaf) {
                 if (end - first > collision_detail::kMaxLeafLaneSize)
-                    fail(lane + "a leaf of " + std::to_string(end - first) + " slots, more than " +
-                         std::to_string(collision_detail::kMaxLeafLaneSize));
+                    fail(lane() + "a leaf of " + std::to_string(end - first) +
+                         " slots, more than " + std::to_string(collision_detail::kMaxLeafLaneSize));
                 has_leaf = true;
                 continue;
             }
             const std::uint32_t child = n.child[i];
             if (child >= c.nodes_.size())
-                fail(lane + "child " + std::to_string(child) + " out of range (" +
+                fail(lane() + "child " + std::to_string(child) + " out of range (" +
                      std::to_string(c.nodes_.size()) + " nodes)");
-            if (reached[child]) fail(lane + "child " + std::to_string(child) + " reached twice");
+            if (reached[child]) fail(lane() + "child " + std::to_string(child) + " reached twice");
             reached[child] = 1;
             ++reached_count;
             stack.push_back({child, first, end, e.depth + 1});
         }
         if (has_leaf && c.node_grid_[e.node] >= c.grids_.size())
-            fail(where + "grid " + std::to_string(c.node_grid_[e.node]) + " out of range (" +
+            fail(where() + "grid " + std::to_string(c.node_grid_[e.node]) + " out of range (" +
                  std::to_string(c.grids_.size()) + " grids)");
     }
     if (reached_count != c.nodes_.size())
@@ -193,30 +194,30 @@ int MapCodec::check_plane_tree(const PlaneTree& tree, const StaticCollider& c) {
         const Entry e = stack.back();
         stack.pop_back();
         const PlaneTreeNode& n = nodes[e.node];
-        const std::string where = at("plane-tree node", e.node);
+        const auto where = [&] { return at("plane-tree node", e.node); };
         if (e.depth > PlaneTreeSettings::kMaxDepth)
-            fail(where + "deeper than " + std::to_string(PlaneTreeSettings::kMaxDepth));
-        if (n.has_slab() && tree.slabs_.empty()) fail(where + "a slab flag without slabs");
+            fail(where() + "deeper than " + std::to_string(PlaneTreeSettings::kMaxDepth));
+        if (n.has_slab() && tree.slabs_.empty()) fail(where() + "a slab flag without slabs");
         if (n.is_leaf()) {
             if (n.first != next_slot)
-                fail(where + "leaf starts at slot " + std::to_string(n.first) + ", not " +
+                fail(where() + "leaf starts at slot " + std::to_string(n.first) + ", not " +
                      std::to_string(next_slot));
             next_slot += n.count();
             if (next_slot > slots)
-                fail(where + "leaf ends past the " + std::to_string(slots) + " slots");
+                fail(where() + "leaf ends past the " + std::to_string(slots) + " slots");
             deepest = std::max(deepest, e.depth);
             continue;
         }
         if (n.first >= nodes.size() || nodes.size() - n.first < 2)
-            fail(where + "children " + std::to_string(n.first) + " out of range (" +
+            fail(where() + "children " + std::to_string(n.first) + " out of range (" +
                  std::to_string(nodes.size()) + " nodes)");
         for (const std::uint32_t child : {n.first, n.first + 1}) {
-            if (reached[child]) fail(where + "child " + std::to_string(child) + " reached twice");
+            if (reached[child]) fail(where() + "child " + std::to_string(child) + " reached twice");
             reached[child] = 1;
             ++reached_count;
         }
         if (std::uint64_t{nodes[n.first].count()} + nodes[n.first + 1].count() != n.count())
-            fail(where + "counts " + std::to_string(n.count()) + " triangles, its children " +
+            fail(where() + "counts " + std::to_string(n.count()) + " triangles, its children " +
                  std::to_string(nodes[n.first].count() + nodes[n.first + 1].count()));
         stack.push_back({n.first + 1, e.depth + 1});
         stack.push_back({n.first, e.depth + 1});
