@@ -52,6 +52,7 @@ std::uint32_t StaticWorld::add(std::shared_ptr<const StaticCollider> collider) {
     if (!collider) throw Error("StaticWorld::add: the collider is null");
     if (colliders_.size() >= std::numeric_limits<std::uint32_t>::max())
         throw Error("StaticWorld::add: too many colliders");
+    if (!tree_) tree_ = std::make_unique<Tree>();  // a moved-from world, used again
     bounds_.push_back(collider->bounds());
     colliders_.push_back(std::move(collider));
     tree_->built.store(false, std::memory_order_relaxed);
@@ -66,11 +67,13 @@ const StaticCollider& StaticWorld::collider(std::uint32_t id) const {
 }
 
 void StaticWorld::query_aabb(const Aabb& box, std::vector<TriangleRef>& out) const {
+    if (colliders_.empty()) return;
     tree().tree.visit_overlapping(
         bounds_, box, [&](std::uint32_t id) { colliders_[id]->query_aabb_refs(box, id, out); });
 }
 
 void StaticWorld::colliders_overlapping(const Aabb& box, std::vector<std::uint32_t>& out) const {
+    if (colliders_.empty()) return;
     tree().tree.visit_overlapping(bounds_, box, [&](std::uint32_t id) { out.push_back(id); });
 }
 
@@ -80,6 +83,7 @@ std::optional<WorldRayHit> StaticWorld::raycast(const glm::dvec3& origin,
     const collision_detail::RayQuery ray =
         collision_detail::make_ray_query(origin, unit_dir, max_distance);
     std::optional<WorldRayHit> best;
+    if (colliders_.empty()) return best;
     double limit = ray.max_distance;
     // Colliders come in id order, each box tested against the best distance so far (a
     // node's box holds its colliders', and the span test is monotone in the box, so a node

@@ -68,7 +68,9 @@ void expect_brute_force(const StaticWorld& w, int queries) {
         w.colliders_overlapping(box, ids);
         for (std::size_t k = 0; k < ids.size(); ++k) {
             ASSERT_TRUE(w.collider(ids[k]).bounds().overlaps(box));
-            if (k > 0) ASSERT_LT(ids[k - 1], ids[k]);
+            if (k > 0) {
+                ASSERT_LT(ids[k - 1], ids[k]);
+            }
         }
         const glm::dvec3 d = glm::normalize(glm::dvec3(unit(rng), unit(rng) - 1.5, unit(rng)));
         const glm::dvec3 o = c + glm::dvec3(0.0, 20.0, 0.0);
@@ -99,6 +101,22 @@ TEST(ColliderTree, CollidersAddedAfterAQueryAreFound) {
     ASSERT_EQ(refs.size(), 2u);
     EXPECT_EQ(refs[0].collider, id);
     expect_brute_force(*world, 200);
+}
+
+TEST(ColliderTree, AMovedWorldKeepsItsTreeAndTheMovedFromOneWorksAgain) {
+    StaticWorld world;
+    world.add(std::make_shared<StaticCollider>(tile(0, 0, 0)));
+    std::vector<TriangleRef> refs;
+    const Aabb box{{-1, -1, -1}, {5, 1, 5}};
+    world.query_aabb(box, refs);
+    StaticWorld moved = std::move(world);
+    refs.clear();
+    moved.query_aabb(box, refs);
+    EXPECT_EQ(refs.size(), 2u);
+    world.add(std::make_shared<StaticCollider>(tile(0, 0, 0)));  // moved from: empty again
+    refs.clear();
+    world.query_aabb(box, refs);
+    EXPECT_EQ(refs.size(), 2u);
 }
 
 }  // namespace
