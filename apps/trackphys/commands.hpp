@@ -23,5 +23,6 @@ void add_track_command(CLI::App& app);
 void add_info_command(CLI::App& app);
 void add_bench_command(CLI::App& app);
 void add_view_command(CLI::App& app);
+void add_bake_command(CLI::App& app);
 
 }  // namespace trackphys::cli

@@ -63,6 +63,7 @@ constexpr double kMaxSecondsPerLap = 600.0;
 // The option that sets each Scenario field, to name it in Scenario::validate()'s messages.
 constexpr std::pair<const char*, const char*> kFieldOptions[] = {
     {"Scenario.mesh", "--mesh"},
+    {"Scenario.map", "--map"},
     {"Scenario.spawn", "--spawn"},
     {"Scenario.heading_deg", "--heading"},
     {"Scenario.target_speed_kmh", "--target-speed"},
@@ -82,6 +83,7 @@ Scenario build_scenario(const DriveOptions& o, const CLI::App& command) {
     const Scenario& f = o.flags;
     if (given("--seed")) s.seed = f.seed;
     if (given("--mesh")) s.mesh = f.mesh;
+    if (given("--map")) s.map = f.map;
     if (given("--spawn")) s.spawn = glm::dvec3(o.spawn.at(0), o.spawn.at(1), o.spawn.at(2));
     if (given("--heading")) s.heading_deg = f.heading_deg;
     if (given("--target-speed")) s.target_speed_kmh = f.target_speed_kmh;
@@ -93,6 +95,9 @@ Scenario build_scenario(const DriveOptions& o, const CLI::App& command) {
     if (given("--seed") && !s.mesh.empty())
         throw Error("--seed picks a generated track, but this drive is on the mesh '" +
                     s.mesh.string() + "'");
+    if (given("--seed") && !s.map.empty())
+        throw Error("--seed picks a generated track, but this drive is on the map '" +
+                    s.map.string() + "'");
     if (given("--target-speed") && s.free_mode())
         throw Error(
             "--target-speed sets the autopilot, which does not drive in free mode (a spawn point): "
@@ -165,6 +170,7 @@ void run(const DriveOptions& o, const CLI::App& command) {
         // A scenario file reads relative names from its own folder, wherever it is saved.
         Scenario printed = s;
         if (!printed.mesh.empty()) printed.mesh = std::filesystem::absolute(printed.mesh);
+        if (!printed.map.empty()) printed.map = std::filesystem::absolute(printed.map);
         std::fputs(scenario_to_json(printed).c_str(), stdout);
         return;
     }
@@ -192,8 +198,14 @@ void run(const DriveOptions& o, const CLI::App& command) {
         session = saved;
     }
 
-    const DriveScene scene = s.mesh.empty() ? make_track_scene(s.seed) : make_mesh_scene(s.mesh);
-    World world(scene.statics);
+    const DriveScene scene = !s.map.empty()    ? make_map_scene(s.map)
+                             : !s.mesh.empty() ? make_mesh_scene(s.mesh)
+                                               : make_track_scene(s.seed);
+    if (!s.free_mode() && !scene.track)
+        throw Error("the map '" + s.map.string() +
+                    "' was baked from a mesh and has no centreline for the autopilot: give "
+                    "--spawn x,y,z to drive it in free mode");
+    World world(scene.statics, {}, scene.plane_trees);
     const RigidBodyState start =
         s.free_mode() ? spawn_on_surface(*scene.statics, s.car, *s.spawn, s.heading_deg)
                       : start_on_track(*scene.track, s.car);
@@ -357,6 +369,9 @@ void add_drive_command(CLI::App& app) {
         ->capture_default_str();
     command->add_option("--mesh", o->flags.mesh,
                         "Drive on this mesh file instead (free mode, needs --spawn)");
+    command->add_option("--map", o->flags.map,
+                        "Drive on this baked map (trackphys bake): by autopilot when it was "
+                        "baked from a generated track, else in free mode (needs --spawn)");
     command->add_option("--laps", o->flags.laps,
                         "Laps to drive by autopilot (default 1 without --seconds)");
     command->add_option("--seconds", o->flags.seconds, "Simulated seconds to drive");

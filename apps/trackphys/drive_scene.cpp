@@ -8,6 +8,7 @@
 
 #include "trackphys/error.hpp"
 #include "trackphys/geometry/ellipsoid.hpp"
+#include "trackphys/io/map_file.hpp"
 #include "trackphys/io/mesh_io.hpp"
 #include "trackphys/world/spawn.hpp"
 
@@ -49,6 +50,18 @@ DriveScene make_mesh_scene(const std::filesystem::path& mesh) {
     }
     scene.statics = std::move(statics);
     scene.description = "mesh " + mesh.string();
+    return scene;
+}
+
+DriveScene make_map_scene(const std::filesystem::path& map) {
+    StaticMap loaded = load_static_world(map);
+    DriveScene scene;
+    scene.track = std::move(loaded.track);
+    for (std::uint32_t id = 0; id < loaded.statics->size(); ++id)
+        scene.triangle_count += loaded.statics->collider(id).mesh_triangle_count();
+    scene.statics = std::move(loaded.statics);
+    scene.plane_trees = std::move(loaded.plane_trees);
+    scene.description = "map " + map.string();
     return scene;
 }
 

@@ -7,6 +7,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "trackphys/collision/mid_phase_mode.hpp"
 #include "trackphys/collision/static_world.hpp"
 #include "trackphys/dynamics/car_spec.hpp"
 #include "trackphys/dynamics/rigid_body.hpp"
@@ -19,6 +20,7 @@ namespace trackphys::cli {
 struct DriveScene {
     std::optional<Track> track;  ///< set for a generated track
     std::shared_ptr<const StaticWorld> statics;
+    ColliderPlaneTrees plane_trees;  ///< a baked map's; empty: the World builds them
     std::size_t triangle_count = 0;
     std::string description;  ///< for the report
 };
@@ -27,6 +29,9 @@ struct DriveScene {
 DriveScene make_track_scene(std::uint64_t seed);
 /// A mesh file (any format load_mesh reads) as one collider.
 DriveScene make_mesh_scene(const std::filesystem::path& mesh);
+/// A baked map (trackphys bake): its colliders and plane trees, and its track when it was
+/// baked from one.
+DriveScene make_map_scene(const std::filesystem::path& map);
 
 /// The car at rest on the track's start line, facing along the track.
 RigidBodyState start_on_track(const Track& track, const CarSpec& car);

@@ -1,4 +1,5 @@
-// `trackphys info MESHFILE`: what a static collider would get from a mesh file.
+// `trackphys info FILE`: what a static collider would get from a mesh file, or what a baked
+// map holds (map_info.cpp).
 
 #include <cstdio>
 #include <memory>
@@ -7,6 +8,8 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "map_info.hpp"
+#include "trackphys/io/map_file.hpp"
 #include "trackphys/io/mesh_io.hpp"
 
 namespace trackphys::cli {
@@ -60,6 +63,7 @@ void print_text(const InfoOptions& options, const MeshLoadReport& r) {
 }
 
 void run_info(const InfoOptions& options) {
+    if (is_map_file(options.file)) return print_map_info(options.file, options.json);
     MeshLoadReport report;
     load_mesh(options.file, report);  // throws trackphys::Error on bad input: main reports it
     if (options.json)
@@ -75,9 +79,11 @@ void add_info_command(CLI::App& app) {
         "info",
         "Read a mesh file (any format assimp reads: glTF/GLB, OBJ, PLY, STL, FBX, AC3D...) "
         "the way a static collider would, and print its triangle and vertex counts, bounds, "
-        "area and what was dropped (degenerate triangles, points, lines)");
+        "area and what was dropped (degenerate triangles, points, lines); or describe a baked "
+        "map (trackphys bake): format, build options, colliders, memory, track");
     auto options = std::make_shared<InfoOptions>();
-    command->add_option("MESHFILE", options->file, "the mesh file to read")->required();
+    command->add_option("MESHFILE", options->file, "the mesh file or map file (.tpmap) to read")
+        ->required();
     command->add_flag("--json", options->json, "print the figures as one JSON object");
     command->callback([options] { run_info(*options); });
 }

@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
     trackphys::cli::add_drive_command(app);
     trackphys::cli::add_track_command(app);
     trackphys::cli::add_info_command(app);
+    trackphys::cli::add_bake_command(app);
     trackphys::cli::add_bench_command(app);
     trackphys::cli::add_view_command(app);
 

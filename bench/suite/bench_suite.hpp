@@ -183,6 +183,9 @@ void bench_roots(BenchRun& run);
 void bench_broad_phase(BenchRun& run);
 void bench_mid_phase(BenchRun& run);
 void bench_update(BenchRun& run);
+// Baked maps and many colliders (map_groups.cpp):
+void bench_maps(BenchRun& run);
+void bench_many_colliders(BenchRun& run);
 // The peers (peer_groups.cpp, pair_group.cpp); each adds a "not built" row when its library
 // is absent.
 void bench_contact_peers(BenchRun& run);

@@ -63,10 +63,17 @@ struct Group {
 };
 
 // Table order: the write-up's improvements, then the peers.
-constexpr Group kGroups[] = {
-    {"cull", bench_cull},       {"roots", bench_roots},     {"broad", bench_broad_phase},
-    {"mid", bench_mid_phase},   {"update", bench_update},   {"contact", bench_contact_peers},
-    {"pair", bench_pair_peers}, {"mesh", bench_mesh_peers}, {"bullet_update", bench_update_peers}};
+constexpr Group kGroups[] = {{"cull", bench_cull},
+                             {"roots", bench_roots},
+                             {"broad", bench_broad_phase},
+                             {"mid", bench_mid_phase},
+                             {"update", bench_update},
+                             {"maps", bench_maps},
+                             {"colliders", bench_many_colliders},
+                             {"contact", bench_contact_peers},
+                             {"pair", bench_pair_peers},
+                             {"mesh", bench_mesh_peers},
+                             {"bullet_update", bench_update_peers}};
 
 /// A time with a readable unit: 812 ns, 3.41 us, 2.05 ms.
 std::string format_time(double ns) {
@@ -174,7 +181,8 @@ int run_bench(const BenchOptions& o) {
         for (const Group& g : kGroups) known = known || name == g.name;
         if (!known)
             throw Error("--only '" + name +
-                        "': not a group (cull, roots, broad, mid, update, contact, pair, mesh, "
+                        "': not a group (cull, roots, broad, mid, update, maps, colliders, "
+                        "contact, pair, mesh, "
                         "bullet_update)");
     }
     // Checked and staged before minutes of measuring; put in place only after the run.
@@ -226,8 +234,8 @@ int main(int argc, char** argv) {
     app.add_flag("--quick", o.quick,
                  "Fewer cases and repeats, colder caches: a smoke run, not the measure");
     app.add_option("--only", o.only,
-                   "Run only these groups (cull, roots, broad, mid, update, contact, "
-                   "pair, mesh, bullet_update), comma-separated")
+                   "Run only these groups (cull, roots, broad, mid, update, maps, colliders, "
+                   "contact, pair, mesh, bullet_update), comma-separated")
         ->delimiter(',');
     app.add_option("--json", o.json, "Write the table as JSON (atomically)");
     app.add_flag("--check", o.check, "Fail on a MISS in any mode (a full run always does)");

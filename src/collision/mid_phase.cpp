@@ -63,11 +63,9 @@ void MidPhase::begin_update(const Aabb& update_box) {
     entry_nodes_.clear();
     if (mode_ == MidPhaseMode::precomputed_tree) {
         check_trees();
-        for (std::uint32_t id = 0; id < world_->size(); ++id) {
-            if (!world_->collider(id).bounds().overlaps(update_box)) continue;
-            active_colliders_.push_back(id);
+        world_->colliders_overlapping(update_box, active_colliders_);
+        for (const std::uint32_t id : active_colliders_)
             entry_nodes_.push_back(trees_[id]->entry_node(update_box));
-        }
         return;
     }
     world_->query_aabb(update_box, refs_);

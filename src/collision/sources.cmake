@@ -2,6 +2,7 @@
 target_sources(trackphys PRIVATE
   collision/brute_force_collider.cpp
   collision/bvh_builder.cpp
+  collision/collider_tree.cpp
   collision/static_collider.cpp
   collision/static_world.cpp
   collision/triangle_predicates.cpp

@@ -1,9 +1,12 @@
 #include "trackphys/collision/static_world.hpp"
 
+#include <atomic>
 #include <cmath>
 #include <limits>
+#include <mutex>
 #include <string>
 
+#include "collider_tree.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/math/types.hpp"
 #include "triangle_predicates.hpp"
@@ -21,12 +24,38 @@ Aabb swept_box(const Aabb& box, const glm::dvec3& displacement, double margin) {
     return swept.padded(margin);
 }
 
+// Built on the first query after an add (double-checked: queries after that read `built`
+// and the tree without the lock).
+struct StaticWorld::Tree {
+    std::mutex mutex;
+    std::atomic<bool> built{false};
+    collision_detail::ColliderTree tree;
+};
+
+StaticWorld::StaticWorld() : tree_(std::make_unique<Tree>()) {}
+StaticWorld::~StaticWorld() = default;
+StaticWorld::StaticWorld(StaticWorld&&) noexcept = default;
+StaticWorld& StaticWorld::operator=(StaticWorld&&) noexcept = default;
+
+const StaticWorld::Tree& StaticWorld::tree() const {
+    if (!tree_->built.load(std::memory_order_acquire)) {
+        const std::lock_guard lock(tree_->mutex);
+        if (!tree_->built.load(std::memory_order_relaxed)) {
+            tree_->tree.build(bounds_);
+            tree_->built.store(true, std::memory_order_release);
+        }
+    }
+    return *tree_;
+}
+
 std::uint32_t StaticWorld::add(std::shared_ptr<const StaticCollider> collider) {
     if (!collider) throw Error("StaticWorld::add: the collider is null");
     if (colliders_.size() >= std::numeric_limits<std::uint32_t>::max())
         throw Error("StaticWorld::add: too many colliders");
+    if (!tree_) tree_ = std::make_unique<Tree>();  // a moved-from world, used again
     bounds_.push_back(collider->bounds());
     colliders_.push_back(std::move(collider));
+    tree_->built.store(false, std::memory_order_relaxed);
     return static_cast<std::uint32_t>(colliders_.size() - 1);
 }
 
@@ -38,9 +67,14 @@ const StaticCollider& StaticWorld::collider(std::uint32_t id) const {
 }
 
 void StaticWorld::query_aabb(const Aabb& box, std::vector<TriangleRef>& out) const {
-    for (std::size_t i = 0; i < colliders_.size(); ++i)
-        if (bounds_[i].overlaps(box))
-            colliders_[i]->query_aabb_refs(box, static_cast<std::uint32_t>(i), out);
+    if (colliders_.empty()) return;
+    tree().tree.visit_overlapping(
+        bounds_, box, [&](std::uint32_t id) { colliders_[id]->query_aabb_refs(box, id, out); });
+}
+
+void StaticWorld::colliders_overlapping(const Aabb& box, std::vector<std::uint32_t>& out) const {
+    if (colliders_.empty()) return;
+    tree().tree.visit_overlapping(bounds_, box, [&](std::uint32_t id) { out.push_back(id); });
 }
 
 std::optional<WorldRayHit> StaticWorld::raycast(const glm::dvec3& origin,
@@ -49,19 +83,23 @@ std::optional<WorldRayHit> StaticWorld::raycast(const glm::dvec3& origin,
     const collision_detail::RayQuery ray =
         collision_detail::make_ray_query(origin, unit_dir, max_distance);
     std::optional<WorldRayHit> best;
+    if (colliders_.empty()) return best;
     double limit = ray.max_distance;
-    for (std::size_t i = 0; i < colliders_.size(); ++i) {
+    // Colliders come in id order, each box tested against the best distance so far (a
+    // node's box holds its colliders', and the span test is monotone in the box, so a node
+    // skipped at that distance holds no collider the loop over all would query).
+    const auto reached = [&](const Aabb& box) {
         double t_near, t_far;
-        if (bounds_[i].empty() || !collision_detail::ray_box_span(
-                                      ray, bounds_[i].min, bounds_[i].max, limit, t_near, t_far))
-            continue;
+        return collision_detail::ray_box_span(ray, box.min, box.max, limit, t_near, t_far);
+    };
+    tree().tree.visit_nodes(reached, bounds_, [&](std::uint32_t id) {
         // Searching up to the best distance so far; only a strictly nearer hit replaces it.
-        const std::optional<RayHit> hit = colliders_[i]->raycast(origin, unit_dir, limit);
+        const std::optional<RayHit> hit = colliders_[id]->raycast(origin, unit_dir, limit);
         if (hit && (!best || hit->distance < limit)) {
             limit = hit->distance;
-            best = WorldRayHit{static_cast<std::uint32_t>(i), *hit};
+            best = WorldRayHit{id, *hit};
         }
-    }
+    });
     return best;
 }
 

@@ -25,15 +25,20 @@ void read_track(ObjectReader& scenario, Scenario& s, const std::filesystem::path
     const Json* value = scenario.find("track");
     if (value == nullptr) return;
     ObjectReader track(*value, scenario.path_of("track"), scenario.source());
-    if (track.has("seed") && track.has("mesh"))
+    if (int(track.has("seed")) + int(track.has("mesh")) + int(track.has("map")) > 1)
         json_io::fail(track.source(), track.path(),
-                      "give either 'seed' (a generated track) or 'mesh' (a mesh file), not both");
+                      "give one of 'seed' (a generated track), 'mesh' (a mesh file) or 'map' (a "
+                      "baked map)");
     track.read("seed", s.seed);
-    std::string mesh;
-    track.read("mesh", mesh);
-    if (track.has("mesh") && mesh.empty())
-        json_io::fail(track.source(), track.path_of("mesh"), "empty file name");
-    if (!mesh.empty()) s.mesh = base / mesh;
+    const auto read_file = [&](const char* key, std::filesystem::path& to) {
+        std::string file;
+        track.read(key, file);
+        if (track.has(key) && file.empty())
+            json_io::fail(track.source(), track.path_of(key), "empty file name");
+        if (!file.empty()) to = base / file;
+    };
+    read_file("mesh", s.mesh);
+    read_file("map", s.map);
     if (track.has("spawn")) {
         glm::dvec3 spawn(0.0);
         track.read("spawn", spawn);
@@ -99,6 +104,8 @@ std::string Scenario::validate() const {
     std::ostringstream why;
     if (!mesh.empty() && !spawn)
         why << "Scenario.mesh needs a spawn point (Scenario.spawn) to place the car on it";
+    if (why.tellp() == 0 && !mesh.empty() && !map.empty())
+        why << "Scenario.map and Scenario.mesh both name the track: give one";
     if (why.tellp() == 0 && spawn && !is_finite(*spawn))
         why << "Scenario.spawn must be finite, got (" << spawn->x << ", " << spawn->y << ", "
             << spawn->z << ")";
@@ -145,10 +152,12 @@ Scenario load_scenario(const std::filesystem::path& file) {
 
 std::string scenario_to_json(const Scenario& s) {
     Json track;
-    if (s.mesh.empty())
-        track["seed"] = s.seed;
-    else
+    if (!s.map.empty())
+        track["map"] = s.map.string();
+    else if (!s.mesh.empty())
         track["mesh"] = s.mesh.string();
+    else
+        track["seed"] = s.seed;
     if (s.spawn) {
         track["spawn"] = Json::array({s.spawn->x, s.spawn->y, s.spawn->z});
         track["heading_deg"] = s.heading_deg;

@@ -158,8 +158,8 @@ TEST(ScenarioJson, ReadsEveryKeyAndRoundTrips) {
 TEST(ScenarioJson, EveryBadFileNamesTheKeyAndTheReason) {
     const std::vector<std::pair<std::string, std::string>> cases = {
         {R"({"track": {"seed": 7, "mesh": "a.obj", "spawn": [0, 1, 0]}, "seconds": 1})",
-         "scenario 's.json': track: give either 'seed' (a generated track) or 'mesh' (a mesh "
-         "file), not both"},
+         "scenario 's.json': track: give one of 'seed' (a generated track), 'mesh' (a mesh "
+         "file) or 'map' (a baked map)"},
         {R"({"track": {"seed": -3}})", "track.seed: must be >= 0, got -3"},
         {R"({"track": {"seed": 2.5}})", "track.seed: expected a whole number, got the number 2.5"},
         {R"({"track": {"mesh": "a.obj"}})", "Scenario.mesh needs a spawn point"},

@@ -15,6 +15,9 @@
 namespace trackphys {
 
 class StaticCollider;
+namespace detail {
+struct MapCodec;
+}
 
 /// One node of a PlaneTree: the half-space {x : dot(normal, x) <= offset} that holds every
 /// triangle of its subtree. Nodes live in one vector, root at 0, the two children of an
@@ -208,6 +211,7 @@ class TRACKPHYS_API PlaneTree {
 
   private:
     friend class PlaneTreeBuilder;
+    friend struct detail::MapCodec;  // map files (src/io/map_codec.cpp)
 
     template <class Shape>
     PlaneTreeQueryCounts visit(const Shape& shape, std::vector<std::uint32_t>& out,

@@ -18,6 +18,10 @@
 
 namespace trackphys {
 
+namespace detail {
+struct MapCodec;
+}
+
 /// The closest hit of a ray cast.
 struct RayHit {
     double distance;         ///< along the unit direction from the origin (m), in [0, max]
@@ -129,6 +133,10 @@ class TRACKPHYS_API StaticCollider {
     std::size_t bytes_used() const;
 
   private:
+    // Map files (src/io/map_codec.cpp) store these arrays as they are and fill them back.
+    friend struct detail::MapCodec;
+    StaticCollider() = default;
+
     // Leaf slot s holds mesh triangle slot_triangle(s); its vertices are
     // vertices_[slot_vertices_[s][k]], in the mesh's order (winding kept).
     template <class Sink>

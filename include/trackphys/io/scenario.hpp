@@ -16,7 +16,8 @@
 ///
 ///     {
 ///       "track": {"seed": 7},                  the generated track of that seed, or
-///       "track": {"mesh": "g-track-1.ac", "spawn": [0, 50, 0], "heading_deg": 90},
+///       "track": {"mesh": "g-track-1.ac", "spawn": [0, 50, 0], "heading_deg": 90}, or
+///       "track": {"map": "oval.tpmap"},        a baked map (trackphys bake; spawn optional)
 ///       "car": {...} or "car.json",            inline (car_spec_json.hpp) or a car spec file
 ///       "autopilot": {"target_speed_kmh": 600},       drives the generated track, or
 ///       "inputs": {"throttle": 0.5, "brake": 0, "steer": 0},   fixed inputs, needs a spawn
@@ -27,8 +28,9 @@
 /// Every key is optional; a key left out keeps Scenario's default (below): `{}` is one
 /// lap of the seed-7 track by autopilot at 600 km/h with the default car. A spawn point
 /// (track.spawn) switches to free mode: the car lands on the surface below it and drives
-/// with fixed inputs; a mesh needs one. Relative file names (track.mesh, a car file) are
-/// relative to the scenario file's folder.
+/// with fixed inputs; a mesh needs one, and so does a map baked from a mesh (a map baked from
+/// a generated track keeps its centreline for the autopilot). Relative file names
+/// (track.mesh, track.map, a car file) are relative to the scenario file's folder.
 
 namespace trackphys {
 
@@ -43,6 +45,7 @@ inline constexpr double max_target_speed_kmh = 1500.0;
 struct TRACKPHYS_API Scenario {
     std::uint64_t seed = 7;      ///< the generated track's seed (when mesh is empty)
     std::filesystem::path mesh;  ///< drive on this mesh file instead (needs spawn)
+    std::filesystem::path map;   ///< or on this baked map (io/map_file.hpp)
     /// Free mode: the car starts upright above this point (m) and lands on the surface
     /// below it; it drives with `inputs` instead of the autopilot.
     std::optional<glm::dvec3> spawn;

@@ -1,0 +1,102 @@
+// `trackphys bake MESH|--seed S --out MAP.tpmap`: builds every collider's BVH and plane tree
+// once and writes them to a map file that drive --map loads without rebuilding.
+
+#include <chrono>
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "commands.hpp"
+#include "trackphys/error.hpp"
+#include "trackphys/geometry/mesh_chunks.hpp"
+#include "trackphys/io/map_file.hpp"
+#include "trackphys/io/mesh_io.hpp"
+#include "trackphys/track/track.hpp"
+
+namespace trackphys::cli {
+namespace {
+
+struct BakeOptions {
+    std::filesystem::path mesh;
+    std::uint64_t seed = 7;
+    std::filesystem::path out;
+    double chunk_m = 100.0;
+    unsigned threads = 0;
+};
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+void run_bake(const BakeOptions& o, const CLI::App& command) {
+    const bool from_mesh = !o.mesh.empty();
+    if (from_mesh && command.count("--seed") > 0)
+        throw Error("give a mesh file or --seed (a generated track), not both");
+    if (!from_mesh && command.count("--chunk") > 0)
+        throw Error("--chunk splits a mesh file; a generated track comes in its own chunks");
+    if (o.out.extension() != ".tpmap")
+        throw Error("--out '" + o.out.string() + "': a map file's name ends in .tpmap");
+    const auto start = std::chrono::steady_clock::now();
+    StaticMap map;
+    std::string source;
+    if (from_mesh) {
+        const TriangleMesh mesh = load_mesh(o.mesh);
+        try {
+            map = bake_map(split_into_chunks(mesh, o.chunk_m), PlaneTreeSettings::precomputed(),
+                           o.threads);
+        } catch (const Error& e) {  // a chunk the collider refuses (coordinates beyond its limit)
+            throw Error("mesh file '" + o.mesh.string() + "': " + e.what());
+        }
+        source = "mesh " + o.mesh.string();
+    } else {
+        TrackParams params;
+        params.seed = o.seed;
+        map = bake_track_map(generate_track(params), PlaneTreeSettings::precomputed(), o.threads);
+        source = "generated track, seed " + std::to_string(o.seed);
+    }
+    const double bake_s = seconds_since(start);
+    const auto write_start = std::chrono::steady_clock::now();
+    save_map(o.out, map);
+    const double write_s = seconds_since(write_start);
+
+    std::size_t triangles = 0, kept = 0;
+    for (std::uint32_t id = 0; id < map.statics->size(); ++id) {
+        triangles += map.statics->collider(id).mesh_triangle_count();
+        kept += map.statics->collider(id).triangle_count();
+    }
+    const auto bytes = std::filesystem::file_size(o.out);
+    std::printf("baked        %s\n", source.c_str());
+    std::printf("colliders    %zu, %zu triangles (%zu kept)\n", map.statics->size(), triangles,
+                kept);
+    std::printf("map          %s, %.1f MB, %.1f bytes a triangle\n", o.out.string().c_str(),
+                double(bytes) / 1e6, kept > 0 ? double(bytes) / double(kept) : 0.0);
+    std::printf("time         %.3f s to build, %.3f s to write\n", bake_s, write_s);
+}
+
+}  // namespace
+
+void add_bake_command(CLI::App& app) {
+    auto o = std::make_shared<BakeOptions>();
+    CLI::App* command = app.add_subcommand(
+        "bake",
+        "Build every collider's BVH and plane tree once, for a mesh file (split into --chunk "
+        "cells, one collider each) or a generated track (--seed, one collider per chunk), and "
+        "write them to a map file that `drive --map` loads without rebuilding");
+    command->add_option("MESH", o->mesh, "the mesh file to bake (any format `info` reads)");
+    command->add_option("--seed", o->seed, "bake the generated track of this seed instead")
+        ->check(not_negative())
+        ->capture_default_str();
+    command->add_option("--out", o->out, "the map file to write (MAP.tpmap)")->required();
+    command->add_option("--chunk", o->chunk_m, "a mesh's collider cells on x and z (m)")
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str();
+    command->add_option("--threads", o->threads, "threads to build on (0: one per core)")
+        ->check(not_negative())
+        ->capture_default_str();
+    command->callback([o, command] { run_bake(*o, *command); });
+}
+
+}  // namespace trackphys::cli

@@ -1,0 +1,190 @@
+// Baked maps and many colliders (issue 18): the default track built as a World builds it,
+// baked, written and loaded, with the bytes of each structure; and a car-box query over the
+// same terrain in 50 and in 10,000 colliders (the top-level tree).
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+#include "bench_suite.hpp"
+#include "trackphys/collision/mid_phase.hpp"
+#include "trackphys/io/map_file.hpp"
+#include "trackphys/track/track.hpp"
+
+namespace trackphys::suite {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double ms_since(Clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+// Median of `repeats` runs of f: wall time and this thread's CPU time (ms).
+template <class F>
+std::pair<double, double> median_ms(int repeats, F&& f) {
+    std::vector<double> wall, cpu;
+    for (int r = 0; r < repeats; ++r) {
+        const double cpu_start = thread_cpu_ns();
+        const auto start = Clock::now();
+        f();
+        wall.push_back(ms_since(start));
+        cpu.push_back((thread_cpu_ns() - cpu_start) * 1e-6);
+    }
+    return {spread(wall).median, spread(cpu).median};
+}
+
+// A square terrain of side `cells` x 2 m cells (two triangles each), gently rolling, cut
+// into tiles x tiles colliders in row order.
+std::shared_ptr<StaticWorld> terrain(int cells, int tiles) {
+    auto world = std::make_shared<StaticWorld>();
+    const int per_tile = cells / tiles;
+    const auto height = [](int i, int j) { return 0.5 * std::sin(i * 0.05) * std::cos(j * 0.07); };
+    for (int ti = 0; ti < tiles; ++ti)
+        for (int tj = 0; tj < tiles; ++tj) {
+            TriangleMesh m;
+            const int n = per_tile + 1;
+            for (int i = 0; i < n; ++i)
+                for (int j = 0; j < n; ++j) {
+                    const int gi = ti * per_tile + i, gj = tj * per_tile + j;
+                    m.vertices.push_back({2.0 * gi, height(gi, gj), 2.0 * gj});
+                }
+            for (int i = 0; i < per_tile; ++i)
+                for (int j = 0; j < per_tile; ++j) {
+                    const auto v = static_cast<std::uint32_t>(i * n + j);
+                    const auto w = static_cast<std::uint32_t>(n);
+                    m.triangles.push_back({v, v + 1, v + w + 1});
+                    m.triangles.push_back({v, v + w + 1, v + w});
+                }
+            world->add(std::make_shared<StaticCollider>(m));
+        }
+    return world;
+}
+
+}  // namespace
+
+void bench_maps(BenchRun& run) {
+    run.progress("maps", "generating the default track");
+    TrackParams params;
+    params.seed = 7;
+    const Track track = generate_track(params);
+    const double triangles = double(track.triangle_count());
+
+    run.progress("maps", "building as a World does");
+    StaticWorld built;
+    ColliderPlaneTrees built_trees;
+    const auto [build_ms, build_cpu_ms] = median_ms(1, [&] {
+        for (const TrackChunk& chunk : track.chunks)
+            built.add(std::make_shared<StaticCollider>(chunk.mesh));
+        built_trees = make_collider_plane_trees(built);
+    });
+    std::size_t collider_bytes = 0, tree_bytes = 0;
+    for (std::uint32_t id = 0; id < built.size(); ++id) {
+        collider_bytes += built.collider(id).bytes_used();
+        tree_bytes += built_trees[id]->bytes_used();
+    }
+
+    run.progress("maps", "baking");
+    StaticMap map;
+    const auto [bake_ms, bake_cpu_ms] = median_ms(run.batches(1, 3), [&] {
+        map = bake_track_map(track, PlaneTreeSettings::precomputed(), 2);
+    });
+    const std::filesystem::path file = std::filesystem::temp_directory_path() /
+                                       ("trackphys-bench-" + std::to_string(::getpid()) + ".tpmap");
+    const auto [save_ms, save_cpu_ms] = median_ms(1, [&] { save_map(file, map); });
+    const double file_bytes = double(std::filesystem::file_size(file));
+
+    run.progress("maps", "loading");
+    const auto [load_ms, load_cpu_ms] =
+        median_ms(run.batches(3, 11), [&] { keep(load_static_world(file).statics->size()); });
+    std::filesystem::remove(file);
+
+    BenchRow& build_row =
+        run.add("maps", "default track: build colliders + plane trees", build_ms * 1e6);
+    build_row.figures = {{"triangles", triangles},
+                         {"collider_bytes_per_triangle", double(collider_bytes) / triangles},
+                         {"plane_tree_bytes_per_triangle", double(tree_bytes) / triangles}};
+    build_row.note = "what World does at start, one thread";
+    BenchRow& bake_row = run.add("maps", "default track: bake (2 threads)", bake_ms * 1e6,
+                                 "default track: build colliders + plane trees");
+    bake_row.figures = {{"write_ms", save_ms}};
+    BenchRow& load_row = run.add("maps", "default track: load the map", load_ms * 1e6,
+                                 "default track: build colliders + plane trees");
+    load_row.figures = {{"cpu_ms", load_cpu_ms},
+                        {"file_bytes_per_triangle", file_bytes / triangles}};
+    load_row.note = "one read, arrays copied, frames derived";
+    // CPU time for the load: the machine is shared, and wall time counts others' turns.
+    run.add_target(
+        "default track: load a baked map <= 50 ms (thread CPU)", 50.0 / load_cpu_ms, 1.0, true,
+        std::to_string(load_cpu_ms) + " ms CPU, " + std::to_string(load_ms) + " ms wall");
+    run.add_target("default track: bake <= 0.5 s", 500.0 / bake_ms, 1.0, true,
+                   std::to_string(bake_ms) + " ms on 2 threads");
+}
+
+void bench_many_colliders(BenchRun& run) {
+    // 700 x 700 cells of 2 m, 980,000 triangles, as 49 (7 x 7, the square nearest 50) and
+    // as 10,000 (100 x 100) colliders.
+    constexpr int kCells = 700;
+    run.progress("colliders", "building 49 colliders");
+    const auto few = terrain(kCells, 7);
+    run.progress("colliders", "building 10,000 colliders");
+    const auto many = terrain(kCells, 100);
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> where(10.0, 2.0 * kCells - 10.0);
+    std::vector<Aabb> boxes;
+    for (int i = 0; i < 1000; ++i) {
+        const glm::dvec3 c(where(rng), 0.0, where(rng));
+        boxes.push_back(Aabb{c - glm::dvec3(2.5, 1.5, 2.5), c + glm::dvec3(2.5, 1.5, 2.5)});
+    }
+    std::vector<TriangleRef> refs;
+    std::size_t found_few = 0, found_many = 0;
+    const auto query = [&](const StaticWorld& w, std::size_t& found) {
+        return [&] {
+            found = 0;
+            for (const Aabb& b : boxes) {
+                refs.clear();
+                w.query_aabb(b, refs);
+                found += refs.size();
+            }
+            keep(refs.data());
+        };
+    };
+    // What StaticWorld did before its tree: every collider's box, then the hit ones' BVHs.
+    std::size_t found_loop = 0;
+    const auto loop = [&] {
+        found_loop = 0;
+        for (const Aabb& b : boxes) {
+            refs.clear();
+            for (std::uint32_t id = 0; id < many->size(); ++id)
+                if (many->collider(id).bounds().overlaps(b))
+                    many->collider(id).query_aabb_refs(b, id, refs);
+            found_loop += refs.size();
+        }
+        keep(refs.data());
+    };
+    run.progress("colliders", "car-box queries");
+    const std::vector<double> ns = median_call_ns_in_turns(
+        {query(*few, found_few), query(*many, found_many)}, 1, run.batches(5, 31));
+    // Apart: its 10,000 boxes a query would leave the others' data cold.
+    const double loop_ns = median_call_ns(loop, 1, run.batches(3, 5));
+    const double per_query_few = ns[0] / double(boxes.size()),
+                 per_query_many = ns[1] / double(boxes.size());
+    run.add("colliders", "car box, 49 colliders", per_query_few).figures = {
+        {"triangles_found", double(found_few)}};
+    run.add("colliders", "car box, 10,000 colliders", per_query_many, "car box, 49 colliders")
+        .figures = {{"triangles_found", double(found_many)}};
+    run.add("colliders", "car box, 10,000 colliders, every box tested",
+            loop_ns / double(boxes.size()), "car box, 49 colliders")
+        .note = "StaticWorld before its top-level tree";
+    run.add_target("10,000 colliders: car-box query within 2x of 50",
+                   2.0 * per_query_few / per_query_many, 1.0, found_few == found_many,
+                   std::to_string(found_few) + " vs " + std::to_string(found_many) + " triangles");
+}
+
+}  // namespace trackphys::suite

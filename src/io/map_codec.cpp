@@ -1,0 +1,81 @@
+#include "map_codec.hpp"
+
+#include <cstring>
+
+#include "trackphys/error.hpp"
+
+namespace trackphys::detail {
+
+// The arrays are stored as their bytes: these sizes are part of the format (a change
+// needs a new kMapFormatVersion).
+static_assert(sizeof(glm::dvec3) == 24 && sizeof(std::array<std::uint32_t, 3>) == 12);
+static_assert(sizeof(BvhSlotBlock) == 128 && sizeof(BvhNode) == 256 && sizeof(BvhNodeGrid) == 48);
+static_assert(sizeof(PlaneTreeNode) == 24 && sizeof(PlaneTreeSlab) == 20);
+
+void MapCodec::write(map_detail::BodyWriter& body, const StaticCollider& c, const PlaneTree& tree) {
+    if (tree.triangle_count() != c.triangle_count())
+        throw Error("map: a plane tree has " + std::to_string(tree.triangle_count()) +
+                    " triangles, its collider keeps " + std::to_string(c.triangle_count()));
+    ColliderRecord r{};
+    r.mesh_triangles = c.triangle_to_slot_.size();
+    r.slots = c.slot_vertices_.size();
+    r.vertices = c.vertices_.size();
+    r.nodes = c.nodes_.size();
+    r.grids = c.grids_.size();
+    r.plane_nodes = tree.nodes_.size();
+    r.plane_slabs = tree.slabs_.size();
+    r.content_hash = c.content_hash_;
+    std::memcpy(r.inside_extent, c.inside_extent_, sizeof r.inside_extent);
+    r.plane_depth = tree.depth_;
+    body.record(r);
+    body.array(c.vertices_);
+    body.array(c.slot_vertices_);
+    body.array(c.triangle_to_slot_);
+    body.array(c.slot_blocks_);
+    body.array(c.nodes_);
+    body.array(c.grids_);
+    body.array(c.node_grid_);
+    body.array(tree.nodes_);
+    body.array(tree.slabs_);
+    body.array(tree.ids_);
+}
+
+MapCodec::Loaded MapCodec::read(map_detail::BodyReader& body) {
+    const auto r = body.record<ColliderRecord>("collider record");
+    if (r.mesh_triangles > StaticCollider::kMaxTriangles)
+        throw Error("the collider has " + std::to_string(r.mesh_triangles) +
+                    " mesh triangles, more than " + std::to_string(StaticCollider::kMaxTriangles));
+    if (r.slots > r.mesh_triangles)
+        throw Error("the collider keeps " + std::to_string(r.slots) + " triangles of " +
+                    std::to_string(r.mesh_triangles));
+    auto c = std::shared_ptr<StaticCollider>(new StaticCollider());
+    body.array(c->vertices_, r.vertices, "vertices");
+    body.array(c->slot_vertices_, r.slots, "slot vertex indices");
+    body.array(c->triangle_to_slot_, r.mesh_triangles, "triangle slots");
+    body.array(c->slot_blocks_, (r.slots + BvhSlotBlock::kLanes - 1) / BvhSlotBlock::kLanes,
+               "slot blocks");
+    body.array(c->nodes_, r.nodes, "BVH nodes");
+    body.array(c->grids_, r.grids, "BVH grids");
+    body.array(c->node_grid_, r.nodes, "BVH node grids");
+    c->content_hash_ = r.content_hash;
+    std::memcpy(c->inside_extent_, r.inside_extent, sizeof r.inside_extent);
+    check_collider(*c);
+
+    auto tree = std::make_shared<PlaneTree>();
+    body.array(tree->nodes_, r.plane_nodes, "plane-tree nodes");
+    body.array(tree->slabs_, r.plane_slabs, "plane-tree slabs");
+    body.array(tree->ids_, r.slots, "plane-tree ids");
+    const int depth = check_plane_tree(*tree, *c);
+    if (r.plane_depth != depth)
+        throw Error("the plane tree's depth is recorded as " + std::to_string(r.plane_depth) +
+                    ", its deepest leaf is at " + std::to_string(depth));
+    tree->depth_ = depth;
+    // The frames the tree's queries read are the collider's own, in the tree's leaf order:
+    // derived, so not stored (120 bytes a triangle, more than everything else).
+    tree->triangles_.reserve(tree->ids_.size());
+    for (const std::uint32_t id : tree->ids_)
+        tree->triangles_.push_back(c->normalized_triangle(id));
+    return {std::move(c), std::move(tree)};
+}
+
+}  // namespace trackphys::detail

@@ -1,0 +1,54 @@
+#pragma once
+
+// One collider of a map file and its plane tree, as arrays (private; docs/tpmap.md). The
+// friend of StaticCollider and PlaneTree: it writes their arrays as they are, reads them
+// back, and verifies what it read (map_check.cpp) before anyone can query it.
+
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "map_body.hpp"
+#include "trackphys/collision/plane_tree.hpp"
+#include "trackphys/collision/static_collider.hpp"
+
+namespace trackphys::detail {
+
+struct MapCodec {
+    /// What a map file keeps of one collider and its tree besides their arrays, and the
+    /// arrays' lengths. 96 bytes.
+    struct ColliderRecord {
+        std::uint64_t mesh_triangles;  ///< triangle_to_slot_
+        std::uint64_t slots;           ///< kept triangles: slot_vertices_, plane tree ids
+        std::uint64_t vertices;
+        std::uint64_t nodes;  ///< BVH nodes, and node_grid_
+        std::uint64_t grids;
+        std::uint64_t plane_nodes;
+        std::uint64_t plane_slabs;  ///< 0 or plane_nodes
+        std::uint64_t content_hash;
+        double inside_extent[3];
+        std::int64_t plane_depth;
+    };
+    static_assert(sizeof(ColliderRecord) == 96);
+
+    struct Loaded {
+        std::shared_ptr<const StaticCollider> collider;
+        std::shared_ptr<const PlaneTree> tree;
+    };
+
+    /// Adds the collider and its tree (built over every kept triangle, ids = mesh indices)
+    /// to the body: points at their arrays, which must outlive `body`.
+    static void write(map_detail::BodyWriter& body, const StaticCollider& collider,
+                      const PlaneTree& tree);
+    /// Reads one collider and its tree and verifies them; throws trackphys::Error naming
+    /// the array and the entry that is wrong.
+    static Loaded read(map_detail::BodyReader& body);
+
+    /// The structure checks (map_check.cpp), each throwing trackphys::Error on the first
+    /// problem found. check_collider also sets the collider's bounds from its vertices;
+    /// check_plane_tree returns the depth of the tree's deepest leaf.
+    static void check_collider(StaticCollider& collider);
+    static int check_plane_tree(const PlaneTree& tree, const StaticCollider& collider);
+};
+
+}  // namespace trackphys::detail

@@ -1,0 +1,34 @@
+# `trackphys bake`, `info` on a map and `drive --map` end to end (included by CMakeLists.txt).
+set(maps ${CMAKE_CURRENT_BINARY_DIR}/maps)
+file(MAKE_DIRECTORY ${maps})
+
+trackphys_cli_test(map.bake_default_track 0 "colliders +50, 302848 triangles"
+                   bake --seed 7 --out ${maps}/seed7.tpmap)
+trackphys_cli_test(map.bake_a_mesh 0 "colliders +[0-9]+, [0-9]+ triangles"
+                   bake ${flat} --chunk 20 --out ${maps}/flat.tpmap)
+set_tests_properties(map.bake_default_track map.bake_a_mesh PROPERTIES FIXTURES_SETUP baked_maps)
+
+# The baked default track drives exactly as the track built at start (drive.pinned_state_hash).
+trackphys_cli_test(map.drive_pinned_state_hash 0 "map .*seed7.tpmap.*state hash +148b8e2ae70e4be5"
+                   drive --map ${maps}/seed7.tpmap --seconds 10)
+trackphys_cli_test(map.info 0 "format version 1.*colliders +50.*track +seed 7"
+                   info ${maps}/seed7.tpmap)
+trackphys_cli_test(map.drive_a_mesh_map_free 0 "map .*flat.tpmap.*state hash"
+                   drive --map ${maps}/flat.tpmap --spawn 0,3,0 --seconds 1)
+trackphys_cli_test(map.drive_a_mesh_map_needs_a_spawn 1 "baked from a mesh and has no centreline"
+                   drive --map ${maps}/flat.tpmap --seconds 1)
+set_tests_properties(map.drive_pinned_state_hash map.info map.drive_a_mesh_map_free
+                     map.drive_a_mesh_map_needs_a_spawn PROPERTIES FIXTURES_REQUIRED baked_maps)
+
+trackphys_cli_test(map.drive_rejects_a_mesh_as_map 1 "map '.*flat_ground.obj': wrong magic"
+                   drive --map ${flat} --seconds 1)
+trackphys_cli_test(map.bake_mesh_or_seed 1 "give a mesh file or --seed"
+                   bake ${flat} --seed 3 --out ${maps}/both.tpmap)
+trackphys_cli_test(map.bake_needs_tpmap_name 1 "ends in .tpmap"
+                   bake --seed 3 --out ${maps}/track.bin)
+
+# Scenario files name a map as track.map.
+file(WRITE ${in}/scenario_map.json "{\"track\": {\"map\": \"${maps}/seed7.tpmap\"}, \"seconds\": 2}\n")
+trackphys_cli_test(map.scenario_file 0 "map .*seed7.tpmap.*simulated +2.00 s"
+                   drive --scenario ${in}/scenario_map.json)
+set_tests_properties(map.scenario_file PROPERTIES FIXTURES_REQUIRED baked_maps)

@@ -1,0 +1,351 @@
+// Map files: a loaded map answers every query as the freshly built one and encodes to the
+// same bytes; every truncation, every altered header field, another version or other build
+// options, and flips in every array are an error naming the file, or (flips the checks
+// cannot tell from valid data) a map whose queries stay in bounds (run under ASan too).
+#include "trackphys/io/map_file.hpp"
+
+#include <algorithm>
+#include <cstring>
+#include <filesystem>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include "io/map_body.hpp"
+#include "io/map_codec.hpp"
+#include "support/error_message.hpp"
+#include "trackphys/error.hpp"
+#include "trackphys/geometry/ellipsoid.hpp"
+#include "trackphys/geometry/mesh_chunks.hpp"
+
+namespace trackphys {
+namespace {
+
+using test::error_of;
+
+constexpr std::size_t kHeaderBytes = 64;
+constexpr std::size_t kChecksumAt = 24;
+
+// A 1 km generated track: ten chunks, ~60k triangles, baked once for all tests.
+const StaticMap& baked() {
+    static const StaticMap map = [] {
+        TrackParams params;
+        params.seed = 3;
+        params.length_m = 1000.0;
+        return bake_track_map(generate_track(params), PlaneTreeSettings::precomputed(), 2);
+    }();
+    return map;
+}
+const std::string& baked_bytes() {
+    static const std::string bytes = encode_map(baked());
+    return bytes;
+}
+
+// The bytes with the header's checksum made to match again, as a crafted file would.
+std::string resealed(std::string bytes) {
+    std::memset(bytes.data() + kChecksumAt, 0, 8);
+    map_detail::MapChecksum checksum;
+    checksum.add(bytes.data(), bytes.size() / 8 * 8);
+    const std::uint64_t value = checksum.value();
+    std::memcpy(bytes.data() + kChecksumAt, &value, 8);
+    return bytes;
+}
+
+// Where each array of the file lies: [begin, end) in bytes, and its name.
+struct Section {
+    std::size_t begin, end;
+    std::string name;
+};
+std::vector<Section> sections_of(const std::string& bytes) {
+    std::vector<Section> out;
+    std::size_t at = kHeaderBytes + 64;  // the map record
+    const auto add = [&](std::uint64_t bytes_used, const std::string& name) {
+        out.push_back({at, at + bytes_used, name});
+        at += map_detail::padded(bytes_used);
+    };
+    const StaticMap& map = baked();
+    add(112, "track parameters");
+    add(map.track->centerline.size() * sizeof(CenterlineSample), "centreline");
+    for (std::uint32_t id = 0; id < map.statics->size(); ++id) {
+        detail::MapCodec::ColliderRecord r;
+        std::memcpy(&r, bytes.data() + at, sizeof r);
+        const std::string c = "collider " + std::to_string(id) + " ";
+        add(sizeof r, c + "record");
+        add(r.vertices * 24, c + "vertices");
+        add(r.slots * 12, c + "slot vertices");
+        add(r.mesh_triangles * 4, c + "triangle slots");
+        add((r.slots + 7) / 8 * 128, c + "slot blocks");
+        add(r.nodes * 256, c + "BVH nodes");
+        add(r.grids * 48, c + "grids");
+        add(r.nodes * 4, c + "node grids");
+        add(r.plane_nodes * 24, c + "plane nodes");
+        add(r.plane_slabs * 20, c + "plane slabs");
+        add(r.slots * 4, c + "plane ids");
+    }
+    EXPECT_EQ(at, bytes.size()) << "the sections do not cover the file";
+    return out;
+}
+
+// Random queries around the map: boxes of car size to a few hundred metres, rays in any
+// direction, spheres and swept ellipsoids for the plane trees.
+struct QueryRun {
+    std::vector<TriangleRef> boxes;
+    std::vector<std::uint32_t> rays;
+    std::vector<double> ray_distances;
+    std::vector<std::uint32_t> tree_slots;
+    std::vector<std::uint32_t> tree_ids;
+};
+
+QueryRun run_queries(const StaticMap& map, int count) {
+    std::mt19937 rng(11);
+    Aabb bounds;
+    for (std::uint32_t id = 0; id < map.statics->size(); ++id)
+        bounds.expand(map.statics->collider(id).bounds());
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    const auto point = [&] {
+        return bounds.min + (bounds.max - bounds.min) * glm::dvec3(u(rng), u(rng), u(rng));
+    };
+    QueryRun run;
+    std::vector<std::uint32_t> slots;
+    for (int q = 0; q < count; ++q) {
+        const glm::dvec3 center = point();
+        const double half = q % 10 == 0 ? 200.0 * u(rng) : 3.0 * u(rng);
+        map.statics->query_aabb(Aabb{center - half, center + half}, run.boxes);
+
+        glm::dvec3 dir(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5);
+        dir = glm::normalize(dir + glm::dvec3(0.0, 1e-3, 0.0));
+        const auto hit = map.statics->raycast(center + glm::dvec3(0.0, 5.0, 0.0), dir, 500.0);
+        run.rays.push_back(hit ? hit->collider : ~0u);
+        run.rays.push_back(hit ? hit->hit.triangle : ~0u);
+        run.ray_distances.push_back(hit ? hit->hit.distance : -1.0);
+
+        const std::uint32_t id = q % static_cast<std::uint32_t>(map.statics->size());
+        const PlaneTree& tree = *map.plane_trees[id];
+        const glm::dvec3 near = map.statics->collider(id).bounds().center() +
+                                glm::dvec3(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5) * 60.0;
+        const Aabb box{near - 4.0, near + 4.0};
+        slots.clear();
+        tree.query_sphere(near, 3.0 * u(rng), slots, tree.entry_node(box));
+        const Ellipsoid body(near, glm::angleAxis(u(rng), glm::dvec3(0.0, 1.0, 0.0)),
+                             glm::dvec3(0.9, 0.4, 2.1));
+        tree.query_swept_ellipsoid(body, near + glm::dvec3(0.0, 0.0, 1.0), 0.05, slots);
+        for (const std::uint32_t s : slots) {
+            run.tree_slots.push_back(s);
+            run.tree_ids.push_back(tree.id(s));
+        }
+    }
+    return run;
+}
+
+TEST(MapFile, LoadedMapAnswersTenThousandQueriesAsTheBuiltOne) {
+    const StaticMap loaded = decode_map(baked_bytes());
+    ASSERT_EQ(loaded.statics->size(), baked().statics->size());
+    for (std::uint32_t id = 0; id < loaded.statics->size(); ++id) {
+        const StaticCollider& a = baked().statics->collider(id);
+        const StaticCollider& b = loaded.statics->collider(id);
+        EXPECT_EQ(a.content_hash(), b.content_hash());
+        EXPECT_EQ(a.bounds().min, b.bounds().min);
+        EXPECT_EQ(a.bounds().max, b.bounds().max);
+        EXPECT_EQ(baked().plane_trees[id]->depth(), loaded.plane_trees[id]->depth());
+    }
+    const QueryRun fresh = run_queries(baked(), 10'000), back = run_queries(loaded, 10'000);
+    EXPECT_GT(fresh.boxes.size(), 100'000u) << "the queries should find triangles";
+    EXPECT_GT(fresh.tree_slots.size(), 1'000u);
+    EXPECT_EQ(fresh.boxes, back.boxes);
+    EXPECT_EQ(fresh.rays, back.rays);
+    EXPECT_EQ(fresh.ray_distances, back.ray_distances);
+    EXPECT_EQ(fresh.tree_slots, back.tree_slots);
+    EXPECT_EQ(fresh.tree_ids, back.tree_ids);
+}
+
+TEST(MapFile, LoadedMapEncodesToTheSameBytesAndKeepsItsTrack) {
+    const StaticMap loaded = decode_map(baked_bytes());
+    EXPECT_EQ(encode_map(loaded), baked_bytes());
+    ASSERT_TRUE(loaded.track.has_value());
+    EXPECT_TRUE(loaded.track->chunks.empty());
+    EXPECT_EQ(loaded.track->params.seed, 3u);
+    EXPECT_EQ(loaded.track->length_m, baked().track->length_m);
+    EXPECT_EQ(loaded.track->centerline.size(), baked().track->centerline.size());
+}
+
+TEST(MapFile, BakeGivesTheSameMapOnAnyThreadCount) {
+    TrackParams params;
+    params.seed = 3;
+    params.length_m = 1000.0;
+    const Track track = generate_track(params);
+    EXPECT_EQ(encode_map(bake_track_map(track, PlaneTreeSettings::precomputed(), 1)),
+              baked_bytes());
+}
+
+TEST(MapFile, EveryTruncationIsAnErrorNamingTheSource) {
+    const std::string& bytes = baked_bytes();
+    for (int k = 0; k < 64; ++k) {
+        const std::size_t size = bytes.size() * k / 64;
+        const std::string message =
+            error_of([&] { decode_map(std::string_view(bytes).substr(0, size), "map 'cut'"); });
+        EXPECT_EQ(message.rfind("map 'cut': ", 0), 0u) << size << ": " << message;
+        EXPECT_TRUE(message.find("truncated") != std::string::npos ||
+                    message.find("shorter than") != std::string::npos)
+            << size << ": " << message;
+    }
+}
+
+TEST(MapFile, EveryAlteredHeaderFieldIsAnError) {
+    // Field offsets and what the message must say.
+    const struct {
+        std::size_t at, size;
+        const char* says;
+    } fields[] = {
+        {0, 8, "wrong magic"}, {8, 4, "format version"}, {12, 4, "header claims"},
+        {16, 8, "body bytes"}, {24, 8, "checksum"},      {32, 4, "checksum"},
+        {36, 4, "checksum"},   {40, 8, "checksum"},      {48, 8, "checksum"},
+        {56, 8, "checksum"},
+    };
+    for (const auto& f : fields) {
+        std::string bytes = baked_bytes();
+        bytes[f.at + f.size - 1] ^= 0x01;
+        bytes[f.at] ^= 0x10;
+        const std::string message = error_of([&] { decode_map(bytes); });
+        EXPECT_NE(message.find(f.says), std::string::npos) << f.at << ": " << message;
+    }
+}
+
+TEST(MapFile, AnyByteFlipFailsTheChecksum) {
+    std::mt19937 rng(5);
+    const std::string& good = baked_bytes();
+    std::uniform_int_distribution<std::size_t> at(kHeaderBytes, good.size() - 1);
+    for (int i = 0; i < 200; ++i) {
+        std::string bytes = good;
+        bytes[at(rng)] ^= static_cast<char>(1 + rng() % 255);
+        EXPECT_NE(error_of([&] { decode_map(bytes); }).find("checksum mismatch"),
+                  std::string::npos);
+    }
+}
+
+TEST(MapFile, FlipsInEveryArrayAreRejectedOrStayInBounds) {
+    const std::string& good = baked_bytes();
+    std::mt19937 rng(7);
+    int rejected = 0, loaded = 0;
+    for (const Section& s : sections_of(good)) {
+        if (s.begin == s.end) continue;
+        std::uniform_int_distribution<std::size_t> at(s.begin, s.end - 1);
+        for (int i = 0; i < 3; ++i) {
+            std::string bytes = good;
+            for (int k = 0; k < 1 + i; ++k) bytes[at(rng)] ^= static_cast<char>(1 + rng() % 255);
+            StaticMap map;
+            try {
+                map = decode_map(resealed(bytes), "map 'flipped'");
+            } catch (const Error& e) {
+                EXPECT_EQ(std::string(e.what()).rfind("map 'flipped': ", 0), 0u) << e.what();
+                ++rejected;
+                continue;
+            }
+            ++loaded;
+            run_queries(map, 5);  // in bounds, and it ends (ASan and the timeout watch)
+        }
+    }
+    EXPECT_GT(rejected, 30) << "the structure checks should catch many flips";
+    EXPECT_GT(loaded, 30) << "flips in coordinates should still load";
+}
+
+TEST(MapFile, CraftedStructuresAreRejected) {
+    const std::string& good = baked_bytes();
+    const std::vector<Section> sections = sections_of(good);
+    const auto section = [&](const std::string& name) {
+        return *std::find_if(sections.begin(), sections.end(),
+                             [&](const Section& s) { return s.name == name; });
+    };
+    const auto with = [&](std::size_t at, std::uint32_t value) {
+        std::string bytes = good;
+        std::memcpy(bytes.data() + at, &value, 4);
+        return error_of([&] { decode_map(resealed(bytes)); });
+    };
+    const Section nodes = section("collider 0 BVH nodes");
+    const std::size_t child0 = nodes.begin + offsetof(BvhNode, child);
+    EXPECT_NE(with(child0, 0).find("BVH node 0"), std::string::npos) << with(child0, 0);
+    EXPECT_NE(with(child0, 1u << 30).find("out of range"), std::string::npos);
+    const Section plane = section("collider 0 plane nodes");
+    // The root's children made the root itself: a cycle.
+    const std::size_t root_first = plane.begin + offsetof(PlaneTreeNode, first);
+    EXPECT_NE(with(root_first, 0).find("plane-tree node 0"), std::string::npos)
+        << with(root_first, 0);
+    const Section ids = section("collider 0 plane ids");
+    EXPECT_NE(with(ids.begin, 1u << 30).find("not a triangle the collider keeps"),
+              std::string::npos);
+    const Section verts = section("collider 0 slot vertices");
+    EXPECT_NE(with(verts.begin, 1u << 30).find("vertex index"), std::string::npos);
+}
+
+TEST(MapFile, AnotherVersionOrOtherBuildOptionsAreNamed) {
+    std::string bytes = baked_bytes();
+    const std::uint32_t version = kMapFormatVersion + 1;
+    std::memcpy(bytes.data() + 8, &version, 4);
+    EXPECT_NE(error_of([&] {
+                  decode_map(resealed(bytes));
+              }).find("format version 2, this build reads only version 1"),
+              std::string::npos);
+
+    TriangleMesh quad;
+    quad.vertices = {{0, 0, 0}, {10, 0, 0}, {10, 0, 10}, {0, 0, 10}};
+    quad.triangles = {{0, 2, 1}, {0, 3, 2}};
+    PlaneTreeSettings other = PlaneTreeSettings::precomputed();
+    other.slab_thickness = 0.3;
+    const std::string other_bytes = encode_map(bake_map({&quad, 1}, other, 1));
+    const std::string message = error_of([&] { decode_map(other_bytes, "map 'q'"); });
+    EXPECT_NE(message.find("map 'q': its plane trees were built with other options"),
+              std::string::npos)
+        << message;
+    EXPECT_NE(message.find("slab thickness 0.3 m"), std::string::npos) << message;
+    EXPECT_EQ(decode_map(other_bytes, "q", other).plane_tree_settings.slab_thickness, 0.3);
+    EXPECT_EQ(decode_map(other_bytes, "q", std::nullopt).statics->size(), 1u);
+}
+
+TEST(MapFile, SaveAndLoadNameTheFileAndLeaveNoPartialFile) {
+    const std::filesystem::path folder = std::filesystem::temp_directory_path() /
+                                         ("trackphys-map-test-" + std::to_string(::getpid()));
+    std::filesystem::create_directories(folder);
+    const std::filesystem::path file = folder / "track.tpmap";
+    save_map(file, baked());
+    EXPECT_EQ(load_static_world(file).statics->size(), baked().statics->size());
+    EXPECT_TRUE(is_map_file(file));
+    EXPECT_EQ(std::filesystem::directory_iterator(folder)->path(), file) << "a leftover file";
+
+    const std::string missing = error_of([&] { load_static_world(folder / "none.tpmap"); });
+    EXPECT_NE(missing.find("none.tpmap': cannot open it"), std::string::npos) << missing;
+    EXPECT_NE(error_of([&] { load_static_world(folder); }).find("is a folder"), std::string::npos);
+    EXPECT_NE(error_of([&] {
+                  save_map(folder / "no" / "such.tpmap", baked());
+              }).find("cannot write the map"),
+              std::string::npos);
+    EXPECT_FALSE(is_map_file(folder / "none.tpmap"));
+    std::filesystem::remove_all(folder);
+}
+
+TEST(MapFile, MeshChunksCoverTheMeshOnce) {
+    TriangleMesh grid;
+    for (int i = 0; i <= 20; ++i)
+        for (int j = 0; j <= 20; ++j) grid.vertices.push_back({i * 10.0, 0.0, j * 10.0});
+    for (std::uint32_t i = 0; i < 20; ++i)
+        for (std::uint32_t j = 0; j < 20; ++j) {
+            const std::uint32_t v = i * 21 + j;
+            grid.triangles.push_back({v, v + 1, v + 22});
+            grid.triangles.push_back({v, v + 22, v + 21});
+        }
+    const std::vector<TriangleMesh> chunks = split_into_chunks(grid, 50.0);
+    EXPECT_EQ(chunks.size(), 16u);
+    std::size_t triangles = 0;
+    for (const TriangleMesh& c : chunks) {
+        triangles += c.triangles.size();
+        for (const auto& t : c.triangles)
+            for (const std::uint32_t v : t) EXPECT_LT(v, c.vertices.size());
+    }
+    EXPECT_EQ(triangles, grid.triangles.size());
+    EXPECT_NE(error_of([&] { split_into_chunks(grid, 0.0); }).find("chunk size"),
+              std::string::npos);
+}
+
+}  // namespace
+}  // namespace trackphys
