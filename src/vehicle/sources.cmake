@@ -1,0 +1,2 @@
+target_sources(trackphys PRIVATE
+  vehicle/tyre.cpp)
