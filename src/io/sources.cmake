@@ -8,4 +8,5 @@ target_sources(trackphys PRIVATE
   io/ply_header_check.cpp
   io/recording.cpp
   io/scenario.cpp
-  io/snapshot_file.cpp)
+  io/snapshot_file.cpp
+  io/vehicle_spec_json.cpp)

@@ -10,7 +10,7 @@
 namespace trackphys {
 
 double MagicFormulaCurve::peak(double load, double nominal_load) const {
-    const double dfz = (load - nominal_load) / nominal_load;
+    const double dfz = std::min((load - nominal_load) / nominal_load, kMaxLoadRatio - 1.0);
     return std::max(0.0, friction * (1.0 + friction_load_slope * dfz) * load);
 }
 
@@ -79,8 +79,7 @@ TyreSpec TyreSpec::slick() {
 }
 
 std::string TyreSpec::validate(const std::string& prefix) const {
-    if (std::string why = longitudinal.validate(prefix + "longitudinal."); !why.empty())
-        return why;
+    if (std::string why = longitudinal.validate(prefix + "longitudinal."); !why.empty()) return why;
     if (std::string why = lateral.validate(prefix + "lateral."); !why.empty()) return why;
     std::ostringstream why;
     const auto positive = [&](const char* field, double value) {
@@ -107,16 +106,16 @@ Tyre::Tyre(const TyreSpec& spec)
       peak_slip_ratio_(spec.longitudinal.peak_slip()),
       peak_lateral_slip_(spec.lateral.peak_slip()) {}
 
-TyreForce Tyre::force(double slip_ratio, double lateral_slip, double load) const {
+TyreForce Tyre::force(double slip_ratio, double lateral_slip, double load, double road_grip) const {
     if (!(load > 0.0)) return {};
     const double sx = slip_ratio / peak_slip_ratio_;
     const double sy = lateral_slip / peak_lateral_slip_;
     const double s = std::hypot(sx, sy);
     if (s == 0.0) return {};
-    const double fx = spec_.longitudinal.force(s * peak_slip_ratio_,
-                                               spec_.longitudinal.peak(load, spec_.nominal_load));
-    const double fy =
-        spec_.lateral.force(s * peak_lateral_slip_, spec_.lateral.peak(load, spec_.nominal_load));
+    const double fx = spec_.longitudinal.force(
+        s * peak_slip_ratio_, road_grip * spec_.longitudinal.peak(load, spec_.nominal_load));
+    const double fy = spec_.lateral.force(s * peak_lateral_slip_,
+                                          road_grip * spec_.lateral.peak(load, spec_.nominal_load));
     return {fx * sx / s, fy * sy / s};
 }
 

@@ -1,12 +1,13 @@
 // The Magic Formula tyre: each shipped curve peaks where its coefficients say, and the
 // combined-slip force never leaves the friction ellipse.
+#include "trackphys/vehicle/tyre.hpp"
+
 #include <cmath>
 #include <random>
 
 #include <gtest/gtest.h>
 
 #include "trackphys/error.hpp"
-#include "trackphys/vehicle/tyre.hpp"
 
 namespace trackphys {
 namespace {
@@ -58,6 +59,11 @@ TEST(Tyre, PeakFrictionFallsWithLoadAsTheSlopeSays) {
         const double mu_double = curve.peak(2.0 * fz0, fz0) / (2.0 * fz0);
         EXPECT_NEAR(mu_double, curve.friction * (1.0 + curve.friction_load_slope), 1e-12);
         EXPECT_LT(mu_double, curve.friction);
+        // Beyond the load range the friction coefficient holds its value at the edge.
+        const double edge = MagicFormulaCurve::kMaxLoadRatio * fz0;
+        EXPECT_NEAR(curve.peak(2.0 * edge, fz0) / (2.0 * edge), curve.peak(edge, fz0) / edge,
+                    1e-12);
+        EXPECT_DOUBLE_EQ(curve.peak(edge, fz0) / edge, curve.lowest_friction());
     }
 }
 

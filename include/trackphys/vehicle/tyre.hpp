@@ -23,8 +23,18 @@ struct MagicFormulaCurve {
     /// pD2 / pD1; < 0 for real tyres, which is why a stiff anti-roll bar loses grip).
     double friction_load_slope = 0.0;
 
+    /// The load range over which the friction follows its load slope, as a multiple of
+    /// the nominal load: beyond it the friction coefficient stays at its value there, as
+    /// MF 5.2 clamps the load to its tyre's measured range (FZMAX). Without it the
+    /// parabola mu (1 + slope dfz) F_z would lose grip under more load past 5.5 F_z0.
+    static constexpr double kMaxLoadRatio = 3.0;
+
     /// Peak force D (N) at load F_z (N) for a tyre of nominal load F_z0 (N); never < 0.
     TRACKPHYS_API double peak(double load, double nominal_load) const;
+    /// Peak force over load at the top of the load range: the least friction it has.
+    double lowest_friction() const {
+        return friction * (1.0 + friction_load_slope * (kMaxLoadRatio - 1.0));
+    }
     /// F(x) for peak force D (N).
     TRACKPHYS_API double force(double slip, double peak_force) const;
     /// The slip at which F peaks: where C atan(Phi) = pi/2, solved for x. Throws
@@ -42,8 +52,8 @@ struct TyreSpec {
     MagicFormulaCurve longitudinal;
     MagicFormulaCurve lateral;
     double nominal_load = 4000.0;           ///< F_z0, N
-    double longitudinal_relaxation = 0.15;    ///< sigma_x, m
-    double lateral_relaxation = 0.4;          ///< sigma_y, m
+    double longitudinal_relaxation = 0.15;  ///< sigma_x, m
+    double lateral_relaxation = 0.4;        ///< sigma_y, m
 
     /// A road tyre (docs/vehicle.md cites the coefficients).
     TRACKPHYS_API static TyreSpec road();
@@ -76,7 +86,10 @@ class TRACKPHYS_API Tyre {
     /// friction ellipse), and each pure-slip curve is reproduced exactly. Positive slips
     /// give positive forces (a wheel spinning faster than it rolls pushes forward; lateral
     /// slip is minus the sideways velocity over the rolling speed).
-    TyreForce force(double slip_ratio, double lateral_slip, double load) const;
+    /// road_grip scales both peaks: the road's friction relative to the dry road the
+    /// curves describe (0.05 for ice).
+    TyreForce force(double slip_ratio, double lateral_slip, double load,
+                    double road_grip = 1.0) const;
 
   private:
     TyreSpec spec_;

@@ -15,7 +15,8 @@ struct AutopilotSettings {
     /// Share of the tyres' friction the speed profile plans to use in turns (the rest is
     /// margin for steering corrections and bumps).
     double grip_use = 0.75;
-    /// Deceleration the profile plans for braking into turns (m/s^2, before downforce).
+    /// Deceleration the profile plans for braking into turns (m/s^2, before downforce);
+    /// a car with a vehicle model plans grip_use times its tyres' peak instead.
     double braking = 6.0;
     double lookahead_min = 10.0;   ///< m ahead of the car at low speed
     double lookahead_time = 0.45;  ///< s of travel added to the look-ahead distance
