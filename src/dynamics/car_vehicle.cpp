@@ -18,10 +18,10 @@ Wrench Car::vehicle_wrench(std::span<const Contact> deepest, double h) {
         const int slot = vehicle.wheel_slot(i);
         if (slot < 0) {
             if (touching)
-                wrench.add_at_point(body_contact_force(spec_.body_contact, contact.depth,
-                                                       contact.normal,
-                                                       point_velocity(state_, contact.point)),
-                                    contact.point, state_.position);
+                wrench.add_at_point(
+                    body_contact_force(spec_.body_contact, contact.depth, contact.normal,
+                                       point_velocity(state_, contact.point)),
+                    contact.point, state_.position);
             continue;
         }
         const auto w = static_cast<std::size_t>(slot);
@@ -34,10 +34,10 @@ Wrench Car::vehicle_wrench(std::span<const Contact> deepest, double h) {
         if (!rolling) {
             vehicle.wheel_force(w, 0.0, 0.0, 0.0, h);
             if (touching)
-                wrench.add_at_point(body_contact_force(spec_.body_contact, contact.depth,
-                                                       contact.normal,
-                                                       point_velocity(state_, contact.point)),
-                                    contact.point, state_.position);
+                wrench.add_at_point(
+                    body_contact_force(spec_.body_contact, contact.depth, contact.normal,
+                                       point_velocity(state_, contact.point)),
+                    contact.point, state_.position);
             continue;
         }
         const glm::dvec3 forward = in_plane / in_plane_length;
@@ -45,9 +45,9 @@ Wrench Car::vehicle_wrench(std::span<const Contact> deepest, double h) {
         const glm::dvec3 velocity = point_velocity(state_, contact.point);
         const TyreForce tyre = vehicle.wheel_force(w, wheel_loads_[i], glm::dot(velocity, forward),
                                                    glm::dot(velocity, lateral), h);
-        wrench.add_at_point(contact.normal * wheel_loads_[i] + forward * tyre.longitudinal +
-                                lateral * tyre.lateral,
-                            contact.point, state_.position);
+        wrench.add_at_point(
+            contact.normal * wheel_loads_[i] + forward * tyre.longitudinal + lateral * tyre.lateral,
+            contact.point, state_.position);
     }
     add_aero_force(wrench);
     return wrench;

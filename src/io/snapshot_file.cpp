@@ -20,7 +20,7 @@ constexpr std::size_t kHeaderBytes = 32;
 // than the bytes left is rejected before anything is allocated for it.
 constexpr std::size_t kColliderBytes = 24;
 constexpr std::size_t kCarBytes = 8 + 13 * 8 + 3 * 8 + 4 + 8 + 4;
-constexpr std::size_t kWheelBytes = 3 * 8;
+constexpr std::size_t kWheelBytes = 4 * 8;
 constexpr std::size_t kEllipsoidBytes = 8 * 8 + 2 * 4;
 
 std::uint64_t checksum(std::string_view bytes) {
@@ -154,7 +154,8 @@ void write_car(Writer& w, const CarSnapshot& car) {
     }
     w.u32(static_cast<std::uint32_t>(car.vehicle->wheels.size() + 1));
     for (const WheelState& wheel : car.vehicle->wheels)
-        w.f64(wheel.spin), w.f64(wheel.slip_ratio), w.f64(wheel.lateral_slip);
+        w.f64(wheel.spin), w.f64(wheel.slip_ratio), w.f64(wheel.lateral_slip),
+            w.f64(wheel.road_torque);
     w.u32(static_cast<std::uint32_t>(car.vehicle->gear));
     w.f64(car.vehicle->shift_time_left), w.f64(car.vehicle->clutch);
 }
@@ -192,6 +193,7 @@ CarSnapshot read_car(Reader& r) {
         wheel.spin = r.f64("wheel spin");
         wheel.slip_ratio = r.f64("wheel slip ratio");
         wheel.lateral_slip = r.f64("wheel lateral slip");
+        wheel.road_torque = r.f64("wheel road torque");
     }
     vehicle.gear = static_cast<int>(r.u32("vehicle gear"));
     vehicle.shift_time_left = r.f64("vehicle shift time");

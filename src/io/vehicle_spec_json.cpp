@@ -76,7 +76,8 @@ void read_differential(ObjectReader& in, DifferentialSpec& d) {
     if (in.has("kind")) {
         std::string kind;
         in.read("kind", kind);
-        if (kind == "open") d.kind = DifferentialKind::open;
+        if (kind == "open")
+            d.kind = DifferentialKind::open;
         else if (kind == "limited_slip")
             d.kind = DifferentialKind::limited_slip;
         else

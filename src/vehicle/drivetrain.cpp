@@ -58,7 +58,8 @@ void Vehicle::shift_gears(double drivetrain_rpm, double throttle, double h) {
     if (state_.clutch < 1.0) return;
     const int top = static_cast<int>(box.ratios.size());
     int gear = state_.gear;
-    if (drivetrain_rpm > box.shift_up_rpm && gear < top && throttle > 0.0) ++gear;
+    if (drivetrain_rpm > box.shift_up_rpm && gear < top && throttle > 0.0)
+        ++gear;
     else if (drivetrain_rpm < box.shift_down_rpm && gear > 1)
         --gear;
     if (gear == state_.gear) return;
@@ -78,9 +79,9 @@ void Vehicle::shift_gears(double drivetrain_rpm, double throttle, double h) {
 double Vehicle::gearbox_torque(double engine_torque, double gear_ratio) const {
     double shared_road_torque = 0.0;
     double shares_squared = 0.0;
-    for (const Wheel& wheel : wheels_) {
-        shared_road_torque += wheel.drive_share * wheel.tyre_torque;
-        shares_squared += wheel.drive_share * wheel.drive_share;
+    for (std::size_t w = 0; w < wheels_.size(); ++w) {
+        shared_road_torque += wheels_[w].drive_share * state_.wheels[w].road_torque;
+        shares_squared += wheels_[w].drive_share * wheels_[w].drive_share;
     }
     const double coupling = state_.clutch * spec_.engine.inertia * gear_ratio / spec_.wheel_inertia;
     return state_.clutch * gear_ratio * (engine_torque - coupling * shared_road_torque) /
@@ -110,21 +111,20 @@ void Vehicle::begin_substep(double throttle, double brake, double car_speed, dou
     // clutch slips with the engine held at launch_rpm, passing that speed's torque.
     const bool locked = rpm >= box.launch_rpm;
     engine_rpm_ = locked ? rpm : (throttle > 0.0 ? box.launch_rpm : spec_.engine.idle_rpm);
-    const double torque = locked
-                              ? gearbox_torque(engine_torque(rpm, throttle), gear_ratio)
-                              : state_.clutch * gear_ratio * throttle *
-                                    engine_torque(box.launch_rpm, 1.0);
+    const double torque =
+        locked ? gearbox_torque(engine_torque(rpm, throttle), gear_ratio)
+               : state_.clutch * gear_ratio * throttle * engine_torque(box.launch_rpm, 1.0);
     for (Wheel& wheel : wheels_) wheel.drive_torque = wheel.drive_share * torque;
 
     // The limited-slip clutches move torque from the faster output to the slower.
     const double front_share = front_drive_share_;
     if (front_share > 0.0 && front_share < 1.0 &&
         spec_.centre_differential.kind == DifferentialKind::limited_slip) {
-        const double transfer = limited_slip_transfer(
-            axle_spin[0], axle_spin[1],
-            spec_.centre_differential.preload +
-                spec_.centre_differential.locking * std::abs(torque),
-            2.0 * spec_.wheel_inertia, h);
+        const double transfer =
+            limited_slip_transfer(axle_spin[0], axle_spin[1],
+                                  spec_.centre_differential.preload +
+                                      spec_.centre_differential.locking * std::abs(torque),
+                                  2.0 * spec_.wheel_inertia, h);
         for (Wheel& wheel : wheels_)
             wheel.drive_torque += (wheel.front ? -transfer : transfer) /
                                   std::max(axle_wheels[wheel.front ? 0 : 1], 1);

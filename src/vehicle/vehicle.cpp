@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include "trackphys/dynamics/car_spec.hpp"
 #include "trackphys/error.hpp"
@@ -43,13 +44,13 @@ Vehicle::Vehicle(const CarSpec& spec)
     }
     int axle_wheels[2] = {0, 0};  // front, rear
     for (const Wheel& wheel : wheels_) ++axle_wheels[wheel.front ? 0 : 1];
-    const double front_share = axle_wheels[1] == 0 ? 1.0
+    const double front_share = axle_wheels[1] == 0   ? 1.0
                                : axle_wheels[0] == 0 ? 0.0
                                                      : spec.front_drive_share;
     for (Wheel& wheel : wheels_) {
         wheel.critical_mass = spec.mass.mass / static_cast<double>(wheels_.size());
-        wheel.drive_share = wheel.front ? front_share / axle_wheels[0]
-                                        : (1.0 - front_share) / axle_wheels[1];
+        wheel.drive_share =
+            wheel.front ? front_share / axle_wheels[0] : (1.0 - front_share) / axle_wheels[1];
     }
     state_.wheels.resize(wheels_.size());
     telemetry_.resize(wheels_.size());
@@ -68,8 +69,8 @@ void Vehicle::set_state(const VehicleState& state) {
                std::to_string(wheels_.size()));
     for (std::size_t w = 0; w < state.wheels.size(); ++w) {
         const WheelState& s = state.wheels[w];
-        if (!(std::isfinite(s.spin) && std::abs(s.slip_ratio) <= kMaxSlip &&
-              std::abs(s.lateral_slip) <= kMaxSlip))
+        if (!(std::isfinite(s.spin) && std::isfinite(s.road_torque) &&
+              std::abs(s.slip_ratio) <= kMaxSlip && std::abs(s.lateral_slip) <= kMaxSlip))
             reject("wheel " + std::to_string(w) + " is not finite or its slip exceeds " +
                    std::to_string(kMaxSlip));
     }
@@ -107,45 +108,59 @@ TyreForce Vehicle::wheel_force(std::size_t w, double load, double rolling_veloci
                                    ts.longitudinal.peak(load, ts.nominal_load);
             const double slope_y =
                 ts.lateral.stiffness * ts.lateral.shape * ts.lateral.peak(load, ts.nominal_load);
-            damping_x = fade * 2.0 *
-                        std::sqrt(slope_x / ts.longitudinal_relaxation * wheel.critical_mass);
+            damping_x =
+                fade * 2.0 * std::sqrt(slope_x / ts.longitudinal_relaxation * wheel.critical_mass);
             damping_y =
                 fade * 2.0 * std::sqrt(slope_y / ts.lateral_relaxation * wheel.critical_mass);
         }
     }
 
-    // I dw/dt = T_drive - R (F_x - c_x (V_x - w R)), implicit in the damping; then the
-    // brake takes the spin towards zero, and holds it there when strong enough.
+    // The friction ellipse bounds the total, damping included (N for each direction).
+    const double dx = wheel.road_grip * ts.longitudinal.peak(load, ts.nominal_load);
+    const double dy = wheel.road_grip * ts.lateral.peak(load, ts.nominal_load);
+    const auto damped = [&](double spin) {
+        TyreForce total{force.longitudinal - damping_x * (rolling_velocity - spin * r),
+                        force.lateral - damping_y * lateral_velocity};
+        const double used =
+            load > 0.0 ? std::hypot(total.longitudinal / dx, total.lateral / dy) : 0.0;
+        if (used > 1.0) total.longitudinal /= used, total.lateral /= used;
+        return std::pair(total, used > 1.0);
+    };
+
+    // I dw/dt = T_drive - R (F_x - c_x (V_x - w R)), implicit in the damping. When that
+    // force leaves the friction ellipse the road holds the wheel only with the bounded
+    // force, explicitly. Then the brake takes the spin towards zero, and holds it there
+    // when strong enough.
     const double inertia = wheel.base_inertia;
-    const double stiff = 1.0 + h * damping_x * r * r / inertia;
+    double stiff = 1.0 + h * damping_x * r * r / inertia;
     double spin = (s.spin + h / inertia *
                                 (wheel.drive_torque - r * force.longitudinal +
                                  damping_x * r * rolling_velocity)) /
                   stiff;
+    auto [total, sliding] = damped(spin);
+    if (sliding) {
+        spin = s.spin + h / inertia * (wheel.drive_torque - r * total.longitudinal);
+        stiff = 1.0;
+    }
     const double brake_step = h * wheel.brake_torque / (inertia * stiff);
     spin = std::abs(spin) <= brake_step ? 0.0 : spin - std::copysign(brake_step, spin);
+    if (!sliding) total = damped(spin).first;
     s.spin = spin;
-    wheel.tyre_torque = 0.0;
+    s.road_torque = 0.0;
 
     if (load > 0.0) {
-        force.longitudinal -= damping_x * (rolling_velocity - spin * r);
-        force.lateral -= damping_y * lateral_velocity;
-        // The damping must not take the force out of the friction ellipse either.
-        const double dx = wheel.road_grip * ts.longitudinal.peak(load, ts.nominal_load);
-        const double dy = wheel.road_grip * ts.lateral.peak(load, ts.nominal_load);
-        const double used = std::hypot(force.longitudinal / dx, force.lateral / dy);
-        if (used > 1.0) force.longitudinal /= used, force.lateral /= used;
-        wheel.tyre_torque = -r * force.longitudinal;
+        force = total;
+        s.road_torque = -r * force.longitudinal;
         // sigma dk/dt + |V_x| k = w R - V_x, implicit Euler.
         const double speed = std::abs(rolling_velocity);
-        s.slip_ratio = std::clamp((s.slip_ratio + h / ts.longitudinal_relaxation *
-                                                      (spin * r - rolling_velocity)) /
-                                      (1.0 + h * speed / ts.longitudinal_relaxation),
-                                  -kMaxSlip, kMaxSlip);
-        s.lateral_slip = std::clamp(
-            (s.lateral_slip - h / ts.lateral_relaxation * lateral_velocity) /
-                (1.0 + h * speed / ts.lateral_relaxation),
+        s.slip_ratio = std::clamp(
+            (s.slip_ratio + h / ts.longitudinal_relaxation * (spin * r - rolling_velocity)) /
+                (1.0 + h * speed / ts.longitudinal_relaxation),
             -kMaxSlip, kMaxSlip);
+        s.lateral_slip =
+            std::clamp((s.lateral_slip - h / ts.lateral_relaxation * lateral_velocity) /
+                           (1.0 + h * speed / ts.lateral_relaxation),
+                       -kMaxSlip, kMaxSlip);
     }
     // In the air the slips keep their values: a wheel skipping over a kink between road
     // facets for a few sub-steps lands with the deflection it left with, instead of

@@ -14,8 +14,7 @@ void add(core::Fnv1a& hash, const MagicFormulaCurve& c) {
 
 void add(core::Fnv1a& hash, const TyreSpec& t) {
     add(hash, t.longitudinal), add(hash, t.lateral);
-    hash.add(t.nominal_load), hash.add(t.longitudinal_relaxation),
-        hash.add(t.lateral_relaxation);
+    hash.add(t.nominal_load), hash.add(t.longitudinal_relaxation), hash.add(t.lateral_relaxation);
 }
 
 void add(core::Fnv1a& hash, const DifferentialSpec& d) {
@@ -31,14 +30,14 @@ std::uint64_t fingerprint(const VehicleSpec& v) {
     hash.add(v.wheel_inertia);
     hash.add(static_cast<std::uint64_t>(v.engine.torque_curve.size()));
     for (const TorquePoint& p : v.engine.torque_curve) hash.add(p.rpm), hash.add(p.torque);
-    for (const double x : {v.engine.idle_rpm, v.engine.redline_rpm, v.engine.inertia,
-                           v.engine.friction_torque})
+    for (const double x :
+         {v.engine.idle_rpm, v.engine.redline_rpm, v.engine.inertia, v.engine.friction_torque})
         hash.add(x);
     hash.add(static_cast<std::uint64_t>(v.gearbox.ratios.size()));
     for (const double ratio : v.gearbox.ratios) hash.add(ratio);
-    for (const double x : {v.gearbox.final_drive, v.gearbox.shift_up_rpm, v.gearbox.shift_down_rpm,
-                           v.gearbox.shift_time, v.gearbox.clutch_engage_time,
-                           v.gearbox.launch_rpm})
+    for (const double x :
+         {v.gearbox.final_drive, v.gearbox.shift_up_rpm, v.gearbox.shift_down_rpm,
+          v.gearbox.shift_time, v.gearbox.clutch_engage_time, v.gearbox.launch_rpm})
         hash.add(x);
     add(hash, v.front_differential), add(hash, v.rear_differential),
         add(hash, v.centre_differential);
@@ -51,7 +50,8 @@ std::uint64_t fingerprint(const VehicleSpec& v) {
 
 void add_to_hash(core::Fnv1a& hash, const VehicleState& state) {
     for (const WheelState& wheel : state.wheels)
-        hash.add(wheel.spin), hash.add(wheel.slip_ratio), hash.add(wheel.lateral_slip);
+        hash.add(wheel.spin), hash.add(wheel.slip_ratio), hash.add(wheel.lateral_slip),
+            hash.add(wheel.road_torque);
     hash.add(static_cast<std::uint64_t>(state.gear));
     hash.add(state.shift_time_left), hash.add(state.clutch);
 }

@@ -106,7 +106,7 @@ std::string car_problem(const CarSnapshot& car) {
     if (car.vehicle) {
         for (const WheelState& w : car.vehicle->wheels)
             if (!(std::isfinite(w.spin) && std::isfinite(w.slip_ratio) &&
-                  std::isfinite(w.lateral_slip)))
+                  std::isfinite(w.lateral_slip) && std::isfinite(w.road_torque)))
                 return "a vehicle wheel's spin or slip is not finite";
         if (!(car.vehicle->gear >= 1 && std::isfinite(car.vehicle->shift_time_left) &&
               car.vehicle->clutch >= 0.0 && car.vehicle->clutch <= 1.0))

@@ -37,7 +37,8 @@ inline constexpr std::uint32_t kSnapshotFormatVersion = 2;
 ///                               steer, u32 ellipsoids, each {f64 suspension, f64 depth,
 ///                               f64 normal[3], f64 point[3], u32 collider, u32 triangle},
 ///                               u64 resets, u32 vehicle wheels + 1 (0: no vehicle
-///                               model), each {f64 spin, slip_ratio, lateral_slip},
+///                               model), each {f64 spin, slip_ratio, lateral_slip,
+///                               road_torque},
 ///                               and with a vehicle u32 gear, f64 shift_time_left, clutch}
 ///               u64 user data length, the user data
 TRACKPHYS_API std::string encode_snapshot(const WorldSnapshot& snapshot,

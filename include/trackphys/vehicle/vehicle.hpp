@@ -20,6 +20,8 @@ struct WheelState {
     /// kappa' and lateral slip tan(alpha)', relaxed towards their steady-state values.
     double slip_ratio = 0.0;
     double lateral_slip = 0.0;
+    /// N m the road put on the wheel in the last sub-step (the gearbox torque reads it).
+    double road_torque = 0.0;
 
     bool operator==(const WheelState&) const = default;
 };
@@ -97,10 +99,9 @@ class TRACKPHYS_API Vehicle {
         double anti_roll = 0.0;        // N/m against the partner's travel
         double anti_roll_force = 0.0;  // N, from measure_anti_roll
         double road_grip = 1.0;
-        std::size_t partner = 0;       // ellipsoid across the axle (itself if none)
-        double critical_mass = 0.0;    // kg: the car's mass share for low-speed damping
-        double drive_share = 0.0;      // of the gearbox's torque, through the differentials
-        double tyre_torque = 0.0;      // N m the road put on it in the last sub-step
+        std::size_t partner = 0;     // ellipsoid across the axle (itself if none)
+        double critical_mass = 0.0;  // kg: the car's mass share for low-speed damping
+        double drive_share = 0.0;    // of the gearbox's torque, through the differentials
         // This sub-step's drivetrain output:
         double drive_torque = 0.0;
         double brake_torque = 0.0;

@@ -29,9 +29,9 @@ struct EngineSpec {
 struct GearboxSpec {
     std::vector<double> ratios;  ///< forward gears, first to top, each > 0
     double final_drive = 3.5;
-    double shift_up_rpm = 6500.0;    ///< the shifter goes up a gear above this
-    double shift_down_rpm = 3000.0;  ///< and down below this
-    double shift_time = 0.1;         ///< s without drive while the gear changes
+    double shift_up_rpm = 6500.0;      ///< the shifter goes up a gear above this
+    double shift_down_rpm = 3000.0;    ///< and down below this
+    double shift_time = 0.1;           ///< s without drive while the gear changes
     double clutch_engage_time = 0.05;  ///< s for the clutch to close after a shift
     /// Below this drivetrain speed the clutch slips: the engine holds this speed and passes
     /// its torque at it (a launch).
