@@ -1,5 +1,6 @@
 #include "telemetry_csv.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <vector>
 
@@ -61,7 +62,7 @@ void TelemetryCsv::add(double time, const Car& car) {
         out_ << ',' << vehicle->state().gear;
         constexpr double kDegrees = 180.0 / 3.14159265358979323846;
         for (const WheelTelemetry& w : vehicle->telemetry()) {
-            number(out_, w.slip_ratio), number(out_, w.slip_angle * kDegrees);
+            number(out_, w.slip_ratio), number(out_, std::atan(w.lateral_slip) * kDegrees);
             number(out_, w.load), number(out_, w.spin);
         }
     }

@@ -165,7 +165,7 @@ TyreForce Vehicle::wheel_force(std::size_t w, double load, double rolling_veloci
     // In the air the slips keep their values: a wheel skipping over a kink between road
     // facets for a few sub-steps lands with the deflection it left with, instead of
     // building its force up again over a relaxation length at every skip.
-    out = {s.slip_ratio, std::atan(s.lateral_slip), load, spin};
+    out = {s.slip_ratio, s.lateral_slip, load, spin};
     return force;
 }
 

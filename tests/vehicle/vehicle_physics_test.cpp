@@ -22,8 +22,7 @@ namespace {
 constexpr double g = 9.81;
 
 // A world with the car placed on the mesh at (x, z), facing +Z.
-World world_with(const TriangleMesh& mesh, const CarSpec& spec, double x = 0.0,
-                 double z = 0.0) {
+World world_with(const TriangleMesh& mesh, const CarSpec& spec, double x = 0.0, double z = 0.0) {
     World world(test::static_world_of(mesh));
     world.add_car(spec, place_car_on_surface(world.statics(), spec, {x, 20.0, z},
                                              glm::dquat(1.0, 0.0, 0.0, 0.0)));
@@ -104,12 +103,11 @@ double reference_zero_to_100(const PointCar& car) {
         const double ratio = box.ratios[gear] * box.final_drive;
         const double rpm = speed / r * ratio * 60.0 / (2.0 * std::numbers::pi);
         const bool locked = rpm >= box.launch_rpm;
-        const double engine =
-            clutch * car.full_torque(locked ? rpm : box.launch_rpm) * ratio / r;
+        const double engine = clutch * car.full_torque(locked ? rpm : box.launch_rpm) * ratio / r;
         const double grip = PointCar::axle_peak(car.v.rear_tyre, car.rear_load(speed, a));
-        const double rotating = 4.0 * car.v.wheel_inertia / (r * r) +
-                                (locked ? clutch * car.v.engine.inertia * ratio * ratio / (r * r)
-                                        : 0.0);
+        const double rotating =
+            4.0 * car.v.wheel_inertia / (r * r) +
+            (locked ? clutch * car.v.engine.inertia * ratio * ratio / (r * r) : 0.0);
         a = (std::min(engine, grip) - car.aero(car.spec.drag_area, speed)) / (m + rotating);
         speed += a * dt;
         t += dt;

@@ -38,10 +38,10 @@ struct VehicleState {
 
 /// What a wheel did in the last sub-step, for telemetry.
 struct WheelTelemetry {
-    double slip_ratio = 0.0;  ///< kappa'
-    double slip_angle = 0.0;  ///< rad, atan(tan(alpha)'), > 0 pushes the car left
-    double load = 0.0;        ///< N, the tyre's normal force
-    double spin = 0.0;        ///< rad/s
+    double slip_ratio = 0.0;    ///< kappa'
+    double lateral_slip = 0.0;  ///< tan(alpha)': the slip angle is its atan, > 0 pushes left
+    double load = 0.0;          ///< N, the tyre's normal force
+    double spin = 0.0;          ///< rad/s
 };
 
 /// The vehicle model of a car whose CarSpec has a `vehicle` (docs/vehicle.md): the wheels'
