@@ -72,7 +72,7 @@ Autopilot::Autopilot(const Track& track, const CarSpec& car, AutopilotSettings s
                                               car.vehicle->rear_tyre.lateral.lowest_friction())
                                    : car.wheel_contact.friction);
     const double braking =
-        car.vehicle ? settings_.grip_use * g *
+        car.vehicle ? settings_.braking_grip_use * g *
                           std::min(car.vehicle->front_tyre.longitudinal.lowest_friction(),
                                    car.vehicle->rear_tyre.longitudinal.lowest_friction())
                     : settings_.braking;
