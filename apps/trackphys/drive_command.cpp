@@ -22,6 +22,7 @@
 #include "drive_svg.hpp"
 #include "interrupt_guard.hpp"
 #include "staged_outputs.hpp"
+#include "telemetry_csv.hpp"
 #include "track_mesh.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/io/car_spec_json.hpp"
@@ -41,11 +42,12 @@ namespace {
 struct DriveOptions {
     std::string track = "default";
     std::filesystem::path scenario_file, car_file;
+    std::string car_preset;
     bool print_car = false;
     bool print_scenario = false;
     Scenario flags;
     std::vector<double> spawn;
-    std::filesystem::path json, trace, record, svg;
+    std::filesystem::path json, trace, record, svg, telemetry;
     std::pair<std::string, std::string> save_at;  // T FILE
     std::filesystem::path resume;
 };
@@ -80,6 +82,7 @@ Scenario build_scenario(const DriveOptions& o, const CLI::App& command) {
     const auto given = [&](const char* option) { return command.count(option) > 0; };
     Scenario s = o.scenario_file.empty() ? Scenario{} : load_scenario(o.scenario_file);
     if (!o.car_file.empty()) s.car = load_car_spec(o.car_file);
+    if (given("--car-preset")) s.car = CarSpec::preset(o.car_preset);
     const Scenario& f = o.flags;
     if (given("--seed")) s.seed = f.seed;
     if (given("--mesh")) s.mesh = f.mesh;
@@ -184,7 +187,8 @@ void run(const DriveOptions& o, const CLI::App& command) {
     };
     const std::filesystem::path json = stage(o.json, "--json"),
                                 trace_file = stage(o.trace, "--trace"),
-                                record = stage(o.record, "--record"), svg = stage(o.svg, "--svg");
+                                record = stage(o.record, "--record"), svg = stage(o.svg, "--svg"),
+                                telemetry_file = stage(o.telemetry, "--telemetry");
     std::optional<SavePoint> save_at = parse_save_at(o, s.seconds);
     if (save_at) save_at->staged = stage(save_at->file, "--save-at");
     DriveSession session{
@@ -239,6 +243,9 @@ void run(const DriveOptions& o, const CLI::App& command) {
         recording = std::make_unique<RecordingWriter>(record, recording_plan.header);
     }
 
+    std::optional<TelemetryCsv> telemetry;
+    if (!telemetry_file.empty()) telemetry.emplace(telemetry_file, world.car(0));
+
     DriveReport report;
     report.scene = scene.description;
     report.triangles = scene.triangle_count;
@@ -291,6 +298,7 @@ void run(const DriveOptions& o, const CLI::App& command) {
                 autopilot ? std::optional(autopilot->laps()) : std::nullopt;
             recording->write_frame(world, {&laps_done, 1});
         }
+        if (telemetry) telemetry->add(world.time(), car);
         progress.show(laps > 0 ? autopilot->laps() +
                                      autopilot->distance_along() / scene.track->length_m -
                                      autopilot->laps()
@@ -324,6 +332,7 @@ void run(const DriveOptions& o, const CLI::App& command) {
         if (!out.flush()) throw Error("--trace '" + o.trace.string() + "': cannot write the trace");
     }
     if (recording) recording->finish();
+    if (telemetry) telemetry->finish();
     // The track mesh is written last and removed again if the outputs cannot be put in
     // place (save_mesh is atomic itself), as `trackphys track` does with its mesh.
     if (!recording_plan.track_mesh_file.empty())
@@ -350,8 +359,13 @@ void add_drive_command(CLI::App& app) {
     command->add_option(
         "--scenario", o->scenario_file,
         "Read track, car, driver and duration from this JSON file (see README, 'Scenario files')");
-    command->add_option("--car", o->car_file,
-                        "Read the car spec from this JSON file (see --print-car)");
+    CLI::Option* car_file = command->add_option(
+        "--car", o->car_file, "Read the car spec from this JSON file (see --print-car)");
+    command
+        ->add_option("--car-preset", o->car_preset,
+                     "Drive a preset car: arcade (the default car), gt or formula "
+                     "(docs/vehicle.md); in a --car file, \"model\" picks one")
+        ->excludes(car_file);
     CLI::Option* print_car = command->add_flag(
         "--print-car", o->print_car,
         "Print the car spec (default, --car or the scenario's) as JSON and exit: a starting "
@@ -399,6 +413,9 @@ void add_drive_command(CLI::App& app) {
                         "Write a Chrome trace (Perfetto) of every update's phases");
     command->add_option("--record", o->record,
                         "Write car poses and contacts per update (JSON Lines) for a viewer");
+    command->add_option("--telemetry", o->telemetry,
+                        "Write per-update telemetry as CSV with named channels (speed, inputs; "
+                        "with a vehicle model rpm, gear and each wheel's slip, load and spin)");
     command->add_option("--svg", o->svg, "Plot the path over the track and the update times");
     command
         ->add_option(

@@ -183,6 +183,7 @@ void bench_roots(BenchRun& run);
 void bench_broad_phase(BenchRun& run);
 void bench_mid_phase(BenchRun& run);
 void bench_update(BenchRun& run);
+void bench_vehicle(BenchRun& run);
 // Baked maps and many colliders (map_groups.cpp):
 void bench_maps(BenchRun& run);
 void bench_many_colliders(BenchRun& run);

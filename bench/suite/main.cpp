@@ -68,6 +68,7 @@ constexpr Group kGroups[] = {{"cull", bench_cull},
                              {"broad", bench_broad_phase},
                              {"mid", bench_mid_phase},
                              {"update", bench_update},
+                             {"vehicle", bench_vehicle},
                              {"maps", bench_maps},
                              {"colliders", bench_many_colliders},
                              {"contact", bench_contact_peers},
@@ -180,10 +181,11 @@ int run_bench(const BenchOptions& o) {
         bool known = false;
         for (const Group& g : kGroups) known = known || name == g.name;
         if (!known)
-            throw Error("--only '" + name +
-                        "': not a group (cull, roots, broad, mid, update, maps, colliders, "
-                        "contact, pair, mesh, "
-                        "bullet_update)");
+            throw Error(
+                "--only '" + name +
+                "': not a group (cull, roots, broad, mid, update, vehicle, maps, colliders, "
+                "contact, pair, mesh, "
+                "bullet_update)");
     }
     // Checked and staged before minutes of measuring; put in place only after the run.
     cli::StagedOutputs outputs;
@@ -233,9 +235,10 @@ int main(int argc, char** argv) {
         "trackphys-bench"};
     app.add_flag("--quick", o.quick,
                  "Fewer cases and repeats, colder caches: a smoke run, not the measure");
-    app.add_option("--only", o.only,
-                   "Run only these groups (cull, roots, broad, mid, update, maps, colliders, "
-                   "contact, pair, mesh, bullet_update), comma-separated")
+    app.add_option(
+           "--only", o.only,
+           "Run only these groups (cull, roots, broad, mid, update, vehicle, maps, colliders, "
+           "contact, pair, mesh, bullet_update), comma-separated")
         ->delimiter(',');
     app.add_option("--json", o.json, "Write the table as JSON (atomically)");
     app.add_flag("--check", o.check, "Fail on a MISS in any mode (a full run always does)");

@@ -49,6 +49,7 @@ Car::Car(CarSpec spec, const RigidBodyState& initial_state) : spec_(std::move(sp
         wheels_ += e.role != EllipsoidRole::body;
         front_wheels_ += e.role == EllipsoidRole::front_wheel;
     }
+    if (spec_.vehicle) vehicle_.emplace(spec_);
 }
 
 void Car::set_state(const RigidBodyState& state) {
@@ -88,6 +89,11 @@ void Car::set_suspension(std::span<const double> travel) {
     std::copy(travel.begin(), travel.end(), suspension_.begin());
 }
 
+void Car::set_vehicle_state(const VehicleState& state) {
+    if (!vehicle_) throw Error("car: the arcade car has no vehicle state to set");
+    vehicle_->set_state(state);
+}
+
 double Car::speed() const { return glm::length(state_.linear_velocity); }
 
 ContactMaterial Car::wheel_material(std::size_t i) const {
@@ -97,16 +103,20 @@ ContactMaterial Car::wheel_material(std::size_t i) const {
     return material;
 }
 
-WheelCommand Car::wheel_command(std::size_t i, double axle_normal_force) const {
-    const CarEllipsoid& wheel = spec_.ellipsoids[i];
+glm::dvec3 Car::wheel_heading(std::size_t i) const {
     // Body +Z is forward; front wheels turn about body +Y (positive steer = left).
     glm::dvec3 heading(0.0, 0.0, 1.0);
-    if (wheel.role == EllipsoidRole::front_wheel) {
+    if (spec_.ellipsoids[i].role == EllipsoidRole::front_wheel) {
         const double angle = inputs_.steer * spec_.max_steer_angle;
         heading = glm::dvec3(std::sin(angle), 0.0, std::cos(angle));
     }
+    return state_.orientation * heading;
+}
+
+WheelCommand Car::wheel_command(std::size_t i, double axle_normal_force) const {
+    const CarEllipsoid& wheel = spec_.ellipsoids[i];
     WheelCommand command;
-    command.heading = state_.orientation * heading;
+    command.heading = wheel_heading(i);
     // Drive and brake are split between the axles, then evenly between an axle's wheels.
     // Drive is a constant force up to the speed where the power limit takes over: F = P / v.
     const bool front = wheel.role == EllipsoidRole::front_wheel;
@@ -124,7 +134,7 @@ WheelCommand Car::wheel_command(std::size_t i, double axle_normal_force) const {
 void Car::advance(std::span<const Contact> deepest, const glm::dvec3& gravity, double h) {
     resolve_deep_contacts(deepest);
     measure_wheel_loads(deepest);
-    const Wrench wrench = contact_wrench(deepest);
+    const Wrench wrench = vehicle_ ? vehicle_wrench(deepest, h) : contact_wrench(deepest);
     update_suspension(deepest, h);
     trackphys::integrate(state_, spec_.mass, wrench, gravity, h);
 }
@@ -171,9 +181,12 @@ Wrench Car::contact_wrench(std::span<const Contact> deepest) const {
 void Car::update_suspension(std::span<const Contact> deepest, double h) {
     const Suspension& spring = spec_.suspension;
     const glm::dvec3 up = state_.orientation * glm::dvec3(0.0, 1.0, 0.0);
+    if (vehicle_) vehicle_->measure_anti_roll(suspension_);
     for (std::size_t i = 0; i < deepest.size(); ++i) {
         if (spec_.ellipsoids[i].role == EllipsoidRole::body) continue;
-        const double lift = wheel_loads_[i] * glm::dot(deepest[i].normal, up);
+        double lift = wheel_loads_[i] * glm::dot(deepest[i].normal, up);
+        if (vehicle_)
+            lift -= vehicle_->anti_roll_force(static_cast<std::size_t>(vehicle_->wheel_slot(i)));
         // Massless wheel: the damper passes what the spring does not hold.
         const double rate = (lift - spring.stiffness * suspension_[i]) / spring.damping;
         suspension_[i] = std::clamp(suspension_[i] + h * rate, 0.0, spring.travel);

@@ -118,6 +118,7 @@ std::string CarSpec::validate() const {
     check_non_negative(why, "drag_area", drag_area);
     check_non_negative(why, "downforce_area", downforce_area);
     check_non_negative(why, "air_density", air_density);
+    if (why.tellp() == 0 && vehicle) return vehicle->validate();
     return why.str();
 }
 

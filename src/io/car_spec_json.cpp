@@ -5,6 +5,7 @@
 
 #include "car_spec_json_detail.hpp"
 #include "trackphys/error.hpp"
+#include "vehicle_spec_json.hpp"
 
 namespace trackphys {
 namespace json_io {
@@ -68,8 +69,18 @@ Json vector_to_json(const glm::dvec3& v) { return Json::array({v.x, v.y, v.z}); 
 }  // namespace
 
 CarSpec car_spec_from_json(const Json& value, const std::string& path, const std::string& source) {
-    CarSpec spec = CarSpec::default_car();
     ObjectReader in(value, path, source);
+    // "model" picks the preset the other keys change.
+    CarSpec spec = CarSpec::default_car();
+    if (in.has("model")) {
+        std::string model;
+        in.read("model", model);
+        try {
+            spec = CarSpec::preset(model);
+        } catch (const Error& e) {
+            fail(source, in.path_of("model"), e.what());
+        }
+    }
     if (const Json* mass = in.find("mass")) {
         ObjectReader m(*mass, in.path_of("mass"), source);
         m.read("mass", spec.mass.mass);
@@ -105,6 +116,13 @@ CarSpec car_spec_from_json(const Json& value, const std::string& path, const std
     in.read("drag_area", spec.drag_area);
     in.read("downforce_area", spec.downforce_area);
     in.read("air_density", spec.air_density);
+    if (const Json* vehicle = in.find("vehicle")) {
+        if (!spec.vehicle)
+            fail(source, in.path_of("vehicle"),
+                 "the arcade car has no vehicle model: give \"model\": \"gt\" or "
+                 "\"formula\" first");
+        vehicle_from_json(*vehicle, in.path_of("vehicle"), source, *spec.vehicle);
+    }
     in.finish();
     // The physical checks live in one place: CarSpec::validate names the field.
     if (const std::string why = spec.validate(); !why.empty()) fail(source, path, why);
@@ -123,7 +141,8 @@ Json car_ellipsoids_to_json(std::span<const CarEllipsoid> ellipsoids) {
 }
 
 Json car_spec_to_json_value(const CarSpec& spec) {
-    return {
+    Json out = {
+        {"model", spec.vehicle ? spec.vehicle->model : std::string("arcade")},
         {"mass",
          {{"mass", spec.mass.mass},
           {"principal_inertia", vector_to_json(spec.mass.principal_inertia)}}},
@@ -147,6 +166,8 @@ Json car_spec_to_json_value(const CarSpec& spec) {
         {"downforce_area", spec.downforce_area},
         {"air_density", spec.air_density},
     };
+    if (spec.vehicle) out["vehicle"] = vehicle_to_json(*spec.vehicle);
+    return out;
 }
 
 }  // namespace json_io

@@ -19,7 +19,8 @@ constexpr std::size_t kHeaderBytes = 32;
 // The fewest payload bytes one collider, car and ellipsoid take: a count claiming more
 // than the bytes left is rejected before anything is allocated for it.
 constexpr std::size_t kColliderBytes = 24;
-constexpr std::size_t kCarBytes = 8 + 13 * 8 + 3 * 8 + 4 + 8;
+constexpr std::size_t kCarBytes = 8 + 13 * 8 + 3 * 8 + 4 + 8 + 4;
+constexpr std::size_t kWheelBytes = 4 * 8;
 constexpr std::size_t kEllipsoidBytes = 8 * 8 + 2 * 4;
 
 std::uint64_t checksum(std::string_view bytes) {
@@ -147,6 +148,16 @@ void write_car(Writer& w, const CarSnapshot& car) {
         w.u32(car.deepest_refs[i].triangle);
     }
     w.u64(car.resets);
+    if (!car.vehicle) {
+        w.u32(0);
+        return;
+    }
+    w.u32(static_cast<std::uint32_t>(car.vehicle->wheels.size() + 1));
+    for (const WheelState& wheel : car.vehicle->wheels)
+        w.f64(wheel.spin), w.f64(wheel.slip_ratio), w.f64(wheel.lateral_slip),
+            w.f64(wheel.road_torque);
+    w.u32(static_cast<std::uint32_t>(car.vehicle->gear));
+    w.f64(car.vehicle->shift_time_left), w.f64(car.vehicle->clutch);
 }
 
 CarSnapshot read_car(Reader& r) {
@@ -174,6 +185,19 @@ CarSnapshot read_car(Reader& r) {
         car.deepest_refs[i].triangle = r.u32("contact triangle");
     }
     car.resets = r.u64("car resets");
+    const std::uint32_t wheels_and_one = r.u32("vehicle wheel count");
+    if (wheels_and_one == 0) return car;
+    VehicleState& vehicle = car.vehicle.emplace();
+    vehicle.wheels.resize(r.count(wheels_and_one - 1, kWheelBytes, "vehicle wheel"));
+    for (WheelState& wheel : vehicle.wheels) {
+        wheel.spin = r.f64("wheel spin");
+        wheel.slip_ratio = r.f64("wheel slip ratio");
+        wheel.lateral_slip = r.f64("wheel lateral slip");
+        wheel.road_torque = r.f64("wheel road torque");
+    }
+    vehicle.gear = static_cast<int>(r.u32("vehicle gear"));
+    vehicle.shift_time_left = r.f64("vehicle shift time");
+    vehicle.clutch = r.f64("vehicle clutch");
     return car;
 }
 

@@ -14,4 +14,5 @@ target_sources(trackphys PRIVATE
   io/recording.cpp
   io/recording_world.cpp
   io/scenario.cpp
-  io/snapshot_file.cpp)
+  io/snapshot_file.cpp
+  io/vehicle_spec_json.cpp)

@@ -65,7 +65,17 @@ Autopilot::Autopilot(const Track& track, const CarSpec& car, AutopilotSettings s
     // Speed profile: each sample's cornering limit (the bank helps only when it leans into
     // the turn) and crest limit, then a backward pass so the car can brake down to every
     // limit in time.
-    const double mu = settings_.grip_use * car.wheel_contact.friction;
+    // A car with a vehicle model plans with its tyres' friction at the top of their load
+    // range (banked turns load them heavily), the lower axle's.
+    const double mu = settings_.grip_use *
+                      (car.vehicle ? std::min(car.vehicle->front_tyre.lateral.lowest_friction(),
+                                              car.vehicle->rear_tyre.lateral.lowest_friction())
+                                   : car.wheel_contact.friction);
+    const double braking =
+        car.vehicle ? settings_.braking_grip_use * g *
+                          std::min(car.vehicle->front_tyre.longitudinal.lowest_friction(),
+                                   car.vehicle->rear_tyre.longitudinal.lowest_friction())
+                    : settings_.braking;
     const double k = 0.5 * car.air_density * car.downforce_area / car.mass.mass;
     const std::size_t n = centerline_.size();
     planned_speed_.resize(n);
@@ -84,7 +94,7 @@ Autopilot::Autopilot(const Track& track, const CarSpec& car, AutopilotSettings s
         double gap = centerline_[next].distance - centerline_[i].distance;
         if (gap <= 0.0) gap += length_;
         const double v_next = planned_speed_[next];
-        const double decel = settings_.braking + k * v_next * v_next * mu;
+        const double decel = braking + k * v_next * v_next * mu;
         planned_speed_[i] =
             std::min(planned_speed_[i], std::sqrt(v_next * v_next + 2.0 * decel * gap));
     }

@@ -12,6 +12,7 @@
 #include "trackphys/error.hpp"
 #include "trackphys/geometry/contact.hpp"
 #include "trackphys/geometry/ellipsoid_cull.hpp"
+#include "vehicle/vehicle_fingerprint.hpp"
 #include "world/car_slot.hpp"
 #include "world/update_box.hpp"
 
@@ -213,6 +214,7 @@ std::uint64_t World::state_hash() const {
             hash.add(slot.car.suspension(i));
         const CarInputs& in = slot.car.inputs();
         hash.add(in.throttle), hash.add(in.brake), hash.add(in.steer);
+        if (const Vehicle* vehicle = slot.car.vehicle()) add_to_hash(hash, vehicle->state());
     }
     return hash.value;
 }

@@ -134,6 +134,7 @@ void World::update_car_or_reset(CarSlot& slot, PhaseStopwatch& watch) {
     reset.angular_velocity = glm::dvec3(0.0);
     // Car::restore re-checks the start state: if even that were impossible it throws, loudly.
     slot.car.restore(reset, slot.car.inputs(), slot.start_suspension);
+    if (const Vehicle* vehicle = slot.car.vehicle()) slot.car.set_vehicle_state(vehicle->at_rest());
     for (Contact& contact : slot.deepest)
         contact =
             Contact{-std::numeric_limits<double>::infinity(), glm::dvec3(0.0), glm::dvec3(0.0)};

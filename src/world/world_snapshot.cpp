@@ -15,6 +15,7 @@
 #include "trackphys/error.hpp"
 #include "trackphys/math/types.hpp"
 #include "trackphys/world/world.hpp"
+#include "vehicle/vehicle_fingerprint.hpp"
 #include "world/car_slot.hpp"
 
 namespace trackphys {
@@ -26,7 +27,7 @@ void add(core::Fnv1a& hash, const ContactMaterial& m) {
 
 // Every field of CarSpec goes into its fingerprint. The size checks fail to compile when a
 // field is added, as a reminder to hash it too (then update the sizes).
-static_assert(sizeof(CarSpec) == 240, "a new CarSpec field must join fingerprint(CarSpec)");
+static_assert(sizeof(CarSpec) == 736, "a new CarSpec field must join fingerprint(CarSpec)");
 static_assert(sizeof(CarEllipsoid) == 88,
               "a new CarEllipsoid field must join fingerprint(CarSpec)");
 
@@ -102,6 +103,15 @@ std::string car_problem(const CarSnapshot& car) {
             !is_finite(c.normal) || !is_finite(c.point))
             return "ellipsoid " + std::to_string(i) + "'s contact is not finite";
     }
+    if (car.vehicle) {
+        for (const WheelState& w : car.vehicle->wheels)
+            if (!(std::isfinite(w.spin) && std::isfinite(w.slip_ratio) &&
+                  std::isfinite(w.lateral_slip) && std::isfinite(w.road_torque)))
+                return "a vehicle wheel's spin or slip is not finite";
+        if (!(car.vehicle->gear >= 1 && std::isfinite(car.vehicle->shift_time_left) &&
+              car.vehicle->clutch >= 0.0 && car.vehicle->clutch <= 1.0))
+            return "the vehicle's gear, shift time or clutch is out of range";
+    }
     return {};
 }
 
@@ -135,6 +145,7 @@ std::uint64_t fingerprint(const CarSpec& spec) {
           spec.max_brake_force, spec.front_brake_share, spec.max_steer_angle,
           spec.deep_contact_fraction, spec.drag_area, spec.downforce_area, spec.air_density})
         hash.add(x);
+    if (spec.vehicle) hash.add(fingerprint(*spec.vehicle));
     return hash.value;
 }
 
@@ -153,13 +164,15 @@ WorldSnapshot World::save_state() const {
     snapshot.update_count = updates_;
     for (const CarSlot& slot : cars_) {
         const std::span<const double> suspension = slot.car.suspension();
-        snapshot.cars.push_back({fingerprint(slot.car.spec()),
-                                 slot.car.state(),
-                                 slot.car.inputs(),
-                                 {suspension.begin(), suspension.end()},
-                                 slot.deepest,
-                                 slot.deepest_ref,
-                                 slot.resets});
+        snapshot.cars.push_back(
+            {fingerprint(slot.car.spec()),
+             slot.car.state(),
+             slot.car.inputs(),
+             {suspension.begin(), suspension.end()},
+             slot.deepest,
+             slot.deepest_ref,
+             slot.resets,
+             slot.car.vehicle() ? std::optional(slot.car.vehicle()->state()) : std::nullopt});
     }
     return snapshot;
 }
@@ -200,6 +213,10 @@ void World::restore_state(const WorldSnapshot& snapshot) {
         try {
             Car copy = car;
             copy.restore(saved.state, saved.inputs, saved.suspension);
+            if (saved.vehicle.has_value() != (car.vehicle() != nullptr))
+                throw Error(car.vehicle() ? "the snapshot has no vehicle state for its model"
+                                          : "the snapshot has a vehicle state for an arcade car");
+            if (saved.vehicle) copy.set_vehicle_state(*saved.vehicle);
             restored.push_back(std::move(copy));
         } catch (const Error& e) {
             reject("car " + std::to_string(i) + ": " + e.what());

@@ -64,6 +64,29 @@ TEST(CarSpecJson, KeysLeftOutKeepTheDefaultCar) {
     EXPECT_EQ(car_spec_to_json(parse_car_spec("{}")), car_spec_to_json(base));
 }
 
+TEST(CarSpecJson, PresetsRoundTripAndModelPicksTheBase) {
+    for (const std::string_view name : CarSpec::preset_names()) {
+        const CarSpec preset = CarSpec::preset(name);
+        const std::string text = car_spec_to_json(preset);
+        EXPECT_EQ(car_spec_to_json(parse_car_spec(text)), text) << name;
+        EXPECT_EQ(car_spec_to_json(parse_car_spec("{\"model\": \"" + std::string(name) + "\"}")),
+                  text)
+            << name;
+    }
+    // Keys beside "model" change the preset.
+    const CarSpec gt = parse_car_spec(
+        R"({"model": "gt", "drag_area": 0.7, "vehicle": {"gearbox": {"final_drive": 3.9},
+            "rear_differential": {"kind": "open"}, "traction_control": false}})");
+    ASSERT_TRUE(gt.vehicle.has_value());
+    EXPECT_EQ(gt.vehicle->model, "gt");
+    EXPECT_EQ(gt.drag_area, 0.7);
+    EXPECT_EQ(gt.vehicle->gearbox.final_drive, 3.9);
+    EXPECT_EQ(gt.vehicle->gearbox.ratios, CarSpec::preset("gt").vehicle->gearbox.ratios);
+    EXPECT_EQ(gt.vehicle->rear_differential.kind, DifferentialKind::open);
+    EXPECT_FALSE(gt.vehicle->traction_control);
+    EXPECT_FALSE(parse_car_spec(R"({"model": "arcade"})").vehicle.has_value());
+}
+
 TEST(CarSpecJson, EveryBadFileNamesTheKeyAndTheReason) {
     const std::vector<std::pair<std::string, std::string>> cases = {
         {R"({"mass": {"mass": -5}})",
@@ -77,7 +100,22 @@ TEST(CarSpecJson, EveryBadFileNamesTheKeyAndTheReason) {
         {R"({"ellipsoids": [{)" + kBall + R"(, "orientation": [0, 0, 0, 0]}]})",
          "ellipsoids[0].orientation must be a finite unit quaternion"},
         {R"({"masss": 1})",
-         "car spec 'c.json': masss: unknown key (expected one of: mass, ellipsoids,"},
+         "car spec 'c.json': masss: unknown key (expected one of: model, mass, ellipsoids,"},
+        {R"({"model": "rally"})",
+         "car spec 'c.json': model: unknown car preset 'rally' (expected arcade, gt or "
+         "formula)"},
+        {R"({"vehicle": {"wheel_inertia": 2}})",
+         "vehicle: the arcade car has no vehicle model: give \"model\": \"gt\""},
+        {R"({"model": "gt", "vehicle": {"gearbox": {"ratios": [3, 0]}}})",
+         "CarSpec.vehicle.gearbox.ratios[1] must be finite and > 0, got 0"},
+        {R"({"model": "formula", "vehicle": {"rear_tyre": {"lateral": {"shape": 2.5}}}})",
+         "CarSpec.vehicle.rear_tyre.lateral.shape must be in (1, 2], got 2.5"},
+        {R"({"model": "gt", "vehicle": {"rear_differential": {"kind": "welded"}}})",
+         "vehicle.rear_differential.kind: unknown kind 'welded' (expected open or limited_slip)"},
+        {R"({"model": "gt", "vehicle": {"engine": {"torque_curve": [[1000, 300], [900, 1]]}}})",
+         "CarSpec.vehicle.engine.torque_curve[1].rpm must exceed the previous point's"},
+        {R"({"model": "gt", "vehicle": {"anti_lock": 1}})",
+         "vehicle.anti_lock: expected true or false"},
         {R"({"ellipsoids": [{)" + kBall + R"(}, {)" + kBall + R"(, "colour": "red"}]})",
          "ellipsoids[1].colour: unknown key (expected one of: center, semi_axes, role, "
          "orientation)"},

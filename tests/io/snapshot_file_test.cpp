@@ -100,7 +100,7 @@ TEST(SnapshotFile, EveryBitFlipIsRejected) {
 
 TEST(SnapshotFile, OtherVersionsMagicAndTrailingBytesAreRejected) {
     const std::string bytes = encode_snapshot(small_snapshot());
-    EXPECT_NE(error_of([&] { decode_snapshot(with_u32_at(bytes, 8, 2)); }).find("format version 2"),
+    EXPECT_NE(error_of([&] { decode_snapshot(with_u32_at(bytes, 8, 3)); }).find("format version 3"),
               std::string::npos);
     EXPECT_NE(error_of([&] { decode_snapshot(with_u32_at(bytes, 12, 1)); }).find("reserved"),
               std::string::npos);

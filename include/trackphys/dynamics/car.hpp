@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstddef>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -13,6 +14,7 @@
 #include "trackphys/geometry/aabb.hpp"
 #include "trackphys/geometry/contact.hpp"
 #include "trackphys/geometry/ellipsoid.hpp"
+#include "trackphys/vehicle/vehicle.hpp"
 
 namespace trackphys {
 
@@ -65,6 +67,14 @@ class TRACKPHYS_API Car {
     /// of its range.
     void restore(const RigidBodyState& state, const CarInputs& inputs,
                  std::span<const double> suspension);
+    /// The vehicle model (wheel spins, slips, gear, clutch, telemetry) of a car whose spec
+    /// has a `vehicle`; null for the arcade car.
+    const Vehicle* vehicle() const { return vehicle_ ? &*vehicle_ : nullptr; }
+    /// The vehicle model, to set what is not state (Vehicle::set_road_grip).
+    Vehicle* vehicle() { return vehicle_ ? &*vehicle_ : nullptr; }
+    /// Replaces the vehicle model's state (restore). Throws trackphys::Error when the car
+    /// has no vehicle model or Vehicle::set_state rejects the state.
+    void set_vehicle_state(const VehicleState& state);
     /// Radius about the centre of mass of a sphere holding every ellipsoid (m).
     double bounding_radius() const { return bounding_radius_; }
 
@@ -89,6 +99,9 @@ class TRACKPHYS_API Car {
     ///   tunnelling through it; ordinary driving never reaches that depth.
     /// - Suspension: each wheel moves along the body's up axis under its tyre's normal load
     ///   (see Suspension).
+    /// - With a vehicle model (CarSpec::vehicle), the wheels' tangential forces come from
+    ///   their spinning wheels and Magic Formula tyres instead (docs/vehicle.md), and the
+    ///   anti-roll bars join the suspension.
     void advance(std::span<const Contact> deepest, const glm::dvec3& gravity, double h);
 
   private:
@@ -96,6 +109,10 @@ class TRACKPHYS_API Car {
     /// The tyre's normal force of each wheel (0 for the body) into wheel_loads_.
     void measure_wheel_loads(std::span<const Contact> deepest);
     Wrench contact_wrench(std::span<const Contact> deepest) const;
+    /// contact_wrench for a car with a vehicle model; advances its wheels by h.
+    Wrench vehicle_wrench(std::span<const Contact> deepest, double h);
+    /// The world direction wheel i rolls in (front wheels steered).
+    glm::dvec3 wheel_heading(std::size_t i) const;
     void update_suspension(std::span<const Contact> deepest, double h);
     WheelCommand wheel_command(std::size_t i, double axle_normal_force) const;
     /// The contact material of wheel i (rear tyres with their extra grip).
@@ -108,6 +125,7 @@ class TRACKPHYS_API Car {
     std::vector<Ellipsoid> body_ellipsoids_;
     std::vector<double> suspension_;
     std::vector<double> wheel_loads_;  // this sub-step's tyre normal forces (N)
+    std::optional<Vehicle> vehicle_;
     double bounding_radius_ = 0.0;
     int front_wheels_ = 0;
     int wheels_ = 0;

@@ -1,6 +1,9 @@
 #pragma once
 
+#include <optional>
+#include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <glm/gtc/quaternion.hpp>
@@ -8,6 +11,7 @@
 
 #include "trackphys/dynamics/rigid_body.hpp"
 #include "trackphys/export.hpp"
+#include "trackphys/vehicle/vehicle_spec.hpp"
 
 namespace trackphys {
 
@@ -80,11 +84,20 @@ struct TRACKPHYS_API CarSpec {
     double drag_area = 0.35;      ///< C_d A (m^2): drag 1/2 rho C_d A v^2
     double downforce_area = 0.9;  ///< C_l A (m^2): downforce 1/2 rho C_l A v^2
     double air_density = 1.2;     ///< kg/m^3
+    /// Spinning wheels, Magic Formula tyres and a drivetrain (docs/vehicle.md) in place of
+    /// the arcade wheel forces; empty for the arcade car.
+    std::optional<VehicleSpec> vehicle;
 
     /// A 1200 kg car, 4.5 m long and 2 m wide: four wheels (0.35 m radius, 0.15 m half
     /// width) and four body ellipsoids, tyres of 0.74 cm static sag, damping near
     /// critical, enough power and downforce to reach 1000 km/h.
     static CarSpec default_car();
+
+    /// The names preset() knows: "arcade" (default_car()), "gt" and "formula".
+    static std::span<const std::string_view> preset_names();
+    /// The preset of that name (docs/vehicle.md#presets). Throws trackphys::Error naming
+    /// the known presets for any other name.
+    static CarSpec preset(std::string_view name);
 
     /// How far the car's lowest point (at full suspension droop) sits below its centre of
     /// mass when the car stands upright (m): the height at which to place the centre of

@@ -19,7 +19,7 @@ struct SnapshotFile {
 };
 
 /// The snapshot format this build writes and the only one it reads.
-inline constexpr std::uint32_t kSnapshotFormatVersion = 1;
+inline constexpr std::uint32_t kSnapshotFormatVersion = 2;
 
 /// The bytes of a snapshot file. Layout, every number little-endian, doubles as their IEEE
 /// bits (so they come back bit-exact):
@@ -36,7 +36,10 @@ inline constexpr std::uint32_t kSnapshotFormatVersion = 1;
 ///                               linear_velocity[3], angular_velocity[3], f64 throttle, brake,
 ///                               steer, u32 ellipsoids, each {f64 suspension, f64 depth,
 ///                               f64 normal[3], f64 point[3], u32 collider, u32 triangle},
-///                               u64 resets}
+///                               u64 resets, u32 vehicle wheels + 1 (0: no vehicle
+///                               model), each {f64 spin, slip_ratio, lateral_slip,
+///                               road_torque},
+///                               and with a vehicle u32 gear, f64 shift_time_left, clutch}
 ///               u64 user data length, the user data
 TRACKPHYS_API std::string encode_snapshot(const WorldSnapshot& snapshot,
                                           std::string_view user_data = {});

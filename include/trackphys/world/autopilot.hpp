@@ -17,6 +17,10 @@ struct AutopilotSettings {
     double grip_use = 0.75;
     /// Deceleration the profile plans for braking into turns (m/s^2, before downforce).
     double braking = 6.0;
+    /// A car with a vehicle model plans braking at this share of its tyres' longitudinal
+    /// peak instead: about what `braking` is of the arcade car's grip, so that braking
+    /// into a turn leaves the tyres lateral grip to turn with.
+    double braking_grip_use = 0.5;
     double lookahead_min = 10.0;   ///< m ahead of the car at low speed
     double lookahead_time = 0.45;  ///< s of travel added to the look-ahead distance
     /// Gain of the yaw-rate feedback in the steering (0 = pure pursuit only).

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -45,6 +46,9 @@ struct CarSnapshot {
     /// order of the exact tests, so it is state too. {~0u, ~0u} for none.
     std::vector<TriangleRef> deepest_refs;
     std::uint64_t resets = 0;  ///< World::car_resets
+    /// Wheel spins and slips, gear, shift and clutch of a car with a vehicle model
+    /// (Car::vehicle); empty for the arcade car.
+    std::optional<VehicleState> vehicle;
 };
 
 /// The complete dynamic state of a World: restore_state() of it, then update(), gives

@@ -1,0 +1,100 @@
+#pragma once
+
+#include <string>
+
+#include "trackphys/export.hpp"
+
+namespace trackphys {
+
+/// One direction of a tyre's steady-state force curve, Pacejka's four-coefficient Magic
+/// Formula with MF 5.2's linear load sensitivity of the friction coefficient
+/// (docs/vehicle.md):
+///
+///     F(x) = D sin(C atan(B x - E (B x - atan(B x)))),   D = mu (1 + mu_load dfz) F_z,
+///
+/// where x is the slip (slip ratio, or the tangent of the slip angle) and
+/// dfz = (F_z - F_z0) / F_z0 the load's departure from the tyre's nominal load.
+struct MagicFormulaCurve {
+    double stiffness = 10.0;  ///< B: stiffness factor
+    double shape = 1.9;       ///< C: shape factor, in (1, 2) for a curve that peaks
+    double curvature = 0.97;  ///< E: curvature factor, <= 1
+    double friction = 1.0;    ///< mu: peak force over load at the nominal load
+    /// d mu / d dfz over mu: how the peak friction falls as the load rises (MF 5.2's
+    /// pD2 / pD1; < 0 for real tyres, which is why a stiff anti-roll bar loses grip).
+    double friction_load_slope = 0.0;
+
+    /// The load range over which the friction follows its load slope, as a multiple of
+    /// the nominal load: beyond it the friction coefficient stays at its value there, as
+    /// MF 5.2 clamps the load to its tyre's measured range (FZMAX). Without it the
+    /// parabola mu (1 + slope dfz) F_z would lose grip under more load past 5.5 F_z0.
+    static constexpr double kMaxLoadRatio = 3.0;
+
+    /// Peak force D (N) at load F_z (N) for a tyre of nominal load F_z0 (N); never < 0.
+    TRACKPHYS_API double peak(double load, double nominal_load) const;
+    /// Peak force over load at the top of the load range: the least friction it has.
+    double lowest_friction() const {
+        return friction * (1.0 + friction_load_slope * (kMaxLoadRatio - 1.0));
+    }
+    /// F(x) for peak force D (N).
+    TRACKPHYS_API double force(double slip, double peak_force) const;
+    /// The slip at which F peaks: where C atan(Phi) = pi/2, solved for x. Throws
+    /// trackphys::Error when the curve has no peak (validate() says why).
+    TRACKPHYS_API double peak_slip() const;
+    /// Empty when the curve has a peak and finite factors; else the first problem, with
+    /// the field named after prefix (e.g. "VehicleSpec.front_tyre.lateral.shape ...").
+    TRACKPHYS_API std::string validate(const std::string& prefix) const;
+};
+
+/// A tyre: its longitudinal and lateral Magic Formula curves, the load they were measured
+/// at, and its relaxation lengths (how far it rolls before a slip change builds up to its
+/// steady-state force).
+struct TyreSpec {
+    MagicFormulaCurve longitudinal;
+    MagicFormulaCurve lateral;
+    double nominal_load = 4000.0;           ///< F_z0, N
+    double longitudinal_relaxation = 0.15;  ///< sigma_x, m
+    double lateral_relaxation = 0.4;        ///< sigma_y, m
+
+    /// A road tyre (docs/vehicle.md cites the coefficients).
+    TRACKPHYS_API static TyreSpec road();
+    /// A racing slick (docs/vehicle.md cites the figures it is built from).
+    TRACKPHYS_API static TyreSpec slick();
+
+    TRACKPHYS_API std::string validate(const std::string& prefix) const;
+};
+
+/// Force of a tyre in its contact frame (N): along its rolling direction and across it.
+struct TyreForce {
+    double longitudinal = 0.0;
+    double lateral = 0.0;
+};
+
+/// A validated TyreSpec with its peak slips solved once.
+class TRACKPHYS_API Tyre {
+  public:
+    /// Throws trackphys::Error with TyreSpec::validate()'s message.
+    explicit Tyre(const TyreSpec& spec);
+
+    const TyreSpec& spec() const { return spec_; }
+    double peak_slip_ratio() const { return peak_slip_ratio_; }
+    double peak_lateral_slip() const { return peak_lateral_slip_; }
+
+    /// Combined-slip force at slip ratio kappa and lateral slip tan(alpha) under load F_z
+    /// (N), by Pacejka's similarity method: both slips normalised by their peak slips, the
+    /// total normalised slip s shared by direction, each force the pure-slip curve at s
+    /// times its direction's share. Then (F_x / D_x)^2 + (F_y / D_y)^2 <= 1 always (the
+    /// friction ellipse), and each pure-slip curve is reproduced exactly. Positive slips
+    /// give positive forces (a wheel spinning faster than it rolls pushes forward; lateral
+    /// slip is minus the sideways velocity over the rolling speed).
+    /// road_grip scales both peaks: the road's friction relative to the dry road the
+    /// curves describe (0.05 for ice).
+    TyreForce force(double slip_ratio, double lateral_slip, double load,
+                    double road_grip = 1.0) const;
+
+  private:
+    TyreSpec spec_;
+    double peak_slip_ratio_;
+    double peak_lateral_slip_;
+};
+
+}  // namespace trackphys

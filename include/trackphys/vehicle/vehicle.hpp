@@ -1,0 +1,128 @@
+#pragma once
+
+#include <cstddef>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "trackphys/export.hpp"
+#include "trackphys/vehicle/tyre.hpp"
+#include "trackphys/vehicle/vehicle_spec.hpp"
+
+namespace trackphys {
+
+struct CarSpec;
+
+/// One wheel's state: what the next sub-step reads.
+struct WheelState {
+    double spin = 0.0;  ///< rad/s about its axle, > 0 rolling forward
+    /// The tyre's transient slips (docs/vehicle.md#tyre-the-magic-formula): slip ratio
+    /// kappa' and lateral slip tan(alpha)', relaxed towards their steady-state values.
+    double slip_ratio = 0.0;
+    double lateral_slip = 0.0;
+    /// N m the road put on the wheel in the last sub-step (the gearbox torque reads it).
+    double road_torque = 0.0;
+
+    bool operator==(const WheelState&) const = default;
+};
+
+/// Everything of a Vehicle that a later sub-step reads: its part of a car's snapshot.
+struct VehicleState {
+    std::vector<WheelState> wheels;  ///< in CarSpec ellipsoid order, wheels only
+    int gear = 1;                    ///< 1 = first
+    double shift_time_left = 0.0;    ///< s until the gear change completes
+    double clutch = 1.0;             ///< engagement, 0 open .. 1 closed
+
+    bool operator==(const VehicleState&) const = default;
+};
+
+/// What a wheel did in the last sub-step, for telemetry.
+struct WheelTelemetry {
+    double slip_ratio = 0.0;    ///< kappa'
+    double lateral_slip = 0.0;  ///< tan(alpha)': the slip angle is its atan, > 0 pushes left
+    double load = 0.0;          ///< N, the tyre's normal force
+    double spin = 0.0;          ///< rad/s
+};
+
+/// The vehicle model of a car whose CarSpec has a `vehicle` (docs/vehicle.md): the wheels'
+/// spin, the tyres' transient slips and forces, and the drivetrain (engine, clutch,
+/// automatic gearbox, differentials, brakes with anti-lock and traction control). Car
+/// drives it once per sub-step: begin_substep(), then wheel_force() for every wheel.
+class TRACKPHYS_API Vehicle {
+  public:
+    /// spec must hold a vehicle (CarSpec::validate() has checked it).
+    explicit Vehicle(const CarSpec& spec);
+
+    const VehicleState& state() const { return state_; }
+    /// Replaces the state. Throws trackphys::Error naming the field when it does not fit
+    /// this vehicle (wheel count, gear range) or is not finite.
+    void set_state(const VehicleState& state);
+
+    /// This vehicle's state at rest: wheels still, first gear, clutch closed (a reset).
+    VehicleState at_rest() const;
+
+    /// The wheel slot of ellipsoid i (-1 for a body ellipsoid).
+    int wheel_slot(std::size_t ellipsoid) const { return slot_of_ellipsoid_[ellipsoid]; }
+
+    /// The grip of the road under wheel slot w relative to a dry road (1 by default; 0.05
+    /// for ice): scales its tyre's peaks. Part of the environment, not of the state.
+    void set_road_grip(std::size_t w, double grip) { wheels_[w].road_grip = grip; }
+
+    /// The drivetrain's share of a sub-step of h seconds: the shifter, the clutch, the
+    /// engine's torque through the gearbox and differentials, and the brakes, at throttle
+    /// and brake in 0..1 and the car's speed (m/s), into each wheel's torques.
+    void begin_substep(double throttle, double brake, double car_speed, double h);
+
+    /// The tyre force in its contact frame (N) of wheel slot w under load (N, 0 when in
+    /// the air) with the contact point moving at rolling_velocity along the wheel's
+    /// heading and lateral_velocity across it (m/s, in the contact plane); advances the
+    /// wheel's spin and slips by h seconds.
+    TyreForce wheel_force(std::size_t w, double load, double rolling_velocity,
+                          double lateral_velocity, double h);
+
+    /// Sets every wheel's anti-roll bar force from the suspension compression of every
+    /// ellipsoid (m), all at once so that no wheel sees its partner's already updated.
+    void measure_anti_roll(std::span<const double> suspension);
+    /// The anti-roll bar's force on wheel slot w's suspension (N, resisting compression).
+    double anti_roll_force(std::size_t w) const { return wheels_[w].anti_roll_force; }
+
+    /// The last sub-step's engine speed (rev/min) and each wheel's telemetry.
+    double engine_rpm() const { return engine_rpm_; }
+    std::span<const WheelTelemetry> telemetry() const { return telemetry_; }
+
+  private:
+    struct Wheel {
+        std::size_t ellipsoid = 0;
+        bool front = false;
+        double radius = 0.3;
+        double base_inertia = 1.0;
+        double anti_roll = 0.0;        // N/m against the partner's travel
+        double anti_roll_force = 0.0;  // N, from measure_anti_roll
+        double road_grip = 1.0;
+        std::size_t partner = 0;     // ellipsoid across the axle (itself if none)
+        double critical_mass = 0.0;  // kg: the car's mass share for low-speed damping
+        double drive_share = 0.0;    // of the gearbox's torque, through the differentials
+        // This sub-step's drivetrain output:
+        double drive_torque = 0.0;
+        double brake_torque = 0.0;
+    };
+
+    void shift_gears(double drivetrain_rpm, double throttle, double h);
+    double engine_torque(double rpm, double throttle) const;
+    double gearbox_torque(double engine_torque, double gear_ratio) const;
+    void lock_axle(bool front, double torque, double h);
+    const Tyre& tyre_of(const Wheel& wheel) const { return wheel.front ? front_tyre_ : rear_tyre_; }
+
+    VehicleSpec spec_;
+    Tyre front_tyre_;
+    Tyre rear_tyre_;
+    double front_drive_share_;
+    double front_brake_share_;
+    std::vector<Wheel> wheels_;
+    std::vector<int> slot_of_ellipsoid_;
+    VehicleState state_;
+    double engine_rpm_ = 0.0;
+    std::vector<WheelTelemetry> telemetry_;
+};
+
+}  // namespace trackphys

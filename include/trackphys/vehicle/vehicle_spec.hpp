@@ -1,0 +1,82 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "trackphys/export.hpp"
+#include "trackphys/vehicle/tyre.hpp"
+
+namespace trackphys {
+
+/// One point of the engine's full-throttle torque curve.
+struct TorquePoint {
+    double rpm = 0.0;     ///< engine speed, rev/min
+    double torque = 0.0;  ///< N m at full throttle
+};
+
+/// The engine: torque interpolated linearly between the curve's points (held flat beyond
+/// its ends), cut above the redline.
+struct EngineSpec {
+    std::vector<TorquePoint> torque_curve;  ///< rpm strictly ascending, torque >= 0
+    double idle_rpm = 1000.0;
+    double redline_rpm = 7000.0;
+    double inertia = 0.2;  ///< kg m^2, crankshaft and flywheel
+    /// Engine braking at zero throttle, at the redline (N m; proportional to rpm below).
+    double friction_torque = 50.0;
+};
+
+/// Gearbox, final drive, clutch and the automatic shifter.
+struct GearboxSpec {
+    std::vector<double> ratios;  ///< forward gears, first to top, each > 0
+    double final_drive = 3.5;
+    double shift_up_rpm = 6500.0;      ///< the shifter goes up a gear above this
+    double shift_down_rpm = 3000.0;    ///< and down below this
+    double shift_time = 0.1;           ///< s without drive while the gear changes
+    double clutch_engage_time = 0.05;  ///< s for the clutch to close after a shift
+    /// Below this drivetrain speed the clutch slips: the engine holds this speed and passes
+    /// its torque at it (a launch).
+    double launch_rpm = 3000.0;
+};
+
+enum class DifferentialKind {
+    open,          ///< equal torque to both outputs, whatever their speeds
+    limited_slip,  ///< also moves up to preload + locking |T_in| from the faster output
+};
+
+struct DifferentialSpec {
+    DifferentialKind kind = DifferentialKind::open;
+    double preload = 0.0;  ///< N m the limited-slip clutch transfers at zero input torque
+    double locking = 0.0;  ///< share of the input torque it may transfer, 0..1
+};
+
+/// A car with spinning wheels, Magic Formula tyres and a drivetrain (docs/vehicle.md),
+/// on top of CarSpec's ellipsoids, mass, suspension and aerodynamics. CarSpec's
+/// front_drive_share splits the torque at the centre differential (0 = rear drive) and
+/// front_brake_share is the brake bias; the arcade drive and grip fields are not used.
+struct VehicleSpec {
+    std::string model = "gt";  ///< the preset it came from, for the spec file's "model"
+    TyreSpec front_tyre;
+    TyreSpec rear_tyre;
+    double wheel_inertia = 1.0;  ///< kg m^2 per wheel about its axle
+    EngineSpec engine;
+    GearboxSpec gearbox;
+    DifferentialSpec front_differential;
+    DifferentialSpec rear_differential;
+    DifferentialSpec centre_differential;  ///< between the axles (all-wheel drive only)
+    double max_brake_torque = 8000.0;      ///< N m over all wheels at full brake
+    /// Anti-lock brakes and traction control: each wheel's brake or drive torque falls off
+    /// as its slip ratio passes the tyre's peak slip, so the tyre stays near its peak.
+    bool anti_lock = true;
+    bool traction_control = true;
+    double front_anti_roll = 0.0;  ///< N/m per metre of travel difference across the axle
+    double rear_anti_roll = 0.0;
+    /// Below this speed the tyres add damping to their deflection (m/s), so that a car
+    /// coming to rest does not rock on its tyres' springs.
+    double low_speed = 3.0;
+
+    /// Empty when every field is in range; else the first problem, naming the field
+    /// (e.g. "CarSpec.vehicle.gearbox.ratios[2] must be finite and > 0, got 0").
+    TRACKPHYS_API std::string validate() const;
+};
+
+}  // namespace trackphys

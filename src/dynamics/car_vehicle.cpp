@@ -1,0 +1,56 @@
+// Car::vehicle_wrench: the contact wrench of a car with a vehicle model. Body ellipsoids
+// and aerodynamics are as for the arcade car; each wheel's tangential force comes from
+// its tyre (docs/vehicle.md), in the frame the exact contact gives it.
+
+#include <glm/geometric.hpp>
+
+#include "trackphys/dynamics/car.hpp"
+
+namespace trackphys {
+
+Wrench Car::vehicle_wrench(std::span<const Contact> deepest, double h) {
+    Vehicle& vehicle = *vehicle_;
+    vehicle.begin_substep(inputs_.throttle, inputs_.brake, speed(), h);
+    Wrench wrench;
+    for (std::size_t i = 0; i < deepest.size(); ++i) {
+        const Contact& contact = deepest[i];
+        const bool touching = contact.depth > 0.0;
+        const int slot = vehicle.wheel_slot(i);
+        if (slot < 0) {
+            if (touching)
+                wrench.add_at_point(
+                    body_contact_force(spec_.body_contact, contact.depth, contact.normal,
+                                       point_velocity(state_, contact.point)),
+                    contact.point, state_.position);
+            continue;
+        }
+        const auto w = static_cast<std::size_t>(slot);
+        // A wheel pressed on its side (heading along the normal) has no rolling direction
+        // and only slides: it carries no load into the tyre model then.
+        const glm::dvec3 heading = wheel_heading(i);
+        const glm::dvec3 in_plane = heading - contact.normal * glm::dot(heading, contact.normal);
+        const double in_plane_length = glm::length(in_plane);
+        const bool rolling = touching && wheel_loads_[i] > 0.0 && in_plane_length >= 1e-6;
+        if (!rolling) {
+            vehicle.wheel_force(w, 0.0, 0.0, 0.0, h);
+            if (touching)
+                wrench.add_at_point(
+                    body_contact_force(spec_.body_contact, contact.depth, contact.normal,
+                                       point_velocity(state_, contact.point)),
+                    contact.point, state_.position);
+            continue;
+        }
+        const glm::dvec3 forward = in_plane / in_plane_length;
+        const glm::dvec3 lateral = glm::cross(contact.normal, forward);
+        const glm::dvec3 velocity = point_velocity(state_, contact.point);
+        const TyreForce tyre = vehicle.wheel_force(w, wheel_loads_[i], glm::dot(velocity, forward),
+                                                   glm::dot(velocity, lateral), h);
+        wrench.add_at_point(
+            contact.normal * wheel_loads_[i] + forward * tyre.longitudinal + lateral * tyre.lateral,
+            contact.point, state_.position);
+    }
+    add_aero_force(wrench);
+    return wrench;
+}
+
+}  // namespace trackphys

@@ -1,0 +1,169 @@
+// The drivetrain half of Vehicle: shifter, clutch, engine, differentials and brakes turn
+// the driver's throttle and brake into each wheel's drive and brake torque.
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "trackphys/vehicle/vehicle.hpp"
+
+namespace trackphys {
+namespace {
+
+constexpr double kRpmPerRadPerSecond = 60.0 / (2.0 * std::numbers::pi);
+
+// The share of the peak slip over which anti-lock and traction control fade a wheel's
+// torque out: full torque up to 0.9 kappa_peak, none beyond 1.2 kappa_peak, where the
+// curve is within a few per cent of its peak.
+double slip_limiter(double slip, double peak) {
+    return std::clamp((1.2 * peak - slip) / (0.3 * peak), 0.0, 1.0);
+}
+
+// A limited-slip clutch between two outputs turning at speeds a and b (rad/s): the torque
+// it moves from the faster to the slower, at most capacity. It is a stiff viscous
+// coupling bounded by the capacity; the gain, a quarter of what would stop the speed
+// difference in one step of h seconds, keeps the explicit sub-step stable.
+double limited_slip_transfer(double a, double b, double capacity, double inertia, double h) {
+    const double gain = 0.25 * inertia / h;
+    return std::clamp(gain * (a - b), -capacity, capacity);
+}
+
+}  // namespace
+
+double Vehicle::engine_torque(double rpm, double throttle) const {
+    const EngineSpec& engine = spec_.engine;
+    if (rpm > engine.redline_rpm) return -engine.friction_torque;  // the limiter cuts fuel
+    const std::vector<TorquePoint>& curve = engine.torque_curve;
+    double full = curve.front().torque;
+    if (rpm >= curve.back().rpm) full = curve.back().torque;
+    for (std::size_t k = 1; k < curve.size(); ++k)
+        if (rpm >= curve[k - 1].rpm && rpm < curve[k].rpm) {
+            const double t = (rpm - curve[k - 1].rpm) / (curve[k].rpm - curve[k - 1].rpm);
+            full = curve[k - 1].torque + t * (curve[k].torque - curve[k - 1].torque);
+        }
+    const double friction = engine.friction_torque * std::max(rpm, 0.0) / engine.redline_rpm;
+    return throttle * full - (1.0 - throttle) * friction;
+}
+
+// Up a gear above shift_up_rpm under throttle, down below shift_down_rpm; a change opens
+// the clutch for shift_time, then it closes over clutch_engage_time.
+void Vehicle::shift_gears(double drivetrain_rpm, double throttle, double h) {
+    const GearboxSpec& box = spec_.gearbox;
+    if (state_.shift_time_left > 0.0) {
+        state_.shift_time_left = std::max(0.0, state_.shift_time_left - h);
+        state_.clutch = 0.0;
+        return;
+    }
+    state_.clutch = std::min(1.0, state_.clutch + h / box.clutch_engage_time);
+    if (state_.clutch < 1.0) return;
+    const int top = static_cast<int>(box.ratios.size());
+    int gear = state_.gear;
+    if (drivetrain_rpm > box.shift_up_rpm && gear < top && throttle > 0.0)
+        ++gear;
+    else if (drivetrain_rpm < box.shift_down_rpm && gear > 1)
+        --gear;
+    if (gear == state_.gear) return;
+    state_.gear = gear;
+    state_.shift_time_left = box.shift_time;
+    state_.clutch = 0.0;
+}
+
+// The torque the gearbox passes to the differentials when the clutch locks engine and
+// wheels together. Each driven wheel k takes the share f_k of it (the open differentials'
+// split) and the engine turns at G sum f_k w_k, so with the wheels' road torques tau_k
+// I_w a_k = f_k T + tau_k and I_e a_e = T_e - T / G give
+//     T = G (T_e - I_e G sum f_k tau_k / I_w) / (1 + I_e G^2 sum f_k^2 / I_w):
+// the engine's inertia takes its part of the torque, so a wheel on ice spins the engine up
+// instead of passing the full torque to the wheel across the differential. The road
+// torques are the last sub-step's.
+double Vehicle::gearbox_torque(double engine_torque, double gear_ratio) const {
+    double shared_road_torque = 0.0;
+    double shares_squared = 0.0;
+    for (std::size_t w = 0; w < wheels_.size(); ++w) {
+        shared_road_torque += wheels_[w].drive_share * state_.wheels[w].road_torque;
+        shares_squared += wheels_[w].drive_share * wheels_[w].drive_share;
+    }
+    const double coupling = state_.clutch * spec_.engine.inertia * gear_ratio / spec_.wheel_inertia;
+    return state_.clutch * gear_ratio * (engine_torque - coupling * shared_road_torque) /
+           (1.0 + coupling * gear_ratio * shares_squared);
+}
+
+void Vehicle::begin_substep(double throttle, double brake, double car_speed, double h) {
+    // The gearbox output turns at sum f_k w_k (the differentials average their outputs).
+    double driven_spin = 0.0;
+    double axle_spin[2] = {0.0, 0.0};  // front, rear
+    int axle_wheels[2] = {0, 0};
+    for (std::size_t w = 0; w < wheels_.size(); ++w) {
+        driven_spin += wheels_[w].drive_share * state_.wheels[w].spin;
+        const int axle = wheels_[w].front ? 0 : 1;
+        axle_spin[axle] += state_.wheels[w].spin;
+        ++axle_wheels[axle];
+    }
+    for (int axle : {0, 1}) axle_spin[axle] /= std::max(axle_wheels[axle], 1);
+
+    const GearboxSpec& box = spec_.gearbox;
+    shift_gears(driven_spin * box.ratios[state_.gear - 1] * box.final_drive * kRpmPerRadPerSecond,
+                throttle, h);
+    const double gear_ratio = box.ratios[state_.gear - 1] * box.final_drive;
+    const double rpm = driven_spin * gear_ratio * kRpmPerRadPerSecond;
+
+    // Above launch_rpm the closed clutch locks engine and wheels together. Below it the
+    // clutch slips with the engine held at launch_rpm, passing that speed's torque.
+    const bool locked = rpm >= box.launch_rpm;
+    engine_rpm_ = locked ? rpm : (throttle > 0.0 ? box.launch_rpm : spec_.engine.idle_rpm);
+    const double torque =
+        locked ? gearbox_torque(engine_torque(rpm, throttle), gear_ratio)
+               : state_.clutch * gear_ratio * throttle * engine_torque(box.launch_rpm, 1.0);
+    for (Wheel& wheel : wheels_) wheel.drive_torque = wheel.drive_share * torque;
+
+    // The limited-slip clutches move torque from the faster output to the slower.
+    const double front_share = front_drive_share_;
+    if (front_share > 0.0 && front_share < 1.0 &&
+        spec_.centre_differential.kind == DifferentialKind::limited_slip) {
+        const double transfer =
+            limited_slip_transfer(axle_spin[0], axle_spin[1],
+                                  spec_.centre_differential.preload +
+                                      spec_.centre_differential.locking * std::abs(torque),
+                                  2.0 * spec_.wheel_inertia, h);
+        for (Wheel& wheel : wheels_)
+            wheel.drive_torque += (wheel.front ? -transfer : transfer) /
+                                  std::max(axle_wheels[wheel.front ? 0 : 1], 1);
+    }
+    if (front_share > 0.0) lock_axle(true, front_share * torque, h);
+    if (front_share < 1.0) lock_axle(false, (1.0 - front_share) * torque, h);
+
+    for (std::size_t w = 0; w < wheels_.size(); ++w) {
+        Wheel& wheel = wheels_[w];
+        const double peak = tyre_of(wheel).peak_slip_ratio();
+        const double slip = state_.wheels[w].slip_ratio;
+        if (spec_.traction_control && wheel.drive_torque > 0.0)
+            wheel.drive_torque *= slip_limiter(slip, peak);
+        const int axle = wheel.front ? 0 : 1;
+        const double bias = wheel.front ? front_brake_share_ : 1.0 - front_brake_share_;
+        wheel.brake_torque = brake * spec_.max_brake_torque * bias / axle_wheels[axle];
+        // Anti-lock acts above walking pace only, as real systems do: at rest the brake
+        // must hold the car however the tyres deflect.
+        if (spec_.anti_lock && car_speed > 1.0) wheel.brake_torque *= slip_limiter(-slip, peak);
+    }
+}
+
+// A limited-slip axle differential with two wheels: its clutch's transfer between them.
+void Vehicle::lock_axle(bool front, double torque, double h) {
+    const DifferentialSpec& diff = front ? spec_.front_differential : spec_.rear_differential;
+    if (diff.kind != DifferentialKind::limited_slip) return;
+    std::size_t pair[2] = {0, 0};
+    int count = 0;
+    for (std::size_t w = 0; w < wheels_.size(); ++w)
+        if (wheels_[w].front == front) {
+            if (count < 2) pair[count] = w;
+            ++count;
+        }
+    if (count != 2) return;
+    const double transfer = limited_slip_transfer(
+        state_.wheels[pair[0]].spin, state_.wheels[pair[1]].spin,
+        diff.preload + diff.locking * std::abs(torque), spec_.wheel_inertia, h);
+    wheels_[pair[0]].drive_torque -= transfer;
+    wheels_[pair[1]].drive_torque += transfer;
+}
+
+}  // namespace trackphys

@@ -1,0 +1,7 @@
+target_sources(trackphys PRIVATE
+  vehicle/car_presets.cpp
+  vehicle/drivetrain.cpp
+  vehicle/tyre.cpp
+  vehicle/vehicle.cpp
+  vehicle/vehicle_fingerprint.cpp
+  vehicle/vehicle_spec.cpp)

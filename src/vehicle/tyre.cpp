@@ -1,0 +1,122 @@
+#include "trackphys/vehicle/tyre.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <sstream>
+
+#include "trackphys/error.hpp"
+
+namespace trackphys {
+
+double MagicFormulaCurve::peak(double load, double nominal_load) const {
+    const double dfz = std::min((load - nominal_load) / nominal_load, kMaxLoadRatio - 1.0);
+    return std::max(0.0, friction * (1.0 + friction_load_slope * dfz) * load);
+}
+
+double MagicFormulaCurve::force(double slip, double peak_force) const {
+    const double bx = stiffness * slip;
+    return peak_force * std::sin(shape * std::atan(bx - curvature * (bx - std::atan(bx))));
+}
+
+double MagicFormulaCurve::peak_slip() const {
+    if (std::string why = validate("MagicFormulaCurve."); !why.empty()) throw Error(why);
+    // sin peaks where C atan(Phi) = pi/2. Phi(u) = (1 - E) u + E atan(u), u = B x, rises
+    // monotonically from 0 for E <= 1, so bisection on u finds the one crossing.
+    const double target = std::tan(0.5 * std::numbers::pi / shape);
+    const auto phi = [&](double u) { return (1.0 - curvature) * u + curvature * std::atan(u); };
+    double low = 0.0;
+    double high = 1.0;
+    while (phi(high) < target) high *= 2.0;
+    for (int i = 0; i < 200 && high - low > 1e-15 * high; ++i) {
+        const double mid = 0.5 * (low + high);
+        (phi(mid) < target ? low : high) = mid;
+    }
+    return 0.5 * (low + high) / stiffness;
+}
+
+std::string MagicFormulaCurve::validate(const std::string& prefix) const {
+    std::ostringstream why;
+    const auto positive = [&](const char* field, double value) {
+        if (why.tellp() == 0 && !(std::isfinite(value) && value > 0.0))
+            why << prefix << field << " must be finite and > 0, got " << value;
+    };
+    positive("stiffness", stiffness);
+    positive("friction", friction);
+    // C in (1, 2]: the curve rises to a peak at C atan(Phi) = pi/2 and stays >= 0 beyond.
+    if (why.tellp() == 0 && !(shape > 1.0 && shape <= 2.0))
+        why << prefix << "shape must be in (1, 2], got " << shape;
+    if (why.tellp() == 0 && !(std::isfinite(curvature) && curvature <= 1.0))
+        why << prefix << "curvature must be finite and <= 1, got " << curvature;
+    // With E = 1, Phi = atan(u) < pi/2 never reaches tan(pi / 2C) when C is near 1.
+    if (why.tellp() == 0 && curvature == 1.0 &&
+        !(std::tan(0.5 * std::numbers::pi / shape) < 0.5 * std::numbers::pi))
+        why << prefix << "shape must exceed 1.6 when curvature is 1 (no peak), got " << shape;
+    if (why.tellp() == 0 && !(std::isfinite(friction_load_slope) && friction_load_slope <= 0.0 &&
+                              friction_load_slope > -1.0))
+        why << prefix << "friction_load_slope must be in (-1, 0], got " << friction_load_slope;
+    return why.str();
+}
+
+TyreSpec TyreSpec::road() {
+    TyreSpec tyre;
+    tyre.longitudinal = {10.0, 1.9, 0.97, 1.0, -0.1};
+    tyre.lateral = {10.0, 1.9, 0.97, 1.0, -0.1};
+    tyre.nominal_load = 4000.0;
+    tyre.longitudinal_relaxation = 0.15;
+    tyre.lateral_relaxation = 0.35;
+    return tyre;
+}
+
+TyreSpec TyreSpec::slick() {
+    TyreSpec tyre;
+    tyre.longitudinal = {20.0, 1.65, 0.3, 1.6, -0.1};
+    tyre.lateral = {20.0, 1.4, 0.3, 1.6, -0.1};
+    tyre.nominal_load = 3500.0;
+    tyre.longitudinal_relaxation = 0.1;
+    tyre.lateral_relaxation = 0.25;
+    return tyre;
+}
+
+std::string TyreSpec::validate(const std::string& prefix) const {
+    if (std::string why = longitudinal.validate(prefix + "longitudinal."); !why.empty()) return why;
+    if (std::string why = lateral.validate(prefix + "lateral."); !why.empty()) return why;
+    std::ostringstream why;
+    const auto positive = [&](const char* field, double value) {
+        if (why.tellp() == 0 && !(std::isfinite(value) && value > 0.0))
+            why << prefix << field << " must be finite and > 0, got " << value;
+    };
+    positive("nominal_load", nominal_load);
+    positive("longitudinal_relaxation", longitudinal_relaxation);
+    positive("lateral_relaxation", lateral_relaxation);
+    return why.str();
+}
+
+namespace {
+
+TyreSpec validated(const TyreSpec& spec) {
+    if (std::string why = spec.validate("TyreSpec."); !why.empty()) throw Error(why);
+    return spec;
+}
+
+}  // namespace
+
+Tyre::Tyre(const TyreSpec& spec)
+    : spec_(validated(spec)),
+      peak_slip_ratio_(spec.longitudinal.peak_slip()),
+      peak_lateral_slip_(spec.lateral.peak_slip()) {}
+
+TyreForce Tyre::force(double slip_ratio, double lateral_slip, double load, double road_grip) const {
+    if (!(load > 0.0)) return {};
+    const double sx = slip_ratio / peak_slip_ratio_;
+    const double sy = lateral_slip / peak_lateral_slip_;
+    const double s = std::hypot(sx, sy);
+    if (s == 0.0) return {};
+    const double fx = spec_.longitudinal.force(
+        s * peak_slip_ratio_, road_grip * spec_.longitudinal.peak(load, spec_.nominal_load));
+    const double fy = spec_.lateral.force(s * peak_lateral_slip_,
+                                          road_grip * spec_.lateral.peak(load, spec_.nominal_load));
+    return {fx * sx / s, fy * sy / s};
+}
+
+}  // namespace trackphys

@@ -1,0 +1,178 @@
+#include "trackphys/vehicle/vehicle.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <utility>
+
+#include "trackphys/dynamics/car_spec.hpp"
+#include "trackphys/error.hpp"
+
+namespace trackphys {
+namespace {
+
+// A slip beyond this is a wheel spinning or sliding far past any curve's peak; the bound
+// keeps a wheel spinning at standstill (|V_x| = 0, no relaxation) finite.
+constexpr double kMaxSlip = 50.0;
+
+}  // namespace
+
+Vehicle::Vehicle(const CarSpec& spec)
+    : spec_(*spec.vehicle),
+      front_tyre_(spec_.front_tyre),
+      rear_tyre_(spec_.rear_tyre),
+      front_drive_share_(spec.front_drive_share),
+      front_brake_share_(spec.front_brake_share),
+      slot_of_ellipsoid_(spec.ellipsoids.size(), -1) {
+    for (std::size_t i = 0; i < spec.ellipsoids.size(); ++i) {
+        const CarEllipsoid& e = spec.ellipsoids[i];
+        if (e.role == EllipsoidRole::body) continue;
+        Wheel wheel;
+        wheel.ellipsoid = i;
+        wheel.front = e.role == EllipsoidRole::front_wheel;
+        // The rolling radius lies in the body's y-z plane (CarSpec: width along x).
+        wheel.radius = e.semi_axes.y;
+        wheel.base_inertia = spec_.wheel_inertia;
+        wheel.anti_roll = wheel.front ? spec_.front_anti_roll : spec_.rear_anti_roll;
+        wheel.partner = i;
+        for (std::size_t j = 0; j < spec.ellipsoids.size(); ++j)
+            if (j != i && spec.ellipsoids[j].role == e.role &&
+                (spec.ellipsoids[j].center.x > 0.0) != (e.center.x > 0.0))
+                wheel.partner = j;
+        slot_of_ellipsoid_[i] = static_cast<int>(wheels_.size());
+        wheels_.push_back(wheel);
+    }
+    int axle_wheels[2] = {0, 0};  // front, rear
+    for (const Wheel& wheel : wheels_) ++axle_wheels[wheel.front ? 0 : 1];
+    const double front_share = axle_wheels[1] == 0   ? 1.0
+                               : axle_wheels[0] == 0 ? 0.0
+                                                     : spec.front_drive_share;
+    for (Wheel& wheel : wheels_) {
+        wheel.critical_mass = spec.mass.mass / static_cast<double>(wheels_.size());
+        wheel.drive_share =
+            wheel.front ? front_share / axle_wheels[0] : (1.0 - front_share) / axle_wheels[1];
+    }
+    state_.wheels.resize(wheels_.size());
+    telemetry_.resize(wheels_.size());
+}
+
+VehicleState Vehicle::at_rest() const {
+    VehicleState rest;
+    rest.wheels.resize(wheels_.size());
+    return rest;
+}
+
+void Vehicle::set_state(const VehicleState& state) {
+    const auto reject = [](const std::string& why) { throw Error("vehicle state: " + why); };
+    if (state.wheels.size() != wheels_.size())
+        reject(std::to_string(state.wheels.size()) + " wheels for " +
+               std::to_string(wheels_.size()));
+    for (std::size_t w = 0; w < state.wheels.size(); ++w) {
+        const WheelState& s = state.wheels[w];
+        if (!(std::isfinite(s.spin) && std::isfinite(s.road_torque) &&
+              std::abs(s.slip_ratio) <= kMaxSlip && std::abs(s.lateral_slip) <= kMaxSlip))
+            reject("wheel " + std::to_string(w) + " is not finite or its slip exceeds " +
+                   std::to_string(kMaxSlip));
+    }
+    const int gears = static_cast<int>(spec_.gearbox.ratios.size());
+    if (!(state.gear >= 1 && state.gear <= gears))
+        reject("gear " + std::to_string(state.gear) + " is not in 1.." + std::to_string(gears));
+    if (!(state.shift_time_left >= 0.0 && state.shift_time_left <= spec_.gearbox.shift_time))
+        reject("shift_time_left is not in [0, gearbox.shift_time]");
+    if (!(state.clutch >= 0.0 && state.clutch <= 1.0)) reject("clutch is not in [0, 1]");
+    state_ = state;
+}
+
+// Per sub-step: the tyre force from the slips the wheel carries, the spin under drive,
+// tyre and brake torques, then the slips relaxed towards the new spin. Below low_speed
+// the tyre also damps its own deflection (Pacejka 2012, sec. 7.2.4), fading out linearly,
+// at the critical damping of the deflection spring C / sigma under the wheel's share of
+// the car's mass. The damping and the slips are integrated implicitly: both are stiff.
+TyreForce Vehicle::wheel_force(std::size_t w, double load, double rolling_velocity,
+                               double lateral_velocity, double h) {
+    Wheel& wheel = wheels_[w];
+    WheelState& s = state_.wheels[w];
+    WheelTelemetry& out = telemetry_[w];
+    const Tyre& tyre = tyre_of(wheel);
+    const TyreSpec& ts = tyre.spec();
+    const double r = wheel.radius;
+
+    TyreForce force;
+    double damping_x = 0.0;
+    double damping_y = 0.0;
+    if (load > 0.0) {
+        force = tyre.force(s.slip_ratio, s.lateral_slip, load, wheel.road_grip);
+        const double fade = std::max(0.0, 1.0 - std::abs(rolling_velocity) / spec_.low_speed);
+        if (fade > 0.0) {
+            const double slope_x = ts.longitudinal.stiffness * ts.longitudinal.shape *
+                                   ts.longitudinal.peak(load, ts.nominal_load);
+            const double slope_y =
+                ts.lateral.stiffness * ts.lateral.shape * ts.lateral.peak(load, ts.nominal_load);
+            damping_x =
+                fade * 2.0 * std::sqrt(slope_x / ts.longitudinal_relaxation * wheel.critical_mass);
+            damping_y =
+                fade * 2.0 * std::sqrt(slope_y / ts.lateral_relaxation * wheel.critical_mass);
+        }
+    }
+
+    // The friction ellipse bounds the total, damping included (N for each direction).
+    const double dx = wheel.road_grip * ts.longitudinal.peak(load, ts.nominal_load);
+    const double dy = wheel.road_grip * ts.lateral.peak(load, ts.nominal_load);
+    const auto damped = [&](double spin) {
+        TyreForce total{force.longitudinal - damping_x * (rolling_velocity - spin * r),
+                        force.lateral - damping_y * lateral_velocity};
+        const double used =
+            load > 0.0 ? std::hypot(total.longitudinal / dx, total.lateral / dy) : 0.0;
+        if (used > 1.0) total.longitudinal /= used, total.lateral /= used;
+        return std::pair(total, used > 1.0);
+    };
+
+    // I dw/dt = T_drive - R (F_x - c_x (V_x - w R)), implicit in the damping. When that
+    // force leaves the friction ellipse the road holds the wheel only with the bounded
+    // force, explicitly. Then the brake takes the spin towards zero, and holds it there
+    // when strong enough.
+    const double inertia = wheel.base_inertia;
+    double stiff = 1.0 + h * damping_x * r * r / inertia;
+    double spin = (s.spin + h / inertia *
+                                (wheel.drive_torque - r * force.longitudinal +
+                                 damping_x * r * rolling_velocity)) /
+                  stiff;
+    auto [total, sliding] = damped(spin);
+    if (sliding) {
+        spin = s.spin + h / inertia * (wheel.drive_torque - r * total.longitudinal);
+        stiff = 1.0;
+    }
+    const double brake_step = h * wheel.brake_torque / (inertia * stiff);
+    spin = std::abs(spin) <= brake_step ? 0.0 : spin - std::copysign(brake_step, spin);
+    if (!sliding) total = damped(spin).first;
+    s.spin = spin;
+    s.road_torque = 0.0;
+
+    if (load > 0.0) {
+        force = total;
+        s.road_torque = -r * force.longitudinal;
+        // sigma dk/dt + |V_x| k = w R - V_x, implicit Euler.
+        const double speed = std::abs(rolling_velocity);
+        s.slip_ratio = std::clamp(
+            (s.slip_ratio + h / ts.longitudinal_relaxation * (spin * r - rolling_velocity)) /
+                (1.0 + h * speed / ts.longitudinal_relaxation),
+            -kMaxSlip, kMaxSlip);
+        s.lateral_slip =
+            std::clamp((s.lateral_slip - h / ts.lateral_relaxation * lateral_velocity) /
+                           (1.0 + h * speed / ts.lateral_relaxation),
+                       -kMaxSlip, kMaxSlip);
+    }
+    // In the air the slips keep their values: a wheel skipping over a kink between road
+    // facets for a few sub-steps lands with the deflection it left with, instead of
+    // building its force up again over a relaxation length at every skip.
+    out = {s.slip_ratio, s.lateral_slip, load, spin};
+    return force;
+}
+
+void Vehicle::measure_anti_roll(std::span<const double> suspension) {
+    for (Wheel& wheel : wheels_)
+        wheel.anti_roll_force =
+            wheel.anti_roll * (suspension[wheel.ellipsoid] - suspension[wheel.partner]);
+}
+
+}  // namespace trackphys

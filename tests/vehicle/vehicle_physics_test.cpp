@@ -1,0 +1,285 @@
+// The vehicle model against references computed here, independently of it: 0-100 km/h
+// from the torque curve, gears and the tyre's slip limit; 100-0 from the tyres' peak; a
+// limited-slip differential against an open one with a wheel on ice; a parked car that
+// stays put; and snapshots that carry the wheels and the gearbox.
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include <glm/geometric.hpp>
+
+#include "trackphys/error.hpp"
+#include "trackphys/io/snapshot_file.hpp"
+#include "trackphys/world/spawn.hpp"
+#include "trackphys/world/world.hpp"
+#include "world/world_scenes.hpp"
+
+namespace trackphys {
+namespace {
+
+constexpr double g = 9.81;
+
+// A world with the car placed on the mesh at (x, z), facing +Z.
+World world_with(const TriangleMesh& mesh, const CarSpec& spec, double x = 0.0, double z = 0.0) {
+    World world(test::static_world_of(mesh));
+    world.add_car(spec, place_car_on_surface(world.statics(), spec, {x, 20.0, z},
+                                             glm::dquat(1.0, 0.0, 0.0, 0.0)));
+    return world;
+}
+
+double forward_speed(const Car& car) {
+    return glm::dot(car.state().linear_velocity,
+                    car.state().orientation * glm::dvec3(0.0, 0.0, 1.0));
+}
+
+void drive(World& world, const CarInputs& inputs, double seconds) {
+    for (int i = 0; i < static_cast<int>(std::lround(seconds / world.settings().dt_update)); ++i) {
+        world.car(0).set_inputs(inputs);
+        world.update();
+    }
+}
+
+// What the reference needs of the car: its geometry and what its spec says.
+struct PointCar {
+    explicit PointCar(const CarSpec& car, double cg_height)
+        : spec(car), v(*car.vehicle), height(cg_height) {
+        double front = 0.0, rear = 0.0;
+        for (const CarEllipsoid& e : car.ellipsoids) {
+            if (e.role == EllipsoidRole::front_wheel) front = e.center.z, radius = e.semi_axes.y;
+            if (e.role == EllipsoidRole::rear_wheel) rear = e.center.z;
+        }
+        wheelbase = front - rear;
+        front_static = -rear / wheelbase;  // the share of the weight on the front axle
+    }
+    double aero(double area, double speed) const {
+        return 0.5 * spec.air_density * area * speed * speed;
+    }
+    // The axle loads (N) at speed and forward acceleration a (m/s^2): weight and downforce
+    // shared as the centre of mass sits, plus the load transfer m a h / L.
+    double front_load(double speed, double a) const {
+        return (spec.mass.mass * g + aero(spec.downforce_area, speed)) * front_static -
+               spec.mass.mass * a * height / wheelbase;
+    }
+    double rear_load(double speed, double a) const {
+        return spec.mass.mass * g + aero(spec.downforce_area, speed) - front_load(speed, a);
+    }
+    // An axle's peak longitudinal force: two tyres at half its load each.
+    static double axle_peak(const TyreSpec& tyre, double load) {
+        return 2.0 * tyre.longitudinal.peak(0.5 * load, tyre.nominal_load);
+    }
+    double full_torque(double rpm) const {
+        const auto& curve = v.engine.torque_curve;
+        if (rpm <= curve.front().rpm) return curve.front().torque;
+        for (std::size_t k = 1; k < curve.size(); ++k)
+            if (rpm < curve[k].rpm)
+                return curve[k - 1].torque + (rpm - curve[k - 1].rpm) /
+                                                 (curve[k].rpm - curve[k - 1].rpm) *
+                                                 (curve[k].torque - curve[k - 1].torque);
+        return curve.back().torque;
+    }
+
+    const CarSpec& spec;
+    const VehicleSpec& v;
+    double height;
+    double radius = 0.0;
+    double wheelbase = 0.0;
+    double front_static = 0.5;
+};
+
+// 0 to 100 km/h of a rear-driven car by explicit integration in 0.1 ms steps: the engine's
+// force through the gear (at launch_rpm while the clutch slips), capped by the rear tyres'
+// peak under the load transfer, less drag, on the mass plus the wheels' and the engine's
+// rotating inertia; no drive while a shift lasts, then the clutch closes linearly.
+double reference_zero_to_100(const PointCar& car) {
+    const double m = car.spec.mass.mass;
+    const double r = car.radius;
+    const GearboxSpec& box = car.v.gearbox;
+    double speed = 0.0, a = 0.0, t = 0.0, shift_left = 0.0, clutch = 1.0;
+    std::size_t gear = 0;
+    const double dt = 1e-4;
+    while (speed < 100.0 / 3.6) {
+        const double ratio = box.ratios[gear] * box.final_drive;
+        const double rpm = speed / r * ratio * 60.0 / (2.0 * std::numbers::pi);
+        const bool locked = rpm >= box.launch_rpm;
+        const double engine = clutch * car.full_torque(locked ? rpm : box.launch_rpm) * ratio / r;
+        const double grip = PointCar::axle_peak(car.v.rear_tyre, car.rear_load(speed, a));
+        const double rotating =
+            4.0 * car.v.wheel_inertia / (r * r) +
+            (locked ? clutch * car.v.engine.inertia * ratio * ratio / (r * r) : 0.0);
+        a = (std::min(engine, grip) - car.aero(car.spec.drag_area, speed)) / (m + rotating);
+        speed += a * dt;
+        t += dt;
+        if (shift_left > 0.0) {
+            shift_left -= dt;
+            clutch = 0.0;
+        } else {
+            clutch = std::min(1.0, clutch + dt / box.clutch_engage_time);
+            if (clutch == 1.0 && rpm > box.shift_up_rpm && gear + 1 < box.ratios.size()) {
+                ++gear;
+                shift_left = box.shift_time;
+                clutch = 0.0;
+            }
+        }
+    }
+    return t;
+}
+
+// 100 km/h to 1 m/s with every tyre at its longitudinal peak (anti-lock) under the load
+// transfer, plus drag.
+double reference_braking(const PointCar& car) {
+    const double m = car.spec.mass.mass;
+    double speed = 100.0 / 3.6, decel = 0.0, t = 0.0;
+    const double dt = 1e-4;
+    while (speed > 1.0) {
+        const double grip = PointCar::axle_peak(car.v.front_tyre, car.front_load(speed, -decel)) +
+                            PointCar::axle_peak(car.v.rear_tyre, car.rear_load(speed, -decel));
+        decel = (grip + car.aero(car.spec.drag_area, speed)) / m;
+        speed -= decel * dt;
+        t += dt;
+    }
+    return t;
+}
+
+TEST(VehiclePhysics, AcceleratesAndBrakesAsTheReferencesSay) {
+    const CarSpec spec = CarSpec::preset("gt");
+    World world = world_with(test::straight_road(400.0, 20.0, 10.0), spec, 0.0, 10.0);
+    drive(world, {}, 1.0);  // settle onto the tyres
+    ASSERT_LT(world.car(0).speed(), 1e-3);
+    const PointCar car(spec, world.car(0).state().position.y);
+
+    double t = 0.0;
+    while (forward_speed(world.car(0)) < 100.0 / 3.6 && t < 20.0) {
+        drive(world, {1.0, 0.0, 0.0}, world.settings().dt_update);
+        t += world.settings().dt_update;
+    }
+    const double expected = reference_zero_to_100(car);
+    RecordProperty("zero_to_100_s", std::to_string(t));
+    RecordProperty("zero_to_100_reference_s", std::to_string(expected));
+    EXPECT_NEAR(t, expected, 0.03 * expected) << "0-100 km/h in " << t << " s";
+    EXPECT_EQ(world.car_resets(0), 0u);
+
+    while (forward_speed(world.car(0)) < 105.0 / 3.6)
+        drive(world, {1.0, 0.0, 0.0}, world.settings().dt_update);
+    while (forward_speed(world.car(0)) > 100.0 / 3.6)
+        drive(world, {0.0, 1.0, 0.0}, world.settings().dt_update);
+    t = 0.0;
+    while (forward_speed(world.car(0)) > 1.0 && t < 20.0) {
+        drive(world, {0.0, 1.0, 0.0}, world.settings().dt_update);
+        t += world.settings().dt_update;
+    }
+    const double braking = reference_braking(car);
+    RecordProperty("braking_s", std::to_string(t));
+    RecordProperty("braking_reference_s", std::to_string(braking));
+    EXPECT_NEAR(t, braking, 0.03 * braking) << "100 km/h to 1 m/s in " << t << " s";
+}
+
+// Jolt's traction test: one driven wheel on ice (a twentieth of the grip), 30% throttle
+// (the good tyre's grip, not more) in first gear (an automatic box shifts up on the spinning wheel's speed, and each shift
+// lets the engine spin up again), no traction control (it would brake the spinning wheel
+// itself). The limited-slip clutch can hold 1500 N m: a locking differential.
+double distance_with_a_rear_wheel_on_ice(DifferentialKind rear) {
+    CarSpec spec = CarSpec::preset("gt");
+    spec.vehicle->traction_control = false;
+    spec.vehicle->gearbox.ratios.resize(1);
+    spec.vehicle->rear_differential = {rear, 1500.0, 0.3};
+    World world = world_with(test::flat_grid(-20.0, 20.0, -10.0, 300.0, 4, 31), spec);
+    drive(world, {}, 1.0);
+    Car& car = world.car(0);
+    for (std::size_t i = 0; i < spec.ellipsoids.size(); ++i)
+        if (spec.ellipsoids[i].role == EllipsoidRole::rear_wheel && spec.ellipsoids[i].center.x > 0)
+            car.vehicle()->set_road_grip(static_cast<std::size_t>(car.vehicle()->wheel_slot(i)),
+                                         0.05);
+    const glm::dvec3 start = car.state().position;
+    drive(world, {0.3, 0.0, 0.0}, 3.0);
+    return glm::length(car.state().position - start);
+}
+
+TEST(VehiclePhysics, LimitedSlipMovesTheCarWithAWheelOnIceAndTheOpenOneBarely) {
+    const double limited = distance_with_a_rear_wheel_on_ice(DifferentialKind::limited_slip);
+    const double open = distance_with_a_rear_wheel_on_ice(DifferentialKind::open);
+    RecordProperty("limited_slip_m", std::to_string(limited));
+    RecordProperty("open_m", std::to_string(open));
+    // The open differential passes the ice wheel's torque, a twentieth of a tyre's peak, to
+    // the other wheel too: at most 0.5 m/s^2, about 2 m in 3 s after the launch.
+    EXPECT_GT(limited, 10.0);
+    EXPECT_LT(open, 0.25 * limited) << "limited slip " << limited << " m, open " << open << " m";
+}
+
+// Parked: 10 s after settling, the car has moved less than 1 mm and never faster than
+// 1 mm/s.
+void expect_parked(World& world, const CarInputs& inputs) {
+    drive(world, inputs, 3.0);
+    const glm::dvec3 parked = world.car(0).state().position;
+    double fastest = 0.0;
+    for (int i = 0; i < 1000; ++i) {
+        drive(world, inputs, world.settings().dt_update);
+        fastest = std::max(fastest, world.car(0).speed());
+    }
+    EXPECT_LT(glm::length(world.car(0).state().position - parked), 1e-3);
+    EXPECT_LT(fastest, 1e-3);
+    EXPECT_EQ(world.car_resets(0), 0u);
+}
+
+TEST(VehiclePhysics, StandsStillOnFlatGroundAndOnATwentyPercentSlopeWithBrakes) {
+    for (const char* preset : {"gt", "formula"}) {
+        SCOPED_TRACE(preset);
+        const CarSpec spec = CarSpec::preset(preset);
+        World flat = world_with(test::flat_grid(40.0, 8), spec);
+        expect_parked(flat, {});
+
+        TriangleMesh slope = test::flat_grid(40.0, 8);
+        for (glm::dvec3& vertex : slope.vertices) vertex.y = 0.2 * vertex.z;  // rises to +Z
+        World uphill = world_with(slope, spec);
+        expect_parked(uphill, {0.0, 1.0, 0.0});
+    }
+}
+
+TEST(VehiclePhysics, SnapshotsCarryWheelsGearAndClutchAndReplayBitForBit) {
+    const CarSpec spec = CarSpec::preset("gt");
+    World world = world_with(test::flat_grid(400.0, 20), spec);
+    drive(world, {1.0, 0.0, 0.05}, 4.0);
+    const VehicleState saved_vehicle = world.car(0).vehicle()->state();
+    EXPECT_GT(saved_vehicle.gear, 1);
+    EXPECT_NE(saved_vehicle.wheels[0].spin, 0.0);
+
+    const WorldSnapshot snapshot = world.save_state();
+    ASSERT_TRUE(snapshot.cars[0].vehicle.has_value());
+    EXPECT_EQ(*snapshot.cars[0].vehicle, saved_vehicle);
+    std::vector<std::uint64_t> hashes;
+    for (int i = 0; i < 100; ++i) {
+        drive(world, {0.6, 0.0, -0.2}, world.settings().dt_update);
+        hashes.push_back(world.state_hash());
+    }
+
+    // Restored in place and, through the snapshot file, in a fresh world: the same updates.
+    const SnapshotFile file = decode_snapshot(encode_snapshot(snapshot));
+    World fresh = world_with(test::flat_grid(400.0, 20), spec);
+    for (const WorldSnapshot* source : {&snapshot, &file.world}) {
+        for (World* target : {&world, &fresh}) {
+            target->restore_state(*source);
+            EXPECT_EQ(target->car(0).vehicle()->state(), saved_vehicle);
+            for (int i = 0; i < 100; ++i) {
+                drive(*target, {0.6, 0.0, -0.2}, target->settings().dt_update);
+                ASSERT_EQ(target->state_hash(), hashes[i]) << "update " << i;
+            }
+        }
+    }
+
+    // The wheels are state: a different spin is a different hash, and a snapshot of a
+    // vehicle without its state is refused.
+    World other = world_with(test::flat_grid(400.0, 20), spec);
+    other.restore_state(snapshot);
+    VehicleState spun = saved_vehicle;
+    spun.wheels[0].spin += 1.0;
+    const std::uint64_t before = other.state_hash();
+    other.car(0).set_vehicle_state(spun);
+    EXPECT_NE(other.state_hash(), before);
+    WorldSnapshot stripped = snapshot;
+    stripped.cars[0].vehicle.reset();
+    EXPECT_THROW(other.restore_state(stripped), Error);
+}
+
+}  // namespace
+}  // namespace trackphys
