@@ -42,6 +42,8 @@
 #include "trackphys/track/track_params.hpp"
 #include "trackphys/track/track_stats.hpp"
 #include "trackphys/world/autopilot.hpp"
+#include "trackphys/world/job_system.hpp"
+#include "trackphys/world/race_grid.hpp"
 #include "trackphys/world/spawn.hpp"
 #include "trackphys/world/world.hpp"
 #include "trackphys/world/world_settings.hpp"
