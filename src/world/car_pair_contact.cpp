@@ -50,8 +50,8 @@ void press(Car& a, Car& b, const Contact& contact, const ContactMaterial& materi
     const double slip_speed = glm::length(slip);
     if (slip_speed > 0.0) {
         const glm::dvec3 along = slip / slip_speed;
-        const double regularised = material.friction * pressing * h *
-                                   std::min(slip_speed / material.slip_speed, 1.0);
+        const double regularised =
+            material.friction * pressing * h * std::min(slip_speed / material.slip_speed, 1.0);
         const double stopping = slip_speed / (a.inverse_mass_along(along, contact.point) +
                                               b.inverse_mass_along(along, contact.point));
         impulse -= along * std::min(regularised, stopping);

@@ -29,7 +29,8 @@ std::vector<RigidBodyState> race_grid(const Track& track, const StaticWorld& sta
     if (!(std::isfinite(settings.column_gap) && settings.column_gap > 0.0 &&
           std::isfinite(settings.row_gap) && settings.row_gap > 0.0 &&
           std::isfinite(settings.first_row_back) && settings.first_row_back >= 0.0))
-        throw Error("race_grid: column_gap and row_gap must be finite and > 0, first_row_back >= 0");
+        throw Error(
+            "race_grid: column_gap and row_gap must be finite and > 0, first_row_back >= 0");
     if (track.centerline.empty()) throw Error("race_grid: the track has no centreline");
     const double grid_length =
         settings.first_row_back + 0.5 * settings.row_gap * static_cast<double>(cars);
@@ -41,11 +42,13 @@ std::vector<RigidBodyState> race_grid(const Track& track, const StaticWorld& sta
     std::vector<RigidBodyState> grid;
     grid.reserve(cars);
     for (std::size_t i = 0; i < cars; ++i) {
-        const double back = settings.first_row_back + 0.5 * settings.row_gap * static_cast<double>(i);
+        const double back =
+            settings.first_row_back + 0.5 * settings.row_gap * static_cast<double>(i);
         const CenterlineSample& s = sample_at(track, track.length_m - back);
         const double side = i % 2 == 0 ? 0.5 : -0.5;  // left column first
         // Body axes +X left, +Y up, +Z forward onto the road frame there.
-        const glm::dquat facing = glm::normalize(glm::quat_cast(glm::dmat3(s.left, s.up, s.tangent)));
+        const glm::dquat facing =
+            glm::normalize(glm::quat_cast(glm::dmat3(s.left, s.up, s.tangent)));
         const glm::dvec3 above = s.position + s.left * (side * settings.column_gap) +
                                  s.up * (car.lowest_point_depth() + 0.5);
         grid.push_back(place_car_on_surface(statics, car, above, facing));

@@ -36,7 +36,8 @@ void World::step_island(std::size_t island, PhaseStopwatch& watch) {
             for (const detail::CarPair& pair : pairs) {
                 CarSlot& a = cars_[pair.a];
                 CarSlot& b = cars_[pair.b];
-                const detail::CarPairTouch touch = detail::touch_cars(a.car, a.placed, b.car, b.placed, h);
+                const detail::CarPairTouch touch =
+                    detail::touch_cars(a.car, a.placed, b.car, b.placed, h);
                 profile.car_pair_tests += touch.exact_tests;
                 profile.car_contacts += touch.deepest > 0.0;
                 profile.max_car_penetration = std::max(profile.max_car_penetration, touch.deepest);

@@ -1,12 +1,12 @@
 // The broad phase between cars against brute force on random fields of boxes.
+#include "world/car_islands.hpp"
+
 #include <algorithm>
 #include <cstdint>
 #include <random>
 #include <vector>
 
 #include <gtest/gtest.h>
-
-#include "world/car_islands.hpp"
 
 namespace trackphys::detail {
 namespace {

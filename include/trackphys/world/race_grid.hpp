@@ -13,8 +13,8 @@ namespace trackphys {
 
 /// The shape of a starting grid.
 struct RaceGridSettings {
-    double column_gap = 5.0;     ///< m across the track between the two columns' centres
-    double row_gap = 10.0;       ///< m along the track between rows of the same column
+    double column_gap = 5.0;      ///< m across the track between the two columns' centres
+    double row_gap = 10.0;        ///< m along the track between rows of the same column
     double first_row_back = 5.0;  ///< m from the start line back to the pole position
 };
 
