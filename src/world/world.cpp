@@ -4,7 +4,6 @@
 #include <cstring>
 #include <limits>
 #include <numeric>
-#include <thread>
 #include <utility>
 
 #include <glm/geometric.hpp>
@@ -94,11 +93,9 @@ void World::run_islands() {
     });
     work.errors.assign(islands, nullptr);
 
-    const int hardware = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
-    const int threads = settings_.threads == 0 ? hardware : settings_.threads;
     const int workers = settings_.jobs.plugged_in() ? settings_.jobs.worker_count
                         : islands < 2               ? 1
-                                                    : threads;
+                                                    : settings_.thread_count();
     work.worker_profiles.assign(static_cast<std::size_t>(workers), UpdateProfile{});
     // The trace recorder is not shared between threads.
     work.trace = workers == 1 ? trace_ : nullptr;

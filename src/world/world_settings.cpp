@@ -1,13 +1,20 @@
 #include "trackphys/world/world_settings.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <thread>
 
 #include <glm/geometric.hpp>
 
 #include "trackphys/math/types.hpp"
 
 namespace trackphys {
+
+int WorldSettings::thread_count() const {
+    if (threads > 0) return threads;
+    return std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+}
 
 std::string WorldSettings::validate() const {
     std::ostringstream why;

@@ -59,7 +59,7 @@ struct TRACKPHYS_API CarSpec {
     /// the same seen from either car. Stiffer than the road contacts: two cars closing at
     /// 10 m/s sink 4 cm into each other (v sqrt(m_pair / k), m_pair = 600 kg); faster
     /// impacts are stopped by the deep-contact impulse (see World).
-    ContactMaterial car_contact{4.0e7, 6.0e4, 0.5, 0.001};
+    ContactMaterial car_contact{1.0e8, 1.0e5, 0.5, 0.001};
     /// The rear tyres are wider: their friction is wheel_contact.friction times this. With
     /// tyres whose grip is proportional to load, both axles would saturate together and the
     /// car would be on the edge of a spin at every limit; more grip at the rear makes it

@@ -60,6 +60,9 @@ struct TRACKPHYS_API WorldSettings {
     /// sub-step); counts are kept either way.
     bool profile = true;
 
+    /// `threads` with 0 resolved to the hardware's count (at least 1).
+    int thread_count() const;
+
     /// The sub-step (integration) time h = dt_update / (steps * substeps), seconds.
     double substep_dt() const { return dt_update / (steps * substeps); }
 
