@@ -43,6 +43,7 @@
 #include "trackphys/track/track_stats.hpp"
 #include "trackphys/world/autopilot.hpp"
 #include "trackphys/world/job_system.hpp"
+#include "trackphys/world/physics_runner.hpp"
 #include "trackphys/world/race_drivers.hpp"
 #include "trackphys/world/race_grid.hpp"
 #include "trackphys/world/spawn.hpp"
