@@ -183,6 +183,8 @@ void bench_roots(BenchRun& run);
 void bench_broad_phase(BenchRun& run);
 void bench_mid_phase(BenchRun& run);
 void bench_update(BenchRun& run);
+// A race of many cars (race_group.cpp):
+void bench_race(BenchRun& run);
 // The peers (bench_peer_groups.cpp); each adds a "not built" row when its library is absent.
 void bench_contact_peers(BenchRun& run);
 void bench_mesh_peers(BenchRun& run);
