@@ -88,8 +88,11 @@ void World::run_islands() {
     const std::size_t islands = work.islands.island_count();
     work.schedule.resize(islands);
     std::iota(work.schedule.begin(), work.schedule.end(), std::size_t{0});
-    std::stable_sort(work.schedule.begin(), work.schedule.end(), [&](std::size_t a, std::size_t b) {
-        return work.islands.cars(a).size() > work.islands.cars(b).size();
+    // std::sort, not stable_sort, which allocates a buffer every update.
+    std::sort(work.schedule.begin(), work.schedule.end(), [&](std::size_t a, std::size_t b) {
+        const std::size_t size_a = work.islands.cars(a).size();
+        const std::size_t size_b = work.islands.cars(b).size();
+        return size_a != size_b ? size_a > size_b : a < b;
     });
     work.errors.assign(islands, nullptr);
 
