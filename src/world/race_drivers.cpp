@@ -90,10 +90,14 @@ void RaceDrivers::drive(World& world) {
         Car& car = world.car(i);
         CarInputs inputs = pilots_[i].drive(car);
         // Only a car in front: two cars side by side must not both lift off for each other.
+        // And only when moving: a car stopped behind a stopped car (after a crash) would
+        // wait for ever; crawling, it bumps it or passes it.
         constexpr double kInFront = 1.0;       // m
         constexpr double kPullingAway = -2.0;  // m/s
+        constexpr double kCrawling = 5.0;      // m/s
         const CarAhead ahead = car_ahead(world, i, lanes_[i], kInFront);
-        if (ahead.gap < settings_.follow_gap && ahead.closing > kPullingAway) {
+        if (ahead.gap < settings_.follow_gap && ahead.closing > kPullingAway &&
+            car.speed() > kCrawling) {
             // Closing at 10 m/s or more brakes fully (anti-lock keeps the car steerable).
             inputs.throttle = 0.0;
             inputs.brake = std::max(inputs.brake, std::clamp(ahead.closing / 10.0, 0.0, 1.0));
