@@ -39,7 +39,8 @@ RaceTiming time_race(const cli::DriveScene& scene, const ColliderPlaneTrees& tre
         world.update();
         const auto end = std::chrono::steady_clock::now();
         drivers.after_update(world);
-        if (u >= warm_up) ns.push_back(std::chrono::duration<double, std::nano>(end - start).count());
+        if (u >= warm_up)
+            ns.push_back(std::chrono::duration<double, std::nano>(end - start).count());
     }
     RaceTiming timing;
     for (const double t : ns) timing.mean_ns += t / static_cast<double>(ns.size());
@@ -60,9 +61,8 @@ void bench_race(BenchRun& run) {
     double median_64[3] = {};
     for (const std::size_t cars : {1, 8, 20, 64, 128}) {
         for (const int threads : {1, 2}) {
-            const std::string name =
-                std::to_string(cars) + " cars, " + std::to_string(threads) + " thread" +
-                (threads > 1 ? "s" : "");
+            const std::string name = std::to_string(cars) + " cars, " + std::to_string(threads) +
+                                     " thread" + (threads > 1 ? "s" : "");
             run.progress("race", name);
             const RaceTiming t = time_race(scene, trees, cars, threads, warm_up, updates);
             const std::string versus =

@@ -61,8 +61,7 @@ World& PhysicsRunner::world() {
 }
 
 void PhysicsRunner::set_inputs(std::uint64_t update, std::size_t car, const CarInputs& inputs) {
-    if (car >= cars_)
-        throw Error("PhysicsRunner::set_inputs: no car " + std::to_string(car));
+    if (car >= cars_) throw Error("PhysicsRunner::set_inputs: no car " + std::to_string(car));
     if (std::isnan(inputs.throttle) || std::isnan(inputs.brake) || std::isnan(inputs.steer))
         throw Error("PhysicsRunner::set_inputs: NaN input for car " + std::to_string(car));
     std::lock_guard lock(inputs_mutex_);
@@ -75,10 +74,9 @@ void PhysicsRunner::apply_due_inputs() {
     const std::uint64_t next = world_.update_count() + 1;
     std::lock_guard lock(inputs_mutex_);
     if (pending_.empty()) return;
-    std::stable_sort(pending_.begin(), pending_.end(),
-                     [](const StampedInputs& a, const StampedInputs& b) {
-                         return a.update < b.update;
-                     });
+    std::stable_sort(
+        pending_.begin(), pending_.end(),
+        [](const StampedInputs& a, const StampedInputs& b) { return a.update < b.update; });
     auto due = pending_.begin();
     for (; due != pending_.end() && due->update <= next; ++due) {
         if (due->update < next) late_inputs_.fetch_add(1, std::memory_order_relaxed);

@@ -1,6 +1,8 @@
 // PhysicsRunner: stamped inputs replay bit-identically, the published pair of states
 // interpolates between its ends, and a render thread reads it while the physics thread
 // runs (these tests also run under ThreadSanitizer: scripts/test_tsan.sh).
+#include "trackphys/world/physics_runner.hpp"
+
 #include <atomic>
 #include <cmath>
 #include <cstdint>
@@ -12,7 +14,6 @@
 #include <glm/geometric.hpp>
 
 #include "trackphys/error.hpp"
-#include "trackphys/world/physics_runner.hpp"
 #include "trackphys/world/world.hpp"
 #include "world/world_scenes.hpp"
 
@@ -37,8 +38,8 @@ struct Stamped {
     std::size_t car;
     CarInputs inputs;
 };
-const std::vector<Stamped> kStream = {{1, 0, {1.0, 0.0, 0.0}},  {1, 1, {0.8, 0.0, 0.0}},
-                                      {5, 0, {1.0, 0.0, 0.3}},  {30, 1, {0.0, 0.5, 0.0}},
+const std::vector<Stamped> kStream = {{1, 0, {1.0, 0.0, 0.0}},   {1, 1, {0.8, 0.0, 0.0}},
+                                      {5, 0, {1.0, 0.0, 0.3}},   {30, 1, {0.0, 0.5, 0.0}},
                                       {31, 1, {0.0, 1.0, -0.2}}, {60, 0, {0.2, 0.0, 0.0}}};
 constexpr std::uint64_t kUpdates = 80;
 
