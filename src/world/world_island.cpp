@@ -43,6 +43,10 @@ void World::step_island(std::size_t island, PhaseStopwatch& watch) {
                 profile.max_car_penetration = std::max(profile.max_car_penetration, touch.deepest);
             }
             watch.lap(Phase::exact);
+            // A push from another car can change a car's velocity by more than the step's
+            // lists allow for: check their cover again (a query only when it fails).
+            for (const std::uint32_t i : cars)
+                list_step_candidates(cars_[i], settings_.steps - step, watch);
             for (const std::uint32_t i : cars) advance(cars_[i], watch);
         }
     }
