@@ -35,6 +35,15 @@ if(TRACKPHYS_SANITIZE)
   target_link_options(trackphys_options INTERFACE -fsanitize=address,undefined)
 endif()
 
+# ThreadSanitizer cannot share a build with AddressSanitizer.
+if(TRACKPHYS_SANITIZE_THREADS)
+  if(TRACKPHYS_SANITIZE)
+    message(FATAL_ERROR "TRACKPHYS_SANITIZE_THREADS and TRACKPHYS_SANITIZE exclude each other")
+  endif()
+  target_compile_options(trackphys_options INTERFACE -fsanitize=thread -fno-omit-frame-pointer)
+  target_link_options(trackphys_options INTERFACE -fsanitize=thread)
+endif()
+
 # Fuzzers link libFuzzer (-fsanitize=fuzzer, fuzz/CMakeLists.txt); the library they test is
 # compiled with its coverage instrumentation so that the search is guided by our code.
 if(TRACKPHYS_BUILD_FUZZERS)

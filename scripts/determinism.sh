@@ -3,7 +3,8 @@
 # release preset's build, build/release, as scripts/test.sh makes it, for x86-64-v2) and
 # from clang++ (its own build folder, build/determinism-clang++, for the SSE2 baseline,
 # TRACKPHYS_X86_64_LEVEL=v1, so that the other instruction-set paths run too) must give the
-# same state hash and final position of the same drive, bit for bit. The clang++ build also
+# same state hash and final position of the same drive, bit for bit, and the same state
+# hash of a 12-car race (cars that touch) on 1, 2 and 4 threads. The clang++ build also
 # runs the collision and geometry tests, so that the SSE2 code paths are tested, not only
 # driven. CI (.ci/run) runs it after scripts/test.sh.
 #   scripts/determinism.sh [seconds]     (default 10 simulated seconds, seed 7)
@@ -13,6 +14,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 seconds="${1:-10}"
+race_seconds=5
 out="$(mktemp -d)"
 trap 'rm -rf "$out"' EXIT
 
@@ -58,9 +60,22 @@ for compiler in g++ clang++; do
   "$build/trackphys" drive --seed 7 --seconds "$seconds" --json "$out/$compiler.json" >/dev/null ||
     { echo "determinism: the $compiler drive failed" >&2; exit 2; }
   summary "$out/$compiler.json" >"$out/$compiler.txt"
+  # A race of cars that touch (issue 16): the same hash on 1, 2 and 4 threads.
+  for threads in 1 2 4; do
+    "$build/trackphys" race --seed 7 --cars 12 --seconds "$race_seconds" --threads "$threads" \
+      --json "$out/race.json" >/dev/null ||
+      { echo "determinism: the $compiler race on $threads threads failed" >&2; exit 2; }
+    echo "race on $threads threads: $(tr -d ' \n' <"$out/race.json" | grep -o '"state_hash":"[0-9a-f]*"')" \
+      >>"$out/$compiler.txt"
+  done
   echo "$compiler: $(tr '\n' ' ' <"$out/$compiler.txt")"
 done
 
+race_hashes=$(grep -ho 'race on .*' "$out/g++.txt" "$out/clang++.txt" | grep -o '"state_hash":"[0-9a-f]*"' | sort -u | wc -l)
+if [ "$race_hashes" -ne 1 ]; then
+  echo "determinism: the race's hash DIFFERS between thread counts or compilers" >&2
+  exit 1
+fi
 if cmp -s "$out/g++.txt" "$out/clang++.txt"; then
   echo "determinism: g++ (x86-64-v2) and clang++ (x86-64) agree after $seconds s"
 else

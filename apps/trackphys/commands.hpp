@@ -19,6 +19,7 @@ inline CLI::Validator not_negative() {
 }
 
 void add_drive_command(CLI::App& app);
+void add_race_command(CLI::App& app);
 void add_track_command(CLI::App& app);
 void add_info_command(CLI::App& app);
 void add_bench_command(CLI::App& app);

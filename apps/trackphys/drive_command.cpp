@@ -6,11 +6,8 @@
 #include <memory>
 #include <optional>
 #include <string>
-#include <system_error>
 #include <utility>
 #include <vector>
-
-#include <unistd.h>
 
 #include <glm/geometric.hpp>
 
@@ -21,12 +18,11 @@
 #include "drive_session.hpp"
 #include "drive_svg.hpp"
 #include "interrupt_guard.hpp"
+#include "progress_bar.hpp"
 #include "staged_outputs.hpp"
 #include "telemetry_csv.hpp"
-#include "track_mesh.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/io/car_spec_json.hpp"
-#include "trackphys/io/mesh_io.hpp"
 #include "trackphys/io/recording.hpp"
 #include "trackphys/io/scenario.hpp"
 #include "trackphys/io/snapshot_file.hpp"
@@ -118,30 +114,6 @@ Scenario build_scenario(const DriveOptions& o, const CLI::App& command) {
     if (!o.scenario_file.empty()) why = "scenario '" + o.scenario_file.string() + "': " + why;
     throw Error(why);
 }
-
-// A progress bar on stderr, only when stderr is a terminal (never in logs or CI).
-class Progress {
-  public:
-    explicit Progress(double total) : total_(total), enabled_(total > 0.0 && isatty(2)) {}
-    void show(double done, double speed_kmh) {
-        if (!enabled_) return;
-        const int percent = static_cast<int>(100.0 * std::min(done / total_, 1.0));
-        if (percent == last_) return;
-        last_ = percent;
-        const int filled = percent / 4;
-        std::fprintf(stderr, "\r[%.*s%*s] %3d%%  %6.1f km/h", filled, "#########################",
-                     25 - filled, "", percent, speed_kmh);
-        std::fflush(stderr);
-    }
-    ~Progress() {
-        if (enabled_ && last_ >= 0) std::fprintf(stderr, "\n");
-    }
-
-  private:
-    double total_;
-    bool enabled_;
-    int last_ = -1;
-};
 
 std::optional<SavePoint> parse_save_at(const DriveOptions& o, double drive_seconds) {
     const auto& [time, file] = o.save_at;
@@ -254,7 +226,7 @@ void run(const DriveOptions& o, const CLI::App& command) {
     report.lap_times_s = session.lap_times_s;
     DrivePlot plot;
     plot.dt = world.settings().dt_update;
-    Progress progress(laps > 0 ? static_cast<double>(laps) : seconds);
+    ProgressBar progress(laps > 0 ? static_cast<double>(laps) : seconds);
     const auto wall_start = std::chrono::steady_clock::now();
     glm::dvec3 previous = world.car(0).state().position;
     // Saves once, at the first moment the simulated time has reached --save-at's.
@@ -333,18 +305,7 @@ void run(const DriveOptions& o, const CLI::App& command) {
     }
     if (recording) recording->finish();
     if (telemetry) telemetry->finish();
-    // The track mesh is written last and removed again if the outputs cannot be put in
-    // place (save_mesh is atomic itself), as `trackphys track` does with its mesh.
-    if (!recording_plan.track_mesh_file.empty())
-        save_mesh(merge_chunks(*scene.track), recording_plan.track_mesh_file);
-    try {
-        outputs.commit();
-    } catch (const Error&) {
-        std::error_code ignored;
-        if (!recording_plan.track_mesh_file.empty())
-            std::filesystem::remove(recording_plan.track_mesh_file, ignored);
-        throw;
-    }
+    commit_with_track_mesh(outputs, recording_plan, scene);
 }
 
 }  // namespace

@@ -10,15 +10,24 @@
 namespace trackphys::cli {
 namespace {
 
-nlohmann::json summary_json(const Summary& s) {
-    return {{"mean", s.mean}, {"p50", s.p50}, {"p99", s.p99}, {"max", s.max}};
-}
-
 void print_row(const char* name, const Summary& s) {
     std::printf("  %-10s %9.2f %9.2f %9.2f %9.2f\n", name, s.mean, s.p50, s.p99, s.max);
 }
 
 }  // namespace
+
+nlohmann::json summary_json(const Summary& s) {
+    return {{"mean", s.mean}, {"p50", s.p50}, {"p99", s.p99}, {"max", s.max}};
+}
+
+void print_profile_table(const ProfileStatistics& profile) {
+    std::printf("per update (us) %7s %9s %9s %9s\n", "mean", "p50", "p99", "max");
+    print_row("update", profile.update_us());
+    for (std::size_t p = 0; p < phase_count; ++p)
+        print_row(phase_name(static_cast<Phase>(p)), profile.phase_us(static_cast<Phase>(p)));
+    std::printf("  write-up budget: %.0f us typical, %.0f us spikes\n", kWriteupTypicalUs,
+                kWriteupSpikeUs);
+}
 
 std::string hash_hex(std::uint64_t hash) {
     char text[17];
@@ -38,12 +47,7 @@ void print_drive_report(const DriveReport& r) {
     std::printf("distance     %.1f m\n", r.distance_m);
     std::printf("final pos    (%.3f, %.3f, %.3f) m\n", r.final_position.x, r.final_position.y,
                 r.final_position.z);
-    std::printf("per update (us) %7s %9s %9s %9s\n", "mean", "p50", "p99", "max");
-    print_row("update", r.profile.update_us());
-    for (std::size_t p = 0; p < phase_count; ++p)
-        print_row(phase_name(static_cast<Phase>(p)), r.profile.phase_us(static_cast<Phase>(p)));
-    std::printf("  write-up budget: %.0f us typical, %.0f us spikes\n", kWriteupTypicalUs,
-                kWriteupSpikeUs);
+    print_profile_table(r.profile);
     std::printf(
         "counts per update: %.1f mid-phase queries, %.1f candidates, %.1f tested per "
         "ellipsoid sub-step, %.1f exact tests, %.1f contacts\n",

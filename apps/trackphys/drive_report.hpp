@@ -5,6 +5,7 @@
 #include <vector>
 
 #include <glm/vec3.hpp>
+#include <nlohmann/json.hpp>
 
 #include "trackphys/profile/profile_statistics.hpp"
 
@@ -37,6 +38,12 @@ void print_drive_report(const DriveReport& report);
 
 /// The same figures as JSON (keys pinned by issue 6), written atomically to path.
 void write_drive_json(const DriveReport& report, const std::filesystem::path& path);
+
+/// The per-update and per-phase times table, with the write-up's budget (stdout).
+void print_profile_table(const ProfileStatistics& profile);
+
+/// {"mean", "p50", "p99", "max"} of a summary, as the JSON reports write it.
+nlohmann::json summary_json(const Summary& summary);
 
 /// Hex form of a state hash, as printed and stored.
 std::string hash_hex(std::uint64_t hash);

@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
                  "trackphys"};
     app.require_subcommand(1);
     trackphys::cli::add_drive_command(app);
+    trackphys::cli::add_race_command(app);
     trackphys::cli::add_track_command(app);
     trackphys::cli::add_info_command(app);
     trackphys::cli::add_bake_command(app);

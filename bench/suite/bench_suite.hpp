@@ -183,6 +183,8 @@ void bench_roots(BenchRun& run);
 void bench_broad_phase(BenchRun& run);
 void bench_mid_phase(BenchRun& run);
 void bench_update(BenchRun& run);
+// A race of many cars (race_group.cpp):
+void bench_race(BenchRun& run);
 void bench_vehicle(BenchRun& run);
 // Baked maps and many colliders (map_groups.cpp):
 void bench_maps(BenchRun& run);

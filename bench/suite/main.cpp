@@ -71,6 +71,7 @@ constexpr Group kGroups[] = {{"cull", bench_cull},
                              {"vehicle", bench_vehicle},
                              {"maps", bench_maps},
                              {"colliders", bench_many_colliders},
+                             {"race", bench_race},
                              {"contact", bench_contact_peers},
                              {"pair", bench_pair_peers},
                              {"mesh", bench_mesh_peers},
@@ -183,7 +184,7 @@ int run_bench(const BenchOptions& o) {
         if (!known)
             throw Error(
                 "--only '" + name +
-                "': not a group (cull, roots, broad, mid, update, vehicle, maps, colliders, "
+                "': not a group (cull, roots, broad, mid, update, vehicle, maps, colliders, race, "
                 "contact, pair, mesh, "
                 "bullet_update)");
     }
@@ -235,10 +236,10 @@ int main(int argc, char** argv) {
         "trackphys-bench"};
     app.add_flag("--quick", o.quick,
                  "Fewer cases and repeats, colder caches: a smoke run, not the measure");
-    app.add_option(
-           "--only", o.only,
-           "Run only these groups (cull, roots, broad, mid, update, vehicle, maps, colliders, "
-           "contact, pair, mesh, bullet_update), comma-separated")
+    app.add_option("--only", o.only,
+                   "Run only these groups (cull, roots, broad, mid, update, vehicle, maps, "
+                   "colliders, race, "
+                   "contact, pair, mesh, bullet_update), comma-separated")
         ->delimiter(',');
     app.add_option("--json", o.json, "Write the table as JSON (atomically)");
     app.add_flag("--check", o.check, "Fail on a MISS in any mode (a full run always does)");

@@ -219,6 +219,20 @@ void Car::resolve_deep_contacts(std::span<const Contact> deepest) {
     }
 }
 
+void Car::apply_impulse(const glm::dvec3& impulse, const glm::dvec3& point) {
+    const glm::dvec3 angular = glm::cross(point - state_.position, impulse);
+    const glm::dvec3 body_angular = glm::conjugate(state_.orientation) * angular;
+    state_.linear_velocity += impulse / spec_.mass.mass;
+    state_.angular_velocity += state_.orientation * (body_angular / spec_.mass.principal_inertia);
+}
+
+double Car::inverse_mass_along(const glm::dvec3& normal, const glm::dvec3& point) const {
+    const glm::dvec3 lever = point - state_.position;
+    const glm::dvec3 body_axis = glm::conjugate(state_.orientation) * glm::cross(lever, normal);
+    const glm::dvec3 turn = state_.orientation * (body_axis / spec_.mass.principal_inertia);
+    return 1.0 / spec_.mass.mass + glm::dot(normal, glm::cross(turn, lever));
+}
+
 void Car::add_aero_force(Wrench& wrench) const {
     const glm::dvec3& v = state_.linear_velocity;
     const double dynamic_pressure = 0.5 * spec_.air_density * glm::dot(v, v);

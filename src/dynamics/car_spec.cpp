@@ -97,6 +97,7 @@ std::string CarSpec::validate() const {
     }
     check_material(why, "body_contact", body_contact);
     check_material(why, "wheel_contact", wheel_contact);
+    check_material(why, "car_contact", car_contact);
     check_positive(why, "rear_grip_factor", rear_grip_factor);
     check_positive(why, "suspension.stiffness", suspension.stiffness);
     check_positive(why, "suspension.damping", suspension.damping);

@@ -97,6 +97,7 @@ CarSpec car_spec_from_json(const Json& value, const std::string& path, const std
     }
     material_from_json(in, "body_contact", spec.body_contact);
     material_from_json(in, "wheel_contact", spec.wheel_contact);
+    material_from_json(in, "car_contact", spec.car_contact);
     if (const Json* suspension = in.find("suspension")) {
         ObjectReader s(*suspension, in.path_of("suspension"), source);
         s.read("stiffness", spec.suspension.stiffness);
@@ -149,6 +150,7 @@ Json car_spec_to_json_value(const CarSpec& spec) {
         {"ellipsoids", car_ellipsoids_to_json(spec.ellipsoids)},
         {"body_contact", material_to_json(spec.body_contact)},
         {"wheel_contact", material_to_json(spec.wheel_contact)},
+        {"car_contact", material_to_json(spec.car_contact)},
         {"suspension",
          {{"stiffness", spec.suspension.stiffness},
           {"damping", spec.suspension.damping},

@@ -92,9 +92,10 @@ class Reader {
     std::size_t at_ = 0;
 };
 
-// Every field but `profile`, which does not change results. (A new field also needs a new
-// format version, and settings_difference in world_snapshot.cpp.)
-static_assert(sizeof(WorldSettings) == 96, "a new WorldSettings field must join the snapshot file");
+// Every field but `profile`, `threads` and `jobs`, which do not change results. (A new field
+// also needs a new format version, and settings_difference in world_snapshot.cpp.)
+static_assert(sizeof(WorldSettings) == 136,
+              "a new WorldSettings field must join the snapshot file");
 
 void write_settings(Writer& w, const WorldSettings& s) {
     w.f64(s.dt_update);

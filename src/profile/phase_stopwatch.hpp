@@ -20,6 +20,9 @@ class PhaseStopwatch {
           trace_(enabled ? trace : nullptr),
           last_(enabled ? Clock::now() : Clock::time_point{}) {}
 
+    /// The profile the laps go to, for the counts kept beside the times.
+    UpdateProfile& profile() { return profile_; }
+
     void lap(Phase phase) {
         if (!enabled_) return;
         const Clock::time_point now = Clock::now();

@@ -174,7 +174,8 @@ CarInputs Autopilot::drive(const Car& car) {
 
     // Pure pursuit: steer onto the arc through the look-ahead point.
     const double lookahead = settings_.lookahead_min + settings_.lookahead_time * speed;
-    const glm::dvec3 goal = centerline_[sample_ahead(nearest_, lookahead)].position;
+    const CenterlineSample& ahead = centerline_[sample_ahead(nearest_, lookahead)];
+    const glm::dvec3 goal = ahead.position + ahead.left * lane_offset_;
     const glm::dvec3 local = glm::conjugate(state.orientation) * (goal - state.position);
     const double planar2 = local.x * local.x + local.z * local.z;
     const double curvature = planar2 > 1e-6 ? 2.0 * local.x / planar2 : 0.0;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstring>
 #include <limits>
+#include <numeric>
 #include <utility>
 
 #include <glm/geometric.hpp>
@@ -15,12 +16,16 @@
 #include "vehicle/vehicle_fingerprint.hpp"
 #include "world/car_slot.hpp"
 #include "world/update_box.hpp"
+#include "world/update_work.hpp"
 
 namespace trackphys {
 
 World::World(std::shared_ptr<const StaticWorld> statics, WorldSettings settings,
              ColliderPlaneTrees trees)
-    : statics_(std::move(statics)), settings_(std::move(settings)), trees_(std::move(trees)) {
+    : statics_(std::move(statics)),
+      settings_(std::move(settings)),
+      trees_(std::move(trees)),
+      work_(std::make_unique<UpdateWork>()) {
     if (!statics_) throw Error("World: the static world is null");
     if (std::string why = settings_.validate(); !why.empty()) throw Error(why);
     if (settings_.mid_phase == MidPhaseMode::precomputed_tree && trees_.empty())
@@ -58,8 +63,17 @@ const std::string& World::last_reset_reason(std::size_t i) const { return cars_.
 void World::update() {
     profile_ = UpdateProfile{};
     const auto start = PhaseStopwatch::Clock::now();
-    PhaseStopwatch watch(profile_, settings_.profile, trace_);
-    for (CarSlot& slot : cars_) update_car_or_reset(slot, watch);
+    UpdateWork& work = *work_;
+    {
+        PhaseStopwatch watch(profile_, settings_.profile, trace_);
+        work.boxes.resize(cars_.size());
+        for (std::size_t i = 0; i < cars_.size(); ++i)
+            work.boxes[i] = detail::car_update_box(cars_[i].car, settings_);
+        work.islands.build(work.boxes);
+        profile_.car_pairs = work.islands.pair_count();
+        watch.lap(Phase::broad);
+    }
+    run_islands();
     ++updates_;
     if (settings_.profile) {
         const auto end = PhaseStopwatch::Clock::now();
@@ -68,14 +82,71 @@ void World::update() {
     }
 }
 
+// Hands the islands out to the job system, the pool or this thread; then gathers the
+// workers' profiles and rethrows the first island's error, in island order.
+void World::run_islands() {
+    UpdateWork& work = *work_;
+    const std::size_t islands = work.islands.island_count();
+    work.schedule.resize(islands);
+    std::iota(work.schedule.begin(), work.schedule.end(), std::size_t{0});
+    // std::sort, not stable_sort, which allocates a buffer every update.
+    std::sort(work.schedule.begin(), work.schedule.end(), [&](std::size_t a, std::size_t b) {
+        const std::size_t size_a = work.islands.cars(a).size();
+        const std::size_t size_b = work.islands.cars(b).size();
+        return size_a != size_b ? size_a > size_b : a < b;
+    });
+    work.errors.assign(islands, nullptr);
+
+    const int workers = settings_.jobs.plugged_in() ? settings_.jobs.worker_count
+                        : islands < 2               ? 1
+                                                    : settings_.thread_count();
+    work.worker_profiles.assign(static_cast<std::size_t>(workers), UpdateProfile{});
+    // The trace recorder is not shared between threads.
+    work.trace = workers == 1 ? trace_ : nullptr;
+    const int items = static_cast<int>(islands);
+    if (settings_.jobs.plugged_in()) {
+        const JobSystem& jobs = settings_.jobs;
+        if (void* task = jobs.enqueue_task(&island_task, items, 1, this, jobs.user_context))
+            jobs.finish_task(task, jobs.user_context);
+    } else if (workers == 1) {
+        island_task(0, items, 0, this);
+    } else {
+        if (!work.pool || work.pool->thread_count() != workers)
+            work.pool = std::make_unique<detail::ThreadPool>(workers);
+        work.pool->run(&island_task, items, this);
+    }
+
+    for (const UpdateProfile& part : work.worker_profiles) profile_.merge(part);
+    for (const std::exception_ptr& error : work.errors)
+        if (error) std::rethrow_exception(error);
+}
+
+void World::island_task(int begin, int end, int worker, void* world) {
+    World& self = *static_cast<World*>(world);
+    UpdateWork& work = *self.work_;
+    PhaseStopwatch watch(work.worker_profiles[static_cast<std::size_t>(worker)],
+                         self.settings_.profile, work.trace);
+    for (int item = begin; item < end; ++item) {
+        const std::size_t island = work.schedule[static_cast<std::size_t>(item)];
+        try {
+            self.update_island_or_reset(island, watch);
+        } catch (...) {
+            work.errors[island] = std::current_exception();
+        }
+    }
+}
+
 // The broad phase covers every triangle the car can touch during the update
 // (car_update_box); then steps of sub-steps, each step with its own lists.
-void World::update_car(CarSlot& slot, PhaseStopwatch& watch) {
-    begin_update(slot, detail::car_update_box(slot.car, settings_), watch);
+void World::update_car(CarSlot& slot, const Aabb& box, PhaseStopwatch& watch) {
+    begin_update(slot, box, watch);
 
     for (int step = 0; step < settings_.steps; ++step) {
         list_step_candidates(slot, settings_.steps - step, watch);
-        for (int s = 0; s < settings_.substeps; ++s) substep(slot, watch);
+        for (int s = 0; s < settings_.substeps; ++s) {
+            find_contacts(slot, watch);
+            advance(slot, watch);
+        }
     }
 }
 
@@ -86,7 +157,7 @@ void World::begin_update(CarSlot& slot, const Aabb& box, PhaseStopwatch& watch) 
     slot.mid.begin_update(box);
     // Lists are queried inside the update box, from entry nodes of that box.
     for (LookAheadList& list : slot.listed) list.forget();
-    profile_.candidates += slot.mid.broad_phase_candidate_count();
+    watch.profile().candidates += slot.mid.broad_phase_candidate_count();
     watch.lap(settings_.mid_phase == MidPhaseMode::per_update_tree ? Phase::mid : Phase::broad);
 }
 
@@ -121,15 +192,15 @@ void World::list_step_candidates(CarSlot& slot, int steps_left, PhaseStopwatch& 
                 begin_update(slot, wider, watch);
             }
             listed.refill(slot.mid, wanted);
-            ++profile_.mid_queries;
+            ++watch.profile().mid_queries;
         }
         if (settings_.mid_phase == MidPhaseMode::precomputed_tree)
-            profile_.candidates += listed.candidates().size();
+            watch.profile().candidates += listed.candidates().size();
     }
     watch.lap(Phase::mid);
 }
 
-void World::substep(CarSlot& slot, PhaseStopwatch& watch) {
+void World::find_contacts(CarSlot& slot, PhaseStopwatch& watch) {
     using Survivor = CarSlot::Survivor;
     Car& car = slot.car;
     const std::size_t ellipsoids = car.ellipsoid_count();
@@ -149,9 +220,9 @@ void World::substep(CarSlot& slot, PhaseStopwatch& watch) {
             const double bound = ellipsoid_depth_bound(*c.triangle, ellipsoid);
             if (bound > 0.0) kept.push_back({c.ref, bound});
         }
-        profile_.culled_tests += slot.listed[i].candidates().size();
+        watch.profile().culled_tests += slot.listed[i].candidates().size();
     }
-    profile_.ellipsoid_substeps += ellipsoids;
+    watch.profile().ellipsoid_substeps += ellipsoids;
     watch.lap(Phase::cull);
 
     // Exact contact: the deepest over each ellipsoid's survivors. The survivor with the
@@ -186,18 +257,20 @@ void World::substep(CarSlot& slot, PhaseStopwatch& watch) {
                   deepest.depth + kDepthTie))
                 continue;
             const Contact contact = ellipsoid_triangle_contact(ellipsoid, triangle);
-            ++profile_.exact_tests;
+            ++watch.profile().exact_tests;
             if (contact.depth > deepest.depth) {
                 deepest = contact;
                 deepest_support = support_extent(ellipsoid, contact.normal);
                 slot.deepest_ref[i] = s.ref;
             }
         }
-        profile_.contacts += deepest.depth > 0.0;
+        watch.profile().contacts += deepest.depth > 0.0;
     }
     watch.lap(Phase::exact);
+}
 
-    car.advance(slot.deepest, settings_.gravity, settings_.substep_dt());
+void World::advance(CarSlot& slot, PhaseStopwatch& watch) {
+    slot.car.advance(slot.deepest, settings_.gravity, settings_.substep_dt());
     watch.lap(Phase::integrate);
 }
 

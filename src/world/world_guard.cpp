@@ -2,6 +2,7 @@
 // update (see World's class notes).
 
 #include <cmath>
+#include <exception>
 #include <limits>
 #include <span>
 #include <sstream>
@@ -16,6 +17,7 @@
 #include "trackphys/math/types.hpp"
 #include "trackphys/world/world.hpp"
 #include "world/car_slot.hpp"
+#include "world/update_work.hpp"
 
 namespace trackphys {
 namespace {
@@ -110,37 +112,49 @@ void World::check_placement(const Car& car) const {
     }
 }
 
-// The hook around the hot loop: remember the start, run the update, and reset the car if it
-// ended impossible. A car whose state turns non-finite mid-update makes a query of the
-// update throw (non-finite shapes are rejected there); that is the same impossible state,
-// caught and reset here. Any other error, with the car's state still possible, propagates.
-void World::update_car_or_reset(CarSlot& slot, PhaseStopwatch& watch) {
-    slot.start_state = slot.car.state();
-    const std::span<const double> suspension = slot.car.suspension();
-    slot.start_suspension.assign(suspension.begin(), suspension.end());
-    std::string why;
-    try {
-        update_car(slot, watch);
-        why = impossible_state(slot.car.state());
-    } catch (const Error& error) {
-        why = impossible_state(slot.car.state());
-        if (why.empty()) throw;
-        why += std::string(" (the update stopped: ") + error.what() + ")";
+// The hook around the hot loop: remember where each car of the island starts, run the
+// update, and reset every car that ended it impossible. A car whose state turns non-finite
+// mid-update makes a query of the update throw (non-finite shapes are rejected there);
+// that is the same impossible state, caught and reset here. Any other error, with every
+// car's state still possible, propagates.
+void World::update_island_or_reset(std::size_t island, PhaseStopwatch& watch) {
+    const std::span<const std::uint32_t> cars = work_->islands.cars(island);
+    for (const std::uint32_t i : cars) {
+        CarSlot& slot = cars_[i];
+        slot.start_state = slot.car.state();
+        const std::span<const double> suspension = slot.car.suspension();
+        slot.start_suspension.assign(suspension.begin(), suspension.end());
     }
-    if (why.empty()) return;
-
-    RigidBodyState reset = slot.start_state;
-    reset.linear_velocity = glm::dvec3(0.0);
-    reset.angular_velocity = glm::dvec3(0.0);
-    // Car::restore re-checks the start state: if even that were impossible it throws, loudly.
-    slot.car.restore(reset, slot.car.inputs(), slot.start_suspension);
-    if (const Vehicle* vehicle = slot.car.vehicle()) slot.car.set_vehicle_state(vehicle->at_rest());
-    for (Contact& contact : slot.deepest)
-        contact =
-            Contact{-std::numeric_limits<double>::infinity(), glm::dvec3(0.0), glm::dvec3(0.0)};
-    for (TriangleRef& ref : slot.deepest_ref) ref = TriangleRef{~0u, ~0u};
-    ++slot.resets;
-    slot.last_reset = "update " + std::to_string(updates_ + 1) + ": " + why;
+    std::exception_ptr stopped;
+    std::string stop_reason;
+    try {
+        step_island(island, watch);
+    } catch (const Error& error) {
+        stopped = std::current_exception();
+        stop_reason = std::string(" (the update stopped: ") + error.what() + ")";
+    }
+    bool reset_any = false;
+    for (const std::uint32_t i : cars) {
+        CarSlot& slot = cars_[i];
+        const std::string why = impossible_state(slot.car.state());
+        if (why.empty()) continue;
+        reset_any = true;
+        RigidBodyState reset = slot.start_state;
+        reset.linear_velocity = glm::dvec3(0.0);
+        reset.angular_velocity = glm::dvec3(0.0);
+        // Car::restore re-checks the start state: if even that were impossible it throws,
+        // loudly.
+        slot.car.restore(reset, slot.car.inputs(), slot.start_suspension);
+        if (const Vehicle* vehicle = slot.car.vehicle())
+            slot.car.set_vehicle_state(vehicle->at_rest());
+        for (Contact& contact : slot.deepest)
+            contact =
+                Contact{-std::numeric_limits<double>::infinity(), glm::dvec3(0.0), glm::dvec3(0.0)};
+        for (TriangleRef& ref : slot.deepest_ref) ref = TriangleRef{~0u, ~0u};
+        ++slot.resets;
+        slot.last_reset = "update " + std::to_string(updates_ + 1) + ": " + why + stop_reason;
+    }
+    if (stopped && !reset_any) std::rethrow_exception(stopped);
 }
 
 }  // namespace trackphys

@@ -1,13 +1,20 @@
 #include "trackphys/world/world_settings.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <thread>
 
 #include <glm/geometric.hpp>
 
 #include "trackphys/math/types.hpp"
 
 namespace trackphys {
+
+int WorldSettings::thread_count() const {
+    if (threads > 0) return threads;
+    return std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+}
 
 std::string WorldSettings::validate() const {
     std::ostringstream why;
@@ -36,6 +43,13 @@ std::string WorldSettings::validate() const {
     else if (!(max_spawn_distance >= 0.0))
         why << "WorldSettings.max_spawn_distance must be >= 0 (infinity for no limit), got "
             << max_spawn_distance;
+    else if (threads < 0 || threads > 256)
+        why << "WorldSettings.threads must be in [0, 256] (0: the hardware's count), got "
+            << threads;
+    else if ((jobs.enqueue_task == nullptr) != (jobs.finish_task == nullptr))
+        why << "WorldSettings.jobs needs both enqueue_task and finish_task, or neither";
+    else if (jobs.plugged_in() && jobs.worker_count < 1)
+        why << "WorldSettings.jobs.worker_count must be >= 1, got " << jobs.worker_count;
     return why.str();
 }
 

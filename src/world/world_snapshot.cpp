@@ -27,7 +27,7 @@ void add(core::Fnv1a& hash, const ContactMaterial& m) {
 
 // Every field of CarSpec goes into its fingerprint. The size checks fail to compile when a
 // field is added, as a reminder to hash it too (then update the sizes).
-static_assert(sizeof(CarSpec) == 736, "a new CarSpec field must join fingerprint(CarSpec)");
+static_assert(sizeof(CarSpec) == 768, "a new CarSpec field must join fingerprint(CarSpec)");
 static_assert(sizeof(CarEllipsoid) == 88,
               "a new CarEllipsoid field must join fingerprint(CarSpec)");
 
@@ -42,8 +42,9 @@ bool same(double x, double y) {
     return std::bit_cast<std::uint64_t>(x) == std::bit_cast<std::uint64_t>(y);
 }
 
-// The first stepping setting that differs, or empty. `profile` does not change results.
-static_assert(sizeof(WorldSettings) == 96,
+// The first stepping setting that differs, or empty. `profile`, `threads` and `jobs` do not
+// change results.
+static_assert(sizeof(WorldSettings) == 136,
               "a new WorldSettings field must join settings_difference and the snapshot file");
 std::string settings_difference(const WorldSettings& a, const WorldSettings& b) {
     std::ostringstream why;
@@ -137,6 +138,7 @@ std::uint64_t fingerprint(const CarSpec& spec) {
     }
     add(hash, spec.body_contact);
     add(hash, spec.wheel_contact);
+    add(hash, spec.car_contact);
     hash.add(spec.rear_grip_factor);
     hash.add(spec.suspension.stiffness), hash.add(spec.suspension.damping),
         hash.add(spec.suspension.travel);

@@ -37,6 +37,8 @@ TEST(CarSpec, ValidationNamesTheField) {
          },
          "CarSpec.ellipsoids[1].orientation"},
         {[](CarSpec& c) { c.wheel_contact.stiffness = 0.0; }, "CarSpec.wheel_contact.stiffness"},
+        {[](CarSpec& c) { c.car_contact.damping = -1.0; }, "CarSpec.car_contact.damping"},
+        {[](CarSpec& c) { c.car_contact.slip_speed = 0.0; }, "CarSpec.car_contact.slip_speed"},
         {[](CarSpec& c) { c.body_contact.friction = -0.1; }, "CarSpec.body_contact.friction"},
         {[](CarSpec& c) { c.max_steer_angle = 2.0; }, "CarSpec.max_steer_angle must be below 1.5"},
         {[](CarSpec& c) { c.drag_area = std::numeric_limits<double>::infinity(); },

@@ -104,6 +104,14 @@ class TRACKPHYS_API Car {
     ///   anti-roll bars join the suspension.
     void advance(std::span<const Contact> deepest, const glm::dvec3& gravity, double h);
 
+    /// Applies an impulse J (N s, world) at world point p: v += J / m and
+    /// omega += I_world^-1 ((p - x) x J), as a force J / h over a sub-step of h would.
+    /// Contacts between cars push both cars this way, equal and opposite.
+    void apply_impulse(const glm::dvec3& impulse, const glm::dvec3& point);
+    /// How much the velocity of the body point at world p changes along unit n per unit
+    /// impulse along n there (1/kg): 1/m + n . ((I_world^-1 (r x n)) x r), r = p - x.
+    double inverse_mass_along(const glm::dvec3& normal, const glm::dvec3& point) const;
+
   private:
     void resolve_deep_contacts(std::span<const Contact> deepest);
     /// The tyre's normal force of each wheel (0 for the body) into wheel_loads_.

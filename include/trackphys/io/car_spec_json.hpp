@@ -16,7 +16,7 @@
 ///       "ellipsoids": [{"center": [x, y, z], "semi_axes": [a, b, c],
 ///                       "orientation": [w, x, y, z], "role": "front_wheel"}, ...],
 ///       "body_contact": {"stiffness": k, "damping": c, "friction": mu, "slip_speed": v},
-///       "wheel_contact": {...as body_contact},
+///       "wheel_contact": {...as body_contact}, "car_contact": {...as body_contact},
 ///       "suspension": {"stiffness": k, "damping": c, "travel": s},
 ///       "rear_grip_factor": 1.15, "max_drive_force": 2e4, "front_drive_share": 0.4,
 ///       "traction_limit": 0.8, "max_drive_power": 6e6, "max_brake_force": 3e4,
@@ -27,7 +27,7 @@
 /// The keys are CarSpec's field names. "ellipsoids", when present, replaces the whole list;
 /// each entry needs "center", "semi_axes" and "role" ("body", "front_wheel" or
 /// "rear_wheel"); "orientation" (body from ellipsoid local, a quaternion [w, x, y, z])
-/// defaults to the identity. Inside "mass", "body_contact", "wheel_contact" and
+/// defaults to the identity. Inside "mass", the three materials and
 /// "suspension", a key left out keeps the default car's value too.
 
 namespace trackphys {

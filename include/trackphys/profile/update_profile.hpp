@@ -1,5 +1,6 @@
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -11,7 +12,7 @@ enum class Phase : std::uint8_t {
     broad,      ///< swept car box vs collider boxes and BVHs
     mid,        ///< per-step candidate lists (plane tree build and queries)
     cull,       ///< bounding sphere vs NormalizedTriangle
-    exact,      ///< exact ellipsoid-triangle contact
+    exact,      ///< exact ellipsoid-triangle contact, and the contacts between cars
     integrate,  ///< contact forces and integration
 };
 inline constexpr std::size_t phase_count = 5;
@@ -32,6 +33,27 @@ struct UpdateProfile {
     std::uint64_t exact_tests = 0;         ///< exact contacts computed
     std::uint64_t contacts = 0;            ///< ellipsoids in contact, summed over sub-steps
     std::uint64_t ellipsoid_substeps = 0;  ///< ellipsoids x sub-steps, to average per ellipsoid
+    std::uint64_t car_pairs = 0;           ///< pairs of cars whose update boxes overlap
+    std::uint64_t car_pair_tests = 0;      ///< exact ellipsoid-ellipsoid contacts computed
+    std::uint64_t car_contacts = 0;        ///< sub-steps of a pair of cars touching, summed
+    double max_car_penetration = 0.0;      ///< deepest car-car overlap (m)
+
+    /// Adds another share of the same update (a worker's): times and counts add up, the
+    /// penetration is the deeper one. With several workers the phase times are CPU time.
+    void merge(const UpdateProfile& other) {
+        for (std::size_t i = 0; i < phase_count; ++i) phase_us[i] += other.phase_us[i];
+        update_us += other.update_us;
+        candidates += other.candidates;
+        mid_queries += other.mid_queries;
+        culled_tests += other.culled_tests;
+        exact_tests += other.exact_tests;
+        contacts += other.contacts;
+        ellipsoid_substeps += other.ellipsoid_substeps;
+        car_pairs += other.car_pairs;
+        car_pair_tests += other.car_pair_tests;
+        car_contacts += other.car_contacts;
+        max_car_penetration = std::max(max_car_penetration, other.max_car_penetration);
+    }
 
     double& operator[](Phase phase) { return phase_us[static_cast<std::size_t>(phase)]; }
     double operator[](Phase phase) const { return phase_us[static_cast<std::size_t>(phase)]; }

@@ -59,6 +59,11 @@ class TRACKPHYS_API Autopilot {
     /// Completed laps: times the car crossed the start line going forward.
     int laps() const { return laps_; }
 
+    /// Steer for a line this far left of the centreline (m; negative: right), e.g. to pass
+    /// a slower car. 0 until set; not part of the progress (a race sets it every update).
+    void set_lane_offset(double metres) { lane_offset_ = metres; }
+    double lane_offset() const { return lane_offset_; }
+
     /// The progress to save beside a world snapshot.
     AutopilotProgress progress() const { return {nearest_, laps_, located_}; }
     /// Continues from saved progress. Throws trackphys::Error when the sample is not on
@@ -78,6 +83,7 @@ class TRACKPHYS_API Autopilot {
     std::size_t nearest_ = 0;
     int laps_ = 0;
     bool located_ = false;
+    double lane_offset_ = 0.0;
 };
 
 }  // namespace trackphys

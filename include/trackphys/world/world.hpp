@@ -28,9 +28,13 @@ class TraceRecorder;
 /// update, then steps x sub-steps of cull, exact contact, deepest contact per ellipsoid,
 /// forces and integration.
 ///
-/// Cars do not interact yet, so each car's update reads only the static world and its
-/// own state: the result does not depend on the order of the cars. Same inputs, same
-/// build -> bit-identical states (state_hash()), also across save_state/restore_state.
+/// Cars touch each other (see CarSpec::car_contact and docs/design.md#cars-between-cars).
+/// Each update starts with a broad phase among the cars over their update boxes; cars whose
+/// boxes overlap, directly or through others, form an island and step sub-step by sub-step
+/// together; a lone car runs its whole update alone. Islands run on settings().threads
+/// threads or on a plugged-in job system, and the results do not depend on either: same
+/// inputs, same build -> bit-identical states (state_hash()), for any number of threads,
+/// also across save_state/restore_state.
 ///
 /// Reset policy: a car that ends an update in an impossible state (a non-finite position,
 /// orientation or velocity, a speed above settings().max_car_speed or an angular speed above
@@ -38,7 +42,8 @@ class TraceRecorder;
 /// with zero linear and angular velocity, its suspension as it was then, no contacts and its
 /// inputs kept; car_resets() counts it and last_reset_reason() says why. The start state was
 /// checked when it was reached, so the reset state is always possible. The other cars are
-/// not affected.
+/// not affected (in an island whose update stopped on an error, they keep the state they
+/// had reached).
 class TRACKPHYS_API World {
   public:
     /// Throws trackphys::Error on a null static world or invalid settings. In the
@@ -119,22 +124,32 @@ class TRACKPHYS_API World {
     // A car and its per-update working memory (src/world/car_slot.hpp): defined out of line so
     // that the mid phase and its lists stay out of every user's includes.
     struct CarSlot;
+    // The update's islands, per-worker profiles and threads (src/world/update_work.hpp).
+    struct UpdateWork;
 
-    // update_car under the reset policy (world_guard.cpp).
-    void update_car_or_reset(CarSlot& slot, PhaseStopwatch& watch);
+    void run_islands();
+    // The job-system task over the update's islands (context: the World).
+    static void island_task(int begin, int end, int worker, void* world);
+    // step_island under the reset policy (world_guard.cpp).
+    void update_island_or_reset(std::size_t island, PhaseStopwatch& watch);
     // Why this state breaks the reset policy's limits, or empty.
     std::string impossible_state(const RigidBodyState& state) const;
     // add_car's checks of where the car is (world_guard.cpp).
     void check_placement(const Car& car) const;
-    void update_car(CarSlot& slot, PhaseStopwatch& watch);
+    // A lone car runs its whole update alone; an island's cars sub-step together
+    // (world_island.cpp).
+    void step_island(std::size_t island, PhaseStopwatch& watch);
+    void update_car(CarSlot& slot, const Aabb& box, PhaseStopwatch& watch);
     void begin_update(CarSlot& slot, const Aabb& box, PhaseStopwatch& watch);
     void list_step_candidates(CarSlot& slot, int steps_left, PhaseStopwatch& watch);
-    void substep(CarSlot& slot, PhaseStopwatch& watch);
+    void find_contacts(CarSlot& slot, PhaseStopwatch& watch);
+    void advance(CarSlot& slot, PhaseStopwatch& watch);
 
     std::shared_ptr<const StaticWorld> statics_;
     WorldSettings settings_;
     ColliderPlaneTrees trees_;
     std::vector<CarSlot> cars_;
+    std::unique_ptr<UpdateWork> work_;
     std::uint64_t updates_ = 0;
     UpdateProfile profile_;
     TraceRecorder* trace_ = nullptr;

@@ -6,6 +6,7 @@
 
 #include "trackphys/collision/mid_phase_mode.hpp"
 #include "trackphys/export.hpp"
+#include "trackphys/world/job_system.hpp"
 
 namespace trackphys {
 
@@ -48,9 +49,19 @@ struct TRACKPHYS_API WorldSettings {
     /// box of every collider: a car placed far outside the map is a mistake (a wrong unit or
     /// frame) and would fall forever.
     double max_spawn_distance = 1000.0;
+    /// Threads World::update spreads the islands of cars over (>= 0, at most 256): 0 for
+    /// the hardware's count, 1 to run on the calling thread alone. World starts its pool
+    /// the first time an update has two islands. Results do not depend on it.
+    int threads = 0;
+    /// A game's own job system; when plugged in, World uses it instead of its own threads
+    /// (and `threads` is not used). Results do not depend on it.
+    JobSystem jobs;
     /// Measure per-phase times in the UpdateProfile (reads the clock a few times per
     /// sub-step); counts are kept either way.
     bool profile = true;
+
+    /// `threads` with 0 resolved to the hardware's count (at least 1).
+    int thread_count() const;
 
     /// The sub-step (integration) time h = dt_update / (steps * substeps), seconds.
     double substep_dt() const { return dt_update / (steps * substeps); }

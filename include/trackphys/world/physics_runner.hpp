@@ -1,0 +1,117 @@
+#pragma once
+
+#include <atomic>
+#include <cstddef>
+#include <cstdint>
+#include <exception>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+#include <glm/gtc/quaternion.hpp>
+#include <glm/vec3.hpp>
+
+#include "trackphys/dynamics/car.hpp"
+#include "trackphys/export.hpp"
+#include "trackphys/world/world.hpp"
+
+namespace trackphys {
+
+/// Where a car is, for drawing it.
+struct CarPose {
+    glm::dvec3 position{0.0};
+    glm::dquat orientation{1.0, 0.0, 0.0, 0.0};
+};
+
+/// A World on a physics thread of its own, the "fix your timestep" loop of a game: the
+/// thread runs World::update every dt_update (in real time, or as fast as it can), applies
+/// each car's inputs at the update they are stamped with, and after every update publishes
+/// the last two states, from which a render thread reads an interpolated pose per car for
+/// any render time without locks and without torn reads.
+///
+/// Threads: one game thread (start, run_to, stop, set_inputs, world) and one render thread
+/// (pose, published_update); the physics thread is the runner's own. Inputs go through a
+/// mutex (a few per update); publishing is a lock-free triple buffer (the render thread
+/// always reads a complete pair of states, the newest one published).
+class TRACKPHYS_API PhysicsRunner {
+  public:
+    /// Takes the world (with its cars). real_time: one update per dt_update of wall clock;
+    /// otherwise as fast as possible. Publishes the world's current state at once.
+    explicit PhysicsRunner(World world, bool real_time = true);
+    /// Stops the thread.
+    ~PhysicsRunner();
+    PhysicsRunner(const PhysicsRunner&) = delete;
+    PhysicsRunner& operator=(const PhysicsRunner&) = delete;
+
+    /// Starts the physics thread, which runs until stop() or until the world has run
+    /// `last_update` updates. Throws trackphys::Error when it runs already.
+    void run_to(std::uint64_t last_update);
+    void start() { run_to(UINT64_MAX); }
+    /// Stops the thread after the update it is in and waits for it; rethrows what stopped
+    /// it, if an update threw.
+    void stop();
+    /// Waits until the thread has reached run_to's update (or stopped); rethrows as stop().
+    void wait();
+
+    /// Sets car `car`'s inputs from update number `update` on (the world's
+    /// update_count() once that update has run: the next update after n runs is n + 1).
+    /// Inputs stamped for an update that has run already apply at the next one and are
+    /// counted by late_inputs(); on time, a recorded input stream replays bit-identically.
+    /// Throws trackphys::Error for a car that does not exist or NaN inputs.
+    void set_inputs(std::uint64_t update, std::size_t car, const CarInputs& inputs);
+    std::uint64_t late_inputs() const { return late_inputs_.load(std::memory_order_relaxed); }
+
+    /// The last published update number (render thread).
+    std::uint64_t published_update() const;
+    /// Car `car`'s pose at simulated time `t` (s), interpolated between the last two
+    /// published states (linearly, and slerp for the orientation): the older state's pose
+    /// at or before its time, the newer one's at or after its time (render thread).
+    CarPose pose(std::size_t car, double t) const;
+
+    /// The world, only while the thread is not running (throws trackphys::Error then).
+    World& world();
+
+  private:
+    // A pair of consecutive published states.
+    struct Frame {
+        std::uint64_t update = 0;
+        double previous_time = 0.0;
+        double time = 0.0;
+        std::vector<CarPose> previous;
+        std::vector<CarPose> current;
+    };
+    struct StampedInputs {
+        std::uint64_t update;
+        std::size_t car;
+        CarInputs inputs;
+    };
+
+    void loop(std::uint64_t last_update);
+    void apply_due_inputs();
+    void publish();
+    // The render thread's newest frame (takes a fresher one if the physics thread left it).
+    const Frame& front() const;
+
+    World world_;
+    std::size_t cars_;
+    bool real_time_;
+    std::thread thread_;
+    std::atomic<bool> stopping_{false};
+    std::exception_ptr error_;
+
+    std::mutex inputs_mutex_;
+    std::vector<StampedInputs> pending_;  // guarded by inputs_mutex_
+    std::atomic<std::uint64_t> late_inputs_{0};
+
+    // Triple buffer: the physics thread owns frames_[back_], the render thread
+    // frames_[front_], and the third waits in middle_ (index | kFresh once it is new).
+    static constexpr unsigned kFresh = 4;
+    Frame frames_[3];
+    unsigned back_ = 0;
+    std::vector<CarPose> last_published_;  // physics thread's
+    double last_published_time_ = 0.0;
+    mutable unsigned front_ = 2;
+    mutable std::atomic<unsigned> middle_{1};
+};
+
+}  // namespace trackphys

@@ -1,0 +1,90 @@
+#include "world/car_pair_contact.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+#include "trackphys/dynamics/contact_force.hpp"
+#include "trackphys/geometry/ellipsoid_pair.hpp"
+
+namespace trackphys::detail {
+namespace {
+
+ContactMaterial mean_material(const ContactMaterial& a, const ContactMaterial& b) {
+    return {0.5 * (a.stiffness + b.stiffness), 0.5 * (a.damping + b.damping),
+            0.5 * (a.friction + b.friction), 0.5 * (a.slip_speed + b.slip_speed)};
+}
+
+glm::dvec3 relative_velocity(const Car& a, const Car& b, const glm::dvec3& point) {
+    return point_velocity(a.state(), point) - point_velocity(b.state(), point);
+}
+
+void push_apart(Car& a, Car& b, const glm::dvec3& impulse, const glm::dvec3& point) {
+    a.apply_impulse(impulse, point);
+    b.apply_impulse(-impulse, point);
+}
+
+// The plastic impulse for a contact the spring cannot hold within `budget` (m) of depth:
+// one already deeper, or one closing so fast that the spring would let it sink deeper
+// (a spring of stiffness k stops a closing speed v over v sqrt(m / k), m the pair's
+// effective mass along the normal). The relative normal velocity at the point is brought
+// to zero.
+void stop_if_too_deep(Car& a, Car& b, const Contact& contact, double stiffness, double budget) {
+    const double approach = glm::dot(relative_velocity(a, b, contact.point), contact.normal);
+    if (approach >= 0.0) return;
+    const double inverse_mass = a.inverse_mass_along(contact.normal, contact.point) +
+                                b.inverse_mass_along(contact.normal, contact.point);
+    const double sinking = -approach * std::sqrt(1.0 / (inverse_mass * stiffness));
+    if (!(contact.depth + sinking > budget)) return;
+    push_apart(a, b, contact.normal * (-approach / inverse_mass), contact.point);
+}
+
+// Spring, damper and friction over h, as impulses.
+void press(Car& a, Car& b, const Contact& contact, const ContactMaterial& material, double h) {
+    const glm::dvec3 velocity = relative_velocity(a, b, contact.point);
+    const double pressing = normal_force(material, contact.depth, contact.normal, velocity);
+    if (pressing == 0.0) return;
+    glm::dvec3 impulse = contact.normal * (pressing * h);
+    const glm::dvec3 slip = velocity - contact.normal * glm::dot(velocity, contact.normal);
+    const double slip_speed = glm::length(slip);
+    if (slip_speed > 0.0) {
+        const glm::dvec3 along = slip / slip_speed;
+        const double regularised =
+            material.friction * pressing * h * std::min(slip_speed / material.slip_speed, 1.0);
+        const double stopping = slip_speed / (a.inverse_mass_along(along, contact.point) +
+                                              b.inverse_mass_along(along, contact.point));
+        impulse -= along * std::min(regularised, stopping);
+    }
+    push_apart(a, b, impulse, contact.point);
+}
+
+}  // namespace
+
+CarPairTouch touch_cars(Car& a, std::span<const Ellipsoid> a_placed, Car& b,
+                        std::span<const Ellipsoid> b_placed, double h) {
+    CarPairTouch touch;
+    const double reach = a.bounding_radius() + b.bounding_radius();
+    const glm::dvec3 apart = a.state().position - b.state().position;
+    if (glm::dot(apart, apart) > reach * reach) return touch;
+
+    const ContactMaterial material = mean_material(a.spec().car_contact, b.spec().car_contact);
+    const double deep_fraction =
+        std::min(a.spec().deep_contact_fraction, b.spec().deep_contact_fraction);
+    for (const Ellipsoid& ea : a_placed) {
+        for (const Ellipsoid& eb : b_placed) {
+            if (!ellipsoids_may_touch(ea, eb)) continue;
+            const Contact contact = ellipsoid_ellipsoid_contact(ea, eb);
+            ++touch.exact_tests;
+            if (!(contact.depth > 0.0)) continue;
+            touch.deepest = std::max(touch.deepest, contact.depth);
+            const double budget =
+                deep_fraction * std::min(ea.sorted_radii().z, eb.sorted_radii().z);
+            stop_if_too_deep(a, b, contact, material.stiffness, budget);
+            press(a, b, contact, material, h);
+        }
+    }
+    return touch;
+}
+
+}  // namespace trackphys::detail

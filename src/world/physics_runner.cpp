@@ -1,0 +1,144 @@
+#include "trackphys/world/physics_runner.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <string>
+#include <utility>
+
+#include "trackphys/error.hpp"
+
+namespace trackphys {
+namespace {
+
+std::vector<CarPose> poses_of(const World& world) {
+    std::vector<CarPose> poses;
+    for (std::size_t i = 0; i < world.car_count(); ++i)
+        poses.push_back({world.car(i).state().position, world.car(i).state().orientation});
+    return poses;
+}
+
+}  // namespace
+
+PhysicsRunner::PhysicsRunner(World world, bool real_time)
+    : world_(std::move(world)), cars_(world_.car_count()), real_time_(real_time) {
+    // Every buffer starts as the current state (both ends of the pair), sized for the cars
+    // so that publishing never allocates.
+    for (Frame& frame : frames_) {
+        frame.update = world_.update_count();
+        frame.previous_time = frame.time = world_.time();
+        frame.previous = frame.current = poses_of(world_);
+    }
+    last_published_ = poses_of(world_);
+    last_published_time_ = world_.time();
+}
+
+PhysicsRunner::~PhysicsRunner() {
+    stopping_.store(true);
+    if (thread_.joinable()) thread_.join();
+}
+
+void PhysicsRunner::run_to(std::uint64_t last_update) {
+    if (thread_.joinable()) throw Error("PhysicsRunner::run_to: the physics thread runs already");
+    stopping_.store(false);
+    error_ = nullptr;
+    thread_ = std::thread([this, last_update] { loop(last_update); });
+}
+
+void PhysicsRunner::wait() {
+    if (thread_.joinable()) thread_.join();
+    if (error_) std::rethrow_exception(std::exchange(error_, nullptr));
+}
+
+void PhysicsRunner::stop() {
+    stopping_.store(true);
+    wait();
+}
+
+World& PhysicsRunner::world() {
+    if (thread_.joinable()) throw Error("PhysicsRunner::world: the physics thread is running");
+    return world_;
+}
+
+void PhysicsRunner::set_inputs(std::uint64_t update, std::size_t car, const CarInputs& inputs) {
+    if (car >= cars_) throw Error("PhysicsRunner::set_inputs: no car " + std::to_string(car));
+    if (std::isnan(inputs.throttle) || std::isnan(inputs.brake) || std::isnan(inputs.steer))
+        throw Error("PhysicsRunner::set_inputs: NaN input for car " + std::to_string(car));
+    std::lock_guard lock(inputs_mutex_);
+    pending_.push_back({update, car, inputs});
+}
+
+// Inputs in stamp order (then in the order they were given), each applied before the
+// update it is stamped with.
+void PhysicsRunner::apply_due_inputs() {
+    const std::uint64_t next = world_.update_count() + 1;
+    std::lock_guard lock(inputs_mutex_);
+    if (pending_.empty()) return;
+    std::stable_sort(
+        pending_.begin(), pending_.end(),
+        [](const StampedInputs& a, const StampedInputs& b) { return a.update < b.update; });
+    auto due = pending_.begin();
+    for (; due != pending_.end() && due->update <= next; ++due) {
+        if (due->update < next) late_inputs_.fetch_add(1, std::memory_order_relaxed);
+        world_.car(due->car).set_inputs(due->inputs);
+    }
+    pending_.erase(pending_.begin(), due);
+}
+
+void PhysicsRunner::loop(std::uint64_t last_update) {
+    using Clock = std::chrono::steady_clock;
+    const auto dt = std::chrono::duration_cast<Clock::duration>(
+        std::chrono::duration<double>(world_.settings().dt_update));
+    auto due = Clock::now();
+    try {
+        while (!stopping_.load() && world_.update_count() < last_update) {
+            if (real_time_) {
+                due += dt;
+                std::this_thread::sleep_until(due);
+            }
+            apply_due_inputs();
+            world_.update();
+            publish();
+        }
+    } catch (...) {
+        error_ = std::current_exception();
+    }
+}
+
+void PhysicsRunner::publish() {
+    Frame& frame = frames_[back_];
+    // The pair is (the last published state, this one). Same sizes: no allocation.
+    frame.previous = last_published_;
+    frame.previous_time = last_published_time_;
+    for (std::size_t i = 0; i < world_.car_count(); ++i) {
+        const RigidBodyState& s = world_.car(i).state();
+        frame.current[i] = {s.position, s.orientation};
+    }
+    last_published_ = frame.current;
+    last_published_time_ = world_.time();
+    frame.update = world_.update_count();
+    frame.time = world_.time();
+    back_ = middle_.exchange(back_ | kFresh, std::memory_order_acq_rel) & ~kFresh;
+}
+
+const PhysicsRunner::Frame& PhysicsRunner::front() const {
+    if (middle_.load(std::memory_order_acquire) & kFresh)
+        front_ = middle_.exchange(front_, std::memory_order_acq_rel) & ~kFresh;
+    return frames_[front_];
+}
+
+std::uint64_t PhysicsRunner::published_update() const { return front().update; }
+
+CarPose PhysicsRunner::pose(std::size_t car, double t) const {
+    const Frame& frame = front();
+    const CarPose& older = frame.previous.at(car);
+    const CarPose& newer = frame.current.at(car);
+    const double span = frame.time - frame.previous_time;
+    const double alpha = span > 0.0 ? std::clamp((t - frame.previous_time) / span, 0.0, 1.0) : 1.0;
+    if (alpha == 0.0) return older;
+    if (alpha == 1.0) return newer;
+    return {older.position + (newer.position - older.position) * alpha,
+            glm::slerp(older.orientation, newer.orientation, alpha)};
+}
+
+}  // namespace trackphys

@@ -1,0 +1,140 @@
+#include "trackphys/world/race_drivers.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include <glm/geometric.hpp>
+
+#include "trackphys/error.hpp"
+
+namespace trackphys {
+
+RaceDrivers::RaceDrivers(const Track& track, const CarSpec& car, std::size_t cars,
+                         RaceSettings settings)
+    : track_(&track), car_(car), settings_(settings) {
+    if (cars == 0) throw Error("RaceDrivers: a race needs at least one car");
+    if (!(std::isfinite(settings_.slowest_kmh) && settings_.slowest_kmh > 0.0 &&
+          std::isfinite(settings_.fastest_kmh) && settings_.fastest_kmh >= settings_.slowest_kmh))
+        throw Error("RaceSettings: speeds must be finite and 0 < slowest_kmh <= fastest_kmh");
+    if (!(settings_.lane_offset >= 0.0 && settings_.pass_look_ahead >= 0.0 &&
+          settings_.lane_width >= 0.0 && settings_.follow_gap >= 0.0))
+        throw Error(
+            "RaceSettings: lane_offset, pass_look_ahead, lane_width and follow_gap must be >= 0");
+    for (std::size_t i = 0; i < cars; ++i) {
+        const double share =
+            cars == 1 ? 0.0 : static_cast<double>(i) / static_cast<double>(cars - 1);
+        AutopilotSettings driver;
+        driver.target_speed =
+            (settings_.slowest_kmh + share * (settings_.fastest_kmh - settings_.slowest_kmh)) / 3.6;
+        target_speeds_.push_back(driver.target_speed);
+        pilots_.emplace_back(track, car, driver);
+    }
+    lanes_.assign(cars, 0.0);
+    lap_times_.resize(cars);
+    last_crossing_.assign(cars, 0.0);
+}
+
+void RaceDrivers::add_cars(World& world) const {
+    if (world.car_count() != 0) throw Error("RaceDrivers::add_cars: the world has cars already");
+    for (const RigidBodyState& start :
+         race_grid(*track_, world.statics(), car_, pilots_.size(), settings_.grid))
+        world.add_car(car_, start);
+}
+
+RaceDrivers::RoadPosition RaceDrivers::road_position(const World& world, std::size_t car) const {
+    const CenterlineSample& s = track_->centerline[pilots_[car].nearest_sample()];
+    const glm::dvec3 offset = world.car(car).state().position - s.position;
+    return RoadPosition{glm::dot(offset, s.left), s.distance};
+}
+
+RaceDrivers::CarAhead RaceDrivers::car_ahead(const World& world, std::size_t i, double line,
+                                             double from) const {
+    const RoadPosition me = road_position(world, i);
+    const glm::dvec3& velocity = world.car(i).state().linear_velocity;
+    CarAhead nearest{std::numeric_limits<double>::infinity(), 0.0};
+    for (std::size_t j = 0; j < pilots_.size(); ++j) {
+        if (j == i) continue;
+        const RoadPosition other = road_position(world, j);
+        if (std::abs(other.across - line) > settings_.lane_width) continue;
+        // Along-track gap, wrapped into [from, length + from).
+        double gap = std::fmod(other.along - me.along - from, track_->length_m);
+        if (gap < 0.0) gap += track_->length_m;
+        gap += from;
+        if (gap > settings_.pass_look_ahead || !(gap < nearest.gap)) continue;
+        const glm::dvec3 toward = world.car(j).state().position - world.car(i).state().position;
+        const double distance = glm::length(toward);
+        const glm::dvec3 relative = velocity - world.car(j).state().linear_velocity;
+        nearest = {gap, distance > 0.0 ? glm::dot(relative, toward) / distance : 0.0};
+    }
+    return nearest;
+}
+
+double RaceDrivers::lane(const World& world, std::size_t i) const {
+    constexpr double kAlongside = -6.0;  // m: a car this far behind is still beside us
+    // Even grid places are in the left column.
+    const double own = i % 2 == 0 ? settings_.lane_offset : -settings_.lane_offset;
+    const auto blocked = [&](double line) {
+        const CarAhead ahead = car_ahead(world, i, line, kAlongside);
+        return std::isfinite(ahead.gap) && ahead.closing > 0.0;
+    };
+    return blocked(own) && !blocked(-own) ? -own : own;
+}
+
+void RaceDrivers::drive(World& world) {
+    // Every lane from the same instant, before any car's inputs change.
+    for (std::size_t i = 0; i < pilots_.size(); ++i) lanes_[i] = lane(world, i);
+    for (std::size_t i = 0; i < pilots_.size(); ++i) {
+        pilots_[i].set_lane_offset(lanes_[i]);
+        Car& car = world.car(i);
+        CarInputs inputs = pilots_[i].drive(car);
+        // Only a car in front: two cars side by side must not both lift off for each other.
+        // And only when moving: a car stopped behind a stopped car (after a crash) would
+        // wait for ever; crawling, it bumps it or passes it.
+        constexpr double kInFront = 1.0;       // m
+        constexpr double kPullingAway = -2.0;  // m/s
+        constexpr double kCrawling = 5.0;      // m/s
+        const CarAhead ahead = car_ahead(world, i, lanes_[i], kInFront);
+        if (ahead.gap < settings_.follow_gap && ahead.closing > kPullingAway &&
+            car.speed() > kCrawling) {
+            // Closing at 10 m/s or more brakes fully (anti-lock keeps the car steerable).
+            inputs.throttle = 0.0;
+            inputs.brake = std::max(inputs.brake, std::clamp(ahead.closing / 10.0, 0.0, 1.0));
+        }
+        car.set_inputs(inputs);
+    }
+}
+
+void RaceDrivers::after_update(const World& world) {
+    for (std::size_t i = 0; i < pilots_.size(); ++i) {
+        const int before = pilots_[i].laps();
+        pilots_[i].locate(world.car(i));
+        if (pilots_[i].laps() <= before) continue;
+        if (pilots_[i].laps() > 1) lap_times_[i].push_back(world.time() - last_crossing_[i]);
+        last_crossing_[i] = world.time();
+    }
+}
+
+int RaceDrivers::laps(std::size_t car) const { return std::max(0, pilots_.at(car).laps() - 1); }
+
+int RaceDrivers::fewest_laps() const {
+    int fewest = laps(0);
+    for (std::size_t i = 1; i < pilots_.size(); ++i) fewest = std::min(fewest, laps(i));
+    return fewest;
+}
+
+std::vector<AutopilotProgress> RaceDrivers::progress() const {
+    std::vector<AutopilotProgress> all;
+    for (const Autopilot& pilot : pilots_) all.push_back(pilot.progress());
+    return all;
+}
+
+void RaceDrivers::set_progress(std::span<const AutopilotProgress> progress) {
+    if (progress.size() != pilots_.size())
+        throw Error("RaceDrivers::set_progress: " + std::to_string(progress.size()) +
+                    " progresses for " + std::to_string(pilots_.size()) + " cars");
+    for (std::size_t i = 0; i < pilots_.size(); ++i) pilots_[i].set_progress(progress[i]);
+}
+
+}  // namespace trackphys

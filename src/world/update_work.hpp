@@ -1,0 +1,31 @@
+#pragma once
+
+#include <cstddef>
+#include <exception>
+#include <memory>
+#include <vector>
+
+#include "trackphys/geometry/aabb.hpp"
+#include "trackphys/profile/update_profile.hpp"
+#include "trackphys/world/world.hpp"
+#include "world/car_islands.hpp"
+#include "world/thread_pool.hpp"
+
+namespace trackphys {
+
+// What World::update works with besides the cars, kept between updates so a steady state
+// allocates nothing.
+struct World::UpdateWork {
+    std::vector<Aabb> boxes;  // per car: car_update_box at the start of the update
+    detail::CarIslands islands;
+    // Island indices, largest first: the order they are handed out in (results do not
+    // depend on it; the long ones starting first keeps the threads' ends close).
+    std::vector<std::size_t> schedule;
+    std::vector<UpdateProfile> worker_profiles;
+    // Per island: what stopped its update, rethrown after all islands ran.
+    std::vector<std::exception_ptr> errors;
+    std::unique_ptr<detail::ThreadPool> pool;  // started at the first update with 2 islands
+    TraceRecorder* trace = nullptr;            // this update's, when it runs on one thread
+};
+
+}  // namespace trackphys

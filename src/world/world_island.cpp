@@ -1,0 +1,55 @@
+// World::step_island: one update of an island of cars (see World's class notes).
+
+#include <cstdint>
+#include <span>
+
+#include "profile/phase_stopwatch.hpp"
+#include "trackphys/world/world.hpp"
+#include "world/car_pair_contact.hpp"
+#include "world/car_slot.hpp"
+#include "world/update_work.hpp"
+
+namespace trackphys {
+
+// A lone car keeps the loop of a world without other cars, bit for bit. Cars that may
+// meet run the same loop in lockstep: each sub-step finds every car's road contacts from
+// the same instant, then the contacts between cars push them (touch_cars), then each car
+// integrates; so both cars of a pair feel their contact in the same sub-step.
+void World::step_island(std::size_t island, PhaseStopwatch& watch) {
+    const UpdateWork& work = *work_;
+    const std::span<const std::uint32_t> cars = work.islands.cars(island);
+    if (cars.size() == 1) {
+        update_car(cars_[cars[0]], work.boxes[cars[0]], watch);
+        return;
+    }
+    const std::span<const detail::CarPair> pairs = work.islands.pairs(island);
+    UpdateProfile& profile = watch.profile();
+    const double h = settings_.substep_dt();
+
+    for (const std::uint32_t i : cars) begin_update(cars_[i], work.boxes[i], watch);
+    for (int step = 0; step < settings_.steps; ++step) {
+        for (const std::uint32_t i : cars)
+            list_step_candidates(cars_[i], settings_.steps - step, watch);
+        for (int s = 0; s < settings_.substeps; ++s) {
+            // find_contacts places each car's ellipsoids for this sub-step (CarSlot::placed).
+            for (const std::uint32_t i : cars) find_contacts(cars_[i], watch);
+            for (const detail::CarPair& pair : pairs) {
+                CarSlot& a = cars_[pair.a];
+                CarSlot& b = cars_[pair.b];
+                const detail::CarPairTouch touch =
+                    detail::touch_cars(a.car, a.placed, b.car, b.placed, h);
+                profile.car_pair_tests += touch.exact_tests;
+                profile.car_contacts += touch.deepest > 0.0;
+                profile.max_car_penetration = std::max(profile.max_car_penetration, touch.deepest);
+            }
+            watch.lap(Phase::exact);
+            // A push from another car can change a car's velocity by more than the step's
+            // lists allow for: check their cover again (a query only when it fails).
+            for (const std::uint32_t i : cars)
+                list_step_candidates(cars_[i], settings_.steps - step, watch);
+            for (const std::uint32_t i : cars) advance(cars_[i], watch);
+        }
+    }
+}
+
+}  // namespace trackphys

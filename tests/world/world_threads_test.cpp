@@ -1,0 +1,135 @@
+// A field of cars that touch, on 1, 2 and 4 threads and on a plugged-in job system: the
+// same bits every time (World's class notes), and across save_state / restore_state.
+#include <algorithm>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "trackphys/error.hpp"
+#include "trackphys/world/autopilot.hpp"
+#include "trackphys/world/race_grid.hpp"
+#include "trackphys/world/world.hpp"
+#include "world/track_world.hpp"
+
+namespace trackphys {
+namespace {
+
+constexpr std::size_t kCars = 10;
+
+// The grid of the default track, every car on an autopilot of its own speed (faster ones
+// further back), all aiming at the centreline: they bump as they merge.
+class Field {
+  public:
+    explicit Field(WorldSettings settings)
+        : world_(test::default_track().statics, settings, test::default_track().trees) {
+        const test::TrackWorld& track = test::default_track();
+        const CarSpec spec = CarSpec::default_car();
+        for (const RigidBodyState& start : race_grid(track.track, *track.statics, spec, kCars)) {
+            AutopilotSettings driver;
+            driver.target_speed = (250.0 + 15.0 * static_cast<double>(pilots_.size())) / 3.6;
+            pilots_.emplace_back(track.track, spec, driver);
+            world_.add_car(spec, start);
+        }
+    }
+
+    // Runs `updates` updates; returns the car-car contacts seen.
+    std::uint64_t run(int updates) {
+        std::uint64_t contacts = 0;
+        for (int u = 0; u < updates; ++u) {
+            for (std::size_t i = 0; i < kCars; ++i)
+                world_.car(i).set_inputs(pilots_[i].drive(world_.car(i)));
+            world_.update();
+            contacts += world_.last_profile().car_contacts;
+        }
+        return contacts;
+    }
+
+    World& world() { return world_; }
+    std::vector<Autopilot>& pilots() { return pilots_; }
+
+  private:
+    World world_;
+    std::vector<Autopilot> pilots_;
+};
+
+WorldSettings on_threads(int threads) {
+    WorldSettings settings;
+    settings.threads = threads;
+    return settings;
+}
+
+constexpr int kUpdates = 300;
+
+TEST(WorldThreads, SameHashOnOneTwoAndFourThreads) {
+    Field reference(on_threads(1));
+    const std::uint64_t contacts = reference.run(kUpdates);
+    EXPECT_GT(contacts, 0u) << "the field never touched: the test would prove little";
+    const std::uint64_t expected = reference.world().state_hash();
+    for (const int threads : {1, 2, 4, 2, 4}) {
+        Field field(on_threads(threads));
+        field.run(kUpdates);
+        EXPECT_EQ(field.world().state_hash(), expected) << threads << " threads";
+    }
+}
+
+// A job system that runs the ranges backwards, one item at a time, each on another worker
+// index: order and worker must not matter.
+struct BackwardsJobs {
+    int enqueued = 0;
+    static void* enqueue(TaskCallback* task, int items, int min_range, void* context, void* user) {
+        auto& self = *static_cast<BackwardsJobs*>(user);
+        EXPECT_GE(min_range, 1);
+        ++self.enqueued;
+        for (int item = items - 1; item >= 0; --item) task(item, item + 1, item % 3, context);
+        return &self;
+    }
+    static void finish(void* task, void* user) { EXPECT_EQ(task, user); }
+};
+
+TEST(WorldThreads, PluggedInJobSystemGivesTheSameHash) {
+    Field reference(on_threads(1));
+    reference.run(kUpdates);
+
+    BackwardsJobs jobs;
+    WorldSettings settings;
+    settings.jobs = {&BackwardsJobs::enqueue, &BackwardsJobs::finish, &jobs, 3};
+    Field field(settings);
+    field.run(kUpdates);
+    EXPECT_EQ(field.world().state_hash(), reference.world().state_hash());
+    EXPECT_EQ(jobs.enqueued, kUpdates);
+}
+
+TEST(WorldThreads, SnapshotOfTheWholeFieldResumesBitForBit) {
+    Field through(on_threads(2));
+    through.run(150);
+    const WorldSnapshot snapshot = through.world().save_state();
+    std::vector<AutopilotProgress> progress;
+    for (const Autopilot& pilot : through.pilots()) progress.push_back(pilot.progress());
+    EXPECT_EQ(snapshot.cars.size(), kCars);
+    through.run(150);
+
+    Field resumed(on_threads(1));
+    resumed.world().restore_state(snapshot);
+    for (std::size_t i = 0; i < kCars; ++i) resumed.pilots()[i].set_progress(progress[i]);
+    resumed.run(150);
+    EXPECT_EQ(resumed.world().state_hash(), through.world().state_hash());
+}
+
+TEST(WorldThreads, SettingsRejectBadThreadsAndHalfAJobSystem) {
+    WorldSettings settings;
+    settings.threads = -1;
+    EXPECT_NE(settings.validate().find("WorldSettings.threads"), std::string::npos);
+    settings.threads = 2;
+    settings.jobs.enqueue_task = &BackwardsJobs::enqueue;
+    EXPECT_NE(settings.validate().find("WorldSettings.jobs"), std::string::npos);
+    settings.jobs.finish_task = &BackwardsJobs::finish;
+    settings.jobs.worker_count = 0;
+    EXPECT_NE(settings.validate().find("worker_count"), std::string::npos);
+    settings.jobs.worker_count = 1;
+    EXPECT_EQ(settings.validate(), "");
+}
+
+}  // namespace
+}  // namespace trackphys
