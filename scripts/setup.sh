@@ -30,6 +30,8 @@ required=(
                      # recommends
   clang-format-14 # scripts/check_format.sh (CI's format check): one version, since another
                   # major version breaks lines differently
+  python3 # the mesh tests' generated files: tests/io/make_valid_meshes.py and the hostile
+          # corpus of tests/cli
   llvm # llvm-symbolizer: function names and lines in sanitizer and fuzzer reports
 )
 
