@@ -3,9 +3,14 @@ target_sources(trackphys PRIVATE
   io/car_spec_json.cpp
   io/json_reader.cpp
   io/mesh_export.cpp
+  io/confined_io_system.cpp
+  io/gltf_check.cpp
+  io/mapped_file.cpp
+  io/mesh_format.cpp
   io/mesh_import.cpp
   io/off_header_check.cpp
-  io/ply_header_check.cpp
+  io/ply_check.cpp
+  io/stl_check.cpp
   io/recording.cpp
   io/scenario.cpp
   io/snapshot_file.cpp)
