@@ -53,7 +53,8 @@ void check_index(const Json& object, const char* key, const std::string& place, 
     const auto it = object.find(key);
     if (it == object.end()) return;
     if (!it->is_number_unsigned() || it->get<std::uint64_t>() >= size)
-        fail(place + "." + key, "'" + it->dump() + "' is not an index below " + std::to_string(size));
+        fail(place + "." + key,
+             "'" + it->dump() + "' is not an index below " + std::to_string(size));
 }
 
 std::uint64_t required(const Json& object, const char* key, const std::string& place) {
@@ -75,7 +76,8 @@ std::uint64_t data_uri_bytes(std::string_view uri, const std::string& place) {
     const std::string_view payload = uri.substr(comma + 1);
     std::size_t pad = 0;
     while (pad < 2 && pad < payload.size() && payload[payload.size() - 1 - pad] == '=') ++pad;
-    if (payload.size() % 4 != 0) fail(place, "a data: URI whose base64 length is not a multiple of 4");
+    if (payload.size() % 4 != 0)
+        fail(place, "a data: URI whose base64 length is not a multiple of 4");
     for (std::size_t i = 0; i < payload.size() - pad; ++i)
         if (!is_base64(payload[i])) fail(place, "a data: URI with a character outside base64");
     return payload.size() / 4 * 3 - pad;
@@ -88,11 +90,13 @@ fs::path local_file(std::string_view uri, const fs::path& folder, const std::str
     shown.append(uri).append("'");
     if (uri.empty()) fail(place, "an empty URI");
     if (uri.find(':') != std::string_view::npos)
-        fail(place, "the reference " + shown + " is a URL or an absolute path (only files in "
-                    "the mesh's folder are read)");
+        fail(place, "the reference " + shown +
+                        " is a URL or an absolute path (only files in "
+                        "the mesh's folder are read)");
     if (uri[0] == '/' || uri.find('\\') != std::string_view::npos)
-        fail(place, "the reference " + shown + " is an absolute path or uses '\\' (only files in "
-                    "the mesh's folder are read)");
+        fail(place, "the reference " + shown +
+                        " is an absolute path or uses '\\' (only files in "
+                        "the mesh's folder are read)");
     if (uri.find('%') != std::string_view::npos)
         fail(place, "the reference " + shown + " is percent-encoded (not read)");
     for (const fs::path& part : fs::path(uri))
@@ -156,13 +160,17 @@ Glb split_glb(std::string_view file) {
 
 std::uint64_t component_bytes(std::uint64_t type, const std::string& place) {
     switch (type) {
-    case 5120:
-    case 5121: return 1;
-    case 5122:
-    case 5123: return 2;
-    case 5125:
-    case 5126: return 4;
-    default: fail(place + ".componentType", std::to_string(type) + " is no component type");
+        case 5120:
+        case 5121:
+            return 1;
+        case 5122:
+        case 5123:
+            return 2;
+        case 5125:
+        case 5126:
+            return 4;
+        default:
+            fail(place + ".componentType", std::to_string(type) + " is no component type");
     }
 }
 
@@ -216,7 +224,8 @@ class GltfChecker {
                 available = glb_->bin_bytes;
             } else if (!uri->is_string()) {
                 fail(place + ".uri", "not a string");
-            } else if (const std::string text = uri->get<std::string>(); text.rfind("data:", 0) == 0) {
+            } else if (const std::string text = uri->get<std::string>();
+                       text.rfind("data:", 0) == 0) {
                 available = data_uri_bytes(text, place + ".uri");
             } else {
                 const fs::path file = local_file(text, folder_, place + ".uri");
@@ -330,11 +339,13 @@ class GltfChecker {
             check_index(nodes[n], "camera", place, array_of(doc_, "cameras").size());
             const Json& children = array_of(nodes[n], "children");
             for (std::size_t c = 0; c < children.size(); ++c) {
-                if (!children[c].is_number_unsigned() || children[c].get<std::uint64_t>() >= nodes.size())
+                if (!children[c].is_number_unsigned() ||
+                    children[c].get<std::uint64_t>() >= nodes.size())
                     fail(at(place + ".children", c), "no such node");
                 const std::size_t child = children[c].get<std::size_t>();
                 if (has_parent[child])
-                    fail(at(place + ".children", c), "node " + std::to_string(child) + " has two parents");
+                    fail(at(place + ".children", c),
+                         "node " + std::to_string(child) + " has two parents");
                 has_parent[child] = true;
             }
         }

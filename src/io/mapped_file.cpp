@@ -15,8 +15,8 @@ namespace trackphys::detail {
 
 MappedFile::MappedFile(const std::filesystem::path& path) {
     const auto fail = [&path](const char* what) {
-        throw Error("mesh file '" + path.string() + "': cannot " + what + " it: " +
-                    std::strerror(errno));
+        throw Error("mesh file '" + path.string() + "': cannot " + what +
+                    " it: " + std::strerror(errno));
     };
     const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
     if (fd < 0) fail("open");

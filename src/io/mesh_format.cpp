@@ -36,20 +36,27 @@ std::optional<MeshFormat> mesh_format_of(const std::filesystem::path& path) {
 
 std::string read_mesh_extensions() {
     std::string list;
-    for (const FormatName& f : kFormats) list += (list.empty() ? "" : ", ") + std::string(f.extension);
+    for (const FormatName& f : kFormats)
+        list += (list.empty() ? "" : ", ") + std::string(f.extension);
     return list;
 }
 
 const char* assimp_reader_name(MeshFormat format) {
     switch (format) {
-    case MeshFormat::obj: return "Wavefront Object Importer";
-    case MeshFormat::ply: return "Stanford Polygon Library (PLY) Importer";
-    case MeshFormat::stl: return "Stereolithography (STL) Importer";
-    // Not "glTF Importer": that one reads glTF 1, and its CanRead parses the whole file.
-    case MeshFormat::gltf:
-    case MeshFormat::glb: return "glTF2 Importer";
-    case MeshFormat::ac3d: return "AC3D Importer";
-    case MeshFormat::off: return "OFF Importer";
+        case MeshFormat::obj:
+            return "Wavefront Object Importer";
+        case MeshFormat::ply:
+            return "Stanford Polygon Library (PLY) Importer";
+        case MeshFormat::stl:
+            return "Stereolithography (STL) Importer";
+        // Not "glTF Importer": that one reads glTF 1, and its CanRead parses the whole file.
+        case MeshFormat::gltf:
+        case MeshFormat::glb:
+            return "glTF2 Importer";
+        case MeshFormat::ac3d:
+            return "AC3D Importer";
+        case MeshFormat::off:
+            return "OFF Importer";
     }
     return "";
 }

@@ -3,7 +3,6 @@
 #include <cstdint>
 #include <cstdio>
 #include <exception>
-#include <fstream>
 #include <functional>
 #include <limits>
 #include <memory>
@@ -27,7 +26,6 @@
 #include "io/mapped_file.hpp"
 #include "io/mesh_checks.hpp"
 #include "io/mesh_format.hpp"
-#include "io/off_header_check.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/geometry/triangle.hpp"
 #include "trackphys/io/mesh_io.hpp"
@@ -89,19 +87,19 @@ std::set<fs::path> check_whole_file(const fs::path& path, detail::MeshFormat for
             case MeshFormat::stl:
                 detail::check_stl(file.bytes());
                 break;
-            case MeshFormat::off: {
-                std::ifstream in(path, std::ios::binary);
-                if (auto problem = detail::off_header_problem(in, file.bytes().size(), true))
-                    fail(path, *problem);
+            case MeshFormat::obj:
+                detail::check_obj(file.bytes());
                 break;
-            }
+            case MeshFormat::off:
+                detail::check_off(file.bytes());
+                break;
+            case MeshFormat::ac3d:
+                detail::check_ac3d(file.bytes());
+                break;
             case MeshFormat::gltf:
                 return detail::check_gltf(file.bytes(), false, path.parent_path());
             case MeshFormat::glb:
                 return detail::check_gltf(file.bytes(), true, path.parent_path());
-            case MeshFormat::obj:
-            case MeshFormat::ac3d:
-                break;
         }
     } catch (const detail::MeshCheckError& e) {
         fail(path, e.reason);

@@ -23,11 +23,21 @@ struct ScalarType {
 };
 
 constexpr std::array<ScalarType, 16> kTypes{{
-    {"char", 1, true, true},     {"int8", 1, true, true},     {"uchar", 1, false, true},
-    {"uint8", 1, false, true},   {"short", 2, true, true},    {"int16", 2, true, true},
-    {"ushort", 2, false, true},  {"uint16", 2, false, true},  {"int", 4, true, true},
-    {"int32", 4, true, true},    {"uint", 4, false, true},    {"uint32", 4, false, true},
-    {"float", 4, true, false},   {"float32", 4, true, false}, {"double", 8, true, false},
+    {"char", 1, true, true},
+    {"int8", 1, true, true},
+    {"uchar", 1, false, true},
+    {"uint8", 1, false, true},
+    {"short", 2, true, true},
+    {"int16", 2, true, true},
+    {"ushort", 2, false, true},
+    {"uint16", 2, false, true},
+    {"int", 4, true, true},
+    {"int32", 4, true, true},
+    {"uint", 4, false, true},
+    {"uint32", 4, false, true},
+    {"float", 4, true, false},
+    {"float32", 4, true, false},
+    {"double", 8, true, false},
     {"float64", 8, true, false},
 }};
 
@@ -100,10 +110,14 @@ Header read_header(std::string_view file) {
             if (has_format) scan.fail("a second format line");
             has_format = true;
             if (words[2] != "1.0") scan.fail("PLY version '" + std::string(words[2]) + "'");
-            if (words[1] == "ascii") header.encoding = Encoding::ascii;
-            else if (words[1] == "binary_little_endian") header.encoding = Encoding::little_endian;
-            else if (words[1] == "binary_big_endian") header.encoding = Encoding::big_endian;
-            else scan.fail("unknown PLY format '" + std::string(words[1]) + "'");
+            if (words[1] == "ascii")
+                header.encoding = Encoding::ascii;
+            else if (words[1] == "binary_little_endian")
+                header.encoding = Encoding::little_endian;
+            else if (words[1] == "binary_big_endian")
+                header.encoding = Encoding::big_endian;
+            else
+                scan.fail("unknown PLY format '" + std::string(words[1]) + "'");
         } else if (keyword == "element") {
             scan.expect_words(3, 3, "element");
             header.elements.push_back({words[1], scan.count(words[2], "element count"), {}});
@@ -165,10 +179,9 @@ std::string place(const Element& e, std::uint64_t instance, const Property& p) {
 
 // Why index breaks rule, or empty when it does not.
 std::string index_problem(std::int64_t index, IndexRule rule, std::uint64_t vertices) {
-    if (index >= rule.min && (index < 0 || static_cast<std::uint64_t>(index) < vertices))
-        return {};
-    return "vertex index " + std::to_string(index) + " out of range (" +
-           std::to_string(vertices) + " vertices)";
+    if (index >= rule.min && (index < 0 || static_cast<std::uint64_t>(index) < vertices)) return {};
+    return "vertex index " + std::to_string(index) + " out of range (" + std::to_string(vertices) +
+           " vertices)";
 }
 
 void check_ascii_body(std::string_view file, const Header& header) {
@@ -214,8 +227,8 @@ void check_ascii_body(std::string_view file, const Header& header) {
                     if (!problem.empty()) scan.fail(where + ": " + problem);
                 }
             }
-            if (w != words.size()) scan.fail("more values than PLY element '" +
-                                             std::string(e.name) + "' declares");
+            if (w != words.size())
+                scan.fail("more values than PLY element '" + std::string(e.name) + "' declares");
         }
     }
     while (!scan.at_end())

@@ -1,5 +1,6 @@
 # The io part's sources: target_sources(trackphys PRIVATE io/...).
 target_sources(trackphys PRIVATE
+  io/ac3d_check.cpp
   io/car_spec_json.cpp
   io/json_reader.cpp
   io/mesh_export.cpp
@@ -8,7 +9,8 @@ target_sources(trackphys PRIVATE
   io/mapped_file.cpp
   io/mesh_format.cpp
   io/mesh_import.cpp
-  io/off_header_check.cpp
+  io/obj_check.cpp
+  io/off_check.cpp
   io/ply_check.cpp
   io/stl_check.cpp
   io/recording.cpp

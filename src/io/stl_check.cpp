@@ -36,8 +36,8 @@ const std::vector<std::string_view>& expect_keyword(TextScanner& scan, std::stri
     return words;
 }
 
-void expect_vector(TextScanner& scan, const std::vector<std::string_view>& words,
-                   std::size_t first, std::string_view what) {
+void expect_vector(TextScanner& scan, const std::vector<std::string_view>& words, std::size_t first,
+                   std::string_view what) {
     scan.expect_words(first + 3, first + 3, what);
     for (std::size_t k = first; k < first + 3; ++k) scan.real(words[k], what);
 }
@@ -49,8 +49,9 @@ void check_ascii(std::string_view file) {
     std::size_t facets = 0;
     while (!scan.next_content_line().empty()) {
         if (scan.words()[0] != "solid")
-            scan.fail("neither a binary STL (its size is not 84 + 50 x its triangle count) "
-                      "nor an ASCII one (expected 'solid')");
+            scan.fail(
+                "neither a binary STL (its size is not 84 + 50 x its triangle count) "
+                "nor an ASCII one (expected 'solid')");
         for (;;) {
             const std::vector<std::string_view>& line = scan.next_content_line();
             if (line.empty()) scan.fail("the file ends before 'endsolid'");

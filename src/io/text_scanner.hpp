@@ -1,5 +1,6 @@
 #pragma once
 
+#include <algorithm>
 #include <charconv>
 #include <cstdint>
 #include <limits>
@@ -50,6 +51,16 @@ class TextScanner {
             words_.push_back(line.substr(start, i - start));
         }
         return words_;
+    }
+
+    /// Skips bytes of free data (an AC3D object's `data`), counting its lines; false when the
+    /// text ends first.
+    bool skip_bytes(std::uint64_t bytes) {
+        if (bytes > text_.size() - at_) return false;
+        const std::string_view skipped = text_.substr(at_, static_cast<std::size_t>(bytes));
+        line_ += static_cast<std::size_t>(std::count(skipped.begin(), skipped.end(), '\n'));
+        at_ += static_cast<std::size_t>(bytes);
+        return true;
     }
 
     /// The words of the line read last.
@@ -105,8 +116,7 @@ class TextScanner {
     /// Fails unless the current line has between min and max words.
     void expect_words(std::size_t min, std::size_t max, std::string_view what) const {
         if (words_.size() < min || words_.size() > max)
-            fail(std::string(what) + " has " + std::to_string(words_.size()) +
-                 " words, expected " +
+            fail(std::string(what) + " has " + std::to_string(words_.size()) + " words, expected " +
                  (min == max ? std::to_string(min)
                              : std::to_string(min) + " to " + std::to_string(max)));
     }

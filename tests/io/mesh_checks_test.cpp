@@ -56,9 +56,11 @@ TEST_F(MeshChecks, PlyCountsAndIndices) {
         {"truncated.ply", kPlyVertices.substr(0, kPlyVertices.size() - 6),
          "line 11: the file ends before PLY element 'vertex' 2"},
         {"extra.ply", kPlyVertices + "3 0 1 2 7\n", "line 13: more values than PLY element 'face'"},
-        {"bad_number.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nend_header\n1.5.2\n",
+        {"bad_number.ply",
+         "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nend_header\n1.5.2\n",
          "line 6: PLY element 'vertex' 0, property 'x' '1.5.2' is not a number"},
-        {"no_properties.ply", "ply\nformat ascii 1.0\nelement vertex 9\nend_header\n\n\n\n\n\n\n\n\n\n",
+        {"no_properties.ply",
+         "ply\nformat ascii 1.0\nelement vertex 9\nend_header\n\n\n\n\n\n\n\n\n\n",
          "PLY element 'vertex' claims 9 instances but has no properties"},
     });
 }
@@ -69,7 +71,8 @@ TEST_F(MeshChecks, BinaryPlyIsWalkedToItsEnd) {
         "property float y\nproperty float z\nelement face 1\n"
         "property list uchar uint vertex_indices\nend_header\n";
     const std::string vertices(36, '\0');
-    const std::string face = std::string("\x03\x00\x00\x00\x00\x01\x00\x00\x00\x02\x00\x00\x00", 13);
+    const std::string face =
+        std::string("\x03\x00\x00\x00\x00\x01\x00\x00\x00\x02\x00\x00\x00", 13);
     std::string high = face;
     high[9] = '\x07';
     expect_refused({
@@ -78,7 +81,9 @@ TEST_F(MeshChecks, BinaryPlyIsWalkedToItsEnd) {
          "past the file"},
         {"high.ply", header + vertices + high,
          "PLY element 'face' 0, property 'vertex_indices': vertex index 7 out of range"},
-        {"crlf.ply", "ply\r\nformat binary_little_endian 1.0\r\nelement vertex 1\r\nproperty float x\r\nend_header\r\n0000",
+        {"crlf.ply",
+         "ply\r\nformat binary_little_endian 1.0\r\nelement vertex 1\r\nproperty float "
+         "x\r\nend_header\r\n0000",
          "a binary PLY header's end_header line ends in"},
     });
 }
@@ -89,8 +94,9 @@ TEST_F(MeshChecks, StlOfNeitherKind) {
         "endfacet\n";
     expect_refused({
         {"garbage.stl", "hello", "line 1: neither a binary STL"},
-        {"four.stl", "solid a\nfacet normal 0 1 0\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n"
-                     "vertex 0 0 1\nvertex 1 1 1\nendloop\nendfacet\nendsolid a\n",
+        {"four.stl",
+         "solid a\nfacet normal 0 1 0\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n"
+         "vertex 0 0 1\nvertex 1 1 1\nendloop\nendfacet\nendsolid a\n",
          "line 7: expected 'endloop', found 'vertex'"},
         {"unended.stl", "solid a\n" + facet, "the file ends before 'endsolid'"},
         {"nan_word.stl", "solid a\nfacet normal 0 1 0\nouter loop\nvertex 0 0 x\n",
@@ -103,16 +109,19 @@ TEST_F(MeshChecks, StlOfNeitherKind) {
 
 TEST_F(MeshChecks, GltfReferencesStayInTheMeshFolder) {
     const auto gltf = [](const std::string& uri) {
-        return R"({"asset":{"version":"2.0"},"buffers":[{"uri":")" + uri + R"(","byteLength":36}]})";
+        return R"({"asset":{"version":"2.0"},"buffers":[{"uri":")" + uri +
+               R"(","byteLength":36}]})";
     };
     fs::create_directories(file("sub"));
     test::write_file(file("sub/inside.bin"), std::string(36, '\0'));
     expect_refused({
-        {"absolute.gltf", gltf("/etc/passwd"), "glTF buffers[0].uri: the reference '/etc/passwd' is "
-                                               "an absolute path"},
+        {"absolute.gltf", gltf("/etc/passwd"),
+         "glTF buffers[0].uri: the reference '/etc/passwd' is "
+         "an absolute path"},
         {"escapes.gltf", gltf("../../../../etc/passwd"), "leaves the mesh's folder"},
         {"escapes_later.gltf", gltf("sub/../../x.bin"), "leaves the mesh's folder"},
-        {"file_url.gltf", gltf("file:///etc/passwd"), "the reference 'file:///etc/passwd' is a URL"},
+        {"file_url.gltf", gltf("file:///etc/passwd"),
+         "the reference 'file:///etc/passwd' is a URL"},
         {"http.gltf", gltf("http://example.com/a.bin"), "is a URL"},
         {"backslash.gltf", gltf("..\\\\x.bin"), "uses '\\'"},
         {"missing.gltf", gltf("nowhere.bin"), "the reference 'nowhere.bin' is no file"},
@@ -142,16 +151,67 @@ TEST_F(MeshChecks, GltfAccessorsAndNodes) {
         {"count.gltf", gltf(R"({"bufferView":0,"componentType":5126,"count":4,"type":"VEC3"})", ""),
          "glTF accessors[0]: 4 elements of 12 bytes every 12 from byte 0 run past its buffer "
          "view's 36 bytes"},
-        {"huge.gltf", gltf(R"({"bufferView":0,"componentType":5126,"count":1e20,"type":"VEC3"})", ""),
+        {"huge.gltf",
+         gltf(R"({"bufferView":0,"componentType":5126,"count":1e20,"type":"VEC3"})", ""),
          "not a non-negative integer"},
-        {"sparse.gltf", gltf(R"({"componentType":5126,"count":3,"type":"VEC3","sparse":{"count":1}})", ""),
+        {"sparse.gltf",
+         gltf(R"({"componentType":5126,"count":3,"type":"VEC3","sparse":{"count":1}})", ""),
          "glTF accessors[0]: a sparse accessor"},
         {"cycle.gltf", gltf(ok, R"({"children":[1]},{"children":[0]})"), "children form a cycle"},
-        {"two_parents.gltf", gltf(ok, R"({"children":[2]},{"children":[2]},{})"), "has two parents"},
+        {"two_parents.gltf", gltf(ok, R"({"children":[2]},{"children":[2]},{})"),
+         "has two parents"},
         {"deep.gltf", gltf(ok, deep), "nested deeper than 64"},
-        {"json_deep.gltf", std::string(100, '[') + std::string(100, ']'), "glTF JSON nested deeper than 64"},
-        {"glb_length.glb", std::string("glTF\x02\x00\x00\x00\xff\xff\x00\x00", 12) + std::string(20, ' '),
+        {"json_deep.gltf", std::string(100, '[') + std::string(100, ']'),
+         "glTF JSON nested deeper than 64"},
+        {"glb_length.glb",
+         std::string("glTF\x02\x00\x00\x00\xff\xff\x00\x00", 12) + std::string(20, ' '),
          "byte 8: the GLB header's length 65535 is not the file's 32"},
+    });
+}
+
+TEST_F(MeshChecks, ObjIndicesAndStatements) {
+    const std::string square = "v 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\nvt 0 0\nvn 0 1 0\n";
+    expect_refused({
+        {"high.obj", square + "f 1 2 5\n",
+         "line 7: vertex index 5 out of range (4 defined so far)"},
+        {"negative.obj", square + "f -1 -2 -5\n", "line 7: vertex index -5 out of range"},
+        {"zero.obj", square + "f 0 1 2\n", "line 7: vertex index 0 out of range"},
+        {"before.obj", "f 1 2 3\n" + square, "line 1: vertex index 1 out of range (0 defined"},
+        {"uv.obj", square + "f 1/2 2/1 3/1\n", "line 7: texture coordinate index 2 out of range"},
+        {"normal.obj", square + "f 1//2 2//1 3//1\n", "line 7: normal index 2 out of range"},
+        {"wraps.obj", square + "f 1 2 4294967297\n", "vertex index 4294967297 out of range"},
+        {"trailing.obj", square + "f 1 2 3x\n", "line 7: vertex index '3x' is not an integer"},
+        {"two.obj", square + "f 1 2\n", "line 7: a face of fewer than 3 corners"},
+        {"word.obj", square + "v 1 2 z\n", "line 7: a vertex 'z' is not a number"},
+        {"unknown.obj", "hello world\n", "line 1: the statement 'hello' is not read"},
+        {"curve.obj", square + "curv 0 1 1 2\n", "the statement 'curv' is not read"},
+        {"continued.obj", square + "f 1 2 \\\n3\n", "a line continued with"},
+    });
+}
+
+TEST_F(MeshChecks, Ac3dCountsIndicesAndNesting) {
+    const std::string head =
+        "AC3Db\nMATERIAL \"\" rgb 1 1 1 amb 1 1 1 emis 0 0 0 spec 0 0 0 shi 1 trans 0\n"
+        "OBJECT world\nkids 1\nOBJECT poly\nnumvert 3\n0 0 0\n1 0 0\n0 0 1\n";
+    const auto surface = [](const std::string& flags, const std::string& refs) {
+        return "numsurf 1\nSURF " + flags + "\nmat 0\nrefs " + refs + "\nkids 0\n";
+    };
+    std::string deep = "AC3Db\n";
+    for (int level = 0; level < 70; ++level) deep += "OBJECT group\nkids 1\n";
+    expect_refused({
+        {"strip.ac", head + surface("0x14", "1\n0 0 0"),
+         "line 13: a triangle strip of 1 references (at least 3)"},
+        {"index.ac", head + surface("0x10", "3\n0 0 0\n1 0 0\n3 0 0"),
+         "line 16: vertex index 3 out of range (3 vertices)"},
+        {"type.ac", head + surface("0x13", "3\n0 0 0\n1 0 0\n2 0 0"), "unknown surface type 3"},
+        {"flags.ac", head + surface("16", "3\n0 0 0\n1 0 0\n2 0 0"), "are not hexadecimal"},
+        {"numvert.ac", "AC3Db\nOBJECT poly\nnumvert 99999999\n0 0 0\n",
+         "line 3: vertex count '99999999' is not a count from 0 to"},
+        {"truncated.ac", head.substr(0, head.size() - 4),
+         "line 9: vertex 2 has 1 numbers, not 3 (or 6 with a normal)"},
+        {"deep.ac", deep, "objects nested deeper than 64"},
+        {"data.ac", "AC3Db\nOBJECT poly\ndata 500\nab\n", "line 3: data runs past the file"},
+        {"unknown.ac", "AC3Db\nOBJECT poly\nbogus 1\n", "unknown AC3D object line 'bogus'"},
     });
 }
 
