@@ -87,7 +87,8 @@ std::uint64_t check_object(TextScanner& scan, std::size_t bytes) {
             scan.expect_words(2, 2, "numvert");
             vertices = scan.count(words[1], "vertex count", bytes);
             for (std::uint64_t v = 0; v < vertices; ++v) {
-                const std::size_t numbers = next_or_fail(scan, "vertex " + std::to_string(v)).size();
+                const std::size_t numbers =
+                    next_or_fail(scan, "vertex " + std::to_string(v)).size();
                 // x y z, and a normal in some writers' files
                 if (numbers != 3 && numbers != 6)
                     scan.fail("vertex " + std::to_string(v) + " has " + std::to_string(numbers) +
@@ -125,8 +126,8 @@ void check_ac3d(std::string_view file) {
         scan.fail("an AC3D file starts with a line 'AC3D' and its version");
     std::vector<std::uint64_t> kids_left;  // per open level: kids still to come
     bool any_object = false;
-    for (const std::vector<std::string_view>* words = &scan.next_content_line();
-         !words->empty(); words = &scan.next_content_line()) {
+    for (const std::vector<std::string_view>* words = &scan.next_content_line(); !words->empty();
+         words = &scan.next_content_line()) {
         if ((*words)[0] == "MATERIAL" && !any_object) continue;
         if ((*words)[0] != "OBJECT") scan.fail("expected 'OBJECT'");
         scan.expect_words(2, 2, "OBJECT");

@@ -16,7 +16,7 @@ namespace {
 // Statements assimp reads no geometry from, or names it only keeps (materials are never
 // opened: confined_io_system.hpp).
 constexpr std::array<std::string_view, 15> kNamingStatements{
-    "o",     "g",        "s",        "usemtl",     "mtllib",    "mg", "lod", "maplib",
+    "o",      "g",     "s",        "usemtl",   "mtllib",     "mg",        "lod", "maplib",
     "usemap", "bevel", "c_interp", "d_interp", "shadow_obj", "trace_obj", "vp"};
 
 // Defined so far: what a face's v/vt/vn indices may refer to.
@@ -52,7 +52,9 @@ void check_corner(const TextScanner& scan, std::string_view corner, const Counts
 
 void check_numbers(const TextScanner& scan, const std::vector<std::string_view>& words,
                    std::size_t min, std::size_t max, const char* what) {
-    scan.expect_words(min + 1, max + 1, what);
+    if (words.size() < min + 1 || words.size() > max + 1)
+        scan.fail(std::string(what) + " of " + std::to_string(words.size() - 1) +
+                  " numbers, expected " + std::to_string(min) + " to " + std::to_string(max));
     for (std::size_t k = 1; k < words.size(); ++k) scan.real(words[k], what);
 }
 

@@ -46,7 +46,8 @@ void check_off(std::string_view file) {
     for (std::uint64_t v = 0; v < vertices; ++v) {
         const std::vector<std::string_view>& words =
             next_line_or_fail(scan, "vertex " + std::to_string(v));
-        if (words.size() < 3) scan.fail("vertex " + std::to_string(v) + " has fewer than 3 numbers");
+        if (words.size() < 3)
+            scan.fail("vertex " + std::to_string(v) + " has fewer than 3 numbers");
         for (const std::string_view w : words) scan.real(w, "vertex " + std::to_string(v));
     }
     for (std::uint64_t f = 0; f < faces; ++f) {

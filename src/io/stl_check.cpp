@@ -48,10 +48,7 @@ void check_ascii(std::string_view file) {
     TextScanner scan(file);
     std::size_t facets = 0;
     while (!scan.next_content_line().empty()) {
-        if (scan.words()[0] != "solid")
-            scan.fail(
-                "neither a binary STL (its size is not 84 + 50 x its triangle count) "
-                "nor an ASCII one (expected 'solid')");
+        if (scan.words()[0] != "solid") scan.fail("expected 'solid'");
         for (;;) {
             const std::vector<std::string_view>& line = scan.next_content_line();
             if (line.empty()) scan.fail("the file ends before 'endsolid'");
@@ -74,7 +71,15 @@ void check_ascii(std::string_view file) {
 }  // namespace
 
 void check_stl(std::string_view file) {
-    if (!is_binary(file)) check_ascii(file);
+    if (is_binary(file)) return;
+    try {
+        check_ascii(file);
+    } catch (const MeshCheckError& e) {
+        throw MeshCheckError{
+            "not a binary STL (its size is not 84 + 50 x the triangle count "
+            "at byte 80), and as ASCII STL: " +
+            e.reason};
+    }
 }
 
 }  // namespace trackphys::detail

@@ -93,7 +93,9 @@ TEST_F(MeshChecks, StlOfNeitherKind) {
         "facet normal 0 1 0\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 0 1\nendloop\n"
         "endfacet\n";
     expect_refused({
-        {"garbage.stl", "hello", "line 1: neither a binary STL"},
+        {"garbage.stl", "hello",
+         "not a binary STL (its size is not 84 + 50 x the triangle count at byte 80), and as "
+         "ASCII STL: line 1: expected 'solid'"},
         {"four.stl",
          "solid a\nfacet normal 0 1 0\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n"
          "vertex 0 0 1\nvertex 1 1 1\nendloop\nendfacet\nendsolid a\n",
@@ -103,7 +105,7 @@ TEST_F(MeshChecks, StlOfNeitherKind) {
          "line 4: vertex 'x' is not a number"},
         // A binary STL whose count claims more triangles than its size holds is no binary STL.
         {"claims.stl", std::string(80, ' ') + "zzzz" + std::string(50, 'a'),
-         "neither a binary STL"},
+         "and as ASCII STL: line 1: expected 'solid'"},
     });
 }
 

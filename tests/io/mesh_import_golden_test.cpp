@@ -50,7 +50,8 @@ std::map<std::string, std::string> read_golden() {
 class MeshImportGolden : public test::ScratchFolderTest {};
 
 TEST_F(MeshImportGolden, ValidFilesLoadAsBeforeImportWasBounded) {
-    const std::string command = "python3 " + kGenerator.string() + " " + folder_.string();
+    const std::string command =
+        std::string(TRACKPHYS_PYTHON) + " " + kGenerator.string() + " " + folder_.string();
     ASSERT_EQ(std::system(command.c_str()), 0) << command;
 
     std::map<std::string, std::string> loaded;
