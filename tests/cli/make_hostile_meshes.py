@@ -137,6 +137,11 @@ def corpus(rng):
     # AC3D
     valid_ac = AC_HEAD + ac_surface("0x10", [0, 1, 2])
     files["ac_strip_one_reference.ac"] = AC_HEAD + ac_surface("0x14", [0])
+    # Two triangles, then a strip of one reference: assimp's face count wraps to one, it
+    # writes two (the heap corruption of issue 19).
+    files["ac_strip_wraps_face_count.ac"] = (
+        AC_HEAD + "numsurf 3\nSURF 0x10\nmat 0\nrefs 3\n0 0 0\n1 0 0\n2 0 0\n"
+        "SURF 0x10\nmat 0\nrefs 3\n1 0 0\n3 0 0\n2 0 0\nSURF 0x14\nmat 0\nrefs 1\n3 0 0\nkids 0\n")
     files["ac_index_high.ac"] = AC_HEAD + ac_surface("0x10", [0, 1, 4])
     files["ac_index_negative.ac"] = AC_HEAD + ac_surface("0x10", [0, -1, 2])
     files["ac_numvert_huge.ac"] = "AC3Db\nOBJECT poly\nnumvert 4000000000\n0 0 0\n"

@@ -217,5 +217,19 @@ TEST_F(MeshChecks, Ac3dCountsIndicesAndNesting) {
     });
 }
 
+TEST_F(MeshChecks, Ac3dStripThatWrapsAssimpsFaceCountIsRefused) {
+    // The heap corruption of issue 19: assimp 5.2.5 counts a strip's faces as refs - 2 in
+    // unsigned arithmetic, so a strip of one reference subtracts one from its mesh's face
+    // count; with two triangles before it, it allocates one face and writes two (valgrind:
+    // "Invalid write of size 4 ... 0 bytes after a block of size 24"). Also a seed of
+    // fuzz_mesh_import (ac3d_strip_wraps_face_count.ac.seed).
+    test::write_file(file("strip.ac"), test::read_file(fs::path(TRACKPHYS_FUZZ_SEEDS_DIR) /
+                                                       "ac3d_strip_wraps_face_count.ac.seed")
+                                           .substr(1));
+    EXPECT_NE(test::load_error(file("strip.ac"))
+                  .find("strip.ac': line 27: a triangle strip of 1 references (at least 3)"),
+              std::string::npos);
+}
+
 }  // namespace
 }  // namespace trackphys
