@@ -41,7 +41,6 @@ constexpr std::array<const char*, 7> kExtensions = {".obj", ".ply", ".stl", ".gl
                                                     ".glb", ".ac",  ".off"};
 
 // Larger inputs only slow the search down: every reader's structure shows in a few KB.
-// (assimp can still allocate what a small file's header claims: see mesh_io.hpp.)
 constexpr std::size_t kMaxInput = 64 * 1024;
 
 [[noreturn]] void finding(const std::string& what) {
