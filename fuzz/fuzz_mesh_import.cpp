@@ -1,8 +1,9 @@
 // libFuzzer target: the mesh importer path we own, bytes -> file -> load_mesh ->
 // StaticCollider.
 //
-// The first byte picks the file extension (so assimp picks the reader), the rest is the
-// file. Every input must end in a mesh that StaticCollider accepts, or in trackphys::Error
+// The first byte picks the file extension (so load_mesh picks the reader and its check),
+// the rest is the file; TRACKPHYS_FUZZ_MESH_EXTENSION (e.g. ".ply") fixes the extension
+// instead, to search one format at a time (README.md, "Fuzzing"). Every input must end in a mesh that StaticCollider accepts, or in trackphys::Error
 // (from load_mesh or from StaticCollider); any other exception, crash, sanitizer report,
 // leak or hang is a finding.
 //
@@ -40,7 +41,6 @@ constexpr std::array<const char*, 7> kExtensions = {".obj", ".ply", ".stl", ".gl
                                                     ".glb", ".ac",  ".off"};
 
 // Larger inputs only slow the search down: every reader's structure shows in a few KB.
-// (assimp can still allocate what a small file's header claims: see mesh_io.hpp.)
 constexpr std::size_t kMaxInput = 64 * 1024;
 
 [[noreturn]] void finding(const std::string& what) {
@@ -95,7 +95,9 @@ void exercise_collider(const trackphys::TriangleMesh& mesh, const trackphys::Aab
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     if (size < 1 || size > kMaxInput) return -1;  // -1: not added to the corpus
-    const char* extension = kExtensions[data[0] % kExtensions.size()];
+    static const char* const fixed_extension = std::getenv("TRACKPHYS_FUZZ_MESH_EXTENSION");
+    const char* extension =
+        fixed_extension != nullptr ? fixed_extension : kExtensions[data[0] % kExtensions.size()];
     const fs::path path = work_folder() / (std::string("input") + extension);
     {
         std::ofstream out(path, std::ios::binary | std::ios::trunc);

@@ -31,6 +31,8 @@ required=(
                      # recommends
   clang-format-14 # scripts/check_format.sh (CI's format check): one version, since another
                   # major version breaks lines differently
+  python3 # the mesh tests' generated files: tests/io/make_valid_meshes.py and the hostile
+          # corpus of tests/cli
   llvm # llvm-symbolizer: function names and lines in sanitizer and fuzzer reports
   nodejs # the replay viewer (viewer/): esbuild bundles it at build time, and its browser
          # tests run under node

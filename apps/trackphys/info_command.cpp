@@ -77,7 +77,7 @@ void run_info(const InfoOptions& options) {
 void add_info_command(CLI::App& app) {
     CLI::App* command = app.add_subcommand(
         "info",
-        "Read a mesh file (any format assimp reads: glTF/GLB, OBJ, PLY, STL, FBX, AC3D...) "
+        "Read a mesh file (glTF/GLB, OBJ, PLY, STL, AC3D or OFF) "
         "the way a static collider would, and print its triangle and vertex counts, bounds, "
         "area and what was dropped (degenerate triangles, points, lines); or describe a baked "
         "map (trackphys bake): format, build options, colliders, memory, track");

@@ -1,18 +1,19 @@
 #include <array>
-#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <exception>
-#include <fstream>
 #include <functional>
 #include <limits>
+#include <memory>
+#include <set>
 #include <string>
 #include <system_error>
 #include <unordered_map>
 #include <utility>
 #include <vector>
 
+#include <assimp/BaseImporter.h>
 #include <assimp/config.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
@@ -21,8 +22,10 @@
 #include <glm/mat4x4.hpp>
 #include <glm/matrix.hpp>
 
-#include "io/off_header_check.hpp"
-#include "io/ply_header_check.hpp"
+#include "io/confined_io_system.hpp"
+#include "io/mapped_file.hpp"
+#include "io/mesh_checks.hpp"
+#include "io/mesh_format.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/geometry/triangle.hpp"
 #include "trackphys/io/mesh_io.hpp"
@@ -65,21 +68,59 @@ void check_is_nonempty_file(const fs::path& path) {
     if (size == 0) fail(path, "the file is empty");
 }
 
-// Refuses the file when `problem_of(stream, size)` names a problem: the checks of the
-// readers assimp 5.2.5 would hang in or allocate without bound for, on a file that they
-// may be given (all found by fuzz_mesh_import). PLY: ply_header_check.hpp. OFF:
-// off_header_check.hpp; its header is looked for in every file (assimp may pick the OFF
-// reader by content), a headerless one only under the .off extension.
-template <class Check>
-void check_header(const fs::path& path, Check&& problem_of) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) fail(path, "cannot open it");
-    if (auto problem = problem_of(in, fs::file_size(path))) fail(path, *problem);
+detail::MeshFormat format_of(const fs::path& path) {
+    if (const auto format = detail::mesh_format_of(path)) return *format;
+    fail(path, "not a mesh format trackphys reads (it reads " + detail::read_mesh_extensions() +
+                   "; other formats' readers in assimp cannot be bounded against hostile files)");
 }
-bool has_off_extension(const fs::path& path) {
-    std::string extension = path.extension().string();
-    for (char& ch : extension) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
-    return extension == ".off";
+
+// Runs the format's strict check over the whole file (mesh_checks.hpp) and returns the
+// external buffers it may refer to (glTF only).
+std::set<fs::path> check_whole_file(const fs::path& path, detail::MeshFormat format) {
+    using detail::MeshFormat;
+    const detail::MappedFile file(path);
+    try {
+        switch (format) {
+            case MeshFormat::ply:
+                detail::check_ply(file.bytes());
+                break;
+            case MeshFormat::stl:
+                detail::check_stl(file.bytes());
+                break;
+            case MeshFormat::obj:
+                detail::check_obj(file.bytes());
+                break;
+            case MeshFormat::off:
+                detail::check_off(file.bytes());
+                break;
+            case MeshFormat::ac3d:
+                detail::check_ac3d(file.bytes());
+                break;
+            case MeshFormat::gltf:
+                return detail::check_gltf(file.bytes(), false, path.parent_path());
+            case MeshFormat::glb:
+                return detail::check_gltf(file.bytes(), true, path.parent_path());
+        }
+    } catch (const detail::MeshCheckError& e) {
+        fail(path, e.reason);
+    }
+    return {};
+}
+
+// Unregisters every assimp reader but the format's own, so that assimp never hands the file
+// to another one by guessing from its content (it does when the extension's reader declines
+// the file). Unregistered readers are the caller's to delete: the importer no longer owns them.
+std::vector<std::unique_ptr<Assimp::BaseImporter>> keep_only_reader(Assimp::Importer& importer,
+                                                                    detail::MeshFormat format) {
+    const std::string kept = detail::assimp_reader_name(format);
+    std::vector<std::unique_ptr<Assimp::BaseImporter>> removed;
+    for (std::size_t i = importer.GetImporterCount(); i-- > 0;) {
+        Assimp::BaseImporter* reader = importer.GetImporter(i);
+        if (kept == reader->GetInfo()->mName) continue;
+        importer.UnregisterLoader(reader);
+        removed.emplace_back(reader);
+    }
+    return removed;
 }
 
 // assimp's triangulation trusts each mesh's mPrimitiveTypes: a mesh that claims polygons but
@@ -291,12 +332,12 @@ class SceneMerger {
 TriangleMesh load_mesh(const fs::path& path, MeshLoadReport& report) {
     report = MeshLoadReport{};
     check_is_nonempty_file(path);
-    check_header(path, detail::ply_header_problem);
-    check_header(path, [&path](std::istream& in, std::uintmax_t size) {
-        return detail::off_header_problem(in, size, has_off_extension(path));
-    });
+    const detail::MeshFormat format = format_of(path);
+    const std::set<fs::path> buffers = check_whole_file(path, format);
 
     Assimp::Importer importer;
+    const auto unused_readers = keep_only_reader(importer, format);
+    importer.SetIOHandler(new detail::ConfinedIoSystem(path, buffers));  // the importer owns it
     // Some importers invent a mesh to visualise a skeleton when a file has bones but no
     // mesh; that would be phantom collision geometry.
     importer.SetPropertyBool(AI_CONFIG_IMPORT_NO_SKELETON_MESHES, true);

@@ -1,5 +1,6 @@
 # The io part's sources: target_sources(trackphys PRIVATE io/...).
 target_sources(trackphys PRIVATE
+  io/ac3d_check.cpp
   io/car_spec_json.cpp
   io/json_reader.cpp
   io/map_bake.cpp
@@ -8,9 +9,15 @@ target_sources(trackphys PRIVATE
   io/map_codec.cpp
   io/map_file.cpp
   io/mesh_export.cpp
+  io/confined_io_system.cpp
+  io/gltf_check.cpp
+  io/mapped_file.cpp
+  io/mesh_format.cpp
   io/mesh_import.cpp
-  io/off_header_check.cpp
-  io/ply_header_check.cpp
+  io/obj_check.cpp
+  io/off_check.cpp
+  io/ply_check.cpp
+  io/stl_check.cpp
   io/recording.cpp
   io/recording_world.cpp
   io/scenario.cpp

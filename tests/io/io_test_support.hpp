@@ -16,7 +16,9 @@
 
 #include <gtest/gtest.h>
 
+#include "trackphys/error.hpp"
 #include "trackphys/geometry/triangle_mesh.hpp"
+#include "trackphys/io/mesh_io.hpp"
 
 namespace trackphys::test {
 
@@ -48,6 +50,17 @@ class ScratchFolderTest : public ::testing::Test {
 
     fs::path folder_;
 };
+
+/// The message load_mesh throws for path (fails the test when nothing is thrown).
+inline std::string load_error(const fs::path& path) {
+    try {
+        load_mesh(path);
+    } catch (const Error& e) {
+        return e.what();
+    }
+    ADD_FAILURE() << "load_mesh(" << path << ") did not throw";
+    return {};
+}
 
 inline void write_file(const fs::path& path, std::string_view bytes) {
     std::ofstream out(path, std::ios::binary);

@@ -39,24 +39,27 @@ struct MeshLoadReport {
     double area = 0.0;  ///< total area of the kept triangles (m^2)
 };
 
-/// Reads any format assimp reads (OBJ, glTF/GLB, PLY, AC3D, FBX, STL, ...) into one
-/// triangle mesh in world space (metres, +Y up, coordinates as written in the file; no
-/// axis conversion). Every mesh of the file is placed by its nodes' composed transforms
-/// and merged; polygons are triangulated; points and lines are skipped; degenerate
-/// triangles are dropped; vertices with bit-identical world positions are welded into one
-/// and vertices no kept triangle uses are left out. All of this is counted in report.
+/// Reads an OBJ, PLY, STL, glTF/GLB, AC3D or OFF file (by its extension: .obj, .ply, .stl,
+/// .gltf, .glb, .ac/.acc/.ac3d, .off, any case) into one triangle mesh in world space
+/// (metres, +Y up, coordinates as written in the file; no axis conversion). Every mesh of
+/// the file is placed by its nodes' composed transforms and merged; polygons are
+/// triangulated; points and lines are skipped; degenerate triangles are dropped; vertices
+/// with bit-identical world positions are welded into one and vertices no kept triangle uses
+/// are left out. All of this is counted in report.
 ///
 /// Throws trackphys::Error, with a message naming the file, when the file is missing,
-/// unreadable, empty, not a mesh format assimp recognises, corrupt or truncated; when a
-/// vertex coordinate or node transform is NaN or infinite (the message also names the mesh
-/// or node and the vertex, e.g. "mesh 'road', vertex 17 has a non-finite coordinate (0, nan,
-/// 1)"; vertices are numbered as assimp numbers them within the mesh, which for OBJ counts
-/// face corners, not `v` lines); or when no triangle is left.
+/// unreadable, empty, of another format, malformed or truncated (the message names the line
+/// or byte: docs/design.md#input-and-output); when a vertex coordinate or node transform is
+/// NaN or infinite (the message also names the mesh or node and the vertex, e.g. "mesh
+/// 'road', vertex 17 has a non-finite coordinate (0, nan, 1)"; vertices are numbered as
+/// assimp numbers them within the mesh, which for OBJ counts face corners, not `v` lines);
+/// or when no triangle is left.
 ///
-/// assimp sizes some buffers from the file's header before it can check them, so a small
-/// corrupt file can make it allocate what the header claims before the import fails. For
-/// PLY (the worst case) a claim of more element instances than the file has bytes is
-/// rejected first; a 200-byte PLY can still claim 200 vertices of a hundred properties.
+/// Bounded: the whole file is checked before assimp reads it (every count against the bytes
+/// that hold it, every index in range, nesting at most 64 deep), so a hostile file is refused
+/// in time linear in its size and allocates at most a small multiple of it. No file but the
+/// mesh and, for glTF, the buffers it names inside its own folder is ever opened: no
+/// absolute path, `..`, URL or material file.
 TRACKPHYS_API TriangleMesh load_mesh(const std::filesystem::path& path, MeshLoadReport& report);
 
 /// load_mesh without the report.
