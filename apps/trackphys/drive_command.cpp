@@ -2,7 +2,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <memory>
 #include <optional>
 #include <string>
@@ -18,6 +17,7 @@
 #include "drive_session.hpp"
 #include "drive_svg.hpp"
 #include "interrupt_guard.hpp"
+#include "json_file.hpp"
 #include "progress_bar.hpp"
 #include "staged_outputs.hpp"
 #include "telemetry_csv.hpp"
@@ -298,11 +298,7 @@ void run(const DriveOptions& o, const CLI::App& command) {
                     " simulated seconds");
     if (!json.empty()) write_drive_json(report, json);
     if (!svg.empty()) write_drive_svg(plot, scene.track, svg);
-    if (trace) {
-        std::ofstream out(trace_file, std::ios::binary);
-        trace->write_chrome_trace(out);
-        if (!out.flush()) throw Error("--trace '" + o.trace.string() + "': cannot write the trace");
-    }
+    if (trace) write_trace_file(*trace, trace_file, o.trace);
     if (recording) recording->finish();
     if (telemetry) telemetry->finish();
     commit_with_track_mesh(outputs, recording_plan, scene);

@@ -3,6 +3,7 @@
 #include <fstream>
 
 #include "trackphys/error.hpp"
+#include "trackphys/profile/trace_recorder.hpp"
 
 namespace trackphys::cli {
 
@@ -11,6 +12,13 @@ void write_json_file(const nlohmann::json& json, const std::filesystem::path& pa
     if (!out) throw Error("cannot open '" + path.string() + "' to write the JSON report");
     out << json.dump(2) << '\n';
     if (!out.flush()) throw Error("cannot write the JSON report '" + path.string() + "'");
+}
+
+void write_trace_file(const TraceRecorder& trace, const std::filesystem::path& staged,
+                      const std::filesystem::path& named) {
+    std::ofstream out(staged, std::ios::binary);
+    trace.write_chrome_trace(out);
+    if (!out.flush()) throw Error("--trace '" + named.string() + "': cannot write the trace");
 }
 
 }  // namespace trackphys::cli

@@ -2,7 +2,6 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <memory>
 #include <optional>
 #include <string>
@@ -12,6 +11,7 @@
 #include "drive_recording.hpp"
 #include "drive_scene.hpp"
 #include "interrupt_guard.hpp"
+#include "json_file.hpp"
 #include "progress_bar.hpp"
 #include "race_report.hpp"
 #include "staged_outputs.hpp"
@@ -137,11 +137,7 @@ void run(const RaceOptions& o) {
                     std::to_string(laps) + " laps in " + std::to_string(seconds) +
                     " simulated seconds");
     if (!json.empty()) write_race_json(report, json);
-    if (trace) {
-        std::ofstream out(trace_file, std::ios::binary);
-        trace->write_chrome_trace(out);
-        if (!out.flush()) throw Error("--trace '" + o.trace.string() + "': cannot write the trace");
-    }
+    if (trace) write_trace_file(*trace, trace_file, o.trace);
     if (recording) recording->finish();
     commit_with_track_mesh(outputs, recording_plan, scene);
 }
