@@ -12,16 +12,18 @@ Wrench Car::vehicle_wrench(std::span<const Contact> deepest, double h) {
     Vehicle& vehicle = *vehicle_;
     vehicle.begin_substep(inputs_.throttle, inputs_.brake, speed(), h);
     Wrench wrench;
+    // A body ellipsoid, or a wheel that cannot roll: pushed like the arcade car's body.
+    const auto add_body_contact = [&](const Contact& contact) {
+        wrench.add_at_point(body_contact_force(spec_.body_contact, contact.depth, contact.normal,
+                                               point_velocity(state_, contact.point)),
+                            contact.point, state_.position);
+    };
     for (std::size_t i = 0; i < deepest.size(); ++i) {
         const Contact& contact = deepest[i];
         const bool touching = contact.depth > 0.0;
         const int slot = vehicle.wheel_slot(i);
         if (slot < 0) {
-            if (touching)
-                wrench.add_at_point(
-                    body_contact_force(spec_.body_contact, contact.depth, contact.normal,
-                                       point_velocity(state_, contact.point)),
-                    contact.point, state_.position);
+            if (touching) add_body_contact(contact);
             continue;
         }
         const auto w = static_cast<std::size_t>(slot);
@@ -33,11 +35,7 @@ Wrench Car::vehicle_wrench(std::span<const Contact> deepest, double h) {
         const bool rolling = touching && wheel_loads_[i] > 0.0 && in_plane_length >= 1e-6;
         if (!rolling) {
             vehicle.wheel_force(w, 0.0, 0.0, 0.0, h);
-            if (touching)
-                wrench.add_at_point(
-                    body_contact_force(spec_.body_contact, contact.depth, contact.normal,
-                                       point_velocity(state_, contact.point)),
-                    contact.point, state_.position);
+            if (touching) add_body_contact(contact);
             continue;
         }
         const glm::dvec3 forward = in_plane / in_plane_length;
