@@ -549,8 +549,9 @@ Descent search(PairFunction& f, Descent best, double& unresolved) {
 /// M = 2 (M_A + M_B) (A - B itself for two equal spheres): the normal (M + t I)^-1 d at the
 /// point of E closest to -d, t >= 0 its Lagrange multiplier, about the distance times E's
 /// mean radius s: 0 on the surface (the normal on the centre line), large far away (the
-/// centre line itself). Not normalised (the evaluation does that): its length is brought
-/// within 2^-4..2^4 by a power of two, without a root or a division on the way.
+/// centre line itself). Not normalised (the evaluation does that): its length is kept when
+/// within 2^-30..2^30 (the evaluation's range), else brought within 2^-4..2^4 by a power of
+/// two, without a root or a division on the way.
 dvec3 first_guess(const PairFrame& frame, const std::array<double, 6>& mb) {
     // m = M / 2 = D_A^2 + M_B (symmetric), then (m + t / 2 I)^-1 d by the adjugate
     // (positive definite; its determinant and the scale go with the normalisation). The
@@ -569,6 +570,10 @@ dvec3 first_guess(const PairFrame& frame, const std::array<double, 6>& mb) {
     const dvec3 solved(c00 * d.x + c01 * d.y + c02 * d.z, c01 * d.x + c11 * d.y + c12 * d.z,
                        c02 * d.x + c12 * d.y + c22 * d.z);
     const double length2 = glm::dot(solved, solved);
+    // Within the evaluation's range as it is (the usual case): the evaluation's result does
+    // not change when m is scaled by a power of two, so the exponent work below is skipped
+    // and the guess's length need not be on the way to the first evaluation.
+    if (length2 >= 0x1p-60 && length2 <= 0x1p60) return -solved;
     if (!(length2 > 0x1p-600 && length2 < 0x1p600)) {
         const double d2 = glm::dot(d, d);
         return d2 > 0x1p-600 ? -d * (1.0 / std::sqrt(d2)) : dvec3(0.0, 0.0, 1.0);
