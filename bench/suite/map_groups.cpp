@@ -134,7 +134,7 @@ void bench_maps(BenchRun& run) {
                                  "default track: build colliders + plane trees");
     load_row.figures = {{"cpu_ms", load.cpu_ms},
                         {"file_bytes_per_triangle", file_bytes / triangles}};
-    load_row.note = "one read, arrays copied, frames derived";
+    load_row.note = "file mapped, arrays copied, frames derived";
     // CPU time for the load: the machine is shared, and wall time counts others' turns.
     run.add_target(
         "default track: load a baked map <= 50 ms (thread CPU)", 50.0 / load.cpu_ms, 1.0, true,
