@@ -30,6 +30,7 @@ struct RaceOptions {
     int laps = 0;
     double seconds = 0.0;
     int threads = 0;
+    std::filesystem::path map;  ///< a baked map instead of the generated track
     std::filesystem::path json, trace, record;
 };
 
@@ -74,10 +75,14 @@ void run(const RaceOptions& o) {
                                 trace_file = stage(o.trace, "--trace"),
                                 record = stage(o.record, "--record");
 
-    const DriveScene scene = make_track_scene(o.seed);
+    const DriveScene scene = o.map.empty() ? make_track_scene(o.seed) : make_map_scene(o.map);
+    if (!scene.track)
+        throw Error("the map '" + o.map.string() +
+                    "' was baked from a mesh and has no centreline for the grid and the "
+                    "autopilots: race on a map baked from a track (bake --seed)");
     WorldSettings settings;
     settings.threads = o.threads;
-    World world(scene.statics, settings);
+    World world(scene.statics, settings, scene.plane_trees);
     const CarSpec car = CarSpec::default_car();
     RaceDrivers drivers(*scene.track, car, o.cars);
     drivers.add_cars(world);
@@ -151,9 +156,14 @@ void add_race_command(CLI::App& app) {
         "Race a field of default cars on a generated track: a two-column grid, each car on its "
         "own autopilot and target speed, passing slower cars on the side; the cars collide. "
         "Prints the classification and the per-update profile of the whole world");
-    command->add_option("--seed", o->seed, "Seed of the generated track")
-        ->check(not_negative())
-        ->capture_default_str();
+    CLI::Option* seed = command->add_option("--seed", o->seed, "Seed of the generated track")
+                            ->check(not_negative())
+                            ->capture_default_str();
+    command
+        ->add_option("--map", o->map,
+                     "Race on this baked map (trackphys bake --seed) instead of generating the "
+                     "track")
+        ->excludes(seed);
     command->add_option("--cars", o->cars, "Cars on the grid (1 to 128)")
         ->check(not_negative())
         ->capture_default_str();

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <filesystem>
 #include <random>
 #include <string>
@@ -26,18 +27,32 @@ double ms_since(Clock::time_point start) {
     return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
-// Median of `repeats` runs of f: wall time and this thread's CPU time (ms).
+// CPU time of every thread of this process (ns).
+double process_cpu_ns() {
+    timespec t{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return double(t.tv_sec) * 1e9 + double(t.tv_nsec);
+}
+
+// Medians over runs (ms): wall time, this thread's CPU time, and the whole process's CPU
+// time (every thread's: what a threaded build costs on an idle machine, spread over its
+// threads).
+struct Timing {
+    double wall_ms, cpu_ms, process_cpu_ms;
+};
+
 template <class F>
-std::pair<double, double> median_ms(int repeats, F&& f) {
-    std::vector<double> wall, cpu;
+Timing median_ms(int repeats, F&& f) {
+    std::vector<double> wall, cpu, process_cpu;
     for (int r = 0; r < repeats; ++r) {
-        const double cpu_start = thread_cpu_ns();
+        const double cpu_start = thread_cpu_ns(), process_start = process_cpu_ns();
         const auto start = Clock::now();
         f();
         wall.push_back(ms_since(start));
         cpu.push_back((thread_cpu_ns() - cpu_start) * 1e-6);
+        process_cpu.push_back((process_cpu_ns() - process_start) * 1e-6);
     }
-    return {spread(wall).median, spread(cpu).median};
+    return {spread(wall).median, spread(cpu).median, spread(process_cpu).median};
 }
 
 // A square terrain of side `cells` x 2 m cells (two triangles each), gently rolling, cut
@@ -79,10 +94,10 @@ void bench_maps(BenchRun& run) {
     run.progress("maps", "building as a World does");
     StaticWorld built;
     ColliderPlaneTrees built_trees;
-    const auto [build_ms, build_cpu_ms] = median_ms(1, [&] {
+    const Timing build = median_ms(1, [&] {
         for (const TrackChunk& chunk : track.chunks)
             built.add(std::make_shared<StaticCollider>(chunk.mesh));
-        built_trees = make_collider_plane_trees(built);
+        built_trees = make_collider_plane_trees(built, PlaneTreeSettings::precomputed(), 1);
     });
     std::size_t collider_bytes = 0, tree_bytes = 0;
     for (std::uint32_t id = 0; id < built.size(); ++id) {
@@ -92,39 +107,43 @@ void bench_maps(BenchRun& run) {
 
     run.progress("maps", "baking");
     StaticMap map;
-    const auto [bake_ms, bake_cpu_ms] = median_ms(run.batches(1, 3), [&] {
+    const Timing bake = median_ms(run.batches(1, 3), [&] {
         map = bake_track_map(track, PlaneTreeSettings::precomputed(), 2);
     });
     const std::filesystem::path file = std::filesystem::temp_directory_path() /
                                        ("trackphys-bench-" + std::to_string(::getpid()) + ".tpmap");
-    const auto [save_ms, save_cpu_ms] = median_ms(1, [&] { save_map(file, map); });
+    const Timing save = median_ms(1, [&] { save_map(file, map); });
     const double file_bytes = double(std::filesystem::file_size(file));
 
     run.progress("maps", "loading");
-    const auto [load_ms, load_cpu_ms] =
+    const Timing load =
         median_ms(run.batches(3, 11), [&] { keep(load_static_world(file).statics->size()); });
     std::filesystem::remove(file);
 
     BenchRow& build_row =
-        run.add("maps", "default track: build colliders + plane trees", build_ms * 1e6);
+        run.add("maps", "default track: build colliders + plane trees", build.wall_ms * 1e6);
     build_row.figures = {{"triangles", triangles},
+                         {"cpu_ms", build.cpu_ms},
                          {"collider_bytes_per_triangle", double(collider_bytes) / triangles},
                          {"plane_tree_bytes_per_triangle", double(tree_bytes) / triangles}};
-    build_row.note = "what World does at start, one thread";
-    BenchRow& bake_row = run.add("maps", "default track: bake (2 threads)", bake_ms * 1e6,
+    build_row.note = "what World does at start, on one thread";
+    BenchRow& bake_row = run.add("maps", "default track: bake (2 threads)", bake.wall_ms * 1e6,
                                  "default track: build colliders + plane trees");
-    bake_row.figures = {{"write_ms", save_ms}};
-    BenchRow& load_row = run.add("maps", "default track: load the map", load_ms * 1e6,
+    bake_row.figures = {{"cpu_ms_all_threads", bake.process_cpu_ms}, {"write_ms", save.wall_ms}};
+    BenchRow& load_row = run.add("maps", "default track: load the map", load.wall_ms * 1e6,
                                  "default track: build colliders + plane trees");
-    load_row.figures = {{"cpu_ms", load_cpu_ms},
+    load_row.figures = {{"cpu_ms", load.cpu_ms},
                         {"file_bytes_per_triangle", file_bytes / triangles}};
-    load_row.note = "one read, arrays copied, frames derived";
+    load_row.note = "file mapped, arrays copied, frames derived";
     // CPU time for the load: the machine is shared, and wall time counts others' turns.
     run.add_target(
-        "default track: load a baked map <= 50 ms (thread CPU)", 50.0 / load_cpu_ms, 1.0, true,
-        std::to_string(load_cpu_ms) + " ms CPU, " + std::to_string(load_ms) + " ms wall");
-    run.add_target("default track: bake <= 0.5 s", 500.0 / bake_ms, 1.0, true,
-                   std::to_string(bake_ms) + " ms on 2 threads");
+        "default track: load a baked map <= 50 ms (thread CPU)", 50.0 / load.cpu_ms, 1.0, true,
+        std::to_string(load.cpu_ms) + " ms CPU, " + std::to_string(load.wall_ms) + " ms wall");
+    // Wall time, as the issue asks; the evidence adds the CPU time of both threads, half of
+    // which is the wall time the bake needs on two idle cores.
+    run.add_target("default track: bake <= 0.5 s", 500.0 / bake.wall_ms, 1.0, true,
+                   std::to_string(bake.wall_ms) + " ms on 2 threads (" +
+                       std::to_string(bake.process_cpu_ms) + " ms CPU over both)");
 }
 
 void bench_many_colliders(BenchRun& run) {

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "collision/triangle_predicates.hpp"
+#include "core/parallel_items.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/math/types.hpp"
 
@@ -30,12 +31,12 @@ std::optional<MidPhaseMode> parse_mid_phase_mode(std::string_view name) {
 }
 
 ColliderPlaneTrees make_collider_plane_trees(const StaticWorld& world,
-                                             const PlaneTreeSettings& settings) {
-    ColliderPlaneTrees trees;
-    trees.reserve(world.size());
-    for (std::uint32_t id = 0; id < world.size(); ++id)
-        trees.push_back(std::make_shared<const PlaneTree>(
-            make_collider_plane_tree(world.collider(id), settings)));
+                                             const PlaneTreeSettings& settings, unsigned threads) {
+    ColliderPlaneTrees trees(world.size());
+    detail::run_items_in_parallel(world.size(), threads, [&](std::size_t id) {
+        trees[id] = std::make_shared<const PlaneTree>(
+            make_collider_plane_tree(world.collider(static_cast<std::uint32_t>(id)), settings));
+    });
     return trees;
 }
 

@@ -1,6 +1,7 @@
 #include "trackphys/detail/plane_tree_builder.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -222,14 +223,19 @@ bool PlaneTreeBuilder::cost_based_split(std::size_t begin, std::size_t end, Spli
     const glm::dmat3 project = glm::dmat3(1.0) - outer(surface_normal, surface_normal);
     const SymmetricEigen3 surface_axes = symmetric_eigen(project * covariance * project);
 
-    const glm::dvec3 candidates[] = {
+    const Directions candidates = {
         centroid_axes.vectors[0], centroid_axes.vectors[1], centroid_axes.vectors[2],
         {1.0, 0.0, 0.0},          {0.0, 1.0, 0.0},          {0.0, 0.0, 1.0},
         surface_normal,           surface_axes.vectors[0],  surface_axes.vectors[1],
     };
     Split best;
     best.cost = std::numeric_limits<double>::infinity();
-    for (const glm::dvec3& direction : candidates) evaluate_direction(begin, end, direction, best);
+    if (count > kSweepAtMost) evaluate_directions_binned(begin, end, candidates, best);
+    // Small nodes, and large ones whose centroids coincide along every candidate (no bin
+    // boundary falls between them), get the full sweep over every cut position.
+    if (!(best.cost < std::numeric_limits<double>::infinity()))
+        for (const glm::dvec3& direction : candidates)
+            evaluate_direction(begin, end, direction, best);
     if (!(best.cost < std::numeric_limits<double>::infinity())) return false;
     // Small nodes split only when the model predicts less work than testing them all.
     if (count <= std::size_t(settings_.max_leaf_size) && !(best.cost < double(count))) return false;
@@ -281,17 +287,98 @@ void PlaneTreeBuilder::evaluate_direction(std::size_t begin, std::size_t end,
     double left_high = -std::numeric_limits<double>::infinity();
     for (std::size_t k = 1; k < count; ++k) {
         left_high = std::max(left_high, highs_[sorted_[k - 1]]);
-        const double p_left = std::min(1.0, (left_high - node_low + r2) / span);
-        const double p_right = std::min(1.0, (node_high - suffix_low_[k] + r2) / span);
-        // Equal costs (triangles that all overlap, duplicates) go to the most balanced cut,
-        // which keeps such nodes from degenerating into a chain.
-        const double imbalance = std::abs(2.0 * double(k) - double(count));
-        const double cost = 2.0 * settings_.node_cost + double(k) * p_left +
-                            double(count - k) * p_right + 1e-9 * imbalance;
-        if (cost < best.cost) {
-            best.cost = cost;
-            best.normal = n;
-            best.left_count = k;
+        best = cheaper_cut(best, n, k, count, (left_high - node_low + r2) / span,
+                           (node_high - suffix_low_[k] + r2) / span);
+    }
+}
+
+PlaneTreeBuilder::Split PlaneTreeBuilder::cheaper_cut(const Split& best, const glm::dvec3& normal,
+                                                      std::size_t left_count, std::size_t count,
+                                                      double p_left, double p_right) const {
+    // Equal costs (triangles that all overlap, duplicates) go to the most balanced cut,
+    // which keeps such nodes from degenerating into a chain.
+    const double imbalance = std::abs(2.0 * double(left_count) - double(count));
+    const double cost = 2.0 * settings_.node_cost + double(left_count) * std::min(1.0, p_left) +
+                        double(count - left_count) * std::min(1.0, p_right) + 1e-9 * imbalance;
+    if (!(cost < best.cost)) return best;
+    return {normal, left_count, cost};
+}
+
+void PlaneTreeBuilder::evaluate_directions_binned(std::size_t begin, std::size_t end,
+                                                  const Directions& directions, Split& best) {
+    constexpr double kInf = std::numeric_limits<double>::infinity();
+    constexpr std::size_t kCount = kCandidateDirections;
+    struct Along {
+        glm::dvec3 n;
+        double key_min = kInf, key_max = -kInf;  // centroids
+        double low = kInf, high = -kInf;         // vertices
+    };
+    std::array<Along, kCount> along;
+    for (std::size_t d = 0; d < kCount; ++d) along[d].n = float_direction(directions[d]);
+
+    // One pass over the node's items for every direction (each item is read once), keeping
+    // each item's centroid key and vertex interval along each.
+    const std::size_t count = end - begin;
+    keys_.resize(count * kCount);
+    lows_.resize(count * kCount);
+    highs_.resize(count * kCount);
+    for (std::size_t i = 0; i < count; ++i) {
+        const Item& item = items_[order_[begin + i]];
+        for (std::size_t d = 0; d < kCount; ++d) {
+            Along& a = along[d];
+            // The same expression as order_along's key, so the cut found is the cut made.
+            const double key = glm::dot(a.n, item.centroid);
+            double lo = glm::dot(a.n, item.vertices[0]), hi = lo;
+            for (int k = 1; k < 3; ++k) {
+                const double v = glm::dot(a.n, item.vertices[std::size_t(k)]);
+                lo = std::min(lo, v);
+                hi = std::max(hi, v);
+            }
+            keys_[i * kCount + d] = key;
+            lows_[i * kCount + d] = lo;
+            highs_[i * kCount + d] = hi;
+            a.key_min = std::min(a.key_min, key);
+            a.key_max = std::max(a.key_max, key);
+            a.low = std::min(a.low, lo);
+            a.high = std::max(a.high, hi);
+        }
+    }
+
+    // Bins of equal width over the centroid keys. The bin index never decreases with the
+    // key (subtracting, scaling and truncating are monotone in floating point), so the items
+    // of the bins left of a boundary are exactly the smallest ones along n: each boundary is
+    // one of the full sweep's cuts, its cost computed exactly from per-bin extremes.
+    struct Bin {
+        std::size_t count = 0;
+        double low = kInf, high = -kInf;
+    };
+    const double r2 = 2.0 * settings_.query_radius;
+    for (std::size_t d = 0; d < kCount; ++d) {
+        const Along& a = along[d];
+        if (a.n == glm::dvec3(0.0) || !(a.key_max > a.key_min)) continue;
+        std::array<Bin, kBins> bins{};
+        const double scale = double(kBins) / (a.key_max - a.key_min);
+        for (std::size_t i = 0; i < count; ++i) {
+            const std::size_t at = i * kCount + d;
+            Bin& bin = bins[std::min(kBins - 1, std::size_t((keys_[at] - a.key_min) * scale))];
+            bin.count += 1;
+            bin.low = std::min(bin.low, lows_[at]);
+            bin.high = std::max(bin.high, highs_[at]);
+        }
+        std::array<double, kBins + 1> suffix_low;
+        suffix_low[kBins] = kInf;
+        for (std::size_t b = kBins; b-- > 0;)
+            suffix_low[b] = std::min(suffix_low[b + 1], bins[b].low);
+        const double span = a.high - a.low + r2;
+        double left_high = -kInf;
+        std::size_t left_count = 0;
+        for (std::size_t b = 1; b < kBins; ++b) {
+            left_count += bins[b - 1].count;
+            left_high = std::max(left_high, bins[b - 1].high);
+            // An empty bin repeats the cut at its right boundary.
+            if (left_count == 0 || bins[b].count == 0) continue;
+            best = cheaper_cut(best, a.n, left_count, count, (left_high - a.low + r2) / span,
+                               (a.high - suffix_low[b] + r2) / span);
         }
     }
 }

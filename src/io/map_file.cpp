@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
-#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <limits>
@@ -16,6 +15,7 @@
 
 #include "map_body.hpp"
 #include "map_codec.hpp"
+#include "mapped_file.hpp"
 #include "trackphys/error.hpp"
 
 namespace trackphys {
@@ -342,20 +342,9 @@ StaticMap load_static_world(const std::filesystem::path& path,
     const std::string source = "map '" + path.string() + "'";
     std::error_code error;
     if (std::filesystem::is_directory(path, error)) throw Error(source + ": is a folder");
-    std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"),
-                                                         &std::fclose);
-    if (!file) throw Error(source + ": cannot open it");
-    if (std::fseek(file.get(), 0, SEEK_END) != 0) throw Error(source + ": cannot read it");
-    const long size = std::ftell(file.get());
-    if (size < 0 || std::fseek(file.get(), 0, SEEK_SET) != 0)
-        throw Error(source + ": cannot read it");
-    // Not a std::string: its resize would write every byte once before the read does.
-    const auto bytes = std::make_unique_for_overwrite<char[]>(static_cast<std::size_t>(size));
-    if (std::fread(bytes.get(), 1, static_cast<std::size_t>(size), file.get()) !=
-        static_cast<std::size_t>(size))
-        throw Error(source + ": cannot read it");
-    return decode_map(std::string_view(bytes.get(), static_cast<std::size_t>(size)), source,
-                      expected);
+    // Mapped, not read: the arrays are copied once, from the page cache into the structures.
+    const detail::MappedFile file(path, "map");
+    return decode_map(file.bytes(), source, expected);
 }
 
 bool is_map_file(const std::filesystem::path& path) {

@@ -13,9 +13,9 @@
 
 namespace trackphys::detail {
 
-MappedFile::MappedFile(const std::filesystem::path& path) {
-    const auto fail = [&path](const char* what) {
-        throw Error("mesh file '" + path.string() + "': cannot " + what +
+MappedFile::MappedFile(const std::filesystem::path& path, const char* kind) {
+    const auto fail = [&path, kind](const char* what) {
+        throw Error(std::string(kind) + " '" + path.string() + "': cannot " + what +
                     " it: " + std::strerror(errno));
     };
     const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);

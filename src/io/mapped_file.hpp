@@ -7,11 +7,13 @@
 namespace trackphys::detail {
 
 /// A file's bytes mapped read-only: the checks of mesh_checks.hpp walk a whole file of any
-/// size (a 50M-triangle track is gigabytes) without copying it into the heap.
+/// size (a 50M-triangle track is gigabytes) without copying it into the heap, and a map
+/// file loads without a heap copy of its bytes.
 class MappedFile {
   public:
-    /// Throws trackphys::Error naming path when it cannot be opened or mapped.
-    explicit MappedFile(const std::filesystem::path& path);
+    /// Throws trackphys::Error naming the file ("<kind> '<path>': cannot open it: ...") when
+    /// it cannot be opened or mapped.
+    explicit MappedFile(const std::filesystem::path& path, const char* kind = "mesh file");
     ~MappedFile();
     MappedFile(const MappedFile&) = delete;
     MappedFile& operator=(const MappedFile&) = delete;

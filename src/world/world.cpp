@@ -29,7 +29,8 @@ World::World(std::shared_ptr<const StaticWorld> statics, WorldSettings settings,
     if (!statics_) throw Error("World: the static world is null");
     if (std::string why = settings_.validate(); !why.empty()) throw Error(why);
     if (settings_.mid_phase == MidPhaseMode::precomputed_tree && trees_.empty())
-        trees_ = make_collider_plane_trees(*statics_);
+        trees_ = make_collider_plane_trees(*statics_, PlaneTreeSettings::precomputed(),
+                                           static_cast<unsigned>(settings_.thread_count()));
     if (settings_.mid_phase != MidPhaseMode::precomputed_tree) trees_.clear();
 }
 

@@ -20,6 +20,19 @@ trackphys_cli_test(map.drive_a_mesh_map_needs_a_spawn 1 "baked from a mesh and h
 set_tests_properties(map.drive_pinned_state_hash map.info map.drive_a_mesh_map_free
                      map.drive_a_mesh_map_needs_a_spawn PROPERTIES FIXTURES_REQUIRED baked_maps)
 
+# race --map: the baked track races as the generated one (the same hash as race --seed 7);
+# --seed with --map is a usage error (CLI11 ExcludesError, exit 108).
+trackphys_cli_test(map.race_pinned_state_hash 0 "map .*seed7.tpmap.*state hash +672221dbef6751dd"
+                   race --map ${maps}/seed7.tpmap --cars 2 --seconds 2)
+trackphys_cli_test(map.race_generated_state_hash 0 "seed 7.*state hash +672221dbef6751dd"
+                   race --seed 7 --cars 2 --seconds 2)
+trackphys_cli_test(map.race_a_mesh_map_needs_a_track 1 "baked from a mesh and has no centreline"
+                   race --map ${maps}/flat.tpmap --cars 2 --seconds 1)
+trackphys_cli_test(map.race_map_or_seed 108 "--seed excludes --map"
+                   race --map ${maps}/seed7.tpmap --seed 3 --cars 2 --seconds 1)
+set_tests_properties(map.race_pinned_state_hash map.race_a_mesh_map_needs_a_track
+                     map.race_map_or_seed PROPERTIES FIXTURES_REQUIRED baked_maps)
+
 trackphys_cli_test(map.drive_rejects_a_mesh_as_map 1 "map '.*flat_ground.obj': wrong magic"
                    drive --map ${flat} --seconds 1)
 trackphys_cli_test(map.bake_mesh_or_seed 1 "give a mesh file or --seed"

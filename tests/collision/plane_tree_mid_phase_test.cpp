@@ -3,6 +3,7 @@
 // exactly those, and the per-update and precomputed trees agree triangle for triangle.
 #include <algorithm>
 #include <cstdint>
+#include <cstring>
 #include <memory>
 #include <random>
 #include <vector>
@@ -158,6 +159,29 @@ TEST(MidPhase, EveryModeKeepsWhatTheCarTouchesOnTheDefaultTrack) {
     EXPECT_EQ(counters.queries, samples.size() * car.ellipsoids.size() * 2);
     EXPECT_EQ(counters.candidates, tree_candidates);
     EXPECT_GT(counters.planes_tested, counters.queries);
+}
+
+TEST(MidPhase, CollidersPlaneTreesAreTheSameOnAnyThreadCount) {
+    StaticWorld world;
+    for (std::size_t i = 0; i < 6; ++i)
+        world.add(std::make_shared<const StaticCollider>(track_world().track.chunks[i].mesh));
+    const ColliderPlaneTrees one =
+        make_collider_plane_trees(world, PlaneTreeSettings::precomputed(), 1);
+    const ColliderPlaneTrees three =
+        make_collider_plane_trees(world, PlaneTreeSettings::precomputed(), 3);
+    ASSERT_EQ(one.size(), world.size());
+    ASSERT_EQ(three.size(), world.size());
+    for (std::size_t id = 0; id < world.size(); ++id) {
+        const PlaneTree &a = *one[id], &b = *three[id];
+        ASSERT_EQ(a.nodes().size(), b.nodes().size()) << id;
+        EXPECT_EQ(std::memcmp(a.nodes().data(), b.nodes().data(),
+                              a.nodes().size() * sizeof(PlaneTreeNode)),
+                  0)
+            << id;
+        ASSERT_EQ(a.triangle_count(), b.triangle_count()) << id;
+        for (std::uint32_t slot = 0; slot < a.triangle_count(); ++slot)
+            ASSERT_EQ(a.id(slot), b.id(slot)) << id;
+    }
 }
 
 TEST(MidPhase, PrecomputedModeNeedsOneTreePerCollider) {

@@ -392,6 +392,31 @@ TEST(PlaneTree, IdenticalTrianglesStayWithinTheDepthCap) {
     }
 }
 
+TEST(PlaneTree, BinnedCutSeparatesTwoDistantClustersAtTheRoot) {
+    // 300 + 100 small triangles 100 m apart along x: far above the full sweep's size, so
+    // the root's cut comes from the bins, and the one boundary in the gap costs least. A
+    // bin count that disagrees with the items actually moved left would put triangles of
+    // one cluster on the other's side.
+    TriangleMesh mesh;
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    for (int i = 0; i < 400; ++i) {
+        const double x = (i < 300 ? 0.0 : 100.0) + 10.0 * unit(rng), z = 10.0 * unit(rng);
+        const auto v = static_cast<std::uint32_t>(mesh.vertices.size());
+        mesh.vertices.insert(mesh.vertices.end(),
+                             {{x, 0.0, z}, {x + 0.5, 0.1 * unit(rng), z}, {x, 0.0, z + 0.5}});
+        mesh.triangles.push_back({v, v + 1, v + 2});
+    }
+    const PlaneTree tree = build(normalized(mesh), PlaneTreeSettings::precomputed());
+    const PlaneTreeNode& root = tree.nodes()[0];
+    ASSERT_FALSE(root.is_leaf());
+    const std::uint32_t left = tree.nodes()[root.first].count();
+    EXPECT_TRUE(left == 300 || left == 100) << left;
+    // Every slot on the left is from one cluster (ids 0..299 are the first).
+    for (std::uint32_t slot = 0; slot < left; ++slot)
+        EXPECT_EQ(tree.id(slot) < 300, left == 300) << slot;
+}
+
 TEST(PlaneTree, EmptyTreeReportsNothing) {
     PlaneTree tree;
     std::vector<std::uint32_t> out;

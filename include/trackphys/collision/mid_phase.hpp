@@ -36,9 +36,12 @@ struct MidPhaseCounters {
     std::size_t triangles_filtered = 0;  ///< tree queries only
 };
 
-/// Builds make_collider_plane_tree for every collider of `world`, in id order.
+/// Builds make_collider_plane_tree for every collider of `world` (result in id order) on up
+/// to `threads` threads (0: std::thread::hardware_concurrency()). The trees do not depend
+/// on the thread count.
 TRACKPHYS_API ColliderPlaneTrees make_collider_plane_trees(
-    const StaticWorld& world, const PlaneTreeSettings& settings = PlaneTreeSettings::precomputed());
+    const StaticWorld& world, const PlaneTreeSettings& settings = PlaneTreeSettings::precomputed(),
+    unsigned threads = 0);
 
 /// The mid phase of one car: what a World calls once per update and then per step per
 /// ellipsoid, whatever the mode. Holds per-update state and scratch (one per car, not

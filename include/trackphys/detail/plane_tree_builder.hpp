@@ -48,8 +48,18 @@ class TRACKPHYS_API PlaneTreeBuilder {
     bool choose_split(std::size_t begin, std::size_t end, Split& split);
     Split pca_median_split(std::size_t begin, std::size_t end);
     bool cost_based_split(std::size_t begin, std::size_t end, Split& split);
+    // cost_based: nodes above kSweepAtMost triangles try only the kBins - 1 bin boundaries
+    // along each candidate direction (linear time); smaller ones try every cut (a sort).
+    static constexpr std::size_t kSweepAtMost = 32;
+    static constexpr std::size_t kBins = 64;
+    static constexpr std::size_t kCandidateDirections = 9;
+    using Directions = std::array<glm::dvec3, kCandidateDirections>;
     void evaluate_direction(std::size_t begin, std::size_t end, const glm::dvec3& direction,
                             Split& best);
+    void evaluate_directions_binned(std::size_t begin, std::size_t end,
+                                    const Directions& directions, Split& best);
+    Split cheaper_cut(const Split& best, const glm::dvec3& normal, std::size_t left_count,
+                      std::size_t count, double p_left, double p_right) const;
     void order_along(std::size_t begin, std::size_t end, const glm::dvec3& normal,
                      std::size_t left_count);
     void set_plane(PlaneTreeNode& node, std::size_t begin, std::size_t end,

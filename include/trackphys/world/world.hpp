@@ -48,8 +48,9 @@ class TRACKPHYS_API World {
   public:
     /// Throws trackphys::Error on a null static world or invalid settings. In the
     /// precomputed_tree mid-phase mode the colliders' plane trees are built here (the
-    /// costliest part of making a World) unless `trees` holds them already (one per collider,
-    /// in id order, e.g. another world's plane_trees()).
+    /// costliest part of making a World), on settings.thread_count() short-lived threads
+    /// even with a job system plugged in, unless `trees` holds them already (one per
+    /// collider, in id order, e.g. another world's plane_trees() or a baked map's).
     explicit World(std::shared_ptr<const StaticWorld> statics, WorldSettings settings = {},
                    ColliderPlaneTrees trees = {});
     ~World();

@@ -1,0 +1,44 @@
+#pragma once
+
+// Runs independent jobs (one collider's BVH or plane tree each) on a few short-lived
+// threads, for builds done once: World's start, bake_map.
+
+#include <algorithm>
+#include <atomic>
+#include <cstddef>
+#include <exception>
+#include <thread>
+#include <vector>
+
+namespace trackphys::detail {
+
+/// Calls work(i) for every i in [0, count) on up to `threads` threads (0: one per core), the
+/// caller's included, and returns when all are done. Threads claim the next item in turn,
+/// so each item runs once whatever the thread count; results written to item i's place make
+/// the outcome independent of it. If items throw, the lowest such item's exception is
+/// rethrown after every item has run, the same one a serial loop reports first.
+template <class Work>
+void run_items_in_parallel(std::size_t count, unsigned threads, Work&& work) {
+    std::vector<std::exception_ptr> errors(count);
+    std::atomic<std::size_t> next{0};
+    auto claim = [&] {
+        for (std::size_t i = next++; i < count; i = next++) {
+            try {
+                work(i);
+            } catch (...) {
+                errors[i] = std::current_exception();
+            }
+        }
+    };
+    if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
+    {
+        std::vector<std::jthread> helpers;
+        for (std::size_t t = 1; t < std::min<std::size_t>(threads, count); ++t)
+            helpers.emplace_back(claim);
+        claim();
+    }  // joins
+    for (const std::exception_ptr& error : errors)
+        if (error) std::rethrow_exception(error);
+}
+
+}  // namespace trackphys::detail
