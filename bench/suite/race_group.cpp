@@ -134,9 +134,11 @@ struct PairCost {
 // two cars also run in worlds of their own on the same inputs; alone or together they
 // follow the same paths while they do not touch, so update by update the difference is
 // the pair's cost. The static contacts: one car's mid, cull and exact phases, their share
-// of its update from a profiled run applied to its unprofiled CPU time.
-PairCost time_pair(const cli::DriveScene& scene, const ColliderPlaneTrees& trees, int warm_up,
-                   int updates) {
+// of its update from a profiled run applied to its unprofiled CPU time. Each round starts
+// from the grid and lasts 3 s, on the start straight (half throttle, no steering: later
+// the cars would leave the road at the first bend).
+PairCost time_pair(const cli::DriveScene& scene, const ColliderPlaneTrees& trees, int rounds) {
+    constexpr int kWarmUp = 100, kUpdates = 200;
     const CarSpec spec = CarSpec::default_car();
     RaceGridSettings grid;
     grid.column_gap = 3.0;
@@ -151,35 +153,39 @@ PairCost time_pair(const cli::DriveScene& scene, const ColliderPlaneTrees& trees
         for (const RigidBodyState& start : cars) world->add_car(spec, start);
         return world;
     };
-    std::unique_ptr<World> both = make_world(starts, false);
-    std::unique_ptr<World> first = make_world({starts[0]}, false);
-    std::unique_ptr<World> second = make_world({starts[1]}, false);
-    std::unique_ptr<World> profiled = make_world({starts[0]}, true);
-    World* worlds[] = {both.get(), first.get(), second.get(), profiled.get()};
 
     const CarInputs inputs{.throttle = 0.4, .brake = 0.0, .steer = 0.0};
+    const double timed = double(rounds) * kUpdates;
     PairCost cost;
     std::vector<double> pair_ns;
     double first_ns = 0.0, static_share = 0.0;
-    for (int u = 0; u < warm_up + updates; ++u) {
-        double ns[4];
-        for (int w = 0; w < 4; ++w) {
-            World& world = *worlds[w];
-            for (std::size_t i = 0; i < world.car_count(); ++i) world.car(i).set_inputs(inputs);
-            const double start = thread_cpu_ns();
-            world.update();
-            ns[w] = thread_cpu_ns() - start;
+    for (int round = 0; round < rounds; ++round) {
+        std::unique_ptr<World> both = make_world(starts, false);
+        std::unique_ptr<World> first = make_world({starts[0]}, false);
+        std::unique_ptr<World> second = make_world({starts[1]}, false);
+        std::unique_ptr<World> profiled = make_world({starts[0]}, true);
+        World* worlds[] = {both.get(), first.get(), second.get(), profiled.get()};
+        for (int u = 0; u < kWarmUp + kUpdates; ++u) {
+            double ns[4];
+            for (int w = 0; w < 4; ++w) {
+                World& world = *worlds[w];
+                for (std::size_t i = 0; i < world.car_count(); ++i) world.car(i).set_inputs(inputs);
+                const double start = thread_cpu_ns();
+                world.update();
+                ns[w] = thread_cpu_ns() - start;
+            }
+            const UpdateProfile& together = both->last_profile();
+            cost.apart = cost.apart && together.car_pairs == 1 && together.car_contacts == 0 &&
+                         both->car(0).state().position == first->car(0).state().position &&
+                         both->car(1).state().position == second->car(0).state().position;
+            if (u < kWarmUp) continue;
+            pair_ns.push_back(ns[0] - ns[1] - ns[2]);
+            cost.exact_tests += double(together.car_pair_tests) / timed;
+            first_ns += ns[1] / timed;
+            const UpdateProfile& p = profiled->last_profile();
+            static_share +=
+                (p[Phase::mid] + p[Phase::cull] + p[Phase::exact]) / p.update_us / timed;
         }
-        const UpdateProfile& together = both->last_profile();
-        cost.apart = cost.apart && together.car_pairs == 1 && together.car_contacts == 0 &&
-                     both->car(0).state().position == first->car(0).state().position &&
-                     both->car(1).state().position == second->car(0).state().position;
-        if (u < warm_up) continue;
-        pair_ns.push_back(ns[0] - ns[1] - ns[2]);
-        cost.exact_tests += double(together.car_pair_tests) / updates;
-        first_ns += ns[1] / updates;
-        const UpdateProfile& p = profiled->last_profile();
-        static_share += (p[Phase::mid] + p[Phase::cull] + p[Phase::exact]) / p.update_us / updates;
     }
     cost.pair_ns = spread(std::move(pair_ns)).median;
     cost.static_ns = first_ns * static_share;
@@ -252,7 +258,7 @@ void bench_race(BenchRun& run) {
                    1.0, true, evidence);
 
     run.progress("race", "a pair of cars apart");
-    const PairCost pair = time_pair(scene, trees, warm_up, updates);
+    const PairCost pair = time_pair(scene, trees, run.quick() ? 1 : 5);
     BenchRow& row = run.add("race", "a pair apart, added per update", pair.pair_ns);
     row.figures = {{"pair_us", pair.pair_ns * 1e-3},
                    {"static_contacts_us", pair.static_ns * 1e-3},
