@@ -33,6 +33,7 @@ struct World::CarSlot {
     std::vector<std::vector<Survivor>> kept;  // per ellipsoid: culled survivors
     std::vector<Contact> deepest;             // per ellipsoid, this sub-step
     std::vector<TriangleRef> deepest_ref;     // its triangle, tried first next
+    bool pushed = false;                      // by another car, this sub-step
     // The reset policy's memory: the state at the start of this update, the resets.
     RigidBodyState start_state;
     std::vector<double> start_suspension;

@@ -21,7 +21,12 @@ struct World::UpdateWork {
     // Island indices, largest first: the order they are handed out in (results do not
     // depend on it; the long ones starting first keeps the threads' ends close).
     std::vector<std::size_t> schedule;
-    std::vector<UpdateProfile> worker_profiles;
+    // Per worker, a cache line or more apart: every sub-step bumps the counts, and two
+    // workers writing one line would hand it back and forth between their cores.
+    struct alignas(64) WorkerProfile {
+        UpdateProfile profile;
+    };
+    std::vector<WorkerProfile> worker_profiles;
     // Per island: what stopped its update, rethrown after all islands ran.
     std::vector<std::exception_ptr> errors;
     std::unique_ptr<detail::ThreadPool> pool;  // started at the first update with 2 islands

@@ -101,7 +101,7 @@ void World::run_islands() {
     const int workers = settings_.jobs.plugged_in() ? settings_.jobs.worker_count
                         : islands < 2               ? 1
                                                     : settings_.thread_count();
-    work.worker_profiles.assign(static_cast<std::size_t>(workers), UpdateProfile{});
+    work.worker_profiles.assign(static_cast<std::size_t>(workers), {});
     // The trace recorder is not shared between threads.
     work.trace = workers == 1 ? trace_ : nullptr;
     const int items = static_cast<int>(islands);
@@ -117,7 +117,7 @@ void World::run_islands() {
         work.pool->run(&island_task, items, this);
     }
 
-    for (const UpdateProfile& part : work.worker_profiles) profile_.merge(part);
+    for (const UpdateWork::WorkerProfile& part : work.worker_profiles) profile_.merge(part.profile);
     for (const std::exception_ptr& error : work.errors)
         if (error) std::rethrow_exception(error);
 }
@@ -125,7 +125,7 @@ void World::run_islands() {
 void World::island_task(int begin, int end, int worker, void* world) {
     World& self = *static_cast<World*>(world);
     UpdateWork& work = *self.work_;
-    PhaseStopwatch watch(work.worker_profiles[static_cast<std::size_t>(worker)],
+    PhaseStopwatch watch(work.worker_profiles[static_cast<std::size_t>(worker)].profile,
                          self.settings_.profile, work.trace);
     for (int item = begin; item < end; ++item) {
         const std::size_t island = work.schedule[static_cast<std::size_t>(item)];

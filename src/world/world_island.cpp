@@ -32,21 +32,27 @@ void World::step_island(std::size_t island, PhaseStopwatch& watch) {
             list_step_candidates(cars_[i], settings_.steps - step, watch);
         for (int s = 0; s < settings_.substeps; ++s) {
             // find_contacts places each car's ellipsoids for this sub-step (CarSlot::placed).
-            for (const std::uint32_t i : cars) find_contacts(cars_[i], watch);
+            for (const std::uint32_t i : cars) {
+                find_contacts(cars_[i], watch);
+                cars_[i].pushed = false;
+            }
             for (const detail::CarPair& pair : pairs) {
                 CarSlot& a = cars_[pair.a];
                 CarSlot& b = cars_[pair.b];
                 const detail::CarPairTouch touch =
                     detail::touch_cars(a.car, a.placed, b.car, b.placed, h);
                 profile.car_pair_tests += touch.exact_tests;
+                // Only an overlap pushes.
+                if (touch.deepest > 0.0) a.pushed = b.pushed = true;
                 profile.car_contacts += touch.deepest > 0.0;
                 profile.max_car_penetration = std::max(profile.max_car_penetration, touch.deepest);
             }
             watch.lap(Phase::exact);
             // A push from another car can change a car's velocity by more than the step's
-            // lists allow for: check their cover again (a query only when it fails).
+            // lists allow for: check their cover again (a query only when it fails). A car
+            // nobody pushed is a lone car's case, whose lists hold for the whole step.
             for (const std::uint32_t i : cars)
-                list_step_candidates(cars_[i], settings_.steps - step, watch);
+                if (cars_[i].pushed) list_step_candidates(cars_[i], settings_.steps - step, watch);
             for (const std::uint32_t i : cars) advance(cars_[i], watch);
         }
     }
