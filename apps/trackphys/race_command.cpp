@@ -10,6 +10,7 @@
 #include "commands.hpp"
 #include "drive_recording.hpp"
 #include "drive_scene.hpp"
+#include "drive_svg.hpp"
 #include "interrupt_guard.hpp"
 #include "json_file.hpp"
 #include "progress_bar.hpp"
@@ -30,7 +31,7 @@ struct RaceOptions {
     int laps = 0;
     double seconds = 0.0;
     int threads = 0;
-    std::filesystem::path json, trace, record;
+    std::filesystem::path json, trace, record, svg;
 };
 
 constexpr std::size_t kMaxCars = 128;
@@ -72,7 +73,7 @@ void run(const RaceOptions& o) {
     };
     const std::filesystem::path json = stage(o.json, "--json"),
                                 trace_file = stage(o.trace, "--trace"),
-                                record = stage(o.record, "--record");
+                                record = stage(o.record, "--record"), svg = stage(o.svg, "--svg");
 
     const DriveScene scene = make_track_scene(o.seed);
     WorldSettings settings;
@@ -98,6 +99,11 @@ void run(const RaceOptions& o) {
         recording = std::make_unique<RecordingWriter>(record, recording_plan.header);
     }
 
+    DrivePlot plot;
+    plot.command = "race";
+    plot.dt = settings.dt_update;
+    if (!svg.empty()) plot.paths.resize(o.cars);
+
     RaceReport report;
     report.scene = scene.description;
     report.cars = o.cars;
@@ -114,6 +120,13 @@ void run(const RaceOptions& o) {
         report.car_contacts += profile.car_contacts;
         report.max_car_penetration_m =
             std::max(report.max_car_penetration_m, profile.max_car_penetration);
+        if (!svg.empty()) {
+            for (std::size_t i = 0; i < o.cars; ++i) {
+                plot.paths[i].points.push_back(world.car(i).state().position);
+                plot.paths[i].speed_kmh.push_back(world.car(i).speed() * 3.6);
+            }
+            plot.update_us.push_back(profile.update_us);
+        }
         if (recording) {
             for (std::size_t i = 0; i < o.cars; ++i) laps_done[i] = drivers.laps(i);
             recording->write_frame(world, laps_done);
@@ -137,6 +150,7 @@ void run(const RaceOptions& o) {
                     std::to_string(laps) + " laps in " + std::to_string(seconds) +
                     " simulated seconds");
     if (!json.empty()) write_race_json(report, json);
+    if (!svg.empty()) write_drive_svg(plot, scene.track, svg);
     if (trace) write_trace_file(*trace, trace_file, o.trace);
     if (recording) recording->finish();
     commit_with_track_mesh(outputs, recording_plan, scene);
@@ -167,6 +181,8 @@ void add_race_command(CLI::App& app) {
     command->add_option("--json", o->json, "Write the figures as JSON");
     command->add_option("--trace", o->trace,
                         "Write a Chrome trace (Perfetto) of the updates run on one thread");
+    command->add_option("--svg", o->svg,
+                        "Plot every car's path over the track and the update times");
     command->add_option("--record", o->record,
                         "Write every car's pose and contacts per update (JSON Lines) for a viewer");
     command->callback([o] { run(*o); });
