@@ -107,6 +107,9 @@ Scenario build_scenario(const DriveOptions& o, const CLI::App& command) {
                         " applies in free mode only: add --spawn x,y,z (without a spawn "
                         "point the autopilot drives the generated track from its start line)");
     std::string why = s.validate();
+    if (why.empty() && s.cars > 1)
+        why = "Scenario.cars is " + std::to_string(s.cars) +
+              ": drive drives one car (race a field with trackphys race --scenario)";
     if (why.empty()) return s;
     for (const auto& [field, option] : kFieldOptions)
         if (why.rfind(field, 0) == 0 && given(option))
