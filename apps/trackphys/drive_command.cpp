@@ -107,6 +107,9 @@ Scenario build_scenario(const DriveOptions& o, const CLI::App& command) {
                         " applies in free mode only: add --spawn x,y,z (without a spawn "
                         "point the autopilot drives the generated track from its start line)");
     std::string why = s.validate();
+    if (why.empty() && s.cars > 1)
+        why = "Scenario.cars is " + std::to_string(s.cars) +
+              ": drive drives one car (race a field with trackphys race --scenario)";
     if (why.empty()) return s;
     for (const auto& [field, option] : kFieldOptions)
         if (why.rfind(field, 0) == 0 && given(option))
@@ -226,6 +229,7 @@ void run(const DriveOptions& o, const CLI::App& command) {
     report.lap_times_s = session.lap_times_s;
     DrivePlot plot;
     plot.dt = world.settings().dt_update;
+    PlotPath& car_path = plot.paths.emplace_back();
     ProgressBar progress(laps > 0 ? static_cast<double>(laps) : seconds);
     const auto wall_start = std::chrono::steady_clock::now();
     glm::dvec3 previous = world.car(0).state().position;
@@ -262,8 +266,8 @@ void run(const DriveOptions& o, const CLI::App& command) {
         previous = state.position;
         report.top_speed_kmh = std::max(report.top_speed_kmh, car.speed() * 3.6);
         report.profile.add(world.last_profile());
-        plot.path.push_back(state.position);
-        plot.speed_kmh.push_back(car.speed() * 3.6);
+        car_path.points.push_back(state.position);
+        car_path.speed_kmh.push_back(car.speed() * 3.6);
         plot.update_us.push_back(world.last_profile().update_us);
         if (recording) {
             const std::optional<int> laps_done =

@@ -5,7 +5,7 @@
 #include <fstream>
 #include <sstream>
 #include <tuple>
-#include <utility>
+#include <vector>
 
 #include "trackphys/error.hpp"
 #include "trackphys/profile/profile_statistics.hpp"
@@ -17,6 +17,8 @@ constexpr double kPanelWidth = 900.0;
 constexpr double kMapHeight = 700.0;
 constexpr double kChartHeight = 260.0;
 constexpr double kMargin = 50.0;
+// Line segments drawn over all paths, at most: every point of a lap, every few of a race.
+constexpr std::size_t kMaxSegments = 50000;
 
 // Blue (slow) to red (fast).
 std::string speed_colour(double t) {
@@ -48,9 +50,14 @@ void write_drive_svg(const DrivePlot& plot, const std::optional<Track>& track,
         }
     }
     double min_x = 1e300, max_x = -1e300, min_z = 1e300, max_z = -1e300;
-    for (const std::vector<glm::dvec3>* points :
-         {&plot.path, &std::as_const(left), &std::as_const(right)})
-        for (const glm::dvec3& p : *points) {
+    std::vector<const std::vector<glm::dvec3>*> extent{&left, &right};
+    std::size_t points = 0;
+    for (const PlotPath& car : plot.paths) {
+        extent.push_back(&car.points);
+        points += car.points.size();
+    }
+    for (const std::vector<glm::dvec3>* from : extent)
+        for (const glm::dvec3& p : *from) {
             min_x = std::min(min_x, p.x), max_x = std::max(max_x, p.x);
             min_z = std::min(min_z, p.z), max_z = std::max(max_z, p.z);
         }
@@ -68,8 +75,8 @@ void write_drive_svg(const DrivePlot& plot, const std::optional<Track>& track,
            "width=\""
         << kPanelWidth << "\" height=\"" << height << "\" font-family=\"sans-serif\">\n"
         << "<rect width=\"100%\" height=\"100%\" fill=\"#f7f7f2\"/>\n"
-        << "<text x=\"" << kMargin
-        << "\" y=\"30\" font-size=\"18\">trackphys drive: path coloured by speed "
+        << "<text x=\"" << kMargin << "\" y=\"30\" font-size=\"18\">trackphys " << plot.command
+        << ": path coloured by speed "
         << "(blue slow, red fast), top view x right, z down</text>\n";
     for (const auto* edge : {&left, &right}) {
         if (edge->empty()) continue;
@@ -77,15 +84,16 @@ void write_drive_svg(const DrivePlot& plot, const std::optional<Track>& track,
         for (const glm::dvec3& p : *edge) svg << frame.x(p) << ',' << frame.y(p) << ' ';
         svg << "\"/>\n";
     }
-    const double top_speed =
-        plot.speed_kmh.empty()
-            ? 1.0
-            : std::max(1.0, *std::max_element(plot.speed_kmh.begin(), plot.speed_kmh.end()));
-    for (std::size_t i = 1; i < plot.path.size(); ++i)
-        svg << "<line x1=\"" << frame.x(plot.path[i - 1]) << "\" y1=\"" << frame.y(plot.path[i - 1])
-            << "\" x2=\"" << frame.x(plot.path[i]) << "\" y2=\"" << frame.y(plot.path[i])
-            << "\" stroke=\"" << speed_colour(plot.speed_kmh[i] / top_speed)
-            << "\" stroke-width=\"2\"/>\n";
+    double top_speed = 1.0;
+    for (const PlotPath& car : plot.paths)
+        for (const double kmh : car.speed_kmh) top_speed = std::max(top_speed, kmh);
+    const std::size_t stride = std::max<std::size_t>(1, (points + kMaxSegments - 1) / kMaxSegments);
+    for (const PlotPath& car : plot.paths)
+        for (std::size_t i = stride; i < car.points.size(); i += stride)
+            svg << "<line x1=\"" << frame.x(car.points[i - stride]) << "\" y1=\""
+                << frame.y(car.points[i - stride]) << "\" x2=\"" << frame.x(car.points[i])
+                << "\" y2=\"" << frame.y(car.points[i]) << "\" stroke=\""
+                << speed_colour(car.speed_kmh[i] / top_speed) << "\" stroke-width=\"2\"/>\n";
     svg << "<text x=\"" << kMargin << "\" y=\"" << chart_top - 25
         << "\" font-size=\"12\">top speed " << top_speed << " km/h</text>\n";
 
@@ -120,9 +128,11 @@ void write_drive_svg(const DrivePlot& plot, const std::optional<Track>& track,
         << static_cast<double>(n) * plot.dt << " simulated seconds</text>\n</svg>\n";
 
     std::ofstream file(path, std::ios::binary);
-    if (!file) throw Error("cannot open '" + path.string() + "' for the drive picture");
+    if (!file)
+        throw Error("cannot open '" + path.string() + "' for the " + plot.command + " picture");
     file << svg.str();
-    if (!file.flush()) throw Error("cannot write the drive picture '" + path.string() + "'");
+    if (!file.flush())
+        throw Error("cannot write the " + plot.command + " picture '" + path.string() + "'");
 }
 
 }  // namespace trackphys::cli

@@ -10,6 +10,7 @@
 #include "commands.hpp"
 #include "drive_recording.hpp"
 #include "drive_scene.hpp"
+#include "drive_svg.hpp"
 #include "interrupt_guard.hpp"
 #include "json_file.hpp"
 #include "progress_bar.hpp"
@@ -17,6 +18,7 @@
 #include "staged_outputs.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/io/recording.hpp"
+#include "trackphys/io/scenario.hpp"
 #include "trackphys/profile/trace_recorder.hpp"
 #include "trackphys/world/race_drivers.hpp"
 #include "trackphys/world/world.hpp"
@@ -25,22 +27,50 @@ namespace trackphys::cli {
 namespace {
 
 struct RaceOptions {
+    std::filesystem::path scenario_file;
     std::uint64_t seed = 7;
     std::size_t cars = 20;
     int laps = 0;
     double seconds = 0.0;
     int threads = 0;
     std::filesystem::path map;  ///< a baked map instead of the generated track
-    std::filesystem::path json, trace, record;
+    std::filesystem::path json, trace, record, svg;
 };
 
-constexpr std::size_t kMaxCars = 128;
+// What a race runs: the scenario file's track seed, car, field, autopilot speed and
+// duration (or the defaults: 20 default cars), with every option given on the command line
+// over it.
+struct Race {
+    Scenario scenario;
+    RaceSettings settings;
+};
+
+Race build_race(const RaceOptions& o, const CLI::App& command) {
+    const auto given = [&](const char* option) { return command.count(option) > 0; };
+    Race race;
+    Scenario& s = race.scenario;
+    if (!o.scenario_file.empty()) {
+        s = load_scenario(o.scenario_file);
+        if (s.free_mode() || !s.mesh.empty() || !s.map.empty())
+            throw Error("scenario '" + o.scenario_file.string() +
+                        "': a race runs on a generated track (track.seed), from its grid");
+    }
+    if (o.scenario_file.empty() || given("--cars")) s.cars = static_cast<int>(o.cars);
+    if (given("--seed")) s.seed = o.seed;
+    if (given("--laps")) s.laps = o.laps;
+    if (given("--seconds")) s.seconds = o.seconds;
+    // The field's speeds as the default race's (420 to 600 km/h) for a target of 600.
+    race.settings.fastest_kmh = s.target_speed_kmh;
+    race.settings.slowest_kmh = 0.7 * s.target_speed_kmh;
+    return race;
+}
+
 // A lap that takes longer than this (simulated) means a car is stuck: give up (as drive).
 constexpr double kMaxSecondsPerLap = 600.0;
 
 void check(const RaceOptions& o) {
-    if (o.cars < 1 || o.cars > kMaxCars)
-        throw Error("--cars must be in [1, " + std::to_string(kMaxCars) + "], got " +
+    if (o.cars < 1 || o.cars > static_cast<std::size_t>(max_scenario_cars))
+        throw Error("--cars must be in [1, " + std::to_string(max_scenario_cars) + "], got " +
                     std::to_string(o.cars));
     if (o.laps < 0) throw Error("--laps must be >= 0, got " + std::to_string(o.laps));
     if (!(o.seconds >= 0.0 && o.seconds < 1e7))
@@ -63,8 +93,12 @@ std::vector<RaceCarResult> classify(const RaceDrivers& drivers, const World& wor
     return results;
 }
 
-void run(const RaceOptions& o) {
+void run(const RaceOptions& o, const CLI::App& command) {
     check(o);
+    const Race race = build_race(o, command);
+    const Scenario& s = race.scenario;
+    if (std::string why = s.validate(); !why.empty()) throw Error(why);
+    const auto cars = static_cast<std::size_t>(s.cars);
     // As drive: outputs staged first and put in place only after the race succeeded.
     const InterruptGuard interrupt_guard;
     StagedOutputs outputs;
@@ -73,9 +107,9 @@ void run(const RaceOptions& o) {
     };
     const std::filesystem::path json = stage(o.json, "--json"),
                                 trace_file = stage(o.trace, "--trace"),
-                                record = stage(o.record, "--record");
+                                record = stage(o.record, "--record"), svg = stage(o.svg, "--svg");
 
-    const DriveScene scene = o.map.empty() ? make_track_scene(o.seed) : make_map_scene(o.map);
+    const DriveScene scene = o.map.empty() ? make_track_scene(s.seed) : make_map_scene(o.map);
     if (!scene.track)
         throw Error("the map '" + o.map.string() +
                     "' was baked from a mesh and has no centreline for the grid and the "
@@ -83,12 +117,12 @@ void run(const RaceOptions& o) {
     WorldSettings settings;
     settings.threads = o.threads;
     World world(scene.statics, settings, scene.plane_trees);
-    const CarSpec car = CarSpec::default_car();
-    RaceDrivers drivers(*scene.track, car, o.cars);
+    const CarSpec& car = s.car;
+    RaceDrivers drivers(*scene.track, car, cars, race.settings);
     drivers.add_cars(world);
 
-    const int laps = o.laps == 0 && o.seconds == 0.0 ? 1 : o.laps;
-    const double seconds = o.seconds > 0.0 ? o.seconds : laps * kMaxSecondsPerLap;
+    const int laps = s.laps == 0 && s.seconds == 0.0 ? 1 : s.laps;
+    const double seconds = s.seconds > 0.0 ? s.seconds : laps * kMaxSecondsPerLap;
     std::unique_ptr<TraceRecorder> trace;
     if (!trace_file.empty()) {
         trace = std::make_unique<TraceRecorder>();
@@ -96,16 +130,21 @@ void run(const RaceOptions& o) {
     }
     std::unique_ptr<RecordingWriter> recording;
     DriveRecordingPlan recording_plan;
-    std::vector<std::optional<int>> laps_done(o.cars);
+    std::vector<std::optional<int>> laps_done(cars);
     if (!record.empty()) {
-        recording_plan = plan_drive_recording(o.record, scene, {}, car, settings.dt_update, o.cars);
+        recording_plan = plan_drive_recording(o.record, scene, {}, car, settings.dt_update, cars);
         check_destination(recording_plan.track_mesh_file, "--record's track mesh");
         recording = std::make_unique<RecordingWriter>(record, recording_plan.header);
     }
 
+    DrivePlot plot;
+    plot.command = "race";
+    plot.dt = settings.dt_update;
+    if (!svg.empty()) plot.paths.resize(cars);
+
     RaceReport report;
     report.scene = scene.description;
-    report.cars = o.cars;
+    report.cars = cars;
     report.threads = settings.thread_count();
     ProgressBar progress(laps > 0 ? static_cast<double>(laps) : seconds);
     const auto wall_start = std::chrono::steady_clock::now();
@@ -119,8 +158,15 @@ void run(const RaceOptions& o) {
         report.car_contacts += profile.car_contacts;
         report.max_car_penetration_m =
             std::max(report.max_car_penetration_m, profile.max_car_penetration);
+        if (!svg.empty()) {
+            for (std::size_t i = 0; i < cars; ++i) {
+                plot.paths[i].points.push_back(world.car(i).state().position);
+                plot.paths[i].speed_kmh.push_back(world.car(i).speed() * 3.6);
+            }
+            plot.update_us.push_back(profile.update_us);
+        }
         if (recording) {
-            for (std::size_t i = 0; i < o.cars; ++i) laps_done[i] = drivers.laps(i);
+            for (std::size_t i = 0; i < cars; ++i) laps_done[i] = drivers.laps(i);
             recording->write_frame(world, laps_done);
         }
         // Laps of the last car (or time), beside the pole car's speed.
@@ -133,7 +179,7 @@ void run(const RaceOptions& o) {
     report.simulated_s = world.time();
     report.laps_completed = drivers.fewest_laps();
     report.classification = classify(drivers, world);
-    for (std::size_t i = 0; i < o.cars; ++i) report.resets += world.car_resets(i);
+    for (std::size_t i = 0; i < cars; ++i) report.resets += world.car_resets(i);
     report.state_hash = world.state_hash();
 
     print_race_report(report);
@@ -142,6 +188,7 @@ void run(const RaceOptions& o) {
                     std::to_string(laps) + " laps in " + std::to_string(seconds) +
                     " simulated seconds");
     if (!json.empty()) write_race_json(report, json);
+    if (!svg.empty()) write_drive_svg(plot, scene.track, svg);
     if (trace) write_trace_file(*trace, trace_file, o.trace);
     if (recording) recording->finish();
     commit_with_track_mesh(outputs, recording_plan, scene);
@@ -156,6 +203,10 @@ void add_race_command(CLI::App& app) {
         "Race a field of default cars on a generated track: a two-column grid, each car on its "
         "own autopilot and target speed, passing slower cars on the side; the cars collide. "
         "Prints the classification and the per-update profile of the whole world");
+    command->add_option("--scenario", o->scenario_file,
+                        "Race a scenario file: its track seed, car (every car's), cars, "
+                        "autopilot target speed (the fastest car's), laps and seconds; options "
+                        "given with it override the file's values");
     CLI::Option* seed = command->add_option("--seed", o->seed, "Seed of the generated track")
                             ->check(not_negative())
                             ->capture_default_str();
@@ -177,9 +228,11 @@ void add_race_command(CLI::App& app) {
     command->add_option("--json", o->json, "Write the figures as JSON");
     command->add_option("--trace", o->trace,
                         "Write a Chrome trace (Perfetto) of the updates run on one thread");
+    command->add_option("--svg", o->svg,
+                        "Plot every car's path over the track and the update times");
     command->add_option("--record", o->record,
                         "Write every car's pose and contacts per update (JSON Lines) for a viewer");
-    command->callback([o] { run(*o); });
+    command->callback([o, command] { run(*o, *command); });
 }
 
 }  // namespace trackphys::cli

@@ -117,6 +117,11 @@ std::string Scenario::validate() const {
     check_range(why, "inputs.throttle", inputs.throttle, 0.0, 1.0);
     check_range(why, "inputs.brake", inputs.brake, 0.0, 1.0);
     check_range(why, "inputs.steer", inputs.steer, -1.0, 1.0);
+    check_range(why, "cars", cars, 1.0, max_scenario_cars);
+    if (why.tellp() == 0 && cars > 1 && (free_mode() || !mesh.empty() || !map.empty()))
+        why << "Scenario.cars: a field of " << cars
+            << " cars races from the generated track's grid (track.seed), not on a mesh, a map "
+               "or from a spawn point";
     check_range(why, "laps", laps, 0.0, max_scenario_laps);
     check_range(why, "seconds", seconds, 0.0, max_scenario_seconds);
     if (why.tellp() == 0 && free_mode() && laps > 0)
@@ -138,6 +143,7 @@ Scenario parse_scenario(std::string_view json_text, const std::string& source,
     read_track(in, s, base_folder);
     read_car(in, s, base_folder);
     read_driver(in, s);
+    in.read("cars", s.cars);
     in.read("laps", s.laps);
     in.read("seconds", s.seconds);
     in.finish();
@@ -168,6 +174,7 @@ std::string scenario_to_json(const Scenario& s) {
             {"throttle", s.inputs.throttle}, {"brake", s.inputs.brake}, {"steer", s.inputs.steer}};
     else
         out["autopilot"] = {{"target_speed_kmh", s.target_speed_kmh}};
+    if (s.cars != 1) out["cars"] = s.cars;
     out["laps"] = s.laps;
     out["seconds"] = s.seconds;
     // A mesh name from the command line need not be UTF-8: replace what JSON cannot hold.

@@ -11,6 +11,13 @@
 
 namespace trackphys {
 
+AutopilotSettings race_autopilot() {
+    AutopilotSettings driver;
+    driver.lookahead_min = 6.0;
+    driver.lookahead_time = 0.2;
+    return driver;
+}
+
 RaceDrivers::RaceDrivers(const Track& track, const CarSpec& car, std::size_t cars,
                          RaceSettings settings)
     : track_(&track), car_(car), settings_(settings) {
@@ -18,22 +25,38 @@ RaceDrivers::RaceDrivers(const Track& track, const CarSpec& car, std::size_t car
     if (!(std::isfinite(settings_.slowest_kmh) && settings_.slowest_kmh > 0.0 &&
           std::isfinite(settings_.fastest_kmh) && settings_.fastest_kmh >= settings_.slowest_kmh))
         throw Error("RaceSettings: speeds must be finite and 0 < slowest_kmh <= fastest_kmh");
+    if (!(std::isfinite(settings_.least_grip_use) && settings_.least_grip_use > 0.0 &&
+          std::isfinite(settings_.most_grip_use) &&
+          settings_.most_grip_use >= settings_.least_grip_use))
+        throw Error(
+            "RaceSettings: grip shares must be finite and 0 < least_grip_use <= most_grip_use");
     if (!(settings_.lane_offset >= 0.0 && settings_.pass_look_ahead >= 0.0 &&
           settings_.lane_width >= 0.0 && settings_.follow_gap >= 0.0))
         throw Error(
             "RaceSettings: lane_offset, pass_look_ahead, lane_width and follow_gap must be >= 0");
+    if (!(std::isfinite(settings_.lane_change_speed) && settings_.lane_change_speed > 0.0))
+        throw Error("RaceSettings: lane_change_speed must be finite and > 0");
     for (std::size_t i = 0; i < cars; ++i) {
         const double share =
             cars == 1 ? 0.0 : static_cast<double>(i) / static_cast<double>(cars - 1);
-        AutopilotSettings driver;
+        AutopilotSettings driver = settings_.driver;
         driver.target_speed =
             (settings_.slowest_kmh + share * (settings_.fastest_kmh - settings_.slowest_kmh)) / 3.6;
+        driver.grip_use =
+            settings_.least_grip_use + share * (settings_.most_grip_use - settings_.least_grip_use);
         target_speeds_.push_back(driver.target_speed);
         pilots_.emplace_back(track, car, driver);
     }
-    lanes_.assign(cars, 0.0);
-    lap_times_.resize(cars);
-    last_crossing_.assign(cars, 0.0);
+    for (std::size_t i = 0; i < cars; ++i) progress_.lanes.push_back(own_lane(i));
+    progress_.lines = progress_.lanes;
+    progress_.lap_times.resize(cars);
+    progress_.last_crossings.assign(cars, 0.0);
+    next_lanes_.assign(cars, 0.0);
+}
+
+double RaceDrivers::own_lane(std::size_t car) const {
+    // Even grid places are in the left column.
+    return car % 2 == 0 ? settings_.lane_offset : -settings_.lane_offset;
 }
 
 void RaceDrivers::add_cars(World& world) const {
@@ -73,20 +96,37 @@ RaceDrivers::CarAhead RaceDrivers::car_ahead(const World& world, std::size_t i, 
 
 double RaceDrivers::lane(const World& world, std::size_t i) const {
     constexpr double kAlongside = -6.0;  // m: a car this far behind is still beside us
-    // Even grid places are in the left column.
-    const double own = i % 2 == 0 ? settings_.lane_offset : -settings_.lane_offset;
+    constexpr double kBeside = 6.0;      // m: and this far ahead
+    constexpr double kMirror = -20.0;    // m: a lane change looks this far back
+    const double own = own_lane(i);
+    // Blocked: the nearest car ahead in the lane is slower. Free: nobody from kMirror
+    // behind to beside, and the nearest car ahead (if any) pulls away.
     const auto blocked = [&](double line) {
         const CarAhead ahead = car_ahead(world, i, line, kAlongside);
         return std::isfinite(ahead.gap) && ahead.closing > 0.0;
     };
-    return blocked(own) && !blocked(-own) ? -own : own;
+    const auto free = [&](double line) {
+        const CarAhead nearest = car_ahead(world, i, line, kMirror);
+        return !(nearest.gap < kBeside) && !(nearest.closing > 0.0);
+    };
+    if (progress_.lanes[i] == own) return blocked(own) && free(-own) ? -own : own;
+    // Passing: back into its own lane once it is free.
+    return free(own) ? own : -own;
+}
+
+double RaceDrivers::line_towards(std::size_t i, double lane, double dt) const {
+    const double step = settings_.lane_change_speed * dt;
+    return std::clamp(lane, progress_.lines[i] - step, progress_.lines[i] + step);
 }
 
 void RaceDrivers::drive(World& world) {
     // Every lane from the same instant, before any car's inputs change.
-    for (std::size_t i = 0; i < pilots_.size(); ++i) lanes_[i] = lane(world, i);
+    for (std::size_t i = 0; i < pilots_.size(); ++i) next_lanes_[i] = lane(world, i);
+    const double dt = world.settings().dt_update;
     for (std::size_t i = 0; i < pilots_.size(); ++i) {
-        pilots_[i].set_lane_offset(lanes_[i]);
+        progress_.lanes[i] = next_lanes_[i];
+        progress_.lines[i] = line_towards(i, next_lanes_[i], dt);
+        pilots_[i].set_lane_offset(progress_.lines[i]);
         Car& car = world.car(i);
         CarInputs inputs = pilots_[i].drive(car);
         // Only a car in front: two cars side by side must not both lift off for each other.
@@ -95,7 +135,7 @@ void RaceDrivers::drive(World& world) {
         constexpr double kInFront = 1.0;       // m
         constexpr double kPullingAway = -2.0;  // m/s
         constexpr double kCrawling = 5.0;      // m/s
-        const CarAhead ahead = car_ahead(world, i, lanes_[i], kInFront);
+        const CarAhead ahead = car_ahead(world, i, progress_.lines[i], kInFront);
         if (ahead.gap < settings_.follow_gap && ahead.closing > kPullingAway &&
             car.speed() > kCrawling) {
             // Closing at 10 m/s or more brakes fully (anti-lock keeps the car steerable).
@@ -111,8 +151,9 @@ void RaceDrivers::after_update(const World& world) {
         const int before = pilots_[i].laps();
         pilots_[i].locate(world.car(i));
         if (pilots_[i].laps() <= before) continue;
-        if (pilots_[i].laps() > 1) lap_times_[i].push_back(world.time() - last_crossing_[i]);
-        last_crossing_[i] = world.time();
+        if (pilots_[i].laps() > 1)
+            progress_.lap_times[i].push_back(world.time() - progress_.last_crossings[i]);
+        progress_.last_crossings[i] = world.time();
     }
 }
 
@@ -124,17 +165,21 @@ int RaceDrivers::fewest_laps() const {
     return fewest;
 }
 
-std::vector<AutopilotProgress> RaceDrivers::progress() const {
-    std::vector<AutopilotProgress> all;
-    for (const Autopilot& pilot : pilots_) all.push_back(pilot.progress());
+RaceProgress RaceDrivers::progress() const {
+    RaceProgress all = progress_;
+    for (const Autopilot& pilot : pilots_) all.pilots.push_back(pilot.progress());
     return all;
 }
 
-void RaceDrivers::set_progress(std::span<const AutopilotProgress> progress) {
-    if (progress.size() != pilots_.size())
-        throw Error("RaceDrivers::set_progress: " + std::to_string(progress.size()) +
-                    " progresses for " + std::to_string(pilots_.size()) + " cars");
-    for (std::size_t i = 0; i < pilots_.size(); ++i) pilots_[i].set_progress(progress[i]);
+void RaceDrivers::set_progress(const RaceProgress& progress) {
+    const std::size_t n = pilots_.size();
+    if (progress.pilots.size() != n || progress.lanes.size() != n || progress.lines.size() != n ||
+        progress.lap_times.size() != n || progress.last_crossings.size() != n)
+        throw Error("RaceDrivers::set_progress: the progress is not of a field of " +
+                    std::to_string(n) + " cars");
+    for (std::size_t i = 0; i < n; ++i) pilots_[i].set_progress(progress.pilots[i]);
+    progress_ = progress;
+    progress_.pilots.clear();
 }
 
 }  // namespace trackphys

@@ -191,6 +191,10 @@ TEST(ScenarioJson, ReadsEveryKeyAndRoundTrips) {
     EXPECT_EQ(autopilot.laps, 2);
     EXPECT_EQ(scenario_to_json(parse_scenario(scenario_to_json(autopilot))),
               scenario_to_json(autopilot));
+
+    const Scenario race = parse_scenario(R"({"cars": 20, "laps": 3})");
+    EXPECT_EQ(race.cars, 20);
+    EXPECT_EQ(parse_scenario(scenario_to_json(race)).cars, 20);
 }
 
 TEST(ScenarioJson, EveryBadFileNamesTheKeyAndTheReason) {
@@ -227,6 +231,10 @@ TEST(ScenarioJson, EveryBadFileNamesTheKeyAndTheReason) {
          "Scenario.target_speed_kmh must be in (0, 1500], got 2000"},
         {R"({"autopilot": {"speed": 200}})",
          "autopilot.speed: unknown key (expected one of: target_speed_kmh)"},
+        {R"({"cars": 0})", "Scenario.cars must be in [1, 128], got 0"},
+        {R"({"cars": 129})", "Scenario.cars must be in [1, 128], got 129"},
+        {R"({"cars": 2, "track": {"spawn": [0, 1, 0]}, "seconds": 1})",
+         "Scenario.cars: a field of 2 cars races from the generated track's grid"},
         {R"({"laps": -1})", "Scenario.laps must be in [0, 1000], got -1"},
         {R"({"laps": 5000000000})", "laps: expected a whole number in int's range"},
         {R"({"seconds": -1})", "Scenario.seconds must be in [0, 86400], got -1"},
@@ -239,7 +247,8 @@ TEST(ScenarioJson, EveryBadFileNamesTheKeyAndTheReason) {
         {R"({"car": 5})", "car: expected an object, got the number 5"},
         {R"({"car": ""})", "car: empty file name"},
         {R"({"duration": 10})",
-         "duration: unknown key (expected one of: track, car, autopilot, inputs, laps, seconds)"},
+         "duration: unknown key (expected one of: track, car, autopilot, inputs, cars, laps, "
+         "seconds)"},
         {R"({"laps": 1, "laps": 2})", "duplicate key 'laps' in the top-level object"},
         {"{\"laps\": 1\n\"seconds\": 2}", "malformed JSON, parse error at line 2, column 9"},
     };

@@ -21,6 +21,7 @@
 ///       "car": {...} or "car.json",            inline (car_spec_json.hpp) or a car spec file
 ///       "autopilot": {"target_speed_kmh": 600},       drives the generated track, or
 ///       "inputs": {"throttle": 0.5, "brake": 0, "steer": 0},   fixed inputs, needs a spawn
+///       "cars": 20,                            a field: `trackphys race` (drive: 1)
 ///       "laps": 1,
 ///       "seconds": 30
 ///     }
@@ -30,7 +31,9 @@
 /// (track.spawn) switches to free mode: the car lands on the surface below it and drives
 /// with fixed inputs; a mesh needs one, and so does a map baked from a mesh (a map baked from
 /// a generated track keeps its centreline for the autopilot). Relative file names
-/// (track.mesh, track.map, a car file) are relative to the scenario file's folder.
+/// (track.mesh, track.map, a car file) are relative to the scenario file's folder. A race
+/// (`cars` above 1) starts every car, of the scenario's car spec, from the generated track's
+/// grid, the autopilots' target speeds spread from 70% of target_speed_kmh to all of it.
 
 namespace trackphys {
 
@@ -40,6 +43,8 @@ inline constexpr double max_scenario_seconds = 86400.0;
 inline constexpr int max_scenario_laps = 1000;
 /// Fastest autopilot target (km/h): the design's 1000 km/h with margin.
 inline constexpr double max_target_speed_kmh = 1500.0;
+/// Most cars in a race (`trackphys race --cars`).
+inline constexpr int max_scenario_cars = 128;
 
 /// One drive: the track, the car, who drives it and for how long.
 struct TRACKPHYS_API Scenario {
@@ -57,6 +62,9 @@ struct TRACKPHYS_API Scenario {
     /// whichever ends first; both 0 means one lap (autopilot). Free mode needs seconds.
     int laps = 0;
     double seconds = 0.0;
+    /// Cars in the field: 1 drives alone (`trackphys drive`), more race from the generated
+    /// track's grid (`trackphys race`), in [1, max_scenario_cars].
+    int cars = 1;
 
     bool free_mode() const { return spawn.has_value(); }
 

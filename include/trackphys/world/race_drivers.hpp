@@ -1,7 +1,6 @@
 #pragma once
 
 #include <cstddef>
-#include <span>
 #include <vector>
 
 #include "trackphys/dynamics/car_spec.hpp"
@@ -13,15 +12,27 @@
 
 namespace trackphys {
 
+/// The autopilot a race gives every car (its target speed is then set per car): a shorter
+/// look-ahead than a lone lap's, so that a car keeps to its lane through the turns instead
+/// of cutting them by metres (docs/design.md, "Races").
+TRACKPHYS_API AutopilotSettings race_autopilot();
+
 /// How a field of autopilots races.
 struct RaceSettings {
-    /// Target speeds on straights (km/h): the pole car has the slowest, the last car of the
-    /// grid the fastest, the others spread evenly between, so the field overtakes.
+    /// Each car's pace: its target speed on straights (km/h) and the share of its tyres'
+    /// grip it plans to use in turns (AutopilotSettings::grip_use). The pole car has the
+    /// slowest, the last car of the grid the fastest, the others spread evenly between, so
+    /// the field overtakes: on a track of turns the grip share sets the lap time, the
+    /// target speed only the top speed on the longest straights.
     double slowest_kmh = 420.0;
     double fastest_kmh = 600.0;
-    /// The two lanes are this far (m) left and right of the centreline, the grid's
-    /// columns: a car keeps to the lane of its column and moves to the other one to pass.
-    double lane_offset = 2.5;
+    double least_grip_use = 0.65;
+    double most_grip_use = 0.75;
+    /// The two lanes are this far (m) left and right of the centreline: a car keeps to the
+    /// lane of its grid column and moves to the other one to pass. Near enough the centre
+    /// that a car in a lane, its line-keeping error and a bump from a car beside it stay
+    /// clear of the wall.
+    double lane_offset = 2.0;
     /// A lane is blocked by a slower car in it (within lane_width of its line) from a few
     /// metres behind (alongside) to pass_look_ahead ahead along the track (m).
     double pass_look_ahead = 60.0;
@@ -29,23 +40,40 @@ struct RaceSettings {
     /// A car lifts off closer than this (m) behind the car ahead in its lane, unless that
     /// one pulls away, and brakes in proportion to how fast it closes in.
     double follow_gap = 20.0;
+    /// How fast (m/s across the road) a car's line moves to a new lane: a lane change is a
+    /// smooth swerve, not a step the steering would overshoot.
+    double lane_change_speed = 3.0;
+    /// Every car's autopilot; its target_speed and grip_use are replaced by the spread
+    /// above.
+    AutopilotSettings driver = race_autopilot();
     RaceGridSettings grid;
 };
 
+/// Where a race is: all RaceDrivers remembers between updates, to save beside a world
+/// snapshot so that a resumed race continues identically.
+struct RaceProgress {
+    std::vector<AutopilotProgress> pilots;  ///< per car
+    std::vector<double> lanes;  ///< the lane each car heads for (m left of the centreline)
+    std::vector<double> lines;  ///< the line each car steers for now, on its way there (m)
+    std::vector<std::vector<double>> lap_times;  ///< per car (s)
+    std::vector<double> last_crossings;          ///< per car: its last start-line crossing (s)
+};
+
 /// A field of cars racing laps of a generated track: a starting grid (race_grid), one
-/// Autopilot per car with its own target speed, and a lane per car, chosen every update
-/// from the field: its own lane, or the other one when a slower car is ahead in its own
-/// and none in the other (else it stays, and lifts off behind the car ahead, which it may
-/// still bump under braking). Everything
-/// it decides is a function of the cars' states and the autopilots' progress, so a race
-/// is as deterministic as its World.
+/// Autopilot per car with its own pace, and a lane per car, chosen every update from the
+/// field: a car leaves its own lane when a slower car is ahead in it and the other lane is
+/// free (nobody in it from 20 m behind, as a driver checks the mirror, to beside, and the
+/// car ahead there not slower), and comes back once its own lane is free; else it stays,
+/// and lifts off behind the car ahead, which it may still bump under braking. Its line
+/// moves to a new lane at lane_change_speed. Everything it decides is a function of the
+/// cars' states and its progress, so a race is as deterministic as its World.
 ///
 /// Laps: the grid stands behind the start line, so a car's first crossing starts its lap
 /// 1 (a flying start); laps(i) counts the crossings after it.
 class TRACKPHYS_API RaceDrivers {
   public:
-    /// Throws trackphys::Error for no cars, speeds that are not finite and > 0 or in the
-    /// wrong order, or negative lane distances.
+    /// Throws trackphys::Error for no cars, speeds or grip shares that are not finite and
+    /// > 0 or in the wrong order, or negative lane distances.
     RaceDrivers(const Track& track, const CarSpec& car, std::size_t cars,
                 RaceSettings settings = {});
 
@@ -62,14 +90,18 @@ class TRACKPHYS_API RaceDrivers {
     /// Fewest laps completed by any car.
     int fewest_laps() const;
     /// Car i's lap times (s), one per completed lap.
-    const std::vector<double>& lap_times(std::size_t car) const { return lap_times_.at(car); }
+    const std::vector<double>& lap_times(std::size_t car) const {
+        return progress_.lap_times.at(car);
+    }
     /// Car i's target speed on straights (m/s).
     double target_speed(std::size_t car) const { return target_speeds_.at(car); }
     const Autopilot& autopilot(std::size_t car) const { return pilots_.at(car); }
 
-    /// The autopilots' progress, to save beside a world snapshot, and back.
-    std::vector<AutopilotProgress> progress() const;
-    void set_progress(std::span<const AutopilotProgress> progress);
+    /// The race's progress, to save beside a world snapshot, and back. set_progress
+    /// throws trackphys::Error for a progress of another field size or as
+    /// Autopilot::set_progress does.
+    RaceProgress progress() const;
+    void set_progress(const RaceProgress& progress);
 
   private:
     // Where a car is across the road (m left of the centreline) and along it (m from the
@@ -79,8 +111,12 @@ class TRACKPHYS_API RaceDrivers {
         double along;
     };
     RoadPosition road_position(const World& world, std::size_t car) const;
+    // The lane of car i's grid column (m left of the centreline).
+    double own_lane(std::size_t car) const;
     // Car i's lane for the next update (m left of the centreline).
     double lane(const World& world, std::size_t i) const;
+    // Car i's line for the next update: from its current one towards its lane.
+    double line_towards(std::size_t i, double lane, double dt) const;
     // The nearest car ahead of car i within lane_width of `line`, from `from` m (negative:
     // behind, alongside) to pass_look_ahead m along the track: how far ahead (m, infinite
     // for none) and how fast car i closes in on it (m/s).
@@ -95,9 +131,8 @@ class TRACKPHYS_API RaceDrivers {
     RaceSettings settings_;
     std::vector<Autopilot> pilots_;
     std::vector<double> target_speeds_;
-    std::vector<double> lanes_;                   // this update's, chosen before any is set
-    std::vector<std::vector<double>> lap_times_;  // per car
-    std::vector<double> last_crossing_;           // per car: time of its last crossing (s)
+    RaceProgress progress_;           // all but the autopilots' (pilots stays empty)
+    std::vector<double> next_lanes_;  // this update's, chosen before any is set
 };
 
 }  // namespace trackphys

@@ -1,0 +1,107 @@
+// Issue 16's race: a field of default cars racing laps of the default track finishes clean
+// (every car, no reset, on the road between the walls, cars that touch but never sink into
+// each other), and gives the same bits on 1, 2 and 4 threads and across a snapshot. The
+// 20-car, 3-lap race takes minutes, so it is labelled "long" (tests/world/CMakeLists.txt);
+// the 8-car lap checks the same in the default run.
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <optional>
+
+#include <gtest/gtest.h>
+
+#include <glm/geometric.hpp>
+
+#include "trackphys/world/race_drivers.hpp"
+#include "trackphys/world/world.hpp"
+#include "world/track_world.hpp"
+
+namespace trackphys {
+namespace {
+
+constexpr double kSaveAt = 30.0;      // s
+constexpr double kGiveUpAt = 1200.0;  // s: far longer than any of these races takes
+
+struct RaceRun {
+    std::uint64_t hash = 0;
+    int fewest_laps = 0;
+    std::uint64_t resets = 0;
+    std::uint64_t car_contacts = 0;
+    double deepest = 0.0;   // the deepest car-car penetration (m)
+    double lowest_m = 1e9;  // the lowest centre of mass above the road (m)
+    double widest_m = 0.0;  // the farthest a centre of mass got from the centreline (m)
+    std::optional<WorldSnapshot> snapshot;
+    RaceProgress progress;
+};
+
+struct Race {
+    std::size_t cars;
+    int laps;
+};
+
+// Runs `race` to its laps; saves at kSaveAt when asked, or resumes from `from`.
+RaceRun run(const Race& race, int threads, bool save, const RaceRun* from = nullptr) {
+    const test::TrackWorld& track = test::default_track();
+    WorldSettings settings;
+    settings.threads = threads;
+    World world(track.statics, settings, track.trees);
+    RaceDrivers drivers(track.track, CarSpec::default_car(), race.cars);
+    drivers.add_cars(world);
+    if (from) {
+        world.restore_state(*from->snapshot);
+        drivers.set_progress(from->progress);
+    }
+    RaceRun result;
+    while (drivers.fewest_laps() < race.laps && world.time() < kGiveUpAt) {
+        drivers.drive(world);
+        world.update();
+        drivers.after_update(world);
+        result.car_contacts += world.last_profile().car_contacts;
+        result.deepest = std::max(result.deepest, world.last_profile().max_car_penetration);
+        for (std::size_t i = 0; i < race.cars; ++i) {
+            const CenterlineSample& s =
+                track.track.centerline[drivers.autopilot(i).nearest_sample()];
+            const glm::dvec3 offset = world.car(i).state().position - s.position;
+            result.lowest_m = std::min(result.lowest_m, glm::dot(offset, s.up));
+            result.widest_m = std::max(result.widest_m, std::abs(glm::dot(offset, s.left)));
+        }
+        if (save && !result.snapshot && world.time() >= kSaveAt - 1e-9) {
+            result.snapshot = world.save_state();
+            result.progress = drivers.progress();
+        }
+    }
+    result.hash = world.state_hash();
+    result.fewest_laps = drivers.fewest_laps();
+    for (std::size_t i = 0; i < race.cars; ++i) result.resets += world.car_resets(i);
+    return result;
+}
+
+void expect_clean_and_deterministic(const Race& race) {
+    const RaceRun reference = run(race, 1, true);
+    EXPECT_EQ(reference.fewest_laps, race.laps) << "a car did not finish";
+    EXPECT_EQ(reference.resets, 0u);
+    EXPECT_GT(reference.car_contacts, 0u) << "no car ever touched another";
+    EXPECT_LT(reference.deepest, 0.05) << "m of car-car penetration";
+    EXPECT_GT(reference.lowest_m, 0.0) << "a car's centre went below the road";
+    // The wall's inner face stands at half the width: a centre of mass a car's half-width
+    // (about 1 m) short of it is a car against the wall.
+    EXPECT_LT(reference.widest_m, 0.5 * test::default_track().track.params.width_m - 1.0)
+        << "a car's centre came within a metre of a wall";
+
+    for (const int threads : {2, 4})
+        EXPECT_EQ(run(race, threads, false).hash, reference.hash) << threads << " threads";
+    ASSERT_TRUE(reference.snapshot);
+    EXPECT_EQ(run(race, 2, false, &reference).hash, reference.hash)
+        << "resumed at " << kSaveAt << " s";
+}
+
+TEST(Race, EightCarsFinishALapCleanlyAndTheSameOnAnyThreads) {
+    expect_clean_and_deterministic({8, 1});
+}
+
+TEST(Race, TwentyCarsFinishThreeLapsCleanlyAndTheSameOnAnyThreads) {
+    expect_clean_and_deterministic({20, 3});
+}
+
+}  // namespace
+}  // namespace trackphys
