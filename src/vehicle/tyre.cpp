@@ -106,16 +106,23 @@ Tyre::Tyre(const TyreSpec& spec)
       peak_slip_ratio_(spec.longitudinal.peak_slip()),
       peak_lateral_slip_(spec.lateral.peak_slip()) {}
 
+TyreForce Tyre::peaks(double load, double road_grip) const {
+    return {road_grip * spec_.longitudinal.peak(load, spec_.nominal_load),
+            road_grip * spec_.lateral.peak(load, spec_.nominal_load)};
+}
+
 TyreForce Tyre::force(double slip_ratio, double lateral_slip, double load, double road_grip) const {
     if (!(load > 0.0)) return {};
+    return force(slip_ratio, lateral_slip, peaks(load, road_grip));
+}
+
+TyreForce Tyre::force(double slip_ratio, double lateral_slip, const TyreForce& peak) const {
     const double sx = slip_ratio / peak_slip_ratio_;
     const double sy = lateral_slip / peak_lateral_slip_;
     const double s = std::hypot(sx, sy);
     if (s == 0.0) return {};
-    const double fx = spec_.longitudinal.force(
-        s * peak_slip_ratio_, road_grip * spec_.longitudinal.peak(load, spec_.nominal_load));
-    const double fy = spec_.lateral.force(s * peak_lateral_slip_,
-                                          road_grip * spec_.lateral.peak(load, spec_.nominal_load));
+    const double fx = spec_.longitudinal.force(s * peak_slip_ratio_, peak.longitudinal);
+    const double fy = spec_.lateral.force(s * peak_lateral_slip_, peak.lateral);
     return {fx * sx / s, fy * sy / s};
 }
 

@@ -90,6 +90,12 @@ class TRACKPHYS_API Tyre {
     /// curves describe (0.05 for ice).
     TyreForce force(double slip_ratio, double lateral_slip, double load,
                     double road_grip = 1.0) const;
+    /// The same force from the peaks (N) that peaks() gives for its load and road: a wheel
+    /// that needs the peaks for more than the force computes them once.
+    TyreForce force(double slip_ratio, double lateral_slip, const TyreForce& peak) const;
+    /// Each curve's peak force D (N) under load F_z (N) on a road of grip road_grip: the
+    /// semi-axes of the friction ellipse.
+    TyreForce peaks(double load, double road_grip = 1.0) const;
 
   private:
     TyreSpec spec_;
