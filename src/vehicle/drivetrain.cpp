@@ -139,9 +139,9 @@ void Vehicle::begin_substep(double throttle, double brake, double car_speed, dou
         Wheel& wheel = wheels_[w];
         const Tyre& tyre = tyre_of(wheel);
         const double slip = state_.wheels[w].slip_ratio;
-        const double combined_slip =
-            std::hypot(slip / tyre.peak_slip_ratio(),
-                       state_.wheels[w].lateral_slip / tyre.peak_lateral_slip());
+        const double sx = slip / tyre.peak_slip_ratio();
+        const double sy = state_.wheels[w].lateral_slip / tyre.peak_lateral_slip();
+        const double combined_slip = std::sqrt(sx * sx + sy * sy);
         if (spec_.traction_control && wheel.drive_torque > 0.0 && slip > 0.0)
             wheel.drive_torque *= slip_limiter(combined_slip);
         const int axle = wheel.front ? 0 : 1;

@@ -119,7 +119,7 @@ TyreForce Tyre::force(double slip_ratio, double lateral_slip, double load, doubl
 TyreForce Tyre::force(double slip_ratio, double lateral_slip, const TyreForce& peak) const {
     const double sx = slip_ratio / peak_slip_ratio_;
     const double sy = lateral_slip / peak_lateral_slip_;
-    const double s = std::hypot(sx, sy);
+    const double s = std::sqrt(sx * sx + sy * sy);  // bounded slips: no hypot needed
     if (s == 0.0) return {};
     const double fx = spec_.longitudinal.force(s * peak_slip_ratio_, peak.longitudinal);
     const double fy = spec_.lateral.force(s * peak_lateral_slip_, peak.lateral);

@@ -122,8 +122,12 @@ TyreForce Vehicle::wheel_force(std::size_t w, double load, double rolling_veloci
     const auto damped = [&](double spin) {
         TyreForce total{force.longitudinal - damping_x * (rolling_velocity - spin * r),
                         force.lateral - damping_y * lateral_velocity};
-        const double used =
-            load > 0.0 ? std::hypot(total.longitudinal / dx, total.lateral / dy) : 0.0;
+        double used = 0.0;
+        if (load > 0.0) {
+            const double ux = total.longitudinal / dx;
+            const double uy = total.lateral / dy;
+            used = std::sqrt(ux * ux + uy * uy);
+        }
         if (used > 1.0) total.longitudinal /= used, total.lateral /= used;
         return std::pair(total, used > 1.0);
     };
