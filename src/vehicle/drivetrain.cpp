@@ -12,11 +12,14 @@ namespace {
 
 constexpr double kRpmPerRadPerSecond = 60.0 / (2.0 * std::numbers::pi);
 
-// The share of the peak slip over which anti-lock and traction control fade a wheel's
-// torque out: full torque up to 0.9 kappa_peak, none beyond 1.2 kappa_peak, where the
-// curve is within a few per cent of its peak.
-double slip_limiter(double slip, double peak) {
-    return std::clamp((1.2 * peak - slip) / (0.3 * peak), 0.0, 1.0);
+// How much of its torque anti-lock or traction control leaves a wheel whose tyre works at
+// combined slip s (Tyre::force's normalised slip, 1 at the friction ellipse): all up to
+// s = 0.9, none beyond 1.2, where the curve is within a few per cent of its peak. The
+// combined slip, not the slip ratio alone: a tyre turning at its peak slip angle has no
+// grip left to drive or brake with, and a wheel driven or braked to its longitudinal peak
+// in a turn loses its lateral force (a rear-driven car spins out of the turn).
+double slip_limiter(double combined_slip) {
+    return std::clamp((1.2 - combined_slip) / 0.3, 0.0, 1.0);
 }
 
 // A limited-slip clutch between two outputs turning at speeds a and b (rad/s): the torque
@@ -134,16 +137,20 @@ void Vehicle::begin_substep(double throttle, double brake, double car_speed, dou
 
     for (std::size_t w = 0; w < wheels_.size(); ++w) {
         Wheel& wheel = wheels_[w];
-        const double peak = tyre_of(wheel).peak_slip_ratio();
+        const Tyre& tyre = tyre_of(wheel);
         const double slip = state_.wheels[w].slip_ratio;
-        if (spec_.traction_control && wheel.drive_torque > 0.0)
-            wheel.drive_torque *= slip_limiter(slip, peak);
+        const double sx = slip / tyre.peak_slip_ratio();
+        const double sy = state_.wheels[w].lateral_slip / tyre.peak_lateral_slip();
+        const double combined_slip = std::sqrt(sx * sx + sy * sy);
+        if (spec_.traction_control && wheel.drive_torque > 0.0 && slip > 0.0)
+            wheel.drive_torque *= slip_limiter(combined_slip);
         const int axle = wheel.front ? 0 : 1;
         const double bias = wheel.front ? front_brake_share_ : 1.0 - front_brake_share_;
         wheel.brake_torque = brake * spec_.max_brake_torque * bias / axle_wheels[axle];
         // Anti-lock acts above walking pace only, as real systems do: at rest the brake
         // must hold the car however the tyres deflect.
-        if (spec_.anti_lock && car_speed > 1.0) wheel.brake_torque *= slip_limiter(-slip, peak);
+        if (spec_.anti_lock && car_speed > 1.0 && slip < 0.0)
+            wheel.brake_torque *= slip_limiter(combined_slip);
     }
 }
 

@@ -99,23 +99,50 @@ TyreSpec validated(const TyreSpec& spec) {
     return spec;
 }
 
+std::vector<double> shape_table(const MagicFormulaCurve& curve, double peak_slip) {
+    std::vector<double> table(Tyre::kTableSpan * Tyre::kTableSteps + 1);
+    for (std::size_t k = 0; k < table.size(); ++k)
+        table[k] = curve.force(static_cast<double>(k) / Tyre::kTableSteps * peak_slip, 1.0);
+    return table;
+}
+
+// F / D of curve at normalised slip s >= 0, from its table (peak_slip: the curve's).
+double shape_at(const std::vector<double>& table, const MagicFormulaCurve& curve, double peak_slip,
+                double s) {
+    const double u = s * Tyre::kTableSteps;
+    if (!(u < Tyre::kTableSpan * Tyre::kTableSteps)) return curve.force(s * peak_slip, 1.0);
+    const auto k = static_cast<std::size_t>(u);
+    const double t = u - static_cast<double>(k);
+    return table[k] + t * (table[k + 1] - table[k]);
+}
+
 }  // namespace
 
 Tyre::Tyre(const TyreSpec& spec)
     : spec_(validated(spec)),
       peak_slip_ratio_(spec.longitudinal.peak_slip()),
-      peak_lateral_slip_(spec.lateral.peak_slip()) {}
+      peak_lateral_slip_(spec.lateral.peak_slip()),
+      longitudinal_shape_(shape_table(spec.longitudinal, peak_slip_ratio_)),
+      lateral_shape_(shape_table(spec.lateral, peak_lateral_slip_)) {}
+
+TyreForce Tyre::peaks(double load, double road_grip) const {
+    return {road_grip * spec_.longitudinal.peak(load, spec_.nominal_load),
+            road_grip * spec_.lateral.peak(load, spec_.nominal_load)};
+}
 
 TyreForce Tyre::force(double slip_ratio, double lateral_slip, double load, double road_grip) const {
     if (!(load > 0.0)) return {};
+    return force(slip_ratio, lateral_slip, peaks(load, road_grip));
+}
+
+TyreForce Tyre::force(double slip_ratio, double lateral_slip, const TyreForce& peak) const {
     const double sx = slip_ratio / peak_slip_ratio_;
     const double sy = lateral_slip / peak_lateral_slip_;
-    const double s = std::hypot(sx, sy);
+    const double s = std::sqrt(sx * sx + sy * sy);  // bounded slips: no hypot needed
     if (s == 0.0) return {};
-    const double fx = spec_.longitudinal.force(
-        s * peak_slip_ratio_, road_grip * spec_.longitudinal.peak(load, spec_.nominal_load));
-    const double fy = spec_.lateral.force(s * peak_lateral_slip_,
-                                          road_grip * spec_.lateral.peak(load, spec_.nominal_load));
+    const double fx =
+        peak.longitudinal * shape_at(longitudinal_shape_, spec_.longitudinal, peak_slip_ratio_, s);
+    const double fy = peak.lateral * shape_at(lateral_shape_, spec_.lateral, peak_lateral_slip_, s);
     return {fx * sx / s, fy * sy / s};
 }
 

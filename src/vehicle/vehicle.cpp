@@ -97,17 +97,21 @@ TyreForce Vehicle::wheel_force(std::size_t w, double load, double rolling_veloci
     const TyreSpec& ts = tyre.spec();
     const double r = wheel.radius;
 
+    // The dry road's peaks, and the friction ellipse that bounds the total force, damping
+    // included (N for each direction).
+    const TyreForce dry = tyre.peaks(load);
+    const double dx = wheel.road_grip * dry.longitudinal;
+    const double dy = wheel.road_grip * dry.lateral;
     TyreForce force;
     double damping_x = 0.0;
     double damping_y = 0.0;
     if (load > 0.0) {
-        force = tyre.force(s.slip_ratio, s.lateral_slip, load, wheel.road_grip);
+        force = tyre.force(s.slip_ratio, s.lateral_slip, TyreForce{dx, dy});
         const double fade = std::max(0.0, 1.0 - std::abs(rolling_velocity) / spec_.low_speed);
         if (fade > 0.0) {
-            const double slope_x = ts.longitudinal.stiffness * ts.longitudinal.shape *
-                                   ts.longitudinal.peak(load, ts.nominal_load);
-            const double slope_y =
-                ts.lateral.stiffness * ts.lateral.shape * ts.lateral.peak(load, ts.nominal_load);
+            const double slope_x =
+                ts.longitudinal.stiffness * ts.longitudinal.shape * dry.longitudinal;
+            const double slope_y = ts.lateral.stiffness * ts.lateral.shape * dry.lateral;
             damping_x =
                 fade * 2.0 * std::sqrt(slope_x / ts.longitudinal_relaxation * wheel.critical_mass);
             damping_y =
@@ -115,14 +119,15 @@ TyreForce Vehicle::wheel_force(std::size_t w, double load, double rolling_veloci
         }
     }
 
-    // The friction ellipse bounds the total, damping included (N for each direction).
-    const double dx = wheel.road_grip * ts.longitudinal.peak(load, ts.nominal_load);
-    const double dy = wheel.road_grip * ts.lateral.peak(load, ts.nominal_load);
     const auto damped = [&](double spin) {
         TyreForce total{force.longitudinal - damping_x * (rolling_velocity - spin * r),
                         force.lateral - damping_y * lateral_velocity};
-        const double used =
-            load > 0.0 ? std::hypot(total.longitudinal / dx, total.lateral / dy) : 0.0;
+        double used = 0.0;
+        if (load > 0.0) {
+            const double ux = total.longitudinal / dx;
+            const double uy = total.lateral / dy;
+            used = std::sqrt(ux * ux + uy * uy);
+        }
         if (used > 1.0) total.longitudinal /= used, total.lateral /= used;
         return std::pair(total, used > 1.0);
     };

@@ -15,6 +15,9 @@ namespace {
 
 constexpr double g = 9.81;
 
+// Yaw rate beyond the arc's (rad/s) at which a sliding car is fully off the throttle.
+constexpr double kOversteerYawError = 0.3;
+
 // The fastest steady speed through a banked turn of radius r and bank theta with friction
 // mu and aerodynamic downforce coefficient k = rho C_l A / 2 per unit mass (1/m). In the
 // road plane the tyres must supply m v^2/r cos(theta) - m g sin(theta), at most mu times
@@ -78,14 +81,27 @@ Autopilot::Autopilot(const Track& track, const CarSpec& car, AutopilotSettings s
                     : settings_.braking;
     const double k = 0.5 * car.air_density * car.downforce_area / car.mass.mass;
     const std::size_t n = centerline_.size();
+    std::vector<double> crest_curvature(n);
+    for (std::size_t i = 0; i < n; ++i)
+        crest_curvature[i] = vertical_curvature(centerline_, i, length_);
+    // Over a crest of curvature kappa the road pushes v^2 kappa less per unit mass, like
+    // negative downforce. A car with a vehicle model plans its turns and braking with that
+    // load: braking or turning over a crest at the flat road's limit slides its tyres
+    // past their peaks. A dip's extra load is not counted on: the wheels skip over the
+    // facet kinks at the bottom. (The arcade car's plan stays as it was: its laps are
+    // pinned by hash, and its grip saturates without a peak.)
+    const auto downforce = [&](std::size_t i) {
+        return car.vehicle ? k - std::max(crest_curvature[i], 0.0) : k;
+    };
     planned_speed_.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
         const CenterlineSample& s = centerline_[i];
         const double radius = 1.0 / std::max(std::abs(s.curvature), 1e-9);
         const double bank_into_turn = s.curvature >= 0.0 ? s.bank : -s.bank;
         planned_speed_[i] =
-            std::min({settings_.target_speed, cornering_speed_limit(radius, bank_into_turn, mu, k),
-                      crest_speed_limit(vertical_curvature(centerline_, i, length_), k)});
+            std::min({settings_.target_speed,
+                      cornering_speed_limit(radius, bank_into_turn, mu, downforce(i)),
+                      crest_speed_limit(crest_curvature[i], k)});
     }
     // Two laps backwards so the limit carries across the start line.
     for (std::size_t step = 0; step < 2 * n; ++step) {
@@ -94,7 +110,8 @@ Autopilot::Autopilot(const Track& track, const CarSpec& car, AutopilotSettings s
         double gap = centerline_[next].distance - centerline_[i].distance;
         if (gap <= 0.0) gap += length_;
         const double v_next = planned_speed_[next];
-        const double decel = braking + k * v_next * v_next * mu;
+        // Never < 0: a crest may leave no grip to brake with, never a need to speed up.
+        const double decel = std::max(0.0, braking + downforce(next) * v_next * v_next * mu);
         planned_speed_[i] =
             std::min(planned_speed_[i], std::sqrt(v_next * v_next + 2.0 * decel * gap));
     }
@@ -188,6 +205,11 @@ CarInputs Autopilot::drive(const Car& car) {
     const double angle = std::atan(curvature * wheelbase_) +
                          settings_.yaw_damping * wheelbase_ * yaw_error / std::max(speed, 5.0);
     inputs.steer = std::clamp(angle / max_steer_angle_, -1.0, 1.0);
+    // A car with a vehicle model whose rear steps out (it yaws faster than the arc asks,
+    // the same way) comes off the throttle, as a driver does: the drive torque takes the
+    // rear tyres' lateral grip, and a rear-driven car would spin out of the turn.
+    if (car.vehicle() && yaw_rate * yaw_error < 0.0)
+        inputs.throttle *= std::clamp(1.0 - std::abs(yaw_error) / kOversteerYawError, 0.0, 1.0);
     return inputs;
 }
 

@@ -67,6 +67,35 @@ TEST(Tyre, PeakFrictionFallsWithLoadAsTheSlopeSays) {
     }
 }
 
+// How far Tyre::force's tabulated curve shapes may stray from the formula, over the peak
+// force (linear interpolation, Tyre::kTableSteps nodes per unit of normalised slip).
+constexpr double kTableError = 2e-5;
+
+TEST(Tyre, TabulatedCurvesFollowTheFormulaAndKeepThePeaks) {
+    for (const NamedTyre& tyre : kTyres) {
+        SCOPED_TRACE(tyre.name);
+        const Tyre model(tyre.spec);
+        const double fz = tyre.spec.nominal_load;
+        const double dx = tyre.spec.longitudinal.peak(fz, fz);
+        const double dy = tyre.spec.lateral.peak(fz, fz);
+        // At each peak exactly the peak force: a node sits there.
+        EXPECT_DOUBLE_EQ(model.force(model.peak_slip_ratio(), 0.0, fz).longitudinal, dx);
+        EXPECT_DOUBLE_EQ(model.force(0.0, model.peak_lateral_slip(), fz).lateral, dy);
+        // Between the nodes and beyond the table's span (the formula there).
+        for (int i = 0; i <= 40000; ++i) {
+            const double s = 10.0 * i / 40000.0;
+            const double kappa = s * model.peak_slip_ratio();
+            const double alpha = s * model.peak_lateral_slip();
+            ASSERT_NEAR(model.force(kappa, 0.0, fz).longitudinal,
+                        tyre.spec.longitudinal.force(kappa, dx), kTableError * dx)
+                << "s " << s;
+            ASSERT_NEAR(model.force(0.0, alpha, fz).lateral, tyre.spec.lateral.force(alpha, dy),
+                        kTableError * dy)
+                << "s " << s;
+        }
+    }
+}
+
 TEST(Tyre, CombinedForceStaysInTheFrictionEllipseAndPureSlipIsTheCurve) {
     std::mt19937 random(20);
     std::uniform_real_distribution<double> slip(-1.0, 1.0);
@@ -88,11 +117,11 @@ TEST(Tyre, CombinedForceStaysInTheFrictionEllipseAndPureSlipIsTheCurve) {
             // Forces oppose nothing: they point the way their slips do.
             EXPECT_GE(f.longitudinal * kappa, 0.0);
             EXPECT_GE(f.lateral * alpha, 0.0);
-            // Pure slip is the curve itself.
+            // Pure slip is the curve itself, to the shape table's accuracy.
             EXPECT_NEAR(model.force(kappa, 0.0, fz).longitudinal,
-                        tyre.spec.longitudinal.force(kappa, dx), 1e-9 * dx);
+                        tyre.spec.longitudinal.force(kappa, dx), kTableError * dx);
             EXPECT_NEAR(model.force(0.0, alpha, fz).lateral, tyre.spec.lateral.force(alpha, dy),
-                        1e-9 * dy);
+                        kTableError * dy);
         }
         // At both peaks at once the force lies on the ellipse, not beyond.
         const TyreForce both =

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "trackphys/export.hpp"
 
@@ -90,11 +91,27 @@ class TRACKPHYS_API Tyre {
     /// curves describe (0.05 for ice).
     TyreForce force(double slip_ratio, double lateral_slip, double load,
                     double road_grip = 1.0) const;
+    /// The same force from the peaks (N) that peaks() gives for its load and road: a wheel
+    /// that needs the peaks for more than the force computes them once.
+    TyreForce force(double slip_ratio, double lateral_slip, const TyreForce& peak) const;
+    /// Each curve's peak force D (N) under load F_z (N) on a road of grip road_grip: the
+    /// semi-axes of the friction ellipse.
+    TyreForce peaks(double load, double road_grip = 1.0) const;
+
+    /// The combined-slip force tabulates each curve's shape F / D over the normalised slip
+    /// s in [0, kTableSpan], kTableSteps a unit apart, linearly interpolated: a node at
+    /// s = 1 keeps the peak exact, and the shipped sets stay within 2e-5 D of the formula
+    /// (tested); beyond the span the formula itself. The Magic Formula's three
+    /// transcendentals per direction were most of the vehicle model's cost per sub-step.
+    static constexpr int kTableSteps = 256;
+    static constexpr int kTableSpan = 8;
 
   private:
     TyreSpec spec_;
     double peak_slip_ratio_;
     double peak_lateral_slip_;
+    std::vector<double> longitudinal_shape_;  ///< F / D at s = k / kTableSteps
+    std::vector<double> lateral_shape_;
 };
 
 }  // namespace trackphys
