@@ -3,7 +3,6 @@
 #include <cstddef>
 #include <string>
 
-
 namespace trackphys::cli {
 
 namespace {
@@ -13,8 +12,8 @@ namespace {
 CLI::Validator at_least_one() {
     return CLI::Validator(
         [](const std::string& text) {
-            const bool positive = !text.empty() && text[0] != '-' &&
-                                  text.find_first_not_of('0') != std::string::npos;
+            const bool positive =
+                !text.empty() && text[0] != '-' && text.find_first_not_of('0') != std::string::npos;
             return positive ? std::string() : "must be >= 1, got " + text;
         },
         "", "at_least_one");
@@ -39,8 +38,7 @@ void add_mesh_limit_options(CLI::App& command, MeshLoadLimits& limits) {
         ->check(at_least_one())
         ->capture_default_str();
     command
-        .add_option("--max-nesting", limits.max_nesting,
-                    "nesting of AC3D objects and glTF nodes")
+        .add_option("--max-nesting", limits.max_nesting, "nesting of AC3D objects and glTF nodes")
         ->group(group)
         ->check(CLI::Range(std::size_t{1}, max_mesh_nesting_allowed))
         ->capture_default_str();

@@ -1,6 +1,8 @@
 // MeshLoadLimits (trackphys/io/mesh_load_limits.hpp): each limit refuses a file one beyond
 // it, naming the file and the limit, and lets through a file exactly at it.
 
+#include "trackphys/io/mesh_load_limits.hpp"
+
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
@@ -11,7 +13,6 @@
 #include "io_test_support.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/io/mesh_io.hpp"
-#include "trackphys/io/mesh_load_limits.hpp"
 
 namespace trackphys {
 namespace {
@@ -41,7 +42,8 @@ class MeshLoadLimitsTest : public test::ScratchFolderTest {
 };
 
 // Three triangles over five vertices (a fan), 89 bytes.
-const std::string kFan = "v 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 2\nv -1 0 1\nf 1 2 3\nf 1 3 4\nf 1 4 5\n";
+const std::string kFan =
+    "v 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 2\nv -1 0 1\nf 1 2 3\nf 1 3 4\nf 1 4 5\n";
 
 // One triangle, placed by a root node and by its two children: three placements.
 const std::string kPlacedThrice =
@@ -161,8 +163,9 @@ TEST_F(MeshLoadLimitsTest, LimitsThatCannotBeMeantAreRefusedBeforeTheFileIsRead)
     EXPECT_EQ(message(zero_vertices), "MeshLoadLimits::max_vertices is 0: no mesh would load");
     EXPECT_EQ(message(zero_bytes), "MeshLoadLimits::max_bytes is 0: no mesh would load");
     EXPECT_EQ(message(zero_nesting), "MeshLoadLimits::max_nesting is 0: no mesh would load");
-    EXPECT_EQ(message(too_deep), "MeshLoadLimits::max_nesting is 257, more than the 256 "
-                                 "assimp's recursive readers are safe at");
+    EXPECT_EQ(message(too_deep),
+              "MeshLoadLimits::max_nesting is 257, more than the 256 "
+              "assimp's recursive readers are safe at");
     too_deep.max_nesting = max_mesh_nesting_allowed;
     EXPECT_NE(message(too_deep).find("no such file"), std::string::npos);
 }
@@ -176,8 +179,8 @@ TEST(MeshLoadLimitsDefaults, AdmitAFiftyMillionTriangleTrackInEveryFormat) {
     EXPECT_GE(defaults.max_triangles, kTrackTriangles);
     EXPECT_GE(defaults.max_vertices, 3 * kTrackTriangles);
     char vertex[128];
-    std::snprintf(vertex, sizeof vertex, "      vertex %.8e %.8e %.8e\n", -1234.56789,
-                  -12.3456789, -4321.98765);
+    std::snprintf(vertex, sizeof vertex, "      vertex %.8e %.8e %.8e\n", -1234.56789, -12.3456789,
+                  -4321.98765);
     const std::string facet = std::string("  facet normal ") + "-1.00000000e+00 0.00000000e+00 " +
                               "-0.00000000e+00\n    outer loop\n" + vertex + vertex + vertex +
                               "    endloop\n  endfacet\n";
