@@ -1,4 +1,5 @@
-// save_mesh and load_mesh on a track-sized mesh (500k triangles), per format.
+// save_mesh, load_mesh and load_mesh's strict check alone on a track-sized mesh (500k
+// triangles), per format.
 //   build/release/bench/bench_mesh_io
 // Writes into the system temporary folder and removes the files afterwards.
 
@@ -8,7 +9,10 @@
 
 #include <benchmark/benchmark.h>
 
+#include "io/mapped_file.hpp"
+#include "io/mesh_checks.hpp"
 #include "trackphys/io/mesh_io.hpp"
+#include "trackphys/io/mesh_load_limits.hpp"
 
 namespace {
 
@@ -57,6 +61,22 @@ void BM_LoadMesh(benchmark::State& state, const std::string& extension) {
     remove_bench_files(extension);
 }
 
+// The strict check alone, the file mapped as load_mesh maps it (src/io/mesh_checks.hpp):
+// what bounding the import adds to a load (docs/benchmarks.md).
+void BM_CheckMesh(benchmark::State& state, const std::string& extension) {
+    const fs::path path = bench_file(extension);
+    trackphys::save_mesh(track_sized_mesh(), path);
+    const trackphys::detail::MeshFormat format = *trackphys::detail::mesh_format_of(path);
+    const trackphys::MeshLoadLimits limits;
+    for (auto _ : state) {
+        const trackphys::detail::MappedFile file(path);
+        benchmark::DoNotOptimize(trackphys::detail::check_mesh(
+            file.bytes(), format, path.parent_path(), limits.max_nesting));
+    }
+    state.counters["MB"] = static_cast<double>(fs::file_size(path)) / 1e6;
+    remove_bench_files(extension);
+}
+
 }  // namespace
 
 BENCHMARK_CAPTURE(BM_SaveMesh, glb, std::string(".glb"))
@@ -75,5 +95,20 @@ BENCHMARK_CAPTURE(BM_LoadMesh, obj, std::string(".obj"))
     ->Unit(benchmark::kMillisecond)
     ->Iterations(3);
 BENCHMARK_CAPTURE(BM_LoadMesh, ply, std::string(".ply"))
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3);
+BENCHMARK_CAPTURE(BM_LoadMesh, stl, std::string(".stl"))
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3);
+BENCHMARK_CAPTURE(BM_CheckMesh, glb, std::string(".glb"))
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3);
+BENCHMARK_CAPTURE(BM_CheckMesh, obj, std::string(".obj"))
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3);
+BENCHMARK_CAPTURE(BM_CheckMesh, ply, std::string(".ply"))
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3);
+BENCHMARK_CAPTURE(BM_CheckMesh, stl, std::string(".stl"))
     ->Unit(benchmark::kMillisecond)
     ->Iterations(3);

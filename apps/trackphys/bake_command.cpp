@@ -10,6 +10,7 @@
 #include <string>
 
 #include "commands.hpp"
+#include "mesh_limit_options.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/geometry/mesh_chunks.hpp"
 #include "trackphys/io/map_file.hpp"
@@ -25,6 +26,7 @@ struct BakeOptions {
     std::filesystem::path out;
     double chunk_m = 100.0;
     unsigned threads = 0;
+    MeshLoadLimits mesh_limits;
 };
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
@@ -43,7 +45,7 @@ void run_bake(const BakeOptions& o, const CLI::App& command) {
     StaticMap map;
     std::string source;
     if (from_mesh) {
-        const TriangleMesh mesh = load_mesh(o.mesh);
+        const TriangleMesh mesh = load_mesh(o.mesh, o.mesh_limits);
         try {
             map = bake_map(split_into_chunks(mesh, o.chunk_m), PlaneTreeSettings::precomputed(),
                            o.threads);
@@ -96,6 +98,7 @@ void add_bake_command(CLI::App& app) {
     command->add_option("--threads", o->threads, "threads to build on (0: one per core)")
         ->check(not_negative())
         ->capture_default_str();
+    add_mesh_limit_options(*command, o->mesh_limits);
     command->callback([o, command] { run_bake(*o, *command); });
 }
 

@@ -18,6 +18,7 @@
 #include "drive_svg.hpp"
 #include "interrupt_guard.hpp"
 #include "json_file.hpp"
+#include "mesh_limit_options.hpp"
 #include "progress_bar.hpp"
 #include "staged_outputs.hpp"
 #include "telemetry_csv.hpp"
@@ -46,6 +47,7 @@ struct DriveOptions {
     std::filesystem::path json, trace, record, svg, telemetry;
     std::pair<std::string, std::string> save_at;  // T FILE
     std::filesystem::path resume;
+    MeshLoadLimits mesh_limits;
 };
 
 // --save-at T FILE, checked; the snapshot is written to `staged` (staged_outputs.hpp).
@@ -178,7 +180,7 @@ void run(const DriveOptions& o, const CLI::App& command) {
     }
 
     const DriveScene scene = !s.map.empty()    ? make_map_scene(s.map)
-                             : !s.mesh.empty() ? make_mesh_scene(s.mesh)
+                             : !s.mesh.empty() ? make_mesh_scene(s.mesh, o.mesh_limits)
                                                : make_track_scene(s.seed);
     if (!s.free_mode() && !scene.track)
         throw Error("the map '" + s.map.string() +
@@ -389,6 +391,7 @@ void add_drive_command(CLI::App& app) {
             "Continue the drive saved in this snapshot (give the original drive's options; "
             "--seconds and --laps count from the original start)")
         ->type_name("FILE");
+    add_mesh_limit_options(*command, o->mesh_limits);
     command->callback([o, command] { run(*o, *command); });
 }
 

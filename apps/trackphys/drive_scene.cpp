@@ -38,10 +38,10 @@ DriveScene make_track_scene(std::uint64_t seed) {
     return scene;
 }
 
-DriveScene make_mesh_scene(const std::filesystem::path& mesh) {
+DriveScene make_mesh_scene(const std::filesystem::path& mesh, const MeshLoadLimits& limits) {
     DriveScene scene;
     auto statics = std::make_shared<StaticWorld>();
-    const TriangleMesh loaded = load_mesh(mesh);
+    const TriangleMesh loaded = load_mesh(mesh, limits);
     scene.triangle_count = loaded.triangles.size();
     try {
         statics->add(std::make_shared<StaticCollider>(loaded));

@@ -11,6 +11,7 @@
 #include "trackphys/collision/static_world.hpp"
 #include "trackphys/dynamics/car_spec.hpp"
 #include "trackphys/dynamics/rigid_body.hpp"
+#include "trackphys/io/mesh_load_limits.hpp"
 #include "trackphys/track/track.hpp"
 
 namespace trackphys::cli {
@@ -27,8 +28,9 @@ struct DriveScene {
 
 /// The generated track of that seed, one collider per chunk.
 DriveScene make_track_scene(std::uint64_t seed);
-/// A mesh file (any format load_mesh reads) as one collider.
-DriveScene make_mesh_scene(const std::filesystem::path& mesh);
+/// A mesh file (any format load_mesh reads, within limits) as one collider.
+DriveScene make_mesh_scene(const std::filesystem::path& mesh,
+                           const MeshLoadLimits& limits = MeshLoadLimits{});
 /// A baked map (trackphys bake): its colliders and plane trees, and its track when it was
 /// baked from one.
 DriveScene make_map_scene(const std::filesystem::path& map);

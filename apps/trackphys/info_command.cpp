@@ -9,6 +9,7 @@
 
 #include "commands.hpp"
 #include "map_info.hpp"
+#include "mesh_limit_options.hpp"
 #include "trackphys/io/map_file.hpp"
 #include "trackphys/io/mesh_io.hpp"
 
@@ -18,6 +19,7 @@ namespace {
 struct InfoOptions {
     std::string file;
     bool json = false;
+    MeshLoadLimits mesh_limits;
 };
 
 nlohmann::json to_json(const glm::dvec3& v) { return nlohmann::json::array({v.x, v.y, v.z}); }
@@ -65,7 +67,8 @@ void print_text(const InfoOptions& options, const MeshLoadReport& r) {
 void run_info(const InfoOptions& options) {
     if (is_map_file(options.file)) return print_map_info(options.file, options.json);
     MeshLoadReport report;
-    load_mesh(options.file, report);  // throws trackphys::Error on bad input: main reports it
+    load_mesh(options.file, report,
+              options.mesh_limits);  // throws trackphys::Error on bad input: main reports it
     if (options.json)
         print_json(options, report);
     else
@@ -85,6 +88,7 @@ void add_info_command(CLI::App& app) {
     command->add_option("MESHFILE", options->file, "the mesh file or map file (.tpmap) to read")
         ->required();
     command->add_flag("--json", options->json, "print the figures as one JSON object");
+    add_mesh_limit_options(*command, options->mesh_limits);
     command->callback([options] { run_info(*options); });
 }
 

@@ -123,7 +123,7 @@ std::string attribute(std::string text) {
 }  // namespace
 
 std::string make_replay_page(const std::filesystem::path& recording, std::string_view bundle,
-                             ReplayPageStats& stats) {
+                             const MeshLoadLimits& mesh_limits, ReplayPageStats& stats) {
     const std::string text = read_recording(recording);
     const nlohmann::json header = read_header(text, recording);
     stats.recording_bytes = text.size();
@@ -136,7 +136,7 @@ std::string make_replay_page(const std::filesystem::path& recording, std::string
             recording.parent_path() / header["track"]["mesh"].get<std::string>();
         TriangleMesh mesh;
         try {
-            mesh = load_mesh(mesh_file);
+            mesh = load_mesh(mesh_file, mesh_limits);
         } catch (const Error& e) {
             throw Error("recording '" + recording.string() + "': its track: " + e.what());
         }

@@ -4,6 +4,8 @@
 #include <string>
 #include <string_view>
 
+#include "trackphys/io/mesh_load_limits.hpp"
+
 namespace trackphys::cli {
 
 /// What went into a replay page, for the command's report.
@@ -17,8 +19,9 @@ struct ReplayPageStats {
 /// recording and its track mesh (named in the header, relative to the recording) inside it,
 /// zlib-compressed and base64-encoded (docs/viewer.md, "The page"). Only the header is
 /// checked here; the viewer reports a malformed frame on the page, naming its line. Throws
-/// trackphys::Error when the file is not a trackphys recording or its track cannot be read.
+/// trackphys::Error when the file is not a trackphys recording or its track cannot be read
+/// within mesh_limits.
 std::string make_replay_page(const std::filesystem::path& recording, std::string_view bundle,
-                             ReplayPageStats& stats);
+                             const MeshLoadLimits& mesh_limits, ReplayPageStats& stats);
 
 }  // namespace trackphys::cli

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "commands.hpp"
+#include "mesh_limit_options.hpp"
 #include "replay_page.hpp"
 #include "staged_outputs.hpp"
 #include "trackphys/error.hpp"
@@ -17,6 +18,7 @@ namespace {
 struct ViewOptions {
     std::filesystem::path recording;
     std::filesystem::path out;
+    MeshLoadLimits mesh_limits;
 };
 
 void run(const ViewOptions& o) {
@@ -30,7 +32,7 @@ void run(const ViewOptions& o) {
     const std::filesystem::path staged = outputs.stage(o.out, "--out");
     const auto start = std::chrono::steady_clock::now();
     ReplayPageStats stats;
-    const std::string page = make_replay_page(o.recording, bundle, stats);
+    const std::string page = make_replay_page(o.recording, bundle, o.mesh_limits, stats);
     std::ofstream out(staged, std::ios::binary);
     out.write(page.data(), static_cast<std::streamsize>(page.size()));
     if (!out.flush()) throw Error("--out '" + o.out.string() + "': cannot write the page");
@@ -56,6 +58,7 @@ void add_view_command(CLI::App& app) {
         "viewer: open it in a browser, no server or network needed");
     command->add_option("RECORDING", o->recording, "The recording (JSON Lines)")->required();
     command->add_option("--out", o->out, "The page to write (.html)")->required();
+    add_mesh_limit_options(*command, o->mesh_limits);
     command->callback([o] { run(*o); });
 }
 

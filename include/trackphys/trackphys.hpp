@@ -32,6 +32,7 @@
 #include "trackphys/io/car_spec_json.hpp"
 #include "trackphys/io/map_file.hpp"
 #include "trackphys/io/mesh_io.hpp"
+#include "trackphys/io/mesh_load_limits.hpp"
 #include "trackphys/io/recording.hpp"
 #include "trackphys/io/scenario.hpp"
 #include "trackphys/io/snapshot_file.hpp"

@@ -119,7 +119,7 @@ std::uint64_t check_object(TextScanner& scan, std::size_t bytes) {
 
 }  // namespace
 
-void check_ac3d(std::string_view file) {
+void check_ac3d(std::string_view file, std::size_t max_nesting) {
     TextScanner scan(file);
     const std::vector<std::string_view>& header = scan.next_content_line();
     if (header.size() != 1 || header[0].substr(0, 4) != "AC3D")
@@ -136,8 +136,9 @@ void check_ac3d(std::string_view file) {
         const std::uint64_t kids = check_object(scan, file.size());
         if (kids > 0) {
             kids_left.push_back(kids);
-            if (kids_left.size() > kMaxMeshNesting)
-                scan.fail("objects nested deeper than " + std::to_string(kMaxMeshNesting));
+            if (kids_left.size() > max_nesting)
+                scan.fail("objects nested deeper than " + std::to_string(max_nesting) +
+                          ", the limit max_nesting");
         }
         while (!kids_left.empty() && kids_left.back() == 0) kids_left.pop_back();
     }

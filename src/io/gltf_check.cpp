@@ -107,11 +107,17 @@ fs::path local_file(std::string_view uri, const fs::path& folder, const std::str
     return file;
 }
 
-// Parses JSON whose nesting is at most kMaxMeshNesting deep.
+// glTF's own structure is a few levels deep (a primitive's attributes are at depth 5), its
+// node tree lives in flat arrays: JSON nested deeper is no model, only a load on the JSON
+// parsers (assimp's recurses once per level). Not MeshLoadLimits::max_nesting, which counts
+// nodes.
+constexpr int kMaxJsonDepth = 64;
+
+// Parses JSON whose nesting is at most kMaxJsonDepth deep.
 Json parse(std::string_view text) {
     const Json::parser_callback_t depth_limit = [](int depth, Json::parse_event_t, Json&) {
-        if (static_cast<std::size_t>(depth) > kMaxMeshNesting)
-            throw MeshCheckError{"glTF JSON nested deeper than " + std::to_string(kMaxMeshNesting)};
+        if (depth > kMaxJsonDepth)
+            throw MeshCheckError{"glTF JSON nested deeper than " + std::to_string(kMaxJsonDepth)};
         return true;
     };
     try {
@@ -188,8 +194,8 @@ std::uint64_t components(const Json& accessor, const std::string& place) {
 
 class GltfChecker {
   public:
-    GltfChecker(const Json& doc, const Glb* glb, const fs::path& folder)
-        : doc_(doc), glb_(glb), folder_(folder) {}
+    GltfChecker(const Json& doc, const Glb* glb, const fs::path& folder, std::size_t max_nesting)
+        : doc_(doc), glb_(glb), folder_(folder), max_nesting_(max_nesting) {}
 
     std::set<fs::path> run() {
         const auto asset = doc_.find("asset");
@@ -327,7 +333,7 @@ class GltfChecker {
     }
 
     // Nodes form a forest: every child in range, no node a child twice, no cycle, at most
-    // kMaxMeshNesting deep (assimp recurses once per level).
+    // max_nesting_ deep (assimp recurses once per level).
     void check_nodes() {
         const Json& nodes = array_of(doc_, "nodes");
         std::vector<bool> has_parent(nodes.size(), false);
@@ -357,8 +363,9 @@ class GltfChecker {
             const auto [n, depth] = pending.back();
             pending.pop_back();
             ++reached;
-            if (depth > kMaxMeshNesting)
-                fail(at("nodes", n), "nested deeper than " + std::to_string(kMaxMeshNesting));
+            if (depth > max_nesting_)
+                fail(at("nodes", n), "nested deeper than " + std::to_string(max_nesting_) +
+                                         ", the limit max_nesting");
             for (const Json& child : array_of(nodes[n], "children"))
                 pending.push_back({child.get<std::size_t>(), depth + 1});
         }
@@ -423,6 +430,7 @@ class GltfChecker {
     const Json& doc_;
     const Glb* glb_;
     const fs::path& folder_;
+    const std::size_t max_nesting_;
     std::vector<std::uint64_t> buffer_bytes_;
     std::vector<View> views_;
     std::set<fs::path> files_;
@@ -430,10 +438,11 @@ class GltfChecker {
 
 }  // namespace
 
-std::set<fs::path> check_gltf(std::string_view file, bool binary, const fs::path& folder) {
-    if (!binary) return GltfChecker(parse(file), nullptr, folder).run();
+std::set<fs::path> check_gltf(std::string_view file, bool binary, const fs::path& folder,
+                              std::size_t max_nesting) {
+    if (!binary) return GltfChecker(parse(file), nullptr, folder, max_nesting).run();
     const Glb glb = split_glb(file);
-    return GltfChecker(parse(glb.json), &glb, folder).run();
+    return GltfChecker(parse(glb.json), &glb, folder, max_nesting).run();
 }
 
 }  // namespace trackphys::detail

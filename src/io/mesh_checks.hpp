@@ -1,9 +1,12 @@
 #pragma once
 
+#include <cstddef>
 #include <filesystem>
 #include <set>
 #include <string>
 #include <string_view>
+
+#include "io/mesh_format.hpp"
 
 namespace trackphys::detail {
 
@@ -21,20 +24,25 @@ struct MeshCheckError {
     std::string reason;
 };
 
-/// The deepest nesting of objects or nodes a check lets through (AC3D kids, glTF nodes,
-/// glTF JSON): real tracks nest a few levels; assimp's readers recurse once per level.
-inline constexpr std::size_t kMaxMeshNesting = 64;
-
 void check_ply(std::string_view file);
 void check_stl(std::string_view file);
 void check_obj(std::string_view file);
 void check_off(std::string_view file);
-void check_ac3d(std::string_view file);
+/// Objects nested deeper than max_nesting are refused (MeshLoadLimits::max_nesting).
+void check_ac3d(std::string_view file, std::size_t max_nesting);
 
-/// glTF (JSON, binary = false) or GLB (binary = true) in folder. Returns the external buffer
-/// files it refers to (each a relative path inside folder), the only files besides the mesh
-/// that assimp may then open (confined_io_system.hpp).
+/// glTF (JSON, binary = false) or GLB (binary = true) in folder, its nodes nested at most
+/// max_nesting deep. Returns the external buffer files it refers to (each a
+/// relative path inside folder), the only files besides the mesh that assimp may then open
+/// (confined_io_system.hpp).
 std::set<std::filesystem::path> check_gltf(std::string_view file, bool binary,
-                                           const std::filesystem::path& folder);
+                                           const std::filesystem::path& folder,
+                                           std::size_t max_nesting);
+
+/// The check of format (one of the above) over a file of folder; returns the external buffers
+/// it may refer to (glTF only, else none).
+std::set<std::filesystem::path> check_mesh(std::string_view file, MeshFormat format,
+                                           const std::filesystem::path& folder,
+                                           std::size_t max_nesting);
 
 }  // namespace trackphys::detail

@@ -8,6 +8,7 @@
 #include <memory>
 #include <set>
 #include <string>
+#include <string_view>
 #include <system_error>
 #include <unordered_map>
 #include <utility>
@@ -29,6 +30,7 @@
 #include "trackphys/error.hpp"
 #include "trackphys/geometry/triangle.hpp"
 #include "trackphys/io/mesh_io.hpp"
+#include "trackphys/io/mesh_load_limits.hpp"
 #include "trackphys/math/types.hpp"
 
 namespace trackphys {
@@ -74,37 +76,27 @@ detail::MeshFormat format_of(const fs::path& path) {
                    "; other formats' readers in assimp cannot be bounded against hostile files)");
 }
 
-// Runs the format's strict check over the whole file (mesh_checks.hpp) and returns the
-// external buffers it may refer to (glTF only).
-std::set<fs::path> check_whole_file(const fs::path& path, detail::MeshFormat format) {
-    using detail::MeshFormat;
-    const detail::MappedFile file(path);
-    try {
-        switch (format) {
-            case MeshFormat::ply:
-                detail::check_ply(file.bytes());
-                break;
-            case MeshFormat::stl:
-                detail::check_stl(file.bytes());
-                break;
-            case MeshFormat::obj:
-                detail::check_obj(file.bytes());
-                break;
-            case MeshFormat::off:
-                detail::check_off(file.bytes());
-                break;
-            case MeshFormat::ac3d:
-                detail::check_ac3d(file.bytes());
-                break;
-            case MeshFormat::gltf:
-                return detail::check_gltf(file.bytes(), false, path.parent_path());
-            case MeshFormat::glb:
-                return detail::check_gltf(file.bytes(), true, path.parent_path());
-        }
-    } catch (const detail::MeshCheckError& e) {
-        fail(path, e.reason);
-    }
-    return {};
+// A limit of zero would refuse every file, and nesting beyond max_mesh_nesting_allowed could
+// exhaust the stack in assimp's recursive readers: both are the caller's mistake.
+void check_limits(const MeshLoadLimits& limits) {
+    const auto refuse = [](const char* name, const std::string& why) {
+        throw Error(std::string("MeshLoadLimits::") + name + " " + why);
+    };
+    if (limits.max_triangles == 0) refuse("max_triangles", "is 0: no mesh would load");
+    if (limits.max_vertices == 0) refuse("max_vertices", "is 0: no mesh would load");
+    if (limits.max_bytes == 0) refuse("max_bytes", "is 0: no mesh would load");
+    if (limits.max_nesting == 0) refuse("max_nesting", "is 0: no mesh would load");
+    if (limits.max_nesting > max_mesh_nesting_allowed)
+        refuse("max_nesting", "is " + std::to_string(limits.max_nesting) + ", more than the " +
+                                  std::to_string(max_mesh_nesting_allowed) +
+                                  " assimp's recursive readers are safe at");
+}
+
+void check_byte_limit(const fs::path& path, std::uintmax_t bytes, const MeshLoadLimits& limits,
+                      const char* what) {
+    if (bytes > limits.max_bytes)
+        fail(path, std::string(what) + " " + std::to_string(bytes) + " bytes, more than " +
+                       std::to_string(limits.max_bytes) + ", the limit max_bytes");
 }
 
 // Unregisters every assimp reader but the format's own, so that assimp never hands the file
@@ -205,8 +197,8 @@ class VertexWelder {
 // merging after it).
 class SceneMerger {
   public:
-    SceneMerger(const fs::path& path, MeshLoadReport& report)
-        : path_(path), report_(report), welder_(mesh_.vertices) {}
+    SceneMerger(const fs::path& path, MeshLoadReport& report, const MeshLoadLimits& limits)
+        : path_(path), report_(report), limits_(limits), welder_(mesh_.vertices) {}
 
     // Checks every vertex coordinate and counts, per mesh, the triangles its faces should
     // give once triangulated (n - 2 for an n-gon).
@@ -311,6 +303,14 @@ class SceneMerger {
             for (std::size_t k = 0; k < 3; ++k)
                 if (!welder_.index_of(world_[corner[k]], indices[k]))
                     fail(path_, "more than 2^32 vertices");
+            // Checked as the mesh grows, so that it never holds more than the caller allowed
+            // (a glTF can place one mesh many times: the file's size does not bound this).
+            if (mesh_.vertices.size() > limits_.max_vertices)
+                fail(path_, "more than " + std::to_string(limits_.max_vertices) +
+                                " vertices, the limit max_vertices");
+            if (mesh_.triangles.size() == limits_.max_triangles)
+                fail(path_, "more than " + std::to_string(limits_.max_triangles) +
+                                " triangles, the limit max_triangles");
             mesh_.triangles.push_back(indices);
             report_.bounds.expand(triangle.bounds());
             report_.area += triangle.area();
@@ -321,6 +321,7 @@ class SceneMerger {
 
     const fs::path& path_;
     MeshLoadReport& report_;
+    const MeshLoadLimits& limits_;
     TriangleMesh mesh_;
     VertexWelder welder_;
     std::vector<std::size_t> expected_triangles_;
@@ -329,15 +330,32 @@ class SceneMerger {
 
 }  // namespace
 
-TriangleMesh load_mesh(const fs::path& path, MeshLoadReport& report) {
+TriangleMesh load_mesh(const fs::path& path, MeshLoadReport& report, const MeshLoadLimits& limits) {
     report = MeshLoadReport{};
+    check_limits(limits);
     check_is_nonempty_file(path);
     const detail::MeshFormat format = format_of(path);
-    const std::set<fs::path> buffers = check_whole_file(path, format);
+    // Mapped once: the check walks these bytes and assimp reads them (confined_io_system.hpp).
+    const detail::MappedFile file(path);
+    check_byte_limit(path, file.bytes().size(), limits, "the file is");
+    std::set<fs::path> buffers;
+    try {
+        buffers = detail::check_mesh(file.bytes(), format, path.parent_path(), limits.max_nesting);
+    } catch (const detail::MeshCheckError& e) {
+        fail(path, e.reason);
+    }
+    std::uintmax_t with_buffers = file.bytes().size();
+    for (const fs::path& buffer : buffers) {
+        std::error_code ec;
+        with_buffers += fs::file_size(buffer, ec);
+        if (ec) fail(path, "cannot read the size of its buffer '" + buffer.string() + "'");
+    }
+    check_byte_limit(path, with_buffers, limits, "with the buffers it names, it is");
 
     Assimp::Importer importer;
     const auto unused_readers = keep_only_reader(importer, format);
-    importer.SetIOHandler(new detail::ConfinedIoSystem(path, buffers));  // the importer owns it
+    // The importer owns the IO system.
+    importer.SetIOHandler(new detail::ConfinedIoSystem(path, file.bytes(), buffers));
     // Some importers invent a mesh to visualise a skeleton when a file has bones but no
     // mesh; that would be phantom collision geometry.
     importer.SetPropertyBool(AI_CONFIG_IMPORT_NO_SKELETON_MESHES, true);
@@ -347,7 +365,7 @@ TriangleMesh load_mesh(const fs::path& path, MeshLoadReport& report) {
     // it; aiProcess_PreTransformVertices would apply the node transforms in float; and
     // aiProcess_JoinIdenticalVertices compares normals and UVs too, so VertexWelder welds
     // by position instead. Triangulation runs as a second pass, after the validation below.
-    SceneMerger merger(path, report);
+    SceneMerger merger(path, report, limits);
     try {
         const aiScene* scene = importer.ReadFile(path.string(), aiProcess_ValidateDataStructure);
         // assimp's own words ("OBJ-file is too small.", "An unknown error occurred during
@@ -377,9 +395,9 @@ TriangleMesh load_mesh(const fs::path& path, MeshLoadReport& report) {
     }
 }
 
-TriangleMesh load_mesh(const fs::path& path) {
+TriangleMesh load_mesh(const fs::path& path, const MeshLoadLimits& limits) {
     MeshLoadReport report;
-    return load_mesh(path, report);
+    return load_mesh(path, report, limits);
 }
 
 }  // namespace trackphys

@@ -90,6 +90,8 @@ const ScalarType& type_named(const TextScanner& scan, std::string_view name) {
     scan.fail("unknown PLY property type '" + std::string(name) + "'");
 }
 
+bool is_face_element(std::string_view name) { return name == "face" || name == "tristrips"; }
+
 Header read_header(std::string_view file) {
     TextScanner scan(file);
     if (scan.at_end() || scan.next_line() != std::vector<std::string_view>{"ply"})
@@ -120,6 +122,16 @@ Header read_header(std::string_view file) {
                 scan.fail("unknown PLY format '" + std::string(words[1]) + "'");
         } else if (keyword == "element") {
             scan.expect_words(3, 3, "element");
+            // assimp sizes the vertex or face array by an element's first declaration and
+            // writes a later one's instances into it, past its end (found by fuzz_mesh_import);
+            // faces and triangle strips share one array that way, so a file holds one kind.
+            for (const Element& e : header.elements) {
+                if (e.name == words[1])
+                    scan.fail("a second element '" + std::string(words[1]) + "'");
+                if (is_face_element(e.name) && is_face_element(words[1]))
+                    scan.fail("an element '" + std::string(words[1]) + "' besides '" +
+                              std::string(e.name) + "' (faces or triangle strips, not both)");
+            }
             header.elements.push_back({words[1], scan.count(words[2], "element count"), {}});
         } else if (keyword == "property") {
             if (header.elements.empty()) scan.fail("a property before any element");

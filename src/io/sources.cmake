@@ -12,6 +12,7 @@ target_sources(trackphys PRIVATE
   io/confined_io_system.cpp
   io/gltf_check.cpp
   io/mapped_file.cpp
+  io/mesh_checks.cpp
   io/mesh_format.cpp
   io/mesh_import.cpp
   io/obj_check.cpp

@@ -97,6 +97,15 @@ def corpus(rng):
     files["ply_face_of_no_index.ply"] = PLY_HEAD.format(v=4, f=1, count="uchar") + PLY_VERTICES + "0\n"
     files["ply_no_end_header.ply"] = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
     files["ply_nul_in_header.ply"] = "ply\nformat ascii 1.0\ncomment a\0\0end_header\n0 0 0\n"
+    # assimp writes a later vertex or face element into the array sized by the first.
+    second_vertices = "element vertex 10\nproperty float x\nproperty float y\nproperty float z\n"
+    files["ply_second_vertex_element.ply"] = (
+        PLY_HEAD.format(v=4, f=1, count="uchar").replace("element face", second_vertices + "element face") +
+        PLY_VERTICES + "0 0 0\n" * 10 + "3 0 1 2\n")
+    files["ply_strips_then_faces.ply"] = (
+        PLY_HEAD.format(v=4, f=3, count="uchar").replace(
+            "element face", "element tristrips 1\nproperty list int int vertex_indices\nelement face") +
+        PLY_VERTICES + "40 " + " ".join(str(i % 4) for i in range(40)) + "\n" + "3 0 1 2\n" * 3)
     files["ply_binary_index_high.ply"] = binary_ply([0, 1, 3])
     files["ply_binary_index_negative.ply"] = binary_ply([0, -7, 2])
     for cut in truncations(rng, valid_ply, 1, len(valid_ply) - 2, 6):

@@ -231,5 +231,25 @@ TEST_F(MeshChecks, Ac3dStripThatWrapsAssimpsFaceCountIsRefused) {
               std::string::npos);
 }
 
+TEST_F(MeshChecks, PlySecondVertexElementIsRefused) {
+    // Found by fuzz_mesh_import (issue 19, 30-minute runs): assimp 5.2.5 sizes the vertex
+    // array by the first 'element vertex' and writes a second one's instances into it, past
+    // its end (valgrind: "Invalid write of size 8 ... 0 bytes after a block of size 36" for
+    // 3 then 10 vertices). Also a seed of fuzz_mesh_import.
+    test::write_file(file("twice.ply"), test::read_file(fs::path(TRACKPHYS_FUZZ_SEEDS_DIR) /
+                                                        "ply_second_vertex_element.ply.seed")
+                                            .substr(1));
+    EXPECT_NE(
+        test::load_error(file("twice.ply")).find("twice.ply': line 7: a second element 'vertex'"),
+        std::string::npos);
+    // Faces and triangle strips share that array the same way.
+    const std::string strips = "element tristrips 1\nproperty list int int vertex_indices\n";
+    std::string both = kPlyVertices;
+    both.insert(both.find("element face"), strips);
+    expect_refused({{"both.ply", both + "3 0 1 2\n",
+                     "line 9: an element 'face' besides 'tristrips' (faces or triangle strips, "
+                     "not both)"}});
+}
+
 }  // namespace
 }  // namespace trackphys

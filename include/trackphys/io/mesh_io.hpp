@@ -6,6 +6,7 @@
 #include "trackphys/export.hpp"
 #include "trackphys/geometry/aabb.hpp"
 #include "trackphys/geometry/triangle_mesh.hpp"
+#include "trackphys/io/mesh_load_limits.hpp"
 
 /// Mesh files in and out, through assimp.
 ///
@@ -56,14 +57,23 @@ struct MeshLoadReport {
 /// or when no triangle is left.
 ///
 /// Bounded: the whole file is checked before assimp reads it (every count against the bytes
-/// that hold it, every index in range, nesting at most 64 deep), so a hostile file is refused
-/// in time linear in its size and allocates at most a small multiple of it. No file but the
+/// that hold it, every index in range, nesting at most limits.max_nesting deep), so a hostile
+/// file is refused in time linear in its size and allocates at most a small multiple of it.
+/// The file is mapped and read once: the check and assimp see the same bytes. No file but the
 /// mesh and, for glTF, the buffers it names inside its own folder is ever opened: no
 /// absolute path, `..`, URL or material file.
-TRACKPHYS_API TriangleMesh load_mesh(const std::filesystem::path& path, MeshLoadReport& report);
+///
+/// Limits (mesh_load_limits.hpp): a file beyond one throws trackphys::Error naming the file
+/// and the limit, e.g. "mesh file 'a.obj': more than 1000 triangles, the limit
+/// max_triangles". Bytes and nesting are checked before assimp reads the file; triangles and
+/// vertices as the mesh is assembled, so it never holds more. A limit of 0, or max_nesting
+/// above max_mesh_nesting_allowed, throws before the file is opened.
+TRACKPHYS_API TriangleMesh load_mesh(const std::filesystem::path& path, MeshLoadReport& report,
+                                     const MeshLoadLimits& limits = MeshLoadLimits{});
 
 /// load_mesh without the report.
-TRACKPHYS_API TriangleMesh load_mesh(const std::filesystem::path& path);
+TRACKPHYS_API TriangleMesh load_mesh(const std::filesystem::path& path,
+                                     const MeshLoadLimits& limits = MeshLoadLimits{});
 
 /// Writes mesh (world space, one mesh, one node, no materials beyond assimp's default) in
 /// the format named by the extension, case-insensitive: .glb (binary glTF 2), .gltf (glTF 2
