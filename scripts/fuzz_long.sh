@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The long fuzz run (README "Reliability"): builds the fuzz preset (clang, libFuzzer,
+# The long fuzz run (docs/testing.md, "Bad input and long runs"): builds the fuzz preset (clang, libFuzzer,
 # AddressSanitizer + UndefinedBehaviorSanitizer) and runs every fuzzer for MINUTES each
 # (default 60), one after the other, each from its corpus (build/fuzz/fuzz/corpus/<name>,
 # kept between runs and shared with the short CTest runs) and its seeds, with a random search

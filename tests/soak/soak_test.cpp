@@ -1,4 +1,4 @@
-// The soak (CTest label "long", README "Reliability"): long drives checked after every
+// The soak (CTest label "long", docs/testing.md, "Bad input and long runs"): long drives checked after every
 // update. (a) One simulated hour of the default track by autopilot, the target speed
 // changing every lap up to 1000 km/h. (b) Free driving on a real-world track mesh (TORCS's
 // g-track-1, fetched by scripts/fetch_torcs_track.sh). After every update: the state is
