@@ -36,6 +36,8 @@ RaceDrivers::RaceDrivers(const Track& track, const CarSpec& car, std::size_t car
             "RaceSettings: lane_offset, pass_look_ahead, lane_width and follow_gap must be >= 0");
     if (!(std::isfinite(settings_.lane_change_speed) && settings_.lane_change_speed > 0.0))
         throw Error("RaceSettings: lane_change_speed must be finite and > 0");
+    if (!(settings_.rescue_distance > 0.0))
+        throw Error("RaceSettings: rescue_distance must be > 0 (infinity: never rescue)");
     for (std::size_t i = 0; i < cars; ++i) {
         const double share =
             cars == 1 ? 0.0 : static_cast<double>(i) / static_cast<double>(cars - 1);
@@ -51,6 +53,7 @@ RaceDrivers::RaceDrivers(const Track& track, const CarSpec& car, std::size_t car
     progress_.lines = progress_.lanes;
     progress_.lap_times.resize(cars);
     progress_.last_crossings.assign(cars, 0.0);
+    progress_.rescues.assign(cars, 0);
     next_lanes_.assign(cars, 0.0);
 }
 
@@ -146,15 +149,49 @@ void RaceDrivers::drive(World& world) {
     }
 }
 
-void RaceDrivers::after_update(const World& world) {
+void RaceDrivers::after_update(World& world) {
     for (std::size_t i = 0; i < pilots_.size(); ++i) {
         const int before = pilots_[i].laps();
         pilots_[i].locate(world.car(i));
+        if (left_track(world, i)) rescue(world, i);
         if (pilots_[i].laps() <= before) continue;
         if (pilots_[i].laps() > 1)
             progress_.lap_times[i].push_back(world.time() - progress_.last_crossings[i]);
         progress_.last_crossings[i] = world.time();
     }
+}
+
+bool RaceDrivers::left_track(const World& world, std::size_t i) const {
+    const CenterlineSample& s = track_->centerline[pilots_[i].nearest_sample()];
+    return !(glm::distance(world.car(i).state().position, s.position) <= settings_.rescue_distance);
+}
+
+void RaceDrivers::rescue(World& world, std::size_t i) {
+    // Clear of the others by about two car lengths: a car put down on top of another would
+    // be thrown off again by the contact.
+    constexpr double kClearance = 10.0;  // m
+    const std::vector<CenterlineSample>& centerline = track_->centerline;
+    const auto clear = [&](const glm::dvec3& spot) {
+        for (std::size_t j = 0; j < pilots_.size(); ++j)
+            if (j != i && glm::distance(world.car(j).state().position, spot) < kClearance)
+                return false;
+        return true;
+    };
+    const double lane = own_lane(i);
+    std::size_t at = pilots_[i].nearest_sample();
+    for (std::size_t tried = 0; tried < centerline.size(); ++tried) {
+        const CenterlineSample& s = centerline[at];
+        if (clear(s.position + s.left * lane)) break;
+        at = (at + 1) % centerline.size();
+    }
+    const CenterlineSample& s = centerline[at];
+    RigidBodyState state = place_car_on_track(world.statics(), car_, s, lane);
+    state.linear_velocity = s.tangent * pilots_[i].planned_speed(at);
+    world.car(i).set_state(state);
+    pilots_[i].locate(world.car(i));
+    progress_.lanes[i] = lane;
+    progress_.lines[i] = lane;
+    ++progress_.rescues[i];
 }
 
 int RaceDrivers::laps(std::size_t car) const { return std::max(0, pilots_.at(car).laps() - 1); }
@@ -174,7 +211,8 @@ RaceProgress RaceDrivers::progress() const {
 void RaceDrivers::set_progress(const RaceProgress& progress) {
     const std::size_t n = pilots_.size();
     if (progress.pilots.size() != n || progress.lanes.size() != n || progress.lines.size() != n ||
-        progress.lap_times.size() != n || progress.last_crossings.size() != n)
+        progress.lap_times.size() != n || progress.last_crossings.size() != n ||
+        progress.rescues.size() != n)
         throw Error("RaceDrivers::set_progress: the progress is not of a field of " +
                     std::to_string(n) + " cars");
     for (std::size_t i = 0; i < n; ++i) pilots_[i].set_progress(progress.pilots[i]);

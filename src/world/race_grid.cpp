@@ -23,6 +23,16 @@ const CenterlineSample& sample_at(const Track& track, double s) {
 
 }  // namespace
 
+RigidBodyState place_car_on_track(const StaticWorld& statics, const CarSpec& car,
+                                  const CenterlineSample& sample, double across) {
+    // Body axes +X left, +Y up, +Z forward onto the road frame there.
+    const glm::dquat facing =
+        glm::normalize(glm::quat_cast(glm::dmat3(sample.left, sample.up, sample.tangent)));
+    const glm::dvec3 above =
+        sample.position + sample.left * across + sample.up * (car.lowest_point_depth() + 0.5);
+    return place_car_on_surface(statics, car, above, facing);
+}
+
 std::vector<RigidBodyState> race_grid(const Track& track, const StaticWorld& statics,
                                       const CarSpec& car, std::size_t cars,
                                       const RaceGridSettings& settings) {
@@ -44,14 +54,9 @@ std::vector<RigidBodyState> race_grid(const Track& track, const StaticWorld& sta
     for (std::size_t i = 0; i < cars; ++i) {
         const double back =
             settings.first_row_back + 0.5 * settings.row_gap * static_cast<double>(i);
-        const CenterlineSample& s = sample_at(track, track.length_m - back);
         const double side = i % 2 == 0 ? 0.5 : -0.5;  // left column first
-        // Body axes +X left, +Y up, +Z forward onto the road frame there.
-        const glm::dquat facing =
-            glm::normalize(glm::quat_cast(glm::dmat3(s.left, s.up, s.tangent)));
-        const glm::dvec3 above = s.position + s.left * (side * settings.column_gap) +
-                                 s.up * (car.lowest_point_depth() + 0.5);
-        grid.push_back(place_car_on_surface(statics, car, above, facing));
+        grid.push_back(place_car_on_track(statics, car, sample_at(track, track.length_m - back),
+                                          side * settings.column_gap));
     }
     return grid;
 }

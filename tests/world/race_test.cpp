@@ -72,7 +72,8 @@ RaceRun run(const Race& race, int threads, bool save, const RaceRun* from = null
     }
     result.hash = world.state_hash();
     result.fewest_laps = drivers.fewest_laps();
-    for (std::size_t i = 0; i < race.cars; ++i) result.resets += world.car_resets(i);
+    for (std::size_t i = 0; i < race.cars; ++i)
+        result.resets += world.car_resets(i) + drivers.rescues(i);
     return result;
 }
 
@@ -101,6 +102,46 @@ TEST(Race, EightCarsFinishALapCleanlyAndTheSameOnAnyThreads) {
 
 TEST(Race, TwentyCarsFinishThreeLapsCleanlyAndTheSameOnAnyThreads) {
     expect_clean_and_deterministic({20, 3});
+}
+
+// A car thrown off the map (as over a wall at speed) is put back on the road in its lane,
+// clear of the car beside it, once, and races on from there.
+TEST(Race, ACarThatLeavesTheTrackIsRescuedAndRacesOn) {
+    const test::TrackWorld& track = test::default_track();
+    World world(track.statics, WorldSettings{}, track.trees);
+    RaceDrivers drivers(track.track, CarSpec::default_car(), 2);
+    drivers.add_cars(world);
+    const auto update = [&] {
+        drivers.drive(world);
+        world.update();
+        drivers.after_update(world);
+    };
+    for (int i = 0; i < 300; ++i) update();
+    ASSERT_EQ(drivers.rescues(1), 0u);
+
+    Car& thrown = world.car(1);
+    RigidBodyState state = thrown.state();
+    const CenterlineSample& left_at = track.track.centerline[drivers.autopilot(1).nearest_sample()];
+    state.position += left_at.left * 200.0 + left_at.up * 50.0;
+    thrown.set_state(state);
+    update();
+    EXPECT_EQ(drivers.rescues(1), 1u);
+    EXPECT_EQ(drivers.rescues(0), 0u);
+    const CenterlineSample& back_at = track.track.centerline[drivers.autopilot(1).nearest_sample()];
+    const glm::dvec3 offset = thrown.state().position - back_at.position;
+    EXPECT_LT(std::abs(glm::dot(offset, back_at.left) - RaceSettings{}.lane_offset * -1.0), 0.5)
+        << "m from its own (right) lane";
+    EXPECT_LT(std::abs(glm::dot(offset, back_at.up)), 2.0) << "m above the road";
+    EXPECT_GT(glm::distance(thrown.state().position, world.car(0).state().position), 10.0)
+        << "put down on the other car";
+
+    const double distance_before = drivers.autopilot(1).distance_along();
+    for (int i = 0; i < 500; ++i) update();
+    EXPECT_EQ(drivers.rescues(1), 1u) << "it left the track again";
+    EXPECT_EQ(world.car_resets(1), 0u);
+    EXPECT_GT(drivers.autopilot(1).distance_along() - distance_before, 100.0)
+        << "m raced in the 5 s after the rescue";
+    EXPECT_EQ(drivers.progress().rescues, (std::vector<std::uint64_t>{0, 1}));
 }
 
 }  // namespace

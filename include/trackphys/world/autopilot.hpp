@@ -64,6 +64,8 @@ class TRACKPHYS_API Autopilot {
     void set_lane_offset(double metres) { lane_offset_ = metres; }
     double lane_offset() const { return lane_offset_; }
 
+    const AutopilotSettings& settings() const { return settings_; }
+
     /// The progress to save beside a world snapshot.
     AutopilotProgress progress() const { return {nearest_, laps_, located_}; }
     /// Continues from saved progress. Throws trackphys::Error when the sample is not on

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "trackphys/dynamics/car_spec.hpp"
@@ -43,6 +44,10 @@ struct RaceSettings {
     /// How fast (m/s across the road) a car's line moves to a new lane: a lane change is a
     /// smooth swerve, not a step the steering would overshoot.
     double lane_change_speed = 3.0;
+    /// A car whose centre of mass ends an update farther than this (m) from the centreline
+    /// has left the track (over a wall, off the map, falling): it is put back on the road
+    /// where it left it (a rescue; see RaceDrivers::after_update).
+    double rescue_distance = 30.0;
     /// Every car's autopilot; its target_speed and grip_use are replaced by the spread
     /// above.
     AutopilotSettings driver = race_autopilot();
@@ -57,6 +62,7 @@ struct RaceProgress {
     std::vector<double> lines;  ///< the line each car steers for now, on its way there (m)
     std::vector<std::vector<double>> lap_times;  ///< per car (s)
     std::vector<double> last_crossings;          ///< per car: its last start-line crossing (s)
+    std::vector<std::uint64_t> rescues;          ///< per car: times it was put back on the road
 };
 
 /// A field of cars racing laps of a generated track: a starting grid (race_grid), one
@@ -82,8 +88,11 @@ class TRACKPHYS_API RaceDrivers {
     /// Sets every car's inputs for the next World::update.
     void drive(World& world);
     /// Call after each World::update: counts the laps each car completed in it, timed at
-    /// world.time().
-    void after_update(const World& world);
+    /// world.time(), and rescues every car that left the track (RaceSettings::
+    /// rescue_distance): it is put back in its own lane at its nearest centreline sample, or
+    /// the first sample after it with no other car within a car's length or two, facing
+    /// along the track at the speed its autopilot plans there, its inputs kept.
+    void after_update(World& world);
 
     std::size_t car_count() const { return pilots_.size(); }
     int laps(std::size_t car) const;
@@ -95,6 +104,10 @@ class TRACKPHYS_API RaceDrivers {
     }
     /// Car i's target speed on straights (m/s).
     double target_speed(std::size_t car) const { return target_speeds_.at(car); }
+    /// Car i's share of its tyres' grip planned in turns (AutopilotSettings::grip_use).
+    double grip_use(std::size_t car) const { return pilots_.at(car).settings().grip_use; }
+    /// Times car i left the track and was put back on it.
+    std::uint64_t rescues(std::size_t car) const { return progress_.rescues.at(car); }
     const Autopilot& autopilot(std::size_t car) const { return pilots_.at(car); }
 
     /// The race's progress, to save beside a world snapshot, and back. set_progress
@@ -125,6 +138,10 @@ class TRACKPHYS_API RaceDrivers {
         double closing;
     };
     CarAhead car_ahead(const World& world, std::size_t i, double line, double from) const;
+    // Whether car i is farther than rescue_distance from its nearest centreline sample.
+    bool left_track(const World& world, std::size_t i) const;
+    // Puts car i back on the road (after_update).
+    void rescue(World& world, std::size_t i);
 
     const Track* track_;
     CarSpec car_;

@@ -18,6 +18,12 @@ struct RaceGridSettings {
     double first_row_back = 5.0;  ///< m from the start line back to the pole position
 };
 
+/// A car at rest on the surface of `statics` (place_car_on_surface) at centreline sample
+/// `sample`, `across` m left of the centreline (negative: right), facing along the track.
+/// Throws trackphys::Error as place_car_on_surface does.
+TRACKPHYS_API RigidBodyState place_car_on_track(const StaticWorld& statics, const CarSpec& car,
+                                                const CenterlineSample& sample, double across);
+
 /// Start states for `cars` cars on a grid behind the start line of `track`: two columns,
 /// column_gap apart and centred on the centreline, car 0 on pole (left column), car 1 in
 /// the right column half a row further back, and so on, each row_gap behind the car two
