@@ -20,6 +20,13 @@ nlohmann::json summary_json(const Summary& s) {
     return {{"mean", s.mean}, {"p50", s.p50}, {"p99", s.p99}, {"max", s.max}};
 }
 
+void add_profile_json(nlohmann::json& json, const ProfileStatistics& profile) {
+    json["update_us"] = summary_json(profile.update_us());
+    for (std::size_t p = 0; p < phase_count; ++p)
+        json["phases_us"][phase_name(static_cast<Phase>(p))] =
+            summary_json(profile.phase_us(static_cast<Phase>(p)));
+}
+
 void print_profile_table(const ProfileStatistics& profile) {
     std::printf("per update (us) %7s %9s %9s %9s\n", "mean", "p50", "p99", "max");
     print_row("update", profile.update_us());
@@ -75,10 +82,7 @@ void write_drive_json(const DriveReport& r, const std::filesystem::path& path) {
     json["final_position"] = {r.final_position.x, r.final_position.y, r.final_position.z};
     json["state_hash"] = hash_hex(r.state_hash);
     json["resets"] = r.resets;
-    json["update_us"] = summary_json(r.profile.update_us());
-    for (std::size_t p = 0; p < phase_count; ++p)
-        json["phases_us"][phase_name(static_cast<Phase>(p))] =
-            summary_json(r.profile.phase_us(static_cast<Phase>(p)));
+    add_profile_json(json, r.profile);
     json["counts"] = {
         {"mid_queries", r.profile.mean_mid_queries()},
         {"candidates", r.profile.mean_candidates()},

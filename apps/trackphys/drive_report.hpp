@@ -42,6 +42,9 @@ void write_drive_json(const DriveReport& report, const std::filesystem::path& pa
 /// The per-update and per-phase times table, with the write-up's budget (stdout).
 void print_profile_table(const ProfileStatistics& profile);
 
+/// The profile's "update_us" and "phases_us" (each a summary_json) into a JSON report.
+void add_profile_json(nlohmann::json& json, const ProfileStatistics& profile);
+
 /// {"mean", "p50", "p99", "max"} of a summary, as the JSON reports write it.
 nlohmann::json summary_json(const Summary& summary);
 

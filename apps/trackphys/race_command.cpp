@@ -56,6 +56,9 @@ Race build_race(const RaceOptions& o, const CLI::App& command) {
                         "': a race runs on a generated track (track.seed), from its grid");
     }
     if (o.scenario_file.empty() || given("--cars")) s.cars = static_cast<int>(o.cars);
+    if (given("--seed") && !o.map.empty())
+        throw Error("--seed picks a generated track, but this race is on the map '" +
+                    o.map.string() + "'");
     if (given("--seed")) s.seed = o.seed;
     if (given("--laps")) s.laps = o.laps;
     if (given("--seconds")) s.seconds = o.seconds;
@@ -84,9 +87,9 @@ void check(const RaceOptions& o) {
 std::vector<RaceCarResult> classify(const RaceDrivers& drivers, const World& world) {
     std::vector<RaceCarResult> results;
     for (std::size_t i = 0; i < drivers.car_count(); ++i)
-        results.push_back({i, drivers.target_speed(i) * 3.6, drivers.laps(i),
+        results.push_back({i, drivers.target_speed(i) * 3.6, drivers.grip_use(i), drivers.laps(i),
                            drivers.autopilot(i).distance_along(), drivers.lap_times(i),
-                           world.car_resets(i)});
+                           world.car_resets(i) + drivers.rescues(i), drivers.rescues(i)});
     std::stable_sort(
         results.begin(), results.end(),
         [](const RaceCarResult& a, const RaceCarResult& b) { return a.distance_m > b.distance_m; });
@@ -179,7 +182,10 @@ void run(const RaceOptions& o, const CLI::App& command) {
     report.simulated_s = world.time();
     report.laps_completed = drivers.fewest_laps();
     report.classification = classify(drivers, world);
-    for (std::size_t i = 0; i < cars; ++i) report.resets += world.car_resets(i);
+    for (const RaceCarResult& c : report.classification) {
+        report.resets += c.resets;
+        report.rescues += c.rescues;
+    }
     report.state_hash = world.state_hash();
 
     print_race_report(report);
@@ -207,14 +213,12 @@ void add_race_command(CLI::App& app) {
                         "Race a scenario file: its track seed, car (every car's), cars, "
                         "autopilot target speed (the fastest car's), laps and seconds; options "
                         "given with it override the file's values");
-    CLI::Option* seed = command->add_option("--seed", o->seed, "Seed of the generated track")
-                            ->check(not_negative())
-                            ->capture_default_str();
-    command
-        ->add_option("--map", o->map,
-                     "Race on this baked map (trackphys bake --seed) instead of generating the "
-                     "track")
-        ->excludes(seed);
+    command->add_option("--seed", o->seed, "Seed of the generated track")
+        ->check(not_negative())
+        ->capture_default_str();
+    command->add_option("--map", o->map,
+                        "Race on this baked map (trackphys bake --seed) instead of generating "
+                        "the track");
     command->add_option("--cars", o->cars, "Cars on the grid (1 to 128)")
         ->check(not_negative())
         ->capture_default_str();

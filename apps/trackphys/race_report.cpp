@@ -29,20 +29,21 @@ void print_race_report(const RaceReport& r) {
     std::printf("race         %zu cars on %d threads, %.2f s simulated in %" PRIu64
                 " updates (%.2f s wall clock)\n",
                 r.cars, r.threads, r.simulated_s, r.updates, r.wall_s);
-    std::printf("%4s %4s %8s %5s %10s %10s %7s\n", "pos", "car", "km/h", "laps", "best lap",
-                "last lap", "resets");
+    std::printf("%4s %4s %8s %6s %5s %10s %10s %7s\n", "pos", "car", "km/h", "grip %", "laps",
+                "best lap", "last lap", "resets");
     for (std::size_t i = 0; i < r.classification.size(); ++i) {
         const RaceCarResult& c = r.classification[i];
-        std::printf("%4zu %4zu %8.0f %5d %10.2f %10.2f %7" PRIu64 "\n", i + 1, c.car, c.target_kmh,
-                    c.laps, best_lap(c), c.lap_times_s.empty() ? 0.0 : c.lap_times_s.back(),
-                    c.resets);
+        std::printf("%4zu %4zu %8.0f %6.1f %5d %10.2f %10.2f %7" PRIu64 "\n", i + 1, c.car,
+                    c.target_kmh, 100.0 * c.grip_use, c.laps, best_lap(c),
+                    c.lap_times_s.empty() ? 0.0 : c.lap_times_s.back(), c.resets);
     }
     std::printf("laps         %d by every car\n", r.laps_completed);
     std::printf("car contacts %" PRIu64 " sub-steps of touching pairs, deepest %.4f m\n",
                 r.car_contacts, r.max_car_penetration_m);
     print_profile_table(r.profile);
     std::printf("per car      %.2f us per car-update (mean update / cars)\n", per_car_us(r));
-    std::printf("resets       %" PRIu64 "\n", r.resets);
+    std::printf("resets       %" PRIu64 " (%" PRIu64 " of them rescues off the track)\n", r.resets,
+                r.rescues);
     std::printf("state hash   %s\n", hash_hex(r.state_hash).c_str());
 }
 
@@ -55,22 +56,22 @@ void write_race_json(const RaceReport& r, const std::filesystem::path& path) {
     json["simulated_s"] = r.simulated_s;
     json["wall_s"] = r.wall_s;
     json["laps_completed"] = r.laps_completed;
-    json["update_us"] = summary_json(r.profile.update_us());
-    for (std::size_t p = 0; p < phase_count; ++p)
-        json["phases_us"][phase_name(static_cast<Phase>(p))] =
-            summary_json(r.profile.phase_us(static_cast<Phase>(p)));
+    add_profile_json(json, r.profile);
     json["per_car_us"] = per_car_us(r);
     json["car_contacts"] = r.car_contacts;
     json["max_car_penetration_m"] = r.max_car_penetration_m;
     json["resets"] = r.resets;
+    json["rescues"] = r.rescues;
     json["state_hash"] = hash_hex(r.state_hash);
     nlohmann::json classification = nlohmann::json::array();
     for (const RaceCarResult& c : r.classification)
         classification.push_back({{"car", c.car},
                                   {"target_kmh", c.target_kmh},
+                                  {"grip_use", c.grip_use},
                                   {"laps", c.laps},
                                   {"lap_times_s", c.lap_times_s},
-                                  {"resets", c.resets}});
+                                  {"resets", c.resets},
+                                  {"rescues", c.rescues}});
     json["classification"] = std::move(classification);
     write_json_file(json, path);
 }

@@ -13,10 +13,12 @@ namespace trackphys::cli {
 struct RaceCarResult {
     std::size_t car = 0;      ///< index on the grid (0 = pole)
     double target_kmh = 0.0;  ///< its autopilot's speed on straights
+    double grip_use = 0.0;    ///< its autopilot's share of the grip in turns: its pace
     int laps = 0;             ///< completed
     double distance_m = 0.0;  ///< along the centreline since the grid, for the order
     std::vector<double> lap_times_s;
-    std::uint64_t resets = 0;
+    std::uint64_t resets = 0;   ///< the World's and the rescues
+    std::uint64_t rescues = 0;  ///< times it left the track and was put back on it
 };
 
 /// Everything `trackphys race` reports.
@@ -31,7 +33,8 @@ struct RaceReport {
     std::vector<RaceCarResult> classification;  ///< by laps, then distance, leader first
     std::uint64_t car_contacts = 0;             ///< UpdateProfile::car_contacts, summed
     double max_car_penetration_m = 0.0;
-    std::uint64_t resets = 0;  ///< over all cars
+    std::uint64_t resets = 0;   ///< over all cars, rescues included
+    std::uint64_t rescues = 0;  ///< over all cars
     std::uint64_t state_hash = 0;
     ProfileStatistics profile;
 };

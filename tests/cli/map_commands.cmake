@@ -21,14 +21,14 @@ set_tests_properties(map.drive_pinned_state_hash map.info map.drive_a_mesh_map_f
                      map.drive_a_mesh_map_needs_a_spawn PROPERTIES FIXTURES_REQUIRED baked_maps)
 
 # race --map: the baked track races as the generated one (the same hash as race --seed 7);
-# --seed with --map is a usage error (CLI11 ExcludesError, exit 108).
+# --seed with --map is an error naming both, as in drive.
 trackphys_cli_test(map.race_pinned_state_hash 0 "map .*seed7.tpmap.*state hash +028c8ef640e944bb"
                    race --map ${maps}/seed7.tpmap --cars 2 --seconds 2)
 trackphys_cli_test(map.race_generated_state_hash 0 "seed 7.*state hash +028c8ef640e944bb"
                    race --seed 7 --cars 2 --seconds 2)
 trackphys_cli_test(map.race_a_mesh_map_needs_a_track 1 "baked from a mesh and has no centreline"
                    race --map ${maps}/flat.tpmap --cars 2 --seconds 1)
-trackphys_cli_test(map.race_map_or_seed 108 "--seed excludes --map"
+trackphys_cli_test(map.race_map_or_seed 1 "--seed picks a generated track, but this race is on the map '.*seed7.tpmap'"
                    race --map ${maps}/seed7.tpmap --seed 3 --cars 2 --seconds 1)
 set_tests_properties(map.race_pinned_state_hash map.race_a_mesh_map_needs_a_track
                      map.race_map_or_seed PROPERTIES FIXTURES_REQUIRED baked_maps)
