@@ -3,20 +3,20 @@
 // vehicle model only; hidden for the others). Test hooks: docs/viewer.md.
 import { WHEEL_CHANNELS, type CarEllipsoid, type CarTrack, type VehicleTrack } from "./recording";
 
-// Each channel's HUD column: its header, test hook and how it is shown.
+// Each channel's HUD column, in the recording's order: its header, test hook and decimals.
 const COLUMNS = [
   { header: "slip", testid: "slip-ratio", digits: 3 },
   { header: "angle °", testid: "slip-angle", digits: 2 },
   { header: "load N", testid: "load", digits: 0 },
   { header: "spin rad/s", testid: "spin", digits: 1 },
 ];
+const LOAD = 2; // the column with a bar
 
 // v to that many decimals, without the "-0.000" of a tiny negative value.
 function fixed(v: number, digits: number): string {
   const text = v.toFixed(digits);
   return Number(text) === 0 ? (0).toFixed(digits) : text;
 }
-const LOAD = 2;
 
 /** Wheel names as --telemetry's CSV has them: f/r for the axle, l/r for the side (+X is
  * left); "wheel K" when two would share a name. */

@@ -23,7 +23,13 @@ import {
     openGuardedPage,
     waitReady,
 } from "./page_probe.mjs";
-import { handMadeSpeed, malformedRecording, multiCarRecording, versionOneRecording } from "./recordings.mjs";
+import {
+    handMadeSpeed,
+    malformedRecording,
+    multiCarRecording,
+    vehicleMissingAWheel,
+    versionOneRecording,
+} from "./recordings.mjs";
 
 const { values: args } = parseArgs({
     options: {
@@ -343,6 +349,12 @@ await check("a malformed recording, opened or dropped, shows a readable error", 
         await dropFiles(page, [["notes.txt", "hello"]]);
         await page.waitForFunction(() =>
             document.querySelector('[data-testid="error"]').textContent.includes("not a trackphys recording"),
+        );
+        await dropFiles(page, [["short_of_a_wheel.jsonl", vehicleMissingAWheel()]]);
+        await page.waitForFunction(() =>
+            document
+                .querySelector('[data-testid="error"]')
+                .textContent.includes("line 2: cars[0].vehicle.wheels must list the car's 4 wheels"),
         );
     }),
 );
