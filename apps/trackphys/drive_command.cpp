@@ -374,8 +374,10 @@ void add_drive_command(CLI::App& app) {
     command->add_option("--json", o->json, "Write the figures as JSON");
     command->add_option("--trace", o->trace,
                         "Write a Chrome trace (Perfetto) of every update's phases");
-    command->add_option("--record", o->record,
-                        "Write car poses and contacts per update (JSON Lines) for a viewer");
+    command->add_option(
+        "--record", o->record,
+        "Write car poses, contacts and vehicle telemetry per update (JSON Lines) for a "
+        "viewer");
     command->add_option("--telemetry", o->telemetry,
                         "Write per-update telemetry as CSV with named channels (speed, inputs; "
                         "with a vehicle model rpm, gear and each wheel's slip, load and spin)");

@@ -1,8 +1,10 @@
 #include "trackphys/io/recording.hpp"
 
 #include <cinttypes>
+#include <cmath>
 #include <cstdio>
 #include <initializer_list>
+#include <numbers>
 #include <system_error>
 
 #include "car_spec_json_detail.hpp"
@@ -11,27 +13,50 @@
 namespace trackphys {
 namespace {
 
-// %.17g keeps every bit of a double, so a replay sees exactly the simulated values.
-void put(std::ofstream& out, double x) {
+// How a number is written. The state (poses, speeds, contacts) keeps every bit of its
+// doubles, so a replay sees exactly the simulated values; telemetry is for reading off a
+// display or a chart, where 9 significant digits are more than any channel resolves (as
+// in --telemetry's CSV).
+constexpr const char* kExact = "%.17g";
+constexpr const char* kTelemetry = "%.9g";
+// Microseconds to the steady clock's nanosecond: more digits would be the division's noise.
+constexpr const char* kNanoseconds = "%.3f";
+
+void put(std::ofstream& out, double x, const char* format = kExact) {
     char text[32];
-    std::snprintf(text, sizeof text, "%.17g", x);
+    std::snprintf(text, sizeof text, format, x);
     out << text;
 }
 
-void put_list(std::ofstream& out, std::span<const double> values) {
+void put_list(std::ofstream& out, std::span<const double> values, const char* format = kExact) {
     out << '[';
     for (std::size_t i = 0; i < values.size(); ++i) {
         if (i > 0) out << ',';
-        put(out, values[i]);
+        put(out, values[i], format);
     }
     out << ']';
 }
 
-void put_list(std::ofstream& out, std::initializer_list<double> values) {
-    put_list(out, std::span<const double>(values.begin(), values.size()));
+void put_list(std::ofstream& out, std::initializer_list<double> values,
+              const char* format = kExact) {
+    put_list(out, std::span<const double>(values.begin(), values.size()), format);
 }
 
 void put(std::ofstream& out, const glm::dvec3& v) { put_list(out, {v.x, v.y, v.z}); }
+
+void put_vehicle(std::ofstream& out, const RecordedVehicle& vehicle) {
+    out << ",\"vehicle\":{\"rpm\":";
+    put(out, vehicle.engine_rpm, kTelemetry);
+    out << ",\"gear\":" << vehicle.gear << ",\"wheels\":[";
+    constexpr double kDegrees = 180.0 / std::numbers::pi;
+    for (std::size_t i = 0; i < vehicle.wheels.size(); ++i) {
+        const WheelTelemetry& w = vehicle.wheels[i];
+        out << (i > 0 ? "," : "");
+        put_list(out, {w.slip_ratio, std::atan(w.lateral_slip) * kDegrees, w.load, w.spin},
+                 kTelemetry);
+    }
+    out << "]}";
+}
 
 }  // namespace
 
@@ -66,7 +91,7 @@ void RecordingWriter::begin_frame(double t, std::uint64_t state_hash,
     out_ << "{\"t\":";
     put(out_, t);
     out_ << ",\"hash\":\"" << hash << '"';
-    if (update_us) out_ << ",\"us\":", put(out_, *update_us);
+    if (update_us) out_ << ",\"us\":", put(out_, *update_us, kNanoseconds);
     out_ << ",\"cars\":[";
     first_car_ = true;
 }
@@ -96,7 +121,9 @@ void RecordingWriter::add_car(const RecordedCar& car) {
         put_list(out_, {c.point.x, c.point.y, c.point.z, c.normal.x, c.normal.y, c.normal.z,
                         c.depth, static_cast<double>(i)});
     }
-    out_ << "]}";
+    out_ << ']';
+    if (car.vehicle) put_vehicle(out_, *car.vehicle);
+    out_ << '}';
 }
 
 void RecordingWriter::end_frame() { out_ << "]}\n"; }

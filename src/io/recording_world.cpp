@@ -46,8 +46,11 @@ void RecordingWriter::draw_contact(const DebugContact& contact) {
 void RecordingWriter::add_drawn_car() {
     if (!drawn_car_) return;
     const RigidBodyState& state = drawn_car_->state();
+    std::optional<RecordedVehicle> vehicle;
+    if (const Vehicle* model = drawn_car_->vehicle())
+        vehicle = RecordedVehicle{model->engine_rpm(), model->state().gear, model->telemetry()};
     add_car({state.position, state.orientation, drawn_car_->speed(), drawn_suspension_,
-             drawn_contacts_, drawn_car_->inputs(), drawn_laps_});
+             drawn_contacts_, drawn_car_->inputs(), drawn_laps_, vehicle});
     drawn_car_ = nullptr;
 }
 

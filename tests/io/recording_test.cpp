@@ -91,8 +91,9 @@ TEST_F(RecordingTest, FramesCarryEveryCarBitForBit) {
                     suspension,
                     contacts,
                     CarInputs{1.0, 0.25, -0.125},
-                    3});
-    writer.add_car({{4.0, 5.0, 6.0}, {1.0, 0.0, 0.0, 0.0}, 20.0, {}, {}, {}, {}});
+                    3,
+                    std::nullopt});
+    writer.add_car({{4.0, 5.0, 6.0}, {1.0, 0.0, 0.0, 0.0}, 20.0, {}, {}, {}, {}, {}});
     writer.end_frame();
     writer.begin_frame(0.02, 1);  // no update time measured
     writer.end_frame();
@@ -122,6 +123,15 @@ TEST_F(RecordingTest, FramesCarryEveryCarBitForBit) {
     EXPECT_EQ(other["contacts"], Json::array());
     EXPECT_FALSE(lines[2].contains("us"));
     EXPECT_EQ(lines[2]["cars"], Json::array());
+}
+
+TEST_F(RecordingTest, UpdateTimesAreWrittenToTheNanosecond) {
+    RecordingWriter writer(file("r.jsonl"), two_car_header());
+    writer.begin_frame(0.01, 1, 61.2345678912);
+    writer.end_frame();
+    writer.finish();
+    const std::string text = test::read_file(file("r.jsonl"));
+    EXPECT_NE(text.find(",\"us\":61.235,"), std::string::npos) << text;
 }
 
 TEST_F(RecordingTest, AppearsOnlyWhenFinished) {

@@ -259,7 +259,8 @@ TEST(DebugDraw, RecordingWriterWritesTheLineOfAHandWrittenFrame) {
             for (std::size_t k = 0; k < world.car_count(); ++k) {
                 const Car& car = world.car(k);
                 by_hand.add_car({car.state().position, car.state().orientation, car.speed(),
-                                 car.suspension(), world.contacts(k), car.inputs(), laps[k]});
+                                 car.suspension(), world.contacts(k), car.inputs(), laps[k],
+                                 std::nullopt});  // arcade cars: no vehicle model
             }
             by_hand.end_frame();
         }

@@ -29,11 +29,11 @@ export class CarView {
       body.opacity = 0.6;
     }
     for (const e of track.ellipsoids) {
-      const part = new THREE.Mesh(UNIT_SPHERE, e.wheel ? wheel : body);
+      const part = new THREE.Mesh(UNIT_SPHERE, e.role !== "body" ? wheel : body);
       part.scale.set(...e.semiAxes);
       const [w, x, y, z] = e.orientation;
       part.quaternion.set(x, y, z, w).normalize();
-      part.userData.wheel = e.wheel;
+      part.userData.wheel = e.role !== "body";
       this.parts.push(part);
       this.group.add(part);
     }

@@ -31,6 +31,7 @@ export interface Layout {
   updateUs: HTMLElement;
   camera: HTMLElement;
   contacts: HTMLElement;
+  vehicle: HTMLElement;
   cars: HTMLElement;
   play: HTMLButtonElement;
   back: HTMLButtonElement;
@@ -58,7 +59,9 @@ export function buildLayout(): Layout {
   const [usRow, updateUs] = hudRow("update", "hud-update-us", "us");
   const [contactsRow, contacts] = hudRow("contacts", "hud-contacts", "");
   const [cameraRow, camera] = hudRow("camera", "hud-camera", "");
-  hud.append(title, timeRow, speedRow, lapRow, usRow, contactsRow, cameraRow);
+  const vehicle = element("div", { class: "vehicle", "data-testid": "hud-vehicle" });
+  vehicle.hidden = true;
+  hud.append(title, timeRow, speedRow, lapRow, usRow, contactsRow, cameraRow, vehicle);
   const cars = element("div", { id: "cars", class: "panel", "data-testid": "car-list" });
   const help = element(
     "div",
@@ -98,6 +101,7 @@ export function buildLayout(): Layout {
     updateUs,
     camera,
     contacts,
+    vehicle,
     cars,
     play,
     back,

@@ -1,14 +1,28 @@
 // Parses a trackphys recording (JSON Lines, versions 1 and 2: docs/recording.md) into
 // typed arrays, one set per car, so that a 10-minute drive stays a few tens of MB.
 
+export type EllipsoidRole = "body" | "front_wheel" | "rear_wheel";
+
 /** One ellipsoid of a car, in its body frame (+X left, +Y up, +Z forward). */
 export interface CarEllipsoid {
   center: [number, number, number];
   semiAxes: [number, number, number];
   /** w, x, y, z: body from ellipsoid. */
   orientation: [number, number, number, number];
-  wheel: boolean;
+  role: EllipsoidRole;
 }
+
+/** What a car's vehicle model (gt, formula) reported, indexed by frame. */
+export interface VehicleTrack {
+  rpm: Float32Array;
+  gear: Int32Array;
+  /** WHEEL_CHANNELS per wheel per frame, wheels in the order of the car's wheel ellipsoids. */
+  wheels: Float32Array;
+  wheelCount: number;
+}
+
+/** A wheel's channels, in the recording's order: slip ratio, slip angle (deg), load (N), spin (rad/s). */
+export const WHEEL_CHANNELS = 4;
 
 /** Everything one car did, indexed by frame. */
 export interface CarTrack {
@@ -23,6 +37,7 @@ export interface CarTrack {
   laps: Int32Array | null;
   contactStart: Uint32Array; // frame f's contacts are [contactStart[f], contactStart[f+1])
   contacts: Float32Array; // 8 per contact: point, normal, depth, ellipsoid (-1 unknown)
+  vehicle: VehicleTrack | null;
 }
 
 export interface Recording {
@@ -44,7 +59,7 @@ export class RecordingError extends Error {}
 // Version 1 recordings have no car shapes: each car is drawn as one ellipsoid of a
 // typical car's size, marked as a stand-in.
 const STAND_IN_CAR: CarEllipsoid[] = [
-  { center: [0, 0, 0], semiAxes: [0.95, 0.5, 2.2], orientation: [1, 0, 0, 0], wheel: false },
+  { center: [0, 0, 0], semiAxes: [0.95, 0.5, 2.2], orientation: [1, 0, 0, 0], role: "body" },
 ];
 
 type Json = Record<string, unknown>;
@@ -81,7 +96,7 @@ function parseEllipsoids(value: unknown, car: number): CarEllipsoid[] {
       center: numbers(e.center, 3, 1, `${what}[${i}].center`) as [number, number, number],
       semiAxes: numbers(e.semi_axes, 3, 1, `${what}[${i}].semi_axes`) as [number, number, number],
       orientation: q as [number, number, number, number],
-      wheel: role !== "body",
+      role,
     };
   });
 }
@@ -154,13 +169,34 @@ class CarColumns {
   laps = new Column((n) => new Int32Array(n));
   contactStart = new Column((n) => new Uint32Array(n));
   contacts = new Column((n) => new Float32Array(n));
+  rpm = new Column((n) => new Float32Array(n));
+  gear = new Column((n) => new Int32Array(n));
+  wheels = new Column((n) => new Float32Array(n));
   hasInputs = true;
   hasLaps = true;
+  hasVehicle = true;
+  readonly wheelCount: number;
   constructor(
     readonly ellipsoids: CarEllipsoid[],
     readonly shapeKnown: boolean,
   ) {
     this.contactStart.push(0);
+    this.wheelCount = ellipsoids.filter((e) => e.role !== "body").length;
+  }
+
+  private addVehicle(vehicle: unknown, line: number, k: number): void {
+    const what = `cars[${k}].vehicle`;
+    if (!isObject(vehicle)) fail(line, `${what} must be an object`);
+    this.rpm.push(finite(vehicle.rpm, line, `${what}.rpm`));
+    const gear = vehicle.gear;
+    if (typeof gear !== "number" || !Number.isInteger(gear)) fail(line, `${what}.gear must be a whole number`);
+    this.gear.push(gear);
+    const wheels = vehicle.wheels;
+    if (!Array.isArray(wheels) || wheels.length !== this.wheelCount)
+      fail(line, `${what}.wheels must list the car's ${this.wheelCount} wheels`);
+    wheels.forEach((w: unknown, i: number) =>
+      this.wheels.push(...numbers(w, WHEEL_CHANNELS, line, `${what}.wheels[${i}]`)),
+    );
   }
 
   add(car: unknown, line: number, k: number, version: number): void {
@@ -177,6 +213,8 @@ class CarColumns {
     else this.inputs.push(...numbers(car.in, 3, line, `cars[${k}].in`));
     if (typeof car.lap === "number") this.laps.push(car.lap);
     else this.hasLaps = false;
+    if (car.vehicle === undefined) this.hasVehicle = false;
+    else this.addVehicle(car.vehicle, line, k);
     if (!Array.isArray(car.contacts)) fail(line, `cars[${k}].contacts must be an array`);
     const width = version === 1 ? 7 : 8;
     car.contacts.forEach((c: unknown, i: number) => {
@@ -199,6 +237,14 @@ class CarColumns {
       laps: this.hasLaps ? this.laps.trimmed() : null,
       contactStart: this.contactStart.trimmed(),
       contacts: this.contacts.trimmed(),
+      vehicle: this.hasVehicle
+        ? {
+            rpm: this.rpm.trimmed(),
+            gear: this.gear.trimmed(),
+            wheels: this.wheels.trimmed(),
+            wheelCount: this.wheelCount,
+          }
+        : null,
     };
   }
 }

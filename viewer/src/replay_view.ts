@@ -10,6 +10,7 @@ import { Playback } from "./playback";
 import type { Recording } from "./recording";
 import { lerpAt, sampleAt, type Sample } from "./sample";
 import { addLights } from "./track_view";
+import { VehicleHud } from "./vehicle_hud";
 
 export class ReplayView {
   private readonly scene = new THREE.Scene();
@@ -19,6 +20,7 @@ export class ReplayView {
   readonly playback: Playback;
   private readonly speedChart: Chart;
   private readonly updateChart: Chart;
+  private readonly vehicleHud: VehicleHud;
   private selected = 0;
   private dirty = true;
   private lastWall = 0;
@@ -44,6 +46,7 @@ export class ReplayView {
     const time = recording.time;
     this.playback = new Playback(time[0], time[time.length - 1], recording.dt);
 
+    this.vehicleHud = new VehicleHud(ui.vehicle);
     const seek = (t: number) => this.seek(t);
     this.speedChart = new Chart(time, seek);
     this.updateChart = new Chart(time, seek);
@@ -120,6 +123,7 @@ export class ReplayView {
     const kmh = Float32Array.from(car.speed, (v) => v * 3.6);
     this.speedChart.show({ label: `car ${k} speed`, unit: "km/h", colour: "#5fb0ff", values: kmh });
     if (this.rig.mode === "orbit") this.rig.setMode("orbit", this.cars[k].group);
+    this.vehicleHud.show(car);
     this.dirty = true;
     this.updateHud(sampleAt(this.recording.time, this.playback.t));
   }
@@ -194,6 +198,7 @@ export class ReplayView {
     ui.lap.textContent = car.laps ? String(car.laps[nearest] + 1) : "-";
     ui.updateUs.textContent = r.updateUs ? r.updateUs[nearest].toFixed(1) : "-";
     ui.contacts.textContent = String(car.contactStart[nearest + 1] - car.contactStart[nearest]);
+    this.vehicleHud.update(nearest);
     ui.play.textContent = this.playback.playing ? "❚❚" : "▶";
     ui.scrub.value = String(this.playback.t);
     ui.clock.textContent = `${this.playback.t.toFixed(2)} / ${this.playback.end.toFixed(2)} s`;

@@ -4,8 +4,8 @@
 //   node browser_test.mjs --trackphys BIN --demo RECORDING.jsonl --work DIR [--screenshot PNG]
 //
 // RECORDING is the demo's drive (one lap of the seed-7 track); the page is made from it
-// here with `trackphys view`, as are pages of hand-made recordings and of a 10-minute one
-// (the lap repeated) written into DIR.
+// here with `trackphys view`, as are pages of hand-made recordings, of a 10-minute one
+// (the lap repeated) and of a gt car's drive and a race of gt cars, all written into DIR.
 // Prints each check (ok / FAIL) and the load and frame times; exits 1 if any check failed.
 import assert from "node:assert/strict";
 import { execFileSync } from "node:child_process";
@@ -17,12 +17,19 @@ import {
     distinctColours,
     dropFiles,
     hud,
+    vehicleHud,
     launchBrowser,
     meanDifference,
     openGuardedPage,
     waitReady,
 } from "./page_probe.mjs";
-import { handMadeSpeed, malformedRecording, multiCarRecording, versionOneRecording } from "./recordings.mjs";
+import {
+    handMadeSpeed,
+    malformedRecording,
+    multiCarRecording,
+    vehicleMissingAWheel,
+    versionOneRecording,
+} from "./recordings.mjs";
 
 const { values: args } = parseArgs({
     options: {
@@ -54,6 +61,42 @@ function demoSpeedKmh(t) {
     const frame = JSON.parse(demoLines[Math.round(t / demoDt)]);
     assert.ok(Math.abs(frame.t - t) < demoDt / 2, `the demo's frame for ${t} s is at ${frame.t} s`);
     return frame.cars[0].v * 3.6;
+}
+
+// A recording's frame at the update that ends at t, checked to be that one.
+function frameAt(lines, t) {
+    const dt = JSON.parse(lines[0]).dt;
+    const frame = JSON.parse(lines[Math.round(t / dt)]);
+    assert.ok(Math.abs(frame.t - t) < dt / 2, `the frame for ${t} s is at ${frame.t} s`);
+    return frame;
+}
+
+// Runs `trackphys command... --record DIR/name.jsonl`; returns the recording's path.
+function record(name, command) {
+    const file = join(args.work, `${name}.jsonl`);
+    execFileSync(args.trackphys, [...command, "--record", file], { stdio: "pipe" });
+    return file;
+}
+
+// The HUD must show car k's vehicle at t as the recording has it, to the digits it shows.
+async function expectVehicle(page, lines, k, t, what) {
+    const want = frameAt(lines, t).cars[k].vehicle;
+    assert.ok(want, `${what}: the recording has no vehicle for car ${k}`);
+    const shown = await vehicleHud(page);
+    assert.ok(shown.shown, `${what}: the HUD's vehicle part is hidden`);
+    const close = (got, expected, digits) => Math.abs(got - expected) <= 0.5 * 10 ** -digits + 1e-6;
+    assert.ok(close(shown.rpm, want.rpm, 0), `${what}: rpm ${shown.rpm}, recorded ${want.rpm}`);
+    assert.equal(shown.gear, want.gear, `${what}: gear`);
+    assert.equal(shown.wheels.length, want.wheels.length, `${what}: wheels`);
+    const digits = [3, 2, 0, 1]; // slip ratio, slip angle, load, spin as the HUD rounds them
+    want.wheels.forEach((wheel, w) =>
+        wheel.forEach((value, c) =>
+            assert.ok(
+                close(shown.wheels[w][c], value, digits[c]),
+                `${what}: wheel ${w} channel ${c} shows ${shown.wheels[w][c]}, recorded ${value}`,
+            ),
+        ),
+    );
 }
 
 const nextFrames = (page) =>
@@ -206,6 +249,34 @@ await check("playing moves time on; keys step and switch cameras (frame times pr
     }),
 );
 
+await check("a gt drive's HUD shows its rpm, gear and wheels from the file; the demo's has none", () =>
+    withPage(browser, async ({ page, open }) => {
+        const drive = record("gt_drive", ["drive", "--car-preset", "gt", "--seconds", "6"]);
+        const lines = readFileSync(drive, "utf8").trimEnd().split("\n");
+        await waitReady(page, await open(makePage(drive, "gt_drive"), "#t=1.5"));
+        await expectVehicle(page, lines, 0, 1.5, "gt drive at 1.5 s");
+        await setHash(page, "#t=5.25");
+        await expectVehicle(page, lines, 0, 5.25, "gt drive at 5.25 s");
+        await page.screenshot({ path: join(args.work, "gt_drive.png") });
+        await waitReady(page, await open(demoPage, "#t=30"));
+        assert.equal((await vehicleHud(page)).shown, false, "the arcade demo shows a vehicle part");
+    }),
+);
+
+await check("a race of gt cars records every car's vehicle; the HUD follows the car picked", () =>
+    withPage(browser, async ({ page, open }) => {
+        const scenario = join(args.work, "gt_race.json");
+        writeFileSync(scenario, JSON.stringify({ track: { seed: 7 }, car: { model: "gt" }, cars: 2, seconds: 4 }));
+        const race = record("gt_race", ["race", "--scenario", scenario]);
+        const lines = readFileSync(race, "utf8").trimEnd().split("\n");
+        await waitReady(page, await open(makePage(race, "gt_race"), "#t=3&car=1"));
+        await expectVehicle(page, lines, 1, 3, "race, car 1 at 3 s");
+        await page.locator('[data-testid="car-list"] button').nth(0).click();
+        await nextFrames(page);
+        await expectVehicle(page, lines, 0, 3, "race, car 0 picked at 3 s");
+    }),
+);
+
 await check("a recording of three cars lists them all and follows the one picked", () =>
     withPage(browser, async ({ page, open }) => {
         const multi = makePage(writeRecording("three_cars", multiCarRecording(3, 5)), "three_cars");
@@ -278,6 +349,12 @@ await check("a malformed recording, opened or dropped, shows a readable error", 
         await dropFiles(page, [["notes.txt", "hello"]]);
         await page.waitForFunction(() =>
             document.querySelector('[data-testid="error"]').textContent.includes("not a trackphys recording"),
+        );
+        await dropFiles(page, [["short_of_a_wheel.jsonl", vehicleMissingAWheel()]]);
+        await page.waitForFunction(() =>
+            document
+                .querySelector('[data-testid="error"]')
+                .textContent.includes("line 2: cars[0].vehicle.wheels must list the car's 4 wheels"),
         );
     }),
 );

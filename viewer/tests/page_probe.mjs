@@ -83,6 +83,18 @@ export async function hud(page) {
     };
 }
 
+/** The HUD's vehicle part: shown or not, rpm, gear and per wheel the four numbers. */
+export async function vehicleHud(page) {
+    return page.evaluate(() => {
+        const root = document.querySelector('[data-testid="hud-vehicle"]');
+        const number = (id) => Number(document.querySelector(`[data-testid="${id}"]`)?.textContent);
+        const wheels = [];
+        for (let w = 0; document.querySelector(`[data-testid="hud-wheel-${w}-load"]`); ++w)
+            wheels.push(["slip-ratio", "slip-angle", "load", "spin"].map((c) => number(`hud-wheel-${w}-${c}`)));
+        return { shown: !root.hidden, rpm: number("hud-rpm"), gear: number("hud-gear"), wheels };
+    });
+}
+
 /** Drops files ([name, text or Buffer]) onto the page as a user's drag-and-drop would. */
 export async function dropFiles(page, files) {
     // Binary contents cross into the page as base64.

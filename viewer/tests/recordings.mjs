@@ -1,5 +1,5 @@
-// Hand-made recordings for the browser tests: several cars (until `trackphys race` writes
-// them), version 1, malformed, and a long drive. Cars run along straight lines on flat
+// Hand-made recordings for the browser tests: several cars, version 1, and malformed ones
+// (a line cut off, a vehicle short of a wheel). Cars run along straight lines on flat
 // ground, so every value the page shows can be computed here.
 
 const DT = 0.01;
@@ -69,6 +69,14 @@ export function multiCarRecording(cars, seconds) {
 
 export function versionOneRecording(seconds) {
     return [header(1, 1), ...frames(1, Math.round(seconds / DT), 1)].join("\n") + "\n";
+}
+
+/** One car whose first frame's vehicle lists three of its four wheels (line 2). */
+export function vehicleMissingAWheel() {
+    const [head, frame] = multiCarRecording(1, 0.01).trimEnd().split("\n");
+    const f = JSON.parse(frame);
+    f.cars[0].vehicle = { rpm: 3000, gear: 1, wheels: [0, 1, 2].map(() => [0, 0, 3000, 10]) };
+    return `${head}\n${JSON.stringify(f)}\n`;
 }
 
 /** A good header and first frame, then a frame cut off in the middle (line 3). */

@@ -15,6 +15,7 @@
 #include "trackphys/dynamics/car_spec.hpp"
 #include "trackphys/export.hpp"
 #include "trackphys/geometry/contact.hpp"
+#include "trackphys/vehicle/vehicle.hpp"
 #include "trackphys/world/debug_draw.hpp"
 
 namespace trackphys {
@@ -33,6 +34,14 @@ struct RecordingHeader {
     std::vector<std::vector<CarEllipsoid>> car_ellipsoids;
 };
 
+/// What a car's vehicle model did in one recorded update (Vehicle's telemetry).
+struct RecordedVehicle {
+    double engine_rpm = 0.0;  ///< rev/min
+    int gear = 1;             ///< 1 = first
+    /// Each wheel's last sub-step, in the order of the car's wheel ellipsoids.
+    std::span<const WheelTelemetry> wheels;
+};
+
 /// One car in one recorded update.
 struct RecordedCar {
     glm::dvec3 position{0.0};                    ///< centre of mass, world (m)
@@ -44,17 +53,22 @@ struct RecordedCar {
     std::span<const Contact> contacts;
     std::optional<CarInputs> inputs;  ///< the driver's controls during the update
     std::optional<int> laps;          ///< laps completed, when someone counts them
+    /// The vehicle model's telemetry, for a car that has one (CarSpec::vehicle).
+    std::optional<RecordedVehicle> vehicle;
 };
 
 /// Writes a drive as JSON Lines for a viewer to replay (format version 2, docs/recording.md):
 /// a header line, then one line per recorded update with every car's pose, speed,
-/// suspension, inputs and the contacts of its ellipsoids.
+/// suspension, inputs, the contacts of its ellipsoids and, for a car with a vehicle model,
+/// its engine speed, gear and wheels.
 ///
 ///     {"format":"trackphys-recording","version":2,"dt":0.01,"cars":1,"scene":"...",
 ///      "track":{"mesh":"drive.track.glb"},"car_ellipsoids":[[{"center":[..],...}]]}
 ///     {"t":0.01,"hash":"...","us":61.2,"cars":[{"p":[x,y,z],"q":[w,x,y,z],"v":speed,
 ///       "s":[...],"in":[throttle,brake,steer],"lap":0,
-///       "contacts":[[px,py,pz,nx,ny,nz,depth,ellipsoid],...]}]}
+///       "contacts":[[px,py,pz,nx,ny,nz,depth,ellipsoid],...],
+///       "vehicle":{"rpm":6500,"gear":3,"wheels":[[slip_ratio,slip_angle_deg,load_n,
+///                  spin_rad_s],...]}}]}
 ///
 /// Units are SI, world +Y up; q maps the car's body frame (+X left, +Y up, +Z forward) to
 /// the world. The file is written under a temporary name and renamed by finish(), so a
@@ -74,7 +88,7 @@ class TRACKPHYS_API RecordingWriter : private DebugDraw {
 
     /// Writes the line of the update `world` ran last: its time, state hash and update time
     /// (when settings().profile), and each car's pose, speed, suspension, inputs and contacts
-    /// as World::debug_draw reports them. laps[k]: car k's laps completed, when someone
+    /// as World::debug_draw reports them, with its vehicle model's telemetry if it has one. laps[k]: car k's laps completed, when someone
     /// counts them (empty: no one does). The world's cars must be the header's.
     void write_frame(const World& world, std::span<const std::optional<int>> laps = {});
 
