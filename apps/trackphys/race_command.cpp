@@ -235,7 +235,8 @@ void add_race_command(CLI::App& app) {
     command->add_option("--svg", o->svg,
                         "Plot every car's path over the track and the update times");
     command->add_option("--record", o->record,
-                        "Write every car's pose and contacts per update (JSON Lines) for a viewer");
+                        "Write every car's pose, contacts and (gt, formula) vehicle telemetry per "
+                        "update (JSON Lines) for a viewer");
     command->callback([o, command] { run(*o, *command); });
 }
 
