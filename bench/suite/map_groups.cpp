@@ -218,7 +218,10 @@ void bench_many_colliders(BenchRun& run) {
         keep(refs.data());
     };
     run.progress("colliders", "car-box queries");
-    const std::vector<double> ns = median_call_ns_in_turns(
+    // Thread CPU time: in wall time, on a loaded machine, the 10,000-collider batches (the
+    // longer ones) were interrupted by other processes more often, which alone made the
+    // ratio 3-10x in runs where CPU time said 1.5x.
+    const std::vector<double> ns = median_call_cpu_ns_in_turns(
         {query(*few, found_few), query(*many, found_many)}, 1, run.batches(5, 31));
     // Apart: its 10,000 boxes a query would leave the others' data cold.
     const double loop_ns = median_call_ns(loop, 1, run.batches(3, 5));
