@@ -68,13 +68,17 @@ const StaticCollider& StaticWorld::collider(std::uint32_t id) const {
 
 void StaticWorld::query_aabb(const Aabb& box, std::vector<TriangleRef>& out) const {
     if (colliders_.empty()) return;
+    // A collider the tree passes though its exact box misses `box` reports nothing (its
+    // triangles lie in that box): its query is the test.
     tree().tree.visit_overlapping(
-        bounds_, box, [&](std::uint32_t id) { colliders_[id]->query_aabb_refs(box, id, out); });
+        box, [&](std::uint32_t id) { colliders_[id]->query_aabb_refs(box, id, out); });
 }
 
 void StaticWorld::colliders_overlapping(const Aabb& box, std::vector<std::uint32_t>& out) const {
     if (colliders_.empty()) return;
-    tree().tree.visit_overlapping(bounds_, box, [&](std::uint32_t id) { out.push_back(id); });
+    tree().tree.visit_overlapping(box, [&](std::uint32_t id) {
+        if (bounds_[id].overlaps(box)) out.push_back(id);
+    });
 }
 
 std::optional<WorldRayHit> StaticWorld::raycast(const glm::dvec3& origin,
