@@ -20,8 +20,8 @@ void ColliderTree::build(std::span<const Aabb> boxes) {
     build_binary(0, boxes, 0);
     prefix_ = {};
     suffix_ = {};
-    nodes_.reserve(boxes.size() / (kWidth - 1) + 1);
     pack(0);
+    nodes_.shrink_to_fit();
     binary_ = {};
 }
 
@@ -131,7 +131,5 @@ std::uint32_t ColliderTree::pack(std::uint32_t binary) {
     nodes_[index] = node;
     return index;
 }
-
-std::size_t ColliderTree::bytes_used() const { return nodes_.size() * sizeof(Node); }
 
 }  // namespace trackphys::collision_detail

@@ -77,8 +77,6 @@ class ColliderTree {
             });
     }
 
-    std::size_t bytes_used() const;
-
   private:
     struct alignas(64) Node {
         float min[3][kWidth];          ///< 96 bytes: min[axis][lane] (m), rounded down
