@@ -125,23 +125,20 @@ double median_call_ns(F&& f, int calls, int batches) {
 /// a 60 us update mostly escapes, and flatter the ratio.
 double thread_cpu_ns();
 
-/// median_call_ns of several functions whose ratios matter, taking turns batch by batch, so
-/// that a busy moment of a shared machine falls on all of them alike. Only for functions
-/// that share their data or whose data fits the caches together: turns among many working
-/// sets time each one on cold caches.
-inline std::vector<double> median_call_ns_in_turns(const std::vector<std::function<void()>>& fs,
-                                                   int calls, int batches) {
-    using Clock = std::chrono::steady_clock;
+/// Medians over `batches` batches of the time of one call of each of several functions,
+/// taking turns batch by batch, as `now()` (ns) counts it. See median_call_ns_in_turns.
+template <class Now>
+std::vector<double> median_ns_in_turns(const std::vector<std::function<void()>>& fs, int calls,
+                                       int batches, Now&& now) {
     for (const auto& f : fs)
         for (int k = 0; k < calls; ++k) f();
     std::vector<std::vector<double>> ns(fs.size(),
                                         std::vector<double>(static_cast<std::size_t>(batches)));
     for (std::size_t b = 0; b < static_cast<std::size_t>(batches); ++b)
         for (std::size_t i = 0; i < fs.size(); ++i) {
-            const auto start = Clock::now();
+            const double start = now();
             for (int k = 0; k < calls; ++k) fs[i]();
-            ns[i][b] =
-                std::chrono::duration<double, std::nano>(Clock::now() - start).count() / calls;
+            ns[i][b] = (now() - start) / calls;
         }
     std::vector<double> medians;
     for (std::vector<double>& sample : ns) {
@@ -149,6 +146,26 @@ inline std::vector<double> median_call_ns_in_turns(const std::vector<std::functi
         medians.push_back(sample[static_cast<std::size_t>(batches / 2)]);
     }
     return medians;
+}
+
+/// median_call_ns of several functions whose ratios matter, taking turns batch by batch, so
+/// that a busy moment of a shared machine falls on all of them alike. Only for functions
+/// that share their data or whose data fits the caches together: turns among many working
+/// sets time each one on cold caches.
+inline std::vector<double> median_call_ns_in_turns(const std::vector<std::function<void()>>& fs,
+                                                   int calls, int batches) {
+    using Clock = std::chrono::steady_clock;
+    return median_ns_in_turns(fs, calls, batches, [] {
+        return std::chrono::duration<double, std::nano>(Clock::now().time_since_epoch()).count();
+    });
+}
+
+/// median_call_ns_in_turns timed by this thread's CPU time: on a loaded machine a batch
+/// that another process interrupts counts its turn in wall time, and the longer of two
+/// batches is interrupted more often, which skews their ratio.
+inline std::vector<double> median_call_cpu_ns_in_turns(const std::vector<std::function<void()>>& fs,
+                                                       int calls, int batches) {
+    return median_ns_in_turns(fs, calls, batches, thread_cpu_ns);
 }
 
 /// A car driven by autopilot, each update timed.

@@ -47,7 +47,10 @@ struct QueryLanes {
 struct BoxLanes {
     __m128 min[kNodeVectors][3], max[kNodeVectors][3];
 
-    static BoxLanes of(const BvhNode& n) {
+    /// From a BvhNode, or any node that stores its lane boxes as it does (aligned
+    /// min[axis][lane] and max[axis][lane], BvhNode::kWidth lanes).
+    template <class Node>
+    static BoxLanes of(const Node& n) {
         BoxLanes b;
         for (int v = 0; v < kNodeVectors; ++v)
             for (int a = 0; a < 3; ++a) {

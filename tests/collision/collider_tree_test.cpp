@@ -1,6 +1,7 @@
 // The world's top-level tree over colliders: every query equals the loop over all colliders
-// in id order, whatever the order the colliders come in, with empty colliders, and after
-// adding more colliders once the tree was built.
+// in id order, whatever the order the colliders come in, with empty colliders, boxes that
+// hit more colliders than a query prefetches at once, boxes between a collider's exact and
+// float boxes, and after adding more colliders once the tree was built.
 #include <algorithm>
 #include <memory>
 #include <random>
@@ -43,6 +44,12 @@ std::vector<TriangleRef> brute_aabb(const StaticWorld& w, const Aabb& box) {
         if (w.collider(id).bounds().overlaps(box)) w.collider(id).query_aabb_refs(box, id, out);
     return out;
 }
+std::vector<std::uint32_t> brute_ids(const StaticWorld& w, const Aabb& box) {
+    std::vector<std::uint32_t> out;
+    for (std::uint32_t id = 0; id < w.size(); ++id)
+        if (w.collider(id).bounds().overlaps(box)) out.push_back(id);
+    return out;
+}
 std::optional<WorldRayHit> brute_ray(const StaticWorld& w, const glm::dvec3& o, const glm::dvec3& d,
                                      double max) {
     std::optional<WorldRayHit> best;
@@ -66,12 +73,7 @@ void expect_brute_force(const StaticWorld& w, int queries) {
         ASSERT_EQ(refs, brute_aabb(w, box)) << q;
         ids.clear();
         w.colliders_overlapping(box, ids);
-        for (std::size_t k = 0; k < ids.size(); ++k) {
-            ASSERT_TRUE(w.collider(ids[k]).bounds().overlaps(box));
-            if (k > 0) {
-                ASSERT_LT(ids[k - 1], ids[k]);
-            }
-        }
+        ASSERT_EQ(ids, brute_ids(w, box)) << q;
         const glm::dvec3 d = glm::normalize(glm::dvec3(unit(rng), unit(rng) - 1.5, unit(rng)));
         const glm::dvec3 o = c + glm::dvec3(0.0, 20.0, 0.0);
         const auto hit = w.raycast(o, d, 400.0), expected = brute_ray(w, o, d, 400.0);
@@ -101,6 +103,30 @@ TEST(ColliderTree, CollidersAddedAfterAQueryAreFound) {
     ASSERT_EQ(refs.size(), 2u);
     EXPECT_EQ(refs[0].collider, id);
     expect_brute_force(*world, 200);
+}
+
+// The tree tests lane boxes rounded outward to float: a box that only touches a collider's
+// float box is no overlap with its exact one.
+TEST(ColliderTree, ABoxBetweenAColliderAndItsFloatBoxFindsNothing) {
+    const double x = 1.0 + 0x1p-30;  // the float below it is 1, the collider's float min
+    TriangleMesh m;
+    m.vertices = {{x, 0, 0}, {x + 1, 0, 0}, {x, 0, 1}};
+    m.triangles = {{0, 2, 1}};
+    StaticWorld world;
+    for (int i = 0; i < 20; ++i) world.add(std::make_shared<StaticCollider>(tile(10.0 * i, 0, 5)));
+    const std::uint32_t id = world.add(std::make_shared<StaticCollider>(m));
+    const Aabb touching_float{{0.5, -1, -1}, {1.0 + 0x1p-31, 1, 2}};
+    const Aabb touching_exact{{0.5, -1, -1}, {x, 1, 2}};
+    std::vector<std::uint32_t> ids;
+    world.colliders_overlapping(touching_float, ids);
+    EXPECT_TRUE(ids.empty());
+    std::vector<TriangleRef> refs;
+    world.query_aabb(touching_float, refs);
+    EXPECT_TRUE(refs.empty());
+    world.colliders_overlapping(touching_exact, ids);
+    EXPECT_EQ(ids, std::vector<std::uint32_t>{id});
+    world.query_aabb(touching_exact, refs);
+    EXPECT_EQ(refs, (std::vector<TriangleRef>{{id, 0}}));
 }
 
 TEST(ColliderTree, AMovedWorldKeepsItsTreeAndTheMovedFromOneWorksAgain) {

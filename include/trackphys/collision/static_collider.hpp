@@ -137,6 +137,12 @@ class TRACKPHYS_API StaticCollider {
     friend struct detail::MapCodec;
     StaticCollider() = default;
 
+    // A world's box query starts loading the first lines of every collider it will query
+    // (root node, its grids, the first slot blocks) before it queries the first, so that
+    // their cache and TLB misses overlap instead of following one another.
+    friend class StaticWorld;
+    void prefetch_box_query() const;
+
     // Leaf slot s holds mesh triangle slot_triangle(s); its vertices are
     // vertices_[slot_vertices_[s][k]], in the mesh's order (winding kept).
     template <class Sink>
