@@ -29,7 +29,7 @@ struct World::CarSlot {
     MidPhase mid;
     Aabb update_box;                          // what mid.begin_update covers
     std::vector<LookAheadList> listed;        // per ellipsoid, this step
-    std::vector<Ellipsoid> placed;            // the ellipsoids, this sub-step
+    std::vector<Ellipsoid> placed;            // the ellipsoids, this sub-step (place_ellipsoids)
     std::vector<std::vector<Survivor>> kept;  // per ellipsoid: culled survivors
     std::vector<Contact> deepest;             // per ellipsoid, this sub-step
     std::vector<TriangleRef> deepest_ref;     // its triangle, tried first next
