@@ -45,6 +45,7 @@ World::CarSlot::CarSlot(Car car_in, MidPhase mid_in)
     kept.resize(ellipsoids);
     deepest.resize(ellipsoids);
     deepest_ref.resize(ellipsoids, TriangleRef{~0u, ~0u});
+    known.resize(ellipsoids);
     placed.reserve(ellipsoids);
     for (std::size_t i = 0; i < ellipsoids; ++i) placed.push_back(car.world_ellipsoid(i));
 }
@@ -239,7 +240,7 @@ void World::find_contacts(CarSlot& slot, PhaseStopwatch& watch) {
     watch.lap(Phase::cull);
 
     // Exact contact: the deepest over each ellipsoid's survivors. The survivor with the
-    // deepest bound goes first; after it, only survivors whose bound beats the deepest
+    // deepest bound goes first; after it, only survivors whose bounds beat the deepest
     // contact found so far can change the answer.
     for (std::size_t i = 0; i < ellipsoids; ++i) {
         Contact& deepest = slot.deepest[i];
@@ -259,17 +260,32 @@ void World::find_contacts(CarSlot& slot, PhaseStopwatch& watch) {
         std::iter_swap(kept.begin(), first);
         // After the first contact, the bound along its normal skips the neighbours that
         // cannot beat it (ties within kDepthTie, far below the 1e-9 m contract, included).
-        constexpr double kDepthTie = 1e-12;  // m
+        constexpr double kDepthTie = 1e-12;    // m
+        constexpr double kKernelError = 1e-9;  // m, ellipsoid_triangle_contact's accuracy
         const Ellipsoid& ellipsoid = slot.placed[i];
         double deepest_support = 0.0;  // h(deepest.normal)
+        CarSlot::KnownNormals& known = slot.known[i];
         for (const Survivor& s : kept) {
             if (!(s.depth_bound > deepest.depth)) continue;
             const Triangle triangle = statics_->collider(s.ref.collider).triangle(s.ref.triangle);
-            if (deepest.depth > -std::numeric_limits<double>::infinity() &&
-                !(depth_bound_along(triangle, ellipsoid, deepest.normal, deepest_support) >
-                  deepest.depth + kDepthTie))
-                continue;
+            if (deepest.depth > -std::numeric_limits<double>::infinity()) {
+                if (!(depth_bound_along(triangle, ellipsoid, deepest.normal, deepest_support) >
+                      deepest.depth + kDepthTie))
+                    continue;
+                // Most neighbours that pass (a road's next triangle, creased by a fraction
+                // of a degree, that the wheel has not reached) are bounded by their own
+                // contact normal of a recent sub-step. The cache is not part of the state
+                // (a restored world starts without it), so it skips only what the kernel,
+                // within its 1e-9 m, could not have found deeper: no tie is left to it.
+                if (const CarSlot::KnownNormal* recent = known.find(s.ref)) {
+                    const glm::dvec3& u = recent->normal;
+                    const double bound =
+                        depth_bound_along(triangle, ellipsoid, u, support_extent(ellipsoid, u));
+                    if (bound + kKernelError <= deepest.depth) continue;
+                }
+            }
             const Contact contact = ellipsoid_triangle_contact(ellipsoid, triangle);
+            known.remember(s.ref, contact.normal);
             ++watch.profile().exact_tests;
             if (contact.depth > deepest.depth) {
                 deepest = contact;
