@@ -204,9 +204,13 @@ void Car::update_suspension(std::span<const Contact> deepest, double h) {
 void Car::resolve_deep_contacts(std::span<const Contact> deepest) {
     for (std::size_t i = 0; i < deepest.size(); ++i) {
         const Contact& contact = deepest[i];
-        if (!(contact.depth > 0.0)) continue;
-        // The ellipsoid's half-extent along the contact normal (its support h(n)).
         const Ellipsoid& e = body_ellipsoids_[i];
+        // The half-extent is at least the smallest radius, and that much less an ulp-sized
+        // margin for its rounding keeps this test exactly the one below: an ordinary
+        // contact (a wheel 1 cm deep) skips the rotation and the square root.
+        if (!(contact.depth > spec_.deep_contact_fraction * e.sorted_radii().z * (1.0 - 1e-12)))
+            continue;
+        // The ellipsoid's half-extent along the contact normal (its support h(n)).
         const glm::dvec3 n_local =
             glm::conjugate(state_.orientation) * contact.normal * e.sorted_axes();
         const double extent = glm::length(e.sorted_radii() * n_local);
