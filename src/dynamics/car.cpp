@@ -50,6 +50,7 @@ Car::Car(CarSpec spec, const RigidBodyState& initial_state) : spec_(std::move(sp
         front_wheels_ += e.role == EllipsoidRole::front_wheel;
     }
     if (spec_.vehicle) vehicle_.emplace(spec_);
+    take_inputs(inputs_);
 }
 
 void Car::set_state(const RigidBodyState& state) {
@@ -58,7 +59,15 @@ void Car::set_state(const RigidBodyState& state) {
     state_.orientation = glm::normalize(state.orientation);
 }
 
-void Car::set_inputs(const CarInputs& inputs) { inputs_ = clamped(inputs); }
+void Car::set_inputs(const CarInputs& inputs) { take_inputs(clamped(inputs)); }
+
+// The steered heading changes with the inputs only, not every sub-step of every wheel.
+void Car::take_inputs(const CarInputs& inputs) {
+    inputs_ = inputs;
+    // Body +Z is forward; front wheels turn about body +Y (positive steer = left).
+    const double angle = inputs_.steer * spec_.max_steer_angle;
+    steered_heading_ = glm::dvec3(std::sin(angle), 0.0, std::cos(angle));
+}
 
 void Car::restore(const RigidBodyState& state, const CarInputs& inputs,
                   std::span<const double> suspension) {
@@ -71,7 +80,7 @@ void Car::restore(const RigidBodyState& state, const CarInputs& inputs,
         throw Error("car inputs: out of range (throttle and brake 0..1, steer -1..1)");
     set_suspension(suspension);
     state_ = state;
-    inputs_ = inputs;
+    take_inputs(inputs);
 }
 
 void Car::set_suspension(std::span<const double> travel) {
@@ -104,27 +113,25 @@ ContactMaterial Car::wheel_material(std::size_t i) const {
 }
 
 glm::dvec3 Car::wheel_heading(std::size_t i) const {
-    // Body +Z is forward; front wheels turn about body +Y (positive steer = left).
-    glm::dvec3 heading(0.0, 0.0, 1.0);
-    if (spec_.ellipsoids[i].role == EllipsoidRole::front_wheel) {
-        const double angle = inputs_.steer * spec_.max_steer_angle;
-        heading = glm::dvec3(std::sin(angle), 0.0, std::cos(angle));
-    }
-    return state_.orientation * heading;
+    return state_.orientation * (spec_.ellipsoids[i].role == EllipsoidRole::front_wheel
+                                     ? steered_heading_
+                                     : glm::dvec3(0.0, 0.0, 1.0));
 }
 
-WheelCommand Car::wheel_command(std::size_t i, double axle_normal_force) const {
+// Drive is a constant force up to the speed where the power limit takes over: F = P / v.
+double Car::drive_available() const {
+    return std::min(spec_.max_drive_force, spec_.max_drive_power / std::max(speed(), 1.0));
+}
+
+WheelCommand Car::wheel_command(std::size_t i, double axle_normal_force, double available) const {
     const CarEllipsoid& wheel = spec_.ellipsoids[i];
     WheelCommand command;
     command.heading = wheel_heading(i);
     // Drive and brake are split between the axles, then evenly between an axle's wheels.
-    // Drive is a constant force up to the speed where the power limit takes over: F = P / v.
     const bool front = wheel.role == EllipsoidRole::front_wheel;
     const int axle_wheels = std::max(front ? front_wheels_ : wheels_ - front_wheels_, 1);
     const double drive_share = front ? spec_.front_drive_share : 1.0 - spec_.front_drive_share;
     const double brake_share = front ? spec_.front_brake_share : 1.0 - spec_.front_brake_share;
-    const double available =
-        std::min(spec_.max_drive_force, spec_.max_drive_power / std::max(speed(), 1.0));
     command.drive_force = inputs_.throttle * available * drive_share / axle_wheels;
     command.brake_force = inputs_.brake * spec_.max_brake_force * brake_share / axle_wheels;
     command.max_along_force = spec_.traction_limit * wheel_material(i).friction * axle_normal_force;
@@ -159,6 +166,7 @@ Wrench Car::contact_wrench(std::span<const Contact> deepest) const {
         axle = std::min(axle, wheel_loads_[i]);
     }
 
+    const double available = drive_available();
     Wrench wrench;
     for (std::size_t i = 0; i < deepest.size(); ++i) {
         const Contact& contact = deepest[i];
@@ -170,8 +178,8 @@ Wrench Car::contact_wrench(std::span<const Contact> deepest) const {
                 ? body_contact_force(spec_.body_contact, contact.depth, contact.normal, velocity)
                 : wheel_contact_force(
                       wheel_material(i), contact.depth, contact.normal, velocity,
-                      wheel_command(i,
-                                    role == EllipsoidRole::front_wheel ? front_load : rear_load));
+                      wheel_command(i, role == EllipsoidRole::front_wheel ? front_load : rear_load,
+                                    available));
         wrench.add_at_point(force, contact.point, state_.position);
     }
     add_aero_force(wrench);
@@ -196,9 +204,13 @@ void Car::update_suspension(std::span<const Contact> deepest, double h) {
 void Car::resolve_deep_contacts(std::span<const Contact> deepest) {
     for (std::size_t i = 0; i < deepest.size(); ++i) {
         const Contact& contact = deepest[i];
-        if (!(contact.depth > 0.0)) continue;
-        // The ellipsoid's half-extent along the contact normal (its support h(n)).
         const Ellipsoid& e = body_ellipsoids_[i];
+        // The half-extent is at least the smallest radius, and that much less an ulp-sized
+        // margin for its rounding keeps this test exactly the one below: an ordinary
+        // contact (a wheel 1 cm deep) skips the rotation and the square root.
+        if (!(contact.depth > spec_.deep_contact_fraction * e.sorted_radii().z * (1.0 - 1e-12)))
+            continue;
+        // The ellipsoid's half-extent along the contact normal (its support h(n)).
         const glm::dvec3 n_local =
             glm::conjugate(state_.orientation) * contact.normal * e.sorted_axes();
         const double extent = glm::length(e.sorted_radii() * n_local);

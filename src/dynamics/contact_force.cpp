@@ -59,11 +59,15 @@ glm::dvec3 wheel_contact_force(const ContactMaterial& material, double depth,
         std::clamp(command.drive_force - brake, -command.max_along_force, command.max_along_force);
     double across = -grip * std::clamp(sideways_speed / material.slip_speed, -1.0, 1.0);
 
-    // Friction circle: the tyre cannot transmit more than mu F_n in total.
-    const double tangential = std::hypot(along, across);
-    if (tangential > grip) {
-        along *= grip / tangential;
-        across *= grip / tangential;
+    // Friction circle: the tyre cannot transmit more than mu F_n in total. hypot <= |along|
+    // + |across|, equal only when one is 0 (then both are exact), so a sum 1e-12 inside the
+    // grip proves the force inside the circle without the hypot (most sub-steps of a lap).
+    if (!(std::abs(along) + std::abs(across) <= grip * (1.0 - 1e-12))) {
+        const double tangential = std::hypot(along, across);
+        if (tangential > grip) {
+            along *= grip / tangential;
+            across *= grip / tangential;
+        }
     }
     return normal * pressing + forward * along + lateral * across;
 }

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <array>
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -22,6 +24,32 @@ struct World::CarSlot {
         double depth_bound;
     };
 
+    // A survivor's contact normal from an earlier sub-step: any unit direction bounds a
+    // triangle's depth (depth_bound_along), and a recent normal of its own bounds it tightly.
+    struct KnownNormal {
+        TriangleRef ref{~0u, ~0u};
+        glm::dvec3 normal{0.0, 1.0, 0.0};
+    };
+    // The last few per ellipsoid, replaced in turn: a wheel meets 1 or 2 triangles besides
+    // the one it stands on.
+    struct KnownNormals {
+        std::array<KnownNormal, 4> entries;
+        std::size_t next = 0;
+        const KnownNormal* find(const TriangleRef& ref) const {
+            for (const KnownNormal& k : entries)
+                if (k.ref.collider == ref.collider && k.ref.triangle == ref.triangle) return &k;
+            return nullptr;
+        }
+        void remember(const TriangleRef& ref, const glm::dvec3& normal) {
+            if (const KnownNormal* k = find(ref)) {
+                entries[static_cast<std::size_t>(k - entries.data())].normal = normal;
+                return;
+            }
+            entries[next] = {ref, normal};
+            next = (next + 1) % entries.size();
+        }
+    };
+
     // Per-ellipsoid storage sized for the car, no hint yet.
     CarSlot(Car car_in, MidPhase mid_in);
 
@@ -29,10 +57,11 @@ struct World::CarSlot {
     MidPhase mid;
     Aabb update_box;                          // what mid.begin_update covers
     std::vector<LookAheadList> listed;        // per ellipsoid, this step
-    std::vector<Ellipsoid> placed;            // the ellipsoids, this sub-step
+    std::vector<Ellipsoid> placed;            // the ellipsoids, this sub-step (place_ellipsoids)
     std::vector<std::vector<Survivor>> kept;  // per ellipsoid: culled survivors
     std::vector<Contact> deepest;             // per ellipsoid, this sub-step
     std::vector<TriangleRef> deepest_ref;     // its triangle, tried first next
+    std::vector<KnownNormals> known;          // per ellipsoid: recent survivors' normals
     bool pushed = false;                      // by another car, this sub-step
     // The reset policy's memory: the state at the start of this update, the resets.
     RigidBodyState start_state;

@@ -45,6 +45,9 @@ World::CarSlot::CarSlot(Car car_in, MidPhase mid_in)
     kept.resize(ellipsoids);
     deepest.resize(ellipsoids);
     deepest_ref.resize(ellipsoids, TriangleRef{~0u, ~0u});
+    known.resize(ellipsoids);
+    placed.reserve(ellipsoids);
+    for (std::size_t i = 0; i < ellipsoids; ++i) placed.push_back(car.world_ellipsoid(i));
 }
 
 std::size_t World::add_car(const CarSpec& spec, const RigidBodyState& state) {
@@ -145,6 +148,8 @@ void World::update_car(CarSlot& slot, const Aabb& box, PhaseStopwatch& watch) {
     for (int step = 0; step < settings_.steps; ++step) {
         list_step_candidates(slot, settings_.steps - step, watch);
         for (int s = 0; s < settings_.substeps; ++s) {
+            // Only an ellipsoid with listed triangles can touch anything.
+            if (s > 0) place_ellipsoids(slot, false);
             find_contacts(slot, watch);
             advance(slot, watch);
         }
@@ -165,14 +170,16 @@ void World::begin_update(CarSlot& slot, const Aabb& box, PhaseStopwatch& watch) 
 // The mid phase, once per step: each ellipsoid's triangles for the step's sub-steps, from
 // the ellipsoid swept by its velocity over the step and grown for rotation and for up to
 // 10 m/s of velocity change. A query looks settings_.mid_phase_look_ahead steps ahead and
-// the following steps reuse its list while they stay inside (LookAheadList).
+// the following steps reuse its list while they stay inside (LookAheadList). Places every
+// ellipsoid, for these lists and for the step's first sub-step.
 void World::list_step_candidates(CarSlot& slot, int steps_left, PhaseStopwatch& watch) {
     const Car& car = slot.car;
     const RigidBodyState& state = car.state();
     const double step_dt = settings_.dt_update / settings_.steps;
     const double spin = glm::length(state.angular_velocity);
+    place_ellipsoids(slot, true);
     for (std::size_t i = 0; i < car.ellipsoid_count(); ++i) {
-        const Ellipsoid ellipsoid = car.world_ellipsoid(i);
+        const Ellipsoid& ellipsoid = slot.placed[i];
         const glm::dvec3 velocity = point_velocity(state, ellipsoid.center());
         const double margin = spin * ellipsoid.bounding_radius() * step_dt + 10.0 * step_dt;
         const SweptEllipsoid step_shape{ellipsoid, ellipsoid.center() + velocity * step_dt, margin};
@@ -201,18 +208,24 @@ void World::list_step_candidates(CarSlot& slot, int steps_left, PhaseStopwatch& 
     watch.lap(Phase::mid);
 }
 
+// Placing is a tenth of a car's update: a lone car's body ellipsoids, which list no
+// triangles on a clean lap, are left where they were; car pairs need every one (every).
+void World::place_ellipsoids(CarSlot& slot, bool every) {
+    for (std::size_t i = 0; i < slot.placed.size(); ++i)
+        if (every || !slot.listed[i].candidates().empty())
+            slot.placed[i] = slot.car.world_ellipsoid(i);
+}
+
+// The ellipsoids are placed for this sub-step (place_ellipsoids) before it.
 void World::find_contacts(CarSlot& slot, PhaseStopwatch& watch) {
     using Survivor = CarSlot::Survivor;
-    Car& car = slot.car;
-    const std::size_t ellipsoids = car.ellipsoid_count();
+    const std::size_t ellipsoids = slot.car.ellipsoid_count();
 
     // Cull: each ellipsoid's bounding sphere against its listed triangles' cheap frame
     // test, then the ellipsoid's own extent along the survivors' frame axes, which also
     // bounds how deep each survivor can be.
-    slot.placed.clear();
     for (std::size_t i = 0; i < ellipsoids; ++i) {
-        slot.placed.push_back(car.world_ellipsoid(i));
-        const Ellipsoid& ellipsoid = slot.placed.back();
+        const Ellipsoid& ellipsoid = slot.placed[i];
         const double radius = ellipsoid.bounding_radius();
         std::vector<Survivor>& kept = slot.kept[i];
         kept.clear();
@@ -227,7 +240,7 @@ void World::find_contacts(CarSlot& slot, PhaseStopwatch& watch) {
     watch.lap(Phase::cull);
 
     // Exact contact: the deepest over each ellipsoid's survivors. The survivor with the
-    // deepest bound goes first; after it, only survivors whose bound beats the deepest
+    // deepest bound goes first; after it, only survivors whose bounds beat the deepest
     // contact found so far can change the answer.
     for (std::size_t i = 0; i < ellipsoids; ++i) {
         Contact& deepest = slot.deepest[i];
@@ -247,17 +260,32 @@ void World::find_contacts(CarSlot& slot, PhaseStopwatch& watch) {
         std::iter_swap(kept.begin(), first);
         // After the first contact, the bound along its normal skips the neighbours that
         // cannot beat it (ties within kDepthTie, far below the 1e-9 m contract, included).
-        constexpr double kDepthTie = 1e-12;  // m
+        constexpr double kDepthTie = 1e-12;    // m
+        constexpr double kKernelError = 1e-9;  // m, ellipsoid_triangle_contact's accuracy
         const Ellipsoid& ellipsoid = slot.placed[i];
         double deepest_support = 0.0;  // h(deepest.normal)
+        CarSlot::KnownNormals& known = slot.known[i];
         for (const Survivor& s : kept) {
             if (!(s.depth_bound > deepest.depth)) continue;
             const Triangle triangle = statics_->collider(s.ref.collider).triangle(s.ref.triangle);
-            if (deepest.depth > -std::numeric_limits<double>::infinity() &&
-                !(depth_bound_along(triangle, ellipsoid, deepest.normal, deepest_support) >
-                  deepest.depth + kDepthTie))
-                continue;
+            if (deepest.depth > -std::numeric_limits<double>::infinity()) {
+                if (!(depth_bound_along(triangle, ellipsoid, deepest.normal, deepest_support) >
+                      deepest.depth + kDepthTie))
+                    continue;
+                // Most neighbours that pass (a road's next triangle, creased by a fraction
+                // of a degree, that the wheel has not reached) are bounded by their own
+                // contact normal of a recent sub-step. The cache is not part of the state
+                // (a restored world starts without it), so it skips only what the kernel,
+                // within its 1e-9 m, could not have found deeper: no tie is left to it.
+                if (const CarSlot::KnownNormal* recent = known.find(s.ref)) {
+                    const glm::dvec3& u = recent->normal;
+                    const double bound =
+                        depth_bound_along(triangle, ellipsoid, u, support_extent(ellipsoid, u));
+                    if (bound + kKernelError <= deepest.depth) continue;
+                }
+            }
             const Contact contact = ellipsoid_triangle_contact(ellipsoid, triangle);
+            known.remember(s.ref, contact.normal);
             ++watch.profile().exact_tests;
             if (contact.depth > deepest.depth) {
                 deepest = contact;

@@ -31,8 +31,9 @@ void World::step_island(std::size_t island, PhaseStopwatch& watch) {
         for (const std::uint32_t i : cars)
             list_step_candidates(cars_[i], settings_.steps - step, watch);
         for (int s = 0; s < settings_.substeps; ++s) {
-            // find_contacts places each car's ellipsoids for this sub-step (CarSlot::placed).
+            // Every ellipsoid is placed for this sub-step: the pairs below test them all.
             for (const std::uint32_t i : cars) {
+                if (s > 0) place_ellipsoids(cars_[i], true);
                 find_contacts(cars_[i], watch);
                 cars_[i].pushed = false;
             }

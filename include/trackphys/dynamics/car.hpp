@@ -122,7 +122,11 @@ class TRACKPHYS_API Car {
     /// The world direction wheel i rolls in (front wheels steered).
     glm::dvec3 wheel_heading(std::size_t i) const;
     void update_suspension(std::span<const Contact> deepest, double h);
-    WheelCommand wheel_command(std::size_t i, double axle_normal_force) const;
+    /// available: drive_available(), the drive force at this speed (N, all wheels).
+    WheelCommand wheel_command(std::size_t i, double axle_normal_force, double available) const;
+    double drive_available() const;
+    /// Sets inputs_ (already in range) and the steered heading that follows from them.
+    void take_inputs(const CarInputs& inputs);
     /// The contact material of wheel i (rear tyres with their extra grip).
     ContactMaterial wheel_material(std::size_t i) const;
     void add_aero_force(Wrench& wrench) const;
@@ -130,6 +134,7 @@ class TRACKPHYS_API Car {
     CarSpec spec_;
     RigidBodyState state_;
     CarInputs inputs_;
+    glm::dvec3 steered_heading_{0.0, 0.0, 1.0};  // front wheels', body frame, for inputs_.steer
     std::vector<Ellipsoid> body_ellipsoids_;
     std::vector<double> suspension_;
     std::vector<double> wheel_loads_;  // this sub-step's tyre normal forces (N)

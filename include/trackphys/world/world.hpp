@@ -143,6 +143,7 @@ class TRACKPHYS_API World {
     void update_car(CarSlot& slot, const Aabb& box, PhaseStopwatch& watch);
     void begin_update(CarSlot& slot, const Aabb& box, PhaseStopwatch& watch);
     void list_step_candidates(CarSlot& slot, int steps_left, PhaseStopwatch& watch);
+    static void place_ellipsoids(CarSlot& slot, bool every);
     void find_contacts(CarSlot& slot, PhaseStopwatch& watch);
     void advance(CarSlot& slot, PhaseStopwatch& watch);
 
