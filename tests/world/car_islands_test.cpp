@@ -59,7 +59,9 @@ TEST(CarIslands, MatchBruteForceOnRandomFields) {
             const auto cars = islands.cars(i);
             ASSERT_FALSE(cars.empty());
             EXPECT_TRUE(std::is_sorted(cars.begin(), cars.end()));
-            if (i > 0) EXPECT_GT(cars.front(), previous_first) << "islands by smallest car";
+            if (i > 0) {
+                EXPECT_GT(cars.front(), previous_first) << "islands by smallest car";
+            }
             previous_first = cars.front();
             for (const std::uint32_t car : cars) {
                 ++seen[car];
