@@ -136,14 +136,22 @@ TyreForce Tyre::force(double slip_ratio, double lateral_slip, double load, doubl
 }
 
 TyreForce Tyre::force(double slip_ratio, double lateral_slip, const TyreForce& peak) const {
+    return force(normalised(slip_ratio, lateral_slip), peak);
+}
+
+NormalisedSlip Tyre::normalised(double slip_ratio, double lateral_slip) const {
     const double sx = slip_ratio / peak_slip_ratio_;
     const double sy = lateral_slip / peak_lateral_slip_;
-    const double s = std::sqrt(sx * sx + sy * sy);  // bounded slips: no hypot needed
+    return {sx, sy, std::sqrt(sx * sx + sy * sy)};  // bounded slips: no hypot needed
+}
+
+TyreForce Tyre::force(const NormalisedSlip& slip, const TyreForce& peak) const {
+    const double s = slip.combined;
     if (s == 0.0) return {};
     const double fx =
         peak.longitudinal * shape_at(longitudinal_shape_, spec_.longitudinal, peak_slip_ratio_, s);
     const double fy = peak.lateral * shape_at(lateral_shape_, spec_.lateral, peak_lateral_slip_, s);
-    return {fx * sx / s, fy * sy / s};
+    return {fx * slip.longitudinal / s, fy * slip.lateral / s};
 }
 
 }  // namespace trackphys

@@ -42,15 +42,19 @@ Vehicle::Vehicle(const CarSpec& spec)
         slot_of_ellipsoid_[i] = static_cast<int>(wheels_.size());
         wheels_.push_back(wheel);
     }
-    int axle_wheels[2] = {0, 0};  // front, rear
-    for (const Wheel& wheel : wheels_) ++axle_wheels[wheel.front ? 0 : 1];
-    const double front_share = axle_wheels[1] == 0   ? 1.0
-                               : axle_wheels[0] == 0 ? 0.0
-                                                     : spec.front_drive_share;
+    for (std::size_t w = 0; w < wheels_.size(); ++w) {
+        Axle& axle = axles_[wheels_[w].front ? 0 : 1];
+        if (axle.wheels < 2) axle.pair[axle.wheels] = w;
+        ++axle.wheels;
+    }
+    const double front_share = axles_[1].wheels == 0   ? 1.0
+                               : axles_[0].wheels == 0 ? 0.0
+                                                       : spec.front_drive_share;
     for (Wheel& wheel : wheels_) {
         wheel.critical_mass = spec.mass.mass / static_cast<double>(wheels_.size());
         wheel.drive_share =
-            wheel.front ? front_share / axle_wheels[0] : (1.0 - front_share) / axle_wheels[1];
+            wheel.front ? front_share / axles_[0].wheels : (1.0 - front_share) / axles_[1].wheels;
+        drive_shares_squared_ += wheel.drive_share * wheel.drive_share;
     }
     state_.wheels.resize(wheels_.size());
     telemetry_.resize(wheels_.size());
@@ -106,7 +110,7 @@ TyreForce Vehicle::wheel_force(std::size_t w, double load, double rolling_veloci
     double damping_x = 0.0;
     double damping_y = 0.0;
     if (load > 0.0) {
-        force = tyre.force(s.slip_ratio, s.lateral_slip, TyreForce{dx, dy});
+        force = tyre.force(wheel.slip, TyreForce{dx, dy});
         const double fade = std::max(0.0, 1.0 - std::abs(rolling_velocity) / spec_.low_speed);
         if (fade > 0.0) {
             const double slope_x =
@@ -149,7 +153,8 @@ TyreForce Vehicle::wheel_force(std::size_t w, double load, double rolling_veloci
     }
     const double brake_step = h * wheel.brake_torque / (inertia * stiff);
     spin = std::abs(spin) <= brake_step ? 0.0 : spin - std::copysign(brake_step, spin);
-    if (!sliding) total = damped(spin).first;
+    // Without damping the force does not depend on the spin: the first evaluation stands.
+    if (!sliding && (damping_x != 0.0 || damping_y != 0.0)) total = damped(spin).first;
     s.spin = spin;
     s.road_torque = 0.0;
 

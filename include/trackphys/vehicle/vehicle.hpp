@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <span>
 #include <string>
@@ -102,9 +103,16 @@ class TRACKPHYS_API Vehicle {
         std::size_t partner = 0;     // ellipsoid across the axle (itself if none)
         double critical_mass = 0.0;  // kg: the car's mass share for low-speed damping
         double drive_share = 0.0;    // of the gearbox's torque, through the differentials
-        // This sub-step's drivetrain output:
+        // This sub-step's: the slips the wheel carries, normalised (the drivetrain's
+        // anti-lock and traction control and the tyre force read them), and the
+        // drivetrain's output.
+        NormalisedSlip slip;
         double drive_torque = 0.0;
         double brake_torque = 0.0;
+    };
+    struct Axle {
+        int wheels = 0;
+        std::array<std::size_t, 2> pair{};  // its wheel slots, when it has two
     };
 
     void shift_gears(double drivetrain_rpm, double throttle, double h);
@@ -119,6 +127,8 @@ class TRACKPHYS_API Vehicle {
     double front_drive_share_;
     double front_brake_share_;
     std::vector<Wheel> wheels_;
+    std::array<Axle, 2> axles_;          // front, rear
+    double drive_shares_squared_ = 0.0;  // sum of the wheels' drive_share^2
     std::vector<int> slot_of_ellipsoid_;
     VehicleState state_;
     double engine_rpm_ = 0.0;
