@@ -136,9 +136,7 @@ void Vehicle::begin_substep(double throttle, double brake, double car_speed, dou
         wheel.slip = tyre_of(wheel).normalised(slip, state_.wheels[w].lateral_slip);
         if (spec_.traction_control && wheel.drive_torque > 0.0 && slip > 0.0)
             wheel.drive_torque *= slip_limiter(wheel.slip.combined);
-        const double bias = wheel.front ? front_brake_share_ : 1.0 - front_brake_share_;
-        wheel.brake_torque =
-            brake * spec_.max_brake_torque * bias / axles_[wheel.front ? 0 : 1].wheels;
+        wheel.brake_torque = brake * wheel.brake_share;
         // Anti-lock acts above walking pace only, as real systems do: at rest the brake
         // must hold the car however the tyres deflect.
         if (spec_.anti_lock && car_speed > 1.0 && slip < 0.0)

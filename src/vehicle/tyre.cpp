@@ -122,6 +122,8 @@ Tyre::Tyre(const TyreSpec& spec)
     : spec_(validated(spec)),
       peak_slip_ratio_(spec.longitudinal.peak_slip()),
       peak_lateral_slip_(spec.lateral.peak_slip()),
+      inverse_peak_slip_ratio_(1.0 / peak_slip_ratio_),
+      inverse_peak_lateral_slip_(1.0 / peak_lateral_slip_),
       longitudinal_shape_(shape_table(spec.longitudinal, peak_slip_ratio_)),
       lateral_shape_(shape_table(spec.lateral, peak_lateral_slip_)) {}
 
@@ -140,8 +142,8 @@ TyreForce Tyre::force(double slip_ratio, double lateral_slip, const TyreForce& p
 }
 
 NormalisedSlip Tyre::normalised(double slip_ratio, double lateral_slip) const {
-    const double sx = slip_ratio / peak_slip_ratio_;
-    const double sy = lateral_slip / peak_lateral_slip_;
+    const double sx = slip_ratio * inverse_peak_slip_ratio_;
+    const double sy = lateral_slip * inverse_peak_lateral_slip_;
     return {sx, sy, std::sqrt(sx * sx + sy * sy)};  // bounded slips: no hypot needed
 }
 
@@ -151,7 +153,8 @@ TyreForce Tyre::force(const NormalisedSlip& slip, const TyreForce& peak) const {
     const double fx =
         peak.longitudinal * shape_at(longitudinal_shape_, spec_.longitudinal, peak_slip_ratio_, s);
     const double fy = peak.lateral * shape_at(lateral_shape_, spec_.lateral, peak_lateral_slip_, s);
-    return {fx * slip.longitudinal / s, fy * slip.lateral / s};
+    const double share = 1.0 / s;  // one division for both directions
+    return {fx * (slip.longitudinal * share), fy * (slip.lateral * share)};
 }
 
 }  // namespace trackphys

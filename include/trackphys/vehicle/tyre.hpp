@@ -124,6 +124,8 @@ class TRACKPHYS_API Tyre {
     TyreSpec spec_;
     double peak_slip_ratio_;
     double peak_lateral_slip_;
+    double inverse_peak_slip_ratio_;  // multiplied by, not divided by, each sub-step
+    double inverse_peak_lateral_slip_;
     std::vector<double> longitudinal_shape_;  ///< F / D at s = k / kTableSteps
     std::vector<double> lateral_shape_;
 };
