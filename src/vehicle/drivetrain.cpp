@@ -20,6 +20,7 @@ constexpr double kRpmPerRadPerSecond = 60.0 / (2.0 * std::numbers::pi);
 // grip left to drive or brake with, and a wheel driven or braked to its longitudinal peak
 // in a turn loses its lateral force (a rear-driven car spins out of the turn).
 double slip_limiter(double combined_slip) {
+    if (combined_slip <= 0.9) return 1.0;  // most sub-steps: no division
     return std::clamp((1.2 - combined_slip) / 0.3, 0.0, 1.0);
 }
 
@@ -44,6 +45,7 @@ double Vehicle::engine_torque(double rpm, double throttle) const {
         if (rpm >= curve[k - 1].rpm && rpm < curve[k].rpm) {
             const double t = (rpm - curve[k - 1].rpm) / (curve[k].rpm - curve[k - 1].rpm);
             full = curve[k - 1].torque + t * (curve[k].torque - curve[k - 1].torque);
+            break;  // the points ascend: no other segment holds rpm
         }
     const double friction = engine.friction_torque * std::max(rpm, 0.0) / engine.redline_rpm;
     return throttle * full - (1.0 - throttle) * friction;
