@@ -1,5 +1,6 @@
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -117,6 +118,8 @@ class TRACKPHYS_API Tyre {
     /// s = 1 keeps the peak exact, and the shipped sets stay within 2e-5 D of the formula
     /// (tested); beyond the span the formula itself. The Magic Formula's three
     /// transcendentals per direction were most of the vehicle model's cost per sub-step.
+    /// A table depends on its curve's B, C and E only: every Tyre with the same three, in
+    /// any vehicle, shares one immutable copy.
     static constexpr int kTableSteps = 256;
     static constexpr int kTableSpan = 8;
 
@@ -126,8 +129,9 @@ class TRACKPHYS_API Tyre {
     double peak_lateral_slip_;
     double inverse_peak_slip_ratio_;  // multiplied by, not divided by, each sub-step
     double inverse_peak_lateral_slip_;
-    std::vector<double> longitudinal_shape_;  ///< F / D at s = k / kTableSteps
-    std::vector<double> lateral_shape_;
+    using ShapeTable = std::vector<double>;  ///< F / D at s = k / kTableSteps
+    std::shared_ptr<const ShapeTable> longitudinal_shape_;
+    std::shared_ptr<const ShapeTable> lateral_shape_;
 };
 
 }  // namespace trackphys
