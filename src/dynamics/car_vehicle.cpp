@@ -47,7 +47,7 @@ Wrench Car::vehicle_wrench(std::span<const Contact> deepest, double h) {
             if (touching) add_body_contact(contact);
             continue;
         }
-        const glm::dvec3 forward = in_plane / in_plane_length;
+        const glm::dvec3 forward = in_plane * (1.0 / in_plane_length);  // one division
         const glm::dvec3 lateral = glm::cross(contact.normal, forward);
         const glm::dvec3 velocity = point_velocity(state_, contact.point);
         const TyreForce tyre = vehicle.wheel_force(w, wheel_loads_[i], glm::dot(velocity, forward),
