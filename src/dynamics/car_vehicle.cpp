@@ -18,6 +18,15 @@ Wrench Car::vehicle_wrench(std::span<const Contact> deepest, double h) {
                                                point_velocity(state_, contact.point)),
                             contact.point, state_.position);
     };
+    // Every front wheel steers by the same angle and every rear wheel points ahead: two
+    // headings per sub-step, each computed when its first wheel needs it.
+    glm::dvec3 headings[2];
+    bool heading_known[2] = {false, false};
+    const auto heading_of = [&](std::size_t i) {
+        const int axle = spec_.ellipsoids[i].role == EllipsoidRole::front_wheel ? 0 : 1;
+        if (!heading_known[axle]) headings[axle] = wheel_heading(i), heading_known[axle] = true;
+        return headings[axle];
+    };
     for (std::size_t i = 0; i < deepest.size(); ++i) {
         const Contact& contact = deepest[i];
         const bool touching = contact.depth > 0.0;
@@ -29,7 +38,7 @@ Wrench Car::vehicle_wrench(std::span<const Contact> deepest, double h) {
         const auto w = static_cast<std::size_t>(slot);
         // A wheel pressed on its side (heading along the normal) has no rolling direction
         // and only slides: it carries no load into the tyre model then.
-        const glm::dvec3 heading = wheel_heading(i);
+        const glm::dvec3 heading = heading_of(i);
         const glm::dvec3 in_plane = heading - contact.normal * glm::dot(heading, contact.normal);
         const double in_plane_length = glm::length(in_plane);
         const bool rolling = touching && wheel_loads_[i] > 0.0 && in_plane_length >= 1e-6;
@@ -38,7 +47,7 @@ Wrench Car::vehicle_wrench(std::span<const Contact> deepest, double h) {
             if (touching) add_body_contact(contact);
             continue;
         }
-        const glm::dvec3 forward = in_plane / in_plane_length;
+        const glm::dvec3 forward = in_plane * (1.0 / in_plane_length);  // one division
         const glm::dvec3 lateral = glm::cross(contact.normal, forward);
         const glm::dvec3 velocity = point_velocity(state_, contact.point);
         const TyreForce tyre = vehicle.wheel_force(w, wheel_loads_[i], glm::dot(velocity, forward),

@@ -2,6 +2,7 @@
 // the driver's throttle and brake into each wheel's drive and brake torque.
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -19,6 +20,7 @@ constexpr double kRpmPerRadPerSecond = 60.0 / (2.0 * std::numbers::pi);
 // grip left to drive or brake with, and a wheel driven or braked to its longitudinal peak
 // in a turn loses its lateral force (a rear-driven car spins out of the turn).
 double slip_limiter(double combined_slip) {
+    if (combined_slip <= 0.9) return 1.0;  // most sub-steps: no division
     return std::clamp((1.2 - combined_slip) / 0.3, 0.0, 1.0);
 }
 
@@ -43,6 +45,7 @@ double Vehicle::engine_torque(double rpm, double throttle) const {
         if (rpm >= curve[k - 1].rpm && rpm < curve[k].rpm) {
             const double t = (rpm - curve[k - 1].rpm) / (curve[k].rpm - curve[k - 1].rpm);
             full = curve[k - 1].torque + t * (curve[k].torque - curve[k - 1].torque);
+            break;  // the points ascend: no other segment holds rpm
         }
     const double friction = engine.friction_torque * std::max(rpm, 0.0) / engine.redline_rpm;
     return throttle * full - (1.0 - throttle) * friction;
@@ -81,28 +84,22 @@ void Vehicle::shift_gears(double drivetrain_rpm, double throttle, double h) {
 // torques are the last sub-step's.
 double Vehicle::gearbox_torque(double engine_torque, double gear_ratio) const {
     double shared_road_torque = 0.0;
-    double shares_squared = 0.0;
-    for (std::size_t w = 0; w < wheels_.size(); ++w) {
+    for (std::size_t w = 0; w < wheels_.size(); ++w)
         shared_road_torque += wheels_[w].drive_share * state_.wheels[w].road_torque;
-        shares_squared += wheels_[w].drive_share * wheels_[w].drive_share;
-    }
     const double coupling = state_.clutch * spec_.engine.inertia * gear_ratio / spec_.wheel_inertia;
     return state_.clutch * gear_ratio * (engine_torque - coupling * shared_road_torque) /
-           (1.0 + coupling * gear_ratio * shares_squared);
+           (1.0 + coupling * gear_ratio * drive_shares_squared_);
 }
 
 void Vehicle::begin_substep(double throttle, double brake, double car_speed, double h) {
     // The gearbox output turns at sum f_k w_k (the differentials average their outputs).
     double driven_spin = 0.0;
     double axle_spin[2] = {0.0, 0.0};  // front, rear
-    int axle_wheels[2] = {0, 0};
     for (std::size_t w = 0; w < wheels_.size(); ++w) {
         driven_spin += wheels_[w].drive_share * state_.wheels[w].spin;
-        const int axle = wheels_[w].front ? 0 : 1;
-        axle_spin[axle] += state_.wheels[w].spin;
-        ++axle_wheels[axle];
+        axle_spin[wheels_[w].front ? 0 : 1] += state_.wheels[w].spin;
     }
-    for (int axle : {0, 1}) axle_spin[axle] /= std::max(axle_wheels[axle], 1);
+    for (int axle : {0, 1}) axle_spin[axle] /= std::max(axles_[axle].wheels, 1);
 
     const GearboxSpec& box = spec_.gearbox;
     shift_gears(driven_spin * box.ratios[state_.gear - 1] * box.final_drive * kRpmPerRadPerSecond,
@@ -130,42 +127,31 @@ void Vehicle::begin_substep(double throttle, double brake, double car_speed, dou
                                   2.0 * spec_.wheel_inertia, h);
         for (Wheel& wheel : wheels_)
             wheel.drive_torque += (wheel.front ? -transfer : transfer) /
-                                  std::max(axle_wheels[wheel.front ? 0 : 1], 1);
+                                  std::max(axles_[wheel.front ? 0 : 1].wheels, 1);
     }
     if (front_share > 0.0) lock_axle(true, front_share * torque, h);
     if (front_share < 1.0) lock_axle(false, (1.0 - front_share) * torque, h);
 
     for (std::size_t w = 0; w < wheels_.size(); ++w) {
         Wheel& wheel = wheels_[w];
-        const Tyre& tyre = tyre_of(wheel);
         const double slip = state_.wheels[w].slip_ratio;
-        const double sx = slip / tyre.peak_slip_ratio();
-        const double sy = state_.wheels[w].lateral_slip / tyre.peak_lateral_slip();
-        const double combined_slip = std::sqrt(sx * sx + sy * sy);
+        wheel.slip = tyre_of(wheel).normalised(slip, state_.wheels[w].lateral_slip);
         if (spec_.traction_control && wheel.drive_torque > 0.0 && slip > 0.0)
-            wheel.drive_torque *= slip_limiter(combined_slip);
-        const int axle = wheel.front ? 0 : 1;
-        const double bias = wheel.front ? front_brake_share_ : 1.0 - front_brake_share_;
-        wheel.brake_torque = brake * spec_.max_brake_torque * bias / axle_wheels[axle];
+            wheel.drive_torque *= slip_limiter(wheel.slip.combined);
+        wheel.brake_torque = brake * wheel.brake_share;
         // Anti-lock acts above walking pace only, as real systems do: at rest the brake
         // must hold the car however the tyres deflect.
         if (spec_.anti_lock && car_speed > 1.0 && slip < 0.0)
-            wheel.brake_torque *= slip_limiter(combined_slip);
+            wheel.brake_torque *= slip_limiter(wheel.slip.combined);
     }
 }
 
 // A limited-slip axle differential with two wheels: its clutch's transfer between them.
 void Vehicle::lock_axle(bool front, double torque, double h) {
     const DifferentialSpec& diff = front ? spec_.front_differential : spec_.rear_differential;
-    if (diff.kind != DifferentialKind::limited_slip) return;
-    std::size_t pair[2] = {0, 0};
-    int count = 0;
-    for (std::size_t w = 0; w < wheels_.size(); ++w)
-        if (wheels_[w].front == front) {
-            if (count < 2) pair[count] = w;
-            ++count;
-        }
-    if (count != 2) return;
+    const Axle& axle = axles_[front ? 0 : 1];
+    if (diff.kind != DifferentialKind::limited_slip || axle.wheels != 2) return;
+    const std::array<std::size_t, 2>& pair = axle.pair;
     const double transfer = limited_slip_transfer(
         state_.wheels[pair[0]].spin, state_.wheels[pair[1]].spin,
         diff.preload + diff.locking * std::abs(torque), spec_.wheel_inertia, h);

@@ -1,7 +1,10 @@
 #include "trackphys/vehicle/tyre.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <map>
+#include <mutex>
 #include <numbers>
 #include <sstream>
 
@@ -99,15 +102,37 @@ TyreSpec validated(const TyreSpec& spec) {
     return spec;
 }
 
-std::vector<double> shape_table(const MagicFormulaCurve& curve, double peak_slip) {
-    std::vector<double> table(Tyre::kTableSpan * Tyre::kTableSteps + 1);
+using ShapeTable = std::vector<double>;
+
+ShapeTable shape_table(const MagicFormulaCurve& curve, double peak_slip) {
+    ShapeTable table(Tyre::kTableSpan * Tyre::kTableSteps + 1);
     for (std::size_t k = 0; k < table.size(); ++k)
         table[k] = curve.force(static_cast<double>(k) / Tyre::kTableSteps * peak_slip, 1.0);
     return table;
 }
 
+// The table of every curve with curve's B, C and E (its peak slip follows from them): 16
+// KB each, built once while a tyre holds it, so that a race of identical cars shares one
+// per curve in the cache, and a rear tyre that only grips more shares the front's. The
+// shape over the normalised slip does not depend on B, but its last bits do: keyed on B
+// too, a vehicle's results never depend on which tyre built the table first.
+std::shared_ptr<const ShapeTable> shared_shape_table(const MagicFormulaCurve& curve,
+                                                     double peak_slip) {
+    using Key = std::array<double, 3>;
+    static std::mutex mutex;
+    static std::map<Key, std::weak_ptr<const ShapeTable>> tables;
+    const Key key{curve.stiffness, curve.shape, curve.curvature};
+    const std::lock_guard lock(mutex);
+    if (const auto found = tables.find(key); found != tables.end())
+        if (std::shared_ptr<const ShapeTable> table = found->second.lock()) return table;
+    std::erase_if(tables, [](const auto& entry) { return entry.second.expired(); });
+    auto table = std::make_shared<const ShapeTable>(shape_table(curve, peak_slip));
+    tables[key] = table;
+    return table;
+}
+
 // F / D of curve at normalised slip s >= 0, from its table (peak_slip: the curve's).
-double shape_at(const std::vector<double>& table, const MagicFormulaCurve& curve, double peak_slip,
+double shape_at(const ShapeTable& table, const MagicFormulaCurve& curve, double peak_slip,
                 double s) {
     const double u = s * Tyre::kTableSteps;
     if (!(u < Tyre::kTableSpan * Tyre::kTableSteps)) return curve.force(s * peak_slip, 1.0);
@@ -122,8 +147,10 @@ Tyre::Tyre(const TyreSpec& spec)
     : spec_(validated(spec)),
       peak_slip_ratio_(spec.longitudinal.peak_slip()),
       peak_lateral_slip_(spec.lateral.peak_slip()),
-      longitudinal_shape_(shape_table(spec.longitudinal, peak_slip_ratio_)),
-      lateral_shape_(shape_table(spec.lateral, peak_lateral_slip_)) {}
+      inverse_peak_slip_ratio_(1.0 / peak_slip_ratio_),
+      inverse_peak_lateral_slip_(1.0 / peak_lateral_slip_),
+      longitudinal_shape_(shared_shape_table(spec.longitudinal, peak_slip_ratio_)),
+      lateral_shape_(shared_shape_table(spec.lateral, peak_lateral_slip_)) {}
 
 TyreForce Tyre::peaks(double load, double road_grip) const {
     return {road_grip * spec_.longitudinal.peak(load, spec_.nominal_load),
@@ -136,14 +163,24 @@ TyreForce Tyre::force(double slip_ratio, double lateral_slip, double load, doubl
 }
 
 TyreForce Tyre::force(double slip_ratio, double lateral_slip, const TyreForce& peak) const {
-    const double sx = slip_ratio / peak_slip_ratio_;
-    const double sy = lateral_slip / peak_lateral_slip_;
-    const double s = std::sqrt(sx * sx + sy * sy);  // bounded slips: no hypot needed
+    return force(normalised(slip_ratio, lateral_slip), peak);
+}
+
+NormalisedSlip Tyre::normalised(double slip_ratio, double lateral_slip) const {
+    const double sx = slip_ratio * inverse_peak_slip_ratio_;
+    const double sy = lateral_slip * inverse_peak_lateral_slip_;
+    return {sx, sy, std::sqrt(sx * sx + sy * sy)};  // bounded slips: no hypot needed
+}
+
+TyreForce Tyre::force(const NormalisedSlip& slip, const TyreForce& peak) const {
+    const double s = slip.combined;
     if (s == 0.0) return {};
     const double fx =
-        peak.longitudinal * shape_at(longitudinal_shape_, spec_.longitudinal, peak_slip_ratio_, s);
-    const double fy = peak.lateral * shape_at(lateral_shape_, spec_.lateral, peak_lateral_slip_, s);
-    return {fx * sx / s, fy * sy / s};
+        peak.longitudinal * shape_at(*longitudinal_shape_, spec_.longitudinal, peak_slip_ratio_, s);
+    const double fy =
+        peak.lateral * shape_at(*lateral_shape_, spec_.lateral, peak_lateral_slip_, s);
+    const double share = 1.0 / s;  // one division for both directions
+    return {fx * (slip.longitudinal * share), fy * (slip.lateral * share)};
 }
 
 }  // namespace trackphys

@@ -22,7 +22,6 @@ Vehicle::Vehicle(const CarSpec& spec)
       front_tyre_(spec_.front_tyre),
       rear_tyre_(spec_.rear_tyre),
       front_drive_share_(spec.front_drive_share),
-      front_brake_share_(spec.front_brake_share),
       slot_of_ellipsoid_(spec.ellipsoids.size(), -1) {
     for (std::size_t i = 0; i < spec.ellipsoids.size(); ++i) {
         const CarEllipsoid& e = spec.ellipsoids[i];
@@ -32,8 +31,11 @@ Vehicle::Vehicle(const CarSpec& spec)
         wheel.front = e.role == EllipsoidRole::front_wheel;
         // The rolling radius lies in the body's y-z plane (CarSpec: width along x).
         wheel.radius = e.semi_axes.y;
-        wheel.base_inertia = spec_.wheel_inertia;
+        wheel.inverse_inertia = 1.0 / spec_.wheel_inertia;
         wheel.anti_roll = wheel.front ? spec_.front_anti_roll : spec_.rear_anti_roll;
+        const TyreSpec& tyre = wheel.front ? spec_.front_tyre : spec_.rear_tyre;
+        wheel.longitudinal_relaxation_rate = 1.0 / tyre.longitudinal_relaxation;
+        wheel.lateral_relaxation_rate = 1.0 / tyre.lateral_relaxation;
         wheel.partner = i;
         for (std::size_t j = 0; j < spec.ellipsoids.size(); ++j)
             if (j != i && spec.ellipsoids[j].role == e.role &&
@@ -42,15 +44,21 @@ Vehicle::Vehicle(const CarSpec& spec)
         slot_of_ellipsoid_[i] = static_cast<int>(wheels_.size());
         wheels_.push_back(wheel);
     }
-    int axle_wheels[2] = {0, 0};  // front, rear
-    for (const Wheel& wheel : wheels_) ++axle_wheels[wheel.front ? 0 : 1];
-    const double front_share = axle_wheels[1] == 0   ? 1.0
-                               : axle_wheels[0] == 0 ? 0.0
-                                                     : spec.front_drive_share;
+    for (std::size_t w = 0; w < wheels_.size(); ++w) {
+        Axle& axle = axles_[wheels_[w].front ? 0 : 1];
+        if (axle.wheels < 2) axle.pair[axle.wheels] = w;
+        ++axle.wheels;
+    }
+    const double front_share = axles_[1].wheels == 0   ? 1.0
+                               : axles_[0].wheels == 0 ? 0.0
+                                                       : spec.front_drive_share;
     for (Wheel& wheel : wheels_) {
         wheel.critical_mass = spec.mass.mass / static_cast<double>(wheels_.size());
         wheel.drive_share =
-            wheel.front ? front_share / axle_wheels[0] : (1.0 - front_share) / axle_wheels[1];
+            wheel.front ? front_share / axles_[0].wheels : (1.0 - front_share) / axles_[1].wheels;
+        drive_shares_squared_ += wheel.drive_share * wheel.drive_share;
+        const double bias = wheel.front ? spec.front_brake_share : 1.0 - spec.front_brake_share;
+        wheel.brake_share = spec_.max_brake_torque * bias / axles_[wheel.front ? 0 : 1].wheels;
     }
     state_.wheels.resize(wheels_.size());
     telemetry_.resize(wheels_.size());
@@ -83,16 +91,63 @@ void Vehicle::set_state(const VehicleState& state) {
     state_ = state;
 }
 
+namespace {
+
+// The brake takes a spin towards zero by step (rad/s) and holds it there when strong
+// enough, so that a braked wheel does not chatter around standstill.
+double braked(double spin, double step) {
+    return std::abs(spin) <= step ? 0.0 : spin - std::copysign(step, spin);
+}
+
+}  // namespace
+
 // Per sub-step: the tyre force from the slips the wheel carries, the spin under drive,
-// tyre and brake torques, then the slips relaxed towards the new spin. Below low_speed
-// the tyre also damps its own deflection (Pacejka 2012, sec. 7.2.4), fading out linearly,
-// at the critical damping of the deflection spring C / sigma under the wheel's share of
-// the car's mass. The damping and the slips are integrated implicitly: both are stiff.
+// tyre and brake torques, then the slips relaxed towards the new spin (implicitly: they
+// are stiff). The force lies inside the friction ellipse by construction (Tyre::force),
+// so above low_speed the spin follows from it explicitly; below, slow_wheel_force adds
+// the tyre's damping.
 TyreForce Vehicle::wheel_force(std::size_t w, double load, double rolling_velocity,
                                double lateral_velocity, double h) {
     Wheel& wheel = wheels_[w];
     WheelState& s = state_.wheels[w];
-    WheelTelemetry& out = telemetry_[w];
+    const double r = wheel.radius;
+    const double speed = std::abs(rolling_velocity);
+    TyreForce force;
+    if (load > 0.0 && speed < spec_.low_speed) {
+        force = slow_wheel_force(wheel, s, load, rolling_velocity, lateral_velocity, h);
+    } else {
+        if (load > 0.0)
+            force = tyre_of(wheel).force(wheel.slip, tyre_of(wheel).peaks(load, wheel.road_grip));
+        const double torque = wheel.drive_torque - r * force.longitudinal;
+        s.spin = braked(s.spin + h * wheel.inverse_inertia * torque,
+                        h * wheel.inverse_inertia * wheel.brake_torque);
+    }
+    s.road_torque = 0.0;
+    if (load > 0.0) {
+        s.road_torque = -r * force.longitudinal;
+        // sigma dk/dt + |V_x| k = w R - V_x, implicit Euler.
+        const double rate_x = h * wheel.longitudinal_relaxation_rate;
+        const double rate_y = h * wheel.lateral_relaxation_rate;
+        s.slip_ratio = std::clamp(
+            (s.slip_ratio + rate_x * (s.spin * r - rolling_velocity)) / (1.0 + rate_x * speed),
+            -kMaxSlip, kMaxSlip);
+        s.lateral_slip =
+            std::clamp((s.lateral_slip - rate_y * lateral_velocity) / (1.0 + rate_y * speed),
+                       -kMaxSlip, kMaxSlip);
+    }
+    // In the air the slips keep their values: a wheel skipping over a kink between road
+    // facets for a few sub-steps lands with the deflection it left with, instead of
+    // building its force up again over a relaxation length at every skip.
+    telemetry_[w] = {s.slip_ratio, s.lateral_slip, load, s.spin};
+    return force;
+}
+
+// Below low_speed the tyre also damps its own deflection (Pacejka 2012, sec. 7.2.4),
+// fading out linearly, at the critical damping of the deflection spring C / sigma under
+// the wheel's share of the car's mass; the whole force, damping included, stays in the
+// friction ellipse. The spin is implicit in the damping, then braked.
+TyreForce Vehicle::slow_wheel_force(const Wheel& wheel, WheelState& s, double load,
+                                    double rolling_velocity, double lateral_velocity, double h) {
     const Tyre& tyre = tyre_of(wheel);
     const TyreSpec& ts = tyre.spec();
     const double r = wheel.radius;
@@ -102,76 +157,40 @@ TyreForce Vehicle::wheel_force(std::size_t w, double load, double rolling_veloci
     const TyreForce dry = tyre.peaks(load);
     const double dx = wheel.road_grip * dry.longitudinal;
     const double dy = wheel.road_grip * dry.lateral;
-    TyreForce force;
-    double damping_x = 0.0;
-    double damping_y = 0.0;
-    if (load > 0.0) {
-        force = tyre.force(s.slip_ratio, s.lateral_slip, TyreForce{dx, dy});
-        const double fade = std::max(0.0, 1.0 - std::abs(rolling_velocity) / spec_.low_speed);
-        if (fade > 0.0) {
-            const double slope_x =
-                ts.longitudinal.stiffness * ts.longitudinal.shape * dry.longitudinal;
-            const double slope_y = ts.lateral.stiffness * ts.lateral.shape * dry.lateral;
-            damping_x =
-                fade * 2.0 * std::sqrt(slope_x / ts.longitudinal_relaxation * wheel.critical_mass);
-            damping_y =
-                fade * 2.0 * std::sqrt(slope_y / ts.lateral_relaxation * wheel.critical_mass);
-        }
-    }
+    const TyreForce force = tyre.force(wheel.slip, TyreForce{dx, dy});
+    const double fade = 1.0 - std::abs(rolling_velocity) / spec_.low_speed;
+    const double slope_x = ts.longitudinal.stiffness * ts.longitudinal.shape * dry.longitudinal;
+    const double slope_y = ts.lateral.stiffness * ts.lateral.shape * dry.lateral;
+    const double damping_x =
+        fade * 2.0 * std::sqrt(slope_x / ts.longitudinal_relaxation * wheel.critical_mass);
+    const double damping_y =
+        fade * 2.0 * std::sqrt(slope_y / ts.lateral_relaxation * wheel.critical_mass);
 
     const auto damped = [&](double spin) {
         TyreForce total{force.longitudinal - damping_x * (rolling_velocity - spin * r),
                         force.lateral - damping_y * lateral_velocity};
-        double used = 0.0;
-        if (load > 0.0) {
-            const double ux = total.longitudinal / dx;
-            const double uy = total.lateral / dy;
-            used = std::sqrt(ux * ux + uy * uy);
-        }
+        const double ux = total.longitudinal / dx;
+        const double uy = total.lateral / dy;
+        const double used = std::sqrt(ux * ux + uy * uy);
         if (used > 1.0) total.longitudinal /= used, total.lateral /= used;
         return std::pair(total, used > 1.0);
     };
 
     // I dw/dt = T_drive - R (F_x - c_x (V_x - w R)), implicit in the damping. When that
     // force leaves the friction ellipse the road holds the wheel only with the bounded
-    // force, explicitly. Then the brake takes the spin towards zero, and holds it there
-    // when strong enough.
-    const double inertia = wheel.base_inertia;
-    double stiff = 1.0 + h * damping_x * r * r / inertia;
-    double spin = (s.spin + h / inertia *
-                                (wheel.drive_torque - r * force.longitudinal +
-                                 damping_x * r * rolling_velocity)) /
+    // force, explicitly. Then the brake.
+    const double step = h * wheel.inverse_inertia;
+    double stiff = 1.0 + step * damping_x * r * r;
+    double spin = (s.spin + step * (wheel.drive_torque - r * force.longitudinal +
+                                    damping_x * r * rolling_velocity)) /
                   stiff;
     auto [total, sliding] = damped(spin);
     if (sliding) {
-        spin = s.spin + h / inertia * (wheel.drive_torque - r * total.longitudinal);
+        spin = s.spin + step * (wheel.drive_torque - r * total.longitudinal);
         stiff = 1.0;
     }
-    const double brake_step = h * wheel.brake_torque / (inertia * stiff);
-    spin = std::abs(spin) <= brake_step ? 0.0 : spin - std::copysign(brake_step, spin);
-    if (!sliding) total = damped(spin).first;
-    s.spin = spin;
-    s.road_torque = 0.0;
-
-    if (load > 0.0) {
-        force = total;
-        s.road_torque = -r * force.longitudinal;
-        // sigma dk/dt + |V_x| k = w R - V_x, implicit Euler.
-        const double speed = std::abs(rolling_velocity);
-        s.slip_ratio = std::clamp(
-            (s.slip_ratio + h / ts.longitudinal_relaxation * (spin * r - rolling_velocity)) /
-                (1.0 + h * speed / ts.longitudinal_relaxation),
-            -kMaxSlip, kMaxSlip);
-        s.lateral_slip =
-            std::clamp((s.lateral_slip - h / ts.lateral_relaxation * lateral_velocity) /
-                           (1.0 + h * speed / ts.lateral_relaxation),
-                       -kMaxSlip, kMaxSlip);
-    }
-    // In the air the slips keep their values: a wheel skipping over a kink between road
-    // facets for a few sub-steps lands with the deflection it left with, instead of
-    // building its force up again over a relaxation length at every skip.
-    out = {s.slip_ratio, s.lateral_slip, load, spin};
-    return force;
+    s.spin = braked(spin, step * wheel.brake_torque / stiff);
+    return sliding ? total : damped(s.spin).first;
 }
 
 void Vehicle::measure_anti_roll(std::span<const double> suspension) {

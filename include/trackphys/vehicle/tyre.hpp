@@ -1,5 +1,6 @@
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -70,6 +71,15 @@ struct TyreForce {
     double lateral = 0.0;
 };
 
+/// A tyre's slips normalised by its peak slips (Tyre::force's similarity method): s_x =
+/// kappa / kappa_peak, s_y = tan(alpha) / tan(alpha)_peak, and their norm s, 1 where the
+/// force reaches the friction ellipse's edge.
+struct NormalisedSlip {
+    double longitudinal = 0.0;
+    double lateral = 0.0;
+    double combined = 0.0;
+};
+
 /// A validated TyreSpec with its peak slips solved once.
 class TRACKPHYS_API Tyre {
   public:
@@ -94,15 +104,22 @@ class TRACKPHYS_API Tyre {
     /// The same force from the peaks (N) that peaks() gives for its load and road: a wheel
     /// that needs the peaks for more than the force computes them once.
     TyreForce force(double slip_ratio, double lateral_slip, const TyreForce& peak) const;
+    /// The same force from the normalised slips that normalised() gives: a wheel whose
+    /// drivetrain reads them too (anti-lock, traction control) computes them once.
+    TyreForce force(const NormalisedSlip& slip, const TyreForce& peak) const;
     /// Each curve's peak force D (N) under load F_z (N) on a road of grip road_grip: the
     /// semi-axes of the friction ellipse.
     TyreForce peaks(double load, double road_grip = 1.0) const;
+    /// Slip ratio kappa and lateral slip tan(alpha) over this tyre's peak slips.
+    NormalisedSlip normalised(double slip_ratio, double lateral_slip) const;
 
     /// The combined-slip force tabulates each curve's shape F / D over the normalised slip
     /// s in [0, kTableSpan], kTableSteps a unit apart, linearly interpolated: a node at
     /// s = 1 keeps the peak exact, and the shipped sets stay within 2e-5 D of the formula
     /// (tested); beyond the span the formula itself. The Magic Formula's three
     /// transcendentals per direction were most of the vehicle model's cost per sub-step.
+    /// A table depends on its curve's B, C and E only: every Tyre with the same three, in
+    /// any vehicle, shares one immutable copy.
     static constexpr int kTableSteps = 256;
     static constexpr int kTableSpan = 8;
 
@@ -110,8 +127,11 @@ class TRACKPHYS_API Tyre {
     TyreSpec spec_;
     double peak_slip_ratio_;
     double peak_lateral_slip_;
-    std::vector<double> longitudinal_shape_;  ///< F / D at s = k / kTableSteps
-    std::vector<double> lateral_shape_;
+    double inverse_peak_slip_ratio_;  // multiplied by, not divided by, each sub-step
+    double inverse_peak_lateral_slip_;
+    using ShapeTable = std::vector<double>;  ///< F / D at s = k / kTableSteps
+    std::shared_ptr<const ShapeTable> longitudinal_shape_;
+    std::shared_ptr<const ShapeTable> lateral_shape_;
 };
 
 }  // namespace trackphys

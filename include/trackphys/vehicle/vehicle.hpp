@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <span>
 #include <string>
@@ -95,18 +96,30 @@ class TRACKPHYS_API Vehicle {
         std::size_t ellipsoid = 0;
         bool front = false;
         double radius = 0.3;
-        double base_inertia = 1.0;
-        double anti_roll = 0.0;        // N/m against the partner's travel
-        double anti_roll_force = 0.0;  // N, from measure_anti_roll
+        double inverse_inertia = 1.0;               // 1 / kg m^2
+        double longitudinal_relaxation_rate = 1.0;  // 1 / sigma_x, 1/m
+        double lateral_relaxation_rate = 1.0;       // 1 / sigma_y, 1/m
+        double anti_roll = 0.0;                     // N/m against the partner's travel
+        double anti_roll_force = 0.0;               // N, from measure_anti_roll
         double road_grip = 1.0;
         std::size_t partner = 0;     // ellipsoid across the axle (itself if none)
         double critical_mass = 0.0;  // kg: the car's mass share for low-speed damping
         double drive_share = 0.0;    // of the gearbox's torque, through the differentials
-        // This sub-step's drivetrain output:
+        double brake_share = 0.0;    // N m at full brake
+        // This sub-step's: the slips the wheel carries, normalised (the drivetrain's
+        // anti-lock and traction control and the tyre force read them), and the
+        // drivetrain's output.
+        NormalisedSlip slip;
         double drive_torque = 0.0;
         double brake_torque = 0.0;
     };
+    struct Axle {
+        int wheels = 0;
+        std::array<std::size_t, 2> pair{};  // its wheel slots, when it has two
+    };
 
+    TyreForce slow_wheel_force(const Wheel& wheel, WheelState& s, double load,
+                               double rolling_velocity, double lateral_velocity, double h);
     void shift_gears(double drivetrain_rpm, double throttle, double h);
     double engine_torque(double rpm, double throttle) const;
     double gearbox_torque(double engine_torque, double gear_ratio) const;
@@ -117,8 +130,9 @@ class TRACKPHYS_API Vehicle {
     Tyre front_tyre_;
     Tyre rear_tyre_;
     double front_drive_share_;
-    double front_brake_share_;
     std::vector<Wheel> wheels_;
+    std::array<Axle, 2> axles_;          // front, rear
+    double drive_shares_squared_ = 0.0;  // sum of the wheels' drive_share^2
     std::vector<int> slot_of_ellipsoid_;
     VehicleState state_;
     double engine_rpm_ = 0.0;
