@@ -175,8 +175,10 @@ class PairFunction {
     /// to n and a + b along n, and S step = -(p - h n) has the tangent Newton step as its
     /// solution. The tangent eigenvalues sum to trace S - (a + b) and multiply to
     /// det S / (a + b); both above floor, with their product above floor (sum - floor),
-    /// says the least one is.
-    bool definite_step(const Sample& s, double floor, dvec3& step) const {
+    /// says the least one is. `next` is n + step times det S (> 0), n det S - adj(S) g,
+    /// when that stays in the evaluation's range: the evaluation normalises its argument,
+    /// so it need not wait for the division by det S.
+    bool definite_step(const Sample& s, double floor, dvec3& step, dvec3& next) const {
         const dvec3 fa = s.xa * s.inv_a, fb = s.xb * s.inv_b;
         const double along = s.h + s.a + s.b;
         const dvec3 fn = s.n * along;
@@ -198,9 +200,11 @@ class PairFunction {
         if (!(sum > 2.0 * floor && det > normal_part * floor * (sum - floor))) return false;
         const dvec3 g = s.p - s.h * s.n;
         const double scale = -1.0 / det;
-        step = dvec3(c00 * g.x + c01 * g.y + c02 * g.z, c01 * g.x + c11 * g.y + c12 * g.z,
-                     c02 * g.x + c12 * g.y + c22 * g.z) *
-               scale;
+        const dvec3 solved(c00 * g.x + c01 * g.y + c02 * g.z, c01 * g.x + c11 * g.y + c12 * g.z,
+                           c02 * g.x + c12 * g.y + c22 * g.z);
+        step = solved * scale;
+        // |n + step| <= 1.2 within the trust radius: 2^-29..2^29 keeps |next| within 2^-30..2^30.
+        next = det >= 0x1p-29 && det <= 0x1p29 ? s.n * det - solved : s.n + step;
         return true;
     }
 
@@ -346,14 +350,19 @@ Descent descend(PairFunction& f, Sample s) {
     for (int iteration = 0; iteration < kDescentCap; ++iteration) {
         // A positive-definite Hessian gives the Newton step; otherwise it is shifted.
         const double scale = s.a + s.b + std::abs(s.h);
-        dvec3 step;
-        const bool definite = f.definite_step(s, 0x1p-30 * scale, step);
-        if (!definite) step = shifted_step(f, s);
+        // next: a positive multiple of s.n + step, for the evaluation there.
+        dvec3 step, next;
+        const bool definite = f.definite_step(s, 0x1p-30 * scale, step, next);
+        if (!definite) {
+            step = shifted_step(f, s);
+            next = s.n + step;
+        }
         double length2 = glm::dot(step, step);
         if (definite && length2 < kStepTolerance * kStepTolerance) return {s, true};
         if (length2 > kTrustRadius * kTrustRadius) {
             step *= kTrustRadius / std::sqrt(length2);
             length2 = kTrustRadius * kTrustRadius;
+            next = s.n + step;
         }
         // Near a minimum, h cannot tell the last Newton steps apart (it changes by the
         // square of the step, below its rounding once the step is under ~1e-8 rad), while
@@ -364,20 +373,21 @@ Descent descend(PairFunction& f, Sample s) {
                 length2 * length2 * length2 <=
                     kDirectionTolerance * kDirectionTolerance * previous2 * previous2)
                 return {f.stepped(s, step), true};
-            s = f.at(s.n + step);
+            s = f.at(next);
             previous2 = length2;
             continue;
         }
         bool moved = false;
         previous2 = length2;
         for (int halving = 0; halving < kHalvingCap; ++halving) {
-            const Sample next = f.at(s.n + step);
-            if (next.h <= s.h) {
-                moved = next.n != s.n;
-                s = next;
+            const Sample trial = f.at(next);
+            if (trial.h <= s.h) {
+                moved = trial.n != s.n;
+                s = trial;
                 break;
             }
             step *= 0.5;
+            next = s.n + step;
             previous2 *= 0.25;
         }
         // No decrease at all: n is a minimum to rounding (when the Hessian is definite).
