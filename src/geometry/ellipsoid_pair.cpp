@@ -89,6 +89,8 @@ bool unit_frame(const Ellipsoid& a, const Ellipsoid& b, double& scale, detail::P
     frame.rb = raised(b.sorted_radii() * inv);
     frame.b_axes = glm::transpose(axes) * b.sorted_axes();
     frame.d = d_world * axes;  // A^T d
+    // B^T d from world space, beside A^T B rather than after it (the first guess needs it).
+    frame.d_in_b = d_world * b.sorted_axes();
     return true;
 }
 

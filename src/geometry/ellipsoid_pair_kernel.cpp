@@ -175,8 +175,10 @@ class PairFunction {
     /// to n and a + b along n, and S step = -(p - h n) has the tangent Newton step as its
     /// solution. The tangent eigenvalues sum to trace S - (a + b) and multiply to
     /// det S / (a + b); both above floor, with their product above floor (sum - floor),
-    /// says the least one is.
-    bool definite_step(const Sample& s, double floor, dvec3& step) const {
+    /// says the least one is. `next` is n + step times det S (> 0), n det S - adj(S) g,
+    /// when that stays in the evaluation's range: the evaluation normalises its argument,
+    /// so it need not wait for the division by det S.
+    bool definite_step(const Sample& s, double floor, dvec3& step, dvec3& next) const {
         const dvec3 fa = s.xa * s.inv_a, fb = s.xb * s.inv_b;
         const double along = s.h + s.a + s.b;
         const dvec3 fn = s.n * along;
@@ -198,9 +200,11 @@ class PairFunction {
         if (!(sum > 2.0 * floor && det > normal_part * floor * (sum - floor))) return false;
         const dvec3 g = s.p - s.h * s.n;
         const double scale = -1.0 / det;
-        step = dvec3(c00 * g.x + c01 * g.y + c02 * g.z, c01 * g.x + c11 * g.y + c12 * g.z,
-                     c02 * g.x + c12 * g.y + c22 * g.z) *
-               scale;
+        const dvec3 solved(c00 * g.x + c01 * g.y + c02 * g.z, c01 * g.x + c11 * g.y + c12 * g.z,
+                           c02 * g.x + c12 * g.y + c22 * g.z);
+        step = solved * scale;
+        // |n + step| <= 1.2 within the trust radius: 2^-29..2^29 keeps |next| within 2^-30..2^30.
+        next = det >= 0x1p-29 && det <= 0x1p29 ? s.n * det - solved : s.n + step;
         return true;
     }
 
@@ -346,14 +350,19 @@ Descent descend(PairFunction& f, Sample s) {
     for (int iteration = 0; iteration < kDescentCap; ++iteration) {
         // A positive-definite Hessian gives the Newton step; otherwise it is shifted.
         const double scale = s.a + s.b + std::abs(s.h);
-        dvec3 step;
-        const bool definite = f.definite_step(s, 0x1p-30 * scale, step);
-        if (!definite) step = shifted_step(f, s);
+        // next: a positive multiple of s.n + step, for the evaluation there.
+        dvec3 step, next;
+        const bool definite = f.definite_step(s, 0x1p-30 * scale, step, next);
+        if (!definite) {
+            step = shifted_step(f, s);
+            next = s.n + step;
+        }
         double length2 = glm::dot(step, step);
         if (definite && length2 < kStepTolerance * kStepTolerance) return {s, true};
         if (length2 > kTrustRadius * kTrustRadius) {
             step *= kTrustRadius / std::sqrt(length2);
             length2 = kTrustRadius * kTrustRadius;
+            next = s.n + step;
         }
         // Near a minimum, h cannot tell the last Newton steps apart (it changes by the
         // square of the step, below its rounding once the step is under ~1e-8 rad), while
@@ -364,20 +373,21 @@ Descent descend(PairFunction& f, Sample s) {
                 length2 * length2 * length2 <=
                     kDirectionTolerance * kDirectionTolerance * previous2 * previous2)
                 return {f.stepped(s, step), true};
-            s = f.at(s.n + step);
+            s = f.at(next);
             previous2 = length2;
             continue;
         }
         bool moved = false;
         previous2 = length2;
         for (int halving = 0; halving < kHalvingCap; ++halving) {
-            const Sample next = f.at(s.n + step);
-            if (next.h <= s.h) {
-                moved = next.n != s.n;
-                s = next;
+            const Sample trial = f.at(next);
+            if (trial.h <= s.h) {
+                moved = trial.n != s.n;
+                s = trial;
                 break;
             }
             step *= 0.5;
+            next = s.n + step;
             previous2 *= 0.25;
         }
         // No decrease at all: n is a minimum to rounding (when the Hessian is definite).
@@ -545,25 +555,33 @@ Descent search(PairFunction& f, Descent best, double& unresolved) {
     return best;
 }
 
-/// Where the minimiser would be if A - B were the ellipsoid E = {x^T M^-1 x <= 1} with
-/// M = 2 (M_A + M_B) (A - B itself for two equal spheres): the normal (M + t I)^-1 d at the
-/// point of E closest to -d, t >= 0 its Lagrange multiplier, about the distance times E's
-/// mean radius s: 0 on the surface (the normal on the centre line), large far away (the
-/// centre line itself). Not normalised (the evaluation does that): its length is kept when
-/// within 2^-30..2^30 (the evaluation's range), else brought within 2^-4..2^4 by a power of
-/// two, without a root or a division on the way.
+/// Where the minimiser would be if a, b and h kept their values at the centre line
+/// u = -d / |d|: the minimiser solves (M_A / a + M_B / b - h I) n = -d (the critical point
+/// condition p = h n), so with a(u), b(u) and h(u) frozen, n is that system's solution.
+/// Exact for two spheres; closer than a model ellipsoid of A - B with fixed weights, such
+/// as 2 (M_A + M_B), because the weights 1 / a and 1 / b follow the two shapes along u.
+/// h is capped at half the radius of the balls inscribed at u, r_min,A^2 / a + r_min,B^2 / b,
+/// which keeps the matrix positive definite (its least eigenvalue is at least that radius)
+/// where a deep centre line would turn it. Not normalised (the evaluation does that): its
+/// length is kept when within 2^-30..2^30 (the evaluation's range), else brought within
+/// 2^-4..2^4 by a power of two, without a root or a division on the way.
 dvec3 first_guess(const PairFrame& frame, const std::array<double, 6>& mb) {
-    // m = M / 2 = D_A^2 + M_B (symmetric), then (m + t / 2 I)^-1 d by the adjugate
-    // (positive definite; its determinant and the scale go with the normalisation). The
-    // traces of M_A and M_B are the sums of the squared radii.
+    // Times a(u) b(u) |d| (a positive scale, which the normalisation removes): with
+    // D2 = |d|^2, A = |D_A d| = a(u) |d| and B = b(u) |d|, the system's matrix is
+    // D2 (B M_A + A M_B) - A B (A + B - D2) I and the cap on h is D2 (r_min,A^2 B +
+    // r_min,B^2 A) / 2: two independent roots and no division. B comes from d in B's own
+    // frame, so that its root need not wait for M_B.
     const dvec3 ra2 = frame.ra * frame.ra, rb2 = frame.rb * frame.rb;
-    const double m01 = mb[3], m02 = mb[4], m12 = mb[5];
-    const double trace = ra2.x + ra2.y + ra2.z + rb2.x + rb2.y + rb2.z;
     const dvec3& d = frame.d;
-    const double s2 = trace * (2.0 / 3.0);  // trace(M) / 3, no division on the way
-    const double half_t = std::max(0.0, 0.5 * (std::sqrt(s2 * glm::dot(d, d)) - s2));
-    const double m00 = ra2.x + mb[0] + half_t, m11 = ra2.y + mb[1] + half_t,
-                 m22 = ra2.z + mb[2] + half_t;
+    const double d2 = glm::dot(d, d);
+    const double big_a = std::sqrt(glm::dot(ra2 * d, d));
+    const double big_b = std::sqrt(glm::dot(rb2 * frame.d_in_b, frame.d_in_b));
+    const double shift =
+        std::min(big_a * big_b * (big_a + big_b - d2), 0.5 * d2 * (ra2.z * big_b + rb2.z * big_a));
+    const double wa = d2 * big_b, wb = d2 * big_a;
+    const double m00 = wa * ra2.x + wb * mb[0] - shift, m11 = wa * ra2.y + wb * mb[1] - shift,
+                 m22 = wa * ra2.z + wb * mb[2] - shift;
+    const double m01 = wb * mb[3], m02 = wb * mb[4], m12 = wb * mb[5];
     const double c00 = m11 * m22 - m12 * m12, c01 = m02 * m12 - m01 * m22,
                  c02 = m01 * m12 - m02 * m11, c11 = m00 * m22 - m02 * m02,
                  c12 = m01 * m02 - m00 * m12, c22 = m00 * m11 - m01 * m01;
@@ -574,10 +592,8 @@ dvec3 first_guess(const PairFrame& frame, const std::array<double, 6>& mb) {
     // not change when m is scaled by a power of two, so the exponent work below is skipped
     // and the guess's length need not be on the way to the first evaluation.
     if (length2 >= 0x1p-60 && length2 <= 0x1p60) return -solved;
-    if (!(length2 > 0x1p-600 && length2 < 0x1p600)) {
-        const double d2 = glm::dot(d, d);
+    if (!(length2 > 0x1p-600 && length2 < 0x1p600))
         return d2 > 0x1p-600 ? -d * (1.0 / std::sqrt(d2)) : dvec3(0.0, 0.0, 1.0);
-    }
     // 2^-e for length2 in [2^2e, 2^(2e+2)): the exponent of length2, halved and negated.
     const auto exponent = int((std::bit_cast<std::uint64_t>(length2) >> 52) & 0x7ff) - 1023;
     const double scale =
@@ -621,8 +637,10 @@ PairSolution solve_pair(const PairFrame& frame) {
         lower_bound = std::min(result.at.h - kSearchTolerance, unresolved);
         if (unresolved < result.at.h - kSearchTolerance) path = PairPath::unproven;
     }
-    return {result.at.h, result.at.n,   result.at.xa, -result.at.xb,
-            path,        f.evaluations, lower_bound};
+    // One Newton step of 1 / sqrt towards unit length: an evaluation's normalisation rounds
+    // a few times, and an axis-aligned minimiser should come out as that axis exactly.
+    const dvec3 n = result.at.n * (1.5 - 0.5 * glm::dot(result.at.n, result.at.n));
+    return {result.at.h, n, result.at.xa, -result.at.xb, path, f.evaluations, lower_bound};
 }
 
 }  // namespace trackphys::detail

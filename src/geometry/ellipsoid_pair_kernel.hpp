@@ -30,6 +30,7 @@ struct PairFrame {
     glm::dvec3 rb;      ///< B's radii, sorted descending
     glm::dmat3 b_axes;  ///< B's sorted axes in A's frame (columns, a rotation)
     glm::dvec3 d;       ///< cA - cB in A's frame
+    glm::dvec3 d_in_b;  ///< cA - cB in B's sorted frame (straight from world space)
 };
 
 struct PairSolution {
