@@ -60,6 +60,10 @@ void MidPhase::begin_update(const Aabb& update_box) {
     ++counters_.updates;
     refs_.clear();
     triangles_.clear();
+    current_frames_ = (current_frames_ + 1) % kKeptUpdates;
+    FramePool& pool = frame_pools_[current_frames_];
+    for (std::size_t b = 0; b < pool.blocks.size() && b <= pool.full; ++b) pool.blocks[b].clear();
+    pool.full = 0;
     active_colliders_.clear();
     entry_nodes_.clear();
     if (mode_ == MidPhaseMode::precomputed_tree) {
@@ -80,6 +84,18 @@ void MidPhase::begin_update(const Aabb& update_box) {
     }
 }
 
+const NormalizedTriangle* MidPhase::keep_frame(const NormalizedTriangle& frame) {
+    FramePool& pool = frame_pools_[current_frames_];
+    if (pool.full == pool.blocks.size()) {
+        pool.blocks.emplace_back();
+        pool.blocks.back().reserve(kFrameBlock);
+    }
+    std::vector<NormalizedTriangle>& block = pool.blocks[pool.full];
+    block.push_back(frame);  // within its capacity: the frames already handed out stay put
+    if (block.size() == kFrameBlock) ++pool.full;
+    return &block.back();
+}
+
 template <class Query>
 void MidPhase::query(Query&& query_tree, std::vector<MidPhaseCandidate>& out) {
     ++counters_.queries;
@@ -97,7 +113,7 @@ void MidPhase::query(Query&& query_tree, std::vector<MidPhaseCandidate>& out) {
             slots_.clear();
             add_counts(query_tree(update_tree_, slots_, 0u));
             for (const std::uint32_t slot : slots_)
-                out.push_back({refs_[update_tree_.id(slot)], &update_tree_.triangle(slot)});
+                out.push_back({refs_[update_tree_.id(slot)], &triangles_[update_tree_.id(slot)]});
             break;
         case MidPhaseMode::precomputed_tree:
             for (std::size_t i = 0; i < active_colliders_.size(); ++i) {
@@ -106,7 +122,7 @@ void MidPhase::query(Query&& query_tree, std::vector<MidPhaseCandidate>& out) {
                 slots_.clear();
                 add_counts(query_tree(tree, slots_, entry_nodes_[i]));
                 for (const std::uint32_t slot : slots_)
-                    out.push_back({{id, tree.id(slot)}, &tree.triangle(slot)});
+                    out.push_back({{id, tree.id(slot)}, keep_frame(tree.triangle(slot))});
             }
             break;
     }
@@ -138,8 +154,10 @@ void MidPhase::query_swept_ellipsoid(const Ellipsoid& ellipsoid, const glm::dvec
 }
 
 std::size_t MidPhase::bytes_used() const {
-    return refs_.capacity() * sizeof(TriangleRef) +
-           triangles_.capacity() * sizeof(NormalizedTriangle) +
+    std::size_t frames = triangles_.capacity();
+    for (const FramePool& pool : frame_pools_)
+        for (const std::vector<NormalizedTriangle>& block : pool.blocks) frames += block.capacity();
+    return refs_.capacity() * sizeof(TriangleRef) + frames * sizeof(NormalizedTriangle) +
            (ids_.capacity() + active_colliders_.capacity() + entry_nodes_.capacity() +
             slots_.capacity()) *
                sizeof(std::uint32_t) +

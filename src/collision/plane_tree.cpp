@@ -33,7 +33,9 @@ PlaneTreeQueryCounts PlaneTree::visit(const Shape& shape, std::vector<std::uint3
             const std::uint32_t end = node.first + node.count();
             counts.triangles_filtered += node.count();
             for (std::uint32_t slot = node.first; slot < end; ++slot) {
-                if (shape.touches(triangles_[slot])) {
+                if (!shape.reaches_box(boxes_[slot])) continue;
+                if (collider_ != nullptr ? shape.touches(collider_->normalized_triangle(ids_[slot]))
+                                         : shape.touches(frames_[slot])) {
                     out.push_back(slot);
                     ++counts.triangles_reported;
                 }
@@ -90,17 +92,27 @@ std::uint32_t PlaneTree::entry_node(const Aabb& box) const {
     return index;
 }
 
+void PlaneTree::use_collider_frames(const StaticCollider& collider) {
+    collider_ = &collider;
+    frames_.clear();
+    frames_.shrink_to_fit();
+    boxes_.resize(ids_.size());
+    for (std::size_t slot = 0; slot < ids_.size(); ++slot)
+        boxes_[slot] = collision_detail::float_box(collider.triangle(ids_[slot]));
+}
+
 std::size_t PlaneTree::bytes_used() const {
     return nodes_.capacity() * sizeof(PlaneTreeNode) + slabs_.capacity() * sizeof(PlaneTreeSlab) +
-           triangles_.capacity() * sizeof(NormalizedTriangle) +
-           ids_.capacity() * sizeof(std::uint32_t);
+           boxes_.capacity() * sizeof(PlaneTreeBox) + ids_.capacity() * sizeof(std::uint32_t) +
+           frames_.capacity() * sizeof(NormalizedTriangle);
 }
 
 void PlaneTree::shrink_to_fit() {
     nodes_.shrink_to_fit();
     slabs_.shrink_to_fit();
-    triangles_.shrink_to_fit();
+    boxes_.shrink_to_fit();
     ids_.shrink_to_fit();
+    frames_.shrink_to_fit();
 }
 
 }  // namespace trackphys

@@ -10,6 +10,7 @@
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
 
+#include "collision/plane_tree_shapes.hpp"
 #include "trackphys/collision/static_collider.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/math/symmetric_eigen.hpp"
@@ -17,24 +18,13 @@
 namespace trackphys {
 namespace {
 
+using collision_detail::float_down;
+using collision_detail::float_up;
+
 // A float toward zero: |result| <= |x|.
 float float_toward_zero(double x) {
     float f = static_cast<float>(x);
     if (std::abs(double(f)) > std::abs(x)) f = std::nextafter(f, 0.0f);
-    return f;
-}
-
-// A float at or below x.
-float float_down(double x) {
-    float f = static_cast<float>(x);
-    if (double(f) > x) f = std::nextafter(f, -std::numeric_limits<float>::infinity());
-    return f;
-}
-
-// A float at or above x.
-float float_up(double x) {
-    float f = static_cast<float>(x);
-    if (double(f) < x) f = std::nextafter(f, std::numeric_limits<float>::infinity());
     return f;
 }
 
@@ -109,10 +99,14 @@ void PlaneTreeBuilder::build(std::span<const NormalizedTriangle> triangles,
         tree.slabs_.resize(tree.nodes_.size());
         mark_slabs(0, 0, n);
     }
-    tree.triangles_.clear();
+    tree.frames_.clear();
+    tree.boxes_.clear();
     tree.ids_.clear();
+    tree.collider_ = nullptr;
     for (const std::uint32_t item : order_) {
-        tree.triangles_.push_back(triangles[item]);
+        tree.frames_.push_back(triangles[item]);
+        const auto& v = items_[item].vertices;
+        tree.boxes_.push_back(collision_detail::float_box(Triangle(v[0], v[1], v[2])));
         tree.ids_.push_back(ids[item]);
     }
     tree_ = nullptr;
@@ -428,6 +422,7 @@ PlaneTree make_collider_plane_tree(const StaticCollider& collider,
     }
     PlaneTree tree;
     PlaneTreeBuilder().build(triangles, ids, settings, tree);
+    tree.use_collider_frames(collider);
     tree.shrink_to_fit();
     return tree;
 }
