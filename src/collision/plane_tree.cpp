@@ -27,7 +27,7 @@ PlaneTreeQueryCounts PlaneTree::visit(const Shape& shape, std::vector<std::uint3
         const PlaneTreeNode& node = nodes_[index];
         if (node.has_slab()) {
             ++counts.planes_tested;
-            if (!shape.reaches_slab(slabs_[index])) continue;
+            if (!shape.reaches_slab(slabs_[slab_index(index)])) continue;
         }
         if (node.is_leaf()) {
             const std::uint32_t end = node.first + node.count();
@@ -92,6 +92,18 @@ std::uint32_t PlaneTree::entry_node(const Aabb& box) const {
     return index;
 }
 
+void PlaneTree::rank_slabs() {
+    slab_ranks_.assign((nodes_.size() + 63) / 64, SlabRank{});
+    std::uint64_t slabs = 0;
+    for (std::size_t node = 0; node < nodes_.size(); ++node) {
+        SlabRank& r = slab_ranks_[node / 64];
+        if (node % 64 == 0) r.before = slabs;
+        if (!nodes_[node].has_slab()) continue;
+        r.bits |= std::uint64_t{1} << (node % 64);
+        ++slabs;
+    }
+}
+
 void PlaneTree::use_collider_frames(const StaticCollider& collider) {
     collider_ = &collider;
     frames_.clear();
@@ -103,13 +115,15 @@ void PlaneTree::use_collider_frames(const StaticCollider& collider) {
 
 std::size_t PlaneTree::bytes_used() const {
     return nodes_.capacity() * sizeof(PlaneTreeNode) + slabs_.capacity() * sizeof(PlaneTreeSlab) +
-           boxes_.capacity() * sizeof(PlaneTreeBox) + ids_.capacity() * sizeof(std::uint32_t) +
+           slab_ranks_.capacity() * sizeof(SlabRank) + boxes_.capacity() * sizeof(PlaneTreeBox) +
+           ids_.capacity() * sizeof(std::uint32_t) +
            frames_.capacity() * sizeof(NormalizedTriangle);
 }
 
 void PlaneTree::shrink_to_fit() {
     nodes_.shrink_to_fit();
     slabs_.shrink_to_fit();
+    slab_ranks_.shrink_to_fit();
     boxes_.shrink_to_fit();
     ids_.shrink_to_fit();
     frames_.shrink_to_fit();

@@ -96,9 +96,12 @@ void PlaneTreeBuilder::build(std::span<const NormalizedTriangle> triangles,
     }
     tree.slabs_.clear();
     if (n > 0 && settings.slab_thickness > 0.0) {
-        tree.slabs_.resize(tree.nodes_.size());
+        node_slabs_.resize(tree.nodes_.size());
         mark_slabs(0, 0, n);
+        for (std::size_t node = 0; node < tree.nodes_.size(); ++node)
+            if (tree.nodes_[node].has_slab()) tree.slabs_.push_back(node_slabs_[node]);
     }
+    tree.rank_slabs();
     tree.frames_.clear();
     tree.boxes_.clear();
     tree.ids_.clear();
@@ -148,7 +151,7 @@ void PlaneTreeBuilder::mark_slabs(std::uint32_t node, std::size_t begin, std::si
                 high = std::max(high, d);
             }
         if (high - low <= settings_.slab_thickness) {
-            PlaneTreeSlab& slab = tree_->slabs_[node];
+            PlaneTreeSlab& slab = node_slabs_[node];
             for (int k = 0; k < 3; ++k) slab.normal[k] = static_cast<float>(normal[k]);
             slab.low = float_down(low);
             slab.high = float_up(high);
@@ -405,7 +408,8 @@ std::size_t PlaneTreeBuilder::bytes_used() const {
     return items_.capacity() * sizeof(Item) +
            (order_.capacity() + sorted_.capacity()) * sizeof(std::uint32_t) +
            (keys_.capacity() + lows_.capacity() + highs_.capacity() + suffix_low_.capacity()) *
-               sizeof(double);
+               sizeof(double) +
+           node_slabs_.capacity() * sizeof(PlaneTreeSlab);
 }
 
 PlaneTree make_collider_plane_tree(const StaticCollider& collider,

@@ -70,6 +70,7 @@ MapCodec::Loaded MapCodec::read(map_detail::BodyReader& body) {
         throw Error("the plane tree's depth is recorded as " + std::to_string(r.plane_depth) +
                     ", its deepest leaf is at " + std::to_string(depth));
     tree->depth_ = depth;
+    tree->rank_slabs();
     // The slots' boxes are derived from the collider's vertices, as a fresh build derives
     // them, and the frames are built by the queries: neither is stored.
     tree->use_collider_frames(*c);

@@ -296,7 +296,7 @@ std::pair<std::uint32_t, std::uint32_t> check_subtree(const PlaneTree& tree, std
         EXPECT_EQ(n.count(), range.second - range.first);
     }
     if (n.has_slab()) {
-        const PlaneTreeSlab& slab = tree.slabs().at(node);
+        const PlaneTreeSlab& slab = tree.slab(node);
         const glm::dvec3 normal(slab.normal[0], slab.normal[1], slab.normal[2]);
         EXPECT_LE(glm::length(normal), 1.0);
         for (std::uint32_t slot = range.first; slot < range.second; ++slot)
@@ -475,9 +475,10 @@ TEST(PlaneTree, ColliderTreeIdsAreMeshIndicesOfKeptTriangles) {
     }
     std::sort(ids.begin(), ids.end());
     EXPECT_EQ(std::adjacent_find(ids.begin(), ids.end()), ids.end());
-    // 24-byte nodes with 20-byte slabs, a 24-byte box and a 4-byte id, no frames: ~65 bytes
-    // a triangle with leaves of a few triangles (160 when the tree kept 120-byte frames).
-    EXPECT_LT(tree.bytes_used(), 80 * tree.triangle_count());
+    // 24-byte nodes, 20-byte slabs on the slab nodes only, a 24-byte box and a 4-byte id,
+    // no frames: ~50 bytes a triangle with leaves of a few triangles (160 when the tree kept
+    // 120-byte frames and a slab for every node).
+    EXPECT_LT(tree.bytes_used(), 64 * tree.triangle_count());
 }
 
 // Triangles 2 km out, vertices off the float grid (float steps there are 1.2e-4 m), and

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <bit>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -38,7 +39,7 @@ struct PlaneTreeNode {
     std::uint32_t packed;  ///<  4 bytes: kLeafBit | kSlabBit | triangles in the subtree
 
     bool is_leaf() const { return (packed & kLeafBit) != 0; }
-    /// True when PlaneTree::slabs()[this node] holds a slab to test (see PlaneTreeSettings).
+    /// True when PlaneTree::slab(this node) holds a slab to test (see PlaneTreeSettings).
     bool has_slab() const { return (packed & kSlabBit) != 0; }
     /// Number of triangles in the subtree (a leaf's own triangles).
     std::uint32_t count() const { return packed & kCountMask; }
@@ -139,7 +140,7 @@ struct PlaneTreeQueryCounts {
 ///
 /// Storage: two vectors as the BVH, nodes (24 bytes) and per leaf slot its triangle's box
 /// (PlaneTreeBox, 24 bytes) and caller id (4 bytes), plus, when built with slabs, a 20-byte
-/// slab per node (~63 bytes a triangle for a track collider). The double frames
+/// slab per slab node (~51 bytes a triangle for a track collider). The double frames
 /// (NormalizedTriangle, 120 bytes) are not kept for a collider's tree: its queries build the
 /// frames of the few slots whose box they reach from the collider's vertices, exactly the
 /// frames StaticCollider::normalized_triangle gives. A tree built from frames
@@ -214,9 +215,13 @@ class TRACKPHYS_API PlaneTree {
     }
     /// The nodes, root at 0.
     const std::vector<PlaneTreeNode>& nodes() const { return nodes_; }
-    /// One slab per node when the tree was built with slabs (read where has_slab()), else
-    /// empty.
-    const std::vector<PlaneTreeSlab>& slabs() const { return slabs_; }
+    /// The slab of node `node`, which has_slab() (TP_ASSERT).
+    const PlaneTreeSlab& slab(std::uint32_t node) const {
+        TP_ASSERT(node < nodes_.size() && nodes_[node].has_slab(), "plane tree node has no slab");
+        return slabs_[slab_index(node)];
+    }
+    /// Number of nodes with a slab.
+    std::size_t slab_count() const { return slabs_.size(); }
     /// Depth of the deepest leaf (0 for a single leaf).
     int depth() const { return depth_; }
     /// Bytes of every structure the tree keeps (vector capacities included).
@@ -236,9 +241,24 @@ class TRACKPHYS_API PlaneTree {
     // copy, and sets the boxes from the collider's vertices: the same boxes whether the tree
     // was just built or loaded from a map file.
     void use_collider_frames(const StaticCollider& collider);
+    // Slabs are kept for the nodes that have one only (about one node in four on a track),
+    // in node order; a node's slab is the one after those of the slab nodes before it,
+    // counted with a bit per node and a running count per 64 nodes.
+    struct SlabRank {
+        std::uint64_t bits = 0;    ///< bit k: node 64 i + k has a slab
+        std::uint64_t before = 0;  ///< slab nodes below 64 i
+    };
+    void rank_slabs();
+    std::size_t slab_index(std::uint32_t node) const {
+        const SlabRank& r = slab_ranks_[node / 64];
+        return static_cast<std::size_t>(r.before) +
+               static_cast<std::size_t>(
+                   std::popcount(r.bits & ((std::uint64_t{1} << (node % 64)) - 1)));
+    }
 
     std::vector<PlaneTreeNode> nodes_;
-    std::vector<PlaneTreeSlab> slabs_;          ///< per node, or empty
+    std::vector<PlaneTreeSlab> slabs_;          ///< per slab node, in node order
+    std::vector<SlabRank> slab_ranks_;          ///< per 64 nodes, derived from the nodes
     std::vector<PlaneTreeBox> boxes_;           ///< leaf order
     std::vector<std::uint32_t> ids_;            ///< leaf order
     std::vector<NormalizedTriangle> frames_;    ///< leaf order; empty for a collider's tree
