@@ -60,10 +60,11 @@ void MidPhase::begin_update(const Aabb& update_box) {
     ++counters_.updates;
     refs_.clear();
     triangles_.clear();
-    current_frames_ = (current_frames_ + 1) % kKeptUpdates;
-    FramePool& pool = frame_pools_[current_frames_];
-    for (std::size_t b = 0; b < pool.blocks.size() && b <= pool.full; ++b) pool.blocks[b].clear();
-    pool.full = 0;
+    // A box that holds the last one is that update widened (World does so mid-step and
+    // keeps culling with the lists it queried before), or a car that stayed inside it:
+    // the frames stay, so those lists' pointers do. Any other box starts afresh.
+    if (!update_box.contains(frames_box_)) frames_.clear();
+    frames_box_ = update_box;
     active_colliders_.clear();
     entry_nodes_.clear();
     if (mode_ == MidPhaseMode::precomputed_tree) {
@@ -84,18 +85,6 @@ void MidPhase::begin_update(const Aabb& update_box) {
     }
 }
 
-const NormalizedTriangle* MidPhase::keep_frame(const NormalizedTriangle& frame) {
-    FramePool& pool = frame_pools_[current_frames_];
-    if (pool.full == pool.blocks.size()) {
-        pool.blocks.emplace_back();
-        pool.blocks.back().reserve(kFrameBlock);
-    }
-    std::vector<NormalizedTriangle>& block = pool.blocks[pool.full];
-    block.push_back(frame);  // within its capacity: the frames already handed out stay put
-    if (block.size() == kFrameBlock) ++pool.full;
-    return &block.back();
-}
-
 template <class Query>
 void MidPhase::query(Query&& query_tree, std::vector<MidPhaseCandidate>& out) {
     ++counters_.queries;
@@ -111,7 +100,7 @@ void MidPhase::query(Query&& query_tree, std::vector<MidPhaseCandidate>& out) {
             break;
         case MidPhaseMode::per_update_tree:
             slots_.clear();
-            add_counts(query_tree(update_tree_, slots_, 0u));
+            add_counts(query_tree(update_tree_, slots_, 0u, nullptr));
             for (const std::uint32_t slot : slots_)
                 out.push_back({refs_[update_tree_.id(slot)], &triangles_[update_tree_.id(slot)]});
             break;
@@ -120,9 +109,9 @@ void MidPhase::query(Query&& query_tree, std::vector<MidPhaseCandidate>& out) {
                 const std::uint32_t id = active_colliders_[i];
                 const PlaneTree& tree = *trees_[id];
                 slots_.clear();
-                add_counts(query_tree(tree, slots_, entry_nodes_[i]));
+                add_counts(query_tree(tree, slots_, entry_nodes_[i], &frames_));
                 for (const std::uint32_t slot : slots_)
-                    out.push_back({{id, tree.id(slot)}, keep_frame(tree.triangle(slot))});
+                    out.push_back({{id, tree.id(slot)}, &frames_.frame(tree, slot)});
             }
             break;
     }
@@ -134,8 +123,9 @@ void MidPhase::query_swept_sphere(const glm::dvec3& start, const glm::dvec3& end
     // Validated here too, so that mode none rejects what the tree modes reject.
     static_cast<void>(collision_detail::make_capsule_query(start, end, radius));
     query(
-        [&](const PlaneTree& tree, std::vector<std::uint32_t>& slots, std::uint32_t from) {
-            return tree.query_swept_sphere(start, end, radius, slots, from);
+        [&](const PlaneTree& tree, std::vector<std::uint32_t>& slots, std::uint32_t from,
+            PlaneTreeFrameCache* frames) {
+            return tree.query_swept_sphere(start, end, radius, slots, from, frames);
         },
         out);
 }
@@ -147,17 +137,16 @@ void MidPhase::query_swept_ellipsoid(const Ellipsoid& ellipsoid, const glm::dvec
             "MidPhase::query_swept_ellipsoid: end must be finite and margin finite and "
             ">= 0");
     query(
-        [&](const PlaneTree& tree, std::vector<std::uint32_t>& slots, std::uint32_t from) {
-            return tree.query_swept_ellipsoid(ellipsoid, end, margin, slots, from);
+        [&](const PlaneTree& tree, std::vector<std::uint32_t>& slots, std::uint32_t from,
+            PlaneTreeFrameCache* frames) {
+            return tree.query_swept_ellipsoid(ellipsoid, end, margin, slots, from, frames);
         },
         out);
 }
 
 std::size_t MidPhase::bytes_used() const {
-    std::size_t frames = triangles_.capacity();
-    for (const FramePool& pool : frame_pools_)
-        for (const std::vector<NormalizedTriangle>& block : pool.blocks) frames += block.capacity();
-    return refs_.capacity() * sizeof(TriangleRef) + frames * sizeof(NormalizedTriangle) +
+    return refs_.capacity() * sizeof(TriangleRef) +
+           triangles_.capacity() * sizeof(NormalizedTriangle) + frames_.bytes_used() +
            (ids_.capacity() + active_colliders_.capacity() + entry_nodes_.capacity() +
             slots_.capacity()) *
                sizeof(std::uint32_t) +

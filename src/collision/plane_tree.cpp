@@ -5,6 +5,7 @@
 
 #include "collision/plane_tree_shapes.hpp"
 #include "trackphys/assert.hpp"
+#include "trackphys/collision/plane_tree_frame_cache.hpp"
 
 namespace trackphys {
 
@@ -13,7 +14,7 @@ using collision_detail::SphereShape;
 
 template <class Shape>
 PlaneTreeQueryCounts PlaneTree::visit(const Shape& shape, std::vector<std::uint32_t>& out,
-                                      std::uint32_t from_node) const {
+                                      std::uint32_t from_node, PlaneTreeFrameCache* frames) const {
     PlaneTreeQueryCounts counts;
     if (nodes_.empty()) return counts;
     TP_ASSERT(from_node < nodes_.size(), "plane tree query: start node out of range");
@@ -34,11 +35,13 @@ PlaneTreeQueryCounts PlaneTree::visit(const Shape& shape, std::vector<std::uint3
             counts.triangles_filtered += node.count();
             for (std::uint32_t slot = node.first; slot < end; ++slot) {
                 if (!shape.reaches_box(boxes_[slot])) continue;
-                if (collider_ != nullptr ? shape.touches(collider_->normalized_triangle(ids_[slot]))
-                                         : shape.touches(frames_[slot])) {
-                    out.push_back(slot);
-                    ++counts.triangles_reported;
-                }
+                const bool touched = frames != nullptr ? shape.touches(frames->frame(*this, slot))
+                                     : collider_ != nullptr
+                                         ? shape.touches(collider_->normalized_triangle(ids_[slot]))
+                                         : shape.touches(frames_[slot]);
+                if (!touched) continue;
+                out.push_back(slot);
+                ++counts.triangles_reported;
             }
             continue;
         }
@@ -54,21 +57,24 @@ PlaneTreeQueryCounts PlaneTree::visit(const Shape& shape, std::vector<std::uint3
 
 PlaneTreeQueryCounts PlaneTree::query_sphere(const glm::dvec3& center, double radius,
                                              std::vector<std::uint32_t>& out,
-                                             std::uint32_t from_node) const {
-    return visit(SphereShape<false>(center, center, radius), out, from_node);
+                                             std::uint32_t from_node,
+                                             PlaneTreeFrameCache* frames) const {
+    return visit(SphereShape<false>(center, center, radius), out, from_node, frames);
 }
 
 PlaneTreeQueryCounts PlaneTree::query_swept_sphere(const glm::dvec3& start, const glm::dvec3& end,
                                                    double radius, std::vector<std::uint32_t>& out,
-                                                   std::uint32_t from_node) const {
-    return visit(SphereShape<true>(start, end, radius), out, from_node);
+                                                   std::uint32_t from_node,
+                                                   PlaneTreeFrameCache* frames) const {
+    return visit(SphereShape<true>(start, end, radius), out, from_node, frames);
 }
 
 PlaneTreeQueryCounts PlaneTree::query_swept_ellipsoid(const Ellipsoid& ellipsoid,
                                                       const glm::dvec3& end, double margin,
                                                       std::vector<std::uint32_t>& out,
-                                                      std::uint32_t from_node) const {
-    return visit(EllipsoidShape(ellipsoid, end, margin), out, from_node);
+                                                      std::uint32_t from_node,
+                                                      PlaneTreeFrameCache* frames) const {
+    return visit(EllipsoidShape(ellipsoid, end, margin), out, from_node, frames);
 }
 
 std::uint32_t PlaneTree::entry_node(const Aabb& box) const {

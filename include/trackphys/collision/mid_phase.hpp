@@ -1,6 +1,5 @@
 #pragma once
 
-#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -10,6 +9,7 @@
 
 #include "trackphys/collision/mid_phase_mode.hpp"
 #include "trackphys/collision/plane_tree.hpp"
+#include "trackphys/collision/plane_tree_frame_cache.hpp"
 #include "trackphys/collision/static_collider.hpp"
 #include "trackphys/collision/static_world.hpp"
 #include "trackphys/detail/plane_tree_builder.hpp"
@@ -58,9 +58,10 @@ TRACKPHYS_API ColliderPlaneTrees make_collider_plane_trees(
 /// update box admits: the whole broad-phase list (none), or exactly the triangles the shape
 /// touches (the tree modes, see PlaneTree for the filter). The shapes of an update must lie
 /// inside its update box, as the broad phase already requires. Candidate pointers stay valid
-/// until the next begin_update (none, per_update_tree) or the kKeptUpdates-th one after
-/// their query (precomputed_tree: a World that widens an update's box mid-step keeps using
-/// the lists queried before). No allocation once the buffers have grown.
+/// until the next begin_update (none, per_update_tree), or, in precomputed_tree mode, until
+/// a begin_update whose box does not hold the previous one (a World that widens an update's
+/// box mid-step keeps culling with the lists it queried before). No allocation once the
+/// buffers have grown.
 class TRACKPHYS_API MidPhase {
   public:
     /// Throws trackphys::Error when mode is precomputed_tree and `trees` does not hold one
@@ -91,8 +92,6 @@ class TRACKPHYS_API MidPhase {
     std::size_t broad_phase_candidate_count() const { return refs_.size(); }
     const MidPhaseCounters& counters() const { return counters_; }
     void reset_counters() { counters_ = {}; }
-    /// Most begin_updates a precomputed_tree candidate's frame outlives (see the class notes).
-    static constexpr std::size_t kKeptUpdates = 16;
     /// Bytes of per-update storage and scratch (not the shared trees).
     std::size_t bytes_used() const;
 
@@ -100,8 +99,6 @@ class TRACKPHYS_API MidPhase {
     template <class Query>
     void query(Query&& query_tree, std::vector<MidPhaseCandidate>& out);
     void check_trees() const;
-    // A copy of `frame` that stays where it is until the next begin_update.
-    const NormalizedTriangle* keep_frame(const NormalizedTriangle& frame);
 
     MidPhaseMode mode_;
     const StaticWorld* world_;
@@ -118,18 +115,10 @@ class TRACKPHYS_API MidPhase {
     std::vector<std::uint32_t> active_colliders_;
     std::vector<std::uint32_t> entry_nodes_;
     std::vector<std::uint32_t> slots_;
-    // precomputed_tree: the frames of the candidates (a collider's tree keeps no frames), one
-    // pool per begin_update, reused kKeptUpdates updates later: a World widens the box at
-    // most once per ellipsoid within a step and keeps using the lists of the ellipsoids
-    // before, whose frames belong to the earlier updates. Blocks are never reallocated, so
-    // candidates can point at their frames; the blocks before `full` are full.
-    struct FramePool {
-        std::vector<std::vector<NormalizedTriangle>> blocks;
-        std::size_t full = 0;
-    };
-    static constexpr std::size_t kFrameBlock = 16;
-    std::array<FramePool, kKeptUpdates> frame_pools_;
-    std::size_t current_frames_ = 0;
+    // precomputed_tree: the frames the trees' filters built (a collider's tree keeps none),
+    // which candidates point at, since the update box frames_box_ (see begin_update).
+    PlaneTreeFrameCache frames_;
+    Aabb frames_box_;
     MidPhaseCounters counters_;
 };
 

@@ -16,6 +16,7 @@
 
 namespace trackphys {
 
+class PlaneTreeFrameCache;
 namespace detail {
 struct MapCodec;
 }
@@ -176,14 +177,17 @@ class TRACKPHYS_API PlaneTree {
     /// Throws trackphys::Error on a non-finite center or a bad radius.
     /// Every query can start at `from_node` instead of the root: pass entry_node(box) for a
     /// box that holds the query's shape and the result is the same with fewer planes tested.
+    /// Given `frames`, the filter reads the frames from that cache (building the missing
+    /// ones into it), where the caller finds the reported slots' frames afterwards.
     PlaneTreeQueryCounts query_sphere(const glm::dvec3& center, double radius,
-                                      std::vector<std::uint32_t>& out,
-                                      std::uint32_t from_node = 0) const;
+                                      std::vector<std::uint32_t>& out, std::uint32_t from_node = 0,
+                                      PlaneTreeFrameCache* frames = nullptr) const;
     /// Appends every slot whose triangle is within `radius` of the segment [start, end]: the
     /// triangles a sphere of that radius touches while it moves from start to end.
     PlaneTreeQueryCounts query_swept_sphere(const glm::dvec3& start, const glm::dvec3& end,
                                             double radius, std::vector<std::uint32_t>& out,
-                                            std::uint32_t from_node = 0) const;
+                                            std::uint32_t from_node = 0,
+                                            PlaneTreeFrameCache* frames = nullptr) const;
     /// Appends every slot whose triangle the ellipsoid touches while its center moves from
     /// ellipsoid.center() to `end` with its orientation fixed. A car's ellipsoid also turns
     /// during a step: pass a `margin` (m, finite, >= 0) that bounds how far any of its points
@@ -191,7 +195,8 @@ class TRACKPHYS_API PlaneTree {
     /// by 1 + margin / (smallest semi-axis), which holds the ellipsoid grown by margin.
     PlaneTreeQueryCounts query_swept_ellipsoid(const Ellipsoid& ellipsoid, const glm::dvec3& end,
                                                double margin, std::vector<std::uint32_t>& out,
-                                               std::uint32_t from_node = 0) const;
+                                               std::uint32_t from_node = 0,
+                                               PlaneTreeFrameCache* frames = nullptr) const;
 
     /// Where queries inside `box` can start (a car's update box, once per update): the
     /// first node on the path from the root at which the box reaches both children. The
@@ -236,7 +241,7 @@ class TRACKPHYS_API PlaneTree {
 
     template <class Shape>
     PlaneTreeQueryCounts visit(const Shape& shape, std::vector<std::uint32_t>& out,
-                               std::uint32_t from_node) const;
+                               std::uint32_t from_node, PlaneTreeFrameCache* frames) const;
     // Makes the tree read its frames from `collider` (ids_ are its mesh indices), drops its
     // copy, and sets the boxes from the collider's vertices: the same boxes whether the tree
     // was just built or loaded from a map file.
