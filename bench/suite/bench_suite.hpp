@@ -206,6 +206,7 @@ void bench_vehicle(BenchRun& run);
 // Baked maps and many colliders (map_groups.cpp):
 void bench_maps(BenchRun& run);
 void bench_many_colliders(BenchRun& run);
+void bench_big_map(BenchRun& run);
 // The peers (peer_groups.cpp, pair_group.cpp); each adds a "not built" row when its library
 // is absent.
 void bench_contact_peers(BenchRun& run);

@@ -9,6 +9,7 @@
 #include "trackphys/collision/mid_phase.hpp"
 #include "trackphys/collision/mid_phase_mode.hpp"
 #include "trackphys/collision/plane_tree.hpp"
+#include "trackphys/collision/plane_tree_frame_cache.hpp"
 #include "trackphys/collision/static_collider.hpp"
 #include "trackphys/collision/static_world.hpp"
 #include "trackphys/collision/swept_ellipsoid.hpp"

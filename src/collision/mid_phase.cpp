@@ -60,6 +60,11 @@ void MidPhase::begin_update(const Aabb& update_box) {
     ++counters_.updates;
     refs_.clear();
     triangles_.clear();
+    // A box that holds the last one is that update widened (World does so mid-step and
+    // keeps culling with the lists it queried before), or a car that stayed inside it:
+    // the frames stay, so those lists' pointers do. Any other box starts afresh.
+    if (!update_box.contains(frames_box_)) frames_.clear();
+    frames_box_ = update_box;
     active_colliders_.clear();
     entry_nodes_.clear();
     if (mode_ == MidPhaseMode::precomputed_tree) {
@@ -95,18 +100,18 @@ void MidPhase::query(Query&& query_tree, std::vector<MidPhaseCandidate>& out) {
             break;
         case MidPhaseMode::per_update_tree:
             slots_.clear();
-            add_counts(query_tree(update_tree_, slots_, 0u));
+            add_counts(query_tree(update_tree_, slots_, 0u, nullptr));
             for (const std::uint32_t slot : slots_)
-                out.push_back({refs_[update_tree_.id(slot)], &update_tree_.triangle(slot)});
+                out.push_back({refs_[update_tree_.id(slot)], &triangles_[update_tree_.id(slot)]});
             break;
         case MidPhaseMode::precomputed_tree:
             for (std::size_t i = 0; i < active_colliders_.size(); ++i) {
                 const std::uint32_t id = active_colliders_[i];
                 const PlaneTree& tree = *trees_[id];
                 slots_.clear();
-                add_counts(query_tree(tree, slots_, entry_nodes_[i]));
+                add_counts(query_tree(tree, slots_, entry_nodes_[i], &frames_));
                 for (const std::uint32_t slot : slots_)
-                    out.push_back({{id, tree.id(slot)}, &tree.triangle(slot)});
+                    out.push_back({{id, tree.id(slot)}, &frames_.frame(tree, slot)});
             }
             break;
     }
@@ -118,8 +123,9 @@ void MidPhase::query_swept_sphere(const glm::dvec3& start, const glm::dvec3& end
     // Validated here too, so that mode none rejects what the tree modes reject.
     static_cast<void>(collision_detail::make_capsule_query(start, end, radius));
     query(
-        [&](const PlaneTree& tree, std::vector<std::uint32_t>& slots, std::uint32_t from) {
-            return tree.query_swept_sphere(start, end, radius, slots, from);
+        [&](const PlaneTree& tree, std::vector<std::uint32_t>& slots, std::uint32_t from,
+            PlaneTreeFrameCache* frames) {
+            return tree.query_swept_sphere(start, end, radius, slots, from, frames);
         },
         out);
 }
@@ -131,15 +137,16 @@ void MidPhase::query_swept_ellipsoid(const Ellipsoid& ellipsoid, const glm::dvec
             "MidPhase::query_swept_ellipsoid: end must be finite and margin finite and "
             ">= 0");
     query(
-        [&](const PlaneTree& tree, std::vector<std::uint32_t>& slots, std::uint32_t from) {
-            return tree.query_swept_ellipsoid(ellipsoid, end, margin, slots, from);
+        [&](const PlaneTree& tree, std::vector<std::uint32_t>& slots, std::uint32_t from,
+            PlaneTreeFrameCache* frames) {
+            return tree.query_swept_ellipsoid(ellipsoid, end, margin, slots, from, frames);
         },
         out);
 }
 
 std::size_t MidPhase::bytes_used() const {
     return refs_.capacity() * sizeof(TriangleRef) +
-           triangles_.capacity() * sizeof(NormalizedTriangle) +
+           triangles_.capacity() * sizeof(NormalizedTriangle) + frames_.bytes_used() +
            (ids_.capacity() + active_colliders_.capacity() + entry_nodes_.capacity() +
             slots_.capacity()) *
                sizeof(std::uint32_t) +

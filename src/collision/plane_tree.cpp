@@ -5,6 +5,7 @@
 
 #include "collision/plane_tree_shapes.hpp"
 #include "trackphys/assert.hpp"
+#include "trackphys/collision/plane_tree_frame_cache.hpp"
 
 namespace trackphys {
 
@@ -13,7 +14,7 @@ using collision_detail::SphereShape;
 
 template <class Shape>
 PlaneTreeQueryCounts PlaneTree::visit(const Shape& shape, std::vector<std::uint32_t>& out,
-                                      std::uint32_t from_node) const {
+                                      std::uint32_t from_node, PlaneTreeFrameCache* frames) const {
     PlaneTreeQueryCounts counts;
     if (nodes_.empty()) return counts;
     TP_ASSERT(from_node < nodes_.size(), "plane tree query: start node out of range");
@@ -27,16 +28,20 @@ PlaneTreeQueryCounts PlaneTree::visit(const Shape& shape, std::vector<std::uint3
         const PlaneTreeNode& node = nodes_[index];
         if (node.has_slab()) {
             ++counts.planes_tested;
-            if (!shape.reaches_slab(slabs_[index])) continue;
+            if (!shape.reaches_slab(slabs_[slab_index(index)])) continue;
         }
         if (node.is_leaf()) {
             const std::uint32_t end = node.first + node.count();
             counts.triangles_filtered += node.count();
             for (std::uint32_t slot = node.first; slot < end; ++slot) {
-                if (shape.touches(triangles_[slot])) {
-                    out.push_back(slot);
-                    ++counts.triangles_reported;
-                }
+                if (!shape.reaches_box(boxes_[slot])) continue;
+                const bool touched = frames != nullptr ? shape.touches(frames->frame(*this, slot))
+                                     : collider_ != nullptr
+                                         ? shape.touches(collider_->normalized_triangle(ids_[slot]))
+                                         : shape.touches(frames_[slot]);
+                if (!touched) continue;
+                out.push_back(slot);
+                ++counts.triangles_reported;
             }
             continue;
         }
@@ -52,21 +57,24 @@ PlaneTreeQueryCounts PlaneTree::visit(const Shape& shape, std::vector<std::uint3
 
 PlaneTreeQueryCounts PlaneTree::query_sphere(const glm::dvec3& center, double radius,
                                              std::vector<std::uint32_t>& out,
-                                             std::uint32_t from_node) const {
-    return visit(SphereShape<false>(center, center, radius), out, from_node);
+                                             std::uint32_t from_node,
+                                             PlaneTreeFrameCache* frames) const {
+    return visit(SphereShape<false>(center, center, radius), out, from_node, frames);
 }
 
 PlaneTreeQueryCounts PlaneTree::query_swept_sphere(const glm::dvec3& start, const glm::dvec3& end,
                                                    double radius, std::vector<std::uint32_t>& out,
-                                                   std::uint32_t from_node) const {
-    return visit(SphereShape<true>(start, end, radius), out, from_node);
+                                                   std::uint32_t from_node,
+                                                   PlaneTreeFrameCache* frames) const {
+    return visit(SphereShape<true>(start, end, radius), out, from_node, frames);
 }
 
 PlaneTreeQueryCounts PlaneTree::query_swept_ellipsoid(const Ellipsoid& ellipsoid,
                                                       const glm::dvec3& end, double margin,
                                                       std::vector<std::uint32_t>& out,
-                                                      std::uint32_t from_node) const {
-    return visit(EllipsoidShape(ellipsoid, end, margin), out, from_node);
+                                                      std::uint32_t from_node,
+                                                      PlaneTreeFrameCache* frames) const {
+    return visit(EllipsoidShape(ellipsoid, end, margin), out, from_node, frames);
 }
 
 std::uint32_t PlaneTree::entry_node(const Aabb& box) const {
@@ -90,17 +98,41 @@ std::uint32_t PlaneTree::entry_node(const Aabb& box) const {
     return index;
 }
 
+void PlaneTree::rank_slabs() {
+    slab_ranks_.assign((nodes_.size() + 63) / 64, SlabRank{});
+    std::uint64_t slabs = 0;
+    for (std::size_t node = 0; node < nodes_.size(); ++node) {
+        SlabRank& r = slab_ranks_[node / 64];
+        if (node % 64 == 0) r.before = slabs;
+        if (!nodes_[node].has_slab()) continue;
+        r.bits |= std::uint64_t{1} << (node % 64);
+        ++slabs;
+    }
+}
+
+void PlaneTree::use_collider_frames(const StaticCollider& collider) {
+    collider_ = &collider;
+    frames_.clear();
+    frames_.shrink_to_fit();
+    boxes_.resize(ids_.size());
+    for (std::size_t slot = 0; slot < ids_.size(); ++slot)
+        boxes_[slot] = collision_detail::float_box(collider.triangle(ids_[slot]));
+}
+
 std::size_t PlaneTree::bytes_used() const {
     return nodes_.capacity() * sizeof(PlaneTreeNode) + slabs_.capacity() * sizeof(PlaneTreeSlab) +
-           triangles_.capacity() * sizeof(NormalizedTriangle) +
-           ids_.capacity() * sizeof(std::uint32_t);
+           slab_ranks_.capacity() * sizeof(SlabRank) + boxes_.capacity() * sizeof(PlaneTreeBox) +
+           ids_.capacity() * sizeof(std::uint32_t) +
+           frames_.capacity() * sizeof(NormalizedTriangle);
 }
 
 void PlaneTree::shrink_to_fit() {
     nodes_.shrink_to_fit();
     slabs_.shrink_to_fit();
-    triangles_.shrink_to_fit();
+    slab_ranks_.shrink_to_fit();
+    boxes_.shrink_to_fit();
     ids_.shrink_to_fit();
+    frames_.shrink_to_fit();
 }
 
 }  // namespace trackphys

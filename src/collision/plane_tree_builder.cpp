@@ -10,6 +10,7 @@
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
 
+#include "collision/plane_tree_shapes.hpp"
 #include "trackphys/collision/static_collider.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/math/symmetric_eigen.hpp"
@@ -17,24 +18,13 @@
 namespace trackphys {
 namespace {
 
+using collision_detail::float_down;
+using collision_detail::float_up;
+
 // A float toward zero: |result| <= |x|.
 float float_toward_zero(double x) {
     float f = static_cast<float>(x);
     if (std::abs(double(f)) > std::abs(x)) f = std::nextafter(f, 0.0f);
-    return f;
-}
-
-// A float at or below x.
-float float_down(double x) {
-    float f = static_cast<float>(x);
-    if (double(f) > x) f = std::nextafter(f, -std::numeric_limits<float>::infinity());
-    return f;
-}
-
-// A float at or above x.
-float float_up(double x) {
-    float f = static_cast<float>(x);
-    if (double(f) < x) f = std::nextafter(f, std::numeric_limits<float>::infinity());
     return f;
 }
 
@@ -106,13 +96,20 @@ void PlaneTreeBuilder::build(std::span<const NormalizedTriangle> triangles,
     }
     tree.slabs_.clear();
     if (n > 0 && settings.slab_thickness > 0.0) {
-        tree.slabs_.resize(tree.nodes_.size());
+        node_slabs_.resize(tree.nodes_.size());
         mark_slabs(0, 0, n);
+        for (std::size_t node = 0; node < tree.nodes_.size(); ++node)
+            if (tree.nodes_[node].has_slab()) tree.slabs_.push_back(node_slabs_[node]);
     }
-    tree.triangles_.clear();
+    tree.rank_slabs();
+    tree.frames_.clear();
+    tree.boxes_.clear();
     tree.ids_.clear();
+    tree.collider_ = nullptr;
     for (const std::uint32_t item : order_) {
-        tree.triangles_.push_back(triangles[item]);
+        tree.frames_.push_back(triangles[item]);
+        const auto& v = items_[item].vertices;
+        tree.boxes_.push_back(collision_detail::float_box(Triangle(v[0], v[1], v[2])));
         tree.ids_.push_back(ids[item]);
     }
     tree_ = nullptr;
@@ -154,7 +151,7 @@ void PlaneTreeBuilder::mark_slabs(std::uint32_t node, std::size_t begin, std::si
                 high = std::max(high, d);
             }
         if (high - low <= settings_.slab_thickness) {
-            PlaneTreeSlab& slab = tree_->slabs_[node];
+            PlaneTreeSlab& slab = node_slabs_[node];
             for (int k = 0; k < 3; ++k) slab.normal[k] = static_cast<float>(normal[k]);
             slab.low = float_down(low);
             slab.high = float_up(high);
@@ -411,7 +408,8 @@ std::size_t PlaneTreeBuilder::bytes_used() const {
     return items_.capacity() * sizeof(Item) +
            (order_.capacity() + sorted_.capacity()) * sizeof(std::uint32_t) +
            (keys_.capacity() + lows_.capacity() + highs_.capacity() + suffix_low_.capacity()) *
-               sizeof(double);
+               sizeof(double) +
+           node_slabs_.capacity() * sizeof(PlaneTreeSlab);
 }
 
 PlaneTree make_collider_plane_tree(const StaticCollider& collider,
@@ -428,6 +426,7 @@ PlaneTree make_collider_plane_tree(const StaticCollider& collider,
     }
     PlaneTree tree;
     PlaneTreeBuilder().build(triangles, ids, settings, tree);
+    tree.use_collider_frames(collider);
     tree.shrink_to_fit();
     return tree;
 }

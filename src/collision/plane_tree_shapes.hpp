@@ -6,8 +6,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
@@ -17,6 +19,7 @@
 #include "trackphys/error.hpp"
 #include "trackphys/geometry/ellipsoid.hpp"
 #include "trackphys/geometry/normalized_triangle.hpp"
+#include "trackphys/geometry/triangle.hpp"
 #include "trackphys/math/types.hpp"
 
 namespace trackphys::collision_detail {
@@ -34,6 +37,37 @@ inline double max_abs(const glm::dvec3& v) {
 
 inline glm::dvec3 node_normal(const PlaneTreeNode& node) {
     return {node.normal[0], node.normal[1], node.normal[2]};
+}
+
+/// A float at or below x.
+inline float float_down(double x) {
+    float f = static_cast<float>(x);
+    if (double(f) > x) f = std::nextafter(f, -std::numeric_limits<float>::infinity());
+    return f;
+}
+
+/// A float at or above x.
+inline float float_up(double x) {
+    float f = static_cast<float>(x);
+    if (double(f) < x) f = std::nextafter(f, std::numeric_limits<float>::infinity());
+    return f;
+}
+
+/// The float box of a triangle's vertices, rounded outward.
+inline PlaneTreeBox float_box(const Triangle& t) {
+    PlaneTreeBox box;
+    for (int k = 0; k < 3; ++k) {
+        box.low[k] = float_down(std::min({t[0][k], t[1][k], t[2][k]}));
+        box.high[k] = float_up(std::max({t[0][k], t[1][k], t[2][k]}));
+    }
+    return box;
+}
+
+/// True when the box [lo, hi] (a shape's, in double) meets a slot's box.
+inline bool meets_box(const glm::dvec3& lo, const glm::dvec3& hi, const PlaneTreeBox& box) {
+    return lo.x <= double(box.high[0]) && hi.x >= double(box.low[0]) &&
+           lo.y <= double(box.high[1]) && hi.y >= double(box.low[1]) &&
+           lo.z <= double(box.high[2]) && hi.z >= double(box.low[2]);
 }
 
 /// True when the interval [lo, hi] of a shape along a slab's normal, grown by `reach`,
@@ -71,13 +105,20 @@ template <bool Swept>
 struct SphereShape {
     glm::dvec3 start, end;
     double radius, radius_squared, node_radius;
+    glm::dvec3 box_low, box_high;  // the swept shape's box, grown by the slack
 
     /// Throws trackphys::Error on non-finite points or a bad radius.
     SphereShape(const glm::dvec3& a, const glm::dvec3& b, double r) : start(a), end(b) {
         radius_squared = make_capsule_query(a, b, r).radius_squared;
         radius = r;
         node_radius = r + kPlaneSlack * (1.0 + std::max(max_abs(a), max_abs(b)) + r);
+        box_low = glm::min(a, b) - node_radius;
+        box_high = glm::max(a, b) + node_radius;
     }
+
+    /// A triangle the filter accepts has a point within the radius of the segment, so inside
+    /// the segment's box grown by it (and by the slack that covers the filter's rounding).
+    bool reaches_box(const PlaneTreeBox& box) const { return meets_box(box_low, box_high, box); }
 
     /// The half-space {n.x <= offset} is reached when the shape's lowest point along n is
     /// in it: min over the segment of n.c, minus the radius (n has length <= 1).
@@ -142,7 +183,8 @@ struct EllipsoidShape {
     glm::dmat3 to_unit;                   // D^-1 Q^T
     glm::dvec3 unit_end;                  // to_unit * (end - start)
     double slack;
-    double reach_squared;  // above support_squared(u) for any |u| <= 1
+    double reach_squared;          // above support_squared(u) for any |u| <= 1
+    glm::dvec3 box_low, box_high;  // the swept ellipsoid's box, grown by the slack
 
     /// The ellipsoid scaled about its center by 1 + margin / (smallest semi-axis). Throws
     /// trackphys::Error on a non-finite end or a bad margin.
@@ -180,7 +222,15 @@ struct EllipsoidShape {
         // below the factor's room: a gap beyond it is rejected without computing h(u)^2,
         // only where the comparison with h(u)^2 would reject it too.
         reach_squared = radii.x * radii.x * (1.0 + 1e-6);
+        // The ellipsoid reaches h(e_k) = sqrt(M_kk) along each axis; 1e-6 of room covers
+        // the rounding of M and of the square root, as reach_squared's does.
+        const glm::dvec3 half(std::sqrt(m00), std::sqrt(m11), std::sqrt(m22));
+        box_low = glm::min(start, end) - half * (1.0 + 1e-6) - slack;
+        box_high = glm::max(start, end) + half * (1.0 + 1e-6) + slack;
     }
+
+    /// A triangle the filter accepts meets the swept ellipsoid, so its box meets the sweep's.
+    bool reaches_box(const PlaneTreeBox& box) const { return meets_box(box_low, box_high, box); }
 
     double support_squared(const glm::dvec3& u) const {
         return m00 * u.x * u.x + m11 * u.y * u.y + m22 * u.z * u.z +

@@ -8,6 +8,7 @@ target_sources(trackphys PRIVATE
   collision/triangle_predicates.cpp
   collision/plane_tree.cpp
   collision/plane_tree_builder.cpp
+  collision/plane_tree_frame_cache.cpp
   collision/mid_phase.cpp
   collision/swept_ellipsoid.cpp
   collision/look_ahead_list.cpp)

@@ -70,11 +70,10 @@ MapCodec::Loaded MapCodec::read(map_detail::BodyReader& body) {
         throw Error("the plane tree's depth is recorded as " + std::to_string(r.plane_depth) +
                     ", its deepest leaf is at " + std::to_string(depth));
     tree->depth_ = depth;
-    // The frames the tree's queries read are the collider's own, in the tree's leaf order:
-    // derived, so not stored (120 bytes a triangle, more than everything else).
-    tree->triangles_.reserve(tree->ids_.size());
-    for (const std::uint32_t id : tree->ids_)
-        tree->triangles_.push_back(c->normalized_triangle(id));
+    tree->rank_slabs();
+    // The slots' boxes are derived from the collider's vertices, as a fresh build derives
+    // them, and the frames are built by the queries: neither is stored.
+    tree->use_collider_frames(*c);
     return {std::move(c), std::move(tree)};
 }
 

@@ -24,7 +24,7 @@ struct MapCodec {
         std::uint64_t nodes;  ///< BVH nodes, and node_grid_
         std::uint64_t grids;
         std::uint64_t plane_nodes;
-        std::uint64_t plane_slabs;  ///< 0 or plane_nodes
+        std::uint64_t plane_slabs;  ///< nodes with a slab
         std::uint64_t content_hash;
         double inside_extent[3];
         std::int64_t plane_depth;

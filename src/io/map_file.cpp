@@ -41,7 +41,7 @@ struct Header {
     double slab_thickness;
 };
 static_assert(sizeof(Header) == 64);
-constexpr std::size_t kChecksumOffset = offsetof(Header, checksum);
+static_assert(offsetof(Header, checksum) == 24, "docs/tpmap.md places the checksum at byte 24");
 
 // The body's first record. 64 bytes.
 struct MapRecord {

@@ -296,7 +296,7 @@ std::pair<std::uint32_t, std::uint32_t> check_subtree(const PlaneTree& tree, std
         EXPECT_EQ(n.count(), range.second - range.first);
     }
     if (n.has_slab()) {
-        const PlaneTreeSlab& slab = tree.slabs().at(node);
+        const PlaneTreeSlab& slab = tree.slab(node);
         const glm::dvec3 normal(slab.normal[0], slab.normal[1], slab.normal[2]);
         EXPECT_LE(glm::length(normal), 1.0);
         for (std::uint32_t slot = range.first; slot < range.second; ++slot)
@@ -475,9 +475,63 @@ TEST(PlaneTree, ColliderTreeIdsAreMeshIndicesOfKeptTriangles) {
     }
     std::sort(ids.begin(), ids.end());
     EXPECT_EQ(std::adjacent_find(ids.begin(), ids.end()), ids.end());
-    // 24-byte nodes with 20-byte slabs, 120-byte frames and a 4-byte id: ~160 bytes a
-    // triangle with leaves of a few triangles.
-    EXPECT_LT(tree.bytes_used(), 180 * tree.triangle_count());
+    // 24-byte nodes, 20-byte slabs on the slab nodes only, a 24-byte box and a 4-byte id,
+    // no frames: ~50 bytes a triangle with leaves of a few triangles (160 when the tree kept
+    // 120-byte frames and a slab for every node).
+    EXPECT_LT(tree.bytes_used(), 64 * tree.triangle_count());
+}
+
+// Triangles 2 km out, vertices off the float grid (float steps there are 1.2e-4 m), and
+// shapes that touch each one only at its extreme vertex along an axis: the shape's box
+// ends exactly where the triangle's double box does, so a slot box rounded inward by one
+// float step would drop the triangle although the filter accepts it.
+TEST(PlaneTree, ShapesTouchingAtTheSlotBoxBoundsAreReported) {
+    std::mt19937_64 rng(31);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    TriangleMesh mesh;
+    for (std::uint32_t i = 0; i < 400; ++i) {
+        const glm::dvec3 at(2000.0 + 30.0 * unit(rng), 20.0 * unit(rng),
+                            -2000.0 + 30.0 * unit(rng));
+        for (int k = 0; k < 3; ++k)
+            mesh.vertices.push_back(at + glm::dvec3(unit(rng), unit(rng), unit(rng)));
+        mesh.triangles.push_back({3 * i, 3 * i + 1, 3 * i + 2});
+    }
+    const StaticCollider collider(mesh);
+    const Soup soup = normalized(mesh);
+    const PlaneTree trees[] = {make_collider_plane_tree(collider),
+                               build(soup, PlaneTreeSettings::per_update())};
+    std::size_t accepted = 0;
+    for (const PlaneTree& tree : trees) {
+        for (std::uint32_t slot = 0; slot < tree.triangle_count(); ++slot) {
+            const Triangle t = collider.triangle(tree.id(slot));
+            for (int axis = 0; axis < 3; ++axis) {
+                for (const double side : {-1.0, 1.0}) {
+                    // The vertex farthest along side * e_axis, and shapes just beyond it.
+                    glm::dvec3 v = t[0];
+                    for (int k = 1; k < 3; ++k)
+                        if (side * t[k][axis] > side * v[axis]) v = t[k];
+                    glm::dvec3 out_dir(0.0);
+                    out_dir[axis] = side;
+                    const double r = 0.3;
+                    glm::dvec3 semi(0.5);
+                    semi[axis] = r;
+                    const Ellipsoid e(v + out_dir * r, glm::dquat(1, 0, 0, 0), semi);
+                    std::vector<std::uint32_t> got_sphere, got_ellipsoid;
+                    tree.query_sphere(v + out_dir * r, r, got_sphere);
+                    tree.query_swept_ellipsoid(e, e.center(), 0.0, got_ellipsoid);
+                    EXPECT_EQ(got_sphere,
+                              test::brute_force_slots(
+                                  tree, SphereShape<false>(v + out_dir * r, v + out_dir * r, r)));
+                    EXPECT_EQ(got_ellipsoid,
+                              test::brute_force_slots(tree, EllipsoidShape(e, e.center(), 0.0)));
+                    accepted += std::count(got_sphere.begin(), got_sphere.end(), slot) +
+                                std::count(got_ellipsoid.begin(), got_ellipsoid.end(), slot);
+                }
+            }
+        }
+    }
+    // The filter accepts most of these tangent contacts (rounding decides the rest).
+    EXPECT_GT(accepted, 2 * 2 * 6 * 400 / 2);
 }
 
 }  // namespace

@@ -272,6 +272,13 @@ TEST(MapFile, CraftedStructuresAreRejected) {
     const std::size_t root_first = plane.begin + offsetof(PlaneTreeNode, first);
     EXPECT_NE(with(root_first, 0).find("plane-tree node 0"), std::string::npos)
         << with(root_first, 0);
+    // A slab flag on the root (which has none): one slab fewer than flagged nodes.
+    const std::size_t root_packed = plane.begin + offsetof(PlaneTreeNode, packed);
+    std::uint32_t packed = 0;
+    std::memcpy(&packed, good.data() + root_packed, 4);
+    ASSERT_EQ(packed & PlaneTreeNode::kSlabBit, 0u);
+    const std::string extra_slab = with(root_packed, packed | PlaneTreeNode::kSlabBit);
+    EXPECT_NE(extra_slab.find("nodes with a slab"), std::string::npos) << extra_slab;
     const Section ids = section("collider 0 plane ids");
     EXPECT_NE(with(ids.begin, 1u << 30).find("not a triangle the collider keeps"),
               std::string::npos);
@@ -281,12 +288,16 @@ TEST(MapFile, CraftedStructuresAreRejected) {
 
 TEST(MapFile, AnotherVersionOrOtherBuildOptionsAreNamed) {
     std::string bytes = baked_bytes();
-    const std::uint32_t version = kMapFormatVersion + 1;
-    std::memcpy(bytes.data() + 8, &version, 4);
-    EXPECT_NE(error_of([&] {
-                  decode_map(resealed(bytes));
-              }).find("format version 2, this build reads only version 1"),
-              std::string::npos);
+    // Version 1 (plane-tree slabs for every node) is what maps baked before version 2 hold.
+    static_assert(kMapFormatVersion == 2);
+    for (const std::uint32_t version : {1u, 3u}) {
+        std::memcpy(bytes.data() + 8, &version, 4);
+        const std::string message = error_of([&] { decode_map(resealed(bytes)); });
+        EXPECT_NE(message.find("format version " + std::to_string(version) +
+                               ", this build reads only version 2: bake the map again"),
+                  std::string::npos)
+            << message;
+    }
 
     TriangleMesh quad;
     quad.vertices = {{0, 0, 0}, {10, 0, 0}, {10, 0, 10}, {0, 0, 10}};

@@ -9,6 +9,7 @@
 
 #include "trackphys/collision/mid_phase_mode.hpp"
 #include "trackphys/collision/plane_tree.hpp"
+#include "trackphys/collision/plane_tree_frame_cache.hpp"
 #include "trackphys/collision/static_collider.hpp"
 #include "trackphys/collision/static_world.hpp"
 #include "trackphys/detail/plane_tree_builder.hpp"
@@ -57,8 +58,10 @@ TRACKPHYS_API ColliderPlaneTrees make_collider_plane_trees(
 /// update box admits: the whole broad-phase list (none), or exactly the triangles the shape
 /// touches (the tree modes, see PlaneTree for the filter). The shapes of an update must lie
 /// inside its update box, as the broad phase already requires. Candidate pointers stay valid
-/// until the next begin_update (none, per_update_tree) or as long as the trees live
-/// (precomputed_tree). No allocation once the buffers have grown.
+/// until the next begin_update (none, per_update_tree), or, in precomputed_tree mode, until
+/// a begin_update whose box does not hold the previous one (a World that widens an update's
+/// box mid-step keeps culling with the lists it queried before). No allocation once the
+/// buffers have grown.
 class TRACKPHYS_API MidPhase {
   public:
     /// Throws trackphys::Error when mode is precomputed_tree and `trees` does not hold one
@@ -112,6 +115,10 @@ class TRACKPHYS_API MidPhase {
     std::vector<std::uint32_t> active_colliders_;
     std::vector<std::uint32_t> entry_nodes_;
     std::vector<std::uint32_t> slots_;
+    // precomputed_tree: the frames the trees' filters built (a collider's tree keeps none),
+    // which candidates point at, since the update box frames_box_ (see begin_update).
+    PlaneTreeFrameCache frames_;
+    Aabb frames_box_;
     MidPhaseCounters counters_;
 };
 

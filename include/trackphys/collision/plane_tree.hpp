@@ -1,5 +1,6 @@
 #pragma once
 
+#include <bit>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -8,13 +9,14 @@
 #include <glm/vec3.hpp>
 
 #include "trackphys/assert.hpp"
+#include "trackphys/collision/static_collider.hpp"
 #include "trackphys/export.hpp"
 #include "trackphys/geometry/ellipsoid.hpp"
 #include "trackphys/geometry/normalized_triangle.hpp"
 
 namespace trackphys {
 
-class StaticCollider;
+class PlaneTreeFrameCache;
 namespace detail {
 struct MapCodec;
 }
@@ -38,7 +40,7 @@ struct PlaneTreeNode {
     std::uint32_t packed;  ///<  4 bytes: kLeafBit | kSlabBit | triangles in the subtree
 
     bool is_leaf() const { return (packed & kLeafBit) != 0; }
-    /// True when PlaneTree::slabs()[this node] holds a slab to test (see PlaneTreeSettings).
+    /// True when PlaneTree::slab(this node) holds a slab to test (see PlaneTreeSettings).
     bool has_slab() const { return (packed & kSlabBit) != 0; }
     /// Number of triangles in the subtree (a leaf's own triangles).
     std::uint32_t count() const { return packed & kCountMask; }
@@ -54,6 +56,15 @@ struct PlaneTreeSlab {
     float high;       ///<  4 bytes (m), rounded up
 };
 static_assert(sizeof(PlaneTreeSlab) == 20, "PlaneTreeSlab is 20 bytes");
+
+/// The box of one leaf slot's triangle, in float rounded outward: the cheap first test of
+/// the per-triangle filter, which reads the triangle's double frame only for the slots whose
+/// box the query shape's box reaches.
+struct PlaneTreeBox {
+    float low[3];   ///< 12 bytes (m), rounded down
+    float high[3];  ///< 12 bytes (m), rounded up
+};
+static_assert(sizeof(PlaneTreeBox) == 24, "PlaneTreeBox is 24 bytes");
 
 /// How a PlaneTree chooses its splitting planes.
 enum class PlaneSplitRule {
@@ -128,11 +139,14 @@ struct PlaneTreeQueryCounts {
 /// PlaneTreeBuilder (per update, reusing storage) or make_collider_plane_tree (once per
 /// collider). Immutable between builds; queries are const and thread-safe.
 ///
-/// Storage: two vectors as the BVH, nodes (24 bytes) and the triangles in leaf order as
-/// NormalizedTriangle (120 bytes, what the sub-step cull reads), plus each slot's caller id
-/// (4 bytes) and, when built with slabs, a 20-byte slab per node (~160 bytes a triangle for
-/// a track collider). Queries append leaf slots in ascending order to a caller-owned vector
-/// and use a fixed stack: no allocation once the vector has grown.
+/// Storage: two vectors as the BVH, nodes (24 bytes) and per leaf slot its triangle's box
+/// (PlaneTreeBox, 24 bytes) and caller id (4 bytes), plus, when built with slabs, a 20-byte
+/// slab per slab node (~51 bytes a triangle for a track collider). The double frames
+/// (NormalizedTriangle, 120 bytes) are not kept for a collider's tree: its queries build the
+/// frames of the few slots whose box they reach from the collider's vertices, exactly the
+/// frames StaticCollider::normalized_triangle gives. A tree built from frames
+/// (PlaneTreeBuilder) keeps a copy of them. Queries append leaf slots in ascending order to
+/// a caller-owned vector and use a fixed stack: no allocation once the vector has grown.
 ///
 /// The per-triangle filter, and why the tree is exact with it. A query shape S (sphere,
 /// swept sphere, swept ellipsoid) reports slot s if and only if S touches the triangle:
@@ -144,15 +158,16 @@ struct PlaneTreeQueryCounts {
 /// Each is computed in double in the triangle's own frame, after cheap rejections that are
 /// lower bounds of the distance to convex sets holding the triangle (its plane, its local
 /// box, its edges' half-planes), which can only reject what the exact test rejects too, and
-/// sure accepts (a vertex or an over-the-face endpoint within reach). Because a node's
-/// half-space (and slab) contains each of its triangles, a shape that touches a triangle
-/// reaches every half-space above it: the tree never prunes a triangle the filter would
-/// report, so a query returns exactly the slots a brute-force scan with the same filter
-/// returns (plane tests are made with the shape grown by a slack of 1e-10 of its coordinate
-/// scale, which covers the rounding of both tests). A box-based cull such as
-/// NormalizedTriangle::may_touch_sphere would not give this equality: it keeps triangles
-/// whose box corner the sphere reaches while some node plane through the triangle's vertex
-/// already excludes the sphere.
+/// sure accepts (a vertex or an over-the-face endpoint within reach); before all of them, the
+/// slot's float box against the shape's box (a triangle the shape touches lies in both).
+/// Because a node's half-space (and slab) contains each of its triangles, a shape that
+/// touches a triangle reaches every half-space above it: the tree never prunes a triangle
+/// the filter would report, so a query returns exactly the slots a brute-force scan with the
+/// same filter returns (plane and box tests are made with the shape grown by a slack of
+/// 1e-10 of its coordinate scale, which covers the rounding of both tests). A box-based cull
+/// such as NormalizedTriangle::may_touch_sphere as the filter would not give this equality:
+/// it keeps triangles whose box corner the sphere reaches while some node plane through the
+/// triangle's vertex already excludes the sphere.
 class TRACKPHYS_API PlaneTree {
   public:
     /// An empty tree (every query reports nothing).
@@ -162,14 +177,17 @@ class TRACKPHYS_API PlaneTree {
     /// Throws trackphys::Error on a non-finite center or a bad radius.
     /// Every query can start at `from_node` instead of the root: pass entry_node(box) for a
     /// box that holds the query's shape and the result is the same with fewer planes tested.
+    /// Given `frames`, the filter reads the frames from that cache (building the missing
+    /// ones into it), where the caller finds the reported slots' frames afterwards.
     PlaneTreeQueryCounts query_sphere(const glm::dvec3& center, double radius,
-                                      std::vector<std::uint32_t>& out,
-                                      std::uint32_t from_node = 0) const;
+                                      std::vector<std::uint32_t>& out, std::uint32_t from_node = 0,
+                                      PlaneTreeFrameCache* frames = nullptr) const;
     /// Appends every slot whose triangle is within `radius` of the segment [start, end]: the
     /// triangles a sphere of that radius touches while it moves from start to end.
     PlaneTreeQueryCounts query_swept_sphere(const glm::dvec3& start, const glm::dvec3& end,
                                             double radius, std::vector<std::uint32_t>& out,
-                                            std::uint32_t from_node = 0) const;
+                                            std::uint32_t from_node = 0,
+                                            PlaneTreeFrameCache* frames = nullptr) const;
     /// Appends every slot whose triangle the ellipsoid touches while its center moves from
     /// ellipsoid.center() to `end` with its orientation fixed. A car's ellipsoid also turns
     /// during a step: pass a `margin` (m, finite, >= 0) that bounds how far any of its points
@@ -177,7 +195,8 @@ class TRACKPHYS_API PlaneTree {
     /// by 1 + margin / (smallest semi-axis), which holds the ellipsoid grown by margin.
     PlaneTreeQueryCounts query_swept_ellipsoid(const Ellipsoid& ellipsoid, const glm::dvec3& end,
                                                double margin, std::vector<std::uint32_t>& out,
-                                               std::uint32_t from_node = 0) const;
+                                               std::uint32_t from_node = 0,
+                                               PlaneTreeFrameCache* frames = nullptr) const;
 
     /// Where queries inside `box` can start (a car's update box, once per update): the
     /// first node on the path from the root at which the box reaches both children. The
@@ -187,12 +206,12 @@ class TRACKPHYS_API PlaneTree {
     std::uint32_t entry_node(const Aabb& box) const;
 
     /// Number of triangles (slots are 0 .. triangle_count() - 1).
-    std::size_t triangle_count() const { return triangles_.size(); }
-    /// The triangle in leaf slot `slot` (TP_ASSERT on range). Inline, as id(): the mid
-    /// phase reads both for every slot a query reports.
-    const NormalizedTriangle& triangle(std::uint32_t slot) const {
-        TP_ASSERT(slot < triangles_.size(), "plane tree slot out of range");
-        return triangles_[slot];
+    std::size_t triangle_count() const { return ids_.size(); }
+    /// The frame of the triangle in leaf slot `slot` (TP_ASSERT on range): the tree's copy,
+    /// or, for a collider's tree, built from the collider's vertices.
+    NormalizedTriangle triangle(std::uint32_t slot) const {
+        TP_ASSERT(slot < ids_.size(), "plane tree slot out of range");
+        return collider_ != nullptr ? collider_->normalized_triangle(ids_[slot]) : frames_[slot];
     }
     /// The caller's id of the triangle in slot `slot`, as given to the builder.
     std::uint32_t id(std::uint32_t slot) const {
@@ -201,9 +220,13 @@ class TRACKPHYS_API PlaneTree {
     }
     /// The nodes, root at 0.
     const std::vector<PlaneTreeNode>& nodes() const { return nodes_; }
-    /// One slab per node when the tree was built with slabs (read where has_slab()), else
-    /// empty.
-    const std::vector<PlaneTreeSlab>& slabs() const { return slabs_; }
+    /// The slab of node `node`, which has_slab() (TP_ASSERT).
+    const PlaneTreeSlab& slab(std::uint32_t node) const {
+        TP_ASSERT(node < nodes_.size() && nodes_[node].has_slab(), "plane tree node has no slab");
+        return slabs_[slab_index(node)];
+    }
+    /// Number of nodes with a slab.
+    std::size_t slab_count() const { return slabs_.size(); }
     /// Depth of the deepest leaf (0 for a single leaf).
     int depth() const { return depth_; }
     /// Bytes of every structure the tree keeps (vector capacities included).
@@ -214,15 +237,37 @@ class TRACKPHYS_API PlaneTree {
   private:
     friend class PlaneTreeBuilder;
     friend struct detail::MapCodec;  // map files (src/io/map_codec.cpp)
+    friend PlaneTree make_collider_plane_tree(const StaticCollider&, const PlaneTreeSettings&);
 
     template <class Shape>
     PlaneTreeQueryCounts visit(const Shape& shape, std::vector<std::uint32_t>& out,
-                               std::uint32_t from_node) const;
+                               std::uint32_t from_node, PlaneTreeFrameCache* frames) const;
+    // Makes the tree read its frames from `collider` (ids_ are its mesh indices), drops its
+    // copy, and sets the boxes from the collider's vertices: the same boxes whether the tree
+    // was just built or loaded from a map file.
+    void use_collider_frames(const StaticCollider& collider);
+    // Slabs are kept for the nodes that have one only (about one node in four on a track),
+    // in node order; a node's slab is the one after those of the slab nodes before it,
+    // counted with a bit per node and a running count per 64 nodes.
+    struct SlabRank {
+        std::uint64_t bits = 0;    ///< bit k: node 64 i + k has a slab
+        std::uint64_t before = 0;  ///< slab nodes below 64 i
+    };
+    void rank_slabs();
+    std::size_t slab_index(std::uint32_t node) const {
+        const SlabRank& r = slab_ranks_[node / 64];
+        return static_cast<std::size_t>(r.before) +
+               static_cast<std::size_t>(
+                   std::popcount(r.bits & ((std::uint64_t{1} << (node % 64)) - 1)));
+    }
 
     std::vector<PlaneTreeNode> nodes_;
-    std::vector<PlaneTreeSlab> slabs_;           ///< per node, or empty
-    std::vector<NormalizedTriangle> triangles_;  ///< leaf order
-    std::vector<std::uint32_t> ids_;             ///< leaf order
+    std::vector<PlaneTreeSlab> slabs_;          ///< per slab node, in node order
+    std::vector<SlabRank> slab_ranks_;          ///< per 64 nodes, derived from the nodes
+    std::vector<PlaneTreeBox> boxes_;           ///< leaf order
+    std::vector<std::uint32_t> ids_;            ///< leaf order
+    std::vector<NormalizedTriangle> frames_;    ///< leaf order; empty for a collider's tree
+    const StaticCollider* collider_ = nullptr;  ///< a collider's tree: where frames come from
     int depth_ = 0;
 };
 
@@ -230,7 +275,9 @@ class TRACKPHYS_API PlaneTree {
 /// (PlaneTreeSettings::precomputed() unless given), ids = mesh triangle indices, so that
 /// PlaneTree::id(slot) is what StaticCollider::triangle() takes. Built from the collider
 /// rather than stored in it: StaticCollider stays the broad phase's compact structure
-/// (~48 bytes a triangle) and worlds that use no precomputed mid phase pay nothing.
+/// (~48 bytes a triangle) and worlds that use no precomputed mid phase pay nothing. The
+/// tree reads the collider's vertices: `collider` must outlive it (a StaticWorld's
+/// colliders do, as long as the world lives).
 TRACKPHYS_API PlaneTree
 make_collider_plane_tree(const StaticCollider& collider,
                          const PlaneTreeSettings& settings = PlaneTreeSettings::precomputed());

@@ -74,6 +74,7 @@ class TRACKPHYS_API PlaneTreeBuilder {
     std::vector<double> keys_;
     std::vector<double> lows_, highs_;
     std::vector<double> suffix_low_;
+    std::vector<PlaneTreeSlab> node_slabs_;  ///< per node while marking, kept by slab nodes
 };
 
 }  // namespace trackphys
