@@ -46,7 +46,6 @@ RaceDrivers::RaceDrivers(const Track& track, const CarSpec& car, std::size_t car
             (settings_.slowest_kmh + share * (settings_.fastest_kmh - settings_.slowest_kmh)) / 3.6;
         driver.grip_use =
             settings_.least_grip_use + share * (settings_.most_grip_use - settings_.least_grip_use);
-        target_speeds_.push_back(driver.target_speed);
         pilots_.emplace_back(track, car, driver);
     }
     for (std::size_t i = 0; i < cars; ++i) progress_.lanes.push_back(own_lane(i));

@@ -103,7 +103,7 @@ class TRACKPHYS_API RaceDrivers {
         return progress_.lap_times.at(car);
     }
     /// Car i's target speed on straights (m/s).
-    double target_speed(std::size_t car) const { return target_speeds_.at(car); }
+    double target_speed(std::size_t car) const { return pilots_.at(car).settings().target_speed; }
     /// Car i's share of its tyres' grip planned in turns (AutopilotSettings::grip_use).
     double grip_use(std::size_t car) const { return pilots_.at(car).settings().grip_use; }
     /// Times car i left the track and was put back on it.
@@ -147,7 +147,6 @@ class TRACKPHYS_API RaceDrivers {
     CarSpec car_;
     RaceSettings settings_;
     std::vector<Autopilot> pilots_;
-    std::vector<double> target_speeds_;
     RaceProgress progress_;           // all but the autopilots' (pilots stays empty)
     std::vector<double> next_lanes_;  // this update's, chosen before any is set
 };
