@@ -19,7 +19,7 @@ inline double support_extent(const Ellipsoid& e, const glm::dvec3& u) {
 }
 
 /// A tighter second cull after NormalizedTriangle::may_touch_sphere: a separating-axis test
-/// on the triangle's own frame axes, normal first. Along each axis the triangle spans
+/// on the triangle's own frame axes. Along each axis the triangle spans
 /// [0, 0] (normal), [0, x1] (dir_x) or [0, y2] (dir_y) from its origin, and the ellipsoid
 /// spans its centre's coordinate +- h(axis); disjoint spans on any axis prove the two apart.
 /// A flat wheel is judged by its width sideways, not by its radius, so far fewer
