@@ -78,11 +78,15 @@ Ellipsoid::Ellipsoid(Unchecked, const glm::dvec3& center, const glm::dquat& orie
 }
 
 Ellipsoid Ellipsoid::transformed(const glm::dquat& rotation, const glm::dvec3& translation) const {
+    return transformed(rotation, glm::mat3_cast(rotation), translation);
+}
+
+Ellipsoid Ellipsoid::transformed(const glm::dquat& rotation, const glm::dmat3& rotation_matrix,
+                                 const glm::dvec3& translation) const {
     Ellipsoid moved = *this;
-    const glm::dmat3 matrix = glm::mat3_cast(rotation);
-    moved.center_ = matrix * center_ + translation;
+    moved.center_ = rotation_matrix * center_ + translation;
     moved.orientation_ = rotation * orientation_;
-    moved.sorted_axes_ = matrix * sorted_axes_;
+    moved.sorted_axes_ = rotation_matrix * sorted_axes_;
     return moved;
 }
 

@@ -125,18 +125,27 @@ std::size_t Autopilot::find_nearest(const glm::dvec3& position) const {
     };
     if (!located_) {  // first call: search everything
         std::size_t best = 0;
+        double best_distance2 = distance2(0);
         for (std::size_t i = 1; i < n; ++i)
-            if (distance2(i) < distance2(best)) best = i;
+            if (const double d2 = distance2(i); d2 < best_distance2) best = i, best_distance2 = d2;
         return best;
     }
-    // Afterwards the car is near where it was: search a window around the last sample.
+    // Afterwards the car is near where it was: search a window around the last sample,
+    // outwards, the sample ahead before the one behind (a tie keeps the first found). The
+    // indices step with their wrap instead of a division each: this runs for every car
+    // before every update.
     constexpr std::size_t window = 400;
     std::size_t best = nearest_;
+    double best_distance2 = distance2(best);
+    std::size_t ahead = nearest_;
+    std::size_t behind = nearest_;
     for (std::size_t k = 1; k <= window; ++k) {
-        const std::size_t ahead = (nearest_ + k) % n;
-        const std::size_t behind = (nearest_ + n - (k % n)) % n;
-        if (distance2(ahead) < distance2(best)) best = ahead;
-        if (distance2(behind) < distance2(best)) best = behind;
+        ahead = ahead + 1 == n ? 0 : ahead + 1;
+        behind = behind == 0 ? n - 1 : behind - 1;
+        if (const double d2 = distance2(ahead); d2 < best_distance2)
+            best = ahead, best_distance2 = d2;
+        if (const double d2 = distance2(behind); d2 < best_distance2)
+            best = behind, best_distance2 = d2;
     }
     return best;
 }

@@ -178,7 +178,8 @@ void World::list_step_candidates(CarSlot& slot, int steps_left, PhaseStopwatch& 
     const double step_dt = settings_.dt_update / settings_.steps;
     const double spin = glm::length(state.angular_velocity);
     place_ellipsoids(slot, true);
-    for (std::size_t i = 0; i < car.ellipsoid_count(); ++i) {
+    for (std::size_t i = 0; i < car.ellipsoid_count();) {
+        bool widened = false;
         const Ellipsoid& ellipsoid = slot.placed[i];
         const glm::dvec3 velocity = point_velocity(state, ellipsoid.center());
         const double margin = spin * ellipsoid.bounding_radius() * step_dt + 10.0 * step_dt;
@@ -198,12 +199,18 @@ void World::list_step_candidates(CarSlot& slot, int steps_left, PhaseStopwatch& 
                 wider.expand(wanted.bounds().padded(settings_.broad_phase_margin));
                 watch.lap(Phase::mid);
                 begin_update(slot, wider, watch);
+                widened = true;
             }
             listed.refill(slot.mid, wanted);
             ++watch.profile().mid_queries;
         }
         if (settings_.mid_phase == MidPhaseMode::precomputed_tree)
             watch.profile().candidates += listed.candidates().size();
+        // A new update of the none and per_update_tree modes refills the storage that the
+        // lists before i point into: list them again (begin_update forgot their shapes).
+        // The trees' candidates outlive a box that grows (MidPhase), so theirs stay.
+        const bool lists_dangle = widened && settings_.mid_phase != MidPhaseMode::precomputed_tree;
+        i = lists_dangle ? 0 : i + 1;
     }
     watch.lap(Phase::mid);
 }
@@ -211,9 +218,10 @@ void World::list_step_candidates(CarSlot& slot, int steps_left, PhaseStopwatch& 
 // Placing is a tenth of a car's update: a lone car's body ellipsoids, which list no
 // triangles on a clean lap, are left where they were; car pairs need every one (every).
 void World::place_ellipsoids(CarSlot& slot, bool every) {
+    const glm::dmat3 orientation = glm::mat3_cast(slot.car.state().orientation);
     for (std::size_t i = 0; i < slot.placed.size(); ++i)
         if (every || !slot.listed[i].candidates().empty())
-            slot.placed[i] = slot.car.world_ellipsoid(i);
+            slot.placed[i] = slot.car.world_ellipsoid(i, orientation);
 }
 
 // The ellipsoids are placed for this sub-step (place_ellipsoids) before it.

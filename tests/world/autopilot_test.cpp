@@ -3,6 +3,8 @@
 #include "trackphys/world/autopilot.hpp"
 
 #include <cmath>
+#include <random>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -77,6 +79,56 @@ TEST(Autopilot, PlannedSpeedFallsInTightTurnsAndRespectsTheTarget) {
         ASSERT_GT(pilot.planned_speed(i), 0.0);
     }
     EXPECT_LT(pilot.planned_speed(tightest), 0.5 * fastest);
+}
+
+// The window search as it was first written, every index by division: the nearest sample
+// within 400 of the last one, scanned outwards, ahead before behind, the first of a tie.
+std::size_t nearest_by_division(const Track& track, std::size_t last, const glm::dvec3& p) {
+    const std::vector<CenterlineSample>& line = track.centerline;
+    const std::size_t n = line.size();
+    const auto distance2 = [&](std::size_t i) {
+        return glm::dot(line[i].position - p, line[i].position - p);
+    };
+    std::size_t best = last;
+    for (std::size_t k = 1; k <= 400; ++k) {
+        const std::size_t ahead = (last + k) % n;
+        const std::size_t behind = (last + n - (k % n)) % n;
+        if (distance2(ahead) < distance2(best)) best = ahead;
+        if (distance2(behind) < distance2(best)) best = behind;
+    }
+    return best;
+}
+
+// locate() finds the sample the first search did, from anywhere: near the last sample, far
+// from it, across the start line, on the road, beside it, above it, and halfway between two.
+TEST(Autopilot, LocatesTheSampleTheWindowSearchFinds) {
+    const TrackWorld& tw = default_track();
+    const std::vector<CenterlineSample>& line = tw.track.centerline;
+    const std::size_t n = line.size();
+    const CarSpec spec = CarSpec::default_car();
+    Autopilot pilot(tw.track, spec);
+    std::mt19937 random(16);
+    std::uniform_int_distribution<std::size_t> any_sample(0, n - 1);
+    std::uniform_int_distribution<std::size_t> nearby(0, 900);  // -450 to +450 samples
+    std::uniform_real_distribution<double> across(-20.0, 20.0);
+    std::uniform_real_distribution<double> up(-2.0, 6.0);
+    int moved = 0;
+    for (int trial = 0; trial < 20000; ++trial) {
+        const std::size_t last = any_sample(random);
+        const std::size_t near =
+            trial % 4 == 0 ? any_sample(random) : (last + n - 450 + nearby(random)) % n;
+        const CenterlineSample& s = line[near];
+        RigidBodyState state;
+        // Every 8th trial sits exactly halfway between two samples.
+        state.position = trial % 8 == 1 ? 0.5 * (s.position + line[(near + 1) % n].position)
+                                        : s.position + across(random) * s.left + up(random) * s.up;
+        pilot.set_progress({last, 1, true});
+        pilot.locate(Car(spec, state));
+        ASSERT_EQ(pilot.nearest_sample(), nearest_by_division(tw.track, last, state.position))
+            << "trial " << trial << ", last sample " << last;
+        moved += pilot.nearest_sample() != last;
+    }
+    EXPECT_GT(moved, 10000);
 }
 
 // A 7 km straight: full throttle to 1000 km/h, then full brakes to a stop, steering only

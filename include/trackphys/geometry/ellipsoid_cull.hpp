@@ -19,7 +19,7 @@ inline double support_extent(const Ellipsoid& e, const glm::dvec3& u) {
 }
 
 /// A tighter second cull after NormalizedTriangle::may_touch_sphere: a separating-axis test
-/// on the triangle's own frame axes, normal first. Along each axis the triangle spans
+/// on the triangle's own frame axes. Along each axis the triangle spans
 /// [0, 0] (normal), [0, x1] (dir_x) or [0, y2] (dir_y) from its origin, and the ellipsoid
 /// spans its centre's coordinate +- h(axis); disjoint spans on any axis prove the two apart.
 /// A flat wheel is judged by its width sideways, not by its radius, so far fewer
@@ -30,18 +30,19 @@ inline double support_extent(const Ellipsoid& e, const glm::dvec3& u) {
 /// min(g(n), g(-n)) = h(n) - |n . (c - p)|, the depth along the triangle's normal. A
 /// triangle whose bound is no deeper than a contact already found cannot be the deepest.
 inline double ellipsoid_depth_bound(const NormalizedTriangle& t, const Ellipsoid& e) {
-    constexpr double apart = -std::numeric_limits<double>::infinity();
     const glm::dvec3 local = e.center() - t.origin;
     const double z = glm::dot(t.normal, local);
-    const double hz = support_extent(e, t.normal);
-    if (z > hz || z < -hz) return apart;
     const double x = glm::dot(t.dir_x, local);
-    const double hx = support_extent(e, t.dir_x);
-    if (x < -hx || x > t.x1 + hx) return apart;
     const double y = glm::dot(t.dir_y, local);
+    // Nearly every triangle that reaches this test after the sphere's passes it (a wheel's
+    // few listed triangles lie around it): the three extents go together, with no branch
+    // between them, so that their square roots overlap instead of waiting on each other.
+    const double hz = support_extent(e, t.normal);
+    const double hx = support_extent(e, t.dir_x);
     const double hy = support_extent(e, t.dir_y);
-    if (y < -hy || y > t.y2 + hy) return apart;
-    return hz - std::abs(z);
+    const bool apart =
+        (z > hz) | (z < -hz) | (x < -hx) | (x > t.x1 + hx) | (y < -hy) | (y > t.y2 + hy);
+    return apart ? -std::numeric_limits<double>::infinity() : hz - std::abs(z);
 }
 
 /// An upper bound of the ellipsoid's penetration depth into the triangle from any unit
