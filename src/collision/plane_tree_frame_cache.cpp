@@ -2,6 +2,8 @@
 
 #include <bit>
 #include <cstdint>
+#include <memory>
+#include <type_traits>
 
 #include "trackphys/assert.hpp"
 #include "trackphys/collision/plane_tree.hpp"
@@ -15,8 +17,8 @@ std::size_t hash(const PlaneTree* tree, std::uint32_t first) {
         (bits ^ (std::uint64_t{first} * 0x9e3779b97f4a7c15ull)) * 0xff51afd7ed558ccdull >> 17);
 }
 
-// What a run's slots hold until their frame is asked for: any frame will do, none is read.
-const NormalizedTriangle kNotBuilt(Triangle({0.0, 0.0, 0.0}, {1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}));
+// Frames are built in raw storage and never destroyed: reusing it is all clear() does.
+static_assert(std::is_trivially_destructible_v<NormalizedTriangle>);
 
 }  // namespace
 
@@ -36,7 +38,7 @@ const NormalizedTriangle* PlaneTreeFrameCache::run(const PlaneTree& tree, std::u
     }
     for (std::uint64_t missing = needed & ~e.built; missing != 0; missing &= missing - 1) {
         const int k = std::countr_zero(missing);
-        e.frames[k] = tree.triangle(first + static_cast<std::uint32_t>(k));
+        std::construct_at(e.frames + k, tree.triangle(first + static_cast<std::uint32_t>(k)));
     }
     e.built |= needed;
     return e.frames;
@@ -49,7 +51,7 @@ void PlaneTreeFrameCache::clear() {
         stamp_ = 1;
     }
     entries_ = 0;
-    for (std::size_t b = 0; b < blocks_.size() && b <= filling_; ++b) blocks_[b].clear();
+    for (std::size_t b = 0; b < blocks_.size() && b <= filling_; ++b) blocks_[b].used = 0;
     filling_ = 0;
     reported_.clear();
 }
@@ -59,12 +61,16 @@ NormalizedTriangle* PlaneTreeFrameCache::reserve(std::uint32_t count) {
     // when it grows, so that a new peak allocates once, and rarely after a World's first
     // updates.
     for (;; ++filling_) {
-        if (filling_ == blocks_.size()) blocks_.emplace_back().reserve(kBlock << blocks_.size());
-        std::vector<NormalizedTriangle>& block = blocks_[filling_];
-        if (block.capacity() - block.size() < count) continue;
-        // Within its capacity: the frames already handed out stay put.
-        block.resize(block.size() + count, kNotBuilt);
-        return block.data() + (block.size() - count);
+        if (filling_ == blocks_.size()) {
+            const std::size_t capacity = kBlock << blocks_.size();
+            blocks_.push_back({std::make_unique<std::byte[]>(capacity * sizeof(NormalizedTriangle)),
+                               capacity, 0});
+        }
+        Block& block = blocks_[filling_];
+        if (block.capacity - block.used < count) continue;
+        auto* frames = reinterpret_cast<NormalizedTriangle*>(block.bytes.get()) + block.used;
+        block.used += count;
+        return frames;
     }
 }
 
@@ -84,7 +90,7 @@ void PlaneTreeFrameCache::grow_index() {
 
 std::size_t PlaneTreeFrameCache::bytes_used() const {
     std::size_t frames = 0;
-    for (const std::vector<NormalizedTriangle>& block : blocks_) frames += block.capacity();
+    for (const Block& block : blocks_) frames += block.capacity;
     return frames * sizeof(NormalizedTriangle) + index_.capacity() * sizeof(Entry) +
            reported_.capacity() * sizeof(const NormalizedTriangle*);
 }

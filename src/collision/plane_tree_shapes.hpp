@@ -14,7 +14,6 @@
 #include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
 
-#include "collision/float_bounds.hpp"
 #include "collision/triangle_predicates.hpp"
 #include "trackphys/collision/plane_tree.hpp"
 #include "trackphys/error.hpp"
@@ -40,12 +39,19 @@ inline glm::dvec3 node_normal(const PlaneTreeNode& node) {
     return {node.normal[0], node.normal[1], node.normal[2]};
 }
 
-/// A float at or below x: the largest (round_down, without a library call: every query
-/// rounds its box).
-inline float float_down(double x) { return round_down(x); }
+/// A float at or below x.
+inline float float_down(double x) {
+    float f = static_cast<float>(x);
+    if (double(f) > x) f = std::nextafter(f, -std::numeric_limits<float>::infinity());
+    return f;
+}
 
-/// A float at or above x: the smallest.
-inline float float_up(double x) { return round_up(x); }
+/// A float at or above x.
+inline float float_up(double x) {
+    float f = static_cast<float>(x);
+    if (double(f) < x) f = std::nextafter(f, std::numeric_limits<float>::infinity());
+    return f;
+}
 
 /// The float box of a triangle's vertices, rounded outward.
 inline PlaneTreeBox float_box(const Triangle& t) {
@@ -57,24 +63,11 @@ inline PlaneTreeBox float_box(const Triangle& t) {
     return box;
 }
 
-/// The box [lo, hi] (a shape's, in double) in float, rounded outward: a slot box that
-/// the double box meets, this one meets too. Rounded in SSE (round_both_ways): every
-/// query rounds its box.
-inline PlaneTreeBox float_box(const glm::dvec3& lo, const glm::dvec3& hi) {
-    Aabb box;
-    box.min = lo;
-    box.max = hi;
-    FloatBox outward, inward;
-    round_both_ways(box, outward, inward);
-    return {{outward.min[0], outward.min[1], outward.min[2]},
-            {outward.max[0], outward.max[1], outward.max[2]}};
-}
-
-/// True when a shape's box meets a slot's box.
-inline bool meets_box(const PlaneTreeBox& shape, const PlaneTreeBox& slot) {
-    return shape.low[0] <= slot.high[0] && shape.high[0] >= slot.low[0] &&
-           shape.low[1] <= slot.high[1] && shape.high[1] >= slot.low[1] &&
-           shape.low[2] <= slot.high[2] && shape.high[2] >= slot.low[2];
+/// True when the box [lo, hi] (a shape's, in double) meets a slot's box.
+inline bool meets_box(const glm::dvec3& lo, const glm::dvec3& hi, const PlaneTreeBox& box) {
+    return lo.x <= double(box.high[0]) && hi.x >= double(box.low[0]) &&
+           lo.y <= double(box.high[1]) && hi.y >= double(box.low[1]) &&
+           lo.z <= double(box.high[2]) && hi.z >= double(box.low[2]);
 }
 
 /// True when the interval [lo, hi] of a shape along a slab's normal, grown by `reach`,
@@ -112,19 +105,20 @@ template <bool Swept>
 struct SphereShape {
     glm::dvec3 start, end;
     double radius, radius_squared, node_radius;
-    PlaneTreeBox box;  // the swept shape's box, grown by the slack
+    glm::dvec3 box_low, box_high;  // the swept shape's box, grown by the slack
 
     /// Throws trackphys::Error on non-finite points or a bad radius.
     SphereShape(const glm::dvec3& a, const glm::dvec3& b, double r) : start(a), end(b) {
         radius_squared = make_capsule_query(a, b, r).radius_squared;
         radius = r;
         node_radius = r + kPlaneSlack * (1.0 + std::max(max_abs(a), max_abs(b)) + r);
-        box = float_box(glm::min(a, b) - node_radius, glm::max(a, b) + node_radius);
+        box_low = glm::min(a, b) - node_radius;
+        box_high = glm::max(a, b) + node_radius;
     }
 
     /// A triangle the filter accepts has a point within the radius of the segment, so inside
     /// the segment's box grown by it (and by the slack that covers the filter's rounding).
-    bool reaches_box(const PlaneTreeBox& slot) const { return meets_box(box, slot); }
+    bool reaches_box(const PlaneTreeBox& box) const { return meets_box(box_low, box_high, box); }
 
     /// The half-space {n.x <= offset} is reached when the shape's lowest point along n is
     /// in it: min over the segment of n.c, minus the radius (n has length <= 1).
@@ -189,8 +183,8 @@ struct EllipsoidShape {
     glm::dmat3 to_unit;                   // D^-1 Q^T
     glm::dvec3 unit_end;                  // to_unit * (end - start)
     double slack;
-    double reach_squared;  // above support_squared(u) for any |u| <= 1
-    PlaneTreeBox box;      // the swept ellipsoid's box, grown by the slack
+    double reach_squared;          // above support_squared(u) for any |u| <= 1
+    glm::dvec3 box_low, box_high;  // the swept ellipsoid's box, grown by the slack
 
     /// The ellipsoid scaled about its center by 1 + margin / (smallest semi-axis). Throws
     /// trackphys::Error on a non-finite end or a bad margin.
@@ -231,12 +225,12 @@ struct EllipsoidShape {
         // The ellipsoid reaches h(e_k) = sqrt(M_kk) along each axis; 1e-6 of room covers
         // the rounding of M and of the square root, as reach_squared's does.
         const glm::dvec3 half(std::sqrt(m00), std::sqrt(m11), std::sqrt(m22));
-        box = float_box(glm::min(start, end) - half * (1.0 + 1e-6) - slack,
-                        glm::max(start, end) + half * (1.0 + 1e-6) + slack);
+        box_low = glm::min(start, end) - half * (1.0 + 1e-6) - slack;
+        box_high = glm::max(start, end) + half * (1.0 + 1e-6) + slack;
     }
 
     /// A triangle the filter accepts meets the swept ellipsoid, so its box meets the sweep's.
-    bool reaches_box(const PlaneTreeBox& slot) const { return meets_box(box, slot); }
+    bool reaches_box(const PlaneTreeBox& box) const { return meets_box(box_low, box_high, box); }
 
     double support_squared(const glm::dvec3& u) const {
         return m00 * u.x * u.x + m11 * u.y * u.y + m22 * u.z * u.z +

@@ -2,6 +2,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -26,8 +27,7 @@ class TRACKPHYS_API PlaneTreeFrameCache {
 
     /// Storage for the frames of `tree`'s slots first .. first + count - 1 (count in
     /// [1, kMaxRun], all of one leaf), of which those in `needed` (bit k: slot first + k) are
-    /// built by now (PlaneTree::triangle); a slot not asked for yet holds no frame of its
-    /// own. The same first must always come with the same count. `tree` must stay alive
+    /// built by now (PlaneTree::triangle); read no slot not asked for yet. The same first must always come with the same count. `tree` must stay alive
     /// and unchanged until clear().
     const NormalizedTriangle* run(const PlaneTree& tree, std::uint32_t first, std::uint32_t count,
                                   std::uint64_t needed);
@@ -53,10 +53,15 @@ class TRACKPHYS_API PlaneTreeFrameCache {
     NormalizedTriangle* reserve(std::uint32_t count);
     void grow_index();
 
-    // Frames in blocks that never reallocate (moving a block's vector moves no frame); the
-    // blocks before filling_ are full or hold no room for the next run, those after it
-    // empty.
-    std::vector<std::vector<NormalizedTriangle>> blocks_;
+    // Room for frames, built in place only when asked for (a run's other slots stay raw
+    // storage), in blocks that never move; the blocks before filling_ are full or hold no
+    // room for the next run, those after it empty.
+    struct Block {
+        std::unique_ptr<std::byte[]> bytes;
+        std::size_t capacity = 0;  ///< frames
+        std::size_t used = 0;      ///< frames handed to runs
+    };
+    std::vector<Block> blocks_;
     std::size_t filling_ = 0;
     // Runs by (tree, first slot): open addressing, a power-of-two size at least twice the
     // entries.
