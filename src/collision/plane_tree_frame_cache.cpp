@@ -57,7 +57,7 @@ void PlaneTreeFrameCache::clear() {
 }
 
 NormalizedTriangle* PlaneTreeFrameCache::reserve(std::uint32_t count) {
-    // Each block twice the one before (the first holds a run of kMaxRun): storage doubles
+    // Each block twice the one before (the first holds runs of kMaxRun): storage doubles
     // when it grows, so that a new peak allocates once, and rarely after a World's first
     // updates.
     for (;; ++filling_) {

@@ -48,7 +48,10 @@ class TRACKPHYS_API PlaneTreeFrameCache {
         std::uint64_t built = 0;  ///< bit k: frames[k] is slot first + k's
         NormalizedTriangle* frames = nullptr;
     };
-    static constexpr std::size_t kBlock = 64;  ///< frames in the first block
+    // Frames in the first block: a run takes room for each slot of its leaf, built or
+    // not, so a car's update holds up to a few thousand; starting at 1024 (123 kB, as much
+    // as the index) its storage reaches its peak within a race's first updates.
+    static constexpr std::size_t kBlock = 1024;
 
     NormalizedTriangle* reserve(std::uint32_t count);
     void grow_index();
