@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <numeric>
+#include <span>
 #include <string>
 
 #include "collision/triangle_predicates.hpp"
@@ -110,8 +111,9 @@ void MidPhase::query(Query&& query_tree, std::vector<MidPhaseCandidate>& out) {
                 const PlaneTree& tree = *trees_[id];
                 slots_.clear();
                 add_counts(query_tree(tree, slots_, entry_nodes_[i], &frames_));
-                for (const std::uint32_t slot : slots_)
-                    out.push_back({{id, tree.id(slot)}, &frames_.frame(tree, slot)});
+                const std::span<const NormalizedTriangle* const> reported = frames_.reported();
+                for (std::size_t k = 0; k < slots_.size(); ++k)
+                    out.push_back({{id, tree.id(slots_[k])}, reported[k]});
             }
             break;
     }

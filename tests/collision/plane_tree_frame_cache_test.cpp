@@ -3,11 +3,15 @@
 // valid frames when an update's box is widened.
 #include "trackphys/collision/plane_tree_frame_cache.hpp"
 
+#include <algorithm>
 #include <cstdint>
 #include <memory>
+#include <random>
 #include <vector>
 
 #include <gtest/gtest.h>
+
+#include <glm/gtc/quaternion.hpp>
 
 #include "collision/collision_meshes.hpp"
 #include "trackphys/collision/mid_phase.hpp"
@@ -28,6 +32,25 @@ void expect_same_frame(const NormalizedTriangle& a, const NormalizedTriangle& b)
     EXPECT_EQ(a.y2, b.y2);
 }
 
+// Each leaf of `tree` as the runs PlaneTree queries ask the cache for.
+struct LeafRun {
+    std::uint32_t first, count;
+};
+std::vector<LeafRun> leaf_runs(const PlaneTree& tree) {
+    std::vector<LeafRun> runs;
+    for (const PlaneTreeNode& node : tree.nodes())
+        if (node.is_leaf())
+            for (std::uint32_t first = node.first; first < node.first + node.count();
+                 first += PlaneTreeFrameCache::kMaxRun)
+                runs.push_back({first, std::min(node.first + node.count() - first,
+                                                PlaneTreeFrameCache::kMaxRun)});
+    return runs;
+}
+
+std::uint64_t all_of(std::uint32_t count) {
+    return count == 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << count) - 1;
+}
+
 TEST(PlaneTreeFrameCache, FramesAreTheTreesOwnBuiltOnceAndStayPut) {
     const StaticCollider collider(test::random_soup(3000, 5));
     const PlaneTree trees[] = {make_collider_plane_tree(collider),
@@ -35,21 +58,82 @@ TEST(PlaneTreeFrameCache, FramesAreTheTreesOwnBuiltOnceAndStayPut) {
     PlaneTreeFrameCache cache;
     std::vector<const NormalizedTriangle*> first;
     for (const PlaneTree& tree : trees)
-        for (std::uint32_t slot = 0; slot < tree.triangle_count(); ++slot) {
-            first.push_back(&cache.frame(tree, slot));
-            expect_same_frame(*first.back(), tree.triangle(slot));
+        for (const LeafRun& run : leaf_runs(tree)) {
+            // Half the slots at first (the odd ones), the others on the second call.
+            const std::uint64_t odd = all_of(run.count) & 0xaaaa'aaaa'aaaa'aaaaull;
+            const NormalizedTriangle* frames = cache.run(tree, run.first, run.count, odd);
+            ASSERT_EQ(cache.run(tree, run.first, run.count, all_of(run.count)), frames);
+            for (std::uint32_t k = 0; k < run.count; ++k) {
+                first.push_back(frames + k);
+                expect_same_frame(frames[k], tree.triangle(run.first + k));
+            }
         }
     // 6000 frames made it grow many times; asking again gives the same addresses, and two
     // trees over one collider keep frames apart.
     std::size_t k = 0;
     for (const PlaneTree& tree : trees)
-        for (std::uint32_t slot = 0; slot < tree.triangle_count(); ++slot, ++k)
-            ASSERT_EQ(&cache.frame(tree, slot), first[k]);
-    EXPECT_NE(&cache.frame(trees[0], 7), &cache.frame(trees[1], 7));
+        for (const LeafRun& run : leaf_runs(tree))
+            for (std::uint32_t i = 0; i < run.count; ++i, ++k)
+                ASSERT_EQ(cache.run(tree, run.first, run.count, std::uint64_t{1} << i) + i,
+                          first[k]);
+    const LeafRun some = leaf_runs(trees[0])[3];
+    EXPECT_NE(cache.run(trees[0], some.first, some.count, 1),
+              cache.run(trees[1], some.first, some.count, 1));
     // After clear() the storage is reused: frames are built anew, still the right ones.
     cache.clear();
-    for (std::uint32_t slot = 0; slot < 100; ++slot)
-        expect_same_frame(cache.frame(trees[1], slot), trees[1].triangle(slot));
+    for (const LeafRun& run : leaf_runs(trees[1])) {
+        const NormalizedTriangle* frames = cache.run(trees[1], run.first, run.count, 1);
+        expect_same_frame(frames[0], trees[1].triangle(run.first));
+    }
+}
+
+// Queries through a cache report the slots they report without one, and reported() holds
+// those slots' frames; one cache serves every query (frames built by earlier ones are
+// reused), cleared now and then. Leaves of up to 64 slots use the run's every mask bit.
+TEST(PlaneTreeFrameCache, QueriesThroughTheCacheReportTheSameSlotsAndTheirFrames) {
+    const StaticCollider collider(test::random_soup(4096, 9));
+    PlaneTreeSettings big_leaves = PlaneTreeSettings::per_update();
+    big_leaves.max_leaf_size = 64;
+    std::mt19937_64 rng(10);
+    std::uniform_int_distribution<std::uint32_t> pick(
+        0, static_cast<std::uint32_t>(collider.triangle_count() - 1));
+    std::uniform_real_distribution<double> sym(-1.0, 1.0), radius(0.05, 3.0);
+    for (const PlaneTreeSettings& settings : {PlaneTreeSettings::precomputed(), big_leaves}) {
+        const PlaneTree tree = make_collider_plane_tree(collider, settings);
+        std::uint32_t largest_leaf = 0;
+        for (const PlaneTreeNode& node : tree.nodes())
+            if (node.is_leaf()) largest_leaf = std::max(largest_leaf, node.count());
+        if (settings.max_leaf_size == 64) {
+            EXPECT_GT(largest_leaf, 32u);
+        }
+        PlaneTreeFrameCache cache;
+        std::size_t reported = 0;
+        for (int i = 0; i < 600; ++i) {
+            if (i % 50 == 0) cache.clear();
+            const glm::dvec3 at =
+                tree.triangle(pick(rng)).vertex(0) + glm::dvec3(sym(rng), sym(rng), sym(rng)) * 0.5;
+            const glm::dvec3 to = at + glm::dvec3(sym(rng), sym(rng), sym(rng));
+            const double r = radius(rng);
+            std::vector<std::uint32_t> plain, cached;
+            if (i % 3 == 0) {
+                tree.query_sphere(at, r, plain);
+                tree.query_sphere(at, r, cached, 0, &cache);
+            } else if (i % 3 == 1) {
+                tree.query_swept_sphere(at, to, r, plain);
+                tree.query_swept_sphere(at, to, r, cached, 0, &cache);
+            } else {
+                const Ellipsoid e(at, glm::dquat(1, 0, 0, 0), glm::dvec3(r, 0.5 * r, 0.3 * r));
+                tree.query_swept_ellipsoid(e, to, 0.01, plain);
+                tree.query_swept_ellipsoid(e, to, 0.01, cached, 0, &cache);
+            }
+            ASSERT_EQ(cached, plain);
+            ASSERT_EQ(cache.reported().size(), cached.size());
+            for (std::size_t k = 0; k < cached.size(); ++k)
+                expect_same_frame(*cache.reported()[k], tree.triangle(cached[k]));
+            reported += cached.size();
+        }
+        EXPECT_GT(reported, 300u);  // most queries report something
+    }
 }
 
 TEST(PlaneTreeFrameCache, CandidatesSurviveAWidenedUpdate) {

@@ -178,7 +178,8 @@ class TRACKPHYS_API PlaneTree {
     /// Every query can start at `from_node` instead of the root: pass entry_node(box) for a
     /// box that holds the query's shape and the result is the same with fewer planes tested.
     /// Given `frames`, the filter reads the frames from that cache (building the missing
-    /// ones into it), where the caller finds the reported slots' frames afterwards.
+    /// ones into it), and frames->reported() holds the reported slots' frames afterwards,
+    /// in the order of the slots appended to `out`.
     PlaneTreeQueryCounts query_sphere(const glm::dvec3& center, double radius,
                                       std::vector<std::uint32_t>& out, std::uint32_t from_node = 0,
                                       PlaneTreeFrameCache* frames = nullptr) const;
@@ -242,6 +243,11 @@ class TRACKPHYS_API PlaneTree {
     template <class Shape>
     PlaneTreeQueryCounts visit(const Shape& shape, std::vector<std::uint32_t>& out,
                                std::uint32_t from_node, PlaneTreeFrameCache* frames) const;
+    // The per-triangle filter over leaf slots [first, end), in slot order.
+    template <class Shape>
+    void filter_leaf(const Shape& shape, std::uint32_t first, std::uint32_t end,
+                     std::vector<std::uint32_t>& out, PlaneTreeFrameCache* frames,
+                     PlaneTreeQueryCounts& counts) const;
     // Makes the tree read its frames from `collider` (ids_ are its mesh indices), drops its
     // copy, and sets the boxes from the collider's vertices: the same boxes whether the tree
     // was just built or loaded from a map file.
