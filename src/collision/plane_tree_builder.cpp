@@ -200,6 +200,10 @@ PlaneTreeBuilder::Split PlaneTreeBuilder::pca_median_split(std::size_t begin, st
 
 bool PlaneTreeBuilder::cost_based_split(std::size_t begin, std::size_t end, Split& split) {
     const std::size_t count = end - begin;
+    // Small nodes try the centroids' axes and the coordinate axes only: the two directions
+    // fitted to the surface cost two more decompositions a node there, and made the trees
+    // no better (the mid-phase counts in docs/benchmarks.md).
+    const bool fit_surface = count > kSweepAtMost;
     glm::dvec3 mean(0.0);
     for (std::size_t i = begin; i < end; ++i) mean += items_[order_[i]].centroid;
     mean /= double(count);
@@ -211,14 +215,19 @@ bool PlaneTreeBuilder::cost_based_split(std::size_t begin, std::size_t end, Spli
         // area * n n^T: the dominant surface normal is its primary eigenvector, whichever
         // way the triangles face (a road and the tops of its walls agree on it).
         const double area2 = glm::length(item.area_normal);
-        if (area2 > 0.0) normals += outer(item.area_normal, item.area_normal) * (1.0 / area2);
+        if (fit_surface && area2 > 0.0)
+            normals += outer(item.area_normal, item.area_normal) * (1.0 / area2);
     }
     const SymmetricEigen3 centroid_axes = symmetric_eigen(covariance);
-    const glm::dvec3 surface_normal = glm::normalize(symmetric_eigen(normals).vectors[0]);
-    // The centroids' spread within the surface: P C P with P = I - N N^T. For a road patch
-    // its two principal directions are the road's local tangent and width direction.
-    const glm::dmat3 project = glm::dmat3(1.0) - outer(surface_normal, surface_normal);
-    const SymmetricEigen3 surface_axes = symmetric_eigen(project * covariance * project);
+    glm::dvec3 surface_normal(0.0);  // a zero candidate is skipped
+    SymmetricEigen3 surface_axes{glm::dvec3(0.0), glm::dmat3(0.0)};
+    if (fit_surface) {
+        surface_normal = glm::normalize(symmetric_eigen(normals).vectors[0]);
+        // The centroids' spread within the surface: P C P with P = I - N N^T. For a road
+        // patch its two principal directions are the road's local tangent and width.
+        const glm::dmat3 project = glm::dmat3(1.0) - outer(surface_normal, surface_normal);
+        surface_axes = symmetric_eigen(project * covariance * project);
+    }
 
     const Directions candidates = {
         centroid_axes.vectors[0], centroid_axes.vectors[1], centroid_axes.vectors[2],
@@ -245,36 +254,29 @@ void PlaneTreeBuilder::evaluate_direction(std::size_t begin, std::size_t end,
     const glm::dvec3 n = float_direction(direction);
     if (n == glm::dvec3(0.0)) return;
     const std::size_t count = end - begin;
-    keys_.resize(count);
-    lows_.resize(count);
-    highs_.resize(count);
-    sorted_.resize(count);
+    sweep_.resize(count);
     suffix_low_.resize(count + 1);
     double node_low = std::numeric_limits<double>::infinity();
     double node_high = -node_low;
     for (std::size_t i = 0; i < count; ++i) {
-        const Item& item = items_[order_[begin + i]];
-        keys_[i] = glm::dot(n, item.centroid);
+        const std::uint32_t item_index = order_[begin + i];
+        const Item& item = items_[item_index];
         double lo = glm::dot(n, item.vertices[0]), hi = lo;
         for (int k = 1; k < 3; ++k) {
             const double d = glm::dot(n, item.vertices[std::size_t(k)]);
             lo = std::min(lo, d);
             hi = std::max(hi, d);
         }
-        lows_[i] = lo;
-        highs_[i] = hi;
+        sweep_[i] = {glm::dot(n, item.centroid), lo, hi, item_index};
         node_low = std::min(node_low, lo);
         node_high = std::max(node_high, hi);
-        sorted_[i] = static_cast<std::uint32_t>(i);
     }
-    // Order by centroid along n, ties by item index (order_along uses the same order).
-    std::sort(sorted_.begin(), sorted_.end(), [&](std::uint32_t a, std::uint32_t b) {
-        if (keys_[a] != keys_[b]) return keys_[a] < keys_[b];
-        return order_[begin + a] < order_[begin + b];
-    });
+    // Order by centroid along n, ties by item index, as order_along does. The entries carry
+    // their key and interval, so the sort compares without looking anything up.
+    std::sort(sweep_.begin(), sweep_.end(), by_key_then_item);
     suffix_low_[count] = std::numeric_limits<double>::infinity();
     for (std::size_t k = count; k-- > 0;)
-        suffix_low_[k] = std::min(suffix_low_[k + 1], lows_[sorted_[k]]);
+        suffix_low_[k] = std::min(suffix_low_[k + 1], sweep_[k].low);
 
     // A query that reaches this node is taken as uniform along n over [low - r, high + r];
     // it reaches the left half-space (n.x <= left_high) with probability
@@ -283,7 +285,7 @@ void PlaneTreeBuilder::evaluate_direction(std::size_t begin, std::size_t end,
     const double span = node_high - node_low + r2;
     double left_high = -std::numeric_limits<double>::infinity();
     for (std::size_t k = 1; k < count; ++k) {
-        left_high = std::max(left_high, highs_[sorted_[k - 1]]);
+        left_high = std::max(left_high, sweep_[k - 1].high);
         best = cheaper_cut(best, n, k, count, (left_high - node_low + r2) / span,
                            (node_high - suffix_low_[k] + r2) / span);
     }
@@ -382,16 +384,17 @@ void PlaneTreeBuilder::evaluate_directions_binned(std::size_t begin, std::size_t
 
 void PlaneTreeBuilder::order_along(std::size_t begin, std::size_t end, const glm::dvec3& normal,
                                    std::size_t left_count) {
-    auto less = [&](std::uint32_t a, std::uint32_t b) {
-        const double ka = glm::dot(normal, items_[a].centroid);
-        const double kb = glm::dot(normal, items_[b].centroid);
-        if (ka != kb) return ka < kb;
-        return a < b;
-    };
-    const auto first = order_.begin() + std::ptrdiff_t(begin);
+    // Keys computed once, not at each comparison; nth_element makes the same moves on the
+    // entries as it would on the indices, so order_ ends in the same order either way.
+    sweep_.resize(end - begin);
+    for (std::size_t i = begin; i < end; ++i) {
+        const std::uint32_t item = order_[i];
+        sweep_[i - begin] = {glm::dot(normal, items_[item].centroid), 0.0, 0.0, item};
+    }
     // Only the cut matters: the smallest left_count items along n go left.
-    std::nth_element(first, first + std::ptrdiff_t(left_count),
-                     order_.begin() + std::ptrdiff_t(end), less);
+    std::nth_element(sweep_.begin(), sweep_.begin() + std::ptrdiff_t(left_count), sweep_.end(),
+                     by_key_then_item);
+    for (std::size_t i = begin; i < end; ++i) order_[i] = sweep_[i - begin].item;
 }
 
 void PlaneTreeBuilder::set_plane(PlaneTreeNode& node, std::size_t begin, std::size_t end,
@@ -405,8 +408,8 @@ void PlaneTreeBuilder::set_plane(PlaneTreeNode& node, std::size_t begin, std::si
 }
 
 std::size_t PlaneTreeBuilder::bytes_used() const {
-    return items_.capacity() * sizeof(Item) +
-           (order_.capacity() + sorted_.capacity()) * sizeof(std::uint32_t) +
+    return items_.capacity() * sizeof(Item) + order_.capacity() * sizeof(std::uint32_t) +
+           sweep_.capacity() * sizeof(SweepEntry) +
            (keys_.capacity() + lows_.capacity() + highs_.capacity() + suffix_low_.capacity()) *
                sizeof(double) +
            node_slabs_.capacity() * sizeof(PlaneTreeSlab);

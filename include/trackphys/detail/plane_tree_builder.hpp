@@ -70,7 +70,16 @@ class TRACKPHYS_API PlaneTreeBuilder {
     std::vector<Item> items_;
     std::vector<std::uint32_t> order_;  ///< item indices; each node owns a range
     // cost_based sweep scratch
-    std::vector<std::uint32_t> sorted_;
+    struct SweepEntry {
+        double key;        ///< centroid along the direction
+        double low, high;  ///< vertices along it
+        std::uint32_t item;
+    };
+    static bool by_key_then_item(const SweepEntry& a, const SweepEntry& b) {
+        if (a.key != b.key) return a.key < b.key;
+        return a.item < b.item;
+    }
+    std::vector<SweepEntry> sweep_;  ///< a node's items along one direction
     std::vector<double> keys_;
     std::vector<double> lows_, highs_;
     std::vector<double> suffix_low_;
