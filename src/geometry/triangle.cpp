@@ -1,6 +1,7 @@
 #include "trackphys/geometry/triangle.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include <glm/geometric.hpp>
 
@@ -25,9 +26,12 @@ Aabb Triangle::bounds() const {
 }
 
 double Triangle::longest_edge() const {
-    return std::max({glm::distance(vertices[0], vertices[1]),
-                     glm::distance(vertices[1], vertices[2]),
-                     glm::distance(vertices[2], vertices[0])});
+    // One root instead of three, the same double: sqrt is correctly rounded and monotonic,
+    // so the root of the largest square is the largest root (glm::distance is that root).
+    const auto squared = [](const glm::dvec3& d) { return glm::dot(d, d); };
+    return std::sqrt(
+        std::max({squared(vertices[1] - vertices[0]), squared(vertices[2] - vertices[1]),
+                  squared(vertices[0] - vertices[2])}));
 }
 
 bool Triangle::is_degenerate(double relative_tolerance) const {
