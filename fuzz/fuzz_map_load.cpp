@@ -59,7 +59,7 @@ void query(const trackphys::StaticMap& map) {
 void try_map(std::string_view bytes) {
     trackphys::StaticMap map;
     try {
-        map = trackphys::decode_map(bytes, "fuzz", std::nullopt);
+        map = trackphys::decode_map(bytes, "fuzz", std::nullopt, 1);
     } catch (const trackphys::Error&) {
         return;
     }

@@ -165,8 +165,13 @@ void bench_maps(BenchRun& run) {
     const double file_bytes = double(std::filesystem::file_size(file));
 
     run.progress("maps", "loading");
-    const Timing load =
-        median_ms(run.batches(3, 11), [&] { keep(load_static_world(file).statics->size()); });
+    const auto load_on = [&](unsigned threads) {
+        return median_ms(run.batches(3, 11), [&] {
+            keep(
+                load_static_world(file, PlaneTreeSettings::precomputed(), threads).statics->size());
+        });
+    };
+    const Timing load = load_on(1), load_2 = load_on(2);
     std::filesystem::remove(file);
 
     BenchRow& build_row =
@@ -182,12 +187,16 @@ void bench_maps(BenchRun& run) {
     BenchRow& load_row = run.add("maps", "default track: load the map", load.wall_ms * 1e6,
                                  "default track: build colliders + plane trees");
     load_row.figures = {{"cpu_ms", load.cpu_ms},
+                        {"wall_ms_2_threads", load_2.wall_ms},
+                        {"cpu_ms_all_threads_2_threads", load_2.process_cpu_ms},
                         {"file_bytes_per_triangle", file_bytes / triangles}};
-    load_row.note = "file mapped, arrays copied, slot boxes derived";
-    // CPU time for the load: the machine is shared, and wall time counts others' turns.
-    run.add_target(
-        "default track: load a baked map <= 50 ms (thread CPU)", 50.0 / load.cpu_ms, 1.0, true,
-        std::to_string(load.cpu_ms) + " ms CPU, " + std::to_string(load.wall_ms) + " ms wall");
+    load_row.note = "on 1 thread: file mapped, arrays copied and verified, slot boxes derived";
+    // The CPU time of a load on one thread: all the work a load does, which wall time on a
+    // shared machine inflates and a second thread would hide.
+    run.add_target("default track: load a baked map <= 50 ms (CPU, 1 thread)", 50.0 / load.cpu_ms,
+                   1.0, true,
+                   std::to_string(load.cpu_ms) + " ms CPU, " + std::to_string(load.wall_ms) +
+                       " ms wall; on 2 threads " + std::to_string(load_2.wall_ms) + " ms wall");
     // Wall time, as the issue asks; the evidence adds the CPU time of both threads, half of
     // which is the wall time the bake needs on two idle cores.
     run.add_target("default track: bake <= 0.5 s", 500.0 / bake.wall_ms, 1.0, true,
@@ -218,12 +227,15 @@ void bench_big_map(BenchRun& run) {
     run.progress("bigmap", "loading");
     std::size_t collider_bytes = 0, tree_bytes = 0;
     const Timing load = median_ms(run.batches(1, 3), [&] {
-        const StaticMap loaded = load_static_world(file);
+        const StaticMap loaded = load_static_world(file, PlaneTreeSettings::precomputed(), 1);
         collider_bytes = tree_bytes = 0;
         for (std::uint32_t id = 0; id < loaded.statics->size(); ++id) {
             collider_bytes += loaded.statics->collider(id).bytes_used();
             tree_bytes += loaded.plane_trees[id]->bytes_used();
         }
+    });
+    const Timing load_2 = median_ms(run.batches(1, 3), [&] {
+        keep(load_static_world(file, PlaneTreeSettings::precomputed(), 2).statics->size());
     });
     std::filesystem::remove(file);
     const double resident = double(collider_bytes + tree_bytes) / triangles;
@@ -233,6 +245,8 @@ void bench_big_map(BenchRun& run) {
     BenchRow& load_row = run.add("bigmap", "165 km track: load the map", load.wall_ms * 1e6,
                                  "165 km track: bake (2 threads)");
     load_row.figures = {{"cpu_ms", load.cpu_ms},
+                        {"wall_ms_2_threads", load_2.wall_ms},
+                        {"cpu_ms_all_threads_2_threads", load_2.process_cpu_ms},
                         {"file_bytes_per_triangle", file_bytes / triangles},
                         {"collider_bytes_per_triangle", double(collider_bytes) / triangles},
                         {"plane_tree_bytes_per_triangle", double(tree_bytes) / triangles}};
@@ -241,9 +255,10 @@ void bench_big_map(BenchRun& run) {
                    big_enough,
                    std::to_string(bake.wall_ms) + " ms wall (" +
                        std::to_string(bake.process_cpu_ms) + " ms CPU over both threads)");
-    run.add_target(
-        "10M-triangle map: load <= 0.5 s (thread CPU)", 500.0 / load.cpu_ms, 1.0, big_enough,
-        std::to_string(load.cpu_ms) + " ms CPU, " + std::to_string(load.wall_ms) + " ms wall");
+    run.add_target("10M-triangle map: load <= 0.5 s (CPU, 1 thread)", 500.0 / load.cpu_ms, 1.0,
+                   big_enough,
+                   std::to_string(load.cpu_ms) + " ms CPU, " + std::to_string(load.wall_ms) +
+                       " ms wall; on 2 threads " + std::to_string(load_2.wall_ms) + " ms wall");
     run.add_target("10M-triangle map: BVH + plane trees + vertices <= 100 bytes a triangle",
                    100.0 / resident, 1.0, big_enough,
                    std::to_string(resident) + " bytes a triangle over " +

@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <string>
 
 #include <glm/common.hpp>
@@ -14,6 +13,7 @@
 #include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
 
+#include "collision/float_bounds.hpp"
 #include "collision/triangle_predicates.hpp"
 #include "trackphys/collision/plane_tree.hpp"
 #include "trackphys/error.hpp"
@@ -39,19 +39,12 @@ inline glm::dvec3 node_normal(const PlaneTreeNode& node) {
     return {node.normal[0], node.normal[1], node.normal[2]};
 }
 
-/// A float at or below x.
-inline float float_down(double x) {
-    float f = static_cast<float>(x);
-    if (double(f) > x) f = std::nextafter(f, -std::numeric_limits<float>::infinity());
-    return f;
-}
+/// A float at or below x (the largest; branch-free: a map load rounds six bounds for each
+/// of its triangles).
+inline float float_down(double x) { return round_down(x); }
 
-/// A float at or above x.
-inline float float_up(double x) {
-    float f = static_cast<float>(x);
-    if (double(f) < x) f = std::nextafter(f, std::numeric_limits<float>::infinity());
-    return f;
-}
+/// A float at or above x (the smallest).
+inline float float_up(double x) { return round_up(x); }
 
 /// The float box of a triangle's vertices, rounded outward.
 inline PlaneTreeBox float_box(const Triangle& t) {

@@ -1,6 +1,8 @@
 #include "trackphys/geometry/triangle.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 
 #include <glm/geometric.hpp>
 
@@ -24,17 +26,35 @@ Aabb Triangle::bounds() const {
     return box;
 }
 
+namespace {
+
+double longest_edge_squared(const std::array<glm::dvec3, 3>& v) {
+    const auto squared = [](const glm::dvec3& d) { return glm::dot(d, d); };
+    return std::max({squared(v[1] - v[0]), squared(v[2] - v[1]), squared(v[0] - v[2])});
+}
+
+}  // namespace
+
 double Triangle::longest_edge() const {
-    return std::max({glm::distance(vertices[0], vertices[1]),
-                     glm::distance(vertices[1], vertices[2]),
-                     glm::distance(vertices[2], vertices[0])});
+    // One root instead of three, the same double: sqrt is correctly rounded and monotonic,
+    // so the root of the largest square is the largest root (glm::distance is that root).
+    return std::sqrt(longest_edge_squared(vertices));
 }
 
 bool Triangle::is_degenerate(double relative_tolerance) const {
+    // The test below without its roots and division: height > tolerance * longest is
+    // |n|^2 > tolerance^2 * longest^4. Asking for 4 times that leaves room for every rounding
+    // of both forms, so a triangle this sure of is not degenerate by the test below either.
+    // Edges whose fourth powers could leave the normal range take the test below.
+    const double longest2 = longest_edge_squared(vertices);
+    const glm::dvec3 n = area_normal();
+    if (longest2 >= 1e-100 && longest2 <= 1e100 &&
+        glm::dot(n, n) > 4.0 * (relative_tolerance * relative_tolerance) * (longest2 * longest2))
+        return false;
     const double longest = longest_edge();
     if (!(longest > 0.0)) return true;
     // height over the longest edge = 2 * area / longest
-    const double height = glm::length(area_normal()) / longest;
+    const double height = glm::length(n) / longest;
     return !(height > relative_tolerance * longest);
 }
 

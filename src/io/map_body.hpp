@@ -77,6 +77,19 @@ class BodyWriter {
     std::vector<Piece> pieces_;
 };
 
+/// Where an array lies in a body that BodyReader checked, to be copied out later (the
+/// loader copies the colliders' arrays on several threads).
+template <class T>
+struct ArrayBytes {
+    const char* from = nullptr;
+    std::size_t count = 0;
+
+    void copy_to(std::vector<T>& out) const {
+        out.resize(count);
+        if (count != 0) std::memcpy(out.data(), from, count * sizeof(T));
+    }
+};
+
 /// Reads a map body back, every read checked against the bytes left. Messages name what was
 /// read; the codec adds the file and the collider.
 class BodyReader {
@@ -90,14 +103,17 @@ class BodyReader {
         std::memcpy(&value, take(sizeof(T), 1, what), sizeof(T));
         return value;
     }
+    /// The place of `count` elements, checked against the bytes left (nothing is copied).
+    template <class T>
+    ArrayBytes<T> array(std::uint64_t count, const char* what) {
+        static_assert(std::is_trivially_copyable_v<T>);
+        return {take(sizeof(T), count, what), static_cast<std::size_t>(count)};
+    }
     /// `count` elements into `out` (resized), checked against the bytes left before any
     /// allocation.
     template <class T>
     void array(std::vector<T>& out, std::uint64_t count, const char* what) {
-        static_assert(std::is_trivially_copyable_v<T>);
-        const char* from = take(sizeof(T), count, what);
-        out.resize(static_cast<std::size_t>(count));
-        if (count != 0) std::memcpy(out.data(), from, out.size() * sizeof(T));
+        array<T>(count, what).copy_to(out);
     }
     std::size_t left() const { return body_.size() - at_; }
 

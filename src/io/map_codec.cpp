@@ -40,35 +40,51 @@ void MapCodec::write(map_detail::BodyWriter& body, const StaticCollider& c, cons
     body.array(tree.ids_);
 }
 
-MapCodec::Loaded MapCodec::read(map_detail::BodyReader& body) {
-    const auto r = body.record<ColliderRecord>("collider record");
+MapCodec::ColliderBytes MapCodec::locate(map_detail::BodyReader& body) {
+    ColliderBytes b;
+    const ColliderRecord& r = b.record = body.record<ColliderRecord>("collider record");
     if (r.mesh_triangles > StaticCollider::kMaxTriangles)
         throw Error("the collider has " + std::to_string(r.mesh_triangles) +
                     " mesh triangles, more than " + std::to_string(StaticCollider::kMaxTriangles));
     if (r.slots > r.mesh_triangles)
         throw Error("the collider keeps " + std::to_string(r.slots) + " triangles of " +
                     std::to_string(r.mesh_triangles));
+    b.vertices = body.array<glm::dvec3>(r.vertices, "vertices");
+    b.slot_vertices = body.array<std::array<std::uint32_t, 3>>(r.slots, "slot vertex indices");
+    b.triangle_to_slot = body.array<std::uint32_t>(r.mesh_triangles, "triangle slots");
+    b.slot_blocks = body.array<BvhSlotBlock>(
+        (r.slots + BvhSlotBlock::kLanes - 1) / BvhSlotBlock::kLanes, "slot blocks");
+    b.nodes = body.array<BvhNode>(r.nodes, "BVH nodes");
+    b.grids = body.array<BvhNodeGrid>(r.grids, "BVH grids");
+    b.node_grid = body.array<std::uint32_t>(r.nodes, "BVH node grids");
+    b.plane_nodes = body.array<PlaneTreeNode>(r.plane_nodes, "plane-tree nodes");
+    b.plane_slabs = body.array<PlaneTreeSlab>(r.plane_slabs, "plane-tree slabs");
+    b.plane_ids = body.array<std::uint32_t>(r.slots, "plane-tree ids");
+    return b;
+}
+
+MapCodec::Loaded MapCodec::read(const ColliderBytes& b) {
     auto c = std::shared_ptr<StaticCollider>(new StaticCollider());
-    body.array(c->vertices_, r.vertices, "vertices");
-    body.array(c->slot_vertices_, r.slots, "slot vertex indices");
-    body.array(c->triangle_to_slot_, r.mesh_triangles, "triangle slots");
-    body.array(c->slot_blocks_, (r.slots + BvhSlotBlock::kLanes - 1) / BvhSlotBlock::kLanes,
-               "slot blocks");
-    body.array(c->nodes_, r.nodes, "BVH nodes");
-    body.array(c->grids_, r.grids, "BVH grids");
-    body.array(c->node_grid_, r.nodes, "BVH node grids");
-    c->content_hash_ = r.content_hash;
-    std::memcpy(c->inside_extent_, r.inside_extent, sizeof r.inside_extent);
+    b.vertices.copy_to(c->vertices_);
+    b.slot_vertices.copy_to(c->slot_vertices_);
+    b.triangle_to_slot.copy_to(c->triangle_to_slot_);
+    b.slot_blocks.copy_to(c->slot_blocks_);
+    b.nodes.copy_to(c->nodes_);
+    b.grids.copy_to(c->grids_);
+    b.node_grid.copy_to(c->node_grid_);
+    c->content_hash_ = b.record.content_hash;
+    std::memcpy(c->inside_extent_, b.record.inside_extent, sizeof b.record.inside_extent);
     check_collider(*c);
 
     auto tree = std::make_shared<PlaneTree>();
-    body.array(tree->nodes_, r.plane_nodes, "plane-tree nodes");
-    body.array(tree->slabs_, r.plane_slabs, "plane-tree slabs");
-    body.array(tree->ids_, r.slots, "plane-tree ids");
+    b.plane_nodes.copy_to(tree->nodes_);
+    b.plane_slabs.copy_to(tree->slabs_);
+    b.plane_ids.copy_to(tree->ids_);
     const int depth = check_plane_tree(*tree, *c);
-    if (r.plane_depth != depth)
-        throw Error("the plane tree's depth is recorded as " + std::to_string(r.plane_depth) +
-                    ", its deepest leaf is at " + std::to_string(depth));
+    if (b.record.plane_depth != depth)
+        throw Error("the plane tree's depth is recorded as " +
+                    std::to_string(b.record.plane_depth) + ", its deepest leaf is at " +
+                    std::to_string(depth));
     tree->depth_ = depth;
     tree->rank_slabs();
     // The slots' boxes are derived from the collider's vertices, as a fresh build derives

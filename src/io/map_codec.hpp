@@ -36,13 +36,33 @@ struct MapCodec {
         std::shared_ptr<const PlaneTree> tree;
     };
 
+    /// Where one collider's record and arrays lie in the body. Finding them is a serial pass
+    /// over the records (every length checked against the bytes left); the arrays are then
+    /// copied and verified collider by collider, on any thread.
+    struct ColliderBytes {
+        ColliderRecord record;
+        map_detail::ArrayBytes<glm::dvec3> vertices;
+        map_detail::ArrayBytes<std::array<std::uint32_t, 3>> slot_vertices;
+        map_detail::ArrayBytes<std::uint32_t> triangle_to_slot;
+        map_detail::ArrayBytes<BvhSlotBlock> slot_blocks;
+        map_detail::ArrayBytes<BvhNode> nodes;
+        map_detail::ArrayBytes<BvhNodeGrid> grids;
+        map_detail::ArrayBytes<std::uint32_t> node_grid;
+        map_detail::ArrayBytes<PlaneTreeNode> plane_nodes;
+        map_detail::ArrayBytes<PlaneTreeSlab> plane_slabs;
+        map_detail::ArrayBytes<std::uint32_t> plane_ids;
+    };
+
     /// Adds the collider and its tree (built over every kept triangle, ids = mesh indices)
     /// to the body: points at their arrays, which must outlive `body`.
     static void write(map_detail::BodyWriter& body, const StaticCollider& collider,
                       const PlaneTree& tree);
-    /// Reads one collider and its tree and verifies them; throws trackphys::Error naming
-    /// the array and the entry that is wrong.
-    static Loaded read(map_detail::BodyReader& body);
+    /// Finds the next collider's arrays; throws trackphys::Error when its record is
+    /// inconsistent or an array runs past the body.
+    static ColliderBytes locate(map_detail::BodyReader& body);
+    /// Copies one collider and its tree out of the body and verifies them; throws
+    /// trackphys::Error naming the array and the entry that is wrong.
+    static Loaded read(const ColliderBytes& bytes);
 
     /// The structure checks (map_check.cpp), each throwing trackphys::Error on the first
     /// problem found. check_collider also sets the collider's bounds from its vertices;

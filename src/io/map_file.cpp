@@ -13,6 +13,7 @@
 #include <sstream>
 #include <system_error>
 
+#include "core/parallel_items.hpp"
 #include "map_body.hpp"
 #include "map_codec.hpp"
 #include "mapped_file.hpp"
@@ -225,7 +226,8 @@ void write_map(std::ostream& out, const StaticMap& map) {
     body.write_to(out);
 }
 
-StaticMap decode_checked(std::string_view bytes, const std::optional<PlaneTreeSettings>& expected) {
+StaticMap decode_checked(std::string_view bytes, const std::optional<PlaneTreeSettings>& expected,
+                         unsigned threads) {
     check_host();
     if (bytes.size() >= sizeof kMagic && std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0)
         throw Error("wrong magic (not a trackphys map file)");
@@ -274,18 +276,34 @@ StaticMap decode_checked(std::string_view bytes, const std::optional<PlaneTreeSe
     if (record.colliders > std::numeric_limits<std::uint32_t>::max())
         throw Error(std::to_string(record.colliders) + " colliders, more than a world holds");
     if (record.centerline_samples != 0) map.track = read_track(body, record);
-    auto world = std::make_shared<StaticWorld>();
+    const auto in_collider = [](std::size_t id, const Error& e) {
+        return Error("collider " + std::to_string(id) + ": " + e.what());
+    };
+    std::vector<detail::MapCodec::ColliderBytes> colliders;
     for (std::uint64_t id = 0; id < record.colliders; ++id) {
         try {
-            detail::MapCodec::Loaded loaded = detail::MapCodec::read(body);
-            world->add(std::move(loaded.collider));
-            map.plane_trees.push_back(std::move(loaded.tree));
+            colliders.push_back(detail::MapCodec::locate(body));
         } catch (const Error& e) {
-            throw Error("collider " + std::to_string(id) + ": " + e.what());
+            throw in_collider(id, e);
         }
     }
     if (body.left() != 0)
         throw Error(std::to_string(body.left()) + " unread bytes at the end of the body");
+
+    // Copying and verifying are most of a load, and each collider's are independent.
+    std::vector<detail::MapCodec::Loaded> loaded(colliders.size());
+    detail::run_items_in_parallel(colliders.size(), threads, [&](std::size_t id) {
+        try {
+            loaded[id] = detail::MapCodec::read(colliders[id]);
+        } catch (const Error& e) {
+            throw in_collider(id, e);
+        }
+    });
+    auto world = std::make_shared<StaticWorld>();
+    for (detail::MapCodec::Loaded& l : loaded) {
+        world->add(std::move(l.collider));
+        map.plane_trees.push_back(std::move(l.tree));
+    }
     map.statics = std::move(world);
     return map;
 }
@@ -299,9 +317,9 @@ std::string encode_map(const StaticMap& map) {
 }
 
 StaticMap decode_map(std::string_view bytes, const std::string& source,
-                     const std::optional<PlaneTreeSettings>& expected) {
+                     const std::optional<PlaneTreeSettings>& expected, unsigned threads) {
     try {
-        return decode_checked(bytes, expected);
+        return decode_checked(bytes, expected, threads);
     } catch (const Error& e) {
         throw Error(source + ": " + e.what());
     }
@@ -338,13 +356,13 @@ void save_map(const std::filesystem::path& path, const StaticMap& map) {
 }
 
 StaticMap load_static_world(const std::filesystem::path& path,
-                            const std::optional<PlaneTreeSettings>& expected) {
+                            const std::optional<PlaneTreeSettings>& expected, unsigned threads) {
     const std::string source = "map '" + path.string() + "'";
     std::error_code error;
     if (std::filesystem::is_directory(path, error)) throw Error(source + ": is a folder");
     // Mapped, not read: the arrays are copied once, from the page cache into the structures.
     const detail::MappedFile file(path, "map");
-    return decode_map(file.bytes(), source, expected);
+    return decode_map(file.bytes(), source, expected, threads);
 }
 
 bool is_map_file(const std::filesystem::path& path) {

@@ -1,7 +1,12 @@
 #include "trackphys/geometry/triangle.hpp"
 
+#include <algorithm>
+#include <array>
+#include <random>
+
 #include <gtest/gtest.h>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 namespace trackphys {
@@ -26,6 +31,36 @@ TEST(Triangle, DegenerateTrianglesAreRecognised) {
     EXPECT_TRUE(Triangle({0, 0, 0}, {1, 0, 0}, {0.5, 1e-14, 0}).is_degenerate());  // too thin
     EXPECT_FALSE(Triangle({0, 0, 0}, {1, 0, 0}, {0.5, 1e-9, 0}).is_degenerate());  // thin but real
     EXPECT_FALSE(Triangle({1e4, 0, 0}, {1e4 + 1e-3, 0, 0}, {1e4, 1e-3, 0}).is_degenerate());
+}
+
+// is_degenerate skips its roots for triangles far from the tolerance: on triangles near it,
+// at any scale, its verdict must be the one of the test with the roots.
+TEST(Triangle, DegenerateVerdictIsTheOneOfTheTestWithRoots) {
+    const auto by_roots = [](const Triangle& t, double tolerance) {
+        const auto& v = t.vertices;
+        const double longest = std::max(
+            {glm::distance(v[0], v[1]), glm::distance(v[1], v[2]), glm::distance(v[2], v[0])});
+        if (!(longest > 0.0)) return true;
+        return !(glm::length(t.area_normal()) / longest > tolerance * longest);
+    };
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> u(-1.0, 1.0), ratio(0.2, 3.0);
+    int degenerate = 0, kept = 0;
+    for (int i = 0; i < 200'000; ++i) {
+        const double tolerance = std::array{1e-12, 1e-3, 0.1, 0.4}[i % 4];
+        const double scale = std::array{1e-60, 1e-3, 1.0, 1e4, 1e60}[i / 4 % 5];
+        const glm::dvec3 a(u(rng), u(rng), u(rng)), b(u(rng), u(rng), u(rng));
+        const glm::dvec3 side = glm::normalize(glm::cross(b - a, glm::dvec3(u(rng), u(rng), 1.0)));
+        // The apex at about `ratio` times the height the tolerance asks for.
+        const double height = ratio(rng) * tolerance * glm::distance(a, b);
+        const glm::dvec3 apex = glm::mix(a, b, 0.5 + 0.5 * u(rng)) + height * side;
+        const Triangle t(scale * a, scale * b, scale * apex);
+        const bool verdict = t.is_degenerate(tolerance);
+        ASSERT_EQ(verdict, by_roots(t, tolerance)) << i << ": tolerance " << tolerance;
+        (verdict ? degenerate : kept) += 1;
+    }
+    EXPECT_GT(degenerate, 10'000);
+    EXPECT_GT(kept, 10'000);
 }
 
 }  // namespace

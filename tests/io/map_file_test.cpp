@@ -286,6 +286,32 @@ TEST(MapFile, CraftedStructuresAreRejected) {
     EXPECT_NE(with(verts.begin, 1u << 30).find("vertex index"), std::string::npos);
 }
 
+// Colliders are loaded on several threads: the map, and the error a bad one gives, must be
+// those of a serial load.
+TEST(MapFile, AnyThreadCountLoadsTheSameAndNamesTheFirstBadCollider) {
+    for (const unsigned threads : {1u, 2u, 3u})
+        EXPECT_EQ(
+            encode_map(decode_map(baked_bytes(), "map", PlaneTreeSettings::precomputed(), threads)),
+            baked_bytes())
+            << threads << " threads";
+
+    const std::vector<Section> sections = sections_of(baked_bytes());
+    std::string bytes = baked_bytes();
+    for (const char* name : {"collider 3 slot vertices", "collider 8 slot vertices"}) {
+        const Section s = *std::find_if(sections.begin(), sections.end(),
+                                        [&](const Section& x) { return x.name == name; });
+        const std::uint32_t out_of_range = 1u << 30;
+        std::memcpy(bytes.data() + s.begin, &out_of_range, 4);
+    }
+    bytes = resealed(bytes);
+    for (const unsigned threads : {1u, 2u, 3u}) {
+        const std::string message =
+            error_of([&] { decode_map(bytes, "map", PlaneTreeSettings::precomputed(), threads); });
+        EXPECT_NE(message.find("collider 3: slot 0: vertex index"), std::string::npos)
+            << threads << " threads: " << message;
+    }
+}
+
 TEST(MapFile, AnotherVersionOrOtherBuildOptionsAreNamed) {
     std::string bytes = baked_bytes();
     // Version 1 (plane-tree slabs for every node) is what maps baked before version 2 hold.

@@ -65,20 +65,24 @@ TRACKPHYS_API std::string encode_map(const StaticMap& map);
 /// whose contents break the structure's invariants (an index or range out of bounds, a
 /// cycle, a tree too deep, a coordinate not finite): the structure is verified once, in
 /// time linear in its size, so that no query on a loaded map can read out of bounds or
-/// loop. Nothing is ever half-loaded.
+/// loop. Nothing is ever half-loaded. The colliders are copied and verified on up to
+/// `threads` threads (0: std::thread::hardware_concurrency()); the result, and the error of
+/// a bad map, do not depend on the thread count.
 TRACKPHYS_API StaticMap
 decode_map(std::string_view bytes, const std::string& source = "map",
-           const std::optional<PlaneTreeSettings>& expected = PlaneTreeSettings::precomputed());
+           const std::optional<PlaneTreeSettings>& expected = PlaneTreeSettings::precomputed(),
+           unsigned threads = 0);
 
 /// Writes the map file atomically (to a temporary file beside `path`, then renamed over
 /// it). Throws trackphys::Error naming the path and the reason.
 TRACKPHYS_API void save_map(const std::filesystem::path& path, const StaticMap& map);
 
-/// Reads a map file (one read of the whole file) and decodes it (decode_map, the source
-/// named by its path).
+/// Maps a map file into memory and decodes it (decode_map, the source named by its path, on
+/// up to `threads` threads).
 TRACKPHYS_API StaticMap load_static_world(
     const std::filesystem::path& path,
-    const std::optional<PlaneTreeSettings>& expected = PlaneTreeSettings::precomputed());
+    const std::optional<PlaneTreeSettings>& expected = PlaneTreeSettings::precomputed(),
+    unsigned threads = 0);
 
 /// True when the file starts with the map magic (any version): what `trackphys info` uses to
 /// tell a map from a mesh file. False for a file it cannot read.
