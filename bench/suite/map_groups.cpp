@@ -29,7 +29,6 @@ double ms_since(Clock::time_point start) {
     return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
-// CPU time of every thread of this process (ns).
 // "12.3 ms": a duration for a target line's evidence.
 std::string ms_text(double ms) {
     char text[32];
@@ -37,6 +36,7 @@ std::string ms_text(double ms) {
     return text;
 }
 
+// CPU time of every thread of this process (ns).
 double process_cpu_ns() {
     timespec t{};
     clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);

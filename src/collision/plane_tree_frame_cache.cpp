@@ -24,7 +24,7 @@ static_assert(std::is_trivially_destructible_v<NormalizedTriangle>);
 
 const NormalizedTriangle* PlaneTreeFrameCache::run(const PlaneTree& tree, std::uint32_t first,
                                                    std::uint32_t count, std::uint64_t needed) {
-    TP_ASSERT(count >= 1 && count <= kMaxRun && (count == 64 || needed >> count == 0),
+    TP_ASSERT(count >= 1 && count <= kMaxRun && (count == kMaxRun || needed >> count == 0),
               "plane tree frame cache: bad run");
     if (2 * (entries_ + 1) > index_.size()) grow_index();
     const std::size_t mask = index_.size() - 1;
@@ -33,9 +33,10 @@ const NormalizedTriangle* PlaneTreeFrameCache::run(const PlaneTree& tree, std::u
         at = (at + 1) & mask;
     Entry& e = index_[at];
     if (e.stamp != stamp_) {
-        e = {&tree, first, stamp_, 0, reserve(count)};
+        e = {&tree, first, stamp_, count, 0, reserve(count)};
         ++entries_;
     }
+    TP_ASSERT(e.count == count, "plane tree frame cache: a run asked for with another count");
     for (std::uint64_t missing = needed & ~e.built; missing != 0; missing &= missing - 1) {
         const int k = std::countr_zero(missing);
         std::construct_at(e.frames + k, tree.triangle(first + static_cast<std::uint32_t>(k)));
@@ -75,8 +76,8 @@ NormalizedTriangle* PlaneTreeFrameCache::reserve(std::uint32_t count) {
 }
 
 void PlaneTreeFrameCache::grow_index() {
-    // Room for a few thousand runs from the start: a car's runs between two clear() calls
-    // reach several hundred, and growing mid-race would allocate.
+    // Room for thousands of runs from the start, more than a car's update meets between two
+    // clear() calls: growing mid-race would allocate.
     std::vector<Entry> old(index_.size() < 4096 ? 4096 : 2 * index_.size());
     old.swap(index_);
     const std::size_t mask = index_.size() - 1;

@@ -36,22 +36,25 @@ double longest_edge_squared(const std::array<glm::dvec3, 3>& v) {
 }  // namespace
 
 double Triangle::longest_edge() const {
-    // One root instead of three, the same double: sqrt is correctly rounded and monotonic,
-    // so the root of the largest square is the largest root (glm::distance is that root).
+    // sqrt is correctly rounded and monotonic, so the root of the largest square is the
+    // largest of the three edges' lengths, to the bit.
     return std::sqrt(longest_edge_squared(vertices));
 }
 
 bool Triangle::is_degenerate(double relative_tolerance) const {
     // The test below without its roots and division: height > tolerance * longest is
-    // |n|^2 > tolerance^2 * longest^4. Asking for 4 times that leaves room for every rounding
-    // of both forms, so a triangle this sure of is not degenerate by the test below either.
-    // Edges whose fourth powers could leave the normal range take the test below.
+    // |n| > tolerance * longest^2, or |n|^2 > (tolerance * longest^2)^2. Asking for 4 times
+    // that leaves room for every rounding of both forms, so a triangle this sure of is not
+    // degenerate by the test below either. Edges whose fourth powers could leave the normal
+    // range take the test below; the product is squared last so that a tolerance too small
+    // to square still compares as the test below would.
     const double longest2 = longest_edge_squared(vertices);
     const glm::dvec3 n = area_normal();
+    const double least_normal = relative_tolerance * longest2;
     if (longest2 >= 1e-100 && longest2 <= 1e100 &&
-        glm::dot(n, n) > 4.0 * (relative_tolerance * relative_tolerance) * (longest2 * longest2))
+        glm::dot(n, n) > 4.0 * (least_normal * least_normal))
         return false;
-    const double longest = longest_edge();
+    const double longest = std::sqrt(longest2);
     if (!(longest > 0.0)) return true;
     // height over the longest edge = 2 * area / longest
     const double height = glm::length(n) / longest;

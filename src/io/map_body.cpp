@@ -30,8 +30,8 @@ void MapChecksum::add(const void* data, std::size_t bytes) {
         lane = step(lane, word(i++));
     };
     while (i < words && words_ % 4 != 0) one_word();
-    // Four words at a time, the lanes in registers: the same steps in the same order per
-    // lane, without the round trip through lanes_ that serialised them.
+    // Four words at a time, the lanes in registers so that their four chains run side by
+    // side: the same steps in the same order per lane.
     std::uint64_t a = lanes_[0], b = lanes_[1], c = lanes_[2], d = lanes_[3];
     const std::size_t first = i, whole = i + (words - i) / 4 * 4;
     for (; i < whole; i += 4) {

@@ -48,7 +48,9 @@ TEST(Triangle, DegenerateVerdictIsTheOneOfTheTestWithRoots) {
     int degenerate = 0, kept = 0;
     for (int i = 0; i < 200'000; ++i) {
         const double tolerance = std::array{1e-12, 1e-3, 0.1, 0.4}[i % 4];
-        const double scale = std::array{1e-60, 1e-3, 1.0, 1e4, 1e60}[i / 4 % 5];
+        // Both sides of each end of the range where the roots are skipped (edges of 1e+-50).
+        const double scale =
+            std::array{1e-60, 0.9e-50, 1.1e-50, 1e-3, 1.0, 1e4, 0.9e50, 1.1e50, 1e60}[i / 4 % 9];
         const glm::dvec3 a(u(rng), u(rng), u(rng)), b(u(rng), u(rng), u(rng));
         const glm::dvec3 side = glm::normalize(glm::cross(b - a, glm::dvec3(u(rng), u(rng), 1.0)));
         // The apex at about `ratio` times the height the tolerance asks for.
@@ -61,6 +63,10 @@ TEST(Triangle, DegenerateVerdictIsTheOneOfTheTestWithRoots) {
     }
     EXPECT_GT(degenerate, 10'000);
     EXPECT_GT(kept, 10'000);
+    // A tolerance whose square underflows: the skip must not take the height for enough.
+    const Triangle needle({0, 0, 0}, {0.9e50, 0, 0}, {0, 1e-150, 0});
+    EXPECT_EQ(needle.is_degenerate(1e-170), by_roots(needle, 1e-170));
+    EXPECT_TRUE(needle.is_degenerate(1e-170));
 }
 
 }  // namespace

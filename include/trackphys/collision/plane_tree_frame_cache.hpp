@@ -18,8 +18,8 @@ class PlaneTree;
 /// meet the same few road triangles step after step), at addresses that stay put until
 /// clear(): MidPhase candidates point at them. Frames are kept by leaf run (up to 64 slots
 /// of one leaf, side by side in slot order), so that a query finds a leaf's frames with one
-/// lookup. No allocation once the storage has grown to the most frames held between two
-/// clear() calls.
+/// lookup. No allocation once the storage has grown to the most room that runs take
+/// between two clear() calls.
 class TRACKPHYS_API PlaneTreeFrameCache {
   public:
     /// The largest run: a leaf of more slots is kept as several runs.
@@ -27,8 +27,9 @@ class TRACKPHYS_API PlaneTreeFrameCache {
 
     /// Storage for the frames of `tree`'s slots first .. first + count - 1 (count in
     /// [1, kMaxRun], all of one leaf), of which those in `needed` (bit k: slot first + k) are
-    /// built by now (PlaneTree::triangle); read no slot not asked for yet. The same first must always come with the same count. `tree` must stay alive
-    /// and unchanged until clear().
+    /// built by now (PlaneTree::triangle); read no slot not asked for yet. Until clear(), a
+    /// run is asked for with the count it was first asked for (checked by TP_ASSERT), and
+    /// `tree` stays alive and unchanged.
     const NormalizedTriangle* run(const PlaneTree& tree, std::uint32_t first, std::uint32_t count,
                                   std::uint64_t needed);
     /// The frames of the slots the last query given this cache reported, in its order.
@@ -45,12 +46,13 @@ class TRACKPHYS_API PlaneTreeFrameCache {
         const PlaneTree* tree = nullptr;
         std::uint32_t first = 0;
         std::uint32_t stamp = 0;  ///< free unless it is stamp_
+        std::uint32_t count = 0;  ///< the run's slots, room reserved at frames
         std::uint64_t built = 0;  ///< bit k: frames[k] is slot first + k's
         NormalizedTriangle* frames = nullptr;
     };
     // Frames in the first block: a run takes room for each slot of its leaf, built or
-    // not, so a car's update holds up to a few thousand; starting at 1024 (123 kB, as much
-    // as the index) its storage reaches its peak within a race's first updates.
+    // not, so the first block is large enough for a car's update to stay within it after
+    // its first updates (a race that allocates once warm fails WorldAllocation's test).
     static constexpr std::size_t kBlock = 1024;
 
     NormalizedTriangle* reserve(std::uint32_t count);
