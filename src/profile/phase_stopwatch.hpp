@@ -1,7 +1,9 @@
 #pragma once
 
 #include <chrono>
+#include <cstdint>
 
+#include "profile/tick_clock.hpp"
 #include "trackphys/profile/trace_recorder.hpp"
 #include "trackphys/profile/update_profile.hpp"
 
@@ -18,24 +20,36 @@ class PhaseStopwatch {
         : profile_(profile),
           enabled_(enabled),
           trace_(enabled ? trace : nullptr),
-          last_(enabled ? Clock::now() : Clock::time_point{}) {}
+          microseconds_per_tick_(enabled ? TickClock::microseconds_per_tick() : 0.0),
+          last_(enabled ? TickClock::now() : 0),
+          last_traced_(trace_ ? Clock::now() : Clock::time_point{}) {}
 
     /// The profile the laps go to, for the counts kept beside the times.
     UpdateProfile& profile() { return profile_; }
 
     void lap(Phase phase) {
         if (!enabled_) return;
-        const Clock::time_point now = Clock::now();
-        profile_[phase] += std::chrono::duration<double, std::micro>(now - last_).count();
-        if (trace_) trace_->record(phase_name(phase), last_, now);
+        const std::uint64_t now = TickClock::now();
+        profile_[phase] += static_cast<double>(now - last_) * microseconds_per_tick_;
         last_ = now;
+        if (trace_) trace_zone(phase);
     }
 
   private:
+    // Traces read steady_clock itself: ticks turned into time would drift from the update
+    // zones World records, by the rate's error times the run's length.
+    void trace_zone(Phase phase) {
+        const Clock::time_point now = Clock::now();
+        trace_->record(phase_name(phase), last_traced_, now);
+        last_traced_ = now;
+    }
+
     UpdateProfile& profile_;
     bool enabled_;
     TraceRecorder* trace_;
-    Clock::time_point last_;
+    double microseconds_per_tick_;
+    std::uint64_t last_;
+    Clock::time_point last_traced_;
 };
 
 }  // namespace trackphys
