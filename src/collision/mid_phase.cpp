@@ -32,11 +32,16 @@ std::optional<MidPhaseMode> parse_mid_phase_mode(std::string_view name) {
 }
 
 ColliderPlaneTrees make_collider_plane_trees(const StaticWorld& world,
-                                             const PlaneTreeSettings& settings, unsigned threads) {
+                                             const PlaneTreeSettings& settings, unsigned threads,
+                                             std::size_t frame_budget_bytes) {
+    std::size_t triangles = 0;
+    for (std::uint32_t id = 0; id < world.size(); ++id)
+        triangles += world.collider(id).triangle_count();
+    const PlaneTreeFrames frames = plane_tree_frames_within(triangles, frame_budget_bytes);
     ColliderPlaneTrees trees(world.size());
     detail::run_items_in_parallel(world.size(), threads, [&](std::size_t id) {
-        trees[id] = std::make_shared<const PlaneTree>(
-            make_collider_plane_tree(world.collider(static_cast<std::uint32_t>(id)), settings));
+        trees[id] = std::make_shared<const PlaneTree>(make_collider_plane_tree(
+            world.collider(static_cast<std::uint32_t>(id)), settings, frames));
     });
     return trees;
 }

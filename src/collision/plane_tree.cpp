@@ -25,24 +25,30 @@ template <class Shape>
                                                           PlaneTreeQueryCounts& counts) const {
     for (std::uint32_t run = first; run < end; run += PlaneTreeFrameCache::kMaxRun) {
         const std::uint32_t count = std::min(end - run, PlaneTreeFrameCache::kMaxRun);
-        // The box test of every slot first: a leaf whose slots all fail it costs no cache
-        // lookup, and only the slots that pass pay for their frames.
-        std::uint64_t near = 0;  // bit k: the shape's box meets slot run + k's
-        for (std::uint32_t k = 0; k < count; ++k)
-            if (shape.reaches_box(boxes_[run + k])) near |= std::uint64_t{1} << k;
-        if (near == 0) continue;
-        const NormalizedTriangle* cached =
-            frames != nullptr ? frames->run(*this, run, count, near) : nullptr;
+        // The slots the filter runs on (bit k: slot run + k): those whose box the shape's box
+        // meets, in a tree that keeps boxes (a leaf whose slots all fail costs no lookup, and
+        // only the slots that pass pay for their frames), else all of them.
+        std::uint64_t near = ~std::uint64_t{0} >> (64 - count);
+        if (!boxes_.empty()) {
+            near = 0;
+            for (std::uint32_t k = 0; k < count; ++k)
+                if (shape.reaches_box(boxes_[run + k])) near |= std::uint64_t{1} << k;
+            if (near == 0) continue;
+        }
+        // The run's frames: the tree's own, the cache's, or none (each built in turn).
+        const NormalizedTriangle* run_frames = !frames_.empty() ? frames_.data() + run
+                                               : frames != nullptr
+                                                   ? frames->run(*this, run, count, near)
+                                                   : nullptr;
         for (; near != 0; near &= near - 1) {
             const auto k = static_cast<std::uint32_t>(std::countr_zero(near));
             const std::uint32_t slot = run + k;
-            const bool touched = cached != nullptr ? shape.touches(cached[k])
-                                 : collider_ != nullptr
-                                     ? shape.touches(collider_->normalized_triangle(ids_[slot]))
-                                     : shape.touches(frames_[slot]);
+            const bool touched = run_frames != nullptr
+                                     ? shape.touches(run_frames[k])
+                                     : shape.touches(collider_->normalized_triangle(ids_[slot]));
             if (!touched) continue;
             out.push_back(slot);
-            if (cached != nullptr) frames->reported_.push_back(cached + k);
+            if (frames != nullptr) frames->reported_.push_back(run_frames + k);
             ++counts.triangles_reported;
         }
     }
@@ -137,8 +143,17 @@ void PlaneTree::rank_slabs() {
     }
 }
 
-void PlaneTree::use_collider_frames(const StaticCollider& collider) {
+void PlaneTree::use_collider_frames(const StaticCollider& collider, PlaneTreeFrames frames) {
     collider_ = &collider;
+    if (frames == PlaneTreeFrames::kept) {
+        boxes_.clear();
+        boxes_.shrink_to_fit();
+        if (frames_.size() == ids_.size()) return;  // the builder's, from the same vertices
+        frames_.clear();
+        frames_.reserve(ids_.size());
+        for (const std::uint32_t id : ids_) frames_.push_back(collider.normalized_triangle(id));
+        return;
+    }
     frames_.clear();
     frames_.shrink_to_fit();
     boxes_.resize(ids_.size());

@@ -416,7 +416,7 @@ std::size_t PlaneTreeBuilder::bytes_used() const {
 }
 
 PlaneTree make_collider_plane_tree(const StaticCollider& collider,
-                                   const PlaneTreeSettings& settings) {
+                                   const PlaneTreeSettings& settings, PlaneTreeFrames frames) {
     std::vector<NormalizedTriangle> triangles;
     std::vector<std::uint32_t> ids;
     triangles.reserve(collider.triangle_count());
@@ -429,7 +429,7 @@ PlaneTree make_collider_plane_tree(const StaticCollider& collider,
     }
     PlaneTree tree;
     PlaneTreeBuilder().build(triangles, ids, settings, tree);
-    tree.use_collider_frames(collider);
+    tree.use_collider_frames(collider, frames);
     tree.shrink_to_fit();
     return tree;
 }

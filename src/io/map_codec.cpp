@@ -63,7 +63,7 @@ MapCodec::ColliderBytes MapCodec::locate(map_detail::BodyReader& body) {
     return b;
 }
 
-MapCodec::Loaded MapCodec::read(const ColliderBytes& b) {
+MapCodec::Loaded MapCodec::read(const ColliderBytes& b, PlaneTreeFrames frames) {
     auto c = std::shared_ptr<StaticCollider>(new StaticCollider());
     b.vertices.copy_to(c->vertices_);
     b.slot_vertices.copy_to(c->slot_vertices_);
@@ -87,9 +87,9 @@ MapCodec::Loaded MapCodec::read(const ColliderBytes& b) {
                     std::to_string(depth));
     tree->depth_ = depth;
     tree->rank_slabs();
-    // The slots' boxes are derived from the collider's vertices, as a fresh build derives
-    // them, and the frames are built by the queries: neither is stored.
-    tree->use_collider_frames(*c);
+    // The slots' frames or boxes are derived from the collider's vertices, as a fresh build
+    // derives them: neither is stored.
+    tree->use_collider_frames(*c, frames);
     return {std::move(c), std::move(tree)};
 }
 

@@ -60,9 +60,10 @@ struct MapCodec {
     /// Finds the next collider's arrays; throws trackphys::Error when its record is
     /// inconsistent or an array runs past the body.
     static ColliderBytes locate(map_detail::BodyReader& body);
-    /// Copies one collider and its tree out of the body and verifies them; throws
-    /// trackphys::Error naming the array and the entry that is wrong.
-    static Loaded read(const ColliderBytes& bytes);
+    /// Copies one collider and its tree out of the body and verifies them, then gives the
+    /// tree the frame source `frames`; throws trackphys::Error naming the array and the
+    /// entry that is wrong.
+    static Loaded read(const ColliderBytes& bytes, PlaneTreeFrames frames);
 
     /// The structure checks (map_check.cpp), each throwing trackphys::Error on the first
     /// problem found. check_collider also sets the collider's bounds from its vertices;

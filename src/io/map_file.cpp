@@ -227,7 +227,7 @@ void write_map(std::ostream& out, const StaticMap& map) {
 }
 
 StaticMap decode_checked(std::string_view bytes, const std::optional<PlaneTreeSettings>& expected,
-                         unsigned threads) {
+                         unsigned threads, std::size_t frame_budget_bytes) {
     check_host();
     if (bytes.size() >= sizeof kMagic && std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0)
         throw Error("wrong magic (not a trackphys map file)");
@@ -289,12 +289,15 @@ StaticMap decode_checked(std::string_view bytes, const std::optional<PlaneTreeSe
     }
     if (body.left() != 0)
         throw Error(std::to_string(body.left()) + " unread bytes at the end of the body");
+    std::uint64_t triangles = 0;
+    for (const detail::MapCodec::ColliderBytes& c : colliders) triangles += c.record.slots;
+    const PlaneTreeFrames frames = plane_tree_frames_within(triangles, frame_budget_bytes);
 
     // Copying and verifying are most of a load, and each collider's are independent.
     std::vector<detail::MapCodec::Loaded> loaded(colliders.size());
     detail::run_items_in_parallel(colliders.size(), threads, [&](std::size_t id) {
         try {
-            loaded[id] = detail::MapCodec::read(colliders[id]);
+            loaded[id] = detail::MapCodec::read(colliders[id], frames);
         } catch (const Error& e) {
             throw in_collider(id, e);
         }
@@ -317,9 +320,10 @@ std::string encode_map(const StaticMap& map) {
 }
 
 StaticMap decode_map(std::string_view bytes, const std::string& source,
-                     const std::optional<PlaneTreeSettings>& expected, unsigned threads) {
+                     const std::optional<PlaneTreeSettings>& expected, unsigned threads,
+                     std::size_t frame_budget_bytes) {
     try {
-        return decode_checked(bytes, expected, threads);
+        return decode_checked(bytes, expected, threads, frame_budget_bytes);
     } catch (const Error& e) {
         throw Error(source + ": " + e.what());
     }
@@ -356,13 +360,14 @@ void save_map(const std::filesystem::path& path, const StaticMap& map) {
 }
 
 StaticMap load_static_world(const std::filesystem::path& path,
-                            const std::optional<PlaneTreeSettings>& expected, unsigned threads) {
+                            const std::optional<PlaneTreeSettings>& expected, unsigned threads,
+                            std::size_t frame_budget_bytes) {
     const std::string source = "map '" + path.string() + "'";
     std::error_code error;
     if (std::filesystem::is_directory(path, error)) throw Error(source + ": is a folder");
     // Mapped, not read: the arrays are copied once, from the page cache into the structures.
     const detail::MappedFile file(path, "map");
-    return decode_map(file.bytes(), source, expected, threads);
+    return decode_map(file.bytes(), source, expected, threads, frame_budget_bytes);
 }
 
 bool is_map_file(const std::filesystem::path& path) {

@@ -1,6 +1,7 @@
 // PlaneTreeFrameCache: the frames it hands out are the trees' own, built once until
 // clear(), and stay where they are while it grows; MidPhase candidates keep pointing at
-// valid frames when an update's box is widened.
+// valid frames when an update's box is widened. Trees that keep their frames (within a
+// world's frame budget) report the same and leave the cache unused.
 #include "trackphys/collision/plane_tree_frame_cache.hpp"
 
 #include <algorithm>
@@ -136,10 +137,83 @@ TEST(PlaneTreeFrameCache, QueriesThroughTheCacheReportTheSameSlotsAndTheirFrames
     }
 }
 
+// A tree that keeps its frames reports what the tree that builds them reports, frame for
+// frame, reads them in place (the cache stays empty) and points reported() at its own.
+TEST(PlaneTreeFrameCache, TreesThatKeepTheirFramesReportTheSameWithoutTheCache) {
+    const StaticCollider collider(test::random_soup(4096, 12));
+    const PlaneTree built = make_collider_plane_tree(collider, PlaneTreeSettings::precomputed(),
+                                                     PlaneTreeFrames::built);
+    const PlaneTree kept =
+        make_collider_plane_tree(collider, PlaneTreeSettings::precomputed(), PlaneTreeFrames::kept);
+    EXPECT_FALSE(built.keeps_frames());
+    EXPECT_TRUE(kept.keeps_frames());
+    EXPECT_GT(kept.bytes_used(), built.bytes_used() + 90 * collider.triangle_count());
+    std::mt19937_64 rng(13);
+    std::uniform_int_distribution<std::uint32_t> pick(
+        0, static_cast<std::uint32_t>(collider.triangle_count() - 1));
+    std::uniform_real_distribution<double> sym(-1.0, 1.0), radius(0.05, 3.0);
+    PlaneTreeFrameCache built_cache, kept_cache;
+    std::size_t reported = 0;
+    for (int i = 0; i < 400; ++i) {
+        const glm::dvec3 at =
+            built.triangle(pick(rng)).vertex(0) + glm::dvec3(sym(rng), sym(rng), sym(rng)) * 0.5;
+        const glm::dvec3 to = at + glm::dvec3(sym(rng), sym(rng), sym(rng));
+        const double r = radius(rng);
+        std::vector<std::uint32_t> from_built, from_kept, plain;
+        if (i % 2 == 0) {
+            built.query_swept_sphere(at, to, r, from_built, 0, &built_cache);
+            kept.query_swept_sphere(at, to, r, from_kept, 0, &kept_cache);
+            kept.query_swept_sphere(at, to, r, plain);
+        } else {
+            const Ellipsoid e(at, glm::dquat(1, 0, 0, 0), glm::dvec3(r, 0.5 * r, 0.3 * r));
+            built.query_swept_ellipsoid(e, to, 0.01, from_built, 0, &built_cache);
+            kept.query_swept_ellipsoid(e, to, 0.01, from_kept, 0, &kept_cache);
+            kept.query_swept_ellipsoid(e, to, 0.01, plain);
+        }
+        ASSERT_EQ(from_kept, from_built);
+        ASSERT_EQ(plain, from_built);
+        ASSERT_EQ(kept_cache.reported().size(), from_kept.size());
+        for (std::size_t k = 0; k < from_kept.size(); ++k) {
+            expect_same_frame(*kept_cache.reported()[k], *built_cache.reported()[k]);
+            const NormalizedTriangle kept_frame = kept.triangle(from_kept[k]);
+            expect_same_frame(*kept_cache.reported()[k], kept_frame);
+        }
+        reported += from_kept.size();
+    }
+    EXPECT_GT(reported, 200u);
+    // No frame block (1024 frames) and no index (4096 entries): only reported()'s pointers.
+    EXPECT_LT(kept_cache.bytes_used(), 64 * sizeof(NormalizedTriangle));
+    EXPECT_GT(built_cache.bytes_used(), 1024 * sizeof(NormalizedTriangle));
+}
+
+// A world's trees keep their frames while the frames fit the budget, to the byte.
+TEST(PlaneTreeFrameCache, AWorldsTreesKeepTheirFramesWithinTheBudget) {
+    auto world = std::make_shared<StaticWorld>();
+    world->add(std::make_shared<const StaticCollider>(test::random_soup(700, 14)));
+    world->add(std::make_shared<const StaticCollider>(test::random_soup(300, 15)));
+    const std::size_t triangles =
+        world->collider(0).triangle_count() + world->collider(1).triangle_count();
+    const std::size_t fits = triangles * sizeof(NormalizedTriangle);
+    const auto keeps = [&](std::size_t budget) {
+        const ColliderPlaneTrees trees =
+            make_collider_plane_trees(*world, PlaneTreeSettings::precomputed(), 1, budget);
+        EXPECT_EQ(trees[0]->keeps_frames(), trees[1]->keeps_frames());
+        return trees[0]->keeps_frames();
+    };
+    EXPECT_TRUE(keeps(fits));
+    EXPECT_FALSE(keeps(fits - 1));
+    EXPECT_FALSE(keeps(0));
+    EXPECT_TRUE(keeps(kPlaneTreeFrameBudget));
+    EXPECT_EQ(plane_tree_frames_within(0, 0), PlaneTreeFrames::kept);
+    EXPECT_EQ(plane_tree_frames_within(10'000'000, kPlaneTreeFrameBudget), PlaneTreeFrames::built);
+}
+
 TEST(PlaneTreeFrameCache, CandidatesSurviveAWidenedUpdate) {
     auto world = std::make_shared<StaticWorld>();
     world->add(std::make_shared<const StaticCollider>(test::random_soup(3000, 6)));
-    MidPhase mid(MidPhaseMode::precomputed_tree, *world, make_collider_plane_trees(*world));
+    // No frame budget: the trees build their frames into the MidPhase's cache.
+    MidPhase mid(MidPhaseMode::precomputed_tree, *world,
+                 make_collider_plane_trees(*world, PlaneTreeSettings::precomputed(), 1, 0));
     const glm::dvec3 center = world->collider(0).triangle(0)[0];
     Aabb box;
     box.expand(center - glm::dvec3(3.0));

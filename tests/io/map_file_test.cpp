@@ -140,9 +140,25 @@ QueryRun run_queries(const StaticMap& map, int count) {
     return run;
 }
 
-TEST(MapFile, LoadedMapAnswersTenThousandQueriesAsTheBuiltOne) {
-    const StaticMap loaded = decode_map(baked_bytes());
+// Whether the loaded trees keep their frames (the default budget holds this map's) or
+// build them (no budget), as the baked trees do.
+class MapFileFrames : public testing::TestWithParam<std::size_t> {};
+
+TEST_P(MapFileFrames, LoadedMapAnswersTenThousandQueriesAsTheBuiltOne) {
+    const std::size_t budget = GetParam();
+    const StaticMap loaded =
+        decode_map(baked_bytes(), "map", PlaneTreeSettings::precomputed(), 0, budget);
     ASSERT_EQ(loaded.statics->size(), baked().statics->size());
+    for (std::uint32_t id = 0; id < loaded.statics->size(); ++id) {
+        EXPECT_FALSE(baked().plane_trees[id]->keeps_frames());
+        EXPECT_EQ(loaded.plane_trees[id]->keeps_frames(), budget != 0);
+        const PlaneTree& a = *baked().plane_trees[id];
+        const PlaneTree& b = *loaded.plane_trees[id];
+        for (std::uint32_t slot = 0; slot < a.triangle_count(); slot += 97) {
+            const NormalizedTriangle fa = a.triangle(slot), fb = b.triangle(slot);
+            ASSERT_EQ(std::memcmp(&fa, &fb, sizeof fa), 0) << "collider " << id << " slot " << slot;
+        }
+    }
     for (std::uint32_t id = 0; id < loaded.statics->size(); ++id) {
         const StaticCollider& a = baked().statics->collider(id);
         const StaticCollider& b = loaded.statics->collider(id);
@@ -160,6 +176,8 @@ TEST(MapFile, LoadedMapAnswersTenThousandQueriesAsTheBuiltOne) {
     EXPECT_EQ(fresh.tree_slots, back.tree_slots);
     EXPECT_EQ(fresh.tree_ids, back.tree_ids);
 }
+
+INSTANTIATE_TEST_SUITE_P(MapFile, MapFileFrames, testing::Values(kPlaneTreeFrameBudget, 0));
 
 TEST(MapFile, LoadedMapEncodesToTheSameBytesAndKeepsItsTrack) {
     const StaticMap loaded = decode_map(baked_bytes());

@@ -38,11 +38,12 @@ struct MidPhaseCounters {
 };
 
 /// Builds make_collider_plane_tree for every collider of `world` (result in id order) on up
-/// to `threads` threads (0: std::thread::hardware_concurrency()). The trees do not depend
-/// on the thread count.
+/// to `threads` threads (0: std::thread::hardware_concurrency()), keeping the frames when
+/// the world's fit in `frame_budget_bytes` (plane_tree_frames_within). The trees do not
+/// depend on the thread count.
 TRACKPHYS_API ColliderPlaneTrees make_collider_plane_trees(
     const StaticWorld& world, const PlaneTreeSettings& settings = PlaneTreeSettings::precomputed(),
-    unsigned threads = 0);
+    unsigned threads = 0, std::size_t frame_budget_bytes = kPlaneTreeFrameBudget);
 
 /// The mid phase of one car: what a World calls once per update and then per step per
 /// ellipsoid, whatever the mode. Holds per-update state and scratch (one per car, not

@@ -66,6 +66,31 @@ struct PlaneTreeBox {
 };
 static_assert(sizeof(PlaneTreeBox) == 24, "PlaneTreeBox is 24 bytes");
 
+/// Where a collider's PlaneTree gets its triangles' frames (NormalizedTriangle, 120 bytes)
+/// for the per-triangle filter: a memory-for-speed choice that leaves every query's result
+/// unchanged (the frames are the same, bit for bit).
+enum class PlaneTreeFrames {
+    /// Built by the queries from the collider's vertices for the slots whose float box the
+    /// query shape's box meets, and kept in the caller's PlaneTreeFrameCache: ~51 bytes a
+    /// triangle for a track collider's tree.
+    built,
+    /// Kept by the tree in leaf order (~147 bytes a triangle): the filter reads them in
+    /// place, with no box test and no cache lookup.
+    kept,
+};
+
+/// The frame bytes a world's collider plane trees may keep (64 MiB): the default track's
+/// 303k triangles keep theirs (36 MB, shared by every car), a 10M-triangle map's (1.2 GB)
+/// are built by the queries.
+inline constexpr std::size_t kPlaneTreeFrameBudget = std::size_t{64} << 20;
+
+/// The frame source of the plane trees of a world of `triangles` kept triangles: kept when
+/// their frames fit in `budget_bytes`, else built.
+inline PlaneTreeFrames plane_tree_frames_within(std::size_t triangles, std::size_t budget_bytes) {
+    return triangles <= budget_bytes / sizeof(NormalizedTriangle) ? PlaneTreeFrames::kept
+                                                                  : PlaneTreeFrames::built;
+}
+
 /// How a PlaneTree chooses its splitting planes.
 enum class PlaneSplitRule {
     /// The write-up's rule: the primary eigenvector n of the triangle centroids' covariance
@@ -139,14 +164,16 @@ struct PlaneTreeQueryCounts {
 /// PlaneTreeBuilder (per update, reusing storage) or make_collider_plane_tree (once per
 /// collider). Immutable between builds; queries are const and thread-safe.
 ///
-/// Storage: two vectors as the BVH, nodes (24 bytes) and per leaf slot its triangle's box
-/// (PlaneTreeBox, 24 bytes) and caller id (4 bytes), plus, when built with slabs, a 20-byte
-/// slab per slab node (~51 bytes a triangle for a track collider). The double frames
-/// (NormalizedTriangle, 120 bytes) are not kept for a collider's tree: its queries build the
-/// frames of the few slots whose box they reach from the collider's vertices, exactly the
-/// frames StaticCollider::normalized_triangle gives. A tree built from frames
-/// (PlaneTreeBuilder) keeps a copy of them. Queries append leaf slots in ascending order to
-/// a caller-owned vector and use a fixed stack: no allocation once the vector has grown.
+/// Storage: two vectors as the BVH, nodes (24 bytes) and per leaf slot its caller id
+/// (4 bytes), plus, when built with slabs, a 20-byte slab per slab node, and the frame
+/// source (PlaneTreeFrames). A collider's tree built with PlaneTreeFrames::built keeps per
+/// slot its triangle's box (PlaneTreeBox, 24 bytes; ~51 bytes a triangle in all for a track
+/// collider) and no frames: its queries build the frames of the few slots whose box they
+/// reach from the collider's vertices, exactly the frames StaticCollider::normalized_triangle
+/// gives. With PlaneTreeFrames::kept it keeps those frames in leaf order instead of the
+/// boxes. A tree built from frames (PlaneTreeBuilder) keeps a copy of them and the boxes.
+/// Queries append leaf slots in ascending order to a caller-owned vector and use a fixed
+/// stack: no allocation once the vector has grown.
 ///
 /// The per-triangle filter, and why the tree is exact with it. A query shape S (sphere,
 /// swept sphere, swept ellipsoid) reports slot s if and only if S touches the triangle:
@@ -158,8 +185,9 @@ struct PlaneTreeQueryCounts {
 /// Each is computed in double in the triangle's own frame, after cheap rejections that are
 /// lower bounds of the distance to convex sets holding the triangle (its plane, its local
 /// box, its edges' half-planes), which can only reject what the exact test rejects too, and
-/// sure accepts (a vertex or an over-the-face endpoint within reach); before all of them, the
-/// slot's float box against the shape's box (a triangle the shape touches lies in both).
+/// sure accepts (a vertex or an over-the-face endpoint within reach); before all of them, in
+/// a tree that keeps boxes, the slot's float box against the shape's box (a triangle the
+/// shape touches lies in both).
 /// Because a node's half-space (and slab) contains each of its triangles, a shape that
 /// touches a triangle reaches every half-space above it: the tree never prunes a triangle
 /// the filter would report, so a query returns exactly the slots a brute-force scan with the
@@ -177,9 +205,9 @@ class TRACKPHYS_API PlaneTree {
     /// Throws trackphys::Error on a non-finite center or a bad radius.
     /// Every query can start at `from_node` instead of the root: pass entry_node(box) for a
     /// box that holds the query's shape and the result is the same with fewer planes tested.
-    /// Given `frames`, the filter reads the frames from that cache (building the missing
-    /// ones into it), and frames->reported() holds the reported slots' frames afterwards,
-    /// in the order of the slots appended to `out`.
+    /// Given `frames`, the filter of a tree that keeps no frames reads them from that cache
+    /// (building the missing ones into it), and with any tree frames->reported() holds the
+    /// reported slots' frames afterwards, in the order of the slots appended to `out`.
     PlaneTreeQueryCounts query_sphere(const glm::dvec3& center, double radius,
                                       std::vector<std::uint32_t>& out, std::uint32_t from_node = 0,
                                       PlaneTreeFrameCache* frames = nullptr) const;
@@ -209,11 +237,14 @@ class TRACKPHYS_API PlaneTree {
     /// Number of triangles (slots are 0 .. triangle_count() - 1).
     std::size_t triangle_count() const { return ids_.size(); }
     /// The frame of the triangle in leaf slot `slot` (TP_ASSERT on range): the tree's copy,
-    /// or, for a collider's tree, built from the collider's vertices.
+    /// or, for a collider's tree that keeps none, built from the collider's vertices.
     NormalizedTriangle triangle(std::uint32_t slot) const {
         TP_ASSERT(slot < ids_.size(), "plane tree slot out of range");
-        return collider_ != nullptr ? collider_->normalized_triangle(ids_[slot]) : frames_[slot];
+        return frames_.empty() ? collider_->normalized_triangle(ids_[slot]) : frames_[slot];
     }
+    /// True when the tree keeps its triangles' frames (PlaneTreeFrames::kept, or a tree
+    /// built from frames): queries read them in place.
+    bool keeps_frames() const { return !frames_.empty(); }
     /// The caller's id of the triangle in slot `slot`, as given to the builder.
     std::uint32_t id(std::uint32_t slot) const {
         TP_ASSERT(slot < ids_.size(), "plane tree slot out of range");
@@ -238,7 +269,8 @@ class TRACKPHYS_API PlaneTree {
   private:
     friend class PlaneTreeBuilder;
     friend struct detail::MapCodec;  // map files (src/io/map_codec.cpp)
-    friend PlaneTree make_collider_plane_tree(const StaticCollider&, const PlaneTreeSettings&);
+    friend PlaneTree make_collider_plane_tree(const StaticCollider&, const PlaneTreeSettings&,
+                                              PlaneTreeFrames);
 
     template <class Shape>
     PlaneTreeQueryCounts visit(const Shape& shape, std::vector<std::uint32_t>& out,
@@ -248,10 +280,12 @@ class TRACKPHYS_API PlaneTree {
     void filter_leaf(const Shape& shape, std::uint32_t first, std::uint32_t end,
                      std::vector<std::uint32_t>& out, PlaneTreeFrameCache* frames,
                      PlaneTreeQueryCounts& counts) const;
-    // Makes the tree read its frames from `collider` (ids_ are its mesh indices), drops its
-    // copy, and sets the boxes from the collider's vertices: the same boxes whether the tree
-    // was just built or loaded from a map file.
-    void use_collider_frames(const StaticCollider& collider);
+    // Makes the tree a tree of `collider` (ids_ are its mesh indices) with that frame
+    // source: kept, the frames built from the collider's vertices in leaf order (or the
+    // builder's, the same ones) and no boxes; built, no frames and the boxes from the
+    // collider's vertices. The same frames and boxes whether the tree was just built or
+    // loaded from a map file.
+    void use_collider_frames(const StaticCollider& collider, PlaneTreeFrames frames);
     // Slabs are kept for the nodes that have one only (about one node in four on a track),
     // in node order; a node's slab is the one after those of the slab nodes before it,
     // counted with a bit per node and a running count per 64 nodes.
@@ -270,22 +304,24 @@ class TRACKPHYS_API PlaneTree {
     std::vector<PlaneTreeNode> nodes_;
     std::vector<PlaneTreeSlab> slabs_;          ///< per slab node, in node order
     std::vector<SlabRank> slab_ranks_;          ///< per 64 nodes, derived from the nodes
-    std::vector<PlaneTreeBox> boxes_;           ///< leaf order
+    std::vector<PlaneTreeBox> boxes_;           ///< leaf order; empty: no box test
     std::vector<std::uint32_t> ids_;            ///< leaf order
-    std::vector<NormalizedTriangle> frames_;    ///< leaf order; empty for a collider's tree
-    const StaticCollider* collider_ = nullptr;  ///< a collider's tree: where frames come from
+    std::vector<NormalizedTriangle> frames_;    ///< leaf order; empty: built from collider_
+    const StaticCollider* collider_ = nullptr;  ///< a collider's tree: its collider
     int depth_ = 0;
 };
 
 /// The precomputed plane tree of a collider: every kept triangle, cost-based splits
 /// (PlaneTreeSettings::precomputed() unless given), ids = mesh triangle indices, so that
-/// PlaneTree::id(slot) is what StaticCollider::triangle() takes. Built from the collider
-/// rather than stored in it: StaticCollider stays the broad phase's compact structure
-/// (~48 bytes a triangle) and worlds that use no precomputed mid phase pay nothing. The
-/// tree reads the collider's vertices: `collider` must outlive it (a StaticWorld's
-/// colliders do, as long as the world lives).
+/// PlaneTree::id(slot) is what StaticCollider::triangle() takes, and the frame source
+/// `frames` (a world's trees choose it with plane_tree_frames_within). Built from the
+/// collider rather than stored in it: StaticCollider stays the broad phase's compact
+/// structure (~48 bytes a triangle) and worlds that use no precomputed mid phase pay
+/// nothing. The tree reads the collider's vertices: `collider` must outlive it (a
+/// StaticWorld's colliders do, as long as the world lives).
 TRACKPHYS_API PlaneTree
 make_collider_plane_tree(const StaticCollider& collider,
-                         const PlaneTreeSettings& settings = PlaneTreeSettings::precomputed());
+                         const PlaneTreeSettings& settings = PlaneTreeSettings::precomputed(),
+                         PlaneTreeFrames frames = PlaneTreeFrames::built);
 
 }  // namespace trackphys

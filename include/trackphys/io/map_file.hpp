@@ -40,7 +40,8 @@ struct StaticMap {
 
 /// Builds a map with one collider per mesh, in order, and each collider's plane tree with
 /// `settings`, on up to `threads` threads (0: std::thread::hardware_concurrency()). The
-/// result does not depend on the thread count. Throws trackphys::Error naming the mesh
+/// result does not depend on the thread count. Its trees build their frames
+/// (PlaneTreeFrames::built): a bake is for writing, and a map file stores no frames. Throws trackphys::Error naming the mesh
 /// when a StaticCollider refuses it.
 TRACKPHYS_API StaticMap bake_map(
     std::span<const TriangleMesh> meshes,
@@ -67,22 +68,23 @@ TRACKPHYS_API std::string encode_map(const StaticMap& map);
 /// time linear in its size, so that no query on a loaded map can read out of bounds or
 /// loop. Nothing is ever half-loaded. The colliders are copied and verified on up to
 /// `threads` threads (0: std::thread::hardware_concurrency()); the result, and the error of
-/// a bad map, do not depend on the thread count.
+/// a bad map, do not depend on the thread count. The plane trees keep their frames when the
+/// map's fit in `frame_budget_bytes` (plane_tree_frames_within; built on load, not stored).
 TRACKPHYS_API StaticMap
 decode_map(std::string_view bytes, const std::string& source = "map",
            const std::optional<PlaneTreeSettings>& expected = PlaneTreeSettings::precomputed(),
-           unsigned threads = 0);
+           unsigned threads = 0, std::size_t frame_budget_bytes = kPlaneTreeFrameBudget);
 
 /// Writes the map file atomically (to a temporary file beside `path`, then renamed over
 /// it). Throws trackphys::Error naming the path and the reason.
 TRACKPHYS_API void save_map(const std::filesystem::path& path, const StaticMap& map);
 
 /// Maps a map file into memory and decodes it (decode_map, the source named by its path, on
-/// up to `threads` threads).
+/// up to `threads` threads, frames kept within `frame_budget_bytes`).
 TRACKPHYS_API StaticMap load_static_world(
     const std::filesystem::path& path,
     const std::optional<PlaneTreeSettings>& expected = PlaneTreeSettings::precomputed(),
-    unsigned threads = 0);
+    unsigned threads = 0, std::size_t frame_budget_bytes = kPlaneTreeFrameBudget);
 
 /// True when the file starts with the map magic (any version): what `trackphys info` uses to
 /// tell a map from a mesh file. False for a file it cannot read.
