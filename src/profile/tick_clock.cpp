@@ -30,8 +30,7 @@ ClockPair read_both_tightly() {
 
 double measure_microseconds_per_tick() {
     const ClockPair start = read_both_tightly();
-    while (TickClock::Steady::now() - start.steady < std::chrono::milliseconds(1)) {
-    }
+    while (TickClock::Steady::now() - start.steady < std::chrono::milliseconds(1)) {}
     const ClockPair end = read_both_tightly();
     const double us = std::chrono::duration<double, std::micro>(end.steady - start.steady).count();
     return us / static_cast<double>(end.ticks - start.ticks);

@@ -25,9 +25,9 @@ class TickClock {
 #if defined(__x86_64__)
         return __rdtsc();
 #else
-        return static_cast<std::uint64_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(
-                                              Steady::now().time_since_epoch())
-                                              .count());
+        return static_cast<std::uint64_t>(
+            std::chrono::duration_cast<std::chrono::nanoseconds>(Steady::now().time_since_epoch())
+                .count());
 #endif
     }
 

@@ -43,14 +43,22 @@ void operator delete(void* p, std::size_t, std::align_val_t) noexcept { std::fre
 namespace trackphys {
 namespace {
 
-TEST(WorldAllocation, ARaceOnTwoThreadsAllocatesNothingOnceWarm) {
+// Run with the plane trees' frames kept (the default track's, within the budget) and built
+// into each car's frame cache (a budget of 0, as on a map too big to keep them).
+class WorldAllocation : public ::testing::TestWithParam<PlaneTreeFrames> {};
+
+TEST_P(WorldAllocation, ARaceOnTwoThreadsAllocatesNothingOnceWarm) {
     constexpr std::size_t kCars = 12;
     constexpr int kWarmUpdates = 2000;     // 20 s: the start, the field strung out
     constexpr int kCountedUpdates = 2000;  // 20 s more, with car-car contacts
     const test::TrackWorld& track = test::default_track();
+    const std::size_t budget = GetParam() == PlaneTreeFrames::kept ? kPlaneTreeFrameBudget : 0;
+    const ColliderPlaneTrees trees =
+        make_collider_plane_trees(*track.statics, PlaneTreeSettings::precomputed(), 0, budget);
+    ASSERT_EQ(trees.front()->keeps_frames(), GetParam() == PlaneTreeFrames::kept);
     WorldSettings settings;
     settings.threads = 2;
-    World world(track.statics, settings, track.trees);
+    World world(track.statics, settings, trees);
     RaceDrivers drivers(track.track, CarSpec::default_car(), kCars);
     drivers.add_cars(world);
 
@@ -66,6 +74,12 @@ TEST(WorldAllocation, ARaceOnTwoThreadsAllocatesNothingOnceWarm) {
     EXPECT_EQ(allocations.load(), 0u) << "allocations in " << kCountedUpdates << " updates";
     EXPECT_GT(contacts, 0u) << "the counted updates had no car-car contact to allocate for";
 }
+
+INSTANTIATE_TEST_SUITE_P(FrameSources, WorldAllocation,
+                         ::testing::Values(PlaneTreeFrames::kept, PlaneTreeFrames::built),
+                         [](const ::testing::TestParamInfo<PlaneTreeFrames>& source) {
+                             return source.param == PlaneTreeFrames::kept ? "kept" : "built";
+                         });
 
 }  // namespace
 }  // namespace trackphys
