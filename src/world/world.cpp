@@ -221,7 +221,7 @@ void World::place_ellipsoids(CarSlot& slot, bool every) {
     const glm::dmat3 orientation = glm::mat3_cast(slot.car.state().orientation);
     for (std::size_t i = 0; i < slot.placed.size(); ++i)
         if (every || !slot.listed[i].candidates().empty())
-            slot.placed[i] = slot.car.world_ellipsoid(i, orientation);
+            slot.car.place_ellipsoid(i, orientation, slot.placed[i]);
 }
 
 // The ellipsoids are placed for this sub-step (place_ellipsoids) before it.

@@ -50,14 +50,18 @@ class TRACKPHYS_API Car {
     /// Ellipsoid i placed in the world by the current state (wheels moved up by their
     /// suspension travel).
     Ellipsoid world_ellipsoid(std::size_t i) const {
-        return world_ellipsoid(i, glm::mat3_cast(state_.orientation));
+        Ellipsoid placed = body_ellipsoids_[i];
+        place_ellipsoid(i, glm::mat3_cast(state_.orientation), placed);
+        return placed;
     }
-    /// The same with the orientation's matrix given, glm::mat3_cast(state().orientation),
-    /// to place several ellipsoids of one state with one matrix.
-    Ellipsoid world_ellipsoid(std::size_t i, const glm::dmat3& orientation_matrix) const {
+    /// The same written into `placed`, with the orientation's matrix given,
+    /// glm::mat3_cast(state().orientation): a car places all its ellipsoids of one state
+    /// with one matrix, each into its own slot.
+    void place_ellipsoid(std::size_t i, const glm::dmat3& orientation_matrix,
+                         Ellipsoid& placed) const {
         const glm::dvec3 lift = state_.orientation * glm::dvec3(0.0, suspension_[i], 0.0);
-        return body_ellipsoids_[i].transformed(state_.orientation, orientation_matrix,
-                                               state_.position + lift);
+        body_ellipsoids_[i].transform_into(placed, state_.orientation, orientation_matrix,
+                                           state_.position + lift);
     }
     /// Suspension compression of ellipsoid i from full droop (m; always 0 for the body).
     double suspension(std::size_t i) const { return suspension_[i]; }
