@@ -23,8 +23,9 @@ Wrench Car::vehicle_wrench(std::span<const Contact> deepest, double h) {
     glm::dvec3 headings[2];
     bool heading_known[2] = {false, false};
     const auto heading_of = [&](std::size_t i) {
-        const int axle = spec_.ellipsoids[i].role == EllipsoidRole::front_wheel ? 0 : 1;
-        if (!heading_known[axle]) headings[axle] = wheel_heading(i), heading_known[axle] = true;
+        const bool front = spec_.ellipsoids[i].role == EllipsoidRole::front_wheel;
+        const int axle = front ? 0 : 1;
+        if (!heading_known[axle]) headings[axle] = wheel_heading(front), heading_known[axle] = true;
         return headings[axle];
     };
     for (std::size_t i = 0; i < deepest.size(); ++i) {

@@ -131,16 +131,17 @@ class TRACKPHYS_API Car {
     Wrench contact_wrench(std::span<const Contact> deepest) const;
     /// contact_wrench for a car with a vehicle model; advances its wheels by h.
     Wrench vehicle_wrench(std::span<const Contact> deepest, double h);
-    /// The world direction wheel i rolls in (front wheels steered).
-    glm::dvec3 wheel_heading(std::size_t i) const;
+    /// The world direction a front (steered) or rear wheel rolls in.
+    glm::dvec3 wheel_heading(bool front) const;
     void update_suspension(std::span<const Contact> deepest, double h);
     /// available: drive_available(), the drive force at this speed (N, all wheels).
-    WheelCommand wheel_command(std::size_t i, double axle_normal_force, double available) const;
+    /// The command of each wheel of the front or rear axle.
+    WheelCommand wheel_command(bool front, double axle_normal_force, double available) const;
     double drive_available() const;
     /// Sets inputs_ (already in range) and the steered heading that follows from them.
     void take_inputs(const CarInputs& inputs);
-    /// The contact material of wheel i (rear tyres with their extra grip).
-    ContactMaterial wheel_material(std::size_t i) const;
+    /// The contact material of a front or rear wheel (rear tyres with their extra grip).
+    ContactMaterial wheel_material(bool front) const;
     void add_aero_force(Wrench& wrench) const;
 
     CarSpec spec_;
