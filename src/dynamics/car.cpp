@@ -44,6 +44,7 @@ Car::Car(CarSpec spec, const RigidBodyState& initial_state) : spec_(std::move(sp
         body_ellipsoids_.emplace_back(e.center, e.orientation, e.semi_axes);
         suspension_.push_back(0.0);
         wheel_loads_.push_back(0.0);
+        wheel_velocities_.emplace_back(0.0);
         bounding_radius_ = std::max(
             bounding_radius_, glm::length(e.center) + body_ellipsoids_.back().bounding_radius());
         wheels_ += e.role != EllipsoidRole::body;
@@ -143,12 +144,15 @@ void Car::advance(std::span<const Contact> deepest, const glm::dvec3& gravity, d
 }
 
 void Car::measure_wheel_loads(std::span<const Contact> deepest) {
-    for (std::size_t i = 0; i < deepest.size(); ++i)
-        wheel_loads_[i] =
-            spec_.ellipsoids[i].role == EllipsoidRole::body
-                ? 0.0
-                : normal_force(spec_.wheel_contact, deepest[i].depth, deepest[i].normal,
-                               point_velocity(state_, deepest[i].point));
+    for (std::size_t i = 0; i < deepest.size(); ++i) {
+        if (spec_.ellipsoids[i].role == EllipsoidRole::body) {
+            wheel_loads_[i] = 0.0;
+            continue;
+        }
+        wheel_velocities_[i] = point_velocity(state_, deepest[i].point);
+        wheel_loads_[i] = normal_force(spec_.wheel_contact, deepest[i].depth, deepest[i].normal,
+                                       wheel_velocities_[i]);
+    }
 }
 
 Wrench Car::contact_wrench(std::span<const Contact> deepest) const {
@@ -172,14 +176,16 @@ Wrench Car::contact_wrench(std::span<const Contact> deepest) const {
     for (std::size_t i = 0; i < deepest.size(); ++i) {
         const Contact& contact = deepest[i];
         if (!(contact.depth > 0.0)) continue;
-        const glm::dvec3 velocity = point_velocity(state_, contact.point);
         const EllipsoidRole role = spec_.ellipsoids[i].role;
         const int axle = role == EllipsoidRole::front_wheel ? 0 : 1;
+        // A wheel's load and point velocity are this sub-step's, from measure_wheel_loads
+        // (its materials differ from spec_.wheel_contact in friction only).
         const glm::dvec3 force =
             role == EllipsoidRole::body
-                ? body_contact_force(spec_.body_contact, contact.depth, contact.normal, velocity)
-                : wheel_contact_force(materials[axle], contact.depth, contact.normal, velocity,
-                                      commands[axle]);
+                ? body_contact_force(spec_.body_contact, contact.depth, contact.normal,
+                                     point_velocity(state_, contact.point))
+                : pressed_wheel_force(materials[axle], wheel_loads_[i], contact.normal,
+                                      wheel_velocities_[i], commands[axle]);
         wrench.add_at_point(force, contact.point, state_.position);
     }
     add_aero_force(wrench);

@@ -50,7 +50,7 @@ Wrench Car::vehicle_wrench(std::span<const Contact> deepest, double h) {
         }
         const glm::dvec3 forward = in_plane * (1.0 / in_plane_length);  // one division
         const glm::dvec3 lateral = glm::cross(contact.normal, forward);
-        const glm::dvec3 velocity = point_velocity(state_, contact.point);
+        const glm::dvec3& velocity = wheel_velocities_[i];  // measure_wheel_loads
         const TyreForce tyre = vehicle.wheel_force(w, wheel_loads_[i], glm::dot(velocity, forward),
                                                    glm::dot(velocity, lateral), h);
         wrench.add_at_point(

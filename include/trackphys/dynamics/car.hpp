@@ -126,7 +126,8 @@ class TRACKPHYS_API Car {
 
   private:
     void resolve_deep_contacts(std::span<const Contact> deepest);
-    /// The tyre's normal force of each wheel (0 for the body) into wheel_loads_.
+    /// The tyre's normal force of each wheel (0 for the body) into wheel_loads_, and the
+    /// velocity of its contact point into wheel_velocities_.
     void measure_wheel_loads(std::span<const Contact> deepest);
     Wrench contact_wrench(std::span<const Contact> deepest) const;
     /// contact_wrench for a car with a vehicle model; advances its wheels by h.
@@ -150,7 +151,8 @@ class TRACKPHYS_API Car {
     glm::dvec3 steered_heading_{0.0, 0.0, 1.0};  // front wheels', body frame, for inputs_.steer
     std::vector<Ellipsoid> body_ellipsoids_;
     std::vector<double> suspension_;
-    std::vector<double> wheel_loads_;  // this sub-step's tyre normal forces (N)
+    std::vector<double> wheel_loads_;           // this sub-step's tyre normal forces (N)
+    std::vector<glm::dvec3> wheel_velocities_;  // and the velocities they were measured at
     std::optional<Vehicle> vehicle_;
     double bounding_radius_ = 0.0;
     int front_wheels_ = 0;
