@@ -135,8 +135,8 @@ class TRACKPHYS_API Car {
     /// The world direction a front (steered) or rear wheel rolls in.
     glm::dvec3 wheel_heading(bool front) const;
     void update_suspension(std::span<const Contact> deepest, double h);
-    /// available: drive_available(), the drive force at this speed (N, all wheels).
-    /// The command of each wheel of the front or rear axle.
+    /// The command of each wheel of the front or rear axle; available: drive_available(),
+    /// the drive force at this speed (N, all wheels).
     WheelCommand wheel_command(bool front, double axle_normal_force, double available) const;
     double drive_available() const;
     /// Sets inputs_ (already in range) and the steered heading that follows from them.
