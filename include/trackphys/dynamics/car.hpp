@@ -59,9 +59,7 @@ class TRACKPHYS_API Car {
     /// with one matrix, each into its own slot.
     void place_ellipsoid(std::size_t i, const glm::dmat3& orientation_matrix,
                          Ellipsoid& placed) const {
-        // The lift along the body's up axis is the matrix's second column, scaled: three
-        // products instead of rotating the vector by the quaternion.
-        const glm::dvec3 lift = orientation_matrix[1] * suspension_[i];
+        const glm::dvec3 lift = state_.orientation * glm::dvec3(0.0, suspension_[i], 0.0);
         body_ellipsoids_[i].transform_into(placed, state_.orientation, orientation_matrix,
                                            state_.position + lift);
     }
