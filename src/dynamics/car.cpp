@@ -44,6 +44,7 @@ Car::Car(CarSpec spec, const RigidBodyState& initial_state) : spec_(std::move(sp
         body_ellipsoids_.emplace_back(e.center, e.orientation, e.semi_axes);
         suspension_.push_back(0.0);
         wheel_loads_.push_back(0.0);
+        wheel_velocities_.emplace_back(0.0);
         bounding_radius_ = std::max(
             bounding_radius_, glm::length(e.center) + body_ellipsoids_.back().bounding_radius());
         wheels_ += e.role != EllipsoidRole::body;
@@ -105,17 +106,14 @@ void Car::set_vehicle_state(const VehicleState& state) {
 
 double Car::speed() const { return glm::length(state_.linear_velocity); }
 
-ContactMaterial Car::wheel_material(std::size_t i) const {
+ContactMaterial Car::wheel_material(bool front) const {
     ContactMaterial material = spec_.wheel_contact;
-    if (spec_.ellipsoids[i].role == EllipsoidRole::rear_wheel)
-        material.friction *= spec_.rear_grip_factor;
+    if (!front) material.friction *= spec_.rear_grip_factor;
     return material;
 }
 
-glm::dvec3 Car::wheel_heading(std::size_t i) const {
-    return state_.orientation * (spec_.ellipsoids[i].role == EllipsoidRole::front_wheel
-                                     ? steered_heading_
-                                     : glm::dvec3(0.0, 0.0, 1.0));
+glm::dvec3 Car::wheel_heading(bool front) const {
+    return state_.orientation * (front ? steered_heading_ : glm::dvec3(0.0, 0.0, 1.0));
 }
 
 // Drive is a constant force up to the speed where the power limit takes over: F = P / v.
@@ -123,18 +121,17 @@ double Car::drive_available() const {
     return std::min(spec_.max_drive_force, spec_.max_drive_power / std::max(speed(), 1.0));
 }
 
-WheelCommand Car::wheel_command(std::size_t i, double axle_normal_force, double available) const {
-    const CarEllipsoid& wheel = spec_.ellipsoids[i];
+WheelCommand Car::wheel_command(bool front, double axle_normal_force, double available) const {
     WheelCommand command;
-    command.heading = wheel_heading(i);
+    command.heading = wheel_heading(front);
     // Drive and brake are split between the axles, then evenly between an axle's wheels.
-    const bool front = wheel.role == EllipsoidRole::front_wheel;
     const int axle_wheels = std::max(front ? front_wheels_ : wheels_ - front_wheels_, 1);
     const double drive_share = front ? spec_.front_drive_share : 1.0 - spec_.front_drive_share;
     const double brake_share = front ? spec_.front_brake_share : 1.0 - spec_.front_brake_share;
     command.drive_force = inputs_.throttle * available * drive_share / axle_wheels;
     command.brake_force = inputs_.brake * spec_.max_brake_force * brake_share / axle_wheels;
-    command.max_along_force = spec_.traction_limit * wheel_material(i).friction * axle_normal_force;
+    command.max_along_force =
+        spec_.traction_limit * wheel_material(front).friction * axle_normal_force;
     return command;
 }
 
@@ -147,12 +144,15 @@ void Car::advance(std::span<const Contact> deepest, const glm::dvec3& gravity, d
 }
 
 void Car::measure_wheel_loads(std::span<const Contact> deepest) {
-    for (std::size_t i = 0; i < deepest.size(); ++i)
-        wheel_loads_[i] =
-            spec_.ellipsoids[i].role == EllipsoidRole::body
-                ? 0.0
-                : normal_force(spec_.wheel_contact, deepest[i].depth, deepest[i].normal,
-                               point_velocity(state_, deepest[i].point));
+    for (std::size_t i = 0; i < deepest.size(); ++i) {
+        if (spec_.ellipsoids[i].role == EllipsoidRole::body) {
+            wheel_loads_[i] = 0.0;
+            continue;
+        }
+        wheel_velocities_[i] = point_velocity(state_, deepest[i].point);
+        wheel_loads_[i] = normal_force(spec_.wheel_contact, deepest[i].depth, deepest[i].normal,
+                                       wheel_velocities_[i]);
+    }
 }
 
 Wrench Car::contact_wrench(std::span<const Contact> deepest) const {
@@ -166,20 +166,26 @@ Wrench Car::contact_wrench(std::span<const Contact> deepest) const {
         axle = std::min(axle, wheel_loads_[i]);
     }
 
+    // Every wheel of an axle rolls with the same material and command: two of each per
+    // sub-step, not one per wheel.
     const double available = drive_available();
+    const ContactMaterial materials[2] = {wheel_material(true), wheel_material(false)};
+    const WheelCommand commands[2] = {wheel_command(true, front_load, available),
+                                      wheel_command(false, rear_load, available)};
     Wrench wrench;
     for (std::size_t i = 0; i < deepest.size(); ++i) {
         const Contact& contact = deepest[i];
         if (!(contact.depth > 0.0)) continue;
-        const glm::dvec3 velocity = point_velocity(state_, contact.point);
         const EllipsoidRole role = spec_.ellipsoids[i].role;
+        const int axle = role == EllipsoidRole::front_wheel ? 0 : 1;
+        // A wheel's load and point velocity are this sub-step's, from measure_wheel_loads
+        // (its materials differ from spec_.wheel_contact in friction only).
         const glm::dvec3 force =
             role == EllipsoidRole::body
-                ? body_contact_force(spec_.body_contact, contact.depth, contact.normal, velocity)
-                : wheel_contact_force(
-                      wheel_material(i), contact.depth, contact.normal, velocity,
-                      wheel_command(i, role == EllipsoidRole::front_wheel ? front_load : rear_load,
-                                    available));
+                ? body_contact_force(spec_.body_contact, contact.depth, contact.normal,
+                                     point_velocity(state_, contact.point))
+                : pressed_wheel_force(materials[axle], wheel_loads_[i], contact.normal,
+                                      wheel_velocities_[i], commands[axle]);
         wrench.add_at_point(force, contact.point, state_.position);
     }
     add_aero_force(wrench);

@@ -23,8 +23,9 @@ Wrench Car::vehicle_wrench(std::span<const Contact> deepest, double h) {
     glm::dvec3 headings[2];
     bool heading_known[2] = {false, false};
     const auto heading_of = [&](std::size_t i) {
-        const int axle = spec_.ellipsoids[i].role == EllipsoidRole::front_wheel ? 0 : 1;
-        if (!heading_known[axle]) headings[axle] = wheel_heading(i), heading_known[axle] = true;
+        const bool front = spec_.ellipsoids[i].role == EllipsoidRole::front_wheel;
+        const int axle = front ? 0 : 1;
+        if (!heading_known[axle]) headings[axle] = wheel_heading(front), heading_known[axle] = true;
         return headings[axle];
     };
     for (std::size_t i = 0; i < deepest.size(); ++i) {
@@ -49,7 +50,7 @@ Wrench Car::vehicle_wrench(std::span<const Contact> deepest, double h) {
         }
         const glm::dvec3 forward = in_plane * (1.0 / in_plane_length);  // one division
         const glm::dvec3 lateral = glm::cross(contact.normal, forward);
-        const glm::dvec3 velocity = point_velocity(state_, contact.point);
+        const glm::dvec3& velocity = wheel_velocities_[i];  // measure_wheel_loads
         const TyreForce tyre = vehicle.wheel_force(w, wheel_loads_[i], glm::dot(velocity, forward),
                                                    glm::dot(velocity, lateral), h);
         wrench.add_at_point(

@@ -37,7 +37,13 @@ glm::dvec3 body_contact_force(const ContactMaterial& material, double depth,
 glm::dvec3 wheel_contact_force(const ContactMaterial& material, double depth,
                                const glm::dvec3& normal, const glm::dvec3& velocity,
                                const WheelCommand& command) {
-    const double pressing = normal_force(material, depth, normal, velocity);
+    return pressed_wheel_force(material, normal_force(material, depth, normal, velocity), normal,
+                               velocity, command);
+}
+
+glm::dvec3 pressed_wheel_force(const ContactMaterial& material, double pressing,
+                               const glm::dvec3& normal, const glm::dvec3& velocity,
+                               const WheelCommand& command) {
     if (pressing == 0.0) return glm::dvec3(0.0);
     const double grip = material.friction * pressing;
 

@@ -221,7 +221,7 @@ void World::place_ellipsoids(CarSlot& slot, bool every) {
     const glm::dmat3 orientation = glm::mat3_cast(slot.car.state().orientation);
     for (std::size_t i = 0; i < slot.placed.size(); ++i)
         if (every || !slot.listed[i].candidates().empty())
-            slot.placed[i] = slot.car.world_ellipsoid(i, orientation);
+            slot.car.place_ellipsoid(i, orientation, slot.placed[i]);
 }
 
 // The ellipsoids are placed for this sub-step (place_ellipsoids) before it.
@@ -229,16 +229,15 @@ void World::find_contacts(CarSlot& slot, PhaseStopwatch& watch) {
     using Survivor = CarSlot::Survivor;
     const std::size_t ellipsoids = slot.car.ellipsoid_count();
 
-    // Cull: each ellipsoid's bounding sphere against its listed triangles' cheap frame
-    // test, then the ellipsoid's own extent along the survivors' frame axes, which also
-    // bounds how deep each survivor can be.
+    // Cull: the ellipsoid's own extent along each listed triangle's frame axes, which also
+    // bounds how deep the triangle can be. No bounding-sphere test first: the extents are
+    // at most the radius, so it rejects nothing this test keeps, and almost every listed
+    // triangle reaches this test anyway.
     for (std::size_t i = 0; i < ellipsoids; ++i) {
         const Ellipsoid& ellipsoid = slot.placed[i];
-        const double radius = ellipsoid.bounding_radius();
         std::vector<Survivor>& kept = slot.kept[i];
         kept.clear();
         for (const MidPhaseCandidate& c : slot.listed[i].candidates()) {
-            if (!c.triangle->may_touch_sphere(ellipsoid.center(), radius)) continue;
             const double bound = ellipsoid_depth_bound(*c.triangle, ellipsoid);
             if (bound > 0.0) kept.push_back({c.ref, bound});
         }

@@ -71,6 +71,31 @@ TEST(ContactForce, WheelDrivesBrakesAndGripsWithinTheFrictionCircle) {
     EXPECT_EQ(f.z, 0.0);
 }
 
+// Car::contact_wrench passes the load it measured: the force must be the one the wheel's
+// own normal force gives, bit for bit, and must press with the load it is given.
+TEST(ContactForce, PressedWheelForceIsTheWheelForceOfTheGivenLoad) {
+    std::mt19937 rng(11);
+    std::normal_distribution<double> normal;
+    for (int i = 0; i < 10000; ++i) {
+        const glm::dvec3 n = glm::normalize(glm::dvec3(normal(rng), normal(rng), normal(rng)));
+        const glm::dvec3 v(10.0 * normal(rng), normal(rng), 30.0 * normal(rng));
+        const double depth = 0.02 * normal(rng);
+        WheelCommand command;
+        command.heading = glm::normalize(glm::dvec3(normal(rng), normal(rng), normal(rng)));
+        command.drive_force = 2000.0 * std::abs(normal(rng));
+        command.brake_force = 2000.0 * std::abs(normal(rng));
+        const glm::dvec3 expected = wheel_contact_force(material, depth, n, v, command);
+        const glm::dvec3 got =
+            pressed_wheel_force(material, normal_force(material, depth, n, v), n, v, command);
+        ASSERT_EQ(got, expected) << i;
+    }
+    WheelCommand rolling;
+    rolling.heading = {0.0, 0.0, 1.0};
+    EXPECT_EQ(pressed_wheel_force(material, 1234.0, up, {0.0, 0.0, 30.0}, rolling),
+              glm::dvec3(0.0, 1234.0, 0.0));
+    EXPECT_EQ(pressed_wheel_force(material, 0.0, up, {0.0, -1.0, 30.0}, rolling), glm::dvec3(0.0));
+}
+
 TEST(ContactForce, WheelOnABankUsesTheHeadingProjectedIntoTheContactPlane) {
     const glm::dvec3 banked = glm::normalize(glm::dvec3(0.5, 1.0, 0.0));
     WheelCommand command;

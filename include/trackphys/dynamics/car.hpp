@@ -50,14 +50,18 @@ class TRACKPHYS_API Car {
     /// Ellipsoid i placed in the world by the current state (wheels moved up by their
     /// suspension travel).
     Ellipsoid world_ellipsoid(std::size_t i) const {
-        return world_ellipsoid(i, glm::mat3_cast(state_.orientation));
+        Ellipsoid placed = body_ellipsoids_[i];
+        place_ellipsoid(i, glm::mat3_cast(state_.orientation), placed);
+        return placed;
     }
-    /// The same with the orientation's matrix given, glm::mat3_cast(state().orientation),
-    /// to place several ellipsoids of one state with one matrix.
-    Ellipsoid world_ellipsoid(std::size_t i, const glm::dmat3& orientation_matrix) const {
+    /// The same written into `placed`, with the orientation's matrix given,
+    /// glm::mat3_cast(state().orientation): a car places all its ellipsoids of one state
+    /// with one matrix, each into its own slot.
+    void place_ellipsoid(std::size_t i, const glm::dmat3& orientation_matrix,
+                         Ellipsoid& placed) const {
         const glm::dvec3 lift = state_.orientation * glm::dvec3(0.0, suspension_[i], 0.0);
-        return body_ellipsoids_[i].transformed(state_.orientation, orientation_matrix,
-                                               state_.position + lift);
+        body_ellipsoids_[i].transform_into(placed, state_.orientation, orientation_matrix,
+                                           state_.position + lift);
     }
     /// Suspension compression of ellipsoid i from full droop (m; always 0 for the body).
     double suspension(std::size_t i) const { return suspension_[i]; }
@@ -120,21 +124,23 @@ class TRACKPHYS_API Car {
 
   private:
     void resolve_deep_contacts(std::span<const Contact> deepest);
-    /// The tyre's normal force of each wheel (0 for the body) into wheel_loads_.
+    /// The tyre's normal force of each wheel (0 for the body) into wheel_loads_, and the
+    /// velocity of its contact point into wheel_velocities_.
     void measure_wheel_loads(std::span<const Contact> deepest);
     Wrench contact_wrench(std::span<const Contact> deepest) const;
     /// contact_wrench for a car with a vehicle model; advances its wheels by h.
     Wrench vehicle_wrench(std::span<const Contact> deepest, double h);
-    /// The world direction wheel i rolls in (front wheels steered).
-    glm::dvec3 wheel_heading(std::size_t i) const;
+    /// The world direction a front (steered) or rear wheel rolls in.
+    glm::dvec3 wheel_heading(bool front) const;
     void update_suspension(std::span<const Contact> deepest, double h);
-    /// available: drive_available(), the drive force at this speed (N, all wheels).
-    WheelCommand wheel_command(std::size_t i, double axle_normal_force, double available) const;
+    /// The command of each wheel of the front or rear axle; available: drive_available(),
+    /// the drive force at this speed (N, all wheels).
+    WheelCommand wheel_command(bool front, double axle_normal_force, double available) const;
     double drive_available() const;
     /// Sets inputs_ (already in range) and the steered heading that follows from them.
     void take_inputs(const CarInputs& inputs);
-    /// The contact material of wheel i (rear tyres with their extra grip).
-    ContactMaterial wheel_material(std::size_t i) const;
+    /// The contact material of a front or rear wheel (rear tyres with their extra grip).
+    ContactMaterial wheel_material(bool front) const;
     void add_aero_force(Wrench& wrench) const;
 
     CarSpec spec_;
@@ -143,7 +149,8 @@ class TRACKPHYS_API Car {
     glm::dvec3 steered_heading_{0.0, 0.0, 1.0};  // front wheels', body frame, for inputs_.steer
     std::vector<Ellipsoid> body_ellipsoids_;
     std::vector<double> suspension_;
-    std::vector<double> wheel_loads_;  // this sub-step's tyre normal forces (N)
+    std::vector<double> wheel_loads_;           // this sub-step's tyre normal forces (N)
+    std::vector<glm::dvec3> wheel_velocities_;  // and the velocities they were measured at
     std::optional<Vehicle> vehicle_;
     double bounding_radius_ = 0.0;
     int front_wheels_ = 0;

@@ -41,4 +41,10 @@ TRACKPHYS_API glm::dvec3 wheel_contact_force(const ContactMaterial& material, do
                                              const glm::dvec3& normal, const glm::dvec3& velocity,
                                              const WheelCommand& command);
 
+/// The same for a wheel whose normal force is known: pressing = normal_force(material,
+/// depth, normal, velocity), as a car measures its wheel loads before their forces.
+TRACKPHYS_API glm::dvec3 pressed_wheel_force(const ContactMaterial& material, double pressing,
+                                             const glm::dvec3& normal, const glm::dvec3& velocity,
+                                             const WheelCommand& command);
+
 }  // namespace trackphys

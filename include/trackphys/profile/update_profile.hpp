@@ -11,7 +11,7 @@ namespace trackphys {
 enum class Phase : std::uint8_t {
     broad,      ///< swept car box vs collider boxes and BVHs
     mid,        ///< per-step candidate lists (plane tree build and queries)
-    cull,       ///< bounding sphere vs NormalizedTriangle
+    cull,       ///< ellipsoid extents along each NormalizedTriangle's frame axes
     exact,      ///< exact ellipsoid-triangle contact, and the contacts between cars
     integrate,  ///< contact forces and integration
 };
@@ -29,7 +29,7 @@ struct UpdateProfile {
     double update_us = 0.0;                ///< the whole update, wall clock
     std::uint64_t candidates = 0;          ///< broad-phase triangles, summed over cars
     std::uint64_t mid_queries = 0;         ///< mid-phase queries (the others reused a list)
-    std::uint64_t culled_tests = 0;        ///< sphere culls run (per ellipsoid per sub-step)
+    std::uint64_t culled_tests = 0;        ///< culls run (per ellipsoid per sub-step)
     std::uint64_t exact_tests = 0;         ///< exact contacts computed
     std::uint64_t contacts = 0;            ///< ellipsoids in contact, summed over sub-steps
     std::uint64_t ellipsoid_substeps = 0;  ///< ellipsoids x sub-steps, to average per ellipsoid
