@@ -1,5 +1,6 @@
 #pragma once
 
+#include <algorithm>
 #include <chrono>
 #include <cstdint>
 
@@ -30,7 +31,10 @@ class PhaseStopwatch {
     void lap(Phase phase) {
         if (!enabled_) return;
         const std::uint64_t now = TickClock::now();
-        profile_[phase] += static_cast<double>(now - last_) * microseconds_per_tick_;
+        // A thread moved to a core whose counter is a few ticks behind charges nothing.
+        const auto elapsed = static_cast<std::int64_t>(now - last_);
+        profile_[phase] +=
+            static_cast<double>(std::max<std::int64_t>(elapsed, 0)) * microseconds_per_tick_;
         last_ = now;
         if (trace_) trace_zone(phase);
     }

@@ -1,6 +1,7 @@
 #include "profile/tick_clock.hpp"
 
 namespace trackphys {
+#if defined(__x86_64__)
 namespace {
 
 // A reading of both clocks at one instant, to within `spread` ticks.
@@ -37,10 +38,15 @@ double measure_microseconds_per_tick() {
 }
 
 }  // namespace
+#endif
 
 double TickClock::microseconds_per_tick() {
+#if defined(__x86_64__)
     static const double measured = measure_microseconds_per_tick();
     return measured;
+#else
+    return 1e-3;  // the ticks are steady_clock's nanoseconds
+#endif
 }
 
 }  // namespace trackphys

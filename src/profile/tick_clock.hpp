@@ -9,14 +9,13 @@
 
 namespace trackphys {
 
-/// The clock the phase profile reads. A car's update reads it a few hundred times, and on
-/// a KVM guest steady_clock costs more than twice as much a read as the x86 time-stamp
-/// counter (docs/benchmarks.md, "The profile's clock"). Elsewhere the ticks are
-/// steady_clock's own.
+/// The clock the phase profile reads. A car's update reads it a few hundred times, and a
+/// read of the x86 time-stamp counter costs a fraction of steady_clock's (docs/benchmarks.md,
+/// "The profile's clock"). Elsewhere the ticks are steady_clock's own nanoseconds.
 ///
 /// Ticks become microseconds through a rate measured once against steady_clock, over a
 /// millisecond at the first call that asks for it. That needs a counter that runs at one
-/// rate on every core, as x86-64 CPUs' have for fifteen years ("invariant TSC").
+/// rate on every core ("invariant TSC", as current x86-64 CPUs have).
 class TickClock {
   public:
     using Steady = std::chrono::steady_clock;

@@ -79,9 +79,9 @@ enum class PlaneTreeFrames {
     kept,
 };
 
-/// The frame bytes a world's collider plane trees may keep (64 MiB): the default track's
-/// 303k triangles keep theirs (36 MB, shared by every car), a 10M-triangle map's (1.2 GB)
-/// are built by the queries.
+/// The frame bytes a world's collider plane trees may keep (64 MiB): a generated track's
+/// trees keep theirs, shared by every car; a map of millions of triangles has its frames
+/// built by the queries, within the memory a big map is allowed (docs/benchmarks.md).
 inline constexpr std::size_t kPlaneTreeFrameBudget = std::size_t{64} << 20;
 
 /// The frame source of the plane trees of a world of `triangles` kept triangles: kept when

@@ -18,8 +18,9 @@ inline double support_extent(const Ellipsoid& e, const glm::dvec3& u) {
     return glm::length(e.sorted_radii() * (u * e.sorted_axes()));
 }
 
-/// A tighter second cull after NormalizedTriangle::may_touch_sphere: a separating-axis test
-/// on the triangle's own frame axes. Along each axis the triangle spans
+/// The sub-step cull World runs on each listed triangle (tighter than
+/// NormalizedTriangle::may_touch_sphere, which it implies): a separating-axis test on the
+/// triangle's own frame axes. Along each axis the triangle spans
 /// [0, 0] (normal), [0, x1] (dir_x) or [0, y2] (dir_y) from its origin, and the ellipsoid
 /// spans its centre's coordinate +- h(axis); disjoint spans on any axis prove the two apart.
 /// A flat wheel is judged by its width sideways, not by its radius, so far fewer
@@ -34,9 +35,9 @@ inline double ellipsoid_depth_bound(const NormalizedTriangle& t, const Ellipsoid
     const double z = glm::dot(t.normal, local);
     const double x = glm::dot(t.dir_x, local);
     const double y = glm::dot(t.dir_y, local);
-    // Nearly every triangle that reaches this test after the sphere's passes it (a wheel's
-    // few listed triangles lie around it): the three extents go together, with no branch
-    // between them, so that their square roots overlap instead of waiting on each other.
+    // Nearly every listed triangle passes this test (a wheel's few listed triangles lie
+    // around it): the three extents go together, with no branch between them, so that
+    // their square roots overlap instead of waiting on each other.
     const double hz = support_extent(e, t.normal);
     const double hx = support_extent(e, t.dir_x);
     const double hy = support_extent(e, t.dir_y);

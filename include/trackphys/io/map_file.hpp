@@ -41,8 +41,8 @@ struct StaticMap {
 /// Builds a map with one collider per mesh, in order, and each collider's plane tree with
 /// `settings`, on up to `threads` threads (0: std::thread::hardware_concurrency()). The
 /// result does not depend on the thread count. Its trees build their frames
-/// (PlaneTreeFrames::built): a bake is for writing, and a map file stores no frames. Throws trackphys::Error naming the mesh
-/// when a StaticCollider refuses it.
+/// (PlaneTreeFrames::built): a bake is for writing, and a map file stores no frames.
+/// Throws trackphys::Error naming the mesh when a StaticCollider refuses it.
 TRACKPHYS_API StaticMap bake_map(
     std::span<const TriangleMesh> meshes,
     const PlaneTreeSettings& settings = PlaneTreeSettings::precomputed(), unsigned threads = 0);
