@@ -106,14 +106,15 @@ void Car::set_vehicle_state(const VehicleState& state) {
 
 double Car::speed() const { return glm::length(state_.linear_velocity); }
 
-ContactMaterial Car::wheel_material(bool front) const {
+ContactMaterial Car::wheel_material(Axle axle) const {
     ContactMaterial material = spec_.wheel_contact;
-    if (!front) material.friction *= spec_.rear_grip_factor;
+    if (axle == Axle::rear) material.friction *= spec_.rear_grip_factor;
     return material;
 }
 
-glm::dvec3 Car::wheel_heading(bool front) const {
-    return state_.orientation * (front ? steered_heading_ : glm::dvec3(0.0, 0.0, 1.0));
+glm::dvec3 Car::wheel_heading(Axle axle) const {
+    return state_.orientation *
+           (axle == Axle::front ? steered_heading_ : glm::dvec3(0.0, 0.0, 1.0));
 }
 
 // Drive is a constant force up to the speed where the power limit takes over: F = P / v.
@@ -121,9 +122,10 @@ double Car::drive_available() const {
     return std::min(spec_.max_drive_force, spec_.max_drive_power / std::max(speed(), 1.0));
 }
 
-WheelCommand Car::wheel_command(bool front, double axle_normal_force, double available) const {
+WheelCommand Car::wheel_command(Axle axle, double axle_normal_force, double available) const {
     WheelCommand command;
-    command.heading = wheel_heading(front);
+    command.heading = wheel_heading(axle);
+    const bool front = axle == Axle::front;
     // Drive and brake are split between the axles, then evenly between an axle's wheels.
     const int axle_wheels = std::max(front ? front_wheels_ : wheels_ - front_wheels_, 1);
     const double drive_share = front ? spec_.front_drive_share : 1.0 - spec_.front_drive_share;
@@ -131,7 +133,7 @@ WheelCommand Car::wheel_command(bool front, double axle_normal_force, double ava
     command.drive_force = inputs_.throttle * available * drive_share / axle_wheels;
     command.brake_force = inputs_.brake * spec_.max_brake_force * brake_share / axle_wheels;
     command.max_along_force =
-        spec_.traction_limit * wheel_material(front).friction * axle_normal_force;
+        spec_.traction_limit * wheel_material(axle).friction * axle_normal_force;
     return command;
 }
 
@@ -157,27 +159,26 @@ void Car::measure_wheel_loads(std::span<const Contact> deepest) {
 
 Wrench Car::contact_wrench(std::span<const Contact> deepest) const {
     // The least loaded wheel of each axle bounds its drive and brake.
-    double front_load = std::numeric_limits<double>::infinity();
-    double rear_load = std::numeric_limits<double>::infinity();
+    double least_loads[2] = {std::numeric_limits<double>::infinity(),
+                             std::numeric_limits<double>::infinity()};
     for (std::size_t i = 0; i < deepest.size(); ++i) {
-        const EllipsoidRole role = spec_.ellipsoids[i].role;
-        if (role == EllipsoidRole::body) continue;
-        double& axle = role == EllipsoidRole::front_wheel ? front_load : rear_load;
-        axle = std::min(axle, wheel_loads_[i]);
+        if (spec_.ellipsoids[i].role == EllipsoidRole::body) continue;
+        double& least = least_loads[static_cast<int>(axle_of(i))];
+        least = std::min(least, wheel_loads_[i]);
     }
 
     // Every wheel of an axle rolls with the same material and command: two of each per
     // sub-step, not one per wheel.
     const double available = drive_available();
-    const ContactMaterial materials[2] = {wheel_material(true), wheel_material(false)};
-    const WheelCommand commands[2] = {wheel_command(true, front_load, available),
-                                      wheel_command(false, rear_load, available)};
+    const ContactMaterial materials[2] = {wheel_material(Axle::front), wheel_material(Axle::rear)};
+    const WheelCommand commands[2] = {wheel_command(Axle::front, least_loads[0], available),
+                                      wheel_command(Axle::rear, least_loads[1], available)};
     Wrench wrench;
     for (std::size_t i = 0; i < deepest.size(); ++i) {
         const Contact& contact = deepest[i];
         if (!(contact.depth > 0.0)) continue;
         const EllipsoidRole role = spec_.ellipsoids[i].role;
-        const int axle = role == EllipsoidRole::front_wheel ? 0 : 1;
+        const int axle = static_cast<int>(axle_of(i));
         // A wheel's load and point velocity are this sub-step's, from measure_wheel_loads
         // (its materials differ from spec_.wheel_contact in friction only).
         const glm::dvec3 force =

@@ -23,10 +23,10 @@ Wrench Car::vehicle_wrench(std::span<const Contact> deepest, double h) {
     glm::dvec3 headings[2];
     bool heading_known[2] = {false, false};
     const auto heading_of = [&](std::size_t i) {
-        const bool front = spec_.ellipsoids[i].role == EllipsoidRole::front_wheel;
-        const int axle = front ? 0 : 1;
-        if (!heading_known[axle]) headings[axle] = wheel_heading(front), heading_known[axle] = true;
-        return headings[axle];
+        const Axle axle = axle_of(i);
+        const int k = static_cast<int>(axle);
+        if (!heading_known[k]) headings[k] = wheel_heading(axle), heading_known[k] = true;
+        return headings[k];
     };
     for (std::size_t i = 0; i < deepest.size(); ++i) {
         const Contact& contact = deepest[i];

@@ -123,6 +123,14 @@ class TRACKPHYS_API Car {
     double inverse_mass_along(const glm::dvec3& normal, const glm::dvec3& point) const;
 
   private:
+    /// A wheel's axle, which sets its heading, grip and share of drive and brake; also the
+    /// index of per-axle arrays.
+    enum class Axle : int { front = 0, rear = 1 };
+    Axle axle_of(std::size_t wheel) const {
+        return spec_.ellipsoids[wheel].role == EllipsoidRole::front_wheel ? Axle::front
+                                                                          : Axle::rear;
+    }
+
     void resolve_deep_contacts(std::span<const Contact> deepest);
     /// The tyre's normal force of each wheel (0 for the body) into wheel_loads_, and the
     /// velocity of its contact point into wheel_velocities_.
@@ -130,17 +138,17 @@ class TRACKPHYS_API Car {
     Wrench contact_wrench(std::span<const Contact> deepest) const;
     /// contact_wrench for a car with a vehicle model; advances its wheels by h.
     Wrench vehicle_wrench(std::span<const Contact> deepest, double h);
-    /// The world direction a front (steered) or rear wheel rolls in.
-    glm::dvec3 wheel_heading(bool front) const;
+    /// The world direction the wheels of an axle roll in (the front ones steered).
+    glm::dvec3 wheel_heading(Axle axle) const;
     void update_suspension(std::span<const Contact> deepest, double h);
-    /// The command of each wheel of the front or rear axle; available: drive_available(),
-    /// the drive force at this speed (N, all wheels).
-    WheelCommand wheel_command(bool front, double axle_normal_force, double available) const;
+    /// The command of each wheel of an axle; available: drive_available(), the drive force
+    /// at this speed (N, all wheels).
+    WheelCommand wheel_command(Axle axle, double axle_normal_force, double available) const;
     double drive_available() const;
     /// Sets inputs_ (already in range) and the steered heading that follows from them.
     void take_inputs(const CarInputs& inputs);
-    /// The contact material of a front or rear wheel (rear tyres with their extra grip).
-    ContactMaterial wheel_material(bool front) const;
+    /// The contact material of an axle's wheels (rear tyres with their extra grip).
+    ContactMaterial wheel_material(Axle axle) const;
     void add_aero_force(Wrench& wrench) const;
 
     CarSpec spec_;
