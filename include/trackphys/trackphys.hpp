@@ -24,6 +24,7 @@
 #include "trackphys/geometry/ellipsoid.hpp"
 #include "trackphys/geometry/ellipsoid_cull.hpp"
 #include "trackphys/geometry/ellipsoid_pair.hpp"
+#include "trackphys/geometry/face_certificate.hpp"
 #include "trackphys/geometry/mesh_chunks.hpp"
 #include "trackphys/geometry/normalized_triangle.hpp"
 #include "trackphys/geometry/point_ellipse.hpp"

@@ -21,6 +21,7 @@ struct World::CarSlot {
     // A candidate that passed the cull, with an upper bound of its penetration depth.
     struct Survivor {
         TriangleRef ref;
+        const NormalizedTriangle* frame;  // the mid phase's, valid for the sub-step
         double depth_bound;
     };
 

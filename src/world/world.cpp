@@ -4,6 +4,7 @@
 #include <cstring>
 #include <limits>
 #include <numeric>
+#include <optional>
 #include <utility>
 
 #include <glm/geometric.hpp>
@@ -13,6 +14,7 @@
 #include "trackphys/error.hpp"
 #include "trackphys/geometry/contact.hpp"
 #include "trackphys/geometry/ellipsoid_cull.hpp"
+#include "trackphys/geometry/face_certificate.hpp"
 #include "vehicle/vehicle_fingerprint.hpp"
 #include "world/car_slot.hpp"
 #include "world/update_box.hpp"
@@ -228,6 +230,20 @@ void World::place_ellipsoids(CarSlot& slot, bool every) {
             slot.car.place_ellipsoid(i, orientation, slot.placed[i]);
 }
 
+namespace {
+
+// Nearly every exact test is a wheel standing on a road triangle: the face certificate
+// answers it from the frame the cull read, and only the rest fetch the triangle's own
+// vertices for the kernel.
+Contact exact_contact(const StaticWorld& statics, const TriangleRef& ref,
+                      const NormalizedTriangle& frame, const Ellipsoid& ellipsoid) {
+    if (const std::optional<Contact> face = certified_face_contact(frame, ellipsoid)) return *face;
+    return ellipsoid_triangle_contact(ellipsoid,
+                                      statics.collider(ref.collider).triangle(ref.triangle));
+}
+
+}  // namespace
+
 // The ellipsoids are placed for this sub-step (place_ellipsoids) before it.
 void World::find_contacts(CarSlot& slot, PhaseStopwatch& watch) {
     using Survivor = CarSlot::Survivor;
@@ -243,7 +259,7 @@ void World::find_contacts(CarSlot& slot, PhaseStopwatch& watch) {
         kept.clear();
         for (const MidPhaseCandidate& c : slot.listed[i].candidates()) {
             const double bound = ellipsoid_depth_bound(*c.triangle, ellipsoid);
-            if (bound > 0.0) kept.push_back({c.ref, bound});
+            if (bound > 0.0) kept.push_back({c.ref, c.triangle, bound});
         }
         watch.profile().culled_tests += slot.listed[i].candidates().size();
     }
@@ -278,9 +294,9 @@ void World::find_contacts(CarSlot& slot, PhaseStopwatch& watch) {
         CarSlot::KnownNormals& known = slot.known[i];
         for (const Survivor& s : kept) {
             if (!(s.depth_bound > deepest.depth)) continue;
-            const Triangle triangle = statics_->collider(s.ref.collider).triangle(s.ref.triangle);
+            const NormalizedTriangle& frame = *s.frame;
             if (deepest.depth > -std::numeric_limits<double>::infinity()) {
-                if (!(depth_bound_along(triangle, ellipsoid, deepest.normal, deepest_support) >
+                if (!(depth_bound_along(frame, ellipsoid, deepest.normal, deepest_support) >
                       deepest.depth + kDepthTie))
                     continue;
                 // Most neighbours that pass (a road's next triangle, creased by a fraction
@@ -291,11 +307,11 @@ void World::find_contacts(CarSlot& slot, PhaseStopwatch& watch) {
                 if (const CarSlot::KnownNormal* recent = known.find(s.ref)) {
                     const glm::dvec3& u = recent->normal;
                     const double bound =
-                        depth_bound_along(triangle, ellipsoid, u, support_extent(ellipsoid, u));
+                        depth_bound_along(frame, ellipsoid, u, support_extent(ellipsoid, u));
                     if (bound + kKernelError <= deepest.depth) continue;
                 }
             }
-            const Contact contact = ellipsoid_triangle_contact(ellipsoid, triangle);
+            const Contact contact = exact_contact(*statics_, s.ref, frame, ellipsoid);
             known.remember(s.ref, contact.normal);
             ++watch.profile().exact_tests;
             if (contact.depth > deepest.depth) {

@@ -44,25 +44,28 @@ TEST(EllipsoidCull, DepthBoundAlongAnyDirectionHoldsAndIsTightAtTheContactNormal
     test::ContactCaseGenerator cases(977);
     std::mt19937_64 rng(31);
     std::normal_distribution<double> gauss;
-    int tight = 0;
+    int tested = 0, tight = 0;
     for (int i = 0; i < 20000; ++i) {
         const auto kind =
             static_cast<test::ContactKind>(i % static_cast<int>(test::ContactKind::count));
         const test::ContactCase c = cases.make(kind);
+        if (c.triangle.is_degenerate()) continue;
+        ++tested;
+        const NormalizedTriangle frame(c.triangle);
         const Contact contact = ellipsoid_triangle_contact(c.ellipsoid, c.triangle);
         const double scale =
             1e-12 * (1.0 + c.ellipsoid.sorted_radii().x + glm::length(c.ellipsoid.center()) +
                      glm::length(c.triangle[0]));
         const glm::dvec3 u = glm::normalize(glm::dvec3(gauss(rng), gauss(rng), gauss(rng)));
-        ASSERT_GE(depth_bound_along(c.triangle, c.ellipsoid, u, support_extent(c.ellipsoid, u)),
+        ASSERT_GE(depth_bound_along(frame, c.ellipsoid, u, support_extent(c.ellipsoid, u)),
                   contact.depth - scale)
             << "case " << i << " (" << test::contact_kind_name(kind) << ")";
-        const double at_normal = depth_bound_along(c.triangle, c.ellipsoid, contact.normal,
+        const double at_normal = depth_bound_along(frame, c.ellipsoid, contact.normal,
                                                    support_extent(c.ellipsoid, contact.normal));
         ASSERT_GE(at_normal, contact.depth - scale) << "case " << i;
         tight += at_normal - contact.depth < 1e-9 * (1.0 + std::abs(contact.depth));
     }
-    EXPECT_GT(tight, 19000);
+    EXPECT_GT(tight, 0.95 * tested);
 }
 
 TEST(EllipsoidCull, SupportExtentIsTheHalfWidthAlongADirection) {

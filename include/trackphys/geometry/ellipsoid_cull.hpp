@@ -8,7 +8,6 @@
 
 #include "trackphys/geometry/ellipsoid.hpp"
 #include "trackphys/geometry/normalized_triangle.hpp"
-#include "trackphys/geometry/triangle.hpp"
 
 namespace trackphys {
 
@@ -52,11 +51,16 @@ inline double ellipsoid_depth_bound(const NormalizedTriangle& t, const Ellipsoid
 /// bounds it. With u the normal of the deepest contact found so far on a neighbouring
 /// triangle, a triangle that lies lower along it (a coplanar or convex neighbour of the one
 /// a wheel stands on) cannot be deeper, whatever its own normal says.
-inline double depth_bound_along(const Triangle& t, const Ellipsoid& e, const glm::dvec3& u,
-                                double support) {
-    const glm::dvec3& c = e.center();
-    return std::max({glm::dot(u, t[0] - c), glm::dot(u, t[1] - c), glm::dot(u, t[2] - c)}) +
-           support;
+///
+/// Read from the triangle's frame, as the cull reads it, so that the exact phase fetches no
+/// vertices: they lie at the origin plus 0, x1 dir_x and x2 dir_x + y2 dir_y, and the bound
+/// moves by the frame's rounding alone (a few eps of the lengths involved).
+inline double depth_bound_along(const NormalizedTriangle& t, const Ellipsoid& e,
+                                const glm::dvec3& u, double support) {
+    const double along_x = glm::dot(u, t.dir_x);
+    const double along_y = glm::dot(u, t.dir_y);
+    return glm::dot(u, t.origin - e.center()) +
+           std::max({0.0, t.x1 * along_x, t.x2 * along_x + t.y2 * along_y}) + support;
 }
 
 /// false only if the ellipsoid cannot touch the triangle (see ellipsoid_depth_bound).
