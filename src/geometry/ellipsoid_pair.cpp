@@ -94,27 +94,32 @@ bool unit_frame(const Ellipsoid& a, const Ellipsoid& b, double& scale, detail::P
     return true;
 }
 
-Contact ordered_contact(const Ellipsoid& a, const Ellipsoid& b) {
+/// The contact of a and b, which come in key order; `swapped` when the caller's arguments
+/// were the other way round, so that the normal points the other way. The normal is turned
+/// here, before it leaves the registers: turning the returned Contact in memory makes the
+/// caller's wide loads wait on this function's narrow stores.
+Contact ordered_contact(const Ellipsoid& a, const Ellipsoid& b, bool swapped) {
     double scale;
     detail::PairFrame frame;
-    if (!unit_frame(a, b, scale, frame)) return far_field(a, b, scale);
+    if (!unit_frame(a, b, scale, frame)) {
+        Contact far = far_field(a, b, scale);
+        if (swapped) far.normal = -far.normal;
+        return far;
+    }
     const detail::PairSolution s = detail::solve_pair(frame);
     const glm::dmat3& axes = a.sorted_axes();
     const glm::dvec3 extreme_a = a.center() + axes * s.extreme_a * scale;
     const glm::dvec3 extreme_b = b.center() + axes * s.extreme_b * scale;
+    const glm::dvec3 towards_b = axes * s.n;  // the normal of the swapped pair
     // Halves first: the sum of two points near the largest double would overflow.
-    return {s.depth * scale, -(axes * s.n), 0.5 * extreme_a + 0.5 * extreme_b};
+    return {s.depth * scale, swapped ? towards_b : -towards_b, 0.5 * extreme_a + 0.5 * extreme_b};
 }
 
 }  // namespace
 
 Contact ellipsoid_ellipsoid_contact(const Ellipsoid& a, const Ellipsoid& b) {
-    if (key(b) < key(a)) {
-        Contact swapped = ordered_contact(b, a);
-        swapped.normal = -swapped.normal;
-        return swapped;
-    }
-    return ordered_contact(a, b);
+    const bool swapped = key(b) < key(a);
+    return ordered_contact(swapped ? b : a, swapped ? a : b, swapped);
 }
 
 bool ellipsoids_may_touch(const Ellipsoid& a, const Ellipsoid& b, double reach) {

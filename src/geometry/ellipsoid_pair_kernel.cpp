@@ -344,7 +344,10 @@ dvec3 shifted_step(const PairFunction& f, const Sample& s) {
     return s1 * t1 + s2 * t2;
 }
 
-Descent descend(PairFunction& f, Sample s) {
+/// The start is taken by reference: passed by value, the caller's copy into the argument
+/// reloads the sample it has just stored with loads that straddle those stores, and waits.
+Descent descend(PairFunction& f, const Sample& start) {
+    Sample s = start;
     // Lengths are compared squared: the next evaluation need not wait for the step's root.
     double previous2 = 0.0;  // the last step's squared length, 0 before the first
     for (int iteration = 0; iteration < kDescentCap; ++iteration) {
