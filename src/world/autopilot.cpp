@@ -193,7 +193,8 @@ CarInputs Autopilot::drive(const Car& car) {
     CarInputs inputs;
 
     // Speed: aim for the plan a little ahead (the car needs time to react).
-    const double target = planned_speed_[sample_ahead(nearest_, speed * 0.3 + 2.0)];
+    const double target =
+        std::min(planned_speed_[sample_ahead(nearest_, speed * 0.3 + 2.0)], speed_limit_);
     const double error = target - speed;
     inputs.throttle = std::clamp(0.5 * error, 0.0, 1.0);
     inputs.brake = std::clamp(-0.3 * error, 0.0, 1.0);

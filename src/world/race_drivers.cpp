@@ -31,9 +31,11 @@ RaceDrivers::RaceDrivers(const Track& track, const CarSpec& car, std::size_t car
         throw Error(
             "RaceSettings: grip shares must be finite and 0 < least_grip_use <= most_grip_use");
     if (!(settings_.lane_offset >= 0.0 && settings_.pass_look_ahead >= 0.0 &&
-          settings_.lane_width >= 0.0 && settings_.follow_gap >= 0.0))
+          settings_.lane_width >= 0.0 && settings_.merge_gap >= 0.0 &&
+          settings_.follow_distance >= 0.0 && settings_.follow_time >= 0.0))
         throw Error(
-            "RaceSettings: lane_offset, pass_look_ahead, lane_width and follow_gap must be >= 0");
+            "RaceSettings: lane_offset, pass_look_ahead, lane_width, merge_gap, follow_distance "
+            "and follow_time must be >= 0");
     if (!(std::isfinite(settings_.lane_change_speed) && settings_.lane_change_speed > 0.0))
         throw Error("RaceSettings: lane_change_speed must be finite and > 0");
     if (!(settings_.rescue_distance > 0.0))
@@ -78,7 +80,7 @@ RaceDrivers::CarAhead RaceDrivers::car_ahead(const World& world, std::size_t i, 
                                              double from) const {
     const RoadPosition me = road_position(world, i);
     const glm::dvec3& velocity = world.car(i).state().linear_velocity;
-    CarAhead nearest{std::numeric_limits<double>::infinity(), 0.0};
+    CarAhead nearest{i, std::numeric_limits<double>::infinity(), 0.0};
     for (std::size_t j = 0; j < pilots_.size(); ++j) {
         if (j == i) continue;
         const RoadPosition other = road_position(world, j);
@@ -91,29 +93,48 @@ RaceDrivers::CarAhead RaceDrivers::car_ahead(const World& world, std::size_t i, 
         const glm::dvec3 toward = world.car(j).state().position - world.car(i).state().position;
         const double distance = glm::length(toward);
         const glm::dvec3 relative = velocity - world.car(j).state().linear_velocity;
-        nearest = {gap, distance > 0.0 ? glm::dot(relative, toward) / distance : 0.0};
+        nearest = {j, gap, distance > 0.0 ? glm::dot(relative, toward) / distance : 0.0};
     }
     return nearest;
 }
 
+bool RaceDrivers::slower(std::size_t i, const CarAhead& ahead, double closing) const {
+    return std::isfinite(ahead.gap) &&
+           (ahead.closing > closing || grip_use(ahead.car) < grip_use(i));
+}
+
 double RaceDrivers::lane(const World& world, std::size_t i) const {
-    constexpr double kAlongside = -6.0;  // m: a car this far behind is still beside us
-    constexpr double kBeside = 6.0;      // m: and this far ahead
-    constexpr double kMirror = -20.0;    // m: a lane change looks this far back
+    constexpr double kAlongside = -6.0;       // m: a car this far behind is still beside us
+    constexpr double kMirror = -20.0;         // m: a lane change looks this far back
+    constexpr double kPassClosing = 1.0;      // m/s
+    constexpr double kSwerveTurnAccel = 6.0;  // m/s^2 across the road
     const double own = own_lane(i);
-    // Blocked: the nearest car ahead in the lane is slower. Free: nobody from kMirror
-    // behind to beside, and the nearest car ahead (if any) pulls away.
-    const auto blocked = [&](double line) {
-        const CarAhead ahead = car_ahead(world, i, line, kAlongside);
-        return std::isfinite(ahead.gap) && ahead.closing > 0.0;
+    const double current = progress_.lanes[i];
+    // A swerve turned back halfway, as the lanes' cars change their minds, sways the car
+    // from side to side; at 250 km/h in a turn that spun a car into the wall.
+    if (progress_.lines[i] != current) return current;
+    // Nor does a swerve begin in a fast turn: it adds its own sideways push to the turn's,
+    // and a car near the limit slides.
+    const CenterlineSample& here = track_->centerline[pilots_[i].nearest_sample()];
+    const double speed = world.car(i).speed();
+    if (speed * speed * std::abs(here.curvature) > kSwerveTurnAccel) return current;
+    // Blocked: the car ahead in the lane closes in faster than `closing`, or has the
+    // slower pace.
+    const auto blocked = [&](double line, double closing) {
+        return slower(i, car_ahead(world, i, line, kAlongside), closing);
     };
+    // Free: nobody from kMirror behind to merge_gap ahead, and the car ahead (if any) not
+    // closing in.
     const auto free = [&](double line) {
         const CarAhead nearest = car_ahead(world, i, line, kMirror);
-        return !(nearest.gap < kBeside) && !(nearest.closing > 0.0);
+        return !(nearest.gap < settings_.merge_gap) && !(nearest.closing > 0.0);
     };
-    if (progress_.lanes[i] == own) return blocked(own) && free(-own) ? -own : own;
-    // Passing: back into its own lane once it is free.
-    return free(own) ? own : -own;
+    // Out to pass when its own lane is blocked, back once its own lane is free and no
+    // longer blocked at all: a car that came back behind the car it pulled out for would
+    // only pull out again, and a closing speed that flickers about kPassClosing must not
+    // send a car out and back.
+    if (current == own) return blocked(own, kPassClosing) && free(-own) ? -own : own;
+    return free(own) && !blocked(own, 0.0) ? own : -own;
 }
 
 double RaceDrivers::line_towards(std::size_t i, double lane, double dt) const {
@@ -121,30 +142,35 @@ double RaceDrivers::line_towards(std::size_t i, double lane, double dt) const {
     return std::clamp(lane, progress_.lines[i] - step, progress_.lines[i] + step);
 }
 
+double RaceDrivers::following_speed(const CarAhead& ahead, double speed) const {
+    // Each metre off the following distance asks 1 m/s more or less than the car ahead's.
+    constexpr double kGapRate = 1.0;  // 1/s
+    // Never slower: a car stopped behind a stopped car (after a crash) would wait for ever;
+    // crawling, it bumps it or passes it.
+    constexpr double kCrawling = 5.0;  // m/s
+    if (!std::isfinite(ahead.gap)) return std::numeric_limits<double>::infinity();
+    const double keep = settings_.follow_distance + settings_.follow_time * speed;
+    return std::max(speed - ahead.closing + kGapRate * (ahead.gap - keep), kCrawling);
+}
+
 void RaceDrivers::drive(World& world) {
     // Every lane from the same instant, before any car's inputs change.
     for (std::size_t i = 0; i < pilots_.size(); ++i) next_lanes_[i] = lane(world, i);
     const double dt = world.settings().dt_update;
+    // Only a car in front: two cars side by side must not both slow down for each other.
+    constexpr double kInFront = 1.0;  // m
     for (std::size_t i = 0; i < pilots_.size(); ++i) {
         progress_.lanes[i] = next_lanes_[i];
         progress_.lines[i] = line_towards(i, next_lanes_[i], dt);
         pilots_[i].set_lane_offset(progress_.lines[i]);
+        // The car ahead on its line, or where it is now on its way there.
+        CarAhead ahead = car_ahead(world, i, progress_.lines[i], kInFront);
+        if (const CarAhead here = car_ahead(world, i, road_position(world, i).across, kInFront);
+            here.gap < ahead.gap)
+            ahead = here;
         Car& car = world.car(i);
-        CarInputs inputs = pilots_[i].drive(car);
-        // Only a car in front: two cars side by side must not both lift off for each other.
-        // And only when moving: a car stopped behind a stopped car (after a crash) would
-        // wait for ever; crawling, it bumps it or passes it.
-        constexpr double kInFront = 1.0;       // m
-        constexpr double kPullingAway = -2.0;  // m/s
-        constexpr double kCrawling = 5.0;      // m/s
-        const CarAhead ahead = car_ahead(world, i, progress_.lines[i], kInFront);
-        if (ahead.gap < settings_.follow_gap && ahead.closing > kPullingAway &&
-            car.speed() > kCrawling) {
-            // Closing at 10 m/s or more brakes fully (anti-lock keeps the car steerable).
-            inputs.throttle = 0.0;
-            inputs.brake = std::max(inputs.brake, std::clamp(ahead.closing / 10.0, 0.0, 1.0));
-        }
-        car.set_inputs(inputs);
+        pilots_[i].set_speed_limit(following_speed(ahead, car.speed()));
+        car.set_inputs(pilots_[i].drive(car));
     }
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstddef>
+#include <limits>
 #include <vector>
 
 #include "trackphys/dynamics/car.hpp"
@@ -63,6 +64,9 @@ class TRACKPHYS_API Autopilot {
     /// a slower car. 0 until set; not part of the progress (a race sets it every update).
     void set_lane_offset(double metres) { lane_offset_ = metres; }
     double lane_offset() const { return lane_offset_; }
+    /// Drive no faster than this (m/s), e.g. behind a slower car. Infinite until set; not
+    /// part of the progress (a race sets it every update).
+    void set_speed_limit(double metres_per_second) { speed_limit_ = metres_per_second; }
 
     const AutopilotSettings& settings() const { return settings_; }
 
@@ -86,6 +90,7 @@ class TRACKPHYS_API Autopilot {
     int laps_ = 0;
     bool located_ = false;
     double lane_offset_ = 0.0;
+    double speed_limit_ = std::numeric_limits<double>::infinity();
 };
 
 }  // namespace trackphys

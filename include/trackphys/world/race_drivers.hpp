@@ -34,13 +34,19 @@ struct RaceSettings {
     /// that a car in a lane, its line-keeping error and a bump from a car beside it stay
     /// clear of the wall.
     double lane_offset = 2.0;
-    /// A lane is blocked by a slower car in it (within lane_width of its line) from a few
-    /// metres behind (alongside) to pass_look_ahead ahead along the track (m).
+    /// A lane is blocked by a slower car in it (within lane_width of its line: one that
+    /// closes in on it, or of a slower pace) from a few metres behind (alongside) to
+    /// pass_look_ahead ahead along the track (m).
     double pass_look_ahead = 60.0;
     double lane_width = 2.5;
-    /// A car lifts off closer than this (m) behind the car ahead in its lane, unless that
-    /// one pulls away, and brakes in proportion to how fast it closes in.
-    double follow_gap = 20.0;
+    /// A car moves into a lane only when nobody is in it from 20 m behind (the mirror) to
+    /// merge_gap ahead (m): it pulls out into a gap, not onto the bumper of a slower car.
+    double merge_gap = 15.0;
+    /// Behind a car in its lane a car keeps follow_distance (m, centre to centre) plus
+    /// follow_time (s) of its speed, matching the speed of the car ahead: pushed from
+    /// behind in a turn, a car spins.
+    double follow_distance = 6.0;
+    double follow_time = 0.05;
     /// How fast (m/s across the road) a car's line moves to a new lane: a lane change is a
     /// smooth swerve, not a step the steering would overshoot.
     double lane_change_speed = 3.0;
@@ -68,11 +74,13 @@ struct RaceProgress {
 /// A field of cars racing laps of a generated track: a starting grid (race_grid), one
 /// Autopilot per car with its own pace, and a lane per car, chosen every update from the
 /// field: a car leaves its own lane when a slower car is ahead in it and the other lane is
-/// free (nobody in it from 20 m behind, as a driver checks the mirror, to beside, and the
-/// car ahead there not slower), and comes back once its own lane is free; else it stays,
-/// and lifts off behind the car ahead, which it may still bump under braking. Its line
-/// moves to a new lane at lane_change_speed. Everything it decides is a function of the
-/// cars' states and its progress, so a race is as deterministic as its World.
+/// free (nobody in it from 20 m behind, as a driver checks the mirror, to merge_gap ahead,
+/// and the car ahead there not slower), and comes back once its own lane is free; else it
+/// stays, and follows the car ahead at a distance (follow_distance, follow_time), which it
+/// may still bump under braking. Its line moves to a new lane at lane_change_speed, and a
+/// lane change once begun is finished before the next. Everything it decides is a
+/// function of the cars' states and its progress, so a race is as deterministic as its
+/// World.
 ///
 /// Laps: the grid stands behind the start line, so a car's first crossing starts its lap
 /// 1 (a flying start); laps(i) counts the crossings after it.
@@ -131,13 +139,20 @@ class TRACKPHYS_API RaceDrivers {
     // Car i's line for the next update: from its current one towards its lane.
     double line_towards(std::size_t i, double lane, double dt) const;
     // The nearest car ahead of car i within lane_width of `line`, from `from` m (negative:
-    // behind, alongside) to pass_look_ahead m along the track: how far ahead (m, infinite
-    // for none) and how fast car i closes in on it (m/s).
+    // behind, alongside) to pass_look_ahead m along the track: which, how far ahead (m,
+    // infinite for none) and how fast car i closes in on it (m/s).
     struct CarAhead {
+        std::size_t car;
         double gap;
         double closing;
     };
     CarAhead car_ahead(const World& world, std::size_t i, double line, double from) const;
+    // Whether `ahead` holds car i up: car i closes in on it faster than `closing` (m/s),
+    // or it has the slower pace.
+    bool slower(std::size_t i, const CarAhead& ahead, double closing) const;
+    // The fastest car i may drive (m/s) at `speed` with `ahead` in its lane: the speed of
+    // the car ahead, more or less as the gap is above or below the following distance.
+    double following_speed(const CarAhead& ahead, double speed) const;
     // Whether car i is farther than rescue_distance from its nearest centreline sample.
     bool left_track(const World& world, std::size_t i) const;
     // Puts car i back on the road (after_update).
