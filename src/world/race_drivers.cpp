@@ -111,7 +111,7 @@ double RaceDrivers::lane(const World& world, std::size_t i) const {
     const double own = own_lane(i);
     const double current = progress_.lanes[i];
     // A swerve turned back halfway, as the lanes' cars change their minds, sways the car
-    // from side to side; at 250 km/h in a turn that spun a car into the wall.
+    // from side to side, and at speed in a turn the sway grows into a slide.
     if (progress_.lines[i] != current) return current;
     // Nor does a swerve begin in a fast turn: it adds its own sideways push to the turn's,
     // and a car near the limit slides.

@@ -54,7 +54,10 @@ inline std::optional<Contact> certified_face_contact(const NormalizedTriangle& t
     // least the margin from each edge. The regime test adds the margin to g.
     const double scale = std::abs(x) + std::abs(y) + std::abs(z) + t.x1 + r.x;
     const double margin = 0x1p-36 * scale;
-    const bool thick = t.y2 >= 0x1p-10 * t.x1;
+    // The normal's tilt, up to ~eps x1 / y2, also moves the answer by about that times S:
+    // past 2e5 m of S x1 / y2 (a thin triangle kilometres long) that nears the kernel's
+    // 1e-9 m, so such a triangle is left to the kernel too.
+    const bool thick = t.y2 >= 0x1p-10 * t.x1 && scale * t.x1 <= 2e5 * t.y2;
     // Vertices (0, 0), (x1, 0), (x2, y2), counter-clockwise: left of each edge.
     const bool off_first = py >= margin;
     const bool off_second =

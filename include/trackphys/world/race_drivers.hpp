@@ -75,7 +75,9 @@ struct RaceProgress {
 /// Autopilot per car with its own pace, and a lane per car, chosen every update from the
 /// field: a car leaves its own lane when a slower car is ahead in it and the other lane is
 /// free (nobody in it from 20 m behind, as a driver checks the mirror, to merge_gap ahead,
-/// and the car ahead there not slower), and comes back once its own lane is free; else it
+/// and the car ahead there not slower), and comes back once its own lane is free and
+/// nothing in it holds the car up; no lane change begins in a turn that already asks more
+/// than 6 m/s^2 of sideways grip at the car's speed; else it
 /// stays, and follows the car ahead at a distance (follow_distance, follow_time), which it
 /// may still bump under braking. Its line moves to a new lane at lane_change_speed, and a
 /// lane change once begun is finished before the next. Everything it decides is a
