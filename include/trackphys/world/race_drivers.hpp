@@ -41,6 +41,8 @@ struct RaceSettings {
     double lane_width = 2.5;
     /// A car moves into a lane only when nobody is in it from 20 m behind (the mirror) to
     /// merge_gap ahead (m): it pulls out into a gap, not onto the bumper of a slower car.
+    /// The lanes are read no farther than pass_look_ahead, so a larger merge_gap acts as
+    /// pass_look_ahead.
     double merge_gap = 15.0;
     /// Behind a car in its lane a car keeps follow_distance (m, centre to centre) plus
     /// follow_time (s) of its speed, matching the speed of the car ahead: pushed from
