@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <cstdint>
 
 #include <glm/geometric.hpp>
 
@@ -59,6 +61,34 @@ void press(Car& a, Car& b, const Contact& contact, const ContactMaterial& materi
     push_apart(a, b, impulse, contact.point);
 }
 
+// The sphere about a car's centre of mass that holds its placed ellipsoids.
+struct PlacedReach {
+    glm::dvec3 center;
+    double radius = 0.0;
+};
+
+PlacedReach placed_reach(const Car& car, std::span<const Ellipsoid> placed) {
+    PlacedReach reach{car.state().position};
+    for (const Ellipsoid& e : placed)
+        reach.radius =
+            std::max(reach.radius, glm::length(e.center() - reach.center) + e.bounding_radius());
+    return reach;
+}
+
+// Bit i (a CarSpec holds at most 64 ellipsoids): ellipsoid i reaches into the other car's
+// sphere, so it may touch one of its ellipsoids. The margin (far above rounding) keeps the test conservative: it leaves out
+// only pairs that ellipsoids_may_touch would reject too.
+std::uint64_t reaching(std::span<const Ellipsoid> placed, const PlacedReach& other) {
+    constexpr double kMargin = 1e-6;  // m
+    std::uint64_t mask = 0;
+    for (std::size_t i = 0; i < placed.size(); ++i) {
+        const glm::dvec3 apart = placed[i].center() - other.center;
+        const double reach = placed[i].bounding_radius() + other.radius + kMargin;
+        if (!(glm::dot(apart, apart) > reach * reach)) mask |= std::uint64_t{1} << i;
+    }
+    return mask;
+}
+
 }  // namespace
 
 CarPairTouch touch_cars(Car& a, std::span<const Ellipsoid> a_placed, Car& b,
@@ -71,8 +101,17 @@ CarPairTouch touch_cars(Car& a, std::span<const Ellipsoid> a_placed, Car& b,
     const ContactMaterial material = mean_material(a.spec().car_contact, b.spec().car_contact);
     const double deep_fraction =
         std::min(a.spec().deep_contact_fraction, b.spec().deep_contact_fraction);
-    for (const Ellipsoid& ea : a_placed) {
-        for (const Ellipsoid& eb : b_placed) {
+    // Cars queued nose to tail are within reach of each other with most of their
+    // ellipsoids far apart: each car's ellipsoids against the other's sphere first, so
+    // only the few pairs near the gap meet the ellipsoid pair's own culls.
+    const std::uint64_t a_reaching = reaching(a_placed, placed_reach(b, b_placed));
+    const std::uint64_t b_reaching = reaching(b_placed, placed_reach(a, a_placed));
+    for (std::size_t i = 0; i < a_placed.size(); ++i) {
+        if (!(a_reaching >> i & 1)) continue;
+        const Ellipsoid& ea = a_placed[i];
+        for (std::size_t j = 0; j < b_placed.size(); ++j) {
+            if (!(b_reaching >> j & 1)) continue;
+            const Ellipsoid& eb = b_placed[j];
             if (!ellipsoids_may_touch(ea, eb)) continue;
             const Contact contact = ellipsoid_ellipsoid_contact(ea, eb);
             ++touch.exact_tests;

@@ -2,7 +2,9 @@
 // it loses, that it never lets cars through each other, and that a stack of cars rests.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <memory>
+#include <random>
 #include <utility>
 #include <vector>
 
@@ -149,6 +151,39 @@ TEST(CarContact, EachSubStepConservesMomentumOfTheDefaultCars) {
 }
 
 // Without damping and friction the contact is a conservative spring.
+// touch_cars first keeps each car's ellipsoids that reach into the other car's sphere: it
+// must leave out only pairs that ellipsoids_may_touch rejects too. Default cars in reach of
+// each other, nose to tail, side by side and tilted, against every pair of the two.
+TEST(CarContact, TestsEveryEllipsoidPairTheCullsLetThrough) {
+    const CarSpec spec = free_space_car();
+    std::mt19937 random(16);
+    std::uniform_real_distribution<double> offset(-4.0, 4.0);
+    std::uniform_real_distribution<double> angle(-kPi, kPi);
+    std::uniform_real_distribution<double> tilt(-0.6, 0.6);
+    int filtered = 0;
+    for (int trial = 0; trial < 2000; ++trial) {
+        RigidBodyState state_b = moving({offset(random), 0.3 * offset(random), offset(random)},
+                                        angle(random), glm::dvec3(0.0));
+        state_b.orientation =
+            glm::angleAxis(tilt(random), glm::dvec3(1.0, 0.0, 0.0)) * state_b.orientation;
+        Car a(spec, moving(glm::dvec3(0.0), 0.0, glm::dvec3(0.0)));
+        Car b(spec, state_b);
+        std::vector<Ellipsoid> a_placed;
+        std::vector<Ellipsoid> b_placed;
+        for (std::size_t i = 0; i < a.ellipsoid_count(); ++i)
+            a_placed.push_back(a.world_ellipsoid(i));
+        for (std::size_t i = 0; i < b.ellipsoid_count(); ++i)
+            b_placed.push_back(b.world_ellipsoid(i));
+        std::uint64_t passing = 0;
+        for (const Ellipsoid& ea : a_placed)
+            for (const Ellipsoid& eb : b_placed) passing += ellipsoids_may_touch(ea, eb);
+        const detail::CarPairTouch touch = detail::touch_cars(a, a_placed, b, b_placed, 2.5e-4);
+        ASSERT_EQ(touch.exact_tests, passing) << "trial " << trial;
+        filtered += passing > 0 && passing < a_placed.size() * b_placed.size();
+    }
+    EXPECT_GT(filtered, 100) << "too few cases where some pairs, not all, pass the culls";
+}
+
 TEST(CarContact, LosesNoEnergyWithoutDampingOrFriction) {
     World world(std::make_shared<StaticWorld>(), without_gravity());
     CarSpec spec = free_space_car();
