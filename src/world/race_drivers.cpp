@@ -154,6 +154,10 @@ double RaceDrivers::following_speed(const CarAhead& ahead, double speed) const {
 }
 
 void RaceDrivers::drive(World& world) {
+    // Before the first update a pilot has not found its car: every car would read as
+    // standing at the start line, and the grid would find nobody ahead.
+    for (std::size_t i = 0; i < pilots_.size(); ++i)
+        if (!pilots_[i].located()) pilots_[i].locate(world.car(i));
     // Every lane from the same instant, before any car's inputs change.
     for (std::size_t i = 0; i < pilots_.size(); ++i) next_lanes_[i] = lane(world, i);
     const double dt = world.settings().dt_update;

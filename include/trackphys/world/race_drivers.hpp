@@ -97,7 +97,8 @@ class TRACKPHYS_API RaceDrivers {
 
     /// Adds the field to `world` (which must hold no cars yet) on the grid.
     void add_cars(World& world) const;
-    /// Sets every car's inputs for the next World::update.
+    /// Sets every car's inputs for the next World::update, from where every car stands
+    /// (the first call locates them all before any car decides).
     void drive(World& world);
     /// Call after each World::update: counts the laps each car completed in it, timed at
     /// world.time(), and rescues every car that left the track (RaceSettings::
