@@ -1,5 +1,8 @@
 #include "midphase_scene.hpp"
 
+#include "trackphys/geometry/contact.hpp"
+#include "trackphys/geometry/ellipsoid_cull.hpp"
+
 namespace trackphys::bench {
 
 MidScene::MidScene() {
@@ -21,7 +24,7 @@ MidScene::MidScene() {
 
     for (int sub = 0; sub < TightestTurnScene::kSubsteps; ++sub)
         for (std::size_t e = 0; e < s.car.ellipsoids.size(); ++e)
-            centers.push_back(s.center(e, sub));
+            placed.push_back(s.ellipsoid(e, sub));
     constexpr int kSteps = TightestTurnScene::kSubsteps / TightestTurnScene::kStepSubsteps;
     for (int step = 0; step < kSteps; ++step) {
         const int first = step * TightestTurnScene::kStepSubsteps;
@@ -59,8 +62,13 @@ const std::vector<MidVariant>& mid_variants() {
     return variants;
 }
 
-std::size_t run_update(MidPhase& mid, const MidVariant& variant, bool cull, UpdateLists& lists,
-                       std::size_t& kept) {
+namespace {
+
+// One update's lists as World builds them (see run_update): calls visit(step, ellipsoid,
+// list) with each step's list of each ellipsoid. Returns the list lengths summed.
+template <class Visit>
+std::size_t visit_lists(MidPhase& mid, const MidVariant& variant, UpdateLists& lists,
+                        Visit&& visit) {
     const TightestTurnScene& s = tightest_turn_scene();
     const MidScene& m = mid_scene();
     constexpr double kStepDt = TightestTurnScene::kSubstepDt * TightestTurnScene::kStepSubsteps;
@@ -92,15 +100,54 @@ std::size_t run_update(MidPhase& mid, const MidVariant& variant, bool cull, Upda
             list = &ahead.candidates();
         }
         total += list->size();
-        if (!cull) continue;
-        const int first = step * TightestTurnScene::kStepSubsteps;
-        for (int sub = first; sub < first + TightestTurnScene::kStepSubsteps; ++sub) {
-            const glm::dvec3& c = m.centers[std::size_t(sub) * ellipsoids + e];
-            for (const MidPhaseCandidate& cand : *list)
-                kept += cand.triangle->may_touch_sphere(c, sq.radius) ? 1 : 0;
-        }
+        visit(step, e, *list);
     }
     return total;
+}
+
+}  // namespace
+
+std::size_t run_update(MidPhase& mid, const MidVariant& variant, bool cull, UpdateLists& lists,
+                       std::size_t& kept) {
+    const MidScene& m = mid_scene();
+    const std::size_t ellipsoids = tightest_turn_scene().car.ellipsoids.size();
+    return visit_lists(
+        mid, variant, lists,
+        [&](int step, std::size_t e, const std::vector<MidPhaseCandidate>& list) {
+            if (!cull) return;
+            const int first = step * TightestTurnScene::kStepSubsteps;
+            for (int sub = first; sub < first + TightestTurnScene::kStepSubsteps; ++sub) {
+                const Ellipsoid& placed = m.placed[std::size_t(sub) * ellipsoids + e];
+                if (variant.shape == Shape::sphere) {
+                    const double radius = m.queries[std::size_t(step) * ellipsoids + e].radius;
+                    for (const MidPhaseCandidate& cand : list)
+                        kept += cand.triangle->may_touch_sphere(placed.center(), radius) ? 1 : 0;
+                } else {
+                    for (const MidPhaseCandidate& cand : list)
+                        kept += ellipsoid_depth_bound(*cand.triangle, placed) > 0.0 ? 1 : 0;
+                }
+            }
+        });
+}
+
+std::size_t touching_in_lists(MidPhase& mid, const MidVariant& variant, UpdateLists& lists) {
+    const MidScene& m = mid_scene();
+    const std::size_t ellipsoids = tightest_turn_scene().car.ellipsoids.size();
+    std::size_t touching = 0;
+    visit_lists(mid, variant, lists,
+                [&](int step, std::size_t e, const std::vector<MidPhaseCandidate>& list) {
+                    const int first = step * TightestTurnScene::kStepSubsteps;
+                    for (int sub = first; sub < first + TightestTurnScene::kStepSubsteps; ++sub) {
+                        const Ellipsoid& placed = m.placed[std::size_t(sub) * ellipsoids + e];
+                        for (const MidPhaseCandidate& cand : list) {
+                            const Triangle triangle =
+                                m.world.collider(cand.ref.collider).triangle(cand.ref.triangle);
+                            touching +=
+                                ellipsoid_triangle_contact(placed, triangle).depth > 0.0 ? 1 : 0;
+                        }
+                    }
+                });
+    return touching;
 }
 
 double tested_per_ellipsoid_substep(std::size_t total_per_update) {

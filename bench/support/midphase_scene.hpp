@@ -17,6 +17,7 @@
 #include "trackphys/collision/mid_phase.hpp"
 #include "trackphys/collision/static_world.hpp"
 #include "trackphys/detail/plane_tree_builder.hpp"
+#include "trackphys/geometry/ellipsoid.hpp"
 #include "trackphys/world/world_settings.hpp"
 
 namespace trackphys::bench {
@@ -42,9 +43,9 @@ struct MidScene {
     ColliderPlaneTrees trees;         // cost_based (the precomputed default)
     std::uint32_t turn_collider = 0;  // the collider with most candidates
     std::vector<StepQuery> queries;   // 10 steps x 8 ellipsoids
-    /// Each sub-step's ellipsoid centres (40 x 8): the cull's inputs, as World has them from
+    /// Each sub-step's ellipsoids (40 x 8): the cull's inputs, placed as World has them from
     /// integrating, so that the cull is timed without the scene's kinematics.
-    std::vector<glm::dvec3> centers;
+    std::vector<Ellipsoid> placed;
     double trees_build_ms = 0.0;
     std::size_t trees_bytes = 0;
 
@@ -80,10 +81,17 @@ struct UpdateLists {
 /// ellipsoid's list: its swept bounding sphere queried for the step, or its swept ellipsoid
 /// through a LookAheadList that looks variant.look_ahead steps ahead (within the update, and
 /// within the update box) and is reused while the step stays inside. With `cull`, also each
-/// sub-step's bounding-sphere cull over the step's list (the loop's next stage), so the time
-/// shows what the lists cost downstream. Returns the list lengths summed over the steps.
+/// sub-step's cull over the step's list (the loop's next stage), so the time shows what the
+/// lists cost downstream: the write-up's bounding-sphere test after sphere queries, World's
+/// (ellipsoid_depth_bound > 0, counted in `kept`) after ellipsoid queries. Returns the list
+/// lengths summed over the steps.
 std::size_t run_update(MidPhase& mid, const MidVariant& variant, bool cull, UpdateLists& lists,
                        std::size_t& kept);
+
+/// One update's lists as run_update builds them, and how many of their (sub-step, ellipsoid,
+/// triangle) entries truly touch (ellipsoid_triangle_contact deeper than 0): a list that
+/// lost a touching triangle counts fewer than the whole broad-phase list ("none") does.
+std::size_t touching_in_lists(MidPhase& mid, const MidVariant& variant, UpdateLists& lists);
 
 /// The average list length: each step's list is tested in each of its 4 sub-steps.
 double tested_per_ellipsoid_substep(std::size_t total_per_update);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <sstream>
 #include <string>
 
 #include <glm/geometric.hpp>
@@ -32,10 +33,18 @@ RaceDrivers::RaceDrivers(const Track& track, const CarSpec& car, std::size_t car
             "RaceSettings: grip shares must be finite and 0 < least_grip_use <= most_grip_use");
     if (!(settings_.lane_offset >= 0.0 && settings_.pass_look_ahead >= 0.0 &&
           settings_.lane_width >= 0.0 && settings_.merge_gap >= 0.0 &&
-          settings_.follow_distance >= 0.0 && settings_.follow_time >= 0.0))
+          settings_.follow_distance >= 0.0 && settings_.follow_time >= 0.0 &&
+          settings_.pass_closing >= 0.0 && settings_.swerve_turn_accel >= 0.0))
         throw Error(
-            "RaceSettings: lane_offset, pass_look_ahead, lane_width, merge_gap, follow_distance "
-            "and follow_time must be >= 0");
+            "RaceSettings: lane_offset, pass_look_ahead, lane_width, merge_gap, follow_distance, "
+            "follow_time, pass_closing and swerve_turn_accel must be >= 0");
+    if (!(settings_.merge_gap <= settings_.pass_look_ahead)) {
+        std::ostringstream why;
+        why << "RaceSettings: merge_gap (" << settings_.merge_gap
+            << " m) must be <= pass_look_ahead (" << settings_.pass_look_ahead
+            << " m), as far as the lanes are read";
+        throw Error(why.str());
+    }
     if (!(std::isfinite(settings_.lane_change_speed) && settings_.lane_change_speed > 0.0))
         throw Error("RaceSettings: lane_change_speed must be finite and > 0");
     if (!(settings_.rescue_distance > 0.0))
@@ -104,10 +113,8 @@ bool RaceDrivers::slower(std::size_t i, const CarAhead& ahead, double closing) c
 }
 
 double RaceDrivers::lane(const World& world, std::size_t i) const {
-    constexpr double kAlongside = -6.0;       // m: a car this far behind is still beside us
-    constexpr double kMirror = -20.0;         // m: a lane change looks this far back
-    constexpr double kPassClosing = 1.0;      // m/s
-    constexpr double kSwerveTurnAccel = 6.0;  // m/s^2 across the road
+    constexpr double kAlongside = -6.0;  // m: a car this far behind is still beside us
+    constexpr double kMirror = -20.0;    // m: a lane change looks this far back
     const double own = own_lane(i);
     const double current = progress_.lanes[i];
     // A swerve turned back halfway, as the lanes' cars change their minds, sways the car
@@ -117,7 +124,7 @@ double RaceDrivers::lane(const World& world, std::size_t i) const {
     // and a car near the limit slides.
     const CenterlineSample& here = track_->centerline[pilots_[i].nearest_sample()];
     const double speed = world.car(i).speed();
-    if (speed * speed * std::abs(here.curvature) > kSwerveTurnAccel) return current;
+    if (speed * speed * std::abs(here.curvature) > settings_.swerve_turn_accel) return current;
     // Blocked: the car ahead in the lane closes in faster than `closing`, or has the
     // slower pace.
     const auto blocked = [&](double line, double closing) {
@@ -131,9 +138,9 @@ double RaceDrivers::lane(const World& world, std::size_t i) const {
     };
     // Out to pass when its own lane is blocked, back once its own lane is free and no
     // longer blocked at all: a car that came back behind the car it pulled out for would
-    // only pull out again, and a closing speed that flickers about kPassClosing must not
+    // only pull out again, and a closing speed that flickers about pass_closing must not
     // send a car out and back.
-    if (current == own) return blocked(own, kPassClosing) && free(-own) ? -own : own;
+    if (current == own) return blocked(own, settings_.pass_closing) && free(-own) ? -own : own;
     return free(own) && !blocked(own, 0.0) ? own : -own;
 }
 
@@ -154,6 +161,10 @@ double RaceDrivers::following_speed(const CarAhead& ahead, double speed) const {
 }
 
 void RaceDrivers::drive(World& world) {
+    // Before the first update a pilot has not found its car: every car would read as
+    // standing at the start line, and the grid would find nobody ahead.
+    for (std::size_t i = 0; i < pilots_.size(); ++i)
+        if (!pilots_[i].located()) pilots_[i].locate(world.car(i));
     // Every lane from the same instant, before any car's inputs change.
     for (std::size_t i = 0; i < pilots_.size(); ++i) next_lanes_[i] = lane(world, i);
     const double dt = world.settings().dt_update;

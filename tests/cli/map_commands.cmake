@@ -9,7 +9,7 @@ trackphys_cli_test(map.bake_a_mesh 0 "colliders +[0-9]+, [0-9]+ triangles"
 set_tests_properties(map.bake_default_track map.bake_a_mesh PROPERTIES FIXTURES_SETUP baked_maps)
 
 # The baked default track drives exactly as the track built at start (drive.pinned_state_hash).
-trackphys_cli_test(map.drive_pinned_state_hash 0 "map .*seed7.tpmap.*state hash +9f2c51220d1e4986"
+trackphys_cli_test(map.drive_pinned_state_hash 0 "map .*seed7.tpmap.*state hash +9a386cdc499045ab"
                    drive --map ${maps}/seed7.tpmap --seconds 10)
 trackphys_cli_test(map.info 0 "format version 2.*colliders +50.*track +seed 7"
                    info ${maps}/seed7.tpmap)
@@ -22,9 +22,9 @@ set_tests_properties(map.drive_pinned_state_hash map.info map.drive_a_mesh_map_f
 
 # race --map: the baked track races as the generated one (the same hash as race --seed 7);
 # --seed with --map is an error naming both, as in drive.
-trackphys_cli_test(map.race_pinned_state_hash 0 "map .*seed7.tpmap.*state hash +1a97fed7f442e524"
+trackphys_cli_test(map.race_pinned_state_hash 0 "map .*seed7.tpmap.*state hash +2608dae4306fcf60"
                    race --map ${maps}/seed7.tpmap --cars 2 --seconds 2)
-trackphys_cli_test(map.race_generated_state_hash 0 "seed 7.*state hash +1a97fed7f442e524"
+trackphys_cli_test(map.race_generated_state_hash 0 "seed 7.*state hash +2608dae4306fcf60"
                    race --seed 7 --cars 2 --seconds 2)
 trackphys_cli_test(map.race_a_mesh_map_needs_a_track 1 "baked from a mesh and has no centreline"
                    race --map ${maps}/flat.tpmap --cars 2 --seconds 1)

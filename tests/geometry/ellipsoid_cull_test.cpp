@@ -1,5 +1,6 @@
 #include "trackphys/geometry/ellipsoid_cull.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -36,6 +37,54 @@ TEST(EllipsoidCull, NeverRejectsAnOverlappingPair) {
     }
     EXPECT_GT(overlapping, 10000);
     EXPECT_GT(rejected, 5000);
+}
+
+// Slivers 10 m long and 1e-6 to 1e-10 m high, which Triangle::is_degenerate keeps: a sphere
+// that reaches past a vertex by d overlaps the triangle by at least d, since the vertex lies
+// in the triangle. The cull must keep the pair and bound its depth by at least d. The vertex at the
+// far end of the longest edge is where a frame normal tilted along that edge lies farthest
+// off the frame's plane.
+TEST(EllipsoidCull, NeverRejectsASphereReachingASliversVertex) {
+    std::mt19937_64 rng(2024);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    std::normal_distribution<double> gauss;
+    const auto random_direction = [&] {
+        return glm::normalize(glm::dvec3(gauss(rng), gauss(rng), gauss(rng)));
+    };
+    const double radius = 0.3;
+    int overlapping = 0;
+    for (const double height : {1e-6, 1e-8, 1e-10}) {
+        for (int i = 0; i < 20000; ++i) {
+            const glm::dvec3 along = random_direction();
+            const glm::dvec3 across = glm::normalize(glm::cross(along, random_direction()));
+            const glm::dvec3 origin(100.0 * unit(rng), 100.0 * unit(rng), 10.0 * unit(rng));
+            const Triangle sliver{origin, origin + 10.0 * along,
+                                  origin + 10.0 * unit(rng) * along + height * across};
+            ASSERT_FALSE(sliver.is_degenerate());
+            // From either side, nearly along the plane's normal: there a plane through the
+            // vertex is what the sphere first reaches, so an error in the plane shows whole.
+            const glm::dvec3 plane_normal = glm::cross(along, across);
+            const glm::dvec3 towards = glm::normalize((i % 2 == 0 ? 1.0 : -1.0) * plane_normal +
+                                                      1e-4 * random_direction());
+            const glm::dvec3& vertex = sliver[i % 3];
+            const double reach = 1e-5 * unit(rng);
+            const Ellipsoid sphere(vertex + (radius - reach) * towards, glm::dquat(1, 0, 0, 0),
+                                   glm::dvec3(radius));
+            // The overlap at the vertex, in long double from the rounded centre.
+            long double distance2 = 0;
+            for (int k = 0; k < 3; ++k) {
+                const long double d = static_cast<long double>(sphere.center()[k]) - vertex[k];
+                distance2 += d * d;
+            }
+            const double overlap = double(radius - std::sqrt(distance2));
+            if (overlap < 1e-12) continue;
+            ++overlapping;
+            const double bound = ellipsoid_depth_bound(NormalizedTriangle(sliver), sphere);
+            ASSERT_GE(bound, overlap - 1e-12)
+                << "sliver " << height << " m, case " << i << ", vertex " << i % 3;
+        }
+    }
+    EXPECT_GT(overlapping, 50000);
 }
 
 // Any direction bounds the depth from above, and the contact's own normal gives the depth

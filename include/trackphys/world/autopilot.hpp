@@ -67,6 +67,9 @@ class TRACKPHYS_API Autopilot {
     /// Drive no faster than this (m/s), e.g. behind a slower car. Infinite until set; not
     /// part of the progress (a race sets it every update).
     void set_speed_limit(double metres_per_second) { speed_limit_ = metres_per_second; }
+    double speed_limit() const { return speed_limit_; }
+    /// Whether drive() or locate() has found the car yet (nearest_sample() is 0 until then).
+    bool located() const { return located_; }
 
     const AutopilotSettings& settings() const { return settings_; }
 

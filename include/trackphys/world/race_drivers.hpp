@@ -41,9 +41,16 @@ struct RaceSettings {
     double lane_width = 2.5;
     /// A car moves into a lane only when nobody is in it from 20 m behind (the mirror) to
     /// merge_gap ahead (m): it pulls out into a gap, not onto the bumper of a slower car.
-    /// The lanes are read no farther than pass_look_ahead, so a larger merge_gap acts as
-    /// pass_look_ahead.
+    /// The lanes are read no farther than pass_look_ahead, so merge_gap must not exceed it
+    /// (both as large as the track: nobody ever passes).
     double merge_gap = 15.0;
+    /// A car pulls out to pass when the car ahead in its lane has the slower pace or it
+    /// closes in on that car faster than this (m/s).
+    double pass_closing = 1.0;
+    /// No lane change begins where the turn already asks more than this (m/s^2 across the
+    /// road, v^2 |curvature|) of the tyres: a swerve adds its own sideways push, and a car
+    /// near the limit slides. Infinite: lanes change in any turn.
+    double swerve_turn_accel = 6.0;
     /// Behind a car in its lane a car keeps follow_distance (m, centre to centre) plus
     /// follow_time (s) of its speed, matching the speed of the car ahead: pushed from
     /// behind in a turn, a car spins.
@@ -79,7 +86,7 @@ struct RaceProgress {
 /// free (nobody in it from 20 m behind, as a driver checks the mirror, to merge_gap ahead,
 /// and the car ahead there not slower), and comes back once its own lane is free and
 /// nothing in it holds the car up; no lane change begins in a turn that already asks more
-/// than 6 m/s^2 of sideways grip at the car's speed; else it
+/// than swerve_turn_accel of sideways grip at the car's speed; else it
 /// stays, and follows the car ahead at a distance (follow_distance, follow_time), which it
 /// may still bump under braking. Its line moves to a new lane at lane_change_speed, and a
 /// lane change once begun is finished before the next. Everything it decides is a
@@ -91,13 +98,15 @@ struct RaceProgress {
 class TRACKPHYS_API RaceDrivers {
   public:
     /// Throws trackphys::Error for no cars, speeds or grip shares that are not finite and
-    /// > 0 or in the wrong order, or negative lane distances.
+    /// > 0 or in the wrong order, negative lane distances or rule thresholds, or a
+    /// merge_gap beyond pass_look_ahead.
     RaceDrivers(const Track& track, const CarSpec& car, std::size_t cars,
                 RaceSettings settings = {});
 
     /// Adds the field to `world` (which must hold no cars yet) on the grid.
     void add_cars(World& world) const;
-    /// Sets every car's inputs for the next World::update.
+    /// Sets every car's inputs for the next World::update, from where every car stands
+    /// (the first call locates them all before any car decides).
     void drive(World& world);
     /// Call after each World::update: counts the laps each car completed in it, timed at
     /// world.time(), and rescues every car that left the track (RaceSettings::
