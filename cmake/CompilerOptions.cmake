@@ -38,6 +38,12 @@ if(TRACKPHYS_SANITIZE)
   target_link_options(trackphys_options INTERFACE -fsanitize=address,undefined)
 endif()
 
+# A sanitizer build is a checking build: its RelWithDebInfo defines NDEBUG, which would
+# compile every TP_ASSERT out, so the internal checks are turned back on.
+if(TRACKPHYS_SANITIZE OR TRACKPHYS_SANITIZE_THREADS)
+  target_compile_definitions(trackphys_options INTERFACE TRACKPHYS_ENABLE_ASSERT)
+endif()
+
 # ThreadSanitizer cannot share a build with AddressSanitizer.
 if(TRACKPHYS_SANITIZE_THREADS)
   if(TRACKPHYS_SANITIZE)
