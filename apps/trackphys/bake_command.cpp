@@ -22,7 +22,7 @@ namespace {
 
 struct BakeOptions {
     std::filesystem::path mesh;
-    std::uint64_t seed = 7;
+    std::uint64_t seed = kDemoTrackSeed;
     std::filesystem::path out;
     double chunk_m = 100.0;
     unsigned threads = 0;

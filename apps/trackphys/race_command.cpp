@@ -28,7 +28,7 @@ namespace {
 
 struct RaceOptions {
     std::filesystem::path scenario_file;
-    std::uint64_t seed = 7;
+    std::uint64_t seed = kDemoTrackSeed;
     std::size_t cars = 20;
     int laps = 0;
     double seconds = 0.0;

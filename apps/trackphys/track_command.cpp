@@ -94,6 +94,7 @@ void run(const TrackOptions& options) {
 void add_track_command(CLI::App& app) {
     auto options = std::make_shared<TrackOptions>();
     TrackParams& p = options->params;
+    p.seed = kDemoTrackSeed;
     CLI::App* command = app.add_subcommand(
         "track",
         "Generate a closed, banked race track (Bezier loop) and print its figures; "

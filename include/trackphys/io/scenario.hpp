@@ -11,6 +11,7 @@
 #include "trackphys/dynamics/car.hpp"
 #include "trackphys/dynamics/car_spec.hpp"
 #include "trackphys/export.hpp"
+#include "trackphys/track/track_params.hpp"
 
 /// Scenarios: what `trackphys drive --scenario FILE` drives, as a value and as a JSON file.
 ///
@@ -48,9 +49,9 @@ inline constexpr int max_scenario_cars = 128;
 
 /// One drive: the track, the car, who drives it and for how long.
 struct TRACKPHYS_API Scenario {
-    std::uint64_t seed = 7;      ///< the generated track's seed (when mesh is empty)
-    std::filesystem::path mesh;  ///< drive on this mesh file instead (needs spawn)
-    std::filesystem::path map;   ///< or on this baked map (io/map_file.hpp)
+    std::uint64_t seed = kDemoTrackSeed;  ///< the generated track's seed (when mesh is empty)
+    std::filesystem::path mesh;           ///< drive on this mesh file instead (needs spawn)
+    std::filesystem::path map;            ///< or on this baked map (io/map_file.hpp)
     /// Free mode: the car starts upright above this point (m) and lands on the surface
     /// below it; it drives with `inputs` instead of the autopilot.
     std::optional<glm::dvec3> spawn;

@@ -6,7 +6,12 @@
 
 namespace trackphys {
 
-/// Everything that shapes a generated track. The defaults give the demo track: a closed
+/// The demo track's seed: what `trackphys drive`, `race`, `bake` and `track` generate when
+/// no seed is given, and a Scenario's default.
+inline constexpr std::uint64_t kDemoTrackSeed = 7;
+
+/// Everything that shapes a generated track. The defaults, with seed = kDemoTrackSeed, give
+/// the demo track (the default seed itself gives another track of the same kind): a closed
 /// loop of 5 km, 14 m wide, banked up to 35 degrees, with 1 m walls, road edges of 0.5 m
 /// in the tight turns and 10 strips across (about 300k triangles in 50 collider chunks of
 /// ~100 m), so that a car's box swept for 1000 km/h over a 10 ms update meets a couple of
