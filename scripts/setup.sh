@@ -5,7 +5,7 @@
 # Needs root (as on the project's machines) only when something is missing.
 set -euo pipefail
 
-# package          why (also in README.md, "Dependencies")
+# package          why (also in docs/building.md, "Dependencies")
 required=(
   cmake # the build (>= 3.25)
   g++ # the compiler

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The README's test command: installs what is missing, builds Release and runs every test
-# (the soak and the fuzzers' short runs are behind the ctest labels "long" and "fuzz", see
-# README.md). Extra arguments go to ctest.
+# (the soak, the fuzzers' short runs, the 20-car races and the lap sweep are behind the ctest
+# labels "long" and "fuzz", see docs/testing.md). Extra arguments go to ctest.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 

@@ -319,9 +319,9 @@ void add_drive_command(CLI::App& app) {
         "Drive the default car (or --car, or a --scenario file): laps of a generated track by "
         "autopilot, or free on any mesh; prints lap time, top speed and the per-phase profile of "
         "every update. Options given with --scenario override the file's values");
-    command->add_option(
-        "--scenario", o->scenario_file,
-        "Read track, car, driver and duration from this JSON file (see README, 'Scenario files')");
+    command->add_option("--scenario", o->scenario_file,
+                        "Read track, car, driver and duration from this JSON file (see "
+                        "docs/cli.md, 'Car spec and scenario files')");
     CLI::Option* car_file = command->add_option(
         "--car", o->car_file, "Read the car spec from this JSON file (see --print-car)");
     command

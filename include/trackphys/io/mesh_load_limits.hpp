@@ -24,7 +24,8 @@ struct MeshLoadLimits {
     /// Bytes of the mesh file plus, for glTF, the buffer files it names. 16 GiB: an ASCII
     /// STL, the most verbose format, takes about 260 bytes a triangle, 13 GB for 50 million.
     std::uint64_t max_bytes = std::uint64_t{16} << 30;
-    /// Nesting of AC3D objects, glTF nodes and glTF JSON. Real tracks nest a few levels.
+    /// Nesting of AC3D objects and glTF nodes (glTF's JSON has its own fixed limit of 64
+    /// levels). Real tracks nest a few levels.
     std::size_t max_nesting = 64;
 };
 

@@ -26,8 +26,11 @@ constexpr const char* phase_name(Phase phase) {
 /// What one update did: time per phase (microseconds) and how much work it saw.
 struct UpdateProfile {
     std::array<double, phase_count> phase_us{};
-    double update_us = 0.0;                ///< the whole update, wall clock
-    std::uint64_t candidates = 0;          ///< broad-phase triangles, summed over cars
+    double update_us = 0.0;  ///< the whole update, wall clock
+    /// Triangles handed to the narrow phase, summed over cars: the broad-phase list in the
+    /// none and per_update_tree modes; in precomputed_tree, each ellipsoid's mid-phase list
+    /// per step.
+    std::uint64_t candidates = 0;
     std::uint64_t mid_queries = 0;         ///< mid-phase queries (the others reused a list)
     std::uint64_t culled_tests = 0;        ///< culls run (per ellipsoid per sub-step)
     std::uint64_t exact_tests = 0;         ///< exact contacts computed
