@@ -37,7 +37,7 @@ const char* variant_name(std::int64_t variant) {
 
 void BM_MidPhaseUpdate(benchmark::State& state) {
     const MidVariant& variant = mid_variants()[std::size_t(state.range(0))];
-    const bool cull = state.range(1) != 0;
+    const SubstepCull cull = state.range(1) != 0 ? SubstepCull::bounding_sphere : SubstepCull::none;
     auto mid = make_mid_phase(variant.mode);
     UpdateLists lists;
     std::size_t total = 0, kept = 0;
@@ -48,7 +48,7 @@ void BM_MidPhaseUpdate(benchmark::State& state) {
     mid->reset_counters();
     total = run_update(*mid, variant, cull, lists, kept);
     const MidPhaseCounters& c = mid->counters();
-    state.SetLabel(std::string(variant.name) + (cull ? " +cull" : ""));
+    state.SetLabel(std::string(variant.name) + (cull == SubstepCull::none ? "" : " +cull"));
     state.counters["tested_per_ell_sub"] = tested_per_ellipsoid_substep(total);
     state.counters["queries"] = double(c.queries);
     state.counters["broad_candidates"] = double(c.broad_phase_candidates);
@@ -83,8 +83,11 @@ void BM_ModeRatios(benchmark::State& state) {
             begin_us[v] =
                 best_of([&] { mid->begin_update(bench::tightest_turn_scene().update_box); });
             std::size_t total = 0;
-            mid_us[v] = best_of([&] { total = run_update(*mid, variants[v], false, lists, kept); });
-            cull_us[v] = best_of([&] { total = run_update(*mid, variants[v], true, lists, kept); });
+            mid_us[v] = best_of(
+                [&] { total = run_update(*mid, variants[v], SubstepCull::none, lists, kept); });
+            cull_us[v] = best_of([&] {
+                total = run_update(*mid, variants[v], SubstepCull::bounding_sphere, lists, kept);
+            });
             tested[v] = tested_per_ellipsoid_substep(total);
         }
         benchmark::DoNotOptimize(kept);

@@ -107,18 +107,18 @@ std::size_t visit_lists(MidPhase& mid, const MidVariant& variant, UpdateLists& l
 
 }  // namespace
 
-std::size_t run_update(MidPhase& mid, const MidVariant& variant, bool cull, UpdateLists& lists,
-                       std::size_t& kept) {
+std::size_t run_update(MidPhase& mid, const MidVariant& variant, SubstepCull cull,
+                       UpdateLists& lists, std::size_t& kept) {
     const MidScene& m = mid_scene();
     const std::size_t ellipsoids = tightest_turn_scene().car.ellipsoids.size();
     return visit_lists(
         mid, variant, lists,
         [&](int step, std::size_t e, const std::vector<MidPhaseCandidate>& list) {
-            if (!cull) return;
+            if (cull == SubstepCull::none) return;
             const int first = step * TightestTurnScene::kStepSubsteps;
             for (int sub = first; sub < first + TightestTurnScene::kStepSubsteps; ++sub) {
                 const Ellipsoid& placed = m.placed[std::size_t(sub) * ellipsoids + e];
-                if (variant.shape == Shape::sphere) {
+                if (cull == SubstepCull::bounding_sphere) {
                     const double radius = m.queries[std::size_t(step) * ellipsoids + e].radius;
                     for (const MidPhaseCandidate& cand : list)
                         kept += cand.triangle->may_touch_sphere(placed.center(), radius) ? 1 : 0;

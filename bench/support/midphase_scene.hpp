@@ -77,16 +77,22 @@ struct UpdateLists {
     std::vector<LookAheadList> ellipsoids;   ///< per ellipsoid, as World keeps them
 };
 
+/// The test each sub-step runs over the step's list, the loop's next stage.
+enum class SubstepCull {
+    none,
+    bounding_sphere,  ///< the write-up's: the step's query sphere against the triangle
+    world_extent,     ///< World's: ellipsoid_depth_bound > 0, dearer and tighter
+};
+
 /// One update's mid-phase work as World does it: begin_update, then per step each
 /// ellipsoid's list: its swept bounding sphere queried for the step, or its swept ellipsoid
 /// through a LookAheadList that looks variant.look_ahead steps ahead (within the update, and
-/// within the update box) and is reused while the step stays inside. With `cull`, also each
-/// sub-step's cull over the step's list (the loop's next stage), so the time shows what the
-/// lists cost downstream: the write-up's bounding-sphere test after sphere queries, World's
-/// (ellipsoid_depth_bound > 0, counted in `kept`) after ellipsoid queries. Returns the list
-/// lengths summed over the steps.
-std::size_t run_update(MidPhase& mid, const MidVariant& variant, bool cull, UpdateLists& lists,
-                       std::size_t& kept);
+/// within the update box) and is reused while the step stays inside. With a cull, also each
+/// sub-step's cull over the step's list, so the time shows what the lists cost downstream;
+/// the triangles it keeps are counted in `kept`. Returns the list lengths summed over the
+/// steps.
+std::size_t run_update(MidPhase& mid, const MidVariant& variant, SubstepCull cull,
+                       UpdateLists& lists, std::size_t& kept);
 
 /// One update's lists as run_update builds them, and how many of their (sub-step, ellipsoid,
 /// triangle) entries truly touch (ellipsoid_triangle_contact deeper than 0): a list that
