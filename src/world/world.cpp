@@ -26,14 +26,15 @@ World::World(std::shared_ptr<const StaticWorld> statics, WorldSettings settings,
              ColliderPlaneTrees trees)
     : statics_(std::move(statics)),
       settings_(std::move(settings)),
-      trees_(std::move(trees)),
       work_(std::make_unique<UpdateWork>()) {
     if (!statics_) throw Error("World: the static world is null");
     if (std::string why = settings_.validate(); !why.empty()) throw Error(why);
-    if (settings_.mid_phase == MidPhaseMode::precomputed_tree && trees_.empty())
-        trees_ = make_collider_plane_trees(*statics_, PlaneTreeSettings::precomputed(),
-                                           static_cast<unsigned>(settings_.thread_count()));
-    if (settings_.mid_phase != MidPhaseMode::precomputed_tree) trees_.clear();
+    if (settings_.mid_phase != MidPhaseMode::precomputed_tree)
+        trees.clear();
+    else if (trees.empty())
+        trees = make_collider_plane_trees(*statics_, PlaneTreeSettings::precomputed(),
+                                          static_cast<unsigned>(settings_.thread_count()));
+    trees_ = std::make_shared<const ColliderPlaneTrees>(std::move(trees));
     // The phase clock's rate is measured once, over a millisecond: here rather than inside
     // the first update, whose time it would otherwise carry.
     if (settings_.profile) static_cast<void>(TickClock::microseconds_per_tick());
