@@ -47,19 +47,26 @@ ColliderPlaneTrees make_collider_plane_trees(const StaticWorld& world,
 }
 
 MidPhase::MidPhase(MidPhaseMode mode, const StaticWorld& world, ColliderPlaneTrees trees)
-    : mode_(mode), world_(&world), trees_(std::move(trees)) {
-    check_trees();
-}
+    : MidPhase(mode, world, std::make_shared<const ColliderPlaneTrees>(std::move(trees))) {}
 
-void MidPhase::check_trees() const {
+MidPhase::MidPhase(MidPhaseMode mode, const StaticWorld& world,
+                   std::shared_ptr<const ColliderPlaneTrees> trees)
+    : mode_(mode), world_(&world), trees_(std::move(trees)) {
+    if (!trees_) trees_ = std::make_shared<const ColliderPlaneTrees>();
+    check_tree_count();
     if (mode_ != MidPhaseMode::precomputed_tree) return;
-    if (trees_.size() != world_->size())
-        throw Error("MidPhase (precomputed_tree): " + std::to_string(trees_.size()) +
-                    " plane trees for " + std::to_string(world_->size()) + " colliders");
-    for (std::size_t id = 0; id < trees_.size(); ++id)
-        if (!trees_[id])
+    for (std::size_t id = 0; id < trees_->size(); ++id)
+        if (!(*trees_)[id])
             throw Error("MidPhase (precomputed_tree): no plane tree for collider " +
                         std::to_string(id));
+}
+
+// The trees are const, so a null one can only be there from the start; a collider added
+// to the world since changes only the count.
+void MidPhase::check_tree_count() const {
+    if (mode_ == MidPhaseMode::precomputed_tree && trees_->size() != world_->size())
+        throw Error("MidPhase (precomputed_tree): " + std::to_string(trees_->size()) +
+                    " plane trees for " + std::to_string(world_->size()) + " colliders");
 }
 
 void MidPhase::begin_update(const Aabb& update_box) {
@@ -74,10 +81,10 @@ void MidPhase::begin_update(const Aabb& update_box) {
     active_colliders_.clear();
     entry_nodes_.clear();
     if (mode_ == MidPhaseMode::precomputed_tree) {
-        check_trees();
+        check_tree_count();
         world_->colliders_overlapping(update_box, active_colliders_);
         for (const std::uint32_t id : active_colliders_)
-            entry_nodes_.push_back(trees_[id]->entry_node(update_box));
+            entry_nodes_.push_back((*trees_)[id]->entry_node(update_box));
         return;
     }
     world_->query_aabb(update_box, refs_);
@@ -113,7 +120,7 @@ void MidPhase::query(Query&& query_tree, std::vector<MidPhaseCandidate>& out) {
         case MidPhaseMode::precomputed_tree:
             for (std::size_t i = 0; i < active_colliders_.size(); ++i) {
                 const std::uint32_t id = active_colliders_[i];
-                const PlaneTree& tree = *trees_[id];
+                const PlaneTree& tree = *(*trees_)[id];
                 slots_.clear();
                 add_counts(query_tree(tree, slots_, entry_nodes_[i], &frames_));
                 const std::span<const NormalizedTriangle* const> reported = frames_.reported();

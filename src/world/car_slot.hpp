@@ -3,6 +3,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -54,16 +55,27 @@ struct World::CarSlot {
     // Per-ellipsoid storage sized for the car, no hint yet.
     CarSlot(Car car_in, MidPhase mid_in);
 
+    // Ellipsoid i's survivors of this sub-step's cull.
+    std::span<Survivor> survivors(std::size_t i) {
+        return {kept.data() + kept_start[i], kept.data() + kept_start[i + 1]};
+    }
+    std::span<const Survivor> survivors(std::size_t i) const {
+        return const_cast<CarSlot&>(*this).survivors(i);
+    }
+
     Car car;
     MidPhase mid;
-    Aabb update_box;                          // what mid.begin_update covers
-    std::vector<LookAheadList> listed;        // per ellipsoid, this step
-    std::vector<Ellipsoid> placed;            // the ellipsoids, this sub-step (place_ellipsoids)
-    std::vector<std::vector<Survivor>> kept;  // per ellipsoid: culled survivors
-    std::vector<Contact> deepest;             // per ellipsoid, this sub-step
-    std::vector<TriangleRef> deepest_ref;     // its triangle, tried first next
-    std::vector<KnownNormals> known;          // per ellipsoid: recent survivors' normals
-    bool pushed = false;                      // by another car, this sub-step
+    Aabb update_box;                    // what mid.begin_update covers
+    std::vector<LookAheadList> listed;  // per ellipsoid, this step
+    std::vector<Ellipsoid> placed;      // the ellipsoids, this sub-step (place_ellipsoids)
+    // Every ellipsoid's culled survivors in one buffer, in ellipsoid order (one block of
+    // lines a sub-step rather than a heap block per ellipsoid): see survivors().
+    std::vector<Survivor> kept;
+    std::vector<std::uint32_t> kept_start;  // ellipsoid i's from kept_start[i] to [i + 1]
+    std::vector<Contact> deepest;           // per ellipsoid, this sub-step
+    std::vector<TriangleRef> deepest_ref;   // its triangle, tried first next
+    std::vector<KnownNormals> known;        // per ellipsoid: recent survivors' normals
+    bool pushed = false;                    // by another car, this sub-step
     // The reset policy's memory: the state at the start of this update, the resets.
     RigidBodyState start_state;
     std::vector<double> start_suspension;

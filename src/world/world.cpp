@@ -26,14 +26,15 @@ World::World(std::shared_ptr<const StaticWorld> statics, WorldSettings settings,
              ColliderPlaneTrees trees)
     : statics_(std::move(statics)),
       settings_(std::move(settings)),
-      trees_(std::move(trees)),
       work_(std::make_unique<UpdateWork>()) {
     if (!statics_) throw Error("World: the static world is null");
     if (std::string why = settings_.validate(); !why.empty()) throw Error(why);
-    if (settings_.mid_phase == MidPhaseMode::precomputed_tree && trees_.empty())
-        trees_ = make_collider_plane_trees(*statics_, PlaneTreeSettings::precomputed(),
-                                           static_cast<unsigned>(settings_.thread_count()));
-    if (settings_.mid_phase != MidPhaseMode::precomputed_tree) trees_.clear();
+    if (settings_.mid_phase != MidPhaseMode::precomputed_tree)
+        trees.clear();
+    else if (trees.empty())
+        trees = make_collider_plane_trees(*statics_, PlaneTreeSettings::precomputed(),
+                                          static_cast<unsigned>(settings_.thread_count()));
+    trees_ = std::make_shared<const ColliderPlaneTrees>(std::move(trees));
     // The phase clock's rate is measured once, over a millisecond: here rather than inside
     // the first update, whose time it would otherwise carry.
     if (settings_.profile) static_cast<void>(TickClock::microseconds_per_tick());
@@ -47,7 +48,7 @@ World::CarSlot::CarSlot(Car car_in, MidPhase mid_in)
     : car(std::move(car_in)), mid(std::move(mid_in)) {
     const std::size_t ellipsoids = car.ellipsoid_count();
     listed.resize(ellipsoids);
-    kept.resize(ellipsoids);
+    kept_start.resize(ellipsoids + 1, 0u);
     deepest.resize(ellipsoids);
     deepest_ref.resize(ellipsoids, TriangleRef{~0u, ~0u});
     known.resize(ellipsoids);
@@ -253,14 +254,15 @@ void World::find_contacts(CarSlot& slot, PhaseStopwatch& watch) {
     // bounds how deep the triangle can be. No bounding-sphere test first: the extents are
     // at most the radius, so it rejects nothing this test keeps, and almost every listed
     // triangle reaches this test anyway.
+    std::vector<Survivor>& kept = slot.kept;
+    kept.clear();
     for (std::size_t i = 0; i < ellipsoids; ++i) {
         const Ellipsoid& ellipsoid = slot.placed[i];
-        std::vector<Survivor>& kept = slot.kept[i];
-        kept.clear();
         for (const MidPhaseCandidate& c : slot.listed[i].candidates()) {
             const double bound = ellipsoid_depth_bound(*c.triangle, ellipsoid);
             if (bound > 0.0) kept.push_back({c.ref, c.triangle, bound});
         }
+        slot.kept_start[i + 1] = static_cast<std::uint32_t>(kept.size());
         watch.profile().culled_tests += slot.listed[i].candidates().size();
     }
     watch.profile().ellipsoid_substeps += ellipsoids;
@@ -272,7 +274,7 @@ void World::find_contacts(CarSlot& slot, PhaseStopwatch& watch) {
     for (std::size_t i = 0; i < ellipsoids; ++i) {
         Contact& deepest = slot.deepest[i];
         deepest.depth = -std::numeric_limits<double>::infinity();
-        std::vector<Survivor>& kept = slot.kept[i];
+        const std::span<Survivor> kept = slot.survivors(i);
         if (kept.empty()) continue;
         // Last sub-step's deepest triangle is most likely the deepest again; else the one
         // with the deepest bound.

@@ -40,7 +40,7 @@ void World::debug_draw(DebugDraw& draw, const DebugDrawOptions& options) const {
                     draw.draw_listed_triangle(triangle(i, c.ref));
         if (options.kept_triangles)
             for (std::size_t i = 0; i < ellipsoids; ++i)
-                for (const CarSlot::Survivor& s : slot.kept[i])
+                for (const CarSlot::Survivor& s : slot.survivors(i))
                     draw.draw_kept_triangle(triangle(i, s.ref), s.depth_bound);
     }
 }

@@ -192,6 +192,27 @@ TEST(MidPhase, PrecomputedModeNeedsOneTreePerCollider) {
     with_null[3] = nullptr;
     EXPECT_THROW(MidPhase(MidPhaseMode::precomputed_tree, w.world, with_null), Error);
     EXPECT_NO_THROW(MidPhase(MidPhaseMode::none, w.world));
+    const auto shared_null = std::make_shared<const ColliderPlaneTrees>(std::move(with_null));
+    EXPECT_THROW(MidPhase(MidPhaseMode::precomputed_tree, w.world, shared_null), Error);
+    EXPECT_THROW(MidPhase(MidPhaseMode::precomputed_tree, w.world,
+                          std::shared_ptr<const ColliderPlaneTrees>{}),
+                 Error);
+    EXPECT_NO_THROW(MidPhase(MidPhaseMode::none, w.world, shared_null));
+}
+
+TEST(MidPhase, AColliderAddedSinceTheTreesStopsTheNextUpdate) {
+    StaticWorld world;
+    const std::vector<TrackChunk>& chunks = track_world().track.chunks;
+    for (std::size_t i = 0; i < 3; ++i)
+        world.add(std::make_shared<const StaticCollider>(chunks[i].mesh));
+    const auto trees = std::make_shared<const ColliderPlaneTrees>(make_collider_plane_trees(world));
+    MidPhase first(MidPhaseMode::precomputed_tree, world, trees);
+    MidPhase second(MidPhaseMode::precomputed_tree, world, trees);
+    const Aabb box = car_update_box(track_world().track.centerline[0]);
+    EXPECT_NO_THROW(first.begin_update(box));
+    world.add(std::make_shared<const StaticCollider>(chunks[3].mesh));
+    EXPECT_THROW(first.begin_update(box), Error);
+    EXPECT_THROW(second.begin_update(box), Error);
 }
 
 TEST(MidPhase, QueriesRejectBadInputInEveryMode) {

@@ -66,9 +66,13 @@ TRACKPHYS_API ColliderPlaneTrees make_collider_plane_trees(
 class TRACKPHYS_API MidPhase {
   public:
     /// Throws trackphys::Error when mode is precomputed_tree and `trees` does not hold one
-    /// non-null tree per collider of `world` (checked again at each begin_update, since
-    /// colliders can be added to the world later).
+    /// non-null tree per collider of `world` (their count is checked again at each
+    /// begin_update, since colliders can be added to the world later).
     MidPhase(MidPhaseMode mode, const StaticWorld& world, ColliderPlaneTrees trees = {});
+    /// The same with trees shared with other MidPhases (a World's cars): one copy of the
+    /// vector for all of them, which stays in cache where a copy per car would not.
+    MidPhase(MidPhaseMode mode, const StaticWorld& world,
+             std::shared_ptr<const ColliderPlaneTrees> trees);
 
     MidPhaseMode mode() const { return mode_; }
 
@@ -99,11 +103,11 @@ class TRACKPHYS_API MidPhase {
   private:
     template <class Query>
     void query(Query&& query_tree, std::vector<MidPhaseCandidate>& out);
-    void check_trees() const;
+    void check_tree_count() const;
 
     MidPhaseMode mode_;
     const StaticWorld* world_;
-    ColliderPlaneTrees trees_;
+    std::shared_ptr<const ColliderPlaneTrees> trees_;  // never null
     // none / per_update_tree: the broad-phase candidates and their frames, same order.
     std::vector<TriangleRef> refs_;
     std::vector<NormalizedTriangle> triangles_;

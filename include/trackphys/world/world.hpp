@@ -59,7 +59,7 @@ class TRACKPHYS_API World {
 
     /// The colliders' precomputed plane trees (empty unless the mode uses them), to share
     /// with other worlds over the same static world.
-    const ColliderPlaneTrees& plane_trees() const { return trees_; }
+    const ColliderPlaneTrees& plane_trees() const { return *trees_; }
 
     const WorldSettings& settings() const { return settings_; }
     const StaticWorld& statics() const { return *statics_; }
@@ -149,7 +149,7 @@ class TRACKPHYS_API World {
 
     std::shared_ptr<const StaticWorld> statics_;
     WorldSettings settings_;
-    ColliderPlaneTrees trees_;
+    std::shared_ptr<const ColliderPlaneTrees> trees_;  // never null; every car's MidPhase reads it
     std::vector<CarSlot> cars_;
     std::unique_ptr<UpdateWork> work_;
     std::uint64_t updates_ = 0;
