@@ -110,8 +110,9 @@ class TRACKPHYS_API World {
     /// equal hashes mean bit-identical simulations.
     std::uint64_t state_hash() const;
 
-    /// Records every update's phases into trace (or stops, for nullptr). The recorder must
-    /// outlive its use here.
+    /// Records each update's phases into trace while settings().profile is on (or stops, for
+    /// nullptr); an update spread over several workers records only its broad phase and the
+    /// update zone. The recorder must outlive its use here.
     void set_trace(TraceRecorder* trace) { trace_ = trace; }
 
     /// Shows the cars as the last update left them to `draw` (see DebugDraw for the calls and
