@@ -254,15 +254,15 @@ void World::find_contacts(CarSlot& slot, PhaseStopwatch& watch) {
     // bounds how deep the triangle can be. No bounding-sphere test first: the extents are
     // at most the radius, so it rejects nothing this test keeps, and almost every listed
     // triangle reaches this test anyway.
-    std::vector<Survivor>& kept = slot.kept;
-    kept.clear();
+    std::vector<Survivor>& all_kept = slot.kept;
+    all_kept.clear();
     for (std::size_t i = 0; i < ellipsoids; ++i) {
         const Ellipsoid& ellipsoid = slot.placed[i];
         for (const MidPhaseCandidate& c : slot.listed[i].candidates()) {
             const double bound = ellipsoid_depth_bound(*c.triangle, ellipsoid);
-            if (bound > 0.0) kept.push_back({c.ref, c.triangle, bound});
+            if (bound > 0.0) all_kept.push_back({c.ref, c.triangle, bound});
         }
-        slot.kept_start[i + 1] = static_cast<std::uint32_t>(kept.size());
+        slot.kept_start[i + 1] = static_cast<std::uint32_t>(all_kept.size());
         watch.profile().culled_tests += slot.listed[i].candidates().size();
     }
     watch.profile().ellipsoid_substeps += ellipsoids;
