@@ -82,7 +82,7 @@ double median(std::vector<double> v) {
 int main(int argc, char** argv) {
     const int updates = argc > 1 ? std::atoi(argv[1]) : 9000;
     TrackParams params;
-    params.seed = 7;
+    params.seed = kDemoTrackSeed;
     const Track track = generate_track(params);
     auto statics = std::make_shared<StaticWorld>();
     for (const TrackChunk& chunk : track.chunks)

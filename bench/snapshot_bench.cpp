@@ -25,7 +25,7 @@ struct Scene {
 const Scene& scene() {
     static const Scene built = [] {
         TrackParams params;
-        params.seed = 7;
+        params.seed = kDemoTrackSeed;
         const Track track = generate_track(params);
         auto statics = std::make_shared<StaticWorld>();
         for (const TrackChunk& chunk : track.chunks)

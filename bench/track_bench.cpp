@@ -9,7 +9,7 @@ namespace {
 
 void BM_GenerateDefaultTrack(benchmark::State& state) {
     trackphys::TrackParams params;
-    params.seed = 7;
+    params.seed = trackphys::kDemoTrackSeed;
     std::size_t triangles = 0;
     for (auto _ : state) {
         const trackphys::Track track = trackphys::generate_track(params);
@@ -25,7 +25,7 @@ BENCHMARK(BM_GenerateDefaultTrack)
 
 void BM_UpdateBoxCountTightestTurn(benchmark::State& state) {
     trackphys::TrackParams params;
-    params.seed = 7;
+    params.seed = trackphys::kDemoTrackSeed;
     const trackphys::Track track = trackphys::generate_track(params);
     const trackphys::TrackStats stats = trackphys::compute_track_stats(track);
     const trackphys::Aabb box = trackphys::car_update_box(track.centerline[stats.tightest_sample]);

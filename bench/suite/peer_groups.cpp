@@ -206,7 +206,7 @@ void bench_mesh_peers(BenchRun& run) {
 void bench_update_peers(BenchRun& run) {
 #if TRACKPHYS_HAVE_BULLET
     run.progress("bullet update", "default track");
-    const cli::DriveScene scene = cli::make_track_scene(7);
+    const cli::DriveScene scene = cli::make_track_scene(kDemoTrackSeed);
     const CarSpec spec = CarSpec::default_car();
     const int updates = run.quick() ? 100 : 500;
     WorldSettings settings;

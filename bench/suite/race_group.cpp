@@ -196,7 +196,7 @@ PairCost time_pair(const cli::DriveScene& scene, const ColliderPlaneTrees& trees
 
 void bench_race(BenchRun& run) {
     run.progress("race", "default track");
-    const cli::DriveScene scene = cli::make_track_scene(7);
+    const cli::DriveScene scene = cli::make_track_scene(kDemoTrackSeed);
     const ColliderPlaneTrees trees = make_collider_plane_trees(*scene.statics);
     const int warm_up = run.quick() ? 100 : 300;
     const int updates = run.quick() ? 200 : 1000;

@@ -17,7 +17,7 @@ namespace trackphys::suite {
 
 void bench_vehicle(BenchRun& run) {
     run.progress("vehicle", "default track");
-    const cli::DriveScene scene = cli::make_track_scene(7);
+    const cli::DriveScene scene = cli::make_track_scene(kDemoTrackSeed);
     const int updates = run.quick() ? 300 : 2000;
     const char* presets[] = {"arcade", "gt", "formula"};
 

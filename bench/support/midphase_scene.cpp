@@ -130,10 +130,11 @@ std::size_t run_update(MidPhase& mid, const MidVariant& variant, SubstepCull cul
         });
 }
 
-std::size_t touching_in_lists(MidPhase& mid, const MidVariant& variant, UpdateLists& lists) {
+std::vector<ListEntry> touching_in_lists(MidPhase& mid, const MidVariant& variant,
+                                         UpdateLists& lists) {
     const MidScene& m = mid_scene();
     const std::size_t ellipsoids = tightest_turn_scene().car.ellipsoids.size();
-    std::size_t touching = 0;
+    std::vector<ListEntry> touching;
     visit_lists(mid, variant, lists,
                 [&](int step, std::size_t e, const std::vector<MidPhaseCandidate>& list) {
                     const int first = step * TightestTurnScene::kStepSubsteps;
@@ -142,11 +143,13 @@ std::size_t touching_in_lists(MidPhase& mid, const MidVariant& variant, UpdateLi
                         for (const MidPhaseCandidate& cand : list) {
                             const Triangle triangle =
                                 m.world.collider(cand.ref.collider).triangle(cand.ref.triangle);
-                            touching +=
-                                ellipsoid_triangle_contact(placed, triangle).depth > 0.0 ? 1 : 0;
+                            if (ellipsoid_triangle_contact(placed, triangle).depth > 0.0)
+                                touching.push_back({sub, e, cand.ref});
                         }
                     }
                 });
+    std::sort(touching.begin(), touching.end());
+    touching.erase(std::unique(touching.begin(), touching.end()), touching.end());
     return touching;
 }
 

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <compare>
 #include <cstddef>
 #include <memory>
 #include <vector>
@@ -94,10 +95,19 @@ enum class SubstepCull {
 std::size_t run_update(MidPhase& mid, const MidVariant& variant, SubstepCull cull,
                        UpdateLists& lists, std::size_t& kept);
 
-/// One update's lists as run_update builds them, and how many of their (sub-step, ellipsoid,
-/// triangle) entries truly touch (ellipsoid_triangle_contact deeper than 0): a list that
-/// lost a touching triangle counts fewer than the whole broad-phase list ("none") does.
-std::size_t touching_in_lists(MidPhase& mid, const MidVariant& variant, UpdateLists& lists);
+/// A (sub-step, ellipsoid, triangle) entry of one update's lists.
+struct ListEntry {
+    int substep;
+    std::size_t ellipsoid;
+    TriangleRef ref;
+    auto operator<=>(const ListEntry&) const = default;
+};
+
+/// The entries of one update's lists, as run_update builds them, that truly touch
+/// (ellipsoid_triangle_contact deeper than 0), sorted and without repeats: lists that lost a
+/// touching triangle miss an entry that the whole broad-phase list ("none") holds.
+std::vector<ListEntry> touching_in_lists(MidPhase& mid, const MidVariant& variant,
+                                         UpdateLists& lists);
 
 /// The average list length: each step's list is tested in each of its 4 sub-steps.
 double tested_per_ellipsoid_substep(std::size_t total_per_update);

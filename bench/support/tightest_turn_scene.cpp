@@ -16,7 +16,7 @@ TriangleMesh merged_track_mesh(const Track& track) {
 
 TightestTurnScene::TightestTurnScene() {
     TrackParams params;
-    params.seed = 7;
+    params.seed = kDemoTrackSeed;
     track = generate_track(params);
     turn = track.centerline[compute_track_stats(track).tightest_sample];
     update_box = car_update_box(turn);

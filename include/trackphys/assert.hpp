@@ -3,8 +3,9 @@
 #include "trackphys/export.hpp"
 
 /// Cheap internal consistency checks, on without NDEBUG (Debug builds) and whenever
-/// TRACKPHYS_ENABLE_ASSERT is defined (the sanitizer builds define it). A failed check calls the assert handler,
-/// which prints and aborts by default; tests install their own to see that checks fire.
+/// TRACKPHYS_ENABLE_ASSERT is defined (the sanitizer builds define it). A failed check calls
+/// the assert handler, which prints and aborts by default; tests install their own to see
+/// that checks fire.
 /// Bad user input is never an assert: it is a trackphys::Error with a message.
 
 namespace trackphys {

@@ -7,8 +7,8 @@ namespace trackphys::geometry_detail {
 
 /// A triangle's own frame from an origin vertex, the end of its first edge and its third
 /// vertex: unit dir_x along the first edge, unit normal (CCW) orthogonal to dir_x to
-/// rounding, dir_y = normal x dir_x, and
-/// the third vertex's local coordinates (x2, y2). Degenerate input gives a finite frame.
+/// rounding, dir_y = normal x dir_x, and the third vertex's local coordinates (x2, y2).
+/// Degenerate input gives a finite frame.
 struct TriangleFrame {
     glm::dvec3 dir_x, dir_y, normal;
     double x1, x2, y2;

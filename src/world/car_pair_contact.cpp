@@ -76,8 +76,8 @@ PlacedReach placed_reach(const Car& car, std::span<const Ellipsoid> placed) {
 }
 
 // Bit i (a CarSpec holds at most 64 ellipsoids): ellipsoid i reaches into the other car's
-// sphere, so it may touch one of its ellipsoids. The margin (far above rounding) keeps the test conservative: it leaves out
-// only pairs that ellipsoids_may_touch would reject too.
+// sphere, so it may touch one of its ellipsoids. The margin (far above rounding) keeps the
+// test conservative: it leaves out only pairs that ellipsoids_may_touch would reject too.
 std::uint64_t reaching(std::span<const Ellipsoid> placed, const PlacedReach& other) {
     constexpr double kMargin = 1e-6;  // m
     std::uint64_t mask = 0;

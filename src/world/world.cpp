@@ -268,9 +268,9 @@ void World::find_contacts(CarSlot& slot, PhaseStopwatch& watch) {
     watch.profile().ellipsoid_substeps += ellipsoids;
     watch.lap(Phase::cull);
 
-    // Exact contact: the deepest over each ellipsoid's survivors. The survivor with the
-    // deepest bound goes first; after it, only survivors whose bounds beat the deepest
-    // contact found so far can change the answer.
+    // Exact contact: the deepest over each ellipsoid's survivors. Last sub-step's deepest
+    // triangle goes first, else the survivor with the deepest bound; after it, only
+    // survivors whose bounds beat the deepest contact found so far can change the answer.
     for (std::size_t i = 0; i < ellipsoids; ++i) {
         Contact& deepest = slot.deepest[i];
         deepest.depth = -std::numeric_limits<double>::infinity();

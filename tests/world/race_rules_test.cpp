@@ -97,9 +97,8 @@ TEST(RaceRules, SettingsThatCannotActAsWrittenAreRefused) {
 // fastest car, a row behind the slowest in the same lane, catches it in the first turns and
 // then follows it at its gap (follow_distance + follow_time v) and its speed. The speed rule
 // is proportional (1 m/s per metre off the gap), so the follower rides a little inside the
-// gap while both brake and a little outside it while both accelerate: 0.8 m inside and
-// 2.7 m outside over these 30 s. Without the time term it would ride 2 m closer; without
-// the rule, it would run into the car ahead.
+// gap while both brake and a little outside it while both accelerate (hence the tolerance
+// below). Without the rule, it would run into the car ahead.
 TEST(RaceRules, AFollowerThatCannotPassKeepsItsGapAndMatchesSpeed) {
     const test::TrackWorld& track = test::default_track();
     World world(track.statics, WorldSettings{}, track.trees);

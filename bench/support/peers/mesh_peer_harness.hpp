@@ -79,7 +79,7 @@ struct Scene {
 /// centreline, the sample at or before each kTravel step of arc length.
 inline Scene track_scene(std::size_t box_count) {
     TrackParams params;
-    params.seed = 7;
+    params.seed = kDemoTrackSeed;
     const Track track = generate_track(params);
     Scene scene{"default_track_seed7", bench::merged_track_mesh(track), {}, {}};
     std::mt19937_64 rng(5);
