@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The README's test command: installs what is missing, builds Release and runs every test
-# (the soak, the fuzzers' short runs, the 20-car races and the lap sweep are behind the ctest
-# labels "long" and "fuzz", see docs/testing.md). Extra arguments go to ctest.
+# (the soak, the fuzzers' short runs, the 20-car races and most of the lap sweep are behind
+# the ctest labels "long" and "fuzz", see docs/testing.md). Extra arguments go to ctest.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -12,7 +12,8 @@ cmake --build --preset release --parallel "$(nproc)"
 # see the script); without network the script says so and those tests skip.
 scripts/fetch_torcs_track.sh build/torcs || [ $? -eq 77 ]
 # Every test but the long ones (labels "long" and "fuzz": the soak, the fuzzers' short runs,
-# the 20-car races and the lap sweep); a label of the caller's own (-L LABEL) chooses instead: scripts/test.sh -L fuzz.
+# the 20-car races and most of the lap sweep); a label of the caller's own (-L LABEL)
+# chooses instead: scripts/test.sh -L fuzz.
 skip=(--label-exclude 'long|fuzz')
 for arg in "$@"; do
   case "$arg" in -L* | --label-regex*) skip=() ;; esac
