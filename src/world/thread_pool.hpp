@@ -1,9 +1,7 @@
 #pragma once
 
 #include <atomic>
-#include <condition_variable>
 #include <cstdint>
-#include <mutex>
 #include <thread>
 #include <vector>
 
@@ -11,9 +9,15 @@
 
 namespace trackphys::detail {
 
-/// World's own workers when no job system is plugged in: threads - 1 threads that sleep
-/// between tasks, and the calling thread, which works too. Items are claimed one at a time
-/// from a shared counter, so a large island does not hold up the small ones behind it.
+/// World's own workers when no job system is plugged in: threads - 1 threads, and the
+/// calling thread, which works too. Items are claimed one at a time from a shared counter,
+/// so a large island does not hold up the small ones behind it.
+///
+/// The hand-offs are where an update's wall clock leaks on a busy machine, so neither side
+/// waits for what it does not need: run returns as soon as every item has finished, without
+/// waiting for a worker that has not woken up yet (that worker finds the task closed and
+/// goes back to sleep), and each side spins for a short while (kSpin) before it sleeps, so a
+/// worker that finishes its last island or a run that follows at once costs no wake-up.
 class ThreadPool {
   public:
     /// threads >= 1 in all, the caller included.
@@ -30,20 +34,26 @@ class ThreadPool {
 
   private:
     void serve(int worker);
+    // Whether the worker joined the open task `task_state` (then it must leave() after).
+    bool join(std::uint32_t task_state);
+    void leave();
     void claim_items(int worker);
 
     std::vector<std::thread> threads_;
-    std::mutex mutex_;
-    std::condition_variable wake_;
-    std::condition_variable done_;
-    // The task being run, written under mutex_ before the generation moves on.
+    // The task being run, written by run() while no worker has joined; a worker reads it
+    // only after joining an open task.
     TaskCallback* task_ = nullptr;
     void* context_ = nullptr;
     int item_count_ = 0;
     std::atomic<int> next_item_{0};
-    std::uint64_t generation_ = 0;  // counts the tasks started; a change wakes the workers
-    int busy_ = 0;                  // workers not yet done with this generation
-    bool stopping_ = false;
+    std::atomic<int> finished_items_{0};
+    // Twice the number of tasks started, plus 1 while the current one is open: a worker
+    // wakes on its change and joins only an open task. kStopping ends the workers.
+    std::atomic<std::uint32_t> task_state_{0};
+    // Workers inside the open task: run() closes the task, then waits for them to leave
+    // before the next run rewrites it.
+    std::atomic<int> joined_{0};
+    std::atomic<bool> stopping_{false};
 };
 
 }  // namespace trackphys::detail
