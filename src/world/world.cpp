@@ -1,6 +1,7 @@
 #include "trackphys/world/world.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cstring>
 #include <limits>
 #include <numeric>
@@ -257,13 +258,20 @@ void World::find_contacts(CarSlot& slot, PhaseStopwatch& watch) {
     std::vector<Survivor>& all_kept = slot.kept;
     all_kept.clear();
     for (std::size_t i = 0; i < ellipsoids; ++i) {
-        const Ellipsoid& ellipsoid = slot.placed[i];
-        for (const MidPhaseCandidate& c : slot.listed[i].candidates()) {
-            const double bound = ellipsoid_depth_bound(*c.triangle, ellipsoid);
-            if (bound > 0.0) all_kept.push_back({c.ref, c.triangle, bound});
+        const std::vector<MidPhaseCandidate>& listed = slot.listed[i].candidates();
+        if (!listed.empty()) {
+            // Two triangles a test: an odd list's last one goes in both lanes.
+            const EllipsoidCull cull(slot.placed[i]);
+            for (std::size_t k = 0; k < listed.size(); k += 2) {
+                const MidPhaseCandidate& a = listed[k];
+                const MidPhaseCandidate& b = listed[std::min(k + 1, listed.size() - 1)];
+                const std::array<double, 2> bounds = cull.depth_bounds(*a.triangle, *b.triangle);
+                if (bounds[0] > 0.0) all_kept.push_back({a.ref, a.triangle, bounds[0]});
+                if (&b != &a && bounds[1] > 0.0) all_kept.push_back({b.ref, b.triangle, bounds[1]});
+            }
         }
         slot.kept_start[i + 1] = static_cast<std::uint32_t>(all_kept.size());
-        watch.profile().culled_tests += slot.listed[i].candidates().size();
+        watch.profile().culled_tests += listed.size();
     }
     watch.profile().ellipsoid_substeps += ellipsoids;
     watch.lap(Phase::cull);

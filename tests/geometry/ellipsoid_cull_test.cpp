@@ -1,7 +1,10 @@
 #include "trackphys/geometry/ellipsoid_cull.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstring>
+#include <limits>
 #include <random>
 
 #include <gtest/gtest.h>
@@ -115,6 +118,32 @@ TEST(EllipsoidCull, DepthBoundAlongAnyDirectionHoldsAndIsTightAtTheContactNormal
         tight += at_normal - contact.depth < 1e-9 * (1.0 + std::abs(contact.depth));
     }
     EXPECT_GT(tight, 0.95 * tested);
+}
+
+// The two-lane cull World runs is the scalar one bit for bit, in either lane, on every
+// kind of case (separated, touching, deep, slivers): results must not move with it.
+TEST(EllipsoidCull, TwoLanesGiveTheScalarBoundsBitForBit) {
+    test::ContactCaseGenerator cases(8128);
+    const auto same_bits = [](double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; };
+    int kept = 0, rejected = 0;
+    for (int i = 0; i < 40000; ++i) {
+        const auto kind =
+            static_cast<test::ContactKind>(i % static_cast<int>(test::ContactKind::count));
+        const test::ContactCase c = cases.make(kind);
+        const test::ContactCase other = cases.make(kind);
+        if (c.triangle.is_degenerate() || other.triangle.is_degenerate()) continue;
+        const NormalizedTriangle t(c.triangle);
+        const NormalizedTriangle u(other.triangle);
+        const std::array<double, 2> bounds = EllipsoidCull(c.ellipsoid).depth_bounds(t, u);
+        const double scalar = ellipsoid_depth_bound(t, c.ellipsoid);
+        ASSERT_TRUE(same_bits(bounds[0], scalar))
+            << "case " << i << " (" << test::contact_kind_name(kind) << "): " << bounds[0]
+            << " against " << scalar;
+        ASSERT_TRUE(same_bits(bounds[1], ellipsoid_depth_bound(u, c.ellipsoid))) << "case " << i;
+        (scalar > -std::numeric_limits<double>::infinity() ? kept : rejected) += 1;
+    }
+    EXPECT_GT(kept, 5000);
+    EXPECT_GT(rejected, 5000);
 }
 
 TEST(EllipsoidCull, SupportExtentIsTheHalfWidthAlongADirection) {
