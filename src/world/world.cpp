@@ -11,6 +11,7 @@
 #include <glm/geometric.hpp>
 
 #include "core/fnv1a.hpp"
+#include "geometry/ellipsoid_cull_lanes.hpp"
 #include "profile/phase_stopwatch.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/geometry/contact.hpp"
@@ -261,7 +262,7 @@ void World::find_contacts(CarSlot& slot, PhaseStopwatch& watch) {
         const std::vector<MidPhaseCandidate>& listed = slot.listed[i].candidates();
         if (!listed.empty()) {
             // Two triangles a test: an odd list's last one goes in both lanes.
-            const EllipsoidCull cull(slot.placed[i]);
+            const detail::EllipsoidCull cull(slot.placed[i]);
             for (std::size_t k = 0; k < listed.size(); k += 2) {
                 const MidPhaseCandidate& a = listed[k];
                 const MidPhaseCandidate& b = listed[std::min(k + 1, listed.size() - 1)];

@@ -11,6 +11,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "geometry/ellipsoid_cull_lanes.hpp"
 #include "support/contact_cases.hpp"
 #include "trackphys/geometry/contact.hpp"
 
@@ -134,7 +135,7 @@ TEST(EllipsoidCull, TwoLanesGiveTheScalarBoundsBitForBit) {
         if (c.triangle.is_degenerate() || other.triangle.is_degenerate()) continue;
         const NormalizedTriangle t(c.triangle);
         const NormalizedTriangle u(other.triangle);
-        const std::array<double, 2> bounds = EllipsoidCull(c.ellipsoid).depth_bounds(t, u);
+        const std::array<double, 2> bounds = detail::EllipsoidCull(c.ellipsoid).depth_bounds(t, u);
         const double scalar = ellipsoid_depth_bound(t, c.ellipsoid);
         ASSERT_TRUE(same_bits(bounds[0], scalar))
             << "case " << i << " (" << test::contact_kind_name(kind) << "): " << bounds[0]
