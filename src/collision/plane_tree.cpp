@@ -26,13 +26,15 @@ template <class Shape>
     for (std::uint32_t run = first; run < end; run += PlaneTreeFrameCache::kMaxRun) {
         const std::uint32_t count = std::min(end - run, PlaneTreeFrameCache::kMaxRun);
         // The slots the filter runs on (bit k: slot run + k): those whose box the shape's box
-        // meets. A run whose slots all fail costs no lookup, and only the slots that pass pay
-        // for their frames: built ones, or kept ones read from memory, 120 bytes each.
-        std::uint64_t near = 0;
-        for (std::uint32_t k = 0; k < count; ++k)
-            if (shape.reaches_box(boxes_[run + k])) near |= std::uint64_t{1} << k;
-        if (near == 0) continue;
-        counts.frames_read += static_cast<std::size_t>(std::popcount(near));
+        // meets, in a tree that keeps boxes (a leaf whose slots all fail costs no lookup, and
+        // only the slots that pass pay for their frames), else all of them.
+        std::uint64_t near = ~std::uint64_t{0} >> (64 - count);
+        if (!boxes_.empty()) {
+            near = 0;
+            for (std::uint32_t k = 0; k < count; ++k)
+                if (shape.reaches_box(boxes_[run + k])) near |= std::uint64_t{1} << k;
+            if (near == 0) continue;
+        }
         // The run's frames: the tree's own, the cache's, or none (each built in turn).
         const NormalizedTriangle* run_frames = !frames_.empty() ? frames_.data() + run
                                                : frames != nullptr
@@ -144,18 +146,16 @@ void PlaneTree::rank_slabs() {
 void PlaneTree::use_collider_frames(const StaticCollider& collider, PlaneTreeFrames frames) {
     collider_ = &collider;
     if (frames == PlaneTreeFrames::kept) {
-        if (frames_.size() != ids_.size()) {  // else the builder's, from the same vertices
-            frames_.clear();
-            frames_.reserve(ids_.size());
-            for (const std::uint32_t id : ids_) frames_.push_back(collider.normalized_triangle(id));
-        }
-    } else {
+        boxes_.clear();
+        boxes_.shrink_to_fit();
+        if (frames_.size() == ids_.size()) return;  // the builder's, from the same vertices
         frames_.clear();
-        frames_.shrink_to_fit();
+        frames_.reserve(ids_.size());
+        for (const std::uint32_t id : ids_) frames_.push_back(collider.normalized_triangle(id));
+        return;
     }
-    // Both sources keep the boxes: a kept tree's filter reads a frame only for the slots
-    // whose box the shape reaches, so the frames of the triangles beside a wheel stay out
-    // of the cache.
+    frames_.clear();
+    frames_.shrink_to_fit();
     boxes_.resize(ids_.size());
     for (std::size_t slot = 0; slot < ids_.size(); ++slot)
         boxes_[slot] = collision_detail::float_box(collider.triangle(ids_[slot]));

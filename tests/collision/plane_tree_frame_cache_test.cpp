@@ -138,9 +138,7 @@ TEST(PlaneTreeFrameCache, QueriesThroughTheCacheReportTheSameSlotsAndTheirFrames
 }
 
 // A tree that keeps its frames reports what the tree that builds them reports, frame for
-// frame, reads them in place (the cache stays empty) and points reported() at its own; like
-// the tree that builds them, it reads only the frames of the slots whose box the shape's
-// box meets.
+// frame, reads them in place (the cache stays empty) and points reported() at its own.
 TEST(PlaneTreeFrameCache, TreesThatKeepTheirFramesReportTheSameWithoutTheCache) {
     const StaticCollider collider(test::random_soup(4096, 12));
     const PlaneTree built = make_collider_plane_tree(collider, PlaneTreeSettings::precomputed(),
@@ -155,15 +153,7 @@ TEST(PlaneTreeFrameCache, TreesThatKeepTheirFramesReportTheSameWithoutTheCache) 
         0, static_cast<std::uint32_t>(collider.triangle_count() - 1));
     std::uniform_real_distribution<double> sym(-1.0, 1.0), radius(0.05, 3.0);
     PlaneTreeFrameCache built_cache, kept_cache;
-    std::size_t reported = 0, filtered = 0, kept_read = 0, built_read = 0;
-    const auto add = [&](const PlaneTreeQueryCounts& from_built, const PlaneTreeQueryCounts& c) {
-        EXPECT_EQ(c.triangles_filtered, from_built.triangles_filtered);
-        EXPECT_LE(c.triangles_reported, c.frames_read);
-        EXPECT_LE(c.frames_read, c.triangles_filtered);
-        filtered += c.triangles_filtered;
-        kept_read += c.frames_read;
-        built_read += from_built.frames_read;
-    };
+    std::size_t reported = 0;
     for (int i = 0; i < 400; ++i) {
         const glm::dvec3 at =
             built.triangle(pick(rng)).vertex(0) + glm::dvec3(sym(rng), sym(rng), sym(rng)) * 0.5;
@@ -171,13 +161,13 @@ TEST(PlaneTreeFrameCache, TreesThatKeepTheirFramesReportTheSameWithoutTheCache) 
         const double r = radius(rng);
         std::vector<std::uint32_t> from_built, from_kept, plain;
         if (i % 2 == 0) {
-            add(built.query_swept_sphere(at, to, r, from_built, 0, &built_cache),
-                kept.query_swept_sphere(at, to, r, from_kept, 0, &kept_cache));
+            built.query_swept_sphere(at, to, r, from_built, 0, &built_cache);
+            kept.query_swept_sphere(at, to, r, from_kept, 0, &kept_cache);
             kept.query_swept_sphere(at, to, r, plain);
         } else {
             const Ellipsoid e(at, glm::dquat(1, 0, 0, 0), glm::dvec3(r, 0.5 * r, 0.3 * r));
-            add(built.query_swept_ellipsoid(e, to, 0.01, from_built, 0, &built_cache),
-                kept.query_swept_ellipsoid(e, to, 0.01, from_kept, 0, &kept_cache));
+            built.query_swept_ellipsoid(e, to, 0.01, from_built, 0, &built_cache);
+            kept.query_swept_ellipsoid(e, to, 0.01, from_kept, 0, &kept_cache);
             kept.query_swept_ellipsoid(e, to, 0.01, plain);
         }
         ASSERT_EQ(from_kept, from_built);
@@ -191,8 +181,6 @@ TEST(PlaneTreeFrameCache, TreesThatKeepTheirFramesReportTheSameWithoutTheCache) 
         reported += from_kept.size();
     }
     EXPECT_GT(reported, 200u);
-    EXPECT_EQ(kept_read, built_read);
-    EXPECT_LT(kept_read, filtered * 9 / 10);  // the boxes turn away some of each leaf's slots
     // No frame block (1024 frames) and no index (4096 entries): only reported()'s pointers.
     EXPECT_LT(kept_cache.bytes_used(), 64 * sizeof(NormalizedTriangle));
     EXPECT_GT(built_cache.bytes_used(), 1024 * sizeof(NormalizedTriangle));

@@ -68,16 +68,14 @@ static_assert(sizeof(PlaneTreeBox) == 24, "PlaneTreeBox is 24 bytes");
 
 /// Where a collider's PlaneTree gets its triangles' frames (NormalizedTriangle, 120 bytes)
 /// for the per-triangle filter: a memory-for-speed choice that leaves every query's result
-/// unchanged (the frames are the same, bit for bit). Either way the tree keeps each slot's
-/// float box (PlaneTreeBox), and the filter reads a frame only for the slots whose box the
-/// query shape's box meets.
+/// unchanged (the frames are the same, bit for bit).
 enum class PlaneTreeFrames {
-    /// Built by the queries from the collider's vertices for the slots whose box passes,
-    /// and kept in the caller's PlaneTreeFrameCache: ~51 bytes a triangle for a track
-    /// collider's tree.
+    /// Built by the queries from the collider's vertices for the slots whose float box the
+    /// query shape's box meets, and kept in the caller's PlaneTreeFrameCache: ~51 bytes a
+    /// triangle for a track collider's tree.
     built,
-    /// Kept by the tree in leaf order (~171 bytes a triangle): the filter reads them in
-    /// place, with no cache lookup.
+    /// Kept by the tree in leaf order (~147 bytes a triangle): the filter reads them in
+    /// place, with no box test and no cache lookup.
     kept,
 };
 
@@ -153,13 +151,10 @@ struct PlaneTreeSettings {
 };
 
 /// What one query did: nodes whose plane was tested and triangles run through the
-/// per-triangle filter (the work), of those the triangles whose frame the filter read (the
-/// ones whose box the shape's box reaches, or all in a tree that keeps no boxes), and
-/// triangles reported.
+/// per-triangle filter (the work), and triangles reported.
 struct PlaneTreeQueryCounts {
     std::size_t planes_tested = 0;
     std::size_t triangles_filtered = 0;
-    std::size_t frames_read = 0;
     std::size_t triangles_reported = 0;
 };
 
@@ -170,13 +165,13 @@ struct PlaneTreeQueryCounts {
 /// collider). Immutable between builds; queries are const and thread-safe.
 ///
 /// Storage: two vectors as the BVH, nodes (24 bytes) and per leaf slot its caller id
-/// (4 bytes) and its triangle's box (PlaneTreeBox, 24 bytes), plus, when built with slabs,
-/// a 20-byte slab per slab node, and the frame source (PlaneTreeFrames). A collider's tree
-/// built with PlaneTreeFrames::built keeps no frames (~51 bytes a triangle in all for a
-/// track collider): its queries build the frames of the few slots whose box they reach
-/// from the collider's vertices, exactly the frames StaticCollider::normalized_triangle
-/// gives. With PlaneTreeFrames::kept it keeps those frames in leaf order as well. A tree
-/// built from frames (PlaneTreeBuilder) keeps a copy of them.
+/// (4 bytes), plus, when built with slabs, a 20-byte slab per slab node, and the frame
+/// source (PlaneTreeFrames). A collider's tree built with PlaneTreeFrames::built keeps per
+/// slot its triangle's box (PlaneTreeBox, 24 bytes; ~51 bytes a triangle in all for a track
+/// collider) and no frames: its queries build the frames of the few slots whose box they
+/// reach from the collider's vertices, exactly the frames StaticCollider::normalized_triangle
+/// gives. With PlaneTreeFrames::kept it keeps those frames in leaf order instead of the
+/// boxes. A tree built from frames (PlaneTreeBuilder) keeps a copy of them and the boxes.
 /// Queries append leaf slots in ascending order to a caller-owned vector and use a fixed
 /// stack: no allocation once the vector has grown.
 ///
@@ -190,9 +185,9 @@ struct PlaneTreeQueryCounts {
 /// Each is computed in double in the triangle's own frame, after cheap rejections that are
 /// lower bounds of the distance to convex sets holding the triangle (its plane, its local
 /// box, its edges' half-planes), which can only reject what the exact test rejects too, and
-/// sure accepts (a vertex or an over-the-face endpoint within reach); before all of them,
-/// the slot's float box against the shape's box (a triangle the shape touches lies in both),
-/// which reads 24 bytes instead of the 120-byte frame.
+/// sure accepts (a vertex or an over-the-face endpoint within reach); before all of them, in
+/// a tree that keeps boxes, the slot's float box against the shape's box (a triangle the
+/// shape touches lies in both).
 /// Because a node's half-space (and slab) contains each of its triangles, a shape that
 /// touches a triangle reaches every half-space above it: the tree never prunes a triangle
 /// the filter would report, so a query returns exactly the slots a brute-force scan with the
@@ -286,9 +281,10 @@ class TRACKPHYS_API PlaneTree {
                      std::vector<std::uint32_t>& out, PlaneTreeFrameCache* frames,
                      PlaneTreeQueryCounts& counts) const;
     // Makes the tree a tree of `collider` (ids_ are its mesh indices) with that frame
-    // source, and the boxes from the collider's vertices: kept, the frames built from them
-    // in leaf order (or the builder's, the same ones); built, no frames. The same frames
-    // and boxes whether the tree was just built or loaded from a map file.
+    // source: kept, the frames built from the collider's vertices in leaf order (or the
+    // builder's, the same ones) and no boxes; built, no frames and the boxes from the
+    // collider's vertices. The same frames and boxes whether the tree was just built or
+    // loaded from a map file.
     void use_collider_frames(const StaticCollider& collider, PlaneTreeFrames frames);
     // Slabs are kept for the nodes that have one only (about one node in four on a track),
     // in node order; a node's slab is the one after those of the slab nodes before it,
@@ -308,7 +304,7 @@ class TRACKPHYS_API PlaneTree {
     std::vector<PlaneTreeNode> nodes_;
     std::vector<PlaneTreeSlab> slabs_;          ///< per slab node, in node order
     std::vector<SlabRank> slab_ranks_;          ///< per 64 nodes, derived from the nodes
-    std::vector<PlaneTreeBox> boxes_;           ///< leaf order; empty: an empty tree
+    std::vector<PlaneTreeBox> boxes_;           ///< leaf order; empty: no box test
     std::vector<std::uint32_t> ids_;            ///< leaf order
     std::vector<NormalizedTriangle> frames_;    ///< leaf order; empty: built from collider_
     const StaticCollider* collider_ = nullptr;  ///< a collider's tree: its collider
