@@ -54,14 +54,14 @@ class TRACKPHYS_API Car {
         place_ellipsoid(i, glm::mat3_cast(state_.orientation), placed);
         return placed;
     }
-    /// The same written into `placed`, with the orientation's matrix given,
-    /// glm::mat3_cast(state().orientation): a car places all its ellipsoids of one state
-    /// with one matrix, each into its own slot.
+    /// The same written into `placed`, a copy of world_ellipsoid(i) of any state, with the
+    /// orientation's matrix given, glm::mat3_cast(state().orientation): a car places all its
+    /// ellipsoids of one state with one matrix, each into its own slot
+    /// (Ellipsoid::place_copy).
     void place_ellipsoid(std::size_t i, const glm::dmat3& orientation_matrix,
                          Ellipsoid& placed) const {
-        const glm::dvec3 lift = state_.orientation * glm::dvec3(0.0, suspension_[i], 0.0);
-        body_ellipsoids_[i].transform_into(placed, state_.orientation, orientation_matrix,
-                                           state_.position + lift);
+        body_ellipsoids_[i].place_copy(placed, state_.orientation, orientation_matrix,
+                                       state_.position + lifted(suspension_[i]));
     }
     /// Suspension compression of ellipsoid i from full droop (m; always 0 for the body).
     double suspension(std::size_t i) const { return suspension_[i]; }
@@ -123,6 +123,17 @@ class TRACKPHYS_API Car {
     double inverse_mass_along(const glm::dvec3& normal, const glm::dvec3& point) const;
 
   private:
+    /// state().orientation * (0, travel, 0), a wheel's suspension lift in the world, as glm
+    /// rotates it (v + 2 (w (q x v) + q x (q x v)), q the vector part) but without the
+    /// products by v's zero components, which change at most the sign of a zero: a fifth
+    /// of a wheel's placing.
+    glm::dvec3 lifted(double travel) const {
+        const glm::dquat& q = state_.orientation;
+        const double a = travel * q.z;  // q x v = (-a, 0, b)
+        const double b = q.x * travel;
+        const double cross_y = q.z * -a - b * q.x;  // y of q x (q x v)
+        return {(-a * q.w + q.y * b) * 2.0, travel + cross_y * 2.0, (b * q.w + a * q.y) * 2.0};
+    }
     /// A wheel's axle, which sets its heading, grip and share of drive and brake; also the
     /// index of per-axle arrays.
     enum class Axle : int { front = 0, rear = 1 };
