@@ -42,9 +42,10 @@ Car::Car(CarSpec spec, const RigidBodyState& initial_state) : spec_(std::move(sp
     set_state(initial_state);
     for (const CarEllipsoid& e : spec_.ellipsoids) {
         body_ellipsoids_.emplace_back(e.center, e.orientation, e.semi_axes);
+        parts_.push_back({e.role, spec_.deep_contact_fraction *
+                                      body_ellipsoids_.back().sorted_radii().z * (1.0 - 1e-12)});
         suspension_.push_back(0.0);
-        wheel_loads_.push_back(0.0);
-        wheel_velocities_.emplace_back(0.0);
+        wheel_loads_.emplace_back();
         bounding_radius_ = std::max(
             bounding_radius_, glm::length(e.center) + body_ellipsoids_.back().bounding_radius());
         wheels_ += e.role != EllipsoidRole::body;
@@ -112,19 +113,20 @@ ContactMaterial Car::wheel_material(Axle axle) const {
     return material;
 }
 
-glm::dvec3 Car::wheel_heading(Axle axle) const {
-    return state_.orientation *
-           (axle == Axle::front ? steered_heading_ : glm::dvec3(0.0, 0.0, 1.0));
+glm::dvec3 Car::wheel_heading(Axle axle, const glm::dvec3& forward) const {
+    return axle == Axle::front ? state_.orientation * steered_heading_ : forward;
 }
 
 // Drive is a constant force up to the speed where the power limit takes over: F = P / v.
-double Car::drive_available() const {
-    return std::min(spec_.max_drive_force, spec_.max_drive_power / std::max(speed(), 1.0));
+double Car::drive_available(double speed_now) const {
+    return std::min(spec_.max_drive_force, spec_.max_drive_power / std::max(speed_now, 1.0));
 }
 
-WheelCommand Car::wheel_command(Axle axle, double axle_normal_force, double available) const {
+WheelCommand Car::wheel_command(Axle axle, const glm::dvec3& heading,
+                                const ContactMaterial& material, double axle_normal_force,
+                                double available) const {
     WheelCommand command;
-    command.heading = wheel_heading(axle);
+    command.heading = heading;
     const bool front = axle == Axle::front;
     // Drive and brake are split between the axles, then evenly between an axle's wheels.
     const int axle_wheels = std::max(front ? front_wheels_ : wheels_ - front_wheels_, 1);
@@ -132,8 +134,7 @@ WheelCommand Car::wheel_command(Axle axle, double axle_normal_force, double avai
     const double brake_share = front ? spec_.front_brake_share : 1.0 - spec_.front_brake_share;
     command.drive_force = inputs_.throttle * available * drive_share / axle_wheels;
     command.brake_force = inputs_.brake * spec_.max_brake_force * brake_share / axle_wheels;
-    command.max_along_force =
-        spec_.traction_limit * wheel_material(axle).friction * axle_normal_force;
+    command.max_along_force = spec_.traction_limit * material.friction * axle_normal_force;
     return command;
 }
 
@@ -147,13 +148,14 @@ void Car::advance(std::span<const Contact> deepest, const glm::dvec3& gravity, d
 
 void Car::measure_wheel_loads(std::span<const Contact> deepest) {
     for (std::size_t i = 0; i < deepest.size(); ++i) {
-        if (spec_.ellipsoids[i].role == EllipsoidRole::body) {
-            wheel_loads_[i] = 0.0;
+        WheelLoad& wheel = wheel_loads_[i];
+        if (parts_[i].role == EllipsoidRole::body) {
+            wheel.load = 0.0;
             continue;
         }
-        wheel_velocities_[i] = point_velocity(state_, deepest[i].point);
-        wheel_loads_[i] = normal_force(spec_.wheel_contact, deepest[i].depth, deepest[i].normal,
-                                       wheel_velocities_[i]);
+        wheel.velocity = point_velocity(state_, deepest[i].point);
+        wheel.load =
+            normal_force(spec_.wheel_contact, deepest[i].depth, deepest[i].normal, wheel.velocity);
     }
 }
 
@@ -162,22 +164,26 @@ Wrench Car::contact_wrench(std::span<const Contact> deepest) const {
     double least_loads[2] = {std::numeric_limits<double>::infinity(),
                              std::numeric_limits<double>::infinity()};
     for (std::size_t i = 0; i < deepest.size(); ++i) {
-        if (spec_.ellipsoids[i].role == EllipsoidRole::body) continue;
+        if (parts_[i].role == EllipsoidRole::body) continue;
         double& least = least_loads[static_cast<int>(axle_of(i))];
-        least = std::min(least, wheel_loads_[i]);
+        least = std::min(least, wheel_loads_[i].load);
     }
 
     // Every wheel of an axle rolls with the same material and command: two of each per
-    // sub-step, not one per wheel.
-    const double available = drive_available();
+    // sub-step, not one per wheel. The speed and the forward axis serve the aerodynamics too.
+    const double speed_now = speed();
+    const double available = drive_available(speed_now);
+    const glm::dvec3 forward = forward_axis();
     const ContactMaterial materials[2] = {wheel_material(Axle::front), wheel_material(Axle::rear)};
-    const WheelCommand commands[2] = {wheel_command(Axle::front, least_loads[0], available),
-                                      wheel_command(Axle::rear, least_loads[1], available)};
+    const WheelCommand commands[2] = {
+        wheel_command(Axle::front, wheel_heading(Axle::front, forward), materials[0],
+                      least_loads[0], available),
+        wheel_command(Axle::rear, forward, materials[1], least_loads[1], available)};
     Wrench wrench;
     for (std::size_t i = 0; i < deepest.size(); ++i) {
         const Contact& contact = deepest[i];
         if (!(contact.depth > 0.0)) continue;
-        const EllipsoidRole role = spec_.ellipsoids[i].role;
+        const EllipsoidRole role = parts_[i].role;
         const int axle = static_cast<int>(axle_of(i));
         // A wheel's load and point velocity are this sub-step's, from measure_wheel_loads
         // (its materials differ from spec_.wheel_contact in friction only).
@@ -185,11 +191,11 @@ Wrench Car::contact_wrench(std::span<const Contact> deepest) const {
             role == EllipsoidRole::body
                 ? body_contact_force(spec_.body_contact, contact.depth, contact.normal,
                                      point_velocity(state_, contact.point))
-                : pressed_wheel_force(materials[axle], wheel_loads_[i], contact.normal,
-                                      wheel_velocities_[i], commands[axle]);
+                : pressed_wheel_force(materials[axle], wheel_loads_[i].load, contact.normal,
+                                      wheel_loads_[i].velocity, commands[axle]);
         wrench.add_at_point(force, contact.point, state_.position);
     }
-    add_aero_force(wrench);
+    add_aero_force(wrench, speed_now, forward);
     return wrench;
 }
 
@@ -198,8 +204,8 @@ void Car::update_suspension(std::span<const Contact> deepest, double h) {
     const glm::dvec3 up = state_.orientation * glm::dvec3(0.0, 1.0, 0.0);
     if (vehicle_) vehicle_->measure_anti_roll(suspension_);
     for (std::size_t i = 0; i < deepest.size(); ++i) {
-        if (spec_.ellipsoids[i].role == EllipsoidRole::body) continue;
-        double lift = wheel_loads_[i] * glm::dot(deepest[i].normal, up);
+        if (parts_[i].role == EllipsoidRole::body) continue;
+        double lift = wheel_loads_[i].load * glm::dot(deepest[i].normal, up);
         if (vehicle_)
             lift -= vehicle_->anti_roll_force(static_cast<std::size_t>(vehicle_->wheel_slot(i)));
         // Massless wheel: the damper passes what the spring does not hold.
@@ -211,12 +217,11 @@ void Car::update_suspension(std::span<const Contact> deepest, double h) {
 void Car::resolve_deep_contacts(std::span<const Contact> deepest) {
     for (std::size_t i = 0; i < deepest.size(); ++i) {
         const Contact& contact = deepest[i];
-        const Ellipsoid& e = body_ellipsoids_[i];
         // The half-extent is at least the smallest radius, and that much less an ulp-sized
         // margin for its rounding keeps this test exactly the one below: an ordinary
         // contact (a wheel 1 cm deep) skips the rotation and the square root.
-        if (!(contact.depth > spec_.deep_contact_fraction * e.sorted_radii().z * (1.0 - 1e-12)))
-            continue;
+        if (!(contact.depth > parts_[i].shallow_depth)) continue;
+        const Ellipsoid& e = body_ellipsoids_[i];
         // The ellipsoid's half-extent along the contact normal (its support h(n)).
         const glm::dvec3 n_local =
             glm::conjugate(state_.orientation) * contact.normal * e.sorted_axes();
@@ -252,13 +257,11 @@ double Car::inverse_mass_along(const glm::dvec3& normal, const glm::dvec3& point
     return 1.0 / spec_.mass.mass + glm::dot(normal, glm::cross(turn, lever));
 }
 
-void Car::add_aero_force(Wrench& wrench) const {
+void Car::add_aero_force(Wrench& wrench, double speed_now, const glm::dvec3& forward) const {
     const glm::dvec3& v = state_.linear_velocity;
     const double dynamic_pressure = 0.5 * spec_.air_density * glm::dot(v, v);
-    const double speed_now = std::sqrt(glm::dot(v, v));
     if (speed_now > 0.0) wrench.force -= v * (dynamic_pressure * spec_.drag_area / speed_now);
     // Downforce pushes along the body's down axis, in proportion to the forward speed.
-    const glm::dvec3 forward = state_.orientation * glm::dvec3(0.0, 0.0, 1.0);
     const double forward_speed = glm::dot(v, forward);
     const glm::dvec3 down = state_.orientation * glm::dvec3(0.0, -1.0, 0.0);
     wrench.force +=

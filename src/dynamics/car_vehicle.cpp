@@ -10,7 +10,9 @@ namespace trackphys {
 
 Wrench Car::vehicle_wrench(std::span<const Contact> deepest, double h) {
     Vehicle& vehicle = *vehicle_;
-    vehicle.begin_substep(inputs_.throttle, inputs_.brake, speed(), h);
+    const double speed_now = speed();
+    vehicle.begin_substep(inputs_.throttle, inputs_.brake, speed_now, h);
+    const glm::dvec3 forward = forward_axis();
     Wrench wrench;
     // A body ellipsoid, or a wheel that cannot roll: pushed like the arcade car's body.
     const auto add_body_contact = [&](const Contact& contact) {
@@ -25,7 +27,7 @@ Wrench Car::vehicle_wrench(std::span<const Contact> deepest, double h) {
     const auto heading_of = [&](std::size_t i) {
         const Axle axle = axle_of(i);
         const int k = static_cast<int>(axle);
-        if (!heading_known[k]) headings[k] = wheel_heading(axle), heading_known[k] = true;
+        if (!heading_known[k]) headings[k] = wheel_heading(axle, forward), heading_known[k] = true;
         return headings[k];
     };
     for (std::size_t i = 0; i < deepest.size(); ++i) {
@@ -42,22 +44,23 @@ Wrench Car::vehicle_wrench(std::span<const Contact> deepest, double h) {
         const glm::dvec3 heading = heading_of(i);
         const glm::dvec3 in_plane = heading - contact.normal * glm::dot(heading, contact.normal);
         const double in_plane_length = glm::length(in_plane);
-        const bool rolling = touching && wheel_loads_[i] > 0.0 && in_plane_length >= 1e-6;
+        const WheelLoad& wheel = wheel_loads_[i];  // measure_wheel_loads
+        const bool rolling = touching && wheel.load > 0.0 && in_plane_length >= 1e-6;
         if (!rolling) {
             vehicle.wheel_force(w, 0.0, 0.0, 0.0, h);
             if (touching) add_body_contact(contact);
             continue;
         }
-        const glm::dvec3 forward = in_plane * (1.0 / in_plane_length);  // one division
-        const glm::dvec3 lateral = glm::cross(contact.normal, forward);
-        const glm::dvec3& velocity = wheel_velocities_[i];  // measure_wheel_loads
-        const TyreForce tyre = vehicle.wheel_force(w, wheel_loads_[i], glm::dot(velocity, forward),
-                                                   glm::dot(velocity, lateral), h);
-        wrench.add_at_point(
-            contact.normal * wheel_loads_[i] + forward * tyre.longitudinal + lateral * tyre.lateral,
-            contact.point, state_.position);
+        const glm::dvec3 rolling_direction = in_plane * (1.0 / in_plane_length);  // one division
+        const glm::dvec3 lateral = glm::cross(contact.normal, rolling_direction);
+        const TyreForce tyre =
+            vehicle.wheel_force(w, wheel.load, glm::dot(wheel.velocity, rolling_direction),
+                                glm::dot(wheel.velocity, lateral), h);
+        wrench.add_at_point(contact.normal * wheel.load + rolling_direction * tyre.longitudinal +
+                                lateral * tyre.lateral,
+                            contact.point, state_.position);
     }
-    add_aero_force(wrench);
+    add_aero_force(wrench, speed_now, forward);
     return wrench;
 }
 

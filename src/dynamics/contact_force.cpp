@@ -18,13 +18,6 @@ glm::dvec3 regularised_friction(double limit, double slip_speed, const glm::dvec
 
 }  // namespace
 
-double normal_force(const ContactMaterial& material, double depth, const glm::dvec3& normal,
-                    const glm::dvec3& velocity) {
-    if (!(depth > 0.0)) return 0.0;
-    const double approach = glm::dot(velocity, normal);
-    return std::max(0.0, material.stiffness * depth - material.damping * approach);
-}
-
 glm::dvec3 body_contact_force(const ContactMaterial& material, double depth,
                               const glm::dvec3& normal, const glm::dvec3& velocity) {
     const double pressing = normal_force(material, depth, normal, velocity);

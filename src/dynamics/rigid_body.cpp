@@ -10,11 +10,6 @@ MassProperties MassProperties::solid_box(double mass, const glm::dvec3& extents)
     return {mass, mass / 12.0 * glm::dvec3(s.y + s.z, s.x + s.z, s.x + s.y)};
 }
 
-void Wrench::add_at_point(const glm::dvec3& f, const glm::dvec3& p, const glm::dvec3& com) {
-    force += f;
-    torque += glm::cross(p - com, f);
-}
-
 namespace {
 
 // I_world v = R I_body R^T v, without forming the world tensor.
@@ -42,10 +37,6 @@ void integrate(RigidBodyState& state, const MassProperties& mass, const Wrench& 
     state.position += h * state.linear_velocity;
     const glm::dquat spin(0.0, state.angular_velocity);
     state.orientation = glm::normalize(state.orientation + (0.5 * h) * (spin * state.orientation));
-}
-
-glm::dvec3 point_velocity(const RigidBodyState& state, const glm::dvec3& p) {
-    return state.linear_velocity + glm::cross(state.angular_velocity, p - state.position);
 }
 
 double kinetic_energy(const RigidBodyState& state, const MassProperties& mass) {

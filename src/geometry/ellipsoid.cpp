@@ -79,18 +79,15 @@ Ellipsoid::Ellipsoid(Unchecked, const glm::dvec3& center, const glm::dquat& orie
 
 Ellipsoid Ellipsoid::transformed(const glm::dquat& rotation, const glm::dvec3& translation) const {
     Ellipsoid moved = *this;
-    transform_into(moved, rotation, glm::mat3_cast(rotation), translation);
+    place_copy(moved, rotation, glm::mat3_cast(rotation), translation);
     return moved;
 }
 
-void Ellipsoid::transform_into(Ellipsoid& out, const glm::dquat& rotation,
-                               const glm::dmat3& rotation_matrix,
-                               const glm::dvec3& translation) const {
-    out.center_ = rotation_matrix * center_ + translation;
-    out.orientation_ = rotation * orientation_;
-    out.semi_axes_ = semi_axes_;
-    out.sorted_radii_ = sorted_radii_;
-    out.sorted_axes_ = rotation_matrix * sorted_axes_;
+void Ellipsoid::place_copy(Ellipsoid& copy, const glm::dquat& rotation,
+                           const glm::dmat3& rotation_matrix, const glm::dvec3& translation) const {
+    copy.center_ = rotation_matrix * center_ + translation;
+    copy.orientation_ = rotation * orientation_;
+    copy.sorted_axes_ = rotation_matrix * sorted_axes_;
 }
 
 glm::dvec3 Ellipsoid::to_sorted_local(const glm::dvec3& world_point) const {

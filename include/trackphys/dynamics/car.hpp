@@ -54,14 +54,14 @@ class TRACKPHYS_API Car {
         place_ellipsoid(i, glm::mat3_cast(state_.orientation), placed);
         return placed;
     }
-    /// The same written into `placed`, with the orientation's matrix given,
-    /// glm::mat3_cast(state().orientation): a car places all its ellipsoids of one state
-    /// with one matrix, each into its own slot.
+    /// The same written into `placed`, a copy of world_ellipsoid(i) of any state, with the
+    /// orientation's matrix given, glm::mat3_cast(state().orientation): a car places all its
+    /// ellipsoids of one state with one matrix, each into its own slot
+    /// (Ellipsoid::place_copy).
     void place_ellipsoid(std::size_t i, const glm::dmat3& orientation_matrix,
                          Ellipsoid& placed) const {
-        const glm::dvec3 lift = state_.orientation * glm::dvec3(0.0, suspension_[i], 0.0);
-        body_ellipsoids_[i].transform_into(placed, state_.orientation, orientation_matrix,
-                                           state_.position + lift);
+        body_ellipsoids_[i].place_copy(placed, state_.orientation, orientation_matrix,
+                                       state_.position + lifted(suspension_[i]));
     }
     /// Suspension compression of ellipsoid i from full droop (m; always 0 for the body).
     double suspension(std::size_t i) const { return suspension_[i]; }
@@ -123,33 +123,66 @@ class TRACKPHYS_API Car {
     double inverse_mass_along(const glm::dvec3& normal, const glm::dvec3& point) const;
 
   private:
+    /// state().orientation * (0, travel, 0), a wheel's suspension lift in the world, as glm
+    /// rotates it (v + 2 (w (q x v) + q x (q x v)), q the vector part) but without the
+    /// products by v's zero components, which change at most the sign of a zero: a fifth
+    /// of a wheel's placing.
+    glm::dvec3 lifted(double travel) const {
+        const glm::dquat& q = state_.orientation;
+        const double a = travel * q.z;  // q x v = (-a, 0, b)
+        const double b = q.x * travel;
+        const double cross_y = q.z * -a - b * q.x;  // y of q x (q x v)
+        return {(-a * q.w + q.y * b) * 2.0, travel + cross_y * 2.0, (b * q.w + a * q.y) * 2.0};
+    }
     /// A wheel's axle, which sets its heading, grip and share of drive and brake; also the
     /// index of per-axle arrays.
     enum class Axle : int { front = 0, rear = 1 };
     Axle axle_of(std::size_t wheel) const {
-        return spec_.ellipsoids[wheel].role == EllipsoidRole::front_wheel ? Axle::front
-                                                                          : Axle::rear;
+        return parts_[wheel].role == EllipsoidRole::front_wheel ? Axle::front : Axle::rear;
     }
+    /// What a sub-step reads of an ellipsoid besides its contact, in one small block: not
+    /// from the spec's CarEllipsoids (88 bytes each) and the body Ellipsoids (176).
+    struct Part {
+        EllipsoidRole role;
+        /// A contact no deeper than this is not deep (resolve_deep_contacts): the smallest
+        /// radius's share, less an ulp-sized margin for its rounding.
+        double shallow_depth;
+    };
+    /// A wheel's tyre this sub-step (measure_wheel_loads): the velocity of its contact point
+    /// and the normal force measured at it (N; 0 for the body).
+    struct WheelLoad {
+        glm::dvec3 velocity{0.0};
+        double load = 0.0;
+    };
 
     void resolve_deep_contacts(std::span<const Contact> deepest);
-    /// The tyre's normal force of each wheel (0 for the body) into wheel_loads_, and the
-    /// velocity of its contact point into wheel_velocities_.
+    /// The tyre's normal force of each wheel and the velocity of its contact point into
+    /// wheel_loads_.
     void measure_wheel_loads(std::span<const Contact> deepest);
     Wrench contact_wrench(std::span<const Contact> deepest) const;
     /// contact_wrench for a car with a vehicle model; advances its wheels by h.
     Wrench vehicle_wrench(std::span<const Contact> deepest, double h);
-    /// The world direction the wheels of an axle roll in (the front ones steered).
-    glm::dvec3 wheel_heading(Axle axle) const;
+    /// The body's forward axis in the world, state().orientation * (0, 0, 1): the rear
+    /// wheels' heading and the downforce's speed.
+    glm::dvec3 forward_axis() const { return state_.orientation * glm::dvec3(0.0, 0.0, 1.0); }
+    /// The world direction the wheels of an axle roll in (the front ones steered); forward:
+    /// forward_axis().
+    glm::dvec3 wheel_heading(Axle axle, const glm::dvec3& forward) const;
     void update_suspension(std::span<const Contact> deepest, double h);
-    /// The command of each wheel of an axle; available: drive_available(), the drive force
-    /// at this speed (N, all wheels).
-    WheelCommand wheel_command(Axle axle, double axle_normal_force, double available) const;
-    double drive_available() const;
+    /// The command of each wheel of an axle rolling along heading on material
+    /// (wheel_material); available: drive_available(), the drive force at this speed (N,
+    /// all wheels).
+    WheelCommand wheel_command(Axle axle, const glm::dvec3& heading,
+                               const ContactMaterial& material, double axle_normal_force,
+                               double available) const;
+    /// speed_now: speed().
+    double drive_available(double speed_now) const;
     /// Sets inputs_ (already in range) and the steered heading that follows from them.
     void take_inputs(const CarInputs& inputs);
     /// The contact material of an axle's wheels (rear tyres with their extra grip).
     ContactMaterial wheel_material(Axle axle) const;
-    void add_aero_force(Wrench& wrench) const;
+    /// speed_now: speed(); forward: forward_axis().
+    void add_aero_force(Wrench& wrench, double speed_now, const glm::dvec3& forward) const;
 
     CarSpec spec_;
     RigidBodyState state_;
@@ -157,8 +190,8 @@ class TRACKPHYS_API Car {
     glm::dvec3 steered_heading_{0.0, 0.0, 1.0};  // front wheels', body frame, for inputs_.steer
     std::vector<Ellipsoid> body_ellipsoids_;
     std::vector<double> suspension_;
-    std::vector<double> wheel_loads_;           // this sub-step's tyre normal forces (N)
-    std::vector<glm::dvec3> wheel_velocities_;  // and the velocities they were measured at
+    std::vector<Part> parts_;             // per ellipsoid, from the spec
+    std::vector<WheelLoad> wheel_loads_;  // per ellipsoid, this sub-step
     std::optional<Vehicle> vehicle_;
     double bounding_radius_ = 0.0;
     int front_wheels_ = 0;

@@ -1,7 +1,9 @@
 #pragma once
 
+#include <algorithm>
 #include <limits>
 
+#include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
 #include "trackphys/dynamics/car_spec.hpp"
@@ -15,8 +17,12 @@ namespace trackphys {
 /// contact (m/s). Every law returns the world force on the car at that point (N).
 
 /// Normal force magnitude max(0, k d - c v_n): a spring with damping that never pulls.
-TRACKPHYS_API double normal_force(const ContactMaterial& material, double depth,
-                                  const glm::dvec3& normal, const glm::dvec3& velocity);
+inline double normal_force(const ContactMaterial& material, double depth, const glm::dvec3& normal,
+                           const glm::dvec3& velocity) {
+    if (!(depth > 0.0)) return 0.0;
+    const double approach = glm::dot(velocity, normal);
+    return std::max(0.0, material.stiffness * depth - material.damping * approach);
+}
 
 /// A body ellipsoid: normal force plus regularised Coulomb friction opposite the
 /// tangential slip, mu F_n beyond material.slip_speed and linear below it (so a car at rest

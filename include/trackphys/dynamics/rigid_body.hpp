@@ -1,5 +1,6 @@
 #pragma once
 
+#include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
@@ -34,7 +35,10 @@ struct Wrench {
     glm::dvec3 torque{0.0};  ///< N m
 
     /// Adds force f acting at world point p on a body whose centre of mass is at com.
-    void add_at_point(const glm::dvec3& f, const glm::dvec3& p, const glm::dvec3& com);
+    void add_at_point(const glm::dvec3& f, const glm::dvec3& p, const glm::dvec3& com) {
+        force += f;
+        torque += glm::cross(p - com, f);
+    }
 };
 
 /// Advances state by h seconds under the wrench and gravity with semi-implicit (symplectic)
@@ -45,7 +49,9 @@ TRACKPHYS_API void integrate(RigidBodyState& state, const MassProperties& mass,
                              const Wrench& wrench, const glm::dvec3& gravity, double h);
 
 /// The world-space velocity of the body point currently at world position p (m/s).
-TRACKPHYS_API glm::dvec3 point_velocity(const RigidBodyState& state, const glm::dvec3& p);
+inline glm::dvec3 point_velocity(const RigidBodyState& state, const glm::dvec3& p) {
+    return state.linear_velocity + glm::cross(state.angular_velocity, p - state.position);
+}
 
 /// Kinetic energy (J): 1/2 m v^2 + 1/2 omega . I_world omega.
 TRACKPHYS_API double kinetic_energy(const RigidBodyState& state, const MassProperties& mass);

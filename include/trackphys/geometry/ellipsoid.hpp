@@ -55,11 +55,12 @@ class TRACKPHYS_API Ellipsoid {
     /// is cheap enough for every ellipsoid of every sub-step. rotation must be a unit
     /// quaternion.
     Ellipsoid transformed(const glm::dquat& rotation, const glm::dvec3& translation) const;
-    /// The same written into `out` (every member), with the rotation's matrix given,
-    /// glm::mat3_cast(rotation), bit for bit: a car places all its ellipsoids with one
-    /// matrix, each into its slot, without building a temporary first.
-    void transform_into(Ellipsoid& out, const glm::dquat& rotation,
-                        const glm::dmat3& rotation_matrix, const glm::dvec3& translation) const;
+    /// The same written into `copy`, which must already be a copy of this ellipsoid (placed
+    /// anywhere), with the rotation's matrix given, glm::mat3_cast(rotation), bit for bit: a
+    /// car places all its ellipsoids with one matrix, each into its slot, and writes only
+    /// what a motion changes (centre, orientation, sorted axes), not the radii.
+    void place_copy(Ellipsoid& copy, const glm::dquat& rotation, const glm::dmat3& rotation_matrix,
+                    const glm::dvec3& translation) const;
 
     /// Radius of the smallest sphere about center() that holds the ellipsoid (m).
     double bounding_radius() const { return sorted_radii_.x; }
