@@ -7,6 +7,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "trackphys/assert.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/math/types.hpp"
 
@@ -85,6 +86,8 @@ Ellipsoid Ellipsoid::transformed(const glm::dquat& rotation, const glm::dvec3& t
 
 void Ellipsoid::place_copy(Ellipsoid& copy, const glm::dquat& rotation,
                            const glm::dmat3& rotation_matrix, const glm::dvec3& translation) const {
+    TP_ASSERT(copy.semi_axes_ == semi_axes_ && copy.sorted_radii_ == sorted_radii_,
+              "Ellipsoid::place_copy: the slot is not a copy of this ellipsoid");
     copy.center_ = rotation_matrix * center_ + translation;
     copy.orientation_ = rotation * orientation_;
     copy.sorted_axes_ = rotation_matrix * sorted_axes_;
