@@ -82,7 +82,8 @@ struct UpdateLists {
 enum class SubstepCull {
     none,
     bounding_sphere,  ///< the write-up's: the step's query sphere against the triangle
-    world_extent,     ///< World's: ellipsoid_depth_bound > 0, dearer and tighter
+    world_extent,     ///< World's test, ellipsoid_depth_bound > 0 (scalar here; World runs it
+                      ///< two triangles at a time, the same bounds), dearer and tighter
 };
 
 /// One update's mid-phase work as World does it: begin_update, then per step each

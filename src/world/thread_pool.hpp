@@ -48,7 +48,7 @@ class ThreadPool {
     std::atomic<int> next_item_{0};
     std::atomic<int> finished_items_{0};
     // Twice the number of tasks started, plus 1 while the current one is open: a worker
-    // wakes on its change and joins only an open task. kStopping ends the workers.
+    // wakes on its change and joins only an open task. stopping_ ends the workers.
     std::atomic<std::uint32_t> task_state_{0};
     // Workers inside the open task: run() closes the task, then waits for them to leave
     // before the next run rewrites it.

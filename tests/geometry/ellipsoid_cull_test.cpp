@@ -141,6 +141,10 @@ TEST(EllipsoidCull, TwoLanesGiveTheScalarBoundsBitForBit) {
             << "case " << i << " (" << test::contact_kind_name(kind) << "): " << bounds[0]
             << " against " << scalar;
         ASSERT_TRUE(same_bits(bounds[1], ellipsoid_depth_bound(u, c.ellipsoid))) << "case " << i;
+        // The case's own triangle in the second lane too: u is seldom near c's ellipsoid.
+        const std::array<double, 2> swapped = detail::EllipsoidCull(c.ellipsoid).depth_bounds(u, t);
+        ASSERT_TRUE(same_bits(swapped[1], scalar)) << "case " << i << " in the second lane";
+        ASSERT_TRUE(same_bits(swapped[0], bounds[1])) << "case " << i;
         (scalar > -std::numeric_limits<double>::infinity() ? kept : rejected) += 1;
     }
     EXPECT_GT(kept, 5000);

@@ -72,7 +72,9 @@ class TRACKPHYS_API World {
     /// without triangles has no map and accepts any position).
     std::size_t add_car(const CarSpec& spec, const RigidBodyState& state);
     std::size_t car_count() const;
-    /// Car i (throws std::out_of_range past car_count()).
+    /// Car i (throws std::out_of_range past car_count()): its inputs and state may be set
+    /// through it, but it must not be replaced by another car (assigned), since the world
+    /// places its ellipsoids into copies made by add_car; add another car instead.
     Car& car(std::size_t i);
     const Car& car(std::size_t i) const;
 
