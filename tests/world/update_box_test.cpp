@@ -1,6 +1,8 @@
 // The box a car's update queries the broad phase with: the union of its placed ellipsoids'
 // boxes, swept and padded. Each ellipsoid must be placed with its own radii (placing keeps
 // the target's radii, so a scratch copy of another ellipsoid would give wrong boxes).
+#include "world/update_box.hpp"
+
 #include <cstddef>
 
 #include <gtest/gtest.h>
@@ -12,7 +14,6 @@
 #include "trackphys/dynamics/car.hpp"
 #include "trackphys/dynamics/car_spec.hpp"
 #include "trackphys/world/world_settings.hpp"
-#include "world/update_box.hpp"
 
 namespace trackphys {
 namespace {
