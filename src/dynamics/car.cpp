@@ -220,7 +220,7 @@ void Car::resolve_deep_contacts(std::span<const Contact> deepest) {
         // The half-extent is at least the smallest radius, and that much less an ulp-sized
         // margin for its rounding keeps this test exactly the one below: an ordinary
         // contact (a wheel 1 cm deep) skips the rotation and the square root.
-        if (!(contact.depth > parts_[i].shallow_depth)) continue;
+        if (!(contact.depth > parts_[i].deep_contact_depth)) continue;
         const Ellipsoid& e = body_ellipsoids_[i];
         // The ellipsoid's half-extent along the contact normal (its support h(n)).
         const glm::dvec3 n_local =

@@ -21,11 +21,8 @@ inline Aabb car_update_box(const Car& car, const WorldSettings& settings) {
     // before the islands share the update out.
     const glm::dmat3 orientation = glm::mat3_cast(car.state().orientation);
     Aabb box;
-    for (std::size_t i = 0; i < car.ellipsoid_count(); ++i) {
-        Ellipsoid placed = car.body_ellipsoid(i);  // place_ellipsoid keeps its radii
-        car.place_ellipsoid(i, orientation, placed);
-        box.expand(placed.bounds());
-    }
+    for (std::size_t i = 0; i < car.ellipsoid_count(); ++i)
+        box.expand(car.world_ellipsoid(i, orientation).bounds());
     const double dt = settings.dt_update;
     const RigidBodyState& state = car.state();
     const double margin = settings.broad_phase_margin +

@@ -50,8 +50,13 @@ class TRACKPHYS_API Car {
     /// Ellipsoid i placed in the world by the current state (wheels moved up by their
     /// suspension travel).
     Ellipsoid world_ellipsoid(std::size_t i) const {
+        return world_ellipsoid(i, glm::mat3_cast(state_.orientation));
+    }
+    /// The same with the orientation's matrix given, glm::mat3_cast(state().orientation), for
+    /// a caller that places every ellipsoid of one state.
+    Ellipsoid world_ellipsoid(std::size_t i, const glm::dmat3& orientation_matrix) const {
         Ellipsoid placed = body_ellipsoids_[i];
-        place_ellipsoid(i, glm::mat3_cast(state_.orientation), placed);
+        place_ellipsoid(i, orientation_matrix, placed);
         return placed;
     }
     /// The same written into `placed`, a copy of world_ellipsoid(i) of any state, with the
@@ -144,9 +149,9 @@ class TRACKPHYS_API Car {
     /// from the spec's CarEllipsoids (88 bytes each) and the body Ellipsoids (176).
     struct Part {
         EllipsoidRole role;
-        /// A contact no deeper than this is not deep (resolve_deep_contacts): the smallest
+        /// Only a contact deeper than this is deep (resolve_deep_contacts): the smallest
         /// radius's share, less an ulp-sized margin for its rounding.
-        double shallow_depth;
+        double deep_contact_depth;
     };
     /// A wheel's tyre this sub-step (measure_wheel_loads): the velocity of its contact point
     /// and the normal force measured at it (N; 0 for the body).
