@@ -94,7 +94,7 @@ void ThreadPool::leave() {
     if (joined_.fetch_sub(1) == 1) joined_.notify_one();
 }
 
-void ThreadPool::claim_items(int worker) {
+void ThreadPool::claim_items(int worker) noexcept {
     for (int item = next_item_.fetch_add(1, std::memory_order_relaxed); item < item_count_;
          item = next_item_.fetch_add(1, std::memory_order_relaxed)) {
         task_(item, item + 1, worker, context_);

@@ -29,7 +29,10 @@ class ThreadPool {
     int thread_count() const { return static_cast<int>(threads_.size()) + 1; }
 
     /// Runs task(i, i + 1, worker, context) for every i in [0, item_count) and returns when
-    /// all have finished. Worker 0 is the caller. Not reentrant.
+    /// all have finished. Worker 0 is the caller. Not reentrant. task must not throw: an
+    /// exception leaving it ends the program on every thread alike, the caller's included,
+    /// since a half-run task would leave the pool unable to run the next (World's own task
+    /// catches each island's error and rethrows it after the run).
     void run(TaskCallback* task, int item_count, void* context);
 
   private:
@@ -37,7 +40,7 @@ class ThreadPool {
     // Whether the worker joined the open task `task_state` (then it must leave() after).
     bool join(std::uint32_t task_state);
     void leave();
-    void claim_items(int worker);
+    void claim_items(int worker) noexcept;
 
     std::vector<std::thread> threads_;
     // The task being run, written by run() while no worker has joined; a worker reads it

@@ -5,6 +5,8 @@
 
 #include <atomic>
 #include <chrono>
+#include <cstdlib>
+#include <stdexcept>
 #include <thread>
 #include <vector>
 
@@ -60,6 +62,27 @@ TEST(WorldThreads, PoolRunsEveryItemOnceAndPublishesItsWrites) {
             if (run % 10 == 9) std::this_thread::sleep_for(std::chrono::milliseconds(2));
         }
     }
+}
+
+void throw_from_the_caller(int, int, int worker, void*) {
+    if (worker == 0) throw std::runtime_error("an item failed");
+}
+
+// A task that throws cannot leave the pool half-way through a run (its next run would wait
+// on the unfinished one), so the exception ends the program wherever it is thrown, and it
+// does not reach run()'s caller as if the pool were still usable.
+TEST(WorldThreadsDeathTest, ATaskThatThrowsOnTheCallerEndsTheProgram) {
+    GTEST_FLAG_SET(death_test_style, "threadsafe");
+    EXPECT_DEATH(
+        {
+            detail::ThreadPool pool(2);
+            try {
+                pool.run(&throw_from_the_caller, 4, nullptr);
+            } catch (...) {
+                std::_Exit(0);
+            }
+        },
+        "");
 }
 
 }  // namespace
