@@ -64,6 +64,13 @@ Autopilot::Autopilot(const Track& track, const CarSpec& car, AutopilotSettings s
     }
     wheelbase_ = std::isfinite(front - rear) && front > rear ? front - rear : 2.5;
     max_steer_angle_ = car.max_steer_angle;
+    const std::size_t samples = centerline_.size();
+    for (std::size_t i = 0; i < samples; ++i)
+        max_sample_gap_ = std::max(
+            max_sample_gap_,
+            glm::distance(centerline_[i].position, centerline_[(i + 1) % samples].position));
+    // Rounded up, so that no bound built on it promises more than the chords give.
+    max_sample_gap_ = max_sample_gap_ * (1.0 + 1e-12) + 1e-12;
 
     // Speed profile: each sample's cornering limit (the bank helps only when it leans into
     // the turn) and crest limit, then a backward pass so the car can brake down to every
@@ -131,21 +138,31 @@ std::size_t Autopilot::find_nearest(const glm::dvec3& position) const {
         return best;
     }
     // Afterwards the car is near where it was: search a window around the last sample,
-    // outwards, the sample ahead before the one behind (a tie keeps the first found). The
-    // indices step with their wrap instead of a division each: this runs for every car
-    // before every update.
+    // outwards, the sample ahead before the one behind at the same step (a tie keeps the
+    // first found). A sample at distance d from the car puts the next m samples on its
+    // side at least d - m max_sample_gap_ away, so those that cannot come nearer than the
+    // best so far are never read: a car's search reads a few dozen samples, not the
+    // window's 800 (96 kB, which pushed the car's own lines out of the cache before every
+    // update of a big field). The margin covers the roundings of the distances compared.
     constexpr std::size_t window = 400;
+    const double margin =
+        1e-6 + 1e-9 * (std::abs(position.x) + std::abs(position.y) + std::abs(position.z));
     std::size_t best = nearest_;
     double best_distance2 = distance2(best);
-    std::size_t ahead = nearest_;
-    std::size_t behind = nearest_;
-    for (std::size_t k = 1; k <= window; ++k) {
-        ahead = ahead + 1 == n ? 0 : ahead + 1;
-        behind = behind == 0 ? n - 1 : behind - 1;
-        if (const double d2 = distance2(ahead); d2 < best_distance2)
-            best = ahead, best_distance2 = d2;
-        if (const double d2 = distance2(behind); d2 < best_distance2)
-            best = behind, best_distance2 = d2;
+    const auto steps_out_of_reach = [&](double d2) -> std::size_t {
+        const double reach = (std::sqrt(d2) - std::sqrt(best_distance2) - margin) / max_sample_gap_;
+        return reach > 1.0 ? static_cast<std::size_t>(std::ceil(std::min(reach, 1.0 * window))) - 1
+                           : 0;
+    };
+    std::size_t ahead_step = 1;
+    std::size_t behind_step = 1;
+    while (ahead_step <= window || behind_step <= window) {
+        const bool ahead = ahead_step <= behind_step;
+        std::size_t& step = ahead ? ahead_step : behind_step;
+        const std::size_t i = ahead ? (nearest_ + step) % n : (nearest_ + n - step % n) % n;
+        const double d2 = distance2(i);
+        if (d2 < best_distance2) best = i, best_distance2 = d2;
+        step += 1 + steps_out_of_reach(d2);
     }
     return best;
 }

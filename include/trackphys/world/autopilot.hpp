@@ -89,6 +89,8 @@ class TRACKPHYS_API Autopilot {
     AutopilotSettings settings_;
     double wheelbase_;
     double max_steer_angle_;
+    // The longest chord between neighbouring centreline samples (m), for find_nearest.
+    double max_sample_gap_ = 0.0;
     std::size_t nearest_ = 0;
     int laps_ = 0;
     bool located_ = false;
