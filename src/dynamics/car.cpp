@@ -49,7 +49,6 @@ Car::Car(CarSpec spec, const RigidBodyState& initial_state) : spec_(std::move(sp
         shape->parts.push_back(
             {e.role, spec_.deep_contact_fraction * body.sorted_radii().z * (1.0 - 1e-12)});
         suspension_.push_back(0.0);
-        wheel_loads_.emplace_back();
         bounding_radius_ =
             std::max(bounding_radius_, glm::length(e.center) + body.bounding_radius());
         wheels_ += e.role != EllipsoidRole::body;
@@ -163,15 +162,17 @@ WheelCommand Car::wheel_command(Axle axle, const glm::dvec3& heading,
 
 void Car::advance(std::span<const Contact> deepest, const glm::dvec3& gravity, double h) {
     resolve_deep_contacts(deepest);
-    measure_wheel_loads(deepest);
-    const Wrench wrench = vehicle_ ? vehicle_wrench(deepest, h) : contact_wrench(deepest);
-    update_suspension(deepest, h);
+    WheelLoads wheel_loads;
+    measure_wheel_loads(deepest, wheel_loads);
+    const Wrench wrench =
+        vehicle_ ? vehicle_wrench(deepest, wheel_loads, h) : contact_wrench(deepest, wheel_loads);
+    update_suspension(deepest, wheel_loads, h);
     trackphys::integrate(state_, spec_.mass, wrench, gravity, h);
 }
 
-void Car::measure_wheel_loads(std::span<const Contact> deepest) {
+void Car::measure_wheel_loads(std::span<const Contact> deepest, WheelLoads& wheel_loads) const {
     for (std::size_t i = 0; i < deepest.size(); ++i) {
-        WheelLoad& wheel = wheel_loads_[i];
+        WheelLoad& wheel = wheel_loads[i];
         if (shape_->parts[i].role == EllipsoidRole::body) {
             wheel.load = 0.0;
             continue;
@@ -182,14 +183,14 @@ void Car::measure_wheel_loads(std::span<const Contact> deepest) {
     }
 }
 
-Wrench Car::contact_wrench(std::span<const Contact> deepest) const {
+Wrench Car::contact_wrench(std::span<const Contact> deepest, const WheelLoads& wheel_loads) const {
     // The least loaded wheel of each axle bounds its drive and brake.
     double least_loads[2] = {std::numeric_limits<double>::infinity(),
                              std::numeric_limits<double>::infinity()};
     for (std::size_t i = 0; i < deepest.size(); ++i) {
         if (shape_->parts[i].role == EllipsoidRole::body) continue;
         double& least = least_loads[static_cast<int>(axle_of(i))];
-        least = std::min(least, wheel_loads_[i].load);
+        least = std::min(least, wheel_loads[i].load);
     }
 
     // Every wheel of an axle rolls with the same material and command: two of each per
@@ -214,21 +215,22 @@ Wrench Car::contact_wrench(std::span<const Contact> deepest) const {
             role == EllipsoidRole::body
                 ? body_contact_force(spec_.body_contact, contact.depth, contact.normal,
                                      point_velocity(state_, contact.point))
-                : pressed_wheel_force(materials[axle], wheel_loads_[i].load, contact.normal,
-                                      wheel_loads_[i].velocity, commands[axle]);
+                : pressed_wheel_force(materials[axle], wheel_loads[i].load, contact.normal,
+                                      wheel_loads[i].velocity, commands[axle]);
         wrench.add_at_point(force, contact.point, state_.position);
     }
     add_aero_force(wrench, speed_now, forward);
     return wrench;
 }
 
-void Car::update_suspension(std::span<const Contact> deepest, double h) {
+void Car::update_suspension(std::span<const Contact> deepest, const WheelLoads& wheel_loads,
+                            double h) {
     const Suspension& spring = spec_.suspension;
     const glm::dvec3 up = state_.orientation * glm::dvec3(0.0, 1.0, 0.0);
     if (vehicle_) vehicle_->measure_anti_roll(suspension_);
     for (std::size_t i = 0; i < deepest.size(); ++i) {
         if (shape_->parts[i].role == EllipsoidRole::body) continue;
-        double lift = wheel_loads_[i].load * glm::dot(deepest[i].normal, up);
+        double lift = wheel_loads[i].load * glm::dot(deepest[i].normal, up);
         if (vehicle_)
             lift -= vehicle_->anti_roll_force(static_cast<std::size_t>(vehicle_->wheel_slot(i)));
         // Massless wheel: the damper passes what the spring does not hold.

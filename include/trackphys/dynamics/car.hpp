@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <memory>
 #include <optional>
@@ -168,26 +169,31 @@ class TRACKPHYS_API Car {
         bool same_bits(const Shape& other) const;
     };
     /// A wheel's tyre this sub-step (measure_wheel_loads): the velocity of its contact point
-    /// and the normal force measured at it (N; 0 for the body).
+    /// and the normal force measured at it (N; 0 for the body, whose velocity is not set).
+    /// Scratch of one sub-step, on advance's stack: a car's own copy would be written cold
+    /// at each of its updates in a big field.
     struct WheelLoad {
-        glm::dvec3 velocity{0.0};
-        double load = 0.0;
+        glm::dvec3 velocity;
+        double load;
     };
+    using WheelLoads = std::array<WheelLoad, CarSpec::max_ellipsoids>;
 
     void resolve_deep_contacts(std::span<const Contact> deepest);
-    /// The tyre's normal force of each wheel and the velocity of its contact point into
-    /// wheel_loads_.
-    void measure_wheel_loads(std::span<const Contact> deepest);
-    Wrench contact_wrench(std::span<const Contact> deepest) const;
+    /// The tyre's normal force of each wheel and the velocity of its contact point, into
+    /// wheel_loads' first deepest.size().
+    void measure_wheel_loads(std::span<const Contact> deepest, WheelLoads& wheel_loads) const;
+    Wrench contact_wrench(std::span<const Contact> deepest, const WheelLoads& wheel_loads) const;
     /// contact_wrench for a car with a vehicle model; advances its wheels by h.
-    Wrench vehicle_wrench(std::span<const Contact> deepest, double h);
+    Wrench vehicle_wrench(std::span<const Contact> deepest, const WheelLoads& wheel_loads,
+                          double h);
     /// The body's forward axis in the world, state().orientation * (0, 0, 1): the rear
     /// wheels' heading and the downforce's speed.
     glm::dvec3 forward_axis() const { return state_.orientation * glm::dvec3(0.0, 0.0, 1.0); }
     /// The world direction the wheels of an axle roll in (the front ones steered); forward:
     /// forward_axis().
     glm::dvec3 wheel_heading(Axle axle, const glm::dvec3& forward) const;
-    void update_suspension(std::span<const Contact> deepest, double h);
+    void update_suspension(std::span<const Contact> deepest, const WheelLoads& wheel_loads,
+                           double h);
     /// The command of each wheel of an axle rolling along heading on material
     /// (wheel_material); available: drive_available(), the drive force at this speed (N,
     /// all wheels).
@@ -209,7 +215,6 @@ class TRACKPHYS_API Car {
     glm::dvec3 steered_heading_{0.0, 0.0, 1.0};  // front wheels', body frame, for inputs_.steer
     std::shared_ptr<const Shape> shape_;         // shared by the cars of one spec in a World
     std::vector<double> suspension_;
-    std::vector<WheelLoad> wheel_loads_;  // per ellipsoid, this sub-step
     std::optional<Vehicle> vehicle_;
     double bounding_radius_ = 0.0;
     int front_wheels_ = 0;
