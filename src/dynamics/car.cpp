@@ -1,7 +1,10 @@
 #include "trackphys/dynamics/car.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 #include <string>
 #include <utility>
@@ -40,19 +43,38 @@ CarInputs clamped(const CarInputs& in) {
 Car::Car(CarSpec spec, const RigidBodyState& initial_state) : spec_(std::move(spec)) {
     if (std::string why = spec_.validate(); !why.empty()) throw Error(why);
     set_state(initial_state);
+    auto shape = std::make_shared<Shape>();
     for (const CarEllipsoid& e : spec_.ellipsoids) {
-        body_ellipsoids_.emplace_back(e.center, e.orientation, e.semi_axes);
-        parts_.push_back({e.role, spec_.deep_contact_fraction *
-                                      body_ellipsoids_.back().sorted_radii().z * (1.0 - 1e-12)});
+        const Ellipsoid& body = shape->body.emplace_back(e.center, e.orientation, e.semi_axes);
+        shape->parts.push_back(
+            {e.role, spec_.deep_contact_fraction * body.sorted_radii().z * (1.0 - 1e-12)});
         suspension_.push_back(0.0);
-        wheel_loads_.emplace_back();
-        bounding_radius_ = std::max(
-            bounding_radius_, glm::length(e.center) + body_ellipsoids_.back().bounding_radius());
+        bounding_radius_ =
+            std::max(bounding_radius_, glm::length(e.center) + body.bounding_radius());
         wheels_ += e.role != EllipsoidRole::body;
         front_wheels_ += e.role == EllipsoidRole::front_wheel;
     }
+    shape_ = std::move(shape);
     if (spec_.vehicle) vehicle_.emplace(spec_);
     take_inputs(inputs_);
+}
+
+bool Car::Shape::same_bits(const Shape& other) const {
+    // Bits, not values: a -0.0 for a 0.0 could change the sign of a zero downstream.
+    static_assert(sizeof(Ellipsoid) == 22 * sizeof(double), "an Ellipsoid has no padding");
+    if (body.size() != other.body.size()) return false;
+    for (std::size_t i = 0; i < body.size(); ++i)
+        if (std::memcmp(&body[i], &other.body[i], sizeof(Ellipsoid)) != 0 ||
+            parts[i].role != other.parts[i].role ||
+            std::bit_cast<std::uint64_t>(parts[i].deep_contact_depth) !=
+                std::bit_cast<std::uint64_t>(other.parts[i].deep_contact_depth))
+            return false;
+    return true;
+}
+
+bool Car::share_ellipsoids_with(const Car& other) {
+    if (shape_ != other.shape_ && shape_->same_bits(*other.shape_)) shape_ = other.shape_;
+    return shape_ == other.shape_;
 }
 
 void Car::set_state(const RigidBodyState& state) {
@@ -140,16 +162,18 @@ WheelCommand Car::wheel_command(Axle axle, const glm::dvec3& heading,
 
 void Car::advance(std::span<const Contact> deepest, const glm::dvec3& gravity, double h) {
     resolve_deep_contacts(deepest);
-    measure_wheel_loads(deepest);
-    const Wrench wrench = vehicle_ ? vehicle_wrench(deepest, h) : contact_wrench(deepest);
-    update_suspension(deepest, h);
+    WheelLoads wheel_loads;
+    measure_wheel_loads(deepest, wheel_loads);
+    const Wrench wrench =
+        vehicle_ ? vehicle_wrench(deepest, wheel_loads, h) : contact_wrench(deepest, wheel_loads);
+    update_suspension(deepest, wheel_loads, h);
     trackphys::integrate(state_, spec_.mass, wrench, gravity, h);
 }
 
-void Car::measure_wheel_loads(std::span<const Contact> deepest) {
+void Car::measure_wheel_loads(std::span<const Contact> deepest, WheelLoads& wheel_loads) const {
     for (std::size_t i = 0; i < deepest.size(); ++i) {
-        WheelLoad& wheel = wheel_loads_[i];
-        if (parts_[i].role == EllipsoidRole::body) {
+        WheelLoad& wheel = wheel_loads[i];
+        if (shape_->parts[i].role == EllipsoidRole::body) {
             wheel.load = 0.0;
             continue;
         }
@@ -159,14 +183,14 @@ void Car::measure_wheel_loads(std::span<const Contact> deepest) {
     }
 }
 
-Wrench Car::contact_wrench(std::span<const Contact> deepest) const {
+Wrench Car::contact_wrench(std::span<const Contact> deepest, const WheelLoads& wheel_loads) const {
     // The least loaded wheel of each axle bounds its drive and brake.
     double least_loads[2] = {std::numeric_limits<double>::infinity(),
                              std::numeric_limits<double>::infinity()};
     for (std::size_t i = 0; i < deepest.size(); ++i) {
-        if (parts_[i].role == EllipsoidRole::body) continue;
+        if (shape_->parts[i].role == EllipsoidRole::body) continue;
         double& least = least_loads[static_cast<int>(axle_of(i))];
-        least = std::min(least, wheel_loads_[i].load);
+        least = std::min(least, wheel_loads[i].load);
     }
 
     // Every wheel of an axle rolls with the same material and command: two of each per
@@ -183,7 +207,7 @@ Wrench Car::contact_wrench(std::span<const Contact> deepest) const {
     for (std::size_t i = 0; i < deepest.size(); ++i) {
         const Contact& contact = deepest[i];
         if (!(contact.depth > 0.0)) continue;
-        const EllipsoidRole role = parts_[i].role;
+        const EllipsoidRole role = shape_->parts[i].role;
         const int axle = static_cast<int>(axle_of(i));
         // A wheel's load and point velocity are this sub-step's, from measure_wheel_loads
         // (its materials differ from spec_.wheel_contact in friction only).
@@ -191,21 +215,22 @@ Wrench Car::contact_wrench(std::span<const Contact> deepest) const {
             role == EllipsoidRole::body
                 ? body_contact_force(spec_.body_contact, contact.depth, contact.normal,
                                      point_velocity(state_, contact.point))
-                : pressed_wheel_force(materials[axle], wheel_loads_[i].load, contact.normal,
-                                      wheel_loads_[i].velocity, commands[axle]);
+                : pressed_wheel_force(materials[axle], wheel_loads[i].load, contact.normal,
+                                      wheel_loads[i].velocity, commands[axle]);
         wrench.add_at_point(force, contact.point, state_.position);
     }
     add_aero_force(wrench, speed_now, forward);
     return wrench;
 }
 
-void Car::update_suspension(std::span<const Contact> deepest, double h) {
+void Car::update_suspension(std::span<const Contact> deepest, const WheelLoads& wheel_loads,
+                            double h) {
     const Suspension& spring = spec_.suspension;
     const glm::dvec3 up = state_.orientation * glm::dvec3(0.0, 1.0, 0.0);
     if (vehicle_) vehicle_->measure_anti_roll(suspension_);
     for (std::size_t i = 0; i < deepest.size(); ++i) {
-        if (parts_[i].role == EllipsoidRole::body) continue;
-        double lift = wheel_loads_[i].load * glm::dot(deepest[i].normal, up);
+        if (shape_->parts[i].role == EllipsoidRole::body) continue;
+        double lift = wheel_loads[i].load * glm::dot(deepest[i].normal, up);
         if (vehicle_)
             lift -= vehicle_->anti_roll_force(static_cast<std::size_t>(vehicle_->wheel_slot(i)));
         // Massless wheel: the damper passes what the spring does not hold.
@@ -220,8 +245,8 @@ void Car::resolve_deep_contacts(std::span<const Contact> deepest) {
         // The half-extent is at least the smallest radius, and that much less an ulp-sized
         // margin for its rounding keeps this test exactly the one below: an ordinary
         // contact (a wheel 1 cm deep) skips the rotation and the square root.
-        if (!(contact.depth > parts_[i].deep_contact_depth)) continue;
-        const Ellipsoid& e = body_ellipsoids_[i];
+        if (!(contact.depth > shape_->parts[i].deep_contact_depth)) continue;
+        const Ellipsoid& e = shape_->body[i];
         // The ellipsoid's half-extent along the contact normal (its support h(n)).
         const glm::dvec3 n_local =
             glm::conjugate(state_.orientation) * contact.normal * e.sorted_axes();

@@ -8,7 +8,8 @@
 
 namespace trackphys {
 
-Wrench Car::vehicle_wrench(std::span<const Contact> deepest, double h) {
+Wrench Car::vehicle_wrench(std::span<const Contact> deepest, const WheelLoads& wheel_loads,
+                           double h) {
     Vehicle& vehicle = *vehicle_;
     const double speed_now = speed();
     vehicle.begin_substep(inputs_.throttle, inputs_.brake, speed_now, h);
@@ -44,7 +45,7 @@ Wrench Car::vehicle_wrench(std::span<const Contact> deepest, double h) {
         const glm::dvec3 heading = heading_of(i);
         const glm::dvec3 in_plane = heading - contact.normal * glm::dot(heading, contact.normal);
         const double in_plane_length = glm::length(in_plane);
-        const WheelLoad& wheel = wheel_loads_[i];  // measure_wheel_loads
+        const WheelLoad& wheel = wheel_loads[i];  // measure_wheel_loads
         const bool rolling = touching && wheel.load > 0.0 && in_plane_length >= 1e-6;
         if (!rolling) {
             vehicle.wheel_force(w, 0.0, 0.0, 0.0, h);

@@ -61,6 +61,10 @@ World::CarSlot::CarSlot(Car car_in, MidPhase mid_in)
 std::size_t World::add_car(const CarSpec& spec, const RigidBodyState& state) {
     Car car(spec, state);
     check_placement(car);
+    // Every car of one spec reads the same body-frame ellipsoids: one shared copy stays
+    // warm in a big field, where each car's own would be cold at each of its updates.
+    for (const CarSlot& other : cars_)
+        if (car.share_ellipsoids_with(other.car)) break;
     cars_.emplace_back(std::move(car), MidPhase(settings_.mid_phase, *statics_, trees_));
     return cars_.size() - 1;
 }

@@ -1,6 +1,8 @@
 #pragma once
 
+#include <array>
 #include <cstddef>
+#include <memory>
 #include <optional>
 #include <span>
 #include <vector>
@@ -44,9 +46,15 @@ class TRACKPHYS_API Car {
     /// zero), not a command, and guessing a value for it would hide that bug.
     void set_inputs(const CarInputs& inputs);
 
-    std::size_t ellipsoid_count() const { return body_ellipsoids_.size(); }
-    /// Ellipsoid i in the body frame (relative to the centre of mass).
-    const Ellipsoid& body_ellipsoid(std::size_t i) const { return body_ellipsoids_[i]; }
+    std::size_t ellipsoid_count() const { return shape_->body.size(); }
+    /// Ellipsoid i in the body frame (relative to the centre of mass). Cars that share their
+    /// ellipsoids (share_ellipsoids_with) return the same object.
+    const Ellipsoid& body_ellipsoid(std::size_t i) const { return shape_->body[i]; }
+    /// Makes this car read its body-frame ellipsoids, and what its sub-steps read of each,
+    /// from `other`'s copy when the two hold the same bits (cars of one spec): a field of
+    /// many cars then keeps one copy warm in the cache rather than one per car. Nothing the
+    /// car computes changes, and copies of the car share too. Returns whether they share.
+    bool share_ellipsoids_with(const Car& other);
     /// Ellipsoid i placed in the world by the current state (wheels moved up by their
     /// suspension travel).
     Ellipsoid world_ellipsoid(std::size_t i) const {
@@ -55,7 +63,7 @@ class TRACKPHYS_API Car {
     /// The same with the orientation's matrix given, glm::mat3_cast(state().orientation), for
     /// a caller that places every ellipsoid of one state.
     Ellipsoid world_ellipsoid(std::size_t i, const glm::dmat3& orientation_matrix) const {
-        Ellipsoid placed = body_ellipsoids_[i];
+        Ellipsoid placed = shape_->body[i];
         place_ellipsoid(i, orientation_matrix, placed);
         return placed;
     }
@@ -65,8 +73,8 @@ class TRACKPHYS_API Car {
     /// (Ellipsoid::place_copy).
     void place_ellipsoid(std::size_t i, const glm::dmat3& orientation_matrix,
                          Ellipsoid& placed) const {
-        body_ellipsoids_[i].place_copy(placed, state_.orientation, orientation_matrix,
-                                       state_.position + lifted(suspension_[i]));
+        shape_->body[i].place_copy(placed, state_.orientation, orientation_matrix,
+                                   state_.position + lifted(suspension_[i]));
     }
     /// Suspension compression of ellipsoid i from full droop (m; always 0 for the body).
     double suspension(std::size_t i) const { return suspension_[i]; }
@@ -143,7 +151,7 @@ class TRACKPHYS_API Car {
     /// index of per-axle arrays.
     enum class Axle : int { front = 0, rear = 1 };
     Axle axle_of(std::size_t wheel) const {
-        return parts_[wheel].role == EllipsoidRole::front_wheel ? Axle::front : Axle::rear;
+        return shape_->parts[wheel].role == EllipsoidRole::front_wheel ? Axle::front : Axle::rear;
     }
     /// What a sub-step reads of an ellipsoid besides its contact, in one small block: not
     /// from the spec's CarEllipsoids (88 bytes each) and the body Ellipsoids (176).
@@ -153,27 +161,39 @@ class TRACKPHYS_API Car {
         /// radius's share, less an ulp-sized margin for its rounding.
         double deep_contact_depth;
     };
-    /// A wheel's tyre this sub-step (measure_wheel_loads): the velocity of its contact point
-    /// and the normal force measured at it (N; 0 for the body).
-    struct WheelLoad {
-        glm::dvec3 velocity{0.0};
-        double load = 0.0;
+    /// What the spec fixes of the ellipsoids, never changed after construction: the body
+    /// frame's Ellipsoids (176 bytes each) that placing reads every sub-step, and the Parts.
+    struct Shape {
+        std::vector<Ellipsoid> body;  // in CarSpec order
+        std::vector<Part> parts;      // the same order
+        bool same_bits(const Shape& other) const;
     };
+    /// A wheel's tyre this sub-step (measure_wheel_loads): the velocity of its contact point
+    /// and the normal force measured at it (N; 0 for the body, whose velocity is not set).
+    /// Scratch of one sub-step, on advance's stack: a car's own copy would be written cold
+    /// at each of its updates in a big field.
+    struct WheelLoad {
+        glm::dvec3 velocity;
+        double load;
+    };
+    using WheelLoads = std::array<WheelLoad, CarSpec::max_ellipsoids>;
 
     void resolve_deep_contacts(std::span<const Contact> deepest);
-    /// The tyre's normal force of each wheel and the velocity of its contact point into
-    /// wheel_loads_.
-    void measure_wheel_loads(std::span<const Contact> deepest);
-    Wrench contact_wrench(std::span<const Contact> deepest) const;
+    /// The tyre's normal force of each wheel and the velocity of its contact point, into
+    /// wheel_loads' first deepest.size().
+    void measure_wheel_loads(std::span<const Contact> deepest, WheelLoads& wheel_loads) const;
+    Wrench contact_wrench(std::span<const Contact> deepest, const WheelLoads& wheel_loads) const;
     /// contact_wrench for a car with a vehicle model; advances its wheels by h.
-    Wrench vehicle_wrench(std::span<const Contact> deepest, double h);
+    Wrench vehicle_wrench(std::span<const Contact> deepest, const WheelLoads& wheel_loads,
+                          double h);
     /// The body's forward axis in the world, state().orientation * (0, 0, 1): the rear
     /// wheels' heading and the downforce's speed.
     glm::dvec3 forward_axis() const { return state_.orientation * glm::dvec3(0.0, 0.0, 1.0); }
     /// The world direction the wheels of an axle roll in (the front ones steered); forward:
     /// forward_axis().
     glm::dvec3 wheel_heading(Axle axle, const glm::dvec3& forward) const;
-    void update_suspension(std::span<const Contact> deepest, double h);
+    void update_suspension(std::span<const Contact> deepest, const WheelLoads& wheel_loads,
+                           double h);
     /// The command of each wheel of an axle rolling along heading on material
     /// (wheel_material); available: drive_available(), the drive force at this speed (N,
     /// all wheels).
@@ -193,10 +213,8 @@ class TRACKPHYS_API Car {
     RigidBodyState state_;
     CarInputs inputs_;
     glm::dvec3 steered_heading_{0.0, 0.0, 1.0};  // front wheels', body frame, for inputs_.steer
-    std::vector<Ellipsoid> body_ellipsoids_;
+    std::shared_ptr<const Shape> shape_;         // shared by the cars of one spec in a World
     std::vector<double> suspension_;
-    std::vector<Part> parts_;             // per ellipsoid, from the spec
-    std::vector<WheelLoad> wheel_loads_;  // per ellipsoid, this sub-step
     std::optional<Vehicle> vehicle_;
     double bounding_radius_ = 0.0;
     int front_wheels_ = 0;

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstddef>
 #include <optional>
 #include <span>
 #include <string>
@@ -54,6 +55,9 @@ struct Suspension {
 /// Everything that defines a car. Start from CarSpec::default_car() and change fields;
 /// validate() (or Car's constructor) names any field that is out of range.
 struct TRACKPHYS_API CarSpec {
+    /// The most ellipsoids a car may have.
+    static constexpr std::size_t max_ellipsoids = 64;
+
     MassProperties mass;
     std::vector<CarEllipsoid> ellipsoids;
     ContactMaterial body_contact;

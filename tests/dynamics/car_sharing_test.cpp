@@ -1,0 +1,59 @@
+// Car::share_ellipsoids_with: cars whose ellipsoids hold the same bits read one copy, any
+// other car keeps its own.
+#include <cstddef>
+
+#include <gtest/gtest.h>
+
+#include "trackphys/dynamics/car.hpp"
+
+namespace trackphys {
+namespace {
+
+// Whether every body ellipsoid of a is the same object as b's.
+bool same_copy(const Car& a, const Car& b) {
+    if (a.ellipsoid_count() != b.ellipsoid_count()) return false;
+    for (std::size_t i = 0; i < a.ellipsoid_count(); ++i)
+        if (&a.body_ellipsoid(i) != &b.body_ellipsoid(i)) return false;
+    return true;
+}
+
+TEST(CarSharing, CarsOfOneSpecShareOnRequest) {
+    const CarSpec spec = CarSpec::default_car();
+    const Car first(spec, RigidBodyState{});
+    Car second(spec, RigidBodyState{});
+    EXPECT_FALSE(same_copy(first, second)) << "each car builds its own copy";
+    EXPECT_TRUE(second.share_ellipsoids_with(first));
+    EXPECT_TRUE(same_copy(first, second));
+    const Car copy = second;
+    EXPECT_TRUE(same_copy(first, copy)) << "a copy of a car shares what the car shares";
+}
+
+// A spec that differs in anything the shared copy holds keeps its own, even where the
+// values compare equal (-0.0 == 0.0) but the bits do not; one that differs elsewhere shares.
+TEST(CarSharing, OnlyTheSameBitsShare) {
+    const CarSpec spec = CarSpec::default_car();
+    const Car first(spec, RigidBodyState{});
+
+    CarSpec wider = spec;
+    wider.ellipsoids[0].semi_axes.x *= 1.01;
+    CarSpec negative_zero = spec;
+    ASSERT_EQ(negative_zero.ellipsoids[4].center.x, 0.0);
+    negative_zero.ellipsoids[4].center.x = -0.0;
+    CarSpec shallower = spec;  // the same ellipsoids, another deep-contact depth
+    shallower.deep_contact_fraction *= 0.5;
+    CarSpec fewer = spec;
+    fewer.ellipsoids.pop_back();
+    for (const CarSpec& other : {wider, negative_zero, shallower, fewer}) {
+        Car car(other, RigidBodyState{});
+        EXPECT_FALSE(car.share_ellipsoids_with(first));
+        EXPECT_FALSE(same_copy(first, car));
+    }
+
+    CarSpec heavier = spec;
+    heavier.mass.mass *= 1.2;
+    Car car(heavier, RigidBodyState{});
+    EXPECT_TRUE(car.share_ellipsoids_with(first));
+}
+
+}  // namespace
+}  // namespace trackphys
