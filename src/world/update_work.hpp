@@ -21,7 +21,8 @@ struct World::UpdateWork {
     detail::NextUpdateBoxes next_boxes;  // per car: computed at the end of its last update
     detail::CarIslands islands;
     // Island indices, largest first: the order they are handed out in (results do not
-    // depend on it; the long ones starting first keeps the threads' ends close).
+    // depend on it; the long ones starting first keeps the threads' ends close). On one
+    // worker, every other update backwards (run_islands).
     std::vector<std::size_t> schedule;
     // Per worker, a cache line or more apart: every sub-step bumps the counts, and two
     // workers writing one line would hand it back and forth between their cores.
