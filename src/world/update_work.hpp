@@ -9,6 +9,7 @@
 #include "trackphys/profile/update_profile.hpp"
 #include "trackphys/world/world.hpp"
 #include "world/car_islands.hpp"
+#include "world/next_update_boxes.hpp"
 #include "world/thread_pool.hpp"
 
 namespace trackphys {
@@ -16,10 +17,12 @@ namespace trackphys {
 // What World::update works with besides the cars, kept between updates so a steady state
 // allocates nothing.
 struct World::UpdateWork {
-    std::vector<Aabb> boxes;  // per car: car_update_box at the start of the update
+    std::vector<Aabb> boxes;             // per car: car_update_box at the start of the update
+    detail::NextUpdateBoxes next_boxes;  // per car: computed at the end of its last update
     detail::CarIslands islands;
     // Island indices, largest first: the order they are handed out in (results do not
-    // depend on it; the long ones starting first keeps the threads' ends close).
+    // depend on it; the long ones starting first keeps the threads' ends close). On one
+    // worker, every other update backwards (run_islands).
     std::vector<std::size_t> schedule;
     // Per worker, a cache line or more apart: every sub-step bumps the counts, and two
     // workers writing one line would hand it back and forth between their cores.
