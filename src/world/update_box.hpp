@@ -17,8 +17,8 @@ namespace trackphys::detail {
 /// update and padded by what rotation and a changing velocity can add: any body point moves
 /// at most |omega| R dt by rotation, and gravity alone bends the path by |g| dt^2 / 2.
 inline Aabb car_update_box(const Car& car, const WorldSettings& settings) {
-    // One rotation matrix for all the ellipsoids: this runs for every car every update
-    // (NextUpdateBoxes), and the serial part's fallback runs it on one thread.
+    // One rotation matrix for all the ellipsoids: this runs for every car on one thread,
+    // before the islands share the update out.
     const glm::dmat3 orientation = glm::mat3_cast(car.state().orientation);
     Aabb box;
     for (std::size_t i = 0; i < car.ellipsoid_count(); ++i)

@@ -9,7 +9,6 @@
 #include "trackphys/profile/update_profile.hpp"
 #include "trackphys/world/world.hpp"
 #include "world/car_islands.hpp"
-#include "world/next_update_boxes.hpp"
 #include "world/thread_pool.hpp"
 
 namespace trackphys {
@@ -17,8 +16,7 @@ namespace trackphys {
 // What World::update works with besides the cars, kept between updates so a steady state
 // allocates nothing.
 struct World::UpdateWork {
-    std::vector<Aabb> boxes;             // per car: car_update_box at the start of the update
-    detail::NextUpdateBoxes next_boxes;  // per car: computed at the end of its last update
+    std::vector<Aabb> boxes;  // per car: car_update_box at the start of the update
     detail::CarIslands islands;
     // Island indices, largest first: the order they are handed out in (results do not
     // depend on it; the long ones starting first keeps the threads' ends close). On one

@@ -19,6 +19,7 @@
 #include "trackphys/geometry/face_certificate.hpp"
 #include "vehicle/vehicle_fingerprint.hpp"
 #include "world/car_slot.hpp"
+#include "world/update_box.hpp"
 #include "world/update_work.hpp"
 
 namespace trackphys {
@@ -82,11 +83,9 @@ void World::update() {
     UpdateWork& work = *work_;
     {
         PhaseStopwatch watch(profile_, settings_.profile, trace_);
-        while (work.next_boxes.car_count() < cars_.size())
-            work.next_boxes.add_car(cars_[work.next_boxes.car_count()].car.ellipsoid_count());
         work.boxes.resize(cars_.size());
         for (std::size_t i = 0; i < cars_.size(); ++i)
-            work.boxes[i] = work.next_boxes.box(i, cars_[i].car, settings_);
+            work.boxes[i] = detail::car_update_box(cars_[i].car, settings_);
         work.islands.build(work.boxes);
         profile_.car_pairs = work.islands.pair_count();
         watch.lap(Phase::broad);
@@ -153,11 +152,6 @@ void World::island_task(int begin, int end, int worker, void* world) {
         const std::size_t island = work.schedule[static_cast<std::size_t>(item)];
         try {
             self.update_island_or_reset(island, watch);
-            // The next update's boxes, while these cars' bytes are in this core's cache
-            // (NextUpdateBoxes): the serial part would read them cold.
-            for (const std::uint32_t car : work.islands.cars(island))
-                work.next_boxes.remember(car, self.cars_[car].car, self.settings_);
-            watch.lap(Phase::broad);
         } catch (...) {
             work.errors[island] = std::current_exception();
         }
