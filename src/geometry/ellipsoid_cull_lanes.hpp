@@ -13,7 +13,7 @@ namespace trackphys::detail {
 
 // N doubles in one vector (GCC takes no vector_size that depends on a template's argument).
 template <int N>
-struct DoubleLanes;
+struct DoubleLanes {};
 template <>
 struct DoubleLanes<2> {
     using type = double __attribute__((vector_size(16)));
@@ -22,6 +22,11 @@ template <>
 struct DoubleLanes<4> {
     using type = double __attribute__((vector_size(32)));
 };
+
+// No member of EllipsoidCull exists out of line, so none passes a vector by the ABI GCC warns
+// about for four lanes without AVX; GCC warns at the end of the including file, so the
+// warning stays off there (this header is private: the world's cull and its test).
+#pragma GCC diagnostic ignored "-Wpsabi"
 
 /// ellipsoid_depth_bound for one ellipsoid on N triangles at once (N = 2 or 4), bit for
 /// bit: each lane of an N-double vector runs the scalar function's IEEE operations in its
@@ -32,10 +37,6 @@ struct DoubleLanes<4> {
 /// Every member is forced inline: four lanes are 32-byte vectors, which only code compiled
 /// for AVX holds in one register, so they run inside the AVX2 caller
 /// (ellipsoid_cull_list.hpp) and never as functions of the library's own x86-64 level.
-// No member exists out of line (see above), so none passes a vector by the ABI GCC warns
-// about for four lanes without AVX; GCC warns at the end of the including file, so the
-// warning stays off there (this header is private: the world's cull and its test).
-#pragma GCC diagnostic ignored "-Wpsabi"
 template <int N>
 class EllipsoidCull {
   public:
@@ -45,6 +46,19 @@ class EllipsoidCull {
             center_[j] = every(e.center()[j]);
             radii_[j] = every(e.sorted_radii()[j]);
             axes_[j] = {every(axes[j].x), every(axes[j].y), every(axes[j].z)};
+        }
+    }
+
+    /// The first N lanes of a wider cull of the same ellipsoid: a list's short tail goes
+    /// into fewer lanes without spreading the ellipsoid again.
+    template <int Wide>
+    [[gnu::always_inline]] explicit EllipsoidCull(const EllipsoidCull<Wide>& wide) {
+        static_assert(Wide == 2 * N);
+        for (int j = 0; j < 3; ++j) {
+            center_[j] = first_half(wide.center_[j]);
+            radii_[j] = first_half(wide.radii_[j]);
+            axes_[j] = {first_half(wide.axes_[j].x), first_half(wide.axes_[j].y),
+                        first_half(wide.axes_[j].z)};
         }
     }
 
@@ -82,7 +96,20 @@ class EllipsoidCull {
     static constexpr double kApart = -std::numeric_limits<double>::infinity();
     static constexpr std::int64_t kSign = std::numeric_limits<std::int64_t>::min();  // bit 63
 
-    [[gnu::always_inline]] static Lanes every(double v) { return Lanes{} + v; }
+    template <int>
+    friend class EllipsoidCull;
+
+    [[gnu::always_inline]] static Lanes every(double v) {
+        Lanes lanes;
+        for (int k = 0; k < N; ++k) lanes[k] = v;
+        return lanes;
+    }
+    template <class WideLanes>
+    [[gnu::always_inline]] static Lanes first_half(const WideLanes& v) {
+        Lanes lanes;
+        for (int k = 0; k < N; ++k) lanes[k] = v[k];
+        return lanes;
+    }
     [[gnu::always_inline]] static Mask to_bits(const Lanes& v) { return std::bit_cast<Mask>(v); }
     [[gnu::always_inline]] static Lanes from_bits(const Mask& m) { return std::bit_cast<Lanes>(m); }
     [[gnu::always_inline]] static Lanes gather(const NormalizedTriangle* const (&t)[N],

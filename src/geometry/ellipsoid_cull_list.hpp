@@ -9,14 +9,12 @@
 
 namespace trackphys::detail {
 
-/// ellipsoid_depth_bound of one ellipsoid on its listed triangles N at a time, bit for bit:
-/// keep(candidate, bound) for each whose bound is above zero, in list order. A last block
-/// of fewer than N repeats its last triangle in the lanes left over.
+/// The cull's depth bounds of its ellipsoid on listed triangles N at a time, bit for bit
+/// ellipsoid_depth_bound: keep(candidate, bound) for each whose bound is above zero, in list
+/// order. A last block of fewer than N repeats its last triangle in the lanes left over.
 template <int N, class Candidate, class Keep>
-[[gnu::always_inline]] inline void cull_in_lanes(const Ellipsoid& e,
+[[gnu::always_inline]] inline void cull_in_lanes(const EllipsoidCull<N>& cull,
                                                  std::span<const Candidate> listed, Keep& keep) {
-    if (listed.empty()) return;
-    const EllipsoidCull<N> cull(e);
     for (std::size_t k = 0; k < listed.size(); k += N) {
         const std::size_t count = std::min<std::size_t>(N, listed.size() - k);
         const NormalizedTriangle* triangles[N];
@@ -28,20 +26,22 @@ template <int N, class Candidate, class Keep>
     }
 }
 
-/// cull_in_lanes, but a tail that fits in half the lanes goes there: a body's list of one
-/// or two triangles costs no more in four lanes than in two.
+/// cull_in_lanes of one ellipsoid's list, but a tail that fits in half the lanes goes there:
+/// a wheel's 4 + 1 or a body's one or two triangles cost less than in four lanes.
 template <int N, class Candidate, class Keep>
 [[gnu::always_inline]] inline void cull_listed(const Ellipsoid& e,
                                                std::span<const Candidate> listed, Keep& keep) {
+    if (listed.empty()) return;
+    const EllipsoidCull<N> cull(e);
     if constexpr (N > 2) {
         const std::size_t tail = listed.size() % N;
         if (tail != 0 && tail <= N / 2) {
-            cull_in_lanes<N>(e, listed.first(listed.size() - tail), keep);
-            cull_in_lanes<N / 2>(e, listed.last(tail), keep);
+            cull_in_lanes(cull, listed.first(listed.size() - tail), keep);
+            cull_in_lanes(EllipsoidCull<N / 2>(cull), listed.last(tail), keep);
             return;
         }
     }
-    cull_in_lanes<N>(e, listed, keep);
+    cull_in_lanes(cull, listed, keep);
 }
 
 #if defined(__x86_64__) || defined(__i386__)
