@@ -11,7 +11,7 @@
 #include <glm/geometric.hpp>
 
 #include "core/fnv1a.hpp"
-#include "geometry/ellipsoid_cull_lanes.hpp"
+#include "geometry/ellipsoid_cull_list.hpp"
 #include "profile/phase_stopwatch.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/geometry/contact.hpp"
@@ -267,19 +267,13 @@ void World::find_contacts(CarSlot& slot, PhaseStopwatch& watch) {
     // triangle reaches this test anyway.
     std::vector<Survivor>& all_kept = slot.kept;
     all_kept.clear();
+    const auto keep = [&all_kept](const MidPhaseCandidate& c, double bound) {
+        all_kept.push_back({c.ref, c.triangle, bound});
+    };
+    const bool avx2 = detail::cpu_has_avx2();
     for (std::size_t i = 0; i < ellipsoids; ++i) {
         const std::vector<MidPhaseCandidate>& listed = slot.listed[i].candidates();
-        if (!listed.empty()) {
-            // Two triangles a test: an odd list's last one goes in both lanes.
-            const detail::EllipsoidCull cull(slot.placed[i]);
-            for (std::size_t k = 0; k < listed.size(); k += 2) {
-                const MidPhaseCandidate& a = listed[k];
-                const MidPhaseCandidate& b = listed[std::min(k + 1, listed.size() - 1)];
-                const std::array<double, 2> bounds = cull.depth_bounds(*a.triangle, *b.triangle);
-                if (bounds[0] > 0.0) all_kept.push_back({a.ref, a.triangle, bounds[0]});
-                if (&b != &a && bounds[1] > 0.0) all_kept.push_back({b.ref, b.triangle, bounds[1]});
-            }
-        }
+        detail::cull_listed_widest(avx2, slot.placed[i], std::span(listed), keep);
         slot.kept_start[i + 1] = static_cast<std::uint32_t>(all_kept.size());
         watch.profile().culled_tests += listed.size();
     }

@@ -3,15 +3,19 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <limits>
 #include <random>
+#include <span>
+#include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 
 #include <glm/geometric.hpp>
 
-#include "geometry/ellipsoid_cull_lanes.hpp"
+#include "geometry/ellipsoid_cull_list.hpp"
 #include "support/contact_cases.hpp"
 #include "trackphys/geometry/contact.hpp"
 
@@ -121,34 +125,125 @@ TEST(EllipsoidCull, DepthBoundAlongAnyDirectionHoldsAndIsTightAtTheContactNormal
     EXPECT_GT(tight, 0.95 * tested);
 }
 
-// The two-lane cull World runs is the scalar one bit for bit, in either lane, on every
-// kind of case (separated, touching, deep, slivers): results must not move with it.
-TEST(EllipsoidCull, TwoLanesGiveTheScalarBoundsBitForBit) {
-    test::ContactCaseGenerator cases(8128);
-    const auto same_bits = [](double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; };
+bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+// The lanes' bounds as World's cull computes them: four lanes in code compiled for AVX2.
+std::array<double, 2> lane_bounds(const Ellipsoid& e, const NormalizedTriangle* const (&t)[2]) {
+    return detail::EllipsoidCull<2>(e).depth_bounds(t);
+}
+[[gnu::target("avx2")]] std::array<double, 4> lane_bounds(const Ellipsoid& e,
+                                                          const NormalizedTriangle* const (&t)[4]) {
+    return detail::EllipsoidCull<4>(e).depth_bounds(t);
+}
+
+// The N-lane cull is the scalar one bit for bit, in every lane, on every kind of case
+// (separated, touching, deep, slivers): results must not move with it. Each case's own
+// triangle, seldom far from its ellipsoid, goes through every lane beside N - 1 others.
+template <int N>
+void expect_lanes_give_the_scalar_bounds(std::uint64_t seed) {
+    test::ContactCaseGenerator cases(seed);
     int kept = 0, rejected = 0;
     for (int i = 0; i < 40000; ++i) {
         const auto kind =
             static_cast<test::ContactKind>(i % static_cast<int>(test::ContactKind::count));
         const test::ContactCase c = cases.make(kind);
-        const test::ContactCase other = cases.make(kind);
-        if (c.triangle.is_degenerate() || other.triangle.is_degenerate()) continue;
-        const NormalizedTriangle t(c.triangle);
-        const NormalizedTriangle u(other.triangle);
-        const std::array<double, 2> bounds = detail::EllipsoidCull(c.ellipsoid).depth_bounds(t, u);
-        const double scalar = ellipsoid_depth_bound(t, c.ellipsoid);
-        ASSERT_TRUE(same_bits(bounds[0], scalar))
-            << "case " << i << " (" << test::contact_kind_name(kind) << "): " << bounds[0]
-            << " against " << scalar;
-        ASSERT_TRUE(same_bits(bounds[1], ellipsoid_depth_bound(u, c.ellipsoid))) << "case " << i;
-        // The case's own triangle in the second lane too: u is seldom near c's ellipsoid.
-        const std::array<double, 2> swapped = detail::EllipsoidCull(c.ellipsoid).depth_bounds(u, t);
-        ASSERT_TRUE(same_bits(swapped[1], scalar)) << "case " << i << " in the second lane";
-        ASSERT_TRUE(same_bits(swapped[0], bounds[1])) << "case " << i;
-        (scalar > -std::numeric_limits<double>::infinity() ? kept : rejected) += 1;
+        if (c.triangle.is_degenerate()) continue;
+        std::vector<NormalizedTriangle> frames{NormalizedTriangle(c.triangle)};
+        while (frames.size() < N) {
+            const Triangle other = cases.make(kind).triangle;
+            if (!other.is_degenerate()) frames.emplace_back(other);
+        }
+        for (int turn = 0; turn < N; ++turn) {
+            const NormalizedTriangle* lanes[N];
+            for (int k = 0; k < N; ++k) lanes[k] = &frames[(k + turn) % N];
+            const std::array<double, N> bounds = lane_bounds(c.ellipsoid, lanes);
+            for (int k = 0; k < N; ++k) {
+                const double scalar = ellipsoid_depth_bound(*lanes[k], c.ellipsoid);
+                ASSERT_TRUE(same_bits(bounds[k], scalar))
+                    << N << " lanes, case " << i << " (" << test::contact_kind_name(kind)
+                    << "), lane " << k << ": " << bounds[k] << " against " << scalar;
+            }
+        }
+        (ellipsoid_depth_bound(frames[0], c.ellipsoid) > 0.0 ? kept : rejected) += 1;
     }
     EXPECT_GT(kept, 5000);
     EXPECT_GT(rejected, 5000);
+}
+
+TEST(EllipsoidCull, TwoLanesGiveTheScalarBoundsBitForBit) {
+    expect_lanes_give_the_scalar_bounds<2>(8128);
+}
+
+TEST(EllipsoidCull, FourLanesGiveTheScalarBoundsBitForBit) {
+    if (!detail::cpu_has_avx2()) GTEST_SKIP() << "this CPU has no AVX2: four lanes not tested";
+    expect_lanes_give_the_scalar_bounds<4>(8128);
+}
+
+// A listed triangle as the mid phase gives it, with its place in the list.
+struct Listed {
+    std::size_t index;
+    const NormalizedTriangle* triangle;
+};
+
+// World's cull of one ellipsoid's list keeps exactly the triangles whose scalar bound is
+// above zero, with that bound, in list order, at every list length: whole blocks of lanes
+// and every tail, which repeats a triangle or drops to two lanes.
+template <class Cull>
+void expect_the_list_culled_as_scalar(Cull cull) {
+    test::ContactCaseGenerator cases(2718);
+    int kept_total = 0, rejected_total = 0;
+    for (int i = 0; i < 6000; ++i) {
+        const auto kind =
+            static_cast<test::ContactKind>(i % static_cast<int>(test::ContactKind::count));
+        const test::ContactCase c = cases.make(kind);
+        if (c.triangle.is_degenerate()) continue;  // a kind that never gives a triangle
+        // Other cases' triangles, moved to this case's ellipsoid: some kept, some not.
+        std::vector<NormalizedTriangle> frames;
+        const std::size_t length = static_cast<std::size_t>(i) / 17 % 12;
+        while (frames.size() < length) {
+            const test::ContactCase other = cases.make(kind);
+            const glm::dvec3 shift = c.ellipsoid.center() - other.ellipsoid.center();
+            const Triangle near{other.triangle[0] + shift, other.triangle[1] + shift,
+                                other.triangle[2] + shift};
+            if (!near.is_degenerate()) frames.emplace_back(near);
+        }
+        std::vector<Listed> listed;
+        for (std::size_t k = 0; k < frames.size(); ++k) listed.push_back({k, &frames[k]});
+        std::vector<std::pair<std::size_t, double>> kept;
+        const auto keep = [&](const Listed& l, double bound) { kept.emplace_back(l.index, bound); };
+        cull(c.ellipsoid, std::span<const Listed>(listed), keep);
+        std::size_t next = 0;
+        for (std::size_t k = 0; k < frames.size(); ++k) {
+            const double scalar = ellipsoid_depth_bound(frames[k], c.ellipsoid);
+            if (!(scalar > 0.0)) {
+                ++rejected_total;
+                continue;
+            }
+            ++kept_total;
+            ASSERT_LT(next, kept.size()) << "list of " << length << ": " << k << " dropped";
+            ASSERT_EQ(kept[next].first, k) << "list of " << length;
+            ASSERT_TRUE(same_bits(kept[next].second, scalar)) << "list of " << length;
+            ++next;
+        }
+        ASSERT_EQ(next, kept.size()) << "list of " << length << ": a triangle kept twice";
+    }
+    EXPECT_GT(kept_total, 3000);
+    EXPECT_GT(rejected_total, 3000);
+}
+
+TEST(EllipsoidCull, TwoLanesCullAListAsTheScalarBound) {
+    expect_the_list_culled_as_scalar(
+        [](const Ellipsoid& e, std::span<const Listed> listed, const auto& keep) {
+            detail::cull_listed<2>(e, listed, keep);
+        });
+}
+
+TEST(EllipsoidCull, FourLanesCullAListAsTheScalarBound) {
+    if (!detail::cpu_has_avx2()) GTEST_SKIP() << "this CPU has no AVX2: four lanes not tested";
+    expect_the_list_culled_as_scalar(
+        [](const Ellipsoid& e, std::span<const Listed> listed, const auto& keep) {
+            detail::cull_listed_avx2(e, listed, keep);
+        });
 }
 
 TEST(EllipsoidCull, SupportExtentIsTheHalfWidthAlongADirection) {
