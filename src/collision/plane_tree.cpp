@@ -23,33 +23,42 @@ template <class Shape>
                                                           std::vector<std::uint32_t>& out,
                                                           PlaneTreeFrameCache* frames,
                                                           PlaneTreeQueryCounts& counts) const {
+    auto report = [&](std::uint32_t slot, const NormalizedTriangle* frame) {
+        out.push_back(slot);
+        if (frames != nullptr) frames->reported_.push_back(frame);
+        ++counts.triangles_reported;
+    };
+    // A collider's tree that keeps its frames: the box and the frame's first tests read the
+    // frame's first cache line, and most triangles the filter drops are dropped there.
+    if (boxes_.empty()) {
+        for (std::uint32_t slot = first; slot < end; ++slot) {
+            const PlaneTreeFrame& kept = frames_[slot];
+            if (shape.reaches_box(kept) && shape.touches(kept.frame)) report(slot, &kept.frame);
+        }
+        return;
+    }
     for (std::uint32_t run = first; run < end; run += PlaneTreeFrameCache::kMaxRun) {
         const std::uint32_t count = std::min(end - run, PlaneTreeFrameCache::kMaxRun);
         // The slots the filter runs on (bit k: slot run + k): those whose box the shape's box
-        // meets, in a tree that keeps boxes (a leaf whose slots all fail costs no lookup, and
-        // only the slots that pass pay for their frames), else all of them.
-        std::uint64_t near = ~std::uint64_t{0} >> (64 - count);
-        if (!boxes_.empty()) {
-            near = 0;
-            for (std::uint32_t k = 0; k < count; ++k)
-                if (shape.reaches_box(boxes_[run + k])) near |= std::uint64_t{1} << k;
-            if (near == 0) continue;
-        }
+        // meets (a leaf whose slots all fail costs no lookup, and only the slots that pass
+        // pay for their frames).
+        std::uint64_t near = 0;
+        for (std::uint32_t k = 0; k < count; ++k)
+            if (shape.reaches_box(boxes_[run + k])) near |= std::uint64_t{1} << k;
+        if (near == 0) continue;
         // The run's frames: the tree's own, the cache's, or none (each built in turn).
-        const NormalizedTriangle* run_frames = !frames_.empty() ? frames_.data() + run
-                                               : frames != nullptr
-                                                   ? frames->run(*this, run, count, near)
-                                                   : nullptr;
+        const NormalizedTriangle* run_frames =
+            frames_.empty() && frames != nullptr ? frames->run(*this, run, count, near) : nullptr;
         for (; near != 0; near &= near - 1) {
             const auto k = static_cast<std::uint32_t>(std::countr_zero(near));
             const std::uint32_t slot = run + k;
-            const bool touched = run_frames != nullptr
-                                     ? shape.touches(run_frames[k])
+            const NormalizedTriangle* frame = !frames_.empty()        ? &frames_[slot].frame
+                                              : run_frames != nullptr ? run_frames + k
+                                                                      : nullptr;
+            const bool touched = frame != nullptr
+                                     ? shape.touches(*frame)
                                      : shape.touches(collider_->normalized_triangle(ids_[slot]));
-            if (!touched) continue;
-            out.push_back(slot);
-            if (frames != nullptr) frames->reported_.push_back(run_frames + k);
-            ++counts.triangles_reported;
+            if (touched) report(slot, frame);
         }
     }
 }
@@ -148,10 +157,16 @@ void PlaneTree::use_collider_frames(const StaticCollider& collider, PlaneTreeFra
     if (frames == PlaneTreeFrames::kept) {
         boxes_.clear();
         boxes_.shrink_to_fit();
-        if (frames_.size() == ids_.size()) return;  // the builder's, from the same vertices
-        frames_.clear();
-        frames_.reserve(ids_.size());
-        for (const std::uint32_t id : ids_) frames_.push_back(collider.normalized_triangle(id));
+        // The builder's frames, if it left them, are these same ones without their boxes.
+        if (frames_.size() != ids_.size()) {
+            frames_.clear();
+            frames_.reserve(ids_.size());
+            for (const std::uint32_t id : ids_)
+                frames_.push_back({{}, collider.normalized_triangle(id)});
+        }
+        for (std::size_t slot = 0; slot < ids_.size(); ++slot)
+            frames_[slot] =
+                collision_detail::kept_frame(frames_[slot].frame, collider.triangle(ids_[slot]));
         return;
     }
     frames_.clear();
@@ -164,8 +179,7 @@ void PlaneTree::use_collider_frames(const StaticCollider& collider, PlaneTreeFra
 std::size_t PlaneTree::bytes_used() const {
     return nodes_.capacity() * sizeof(PlaneTreeNode) + slabs_.capacity() * sizeof(PlaneTreeSlab) +
            slab_ranks_.capacity() * sizeof(SlabRank) + boxes_.capacity() * sizeof(PlaneTreeBox) +
-           ids_.capacity() * sizeof(std::uint32_t) +
-           frames_.capacity() * sizeof(NormalizedTriangle);
+           ids_.capacity() * sizeof(std::uint32_t) + frames_.capacity() * sizeof(PlaneTreeFrame);
 }
 
 void PlaneTree::shrink_to_fit() {

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <string>
 
 #include <glm/common.hpp>
@@ -15,6 +16,7 @@
 
 #include "collision/float_bounds.hpp"
 #include "collision/triangle_predicates.hpp"
+#include "trackphys/assert.hpp"
 #include "trackphys/collision/plane_tree.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/geometry/ellipsoid.hpp"
@@ -61,6 +63,48 @@ inline bool meets_box(const glm::dvec3& lo, const glm::dvec3& hi, const PlaneTre
     return lo.x <= double(box.high[0]) && hi.x >= double(box.low[0]) &&
            lo.y <= double(box.high[1]) && hi.y >= double(box.low[1]) &&
            lo.z <= double(box.high[2]) && hi.z >= double(box.low[2]);
+}
+
+/// The bound of a kept frame's box at `step` units of its x1 * kBoxStep from the origin along
+/// axis k: the one expression by which the box is made and tested.
+inline double frame_box_bound(const PlaneTreeFrame& f, int k, int step) {
+    return f.frame.origin[k] + f.frame.x1 * PlaneTreeFrame::kBoxStep * double(step);
+}
+
+/// The frame of `source` kept with its box: per axis, the fewest whole steps out from the
+/// origin whose bounds hold the source's vertices and the frame's (which the filter reads),
+/// so that the box test, like a PlaneTreeBox's, drops only triangles the shape's box misses.
+inline PlaneTreeFrame kept_frame(const NormalizedTriangle& frame, const Triangle& source) {
+    PlaneTreeFrame f{{}, frame};
+    const double step = frame.x1 * PlaneTreeFrame::kBoxStep;
+    TP_ASSERT(step > 0.0, "plane tree: a kept frame of a degenerate triangle");
+    const glm::dvec3 corners[6] = {source[0],       source[1],       source[2],
+                                   frame.vertex(0), frame.vertex(1), frame.vertex(2)};
+    for (int k = 0; k < 3; ++k) {
+        double low = corners[0][k], high = low;
+        for (const glm::dvec3& corner : corners) {
+            const double v = corner[k];
+            low = std::min(low, v);
+            high = std::max(high, v);
+        }
+        const double o = frame.origin[k];
+        int q_low = static_cast<int>(std::clamp(std::floor((low - o) / step), -128.0, 127.0));
+        int q_high = static_cast<int>(std::clamp(std::ceil((high - o) / step), -128.0, 127.0));
+        while (q_low > -128 && frame_box_bound(f, k, q_low) > low) --q_low;
+        while (q_high < 127 && frame_box_bound(f, k, q_high) < high) ++q_high;
+        TP_ASSERT(frame_box_bound(f, k, q_low) <= low && frame_box_bound(f, k, q_high) >= high,
+                  "plane tree: a triangle's box beyond its longest edge");
+        f.box[k] = static_cast<std::int8_t>(q_low);
+        f.box[3 + k] = static_cast<std::int8_t>(q_high);
+    }
+    return f;
+}
+
+/// True when the box [lo, hi] (a shape's, in double) meets a kept frame's box.
+inline bool meets_box(const glm::dvec3& lo, const glm::dvec3& hi, const PlaneTreeFrame& f) {
+    return lo.x <= frame_box_bound(f, 0, f.box[3]) && hi.x >= frame_box_bound(f, 0, f.box[0]) &&
+           lo.y <= frame_box_bound(f, 1, f.box[4]) && hi.y >= frame_box_bound(f, 1, f.box[1]) &&
+           lo.z <= frame_box_bound(f, 2, f.box[5]) && hi.z >= frame_box_bound(f, 2, f.box[2]);
 }
 
 /// True when the interval [lo, hi] of a shape along a slab's normal, grown by `reach`,
@@ -112,6 +156,7 @@ struct SphereShape {
     /// A triangle the filter accepts has a point within the radius of the segment, so inside
     /// the segment's box grown by it (and by the slack that covers the filter's rounding).
     bool reaches_box(const PlaneTreeBox& box) const { return meets_box(box_low, box_high, box); }
+    bool reaches_box(const PlaneTreeFrame& f) const { return meets_box(box_low, box_high, f); }
 
     /// The half-space {n.x <= offset} is reached when the shape's lowest point along n is
     /// in it: min over the segment of n.c, minus the radius (n has length <= 1).
@@ -224,6 +269,7 @@ struct EllipsoidShape {
 
     /// A triangle the filter accepts meets the swept ellipsoid, so its box meets the sweep's.
     bool reaches_box(const PlaneTreeBox& box) const { return meets_box(box_low, box_high, box); }
+    bool reaches_box(const PlaneTreeFrame& f) const { return meets_box(box_low, box_high, f); }
 
     double support_squared(const glm::dvec3& u) const {
         return m00 * u.x * u.x + m11 * u.y * u.y + m22 * u.z * u.z +
@@ -250,13 +296,20 @@ struct EllipsoidShape {
         return gap <= 0.0 || (gap * gap <= reach_squared && gap * gap <= support_squared(n));
     }
 
-    /// The filter: the triangle's plane and local box first (the ellipsoid's reach along
+    /// The filter: the triangle's local box and plane first (the ellipsoid's reach along
     /// each frame axis is its support there; squares compared only for positive gaps), then
     /// the exact test in the unit-ball frame.
     bool touches(const NormalizedTriangle& t) const {
         // One frame axis at a time, each rejecting before the next is computed: the same
-        // values as to_local's.
+        // values as to_local's. The longest edge's axis first: it reads only the frame's
+        // first cache line in a tree that keeps frames (PlaneTreeFrame), and the plane,
+        // which a wheel's list shares with its road, almost never rejects.
         const glm::dvec3 from_a = start - t.origin, from_b = end - t.origin;
+        const double ax = glm::dot(t.dir_x, from_a), bx = glm::dot(t.dir_x, from_b);
+        const double x_gap = std::max({std::min(ax, bx) - t.x1, -std::max(ax, bx), 0.0});
+        if (x_gap > 0.0 &&
+            (x_gap * x_gap > reach_squared || x_gap * x_gap > support_squared(t.dir_x)))
+            return false;
         const double az = glm::dot(t.normal, from_a), bz = glm::dot(t.normal, from_b);
         const double z_lo = std::min(az, bz), z_hi = std::max(az, bz);
         const double z_gap = std::max({z_lo, -z_hi, 0.0});
@@ -264,11 +317,6 @@ struct EllipsoidShape {
         // road, so the plane test nearly always pays for it anyway.
         const double h_sq = support_squared(t.normal);
         if (z_gap > 0.0 && z_gap * z_gap > h_sq) return false;
-        const double ax = glm::dot(t.dir_x, from_a), bx = glm::dot(t.dir_x, from_b);
-        const double x_gap = std::max({std::min(ax, bx) - t.x1, -std::max(ax, bx), 0.0});
-        if (x_gap > 0.0 &&
-            (x_gap * x_gap > reach_squared || x_gap * x_gap > support_squared(t.dir_x)))
-            return false;
         const double ay = glm::dot(t.dir_y, from_a), by = glm::dot(t.dir_y, from_b);
         const double y_gap = std::max({std::min(ay, by) - t.y2, -std::max(ay, by), 0.0});
         if (y_gap > 0.0 &&

@@ -66,6 +66,27 @@ struct PlaneTreeBox {
 };
 static_assert(sizeof(PlaneTreeBox) == 24, "PlaneTreeBox is 24 bytes");
 
+/// A frame as a plane tree keeps it (128 bytes, 64-byte aligned: two cache lines of its own):
+/// 8 bytes of box, then the frame, whose origin, dir_x and x1 complete the first line. The
+/// filter of a collider's tree that keeps its frames tests the box, then the triangle's extent
+/// along dir_x, from that line; only a triangle that passes both reads the second (normal,
+/// dir_y, x2, y2).
+struct alignas(64) PlaneTreeFrame {
+    /// The box's step as a fraction of frame.x1: every vertex lies within x1 of the origin
+    /// (the longest edge starts there), so 120 steps reach it and int8 leaves room.
+    static constexpr double kBoxStep = 1.0 / 120.0;
+
+    /// The triangle's box about frame.origin in steps of frame.x1 * kBoxStep, rounded
+    /// outward (in double, the expression the test uses): low along axis k at box[k], high
+    /// at box[3 + k]. Set in a collider's tree that keeps its frames; a tree built from
+    /// frames tests its PlaneTreeBox instead.
+    std::int8_t box[6];
+    NormalizedTriangle frame;  ///< at byte 8
+};
+static_assert(sizeof(PlaneTreeFrame) == 128 && offsetof(PlaneTreeFrame, frame) == 8 &&
+                  offsetof(PlaneTreeFrame, frame) + offsetof(NormalizedTriangle, normal) == 64,
+              "PlaneTreeFrame: the box, origin, dir_x and x1 fill the first line");
+
 /// Where a collider's PlaneTree gets its triangles' frames (NormalizedTriangle, 120 bytes)
 /// for the per-triangle filter: a memory-for-speed choice that leaves every query's result
 /// unchanged (the frames are the same, bit for bit).
@@ -74,8 +95,8 @@ enum class PlaneTreeFrames {
     /// query shape's box meets, and kept in the caller's PlaneTreeFrameCache: ~51 bytes a
     /// triangle for a track collider's tree.
     built,
-    /// Kept by the tree in leaf order (~147 bytes a triangle): the filter reads them in
-    /// place, with no box test and no cache lookup.
+    /// Kept by the tree in leaf order (PlaneTreeFrame, ~155 bytes a triangle): the filter
+    /// reads them in place, with no cache lookup.
     kept,
 };
 
@@ -87,8 +108,8 @@ inline constexpr std::size_t kPlaneTreeFrameBudget = std::size_t{64} << 20;
 /// The frame source of the plane trees of a world of `triangles` kept triangles: kept when
 /// their frames fit in `budget_bytes`, else built.
 inline PlaneTreeFrames plane_tree_frames_within(std::size_t triangles, std::size_t budget_bytes) {
-    return triangles <= budget_bytes / sizeof(NormalizedTriangle) ? PlaneTreeFrames::kept
-                                                                  : PlaneTreeFrames::built;
+    return triangles <= budget_bytes / sizeof(PlaneTreeFrame) ? PlaneTreeFrames::kept
+                                                              : PlaneTreeFrames::built;
 }
 
 /// How a PlaneTree chooses its splitting planes.
@@ -171,7 +192,8 @@ struct PlaneTreeQueryCounts {
 /// collider) and no frames: its queries build the frames of the few slots whose box they
 /// reach from the collider's vertices, exactly the frames StaticCollider::normalized_triangle
 /// gives. With PlaneTreeFrames::kept it keeps those frames in leaf order instead of the
-/// boxes. A tree built from frames (PlaneTreeBuilder) keeps a copy of them and the boxes.
+/// boxes, each with an 8-byte box in its first cache line (PlaneTreeFrame). A tree built
+/// from frames (PlaneTreeBuilder) keeps a copy of them and the boxes.
 /// Queries append leaf slots in ascending order to a caller-owned vector and use a fixed
 /// stack: no allocation once the vector has grown.
 ///
@@ -185,9 +207,9 @@ struct PlaneTreeQueryCounts {
 /// Each is computed in double in the triangle's own frame, after cheap rejections that are
 /// lower bounds of the distance to convex sets holding the triangle (its plane, its local
 /// box, its edges' half-planes), which can only reject what the exact test rejects too, and
-/// sure accepts (a vertex or an over-the-face endpoint within reach); before all of them, in
-/// a tree that keeps boxes, the slot's float box against the shape's box (a triangle the
-/// shape touches lies in both).
+/// sure accepts (a vertex or an over-the-face endpoint within reach); before all of them, the
+/// slot's box (PlaneTreeBox, or a kept frame's PlaneTreeFrame::box) against the shape's box
+/// (a triangle the shape touches lies in both).
 /// Because a node's half-space (and slab) contains each of its triangles, a shape that
 /// touches a triangle reaches every half-space above it: the tree never prunes a triangle
 /// the filter would report, so a query returns exactly the slots a brute-force scan with the
@@ -240,7 +262,7 @@ class TRACKPHYS_API PlaneTree {
     /// or, for a collider's tree that keeps none, built from the collider's vertices.
     NormalizedTriangle triangle(std::uint32_t slot) const {
         TP_ASSERT(slot < ids_.size(), "plane tree slot out of range");
-        return frames_.empty() ? collider_->normalized_triangle(ids_[slot]) : frames_[slot];
+        return frames_.empty() ? collider_->normalized_triangle(ids_[slot]) : frames_[slot].frame;
     }
     /// True when the tree keeps its triangles' frames (PlaneTreeFrames::kept, or a tree
     /// built from frames): queries read them in place.
@@ -306,7 +328,7 @@ class TRACKPHYS_API PlaneTree {
     std::vector<SlabRank> slab_ranks_;          ///< per 64 nodes, derived from the nodes
     std::vector<PlaneTreeBox> boxes_;           ///< leaf order; empty: no box test
     std::vector<std::uint32_t> ids_;            ///< leaf order
-    std::vector<NormalizedTriangle> frames_;    ///< leaf order; empty: built from collider_
+    std::vector<PlaneTreeFrame> frames_;        ///< leaf order; empty: built from collider_
     const StaticCollider* collider_ = nullptr;  ///< a collider's tree: its collider
     int depth_ = 0;
 };
