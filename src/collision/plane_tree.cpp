@@ -28,13 +28,11 @@ template <class Shape>
         if (frames != nullptr) frames->reported_.push_back(frame);
         ++counts.triangles_reported;
     };
-    // A collider's tree that keeps its frames: the box and the frame's first tests read the
-    // frame's first cache line, and most triangles the filter drops are dropped there.
+    // A collider's tree that keeps its frames: read in place, each slot's first test from
+    // its frame's first cache line (PlaneTreeFrame).
     if (boxes_.empty()) {
-        for (std::uint32_t slot = first; slot < end; ++slot) {
-            const PlaneTreeFrame& kept = frames_[slot];
-            if (shape.reaches_box(kept) && shape.touches(kept.frame)) report(slot, &kept.frame);
-        }
+        for (std::uint32_t slot = first; slot < end; ++slot)
+            if (shape.touches(frames_[slot].frame)) report(slot, &frames_[slot].frame);
         return;
     }
     for (std::uint32_t run = first; run < end; run += PlaneTreeFrameCache::kMaxRun) {
@@ -157,16 +155,10 @@ void PlaneTree::use_collider_frames(const StaticCollider& collider, PlaneTreeFra
     if (frames == PlaneTreeFrames::kept) {
         boxes_.clear();
         boxes_.shrink_to_fit();
-        // The builder's frames, if it left them, are these same ones without their boxes.
-        if (frames_.size() != ids_.size()) {
-            frames_.clear();
-            frames_.reserve(ids_.size());
-            for (const std::uint32_t id : ids_)
-                frames_.push_back({{}, collider.normalized_triangle(id)});
-        }
-        for (std::size_t slot = 0; slot < ids_.size(); ++slot)
-            frames_[slot] =
-                collision_detail::kept_frame(frames_[slot].frame, collider.triangle(ids_[slot]));
+        if (frames_.size() == ids_.size()) return;  // the builder's, from the same vertices
+        frames_.clear();
+        frames_.reserve(ids_.size());
+        for (const std::uint32_t id : ids_) frames_.push_back({collider.normalized_triangle(id)});
         return;
     }
     frames_.clear();

@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <string>
 
 #include <glm/common.hpp>
@@ -16,7 +15,6 @@
 
 #include "collision/float_bounds.hpp"
 #include "collision/triangle_predicates.hpp"
-#include "trackphys/assert.hpp"
 #include "trackphys/collision/plane_tree.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/geometry/ellipsoid.hpp"
@@ -63,48 +61,6 @@ inline bool meets_box(const glm::dvec3& lo, const glm::dvec3& hi, const PlaneTre
     return lo.x <= double(box.high[0]) && hi.x >= double(box.low[0]) &&
            lo.y <= double(box.high[1]) && hi.y >= double(box.low[1]) &&
            lo.z <= double(box.high[2]) && hi.z >= double(box.low[2]);
-}
-
-/// The bound of a kept frame's box at `step` units of its x1 * kBoxStep from the origin along
-/// axis k: the one expression by which the box is made and tested.
-inline double frame_box_bound(const PlaneTreeFrame& f, int k, int step) {
-    return f.frame.origin[k] + f.frame.x1 * PlaneTreeFrame::kBoxStep * double(step);
-}
-
-/// The frame of `source` kept with its box: per axis, the fewest whole steps out from the
-/// origin whose bounds hold the source's vertices and the frame's (which the filter reads),
-/// so that the box test, like a PlaneTreeBox's, drops only triangles the shape's box misses.
-inline PlaneTreeFrame kept_frame(const NormalizedTriangle& frame, const Triangle& source) {
-    PlaneTreeFrame f{{}, frame};
-    const double step = frame.x1 * PlaneTreeFrame::kBoxStep;
-    TP_ASSERT(step > 0.0, "plane tree: a kept frame of a degenerate triangle");
-    const glm::dvec3 corners[6] = {source[0],       source[1],       source[2],
-                                   frame.vertex(0), frame.vertex(1), frame.vertex(2)};
-    for (int k = 0; k < 3; ++k) {
-        double low = corners[0][k], high = low;
-        for (const glm::dvec3& corner : corners) {
-            const double v = corner[k];
-            low = std::min(low, v);
-            high = std::max(high, v);
-        }
-        const double o = frame.origin[k];
-        int q_low = static_cast<int>(std::clamp(std::floor((low - o) / step), -128.0, 127.0));
-        int q_high = static_cast<int>(std::clamp(std::ceil((high - o) / step), -128.0, 127.0));
-        while (q_low > -128 && frame_box_bound(f, k, q_low) > low) --q_low;
-        while (q_high < 127 && frame_box_bound(f, k, q_high) < high) ++q_high;
-        TP_ASSERT(frame_box_bound(f, k, q_low) <= low && frame_box_bound(f, k, q_high) >= high,
-                  "plane tree: a triangle's box beyond its longest edge");
-        f.box[k] = static_cast<std::int8_t>(q_low);
-        f.box[3 + k] = static_cast<std::int8_t>(q_high);
-    }
-    return f;
-}
-
-/// True when the box [lo, hi] (a shape's, in double) meets a kept frame's box.
-inline bool meets_box(const glm::dvec3& lo, const glm::dvec3& hi, const PlaneTreeFrame& f) {
-    return lo.x <= frame_box_bound(f, 0, f.box[3]) && hi.x >= frame_box_bound(f, 0, f.box[0]) &&
-           lo.y <= frame_box_bound(f, 1, f.box[4]) && hi.y >= frame_box_bound(f, 1, f.box[1]) &&
-           lo.z <= frame_box_bound(f, 2, f.box[5]) && hi.z >= frame_box_bound(f, 2, f.box[2]);
 }
 
 /// True when the interval [lo, hi] of a shape along a slab's normal, grown by `reach`,
@@ -156,7 +112,6 @@ struct SphereShape {
     /// A triangle the filter accepts has a point within the radius of the segment, so inside
     /// the segment's box grown by it (and by the slack that covers the filter's rounding).
     bool reaches_box(const PlaneTreeBox& box) const { return meets_box(box_low, box_high, box); }
-    bool reaches_box(const PlaneTreeFrame& f) const { return meets_box(box_low, box_high, f); }
 
     /// The half-space {n.x <= offset} is reached when the shape's lowest point along n is
     /// in it: min over the segment of n.c, minus the radius (n has length <= 1).
@@ -269,7 +224,6 @@ struct EllipsoidShape {
 
     /// A triangle the filter accepts meets the swept ellipsoid, so its box meets the sweep's.
     bool reaches_box(const PlaneTreeBox& box) const { return meets_box(box_low, box_high, box); }
-    bool reaches_box(const PlaneTreeFrame& f) const { return meets_box(box_low, box_high, f); }
 
     double support_squared(const glm::dvec3& u) const {
         return m00 * u.x * u.x + m11 * u.y * u.y + m22 * u.z * u.z +

@@ -536,34 +536,5 @@ TEST(PlaneTree, ShapesTouchingAtTheSlotBoxBoundsAreReported) {
     EXPECT_GT(accepted, 3 * 2 * 6 * 400 / 2);
 }
 
-// A kept frame's 8-byte box holds its triangle, as the collider and as the frame give its
-// vertices, and is at most a step wider on each side than the triangle's own box.
-TEST(PlaneTree, KeptFrameBoxesHoldTheirTrianglesWithinAStep) {
-    const StaticCollider collider(test::random_soup(2000, 32));
-    const PlaneTree tree =
-        make_collider_plane_tree(collider, PlaneTreeSettings::precomputed(), PlaneTreeFrames::kept);
-    ASSERT_TRUE(tree.keeps_frames());
-    for (std::uint32_t slot = 0; slot < tree.triangle_count(); ++slot) {
-        const Triangle t = collider.triangle(tree.id(slot));
-        const PlaneTreeFrame f = collision_detail::kept_frame(tree.triangle(slot), t);
-        const double step = f.frame.x1 * PlaneTreeFrame::kBoxStep;
-        for (int k = 0; k < 3; ++k) {
-            const double low = collision_detail::frame_box_bound(f, k, f.box[k]);
-            const double high = collision_detail::frame_box_bound(f, k, f.box[3 + k]);
-            double lowest = t[0][k], highest = t[0][k];
-            for (int i = 0; i < 3; ++i) {
-                for (const double v : {t[i][k], f.frame.vertex(i)[k]}) {
-                    ASSERT_LE(low, v) << "slot " << slot << " axis " << k;
-                    ASSERT_GE(high, v) << "slot " << slot << " axis " << k;
-                    lowest = std::min(lowest, v);
-                    highest = std::max(highest, v);
-                }
-            }
-            EXPECT_GT(low, lowest - 1.01 * step);
-            EXPECT_LT(high, highest + 1.01 * step);
-        }
-    }
-}
-
 }  // namespace
 }  // namespace trackphys

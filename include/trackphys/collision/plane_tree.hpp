@@ -66,26 +66,15 @@ struct PlaneTreeBox {
 };
 static_assert(sizeof(PlaneTreeBox) == 24, "PlaneTreeBox is 24 bytes");
 
-/// A frame as a plane tree keeps it (128 bytes, 64-byte aligned: two cache lines of its own):
-/// 8 bytes of box, then the frame, whose origin, dir_x and x1 complete the first line. The
-/// filter of a collider's tree that keeps its frames tests the box, then the triangle's extent
-/// along dir_x, from that line; only a triangle that passes both reads the second (normal,
-/// dir_y, x2, y2).
+/// A frame as a collider's plane tree keeps it: on a pair of cache lines of its own (128
+/// bytes, 64-byte aligned), so that the filter's first test, along the longest edge (origin,
+/// dir_x, x1: NormalizedTriangle's first 56 bytes), reads one line, and only a triangle that
+/// passes it reads the second (normal, dir_y, x2, y2).
 struct alignas(64) PlaneTreeFrame {
-    /// The box's step as a fraction of frame.x1: every vertex lies within x1 of the origin
-    /// (the longest edge starts there), so 120 steps reach it and int8 leaves room.
-    static constexpr double kBoxStep = 1.0 / 120.0;
-
-    /// The triangle's box about frame.origin in steps of frame.x1 * kBoxStep, rounded
-    /// outward (in double, the expression the test uses): low along axis k at box[k], high
-    /// at box[3 + k]. Set in a collider's tree that keeps its frames; a tree built from
-    /// frames tests its PlaneTreeBox instead.
-    std::int8_t box[6];
-    NormalizedTriangle frame;  ///< at byte 8
+    NormalizedTriangle frame;
 };
-static_assert(sizeof(PlaneTreeFrame) == 128 && offsetof(PlaneTreeFrame, frame) == 8 &&
-                  offsetof(PlaneTreeFrame, frame) + offsetof(NormalizedTriangle, normal) == 64,
-              "PlaneTreeFrame: the box, origin, dir_x and x1 fill the first line");
+static_assert(sizeof(PlaneTreeFrame) == 128 && offsetof(NormalizedTriangle, normal) == 56,
+              "PlaneTreeFrame: origin, dir_x and x1 in the first line");
 
 /// Where a collider's PlaneTree gets its triangles' frames (NormalizedTriangle, 120 bytes)
 /// for the per-triangle filter: a memory-for-speed choice that leaves every query's result
@@ -192,8 +181,8 @@ struct PlaneTreeQueryCounts {
 /// collider) and no frames: its queries build the frames of the few slots whose box they
 /// reach from the collider's vertices, exactly the frames StaticCollider::normalized_triangle
 /// gives. With PlaneTreeFrames::kept it keeps those frames in leaf order instead of the
-/// boxes, each with an 8-byte box in its first cache line (PlaneTreeFrame). A tree built
-/// from frames (PlaneTreeBuilder) keeps a copy of them and the boxes.
+/// boxes, each on two cache lines of its own (PlaneTreeFrame). A tree built from frames
+/// (PlaneTreeBuilder) keeps a copy of them and the boxes.
 /// Queries append leaf slots in ascending order to a caller-owned vector and use a fixed
 /// stack: no allocation once the vector has grown.
 ///
@@ -207,9 +196,9 @@ struct PlaneTreeQueryCounts {
 /// Each is computed in double in the triangle's own frame, after cheap rejections that are
 /// lower bounds of the distance to convex sets holding the triangle (its plane, its local
 /// box, its edges' half-planes), which can only reject what the exact test rejects too, and
-/// sure accepts (a vertex or an over-the-face endpoint within reach); before all of them, the
-/// slot's box (PlaneTreeBox, or a kept frame's PlaneTreeFrame::box) against the shape's box
-/// (a triangle the shape touches lies in both).
+/// sure accepts (a vertex or an over-the-face endpoint within reach); before all of them, in
+/// a tree that keeps boxes, the slot's float box against the shape's box (a triangle the
+/// shape touches lies in both).
 /// Because a node's half-space (and slab) contains each of its triangles, a shape that
 /// touches a triangle reaches every half-space above it: the tree never prunes a triangle
 /// the filter would report, so a query returns exactly the slots a brute-force scan with the

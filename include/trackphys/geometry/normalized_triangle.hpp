@@ -19,8 +19,8 @@ namespace trackphys {
 ///
 /// Stored in double (120 bytes); colliders may keep a more compact copy.
 struct TRACKPHYS_API NormalizedTriangle {
-    // The longest edge first (56 bytes): a plane tree keeps each frame after 8 bytes of its
-    // own so that its filter's first tests, along dir_x, read one cache line
+    // The longest edge first (56 bytes): a plane tree keeps each frame on a pair of cache
+    // lines of its own, so that its filter's first test, along dir_x, reads one of them
     // (PlaneTreeFrame).
     glm::dvec3 origin;  ///< start vertex of the longest edge (m)
     glm::dvec3 dir_x;   ///< unit vector along the longest edge
