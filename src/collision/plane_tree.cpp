@@ -23,40 +23,33 @@ template <class Shape>
                                                           std::vector<std::uint32_t>& out,
                                                           PlaneTreeFrameCache* frames,
                                                           PlaneTreeQueryCounts& counts) const {
-    auto report = [&](std::uint32_t slot, const NormalizedTriangle* frame) {
-        out.push_back(slot);
-        if (frames != nullptr) frames->reported_.push_back(frame);
-        ++counts.triangles_reported;
-    };
-    // A collider's tree that keeps its frames: read in place, each slot's first test from
-    // its frame's first cache line (PlaneTreeFrame).
-    if (boxes_.empty()) {
-        for (std::uint32_t slot = first; slot < end; ++slot)
-            if (shape.touches(frames_[slot].frame)) report(slot, &frames_[slot].frame);
-        return;
-    }
     for (std::uint32_t run = first; run < end; run += PlaneTreeFrameCache::kMaxRun) {
         const std::uint32_t count = std::min(end - run, PlaneTreeFrameCache::kMaxRun);
         // The slots the filter runs on (bit k: slot run + k): those whose box the shape's box
-        // meets (a leaf whose slots all fail costs no lookup, and only the slots that pass
-        // pay for their frames).
-        std::uint64_t near = 0;
-        for (std::uint32_t k = 0; k < count; ++k)
-            if (shape.reaches_box(boxes_[run + k])) near |= std::uint64_t{1} << k;
-        if (near == 0) continue;
+        // meets, in a tree that keeps boxes (a leaf whose slots all fail costs no lookup, and
+        // only the slots that pass pay for their frames), else all of them.
+        std::uint64_t near = ~std::uint64_t{0} >> (64 - count);
+        if (!boxes_.empty()) {
+            near = 0;
+            for (std::uint32_t k = 0; k < count; ++k)
+                if (shape.reaches_box(boxes_[run + k])) near |= std::uint64_t{1} << k;
+            if (near == 0) continue;
+        }
         // The run's frames: the tree's own, the cache's, or none (each built in turn).
-        const NormalizedTriangle* run_frames =
-            frames_.empty() && frames != nullptr ? frames->run(*this, run, count, near) : nullptr;
+        const NormalizedTriangle* run_frames = !frames_.empty() ? frames_.data() + run
+                                               : frames != nullptr
+                                                   ? frames->run(*this, run, count, near)
+                                                   : nullptr;
         for (; near != 0; near &= near - 1) {
             const auto k = static_cast<std::uint32_t>(std::countr_zero(near));
             const std::uint32_t slot = run + k;
-            const NormalizedTriangle* frame = !frames_.empty()        ? &frames_[slot].frame
-                                              : run_frames != nullptr ? run_frames + k
-                                                                      : nullptr;
-            const bool touched = frame != nullptr
-                                     ? shape.touches(*frame)
+            const bool touched = run_frames != nullptr
+                                     ? shape.touches(run_frames[k])
                                      : shape.touches(collider_->normalized_triangle(ids_[slot]));
-            if (touched) report(slot, frame);
+            if (!touched) continue;
+            out.push_back(slot);
+            if (frames != nullptr) frames->reported_.push_back(run_frames + k);
+            ++counts.triangles_reported;
         }
     }
 }
@@ -158,7 +151,7 @@ void PlaneTree::use_collider_frames(const StaticCollider& collider, PlaneTreeFra
         if (frames_.size() == ids_.size()) return;  // the builder's, from the same vertices
         frames_.clear();
         frames_.reserve(ids_.size());
-        for (const std::uint32_t id : ids_) frames_.push_back({collider.normalized_triangle(id)});
+        for (const std::uint32_t id : ids_) frames_.push_back(collider.normalized_triangle(id));
         return;
     }
     frames_.clear();
@@ -171,7 +164,8 @@ void PlaneTree::use_collider_frames(const StaticCollider& collider, PlaneTreeFra
 std::size_t PlaneTree::bytes_used() const {
     return nodes_.capacity() * sizeof(PlaneTreeNode) + slabs_.capacity() * sizeof(PlaneTreeSlab) +
            slab_ranks_.capacity() * sizeof(SlabRank) + boxes_.capacity() * sizeof(PlaneTreeBox) +
-           ids_.capacity() * sizeof(std::uint32_t) + frames_.capacity() * sizeof(PlaneTreeFrame);
+           ids_.capacity() * sizeof(std::uint32_t) +
+           frames_.capacity() * sizeof(NormalizedTriangle);
 }
 
 void PlaneTree::shrink_to_fit() {

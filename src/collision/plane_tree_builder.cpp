@@ -107,7 +107,7 @@ void PlaneTreeBuilder::build(std::span<const NormalizedTriangle> triangles,
     tree.ids_.clear();
     tree.collider_ = nullptr;
     for (const std::uint32_t item : order_) {
-        tree.frames_.push_back({triangles[item]});
+        tree.frames_.push_back(triangles[item]);
         const auto& v = items_[item].vertices;
         tree.boxes_.push_back(collision_detail::float_box(Triangle(v[0], v[1], v[2])));
         tree.ids_.push_back(ids[item]);

@@ -250,20 +250,13 @@ struct EllipsoidShape {
         return gap <= 0.0 || (gap * gap <= reach_squared && gap * gap <= support_squared(n));
     }
 
-    /// The filter: the triangle's local box and plane first (the ellipsoid's reach along
+    /// The filter: the triangle's plane and local box first (the ellipsoid's reach along
     /// each frame axis is its support there; squares compared only for positive gaps), then
     /// the exact test in the unit-ball frame.
     bool touches(const NormalizedTriangle& t) const {
         // One frame axis at a time, each rejecting before the next is computed: the same
-        // values as to_local's. The longest edge's axis first: it reads only the frame's
-        // first cache line in a tree that keeps frames (PlaneTreeFrame), and the plane,
-        // which a wheel's list shares with its road, almost never rejects.
+        // values as to_local's.
         const glm::dvec3 from_a = start - t.origin, from_b = end - t.origin;
-        const double ax = glm::dot(t.dir_x, from_a), bx = glm::dot(t.dir_x, from_b);
-        const double x_gap = std::max({std::min(ax, bx) - t.x1, -std::max(ax, bx), 0.0});
-        if (x_gap > 0.0 &&
-            (x_gap * x_gap > reach_squared || x_gap * x_gap > support_squared(t.dir_x)))
-            return false;
         const double az = glm::dot(t.normal, from_a), bz = glm::dot(t.normal, from_b);
         const double z_lo = std::min(az, bz), z_hi = std::max(az, bz);
         const double z_gap = std::max({z_lo, -z_hi, 0.0});
@@ -271,6 +264,11 @@ struct EllipsoidShape {
         // road, so the plane test nearly always pays for it anyway.
         const double h_sq = support_squared(t.normal);
         if (z_gap > 0.0 && z_gap * z_gap > h_sq) return false;
+        const double ax = glm::dot(t.dir_x, from_a), bx = glm::dot(t.dir_x, from_b);
+        const double x_gap = std::max({std::min(ax, bx) - t.x1, -std::max(ax, bx), 0.0});
+        if (x_gap > 0.0 &&
+            (x_gap * x_gap > reach_squared || x_gap * x_gap > support_squared(t.dir_x)))
+            return false;
         const double ay = glm::dot(t.dir_y, from_a), by = glm::dot(t.dir_y, from_b);
         const double y_gap = std::max({std::min(ay, by) - t.y2, -std::max(ay, by), 0.0});
         if (y_gap > 0.0 &&

@@ -193,7 +193,7 @@ TEST(PlaneTreeFrameCache, AWorldsTreesKeepTheirFramesWithinTheBudget) {
     world->add(std::make_shared<const StaticCollider>(test::random_soup(300, 15)));
     const std::size_t triangles =
         world->collider(0).triangle_count() + world->collider(1).triangle_count();
-    const std::size_t fits = triangles * sizeof(PlaneTreeFrame);
+    const std::size_t fits = triangles * sizeof(NormalizedTriangle);
     const auto keeps = [&](std::size_t budget) {
         const ColliderPlaneTrees trees =
             make_collider_plane_trees(*world, PlaneTreeSettings::precomputed(), 1, budget);

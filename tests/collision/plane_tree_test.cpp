@@ -498,10 +498,8 @@ TEST(PlaneTree, ShapesTouchingAtTheSlotBoxBoundsAreReported) {
     }
     const StaticCollider collider(mesh);
     const Soup soup = normalized(mesh);
-    const PlaneTree trees[] = {
-        make_collider_plane_tree(collider),
-        make_collider_plane_tree(collider, PlaneTreeSettings::precomputed(), PlaneTreeFrames::kept),
-        build(soup, PlaneTreeSettings::per_update())};
+    const PlaneTree trees[] = {make_collider_plane_tree(collider),
+                               build(soup, PlaneTreeSettings::per_update())};
     std::size_t accepted = 0;
     for (const PlaneTree& tree : trees) {
         for (std::uint32_t slot = 0; slot < tree.triangle_count(); ++slot) {
@@ -533,7 +531,7 @@ TEST(PlaneTree, ShapesTouchingAtTheSlotBoxBoundsAreReported) {
         }
     }
     // The filter accepts most of these tangent contacts (rounding decides the rest).
-    EXPECT_GT(accepted, 3 * 2 * 6 * 400 / 2);
+    EXPECT_GT(accepted, 2 * 2 * 6 * 400 / 2);
 }
 
 }  // namespace

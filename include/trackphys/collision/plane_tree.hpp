@@ -66,16 +66,6 @@ struct PlaneTreeBox {
 };
 static_assert(sizeof(PlaneTreeBox) == 24, "PlaneTreeBox is 24 bytes");
 
-/// A frame as a collider's plane tree keeps it: on a pair of cache lines of its own (128
-/// bytes, 64-byte aligned), so that the filter's first test, along the longest edge (origin,
-/// dir_x, x1: NormalizedTriangle's first 56 bytes), reads one line, and only a triangle that
-/// passes it reads the second (normal, dir_y, x2, y2).
-struct alignas(64) PlaneTreeFrame {
-    NormalizedTriangle frame;
-};
-static_assert(sizeof(PlaneTreeFrame) == 128 && offsetof(NormalizedTriangle, normal) == 56,
-              "PlaneTreeFrame: origin, dir_x and x1 in the first line");
-
 /// Where a collider's PlaneTree gets its triangles' frames (NormalizedTriangle, 120 bytes)
 /// for the per-triangle filter: a memory-for-speed choice that leaves every query's result
 /// unchanged (the frames are the same, bit for bit).
@@ -84,8 +74,8 @@ enum class PlaneTreeFrames {
     /// query shape's box meets, and kept in the caller's PlaneTreeFrameCache: ~51 bytes a
     /// triangle for a track collider's tree.
     built,
-    /// Kept by the tree in leaf order (PlaneTreeFrame, ~155 bytes a triangle): the filter
-    /// reads them in place, with no cache lookup.
+    /// Kept by the tree in leaf order (~147 bytes a triangle): the filter reads them in
+    /// place, with no box test and no cache lookup.
     kept,
 };
 
@@ -97,8 +87,8 @@ inline constexpr std::size_t kPlaneTreeFrameBudget = std::size_t{64} << 20;
 /// The frame source of the plane trees of a world of `triangles` kept triangles: kept when
 /// their frames fit in `budget_bytes`, else built.
 inline PlaneTreeFrames plane_tree_frames_within(std::size_t triangles, std::size_t budget_bytes) {
-    return triangles <= budget_bytes / sizeof(PlaneTreeFrame) ? PlaneTreeFrames::kept
-                                                              : PlaneTreeFrames::built;
+    return triangles <= budget_bytes / sizeof(NormalizedTriangle) ? PlaneTreeFrames::kept
+                                                                  : PlaneTreeFrames::built;
 }
 
 /// How a PlaneTree chooses its splitting planes.
@@ -181,8 +171,7 @@ struct PlaneTreeQueryCounts {
 /// collider) and no frames: its queries build the frames of the few slots whose box they
 /// reach from the collider's vertices, exactly the frames StaticCollider::normalized_triangle
 /// gives. With PlaneTreeFrames::kept it keeps those frames in leaf order instead of the
-/// boxes, each on two cache lines of its own (PlaneTreeFrame). A tree built from frames
-/// (PlaneTreeBuilder) keeps a copy of them and the boxes.
+/// boxes. A tree built from frames (PlaneTreeBuilder) keeps a copy of them and the boxes.
 /// Queries append leaf slots in ascending order to a caller-owned vector and use a fixed
 /// stack: no allocation once the vector has grown.
 ///
@@ -251,7 +240,7 @@ class TRACKPHYS_API PlaneTree {
     /// or, for a collider's tree that keeps none, built from the collider's vertices.
     NormalizedTriangle triangle(std::uint32_t slot) const {
         TP_ASSERT(slot < ids_.size(), "plane tree slot out of range");
-        return frames_.empty() ? collider_->normalized_triangle(ids_[slot]) : frames_[slot].frame;
+        return frames_.empty() ? collider_->normalized_triangle(ids_[slot]) : frames_[slot];
     }
     /// True when the tree keeps its triangles' frames (PlaneTreeFrames::kept, or a tree
     /// built from frames): queries read them in place.
@@ -317,7 +306,7 @@ class TRACKPHYS_API PlaneTree {
     std::vector<SlabRank> slab_ranks_;          ///< per 64 nodes, derived from the nodes
     std::vector<PlaneTreeBox> boxes_;           ///< leaf order; empty: no box test
     std::vector<std::uint32_t> ids_;            ///< leaf order
-    std::vector<PlaneTreeFrame> frames_;        ///< leaf order; empty: built from collider_
+    std::vector<NormalizedTriangle> frames_;    ///< leaf order; empty: built from collider_
     const StaticCollider* collider_ = nullptr;  ///< a collider's tree: its collider
     int depth_ = 0;
 };

@@ -19,14 +19,11 @@ namespace trackphys {
 ///
 /// Stored in double (120 bytes); colliders may keep a more compact copy.
 struct TRACKPHYS_API NormalizedTriangle {
-    // The longest edge first (56 bytes): a plane tree keeps each frame on a pair of cache
-    // lines of its own, so that its filter's first test, along dir_x, reads one of them
-    // (PlaneTreeFrame).
     glm::dvec3 origin;  ///< start vertex of the longest edge (m)
     glm::dvec3 dir_x;   ///< unit vector along the longest edge
-    double x1;          ///< longest-edge length (m)
-    glm::dvec3 normal;  ///< unit normal, same side as the source triangle's CCW normal
     glm::dvec3 dir_y;   ///< unit in-plane vector, dir_x x dir_y = normal
+    glm::dvec3 normal;  ///< unit normal, same side as the source triangle's CCW normal
+    double x1;          ///< longest-edge length (m)
     double x2;          ///< third vertex along dir_x (m), in [0, x1]
     double y2;          ///< third vertex along dir_y (m), > 0
 
