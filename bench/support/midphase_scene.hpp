@@ -83,7 +83,7 @@ enum class SubstepCull {
     none,
     bounding_sphere,  ///< the write-up's: the step's query sphere against the triangle
     world_extent,     ///< World's test, ellipsoid_depth_bound > 0 (scalar here; World runs it
-                      ///< two triangles at a time, the same bounds), dearer and tighter
+                      ///< in SIMD lanes, the same bounds), dearer and tighter
 };
 
 /// One update's mid-phase work as World does it: begin_update, then per step each
