@@ -84,7 +84,8 @@ std::string CarSpec::validate() const {
     check_positive(why, "mass.principal_inertia.y", mass.principal_inertia.y);
     check_positive(why, "mass.principal_inertia.z", mass.principal_inertia.z);
     if (why.tellp() == 0 && (ellipsoids.empty() || ellipsoids.size() > max_ellipsoids))
-        why << "CarSpec.ellipsoids must hold 1 to 64 ellipsoids, got " << ellipsoids.size();
+        why << "CarSpec.ellipsoids must hold 1 to " << max_ellipsoids << " ellipsoids, got "
+            << ellipsoids.size();
     for (std::size_t i = 0; i < ellipsoids.size() && why.tellp() == 0; ++i) {
         const CarEllipsoid& e = ellipsoids[i];
         const std::string prefix = "ellipsoids[" + std::to_string(i) + "].";

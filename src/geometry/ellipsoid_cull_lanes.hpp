@@ -1,7 +1,6 @@
 #pragma once
 
 #include <array>
-#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -25,7 +24,9 @@ struct DoubleLanes<4> {
 
 // No member of EllipsoidCull exists out of line, so none passes a vector by the ABI GCC warns
 // about for four lanes without AVX; GCC warns at the end of the including file, so the
-// warning stays off there (this header is private: the world's cull and its test).
+// warning stays off there (this header is private: the world's cull and its test). Being
+// off, it would not report a call that does pass one (std::bit_cast, a function, is one at
+// -O0; __builtin_bit_cast is not): the cull's test is built at -O0 to catch that instead.
 #pragma GCC diagnostic ignored "-Wpsabi"
 
 /// ellipsoid_depth_bound for one ellipsoid on N triangles at once (N = 2 or 4), bit for
@@ -34,9 +35,10 @@ struct DoubleLanes<4> {
 /// the count of instructions changes. The ellipsoid's centre, axes and radii are spread
 /// into every lane once, when the cull is made; the triangles' frames at each test.
 ///
-/// Every member is forced inline: four lanes are 32-byte vectors, which only code compiled
-/// for AVX holds in one register, so they run inside the AVX2 caller
-/// (ellipsoid_cull_list.hpp) and never as functions of the library's own x86-64 level.
+/// Every member is forced inline, and calls nothing that is not a built-in: four lanes are
+/// 32-byte vectors, which only code compiled for AVX holds in one register, so they run
+/// inside the AVX2 caller (ellipsoid_cull_list.hpp) and never as functions of the
+/// library's own x86-64 level, at any optimisation level.
 template <int N>
 class EllipsoidCull {
   public:
@@ -83,8 +85,8 @@ class EllipsoidCull {
         // hz - |z|, or -infinity where apart: |z| and the choice by bits, as fabs and the
         // scalar's ?: give them.
         const Mask depth = to_bits(hz - from_bits(to_bits(z) & ~kSign));
-        return std::bit_cast<std::array<double, N>>((depth & ~apart) |
-                                                    (to_bits(every(kApart)) & apart));
+        return __builtin_bit_cast(std::array<double, N>,
+                                  (depth & ~apart) | (to_bits(every(kApart)) & apart));
     }
 
   private:
@@ -110,8 +112,12 @@ class EllipsoidCull {
         for (int k = 0; k < N; ++k) lanes[k] = v[k];
         return lanes;
     }
-    [[gnu::always_inline]] static Mask to_bits(const Lanes& v) { return std::bit_cast<Mask>(v); }
-    [[gnu::always_inline]] static Lanes from_bits(const Mask& m) { return std::bit_cast<Lanes>(m); }
+    [[gnu::always_inline]] static Mask to_bits(const Lanes& v) {
+        return __builtin_bit_cast(Mask, v);
+    }
+    [[gnu::always_inline]] static Lanes from_bits(const Mask& m) {
+        return __builtin_bit_cast(Lanes, m);
+    }
     [[gnu::always_inline]] static Lanes gather(const NormalizedTriangle* const (&t)[N],
                                                double NormalizedTriangle::*field) {
         Lanes v{};

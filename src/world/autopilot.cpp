@@ -141,9 +141,9 @@ std::size_t Autopilot::find_nearest(const glm::dvec3& position) const {
     // outwards, the sample ahead before the one behind at the same step (a tie keeps the
     // first found). A sample at distance d from the car puts the next m samples on its
     // side at least d - m max_sample_gap_ away, so those that cannot come nearer than the
-    // best so far are never read: a car's search reads a few dozen samples, not the
-    // window's 800 (96 kB, which pushed the car's own lines out of the cache before every
-    // update of a big field). The margin covers the roundings of the distances compared.
+    // best so far are never read: the window's samples would push a big field's lines out
+    // of the cache between two updates. The margin covers the roundings of the distances
+    // compared.
     constexpr std::size_t window = 400;
     const double margin =
         1e-6 + 1e-9 * (std::abs(position.x) + std::abs(position.y) + std::abs(position.z));

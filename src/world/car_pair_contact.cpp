@@ -75,6 +75,8 @@ PlacedReach placed_reach(const Car& car, std::span<const Ellipsoid> placed) {
     return reach;
 }
 
+static_assert(CarSpec::max_ellipsoids <= 64, "a car's ellipsoids are bits of one std::uint64_t");
+
 // Bit i (a CarSpec holds at most 64 ellipsoids): ellipsoid i reaches into the other car's
 // sphere, so it may touch one of its ellipsoids. The margin (far above rounding) keeps the
 // test conservative: it leaves out only pairs that ellipsoids_may_touch would reject too.

@@ -3,11 +3,13 @@
 #include "trackphys/world/autopilot.hpp"
 
 #include <cmath>
+#include <numbers>
 #include <random>
 #include <vector>
 
 #include <gtest/gtest.h>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 
@@ -129,6 +131,63 @@ TEST(Autopilot, LocatesTheSampleTheWindowSearchFinds) {
         moved += pilot.nearest_sample() != last;
     }
     EXPECT_GT(moved, 10000);
+}
+
+// The same on centrelines made to trouble the search's skipping: loops shorter than the
+// window (each sample reached from both sides), samples repeated (exact ties), a single
+// long chord among short ones, coordinates rounded to a 1 m grid (more ties), and a loop
+// far from the origin, with cars on samples, between them and far off the line; and a
+// hairpin loop (an ellipse 3 m wide), whose far leg comes back to within metres of a car
+// as fast as the chords allow.
+TEST(Autopilot, LocatesTheSampleTheWindowSearchFindsOnAwkwardCentrelines) {
+    const CarSpec spec = CarSpec::default_car();
+    std::mt19937 random(23);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    int checked = 0;
+    for (const std::size_t n : {3, 7, 64, 801, 1500}) {
+        for (int kind = 0; kind < 5; ++kind) {
+            Track track;
+            const double radius = 20.0 + 0.5 * static_cast<double>(n);
+            const glm::dvec3 origin = kind == 3 ? glm::dvec3(3e7, -2e5, 1e8) : glm::dvec3(0.0);
+            for (std::size_t i = 0; i < n; ++i) {
+                // kind 1: every third sample repeats the one before; kind 2: the first
+                // tenth of the loop squeezed into one long chord, on a 1 m grid.
+                double angle =
+                    2.0 * std::numbers::pi * static_cast<double>(i) / static_cast<double>(n);
+                if (kind == 2 && i > 0)
+                    angle = 0.6 + (2.0 * std::numbers::pi - 0.6) * angle / (2.0 * std::numbers::pi);
+                CenterlineSample sample;
+                sample.position =
+                    origin + radius * glm::dvec3(std::cos(angle), 0.05 * std::sin(3.0 * angle),
+                                                 std::sin(angle));
+                if (kind == 2) sample.position = glm::round(sample.position);
+                if (kind == 4) sample.position.z *= 3.0 / radius;
+                if (kind == 1 && i % 3 == 2) sample.position = track.centerline.back().position;
+                sample.distance = radius * angle;
+                track.centerline.push_back(sample);
+            }
+            track.length_m = 2.0 * std::numbers::pi * radius;
+            Autopilot pilot(track, spec);
+            for (int trial = 0; trial < 400; ++trial) {
+                const std::size_t last = static_cast<std::size_t>(trial * 7919) % n;
+                const std::size_t near = static_cast<std::size_t>(trial * 104729 + 1) % n;
+                const glm::dvec3 a = track.centerline[near].position;
+                const glm::dvec3 b = track.centerline[(near + 1) % n].position;
+                RigidBodyState state;
+                const double off = trial % 5 == 0 ? 3.0 * radius : 2.0;
+                state.position = trial % 4 == 0   ? a
+                                 : trial % 4 == 1 ? 0.5 * (a + b)
+                                                  : a + off * glm::dvec3(unit(random), unit(random),
+                                                                         unit(random));
+                pilot.set_progress({last, 1, true});
+                pilot.locate(Car(spec, state));
+                ASSERT_EQ(pilot.nearest_sample(), nearest_by_division(track, last, state.position))
+                    << n << " samples, kind " << kind << ", trial " << trial;
+                ++checked;
+            }
+        }
+    }
+    EXPECT_EQ(checked, 5 * 5 * 400);
 }
 
 // A 7 km straight: full throttle to 1000 km/h, then full brakes to a stop, steering only

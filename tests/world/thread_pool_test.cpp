@@ -64,8 +64,11 @@ TEST(WorldThreads, PoolRunsEveryItemOnceAndPublishesItsWrites) {
     }
 }
 
+// The pool's worker dawdles in each item it claims, so the caller always claims one of the
+// four and throws there.
 void throw_from_the_caller(int, int, int worker, void*) {
     if (worker == 0) throw std::runtime_error("an item failed");
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
 }
 
 // A task that throws cannot leave the pool half-way through a run (its next run would wait

@@ -29,7 +29,8 @@ struct CarInputs {
 };
 
 /// A car: its spec (validated), its rigid-body state and its inputs, and the force laws
-/// that turn the contacts of its ellipsoids into a wrench on the body.
+/// that turn the contacts of its ellipsoids into a wrench on the body. A car moved from may
+/// only be assigned to or destroyed: its body ellipsoids went with the move.
 class TRACKPHYS_API Car {
   public:
     /// Throws trackphys::Error with CarSpec::validate()'s message for an invalid spec, or
