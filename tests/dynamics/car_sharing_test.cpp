@@ -1,31 +1,25 @@
 // Car::share_ellipsoids_with: cars whose ellipsoids hold the same bits read one copy, any
 // other car keeps its own.
-#include <cstddef>
 
 #include <gtest/gtest.h>
 
+#include "support/shared_ellipsoids.hpp"
 #include "trackphys/dynamics/car.hpp"
 
 namespace trackphys {
 namespace {
 
-// Whether every body ellipsoid of a is the same object as b's.
-bool same_copy(const Car& a, const Car& b) {
-    if (a.ellipsoid_count() != b.ellipsoid_count()) return false;
-    for (std::size_t i = 0; i < a.ellipsoid_count(); ++i)
-        if (&a.body_ellipsoid(i) != &b.body_ellipsoid(i)) return false;
-    return true;
-}
+using test::share_one_copy;
 
 TEST(CarSharing, CarsOfOneSpecShareOnRequest) {
     const CarSpec spec = CarSpec::default_car();
     const Car first(spec, RigidBodyState{});
     Car second(spec, RigidBodyState{});
-    EXPECT_FALSE(same_copy(first, second)) << "each car builds its own copy";
+    EXPECT_FALSE(share_one_copy(first, second)) << "each car builds its own copy";
     EXPECT_TRUE(second.share_ellipsoids_with(first));
-    EXPECT_TRUE(same_copy(first, second));
+    EXPECT_TRUE(share_one_copy(first, second));
     const Car copy = second;
-    EXPECT_TRUE(same_copy(first, copy)) << "a copy of a car shares what the car shares";
+    EXPECT_TRUE(share_one_copy(first, copy)) << "a copy of a car shares what the car shares";
 }
 
 // A spec that differs in anything the shared copy holds keeps its own, even where the
@@ -46,7 +40,7 @@ TEST(CarSharing, OnlyTheSameBitsShare) {
     for (const CarSpec& other : {wider, negative_zero, shallower, fewer}) {
         Car car(other, RigidBodyState{});
         EXPECT_FALSE(car.share_ellipsoids_with(first));
-        EXPECT_FALSE(same_copy(first, car));
+        EXPECT_FALSE(share_one_copy(first, car));
     }
 
     CarSpec heavier = spec;

@@ -1,21 +1,16 @@
 // World::add_car gives the cars of one spec one shared copy of their body-frame ellipsoids
 // (Car::share_ellipsoids_with), and a restored world shares the same way.
-#include <cstddef>
 #include <memory>
 
 #include <gtest/gtest.h>
 
+#include "support/shared_ellipsoids.hpp"
 #include "trackphys/world/world.hpp"
 
 namespace trackphys {
 namespace {
 
-bool same_copy(const Car& a, const Car& b) {
-    if (a.ellipsoid_count() != b.ellipsoid_count()) return false;
-    for (std::size_t i = 0; i < a.ellipsoid_count(); ++i)
-        if (&a.body_ellipsoid(i) != &b.body_ellipsoid(i)) return false;
-    return true;
-}
+using test::share_one_copy;
 
 RigidBodyState at(double x) {
     RigidBodyState state;
@@ -32,9 +27,9 @@ void add_two_kinds(World& world) {
 }
 
 void expect_shared_by_spec(const World& world) {
-    EXPECT_TRUE(same_copy(world.car(0), world.car(2)));
-    EXPECT_TRUE(same_copy(world.car(1), world.car(3)));
-    EXPECT_FALSE(same_copy(world.car(0), world.car(1)));
+    EXPECT_TRUE(share_one_copy(world.car(0), world.car(2)));
+    EXPECT_TRUE(share_one_copy(world.car(1), world.car(3)));
+    EXPECT_FALSE(share_one_copy(world.car(0), world.car(1)));
 }
 
 TEST(WorldCarSharing, CarsOfOneSpecShareOneCopy) {
@@ -52,7 +47,7 @@ TEST(WorldCarSharing, ARestoredWorldSharesTheSameWay) {
     restored.restore_state(original.save_state());
     expect_shared_by_spec(restored);
     // Nothing leaks between worlds: each world's cars build their own copy.
-    EXPECT_FALSE(same_copy(original.car(0), restored.car(0)));
+    EXPECT_FALSE(share_one_copy(original.car(0), restored.car(0)));
 }
 
 }  // namespace
