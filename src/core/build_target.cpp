@@ -1,5 +1,7 @@
 #include "trackphys/build_target.hpp"
 
+#include "core/cpu_features.hpp"
+
 namespace trackphys {
 
 // From the compiler's own macros, so that the answer is what this code was compiled for
@@ -24,3 +26,20 @@ bool cpu_runs_build_target() noexcept {
 }
 
 }  // namespace trackphys
+
+namespace trackphys::detail {
+
+bool cpu_has_avx2() noexcept {
+#if defined(__x86_64__) || defined(__i386__)
+    // libgcc's and compiler-rt's answers include the OS's: it saves the 32-byte registers.
+    static const bool has = [] {
+        __builtin_cpu_init();
+        return __builtin_cpu_supports("avx2") != 0;
+    }();
+    return has;
+#else
+    return false;
+#endif
+}
+
+}  // namespace trackphys::detail

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <span>
 
+#include "core/cpu_features.hpp"
 #include "geometry/ellipsoid_cull_lanes.hpp"
 
 namespace trackphys::detail {
@@ -53,9 +54,6 @@ template <class Candidate, class Keep>
     cull_listed<4>(e, listed, keep);
 }
 #endif
-
-/// Whether this CPU (and its OS) runs AVX2, asked once.
-bool cpu_has_avx2() noexcept;
 
 /// cull_listed in the widest lanes this CPU runs: four with AVX2, else two (SSE2).
 template <class Candidate, class Keep>

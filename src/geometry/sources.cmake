@@ -1,6 +1,5 @@
 target_sources(trackphys PRIVATE
   geometry/ellipsoid.cpp
-  geometry/ellipsoid_cull_list.cpp
   geometry/mesh_chunks.cpp
   geometry/normalized_triangle.cpp
   geometry/triangle.cpp)
