@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <sstream>
 #include <string>
 
@@ -49,6 +50,8 @@ RaceDrivers::RaceDrivers(const Track& track, const CarSpec& car, std::size_t car
         throw Error("RaceSettings: lane_change_speed must be finite and > 0");
     if (!(settings_.rescue_distance > 0.0))
         throw Error("RaceSettings: rescue_distance must be > 0 (infinity: never rescue)");
+    // One copy of the centreline for the whole field.
+    const auto centerline = std::make_shared<const std::vector<CenterlineSample>>(track.centerline);
     for (std::size_t i = 0; i < cars; ++i) {
         const double share =
             cars == 1 ? 0.0 : static_cast<double>(i) / static_cast<double>(cars - 1);
@@ -57,7 +60,7 @@ RaceDrivers::RaceDrivers(const Track& track, const CarSpec& car, std::size_t car
             (settings_.slowest_kmh + share * (settings_.fastest_kmh - settings_.slowest_kmh)) / 3.6;
         driver.grip_use =
             settings_.least_grip_use + share * (settings_.most_grip_use - settings_.least_grip_use);
-        pilots_.emplace_back(track, car, driver);
+        pilots_.emplace_back(centerline, track.length_m, car, driver);
     }
     for (std::size_t i = 0; i < cars; ++i) progress_.lanes.push_back(own_lane(i));
     progress_.lines = progress_.lanes;
