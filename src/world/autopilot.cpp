@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <string>
+#include <utility>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -52,8 +54,16 @@ double crest_speed_limit(double kappa, double k) {
 }  // namespace
 
 Autopilot::Autopilot(const Track& track, const CarSpec& car, AutopilotSettings settings)
-    : centerline_(track.centerline), length_(track.length_m), settings_(settings) {
-    if (centerline_.size() < 3) throw Error("Autopilot: the track has no centreline");
+    : Autopilot(std::make_shared<const std::vector<CenterlineSample>>(track.centerline),
+                track.length_m, car, settings) {}
+
+Autopilot::Autopilot(SharedCenterline shared, double length_m, const CarSpec& car,
+                     AutopilotSettings settings)
+    : centerline_(std::move(shared)), length_(length_m), settings_(settings) {
+    if (!centerline_ || centerline_->size() < 3)
+        throw Error("Autopilot: the track has no centreline");
+    if (!(std::isfinite(length_) && length_ > 0.0))
+        throw Error("Autopilot: the track's length must be finite and > 0");
     if (!(settings_.target_speed > 0.0)) throw Error("Autopilot: target_speed must be > 0");
 
     double front = -std::numeric_limits<double>::infinity();
@@ -64,11 +74,11 @@ Autopilot::Autopilot(const Track& track, const CarSpec& car, AutopilotSettings s
     }
     wheelbase_ = std::isfinite(front - rear) && front > rear ? front - rear : 2.5;
     max_steer_angle_ = car.max_steer_angle;
-    const std::size_t samples = centerline_.size();
+    const std::size_t samples = centerline().size();
     for (std::size_t i = 0; i < samples; ++i)
         max_sample_gap_ = std::max(
             max_sample_gap_,
-            glm::distance(centerline_[i].position, centerline_[(i + 1) % samples].position));
+            glm::distance(centerline()[i].position, centerline()[(i + 1) % samples].position));
     // Rounded up, so that no bound built on it promises more than the chords give.
     max_sample_gap_ = max_sample_gap_ * (1.0 + 1e-12) + 1e-12;
 
@@ -87,10 +97,10 @@ Autopilot::Autopilot(const Track& track, const CarSpec& car, AutopilotSettings s
                                    car.vehicle->rear_tyre.longitudinal.lowest_friction())
                     : settings_.braking;
     const double k = 0.5 * car.air_density * car.downforce_area / car.mass.mass;
-    const std::size_t n = centerline_.size();
+    const std::size_t n = centerline().size();
     std::vector<double> crest_curvature(n);
     for (std::size_t i = 0; i < n; ++i)
-        crest_curvature[i] = vertical_curvature(centerline_, i, length_);
+        crest_curvature[i] = vertical_curvature(centerline(), i, length_);
     // Over a crest of curvature kappa the road pushes v^2 kappa less per unit mass, like
     // negative downforce. A car with a vehicle model plans its turns and braking with that
     // load: braking or turning over a crest at the flat road's limit slides its tyres
@@ -102,7 +112,7 @@ Autopilot::Autopilot(const Track& track, const CarSpec& car, AutopilotSettings s
     };
     planned_speed_.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
-        const CenterlineSample& s = centerline_[i];
+        const CenterlineSample& s = centerline()[i];
         const double radius = 1.0 / std::max(std::abs(s.curvature), 1e-9);
         const double bank_into_turn = s.curvature >= 0.0 ? s.bank : -s.bank;
         planned_speed_[i] =
@@ -114,7 +124,7 @@ Autopilot::Autopilot(const Track& track, const CarSpec& car, AutopilotSettings s
     for (std::size_t step = 0; step < 2 * n; ++step) {
         const std::size_t i = (2 * n - 1 - step) % n;
         const std::size_t next = (i + 1) % n;
-        double gap = centerline_[next].distance - centerline_[i].distance;
+        double gap = centerline()[next].distance - centerline()[i].distance;
         if (gap <= 0.0) gap += length_;
         const double v_next = planned_speed_[next];
         // Never < 0: a crest may leave no grip to brake with, never a need to speed up.
@@ -125,9 +135,9 @@ Autopilot::Autopilot(const Track& track, const CarSpec& car, AutopilotSettings s
 }
 
 std::size_t Autopilot::find_nearest(const glm::dvec3& position) const {
-    const std::size_t n = centerline_.size();
+    const std::size_t n = centerline().size();
     auto distance2 = [&](std::size_t i) {
-        const glm::dvec3 d = centerline_[i].position - position;
+        const glm::dvec3 d = centerline()[i].position - position;
         return glm::dot(d, d);
     };
     if (!located_) {  // first call: search everything
@@ -168,12 +178,12 @@ std::size_t Autopilot::find_nearest(const glm::dvec3& position) const {
 }
 
 std::size_t Autopilot::sample_ahead(std::size_t from, double distance) const {
-    const std::size_t n = centerline_.size();
+    const std::size_t n = centerline().size();
     std::size_t i = from;
     double travelled = 0.0;
     while (travelled < distance) {
         const std::size_t next = (i + 1) % n;
-        double gap = centerline_[next].distance - centerline_[i].distance;
+        double gap = centerline()[next].distance - centerline()[i].distance;
         if (gap <= 0.0) gap += length_;
         travelled += gap;
         i = next;
@@ -186,16 +196,16 @@ void Autopilot::locate(const Car& car) {
     const std::size_t previous = nearest_;
     nearest_ = find_nearest(car.state().position);
     // Crossing the start line forwards: the index wraps from the last samples to the first.
-    const std::size_t n = centerline_.size();
+    const std::size_t n = centerline().size();
     if (located_ && previous > nearest_ && previous - nearest_ > n / 2) ++laps_;
     if (located_ && nearest_ > previous && nearest_ - previous > n / 2 && laps_ > 0) --laps_;
     located_ = true;
 }
 
 void Autopilot::set_progress(const AutopilotProgress& progress) {
-    if (progress.nearest_sample >= centerline_.size())
+    if (progress.nearest_sample >= centerline().size())
         throw Error("Autopilot progress: sample " + std::to_string(progress.nearest_sample) +
-                    " is beyond the centreline's " + std::to_string(centerline_.size()) +
+                    " is beyond the centreline's " + std::to_string(centerline().size()) +
                     " samples");
     if (progress.laps < 0) throw Error("Autopilot progress: laps must be >= 0");
     nearest_ = progress.nearest_sample;
@@ -218,7 +228,7 @@ CarInputs Autopilot::drive(const Car& car) {
 
     // Pure pursuit: steer onto the arc through the look-ahead point.
     const double lookahead = settings_.lookahead_min + settings_.lookahead_time * speed;
-    const CenterlineSample& ahead = centerline_[sample_ahead(nearest_, lookahead)];
+    const CenterlineSample& ahead = centerline()[sample_ahead(nearest_, lookahead)];
     const glm::dvec3 goal = ahead.position + ahead.left * lane_offset_;
     const glm::dvec3 local = glm::conjugate(state.orientation) * (goal - state.position);
     const double planar2 = local.x * local.x + local.z * local.z;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <sstream>
 #include <string>
 
@@ -11,6 +12,19 @@
 #include "trackphys/error.hpp"
 
 namespace trackphys {
+namespace {
+
+// std::fmod(x, length), for a length > 0, without fmod's cost where |x| < 2 length (the
+// gap between two places on the loop): x - length and x + length are exact there
+// (Sterbenz), as fmod is.
+double remainder_toward_zero(double x, double length) {
+    if (std::abs(x) < length) return x;
+    if (x >= length && x < 2.0 * length) return x - length;
+    if (x <= -length && x > -2.0 * length) return x + length;
+    return std::fmod(x, length);
+}
+
+}  // namespace
 
 AutopilotSettings race_autopilot() {
     AutopilotSettings driver;
@@ -49,6 +63,8 @@ RaceDrivers::RaceDrivers(const Track& track, const CarSpec& car, std::size_t car
         throw Error("RaceSettings: lane_change_speed must be finite and > 0");
     if (!(settings_.rescue_distance > 0.0))
         throw Error("RaceSettings: rescue_distance must be > 0 (infinity: never rescue)");
+    // One copy of the centreline for the whole field.
+    const auto centerline = std::make_shared<const std::vector<CenterlineSample>>(track.centerline);
     for (std::size_t i = 0; i < cars; ++i) {
         const double share =
             cars == 1 ? 0.0 : static_cast<double>(i) / static_cast<double>(cars - 1);
@@ -57,7 +73,7 @@ RaceDrivers::RaceDrivers(const Track& track, const CarSpec& car, std::size_t car
             (settings_.slowest_kmh + share * (settings_.fastest_kmh - settings_.slowest_kmh)) / 3.6;
         driver.grip_use =
             settings_.least_grip_use + share * (settings_.most_grip_use - settings_.least_grip_use);
-        pilots_.emplace_back(track, car, driver);
+        pilots_.emplace_back(centerline, track.length_m, car, driver);
     }
     for (std::size_t i = 0; i < cars; ++i) progress_.lanes.push_back(own_lane(i));
     progress_.lines = progress_.lanes;
@@ -65,6 +81,7 @@ RaceDrivers::RaceDrivers(const Track& track, const CarSpec& car, std::size_t car
     progress_.last_crossings.assign(cars, 0.0);
     progress_.rescues.assign(cars, 0);
     next_lanes_.assign(cars, 0.0);
+    road_positions_.resize(cars);
 }
 
 double RaceDrivers::own_lane(std::size_t car) const {
@@ -87,15 +104,15 @@ RaceDrivers::RoadPosition RaceDrivers::road_position(const World& world, std::si
 
 RaceDrivers::CarAhead RaceDrivers::car_ahead(const World& world, std::size_t i, double line,
                                              double from) const {
-    const RoadPosition me = road_position(world, i);
+    const RoadPosition me = road_positions_[i];
     const glm::dvec3& velocity = world.car(i).state().linear_velocity;
     CarAhead nearest{i, std::numeric_limits<double>::infinity(), 0.0};
     for (std::size_t j = 0; j < pilots_.size(); ++j) {
         if (j == i) continue;
-        const RoadPosition other = road_position(world, j);
+        const RoadPosition other = road_positions_[j];
         if (std::abs(other.across - line) > settings_.lane_width) continue;
         // Along-track gap, wrapped into [from, length + from).
-        double gap = std::fmod(other.along - me.along - from, track_->length_m);
+        double gap = remainder_toward_zero(other.along - me.along - from, track_->length_m);
         if (gap < 0.0) gap += track_->length_m;
         gap += from;
         if (gap > settings_.pass_look_ahead || !(gap < nearest.gap)) continue;
@@ -165,6 +182,8 @@ void RaceDrivers::drive(World& world) {
     // standing at the start line, and the grid would find nobody ahead.
     for (std::size_t i = 0; i < pilots_.size(); ++i)
         if (!pilots_[i].located()) pilots_[i].locate(world.car(i));
+    // Where every car is, read once: the lanes below compare each car with every other.
+    for (std::size_t i = 0; i < pilots_.size(); ++i) road_positions_[i] = road_position(world, i);
     // Every lane from the same instant, before any car's inputs change.
     for (std::size_t i = 0; i < pilots_.size(); ++i) next_lanes_[i] = lane(world, i);
     const double dt = world.settings().dt_update;
@@ -176,12 +195,14 @@ void RaceDrivers::drive(World& world) {
         pilots_[i].set_lane_offset(progress_.lines[i]);
         // The car ahead on its line, or where it is now on its way there.
         CarAhead ahead = car_ahead(world, i, progress_.lines[i], kInFront);
-        if (const CarAhead here = car_ahead(world, i, road_position(world, i).across, kInFront);
+        if (const CarAhead here = car_ahead(world, i, road_positions_[i].across, kInFront);
             here.gap < ahead.gap)
             ahead = here;
         Car& car = world.car(i);
         pilots_[i].set_speed_limit(following_speed(ahead, car.speed()));
         car.set_inputs(pilots_[i].drive(car));
+        // Driving locates the car again, which may move its nearest sample.
+        road_positions_[i] = road_position(world, i);
     }
 }
 

@@ -3,6 +3,8 @@
 #include "trackphys/world/autopilot.hpp"
 
 #include <cmath>
+#include <limits>
+#include <memory>
 #include <numbers>
 #include <random>
 #include <vector>
@@ -13,6 +15,7 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include "support/error_message.hpp"
 #include "trackphys/track/track.hpp"
 #include "trackphys/world/world.hpp"
 #include "world/track_world.hpp"
@@ -192,6 +195,47 @@ TEST(Autopilot, LocatesTheSampleTheWindowSearchFindsOnAwkwardCentrelines) {
 
 // A 7 km straight: full throttle to 1000 km/h, then full brakes to a stop, steering only
 // to hold the centre line.
+// Autopilots given one centreline share it instead of copying it, drive as one that keeps
+// its own copy, and refuse a centreline they could not drive along.
+TEST(Autopilot, SharesACenterlineAndDrivesAsWithItsOwnCopy) {
+    const TrackWorld& tw = default_track();
+    const CarSpec spec = CarSpec::default_car();
+    const SharedCenterline shared =
+        std::make_shared<const std::vector<CenterlineSample>>(tw.track.centerline);
+    Autopilot own(tw.track, spec);
+    Autopilot first(shared, tw.track.length_m, spec);
+    const Autopilot second(shared, tw.track.length_m, spec);
+    EXPECT_EQ(&first.centerline(), shared.get());
+    EXPECT_EQ(&second.centerline(), shared.get());
+    EXPECT_EQ(&Autopilot(first).centerline(), shared.get()) << "a copy shares it too";
+    EXPECT_NE(&own.centerline(), &tw.track.centerline);
+    for (std::size_t i = 0; i < tw.track.centerline.size(); ++i)
+        ASSERT_EQ(first.planned_speed(i), own.planned_speed(i)) << "sample " << i;
+
+    World owner(tw.statics, WorldSettings{}, tw.trees);
+    World sharer(tw.statics, WorldSettings{}, tw.trees);
+    owner.add_car(spec, on_start_line(tw.track));
+    sharer.add_car(spec, on_start_line(tw.track));
+    for (int update = 0; update < 300; ++update) {
+        owner.car(0).set_inputs(own.drive(owner.car(0)));
+        sharer.car(0).set_inputs(first.drive(sharer.car(0)));
+        owner.update();
+        sharer.update();
+    }
+    EXPECT_GT(owner.car(0).speed(), 15.0) << "it drove";
+    EXPECT_EQ(sharer.state_hash(), owner.state_hash());
+
+    const auto refusal = [&](SharedCenterline centerline, double length) {
+        return test::error_of([&] { Autopilot(std::move(centerline), length, spec); });
+    };
+    EXPECT_EQ(refusal(nullptr, 100.0), "Autopilot: the track has no centreline");
+    EXPECT_EQ(refusal(std::make_shared<const std::vector<CenterlineSample>>(2), 100.0),
+              "Autopilot: the track has no centreline");
+    for (const double length : {0.0, -1.0, std::nan(""), std::numeric_limits<double>::infinity()})
+        EXPECT_EQ(refusal(shared, length), "Autopilot: the track's length must be finite and > 0")
+            << length;
+}
+
 TEST(Autopilot, ReachesThousandKmHOnAStraightAndBrakesToAStop) {
     const double width = 14.0;
     World world(test::static_world_of(test::straight_road(7000.0, width, 2.0)));

@@ -93,6 +93,18 @@ TEST(RaceRules, SettingsThatCannotActAsWrittenAreRefused) {
               "(no error)");
 }
 
+// The field's autopilots share one copy of the track's centreline (a copy each would be
+// most of a race's memory beside the road).
+TEST(RaceRules, TheFieldSharesOneCenterline) {
+    const test::TrackWorld& track = test::default_track();
+    const RaceDrivers drivers(track.track, CarSpec::default_car(), 3);
+    const std::vector<CenterlineSample>& first = drivers.autopilot(0).centerline();
+    EXPECT_NE(&first, &track.track.centerline);
+    EXPECT_EQ(first.size(), track.track.centerline.size());
+    for (std::size_t i = 1; i < drivers.car_count(); ++i)
+        EXPECT_EQ(&drivers.autopilot(i).centerline(), &first) << "car " << i;
+}
+
 // Three cars, passing ruled out (merge_gap and pass_look_ahead as long as the track): the
 // fastest car, a row behind the slowest in the same lane, catches it in the first turns and
 // then follows it at its gap (follow_distance + follow_time v) and its speed. The speed rule

@@ -2,6 +2,7 @@
 
 #include <cstddef>
 #include <limits>
+#include <memory>
 #include <vector>
 
 #include "trackphys/dynamics/car.hpp"
@@ -37,13 +38,23 @@ struct AutopilotProgress {
     bool located = false;            ///< false until the first drive() or locate()
 };
 
+/// A track's centreline held once for any number of autopilots: a race's field shares one
+/// instead of each car keeping its own copy of every sample.
+using SharedCenterline = std::shared_ptr<const std::vector<CenterlineSample>>;
+
 /// Drives a car around a generated track unattended: a speed profile computed from the
 /// centreline (the fastest each turn's radius, bank, grip and downforce allow, with
 /// braking distance before it), throttle and brake to follow it, and pure-pursuit steering
 /// towards a point on the centreline ahead.
 class TRACKPHYS_API Autopilot {
   public:
+    /// Keeps its own copy of the track's centreline.
     Autopilot(const Track& track, const CarSpec& car, AutopilotSettings settings = {});
+    /// Shares `centerline` (a closed loop of length_m metres, as Track's) with whoever else
+    /// holds it; copies of an Autopilot share theirs too. Throws trackphys::Error for a null
+    /// or shorter than three samples centreline, or a length that is not finite and > 0.
+    Autopilot(SharedCenterline centerline, double length_m, const CarSpec& car,
+              AutopilotSettings settings = {});
 
     /// Inputs for the car's current state; also advances the progress along the track.
     CarInputs drive(const Car& car);
@@ -56,7 +67,7 @@ class TRACKPHYS_API Autopilot {
     /// The centreline sample nearest the car at the last drive() call.
     std::size_t nearest_sample() const { return nearest_; }
     /// Distance driven along the centreline since the start (m), laps included.
-    double distance_along() const { return laps_ * length_ + centerline_[nearest_].distance; }
+    double distance_along() const { return laps_ * length_ + centerline()[nearest_].distance; }
     /// Completed laps: times the car crossed the start line going forward.
     int laps() const { return laps_; }
 
@@ -72,6 +83,8 @@ class TRACKPHYS_API Autopilot {
     bool located() const { return located_; }
 
     const AutopilotSettings& settings() const { return settings_; }
+    /// The centreline it drives along (shared with the autopilots given the same one).
+    const std::vector<CenterlineSample>& centerline() const { return *centerline_; }
 
     /// The progress to save beside a world snapshot.
     AutopilotProgress progress() const { return {nearest_, laps_, located_}; }
@@ -83,7 +96,7 @@ class TRACKPHYS_API Autopilot {
     std::size_t find_nearest(const glm::dvec3& position) const;
     std::size_t sample_ahead(std::size_t from, double distance) const;
 
-    std::vector<CenterlineSample> centerline_;
+    SharedCenterline centerline_;
     std::vector<double> planned_speed_;
     double length_;
     AutopilotSettings settings_;

@@ -153,7 +153,7 @@ class TRACKPHYS_API RaceDrivers {
     double line_towards(std::size_t i, double lane, double dt) const;
     // The nearest car ahead of car i within lane_width of `line`, from `from` m (negative:
     // behind, alongside) to pass_look_ahead m along the track: which, how far ahead (m,
-    // infinite for none) and how fast car i closes in on it (m/s).
+    // infinite for none) and how fast car i closes in on it (m/s). Reads road_positions_.
     struct CarAhead {
         std::size_t car;
         double gap;
@@ -175,8 +175,9 @@ class TRACKPHYS_API RaceDrivers {
     CarSpec car_;
     RaceSettings settings_;
     std::vector<Autopilot> pilots_;
-    RaceProgress progress_;           // all but the autopilots' (pilots stays empty)
-    std::vector<double> next_lanes_;  // this update's, chosen before any is set
+    RaceProgress progress_;                     // all but the autopilots' (pilots stays empty)
+    std::vector<double> next_lanes_;            // this update's, chosen before any is set
+    std::vector<RoadPosition> road_positions_;  // every car's, during drive()
 };
 
 }  // namespace trackphys
