@@ -101,16 +101,20 @@ class EllipsoidCull {
     template <int>
     friend class EllipsoidCull;
 
+    // v in lane 0, shuffled to every lane: GCC 12 makes that one vbroadcastsd from v's place in
+    // memory, where filling the lanes one by one became a load, an unpack and a permute.
     [[gnu::always_inline]] static Lanes every(double v) {
-        Lanes lanes;
-        for (int k = 0; k < N; ++k) lanes[k] = v;
-        return lanes;
+        const Lanes first{v};
+        if constexpr (N == 2)
+            return __builtin_shufflevector(first, first, 0, 0);
+        else
+            return __builtin_shufflevector(first, first, 0, 0, 0, 0);
     }
+    // A shuffle, not a copy lane by lane, so that the wide vector's low half is read as it is
+    // (a copy kept the ellipsoid's scalars alive to spread them again).
     template <class WideLanes>
     [[gnu::always_inline]] static Lanes first_half(const WideLanes& v) {
-        Lanes lanes;
-        for (int k = 0; k < N; ++k) lanes[k] = v[k];
-        return lanes;
+        return __builtin_shufflevector(v, v, 0, 1);
     }
     [[gnu::always_inline]] static Mask to_bits(const Lanes& v) {
         return __builtin_bit_cast(Mask, v);
