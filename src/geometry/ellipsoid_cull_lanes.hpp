@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <limits>
 
@@ -67,21 +68,17 @@ class EllipsoidCull {
     /// Lane k: ellipsoid_depth_bound(*t[k], e).
     [[gnu::always_inline]] std::array<double, N> depth_bounds(
         const NormalizedTriangle* const (&t)[N]) const {
-        const Lanes3 origin = gather(t, &NormalizedTriangle::origin);
-        const Lanes3 local{center_[0] - origin.x, center_[1] - origin.y, center_[2] - origin.z};
-        const Lanes3 normal = gather(t, &NormalizedTriangle::normal);
-        const Lanes3 dir_x = gather(t, &NormalizedTriangle::dir_x);
-        const Lanes3 dir_y = gather(t, &NormalizedTriangle::dir_y);
-        const Lanes z = dot(normal, local);
-        const Lanes x = dot(dir_x, local);
-        const Lanes y = dot(dir_y, local);
-        const Lanes hz = extent(normal);
-        const Lanes hx = extent(dir_x);
-        const Lanes hy = extent(dir_y);
-        const Lanes x1 = gather(t, &NormalizedTriangle::x1);
-        const Lanes y2 = gather(t, &NormalizedTriangle::y2);
+        const Frames f = gather(t);
+        const Lanes3 local{center_[0] - f.origin.x, center_[1] - f.origin.y,
+                           center_[2] - f.origin.z};
+        const Lanes z = dot(f.normal, local);
+        const Lanes x = dot(f.dir_x, local);
+        const Lanes y = dot(f.dir_y, local);
+        const Lanes hz = extent(f.normal);
+        const Lanes hx = extent(f.dir_x);
+        const Lanes hy = extent(f.dir_y);
         const Mask apart =
-            (z > hz) | (z < -hz) | (x < -hx) | (x > x1 + hx) | (y < -hy) | (y > y2 + hy);
+            (z > hz) | (z < -hz) | (x < -hx) | (x > f.x1 + hx) | (y < -hy) | (y > f.y2 + hy);
         // hz - |z|, or -infinity where apart: |z| and the choice by bits, as fabs and the
         // scalar's ?: give them.
         const Mask depth = to_bits(hz - from_bits(to_bits(z) & ~kSign));
@@ -94,6 +91,13 @@ class EllipsoidCull {
     using Mask = decltype(Lanes{} < Lanes{});  // all ones in a lane where it holds
     struct Lanes3 {
         Lanes x, y, z;
+    };
+    struct Frames {
+        Lanes3 origin, dir_x, dir_y, normal;
+        Lanes x1, y2;
+    };
+    struct Columns4 {
+        Lanes c0, c1, c2, c3;
     };
     static constexpr double kApart = -std::numeric_limits<double>::infinity();
     static constexpr std::int64_t kSign = std::numeric_limits<std::int64_t>::min();  // bit 63
@@ -138,6 +142,53 @@ class EllipsoidCull {
             v.z[k] = p.z;
         }
         return v;
+    }
+    // Doubles i to i + 3 of a frame (its layout is checked in gather).
+    [[gnu::always_inline]] static Lanes row(const NormalizedTriangle* t, std::size_t i) {
+        using Row = double __attribute__((vector_size(32), aligned(alignof(double)), may_alias));
+        return *reinterpret_cast<const Row*>(reinterpret_cast<const char*>(t) + i * sizeof(double));
+    }
+    // Doubles i to i + 3 of the four frames, transposed: column c holds each frame's double
+    // i + c. Four 32-byte loads and eight shuffles give four values of the four frames, where a
+    // value at a time took a load, a load-high and an insert for each two.
+    [[gnu::always_inline]] static Columns4 transposed(const NormalizedTriangle* const (&t)[4],
+                                                      std::size_t i) {
+        const Lanes r0 = row(t[0], i), r1 = row(t[1], i), r2 = row(t[2], i), r3 = row(t[3], i);
+        const Lanes even01 = __builtin_shufflevector(r0, r1, 0, 4, 2, 6);
+        const Lanes odd01 = __builtin_shufflevector(r0, r1, 1, 5, 3, 7);
+        const Lanes even23 = __builtin_shufflevector(r2, r3, 0, 4, 2, 6);
+        const Lanes odd23 = __builtin_shufflevector(r2, r3, 1, 5, 3, 7);
+        return {__builtin_shufflevector(even01, even23, 0, 1, 4, 5),
+                __builtin_shufflevector(odd01, odd23, 0, 1, 4, 5),
+                __builtin_shufflevector(even01, even23, 2, 3, 6, 7),
+                __builtin_shufflevector(odd01, odd23, 2, 3, 6, 7)};
+    }
+    // The frames' values the bound reads, frame k in lane k. Four lanes read each frame as
+    // the 15 doubles it is laid out as, in rows of four (the last row, doubles 11-14, ends at
+    // the frame's end); two lanes a value at a time, a load and a load-high each.
+    [[gnu::always_inline]] static Frames gather(const NormalizedTriangle* const (&t)[N]) {
+        if constexpr (N == 4) {
+            using F = NormalizedTriangle;
+            constexpr std::size_t d = sizeof(double);
+            static_assert(sizeof(F) == 15 * d && offsetof(F, origin) == 0 &&
+                          offsetof(F, dir_x) == 3 * d && offsetof(F, dir_y) == 6 * d &&
+                          offsetof(F, normal) == 9 * d && offsetof(F, x1) == 12 * d &&
+                          offsetof(F, y2) == 14 * d);
+            const Columns4 a = transposed(t, 0);
+            const Columns4 b = transposed(t, 4);
+            const Columns4 c = transposed(t, 8);
+            const Columns4 d11 = transposed(t, 11);
+            return {{a.c0, a.c1, a.c2},
+                    {a.c3, b.c0, b.c1},
+                    {b.c2, b.c3, c.c0},
+                    {c.c1, c.c2, c.c3},
+                    d11.c1,
+                    d11.c3};
+        } else {
+            return {gather(t, &NormalizedTriangle::origin), gather(t, &NormalizedTriangle::dir_x),
+                    gather(t, &NormalizedTriangle::dir_y),  gather(t, &NormalizedTriangle::normal),
+                    gather(t, &NormalizedTriangle::x1),     gather(t, &NormalizedTriangle::y2)};
+        }
     }
     // glm::dot's order: (x + y) + z.
     [[gnu::always_inline]] static Lanes dot(const Lanes3& u, const Lanes3& v) {
