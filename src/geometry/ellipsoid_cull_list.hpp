@@ -55,6 +55,14 @@ template <class Candidate, class Keep>
 }
 #endif
 
+/// cull_listed in two lanes, out of line like the four-lane one: inlined where the cull's
+/// width is chosen, it lengthened the caller's own loop by a path no AVX2 CPU takes.
+template <class Candidate, class Keep>
+[[gnu::noinline]] void cull_listed_two_lanes(const Ellipsoid& e, std::span<const Candidate> listed,
+                                             Keep& keep) {
+    cull_listed<2>(e, listed, keep);
+}
+
 /// cull_listed in the widest lanes this CPU runs: four with AVX2, else two (SSE2).
 template <class Candidate, class Keep>
 void cull_listed_widest([[maybe_unused]] bool avx2, const Ellipsoid& e,
@@ -62,7 +70,7 @@ void cull_listed_widest([[maybe_unused]] bool avx2, const Ellipsoid& e,
 #if defined(__x86_64__) || defined(__i386__)
     if (avx2) return cull_listed_avx2(e, listed, keep);
 #endif
-    cull_listed<2>(e, listed, keep);
+    cull_listed_two_lanes(e, listed, keep);
 }
 
 }  // namespace trackphys::detail
