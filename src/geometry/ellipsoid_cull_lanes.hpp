@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 
 #include "trackphys/geometry/ellipsoid.hpp"
@@ -82,8 +83,11 @@ class EllipsoidCull {
         // hz - |z|, or -infinity where apart: |z| and the choice by bits, as fabs and the
         // scalar's ?: give them.
         const Mask depth = to_bits(hz - from_bits(to_bits(z) & ~kSign));
-        return __builtin_bit_cast(std::array<double, N>,
-                                  (depth & ~apart) | (to_bits(every(kApart)) & apart));
+        const Lanes bounds = from_bits((depth & ~apart) | (to_bits(every(kApart)) & apart));
+        // Stored as it is: a bit_cast to the array went through general registers and the stack.
+        std::array<double, N> out;
+        std::memcpy(out.data(), &bounds, sizeof bounds);
+        return out;
     }
 
   private:
