@@ -53,19 +53,6 @@ class EllipsoidCull {
         }
     }
 
-    /// The first N lanes of a wider cull of the same ellipsoid: a list's short tail goes
-    /// into fewer lanes without spreading the ellipsoid again.
-    template <int Wide>
-    [[gnu::always_inline]] explicit EllipsoidCull(const EllipsoidCull<Wide>& wide) {
-        static_assert(Wide == 2 * N);
-        for (int j = 0; j < 3; ++j) {
-            center_[j] = first_half(wide.center_[j]);
-            radii_[j] = first_half(wide.radii_[j]);
-            axes_[j] = {first_half(wide.axes_[j].x), first_half(wide.axes_[j].y),
-                        first_half(wide.axes_[j].z)};
-        }
-    }
-
     /// Lane k: ellipsoid_depth_bound(*t[k], e).
     [[gnu::always_inline]] std::array<double, N> depth_bounds(
         const NormalizedTriangle* const (&t)[N]) const {
@@ -106,9 +93,6 @@ class EllipsoidCull {
     static constexpr double kApart = -std::numeric_limits<double>::infinity();
     static constexpr std::int64_t kSign = std::numeric_limits<std::int64_t>::min();  // bit 63
 
-    template <int>
-    friend class EllipsoidCull;
-
     // v in lane 0, shuffled to every lane: GCC 12 makes that one vbroadcastsd from v's place in
     // memory, where filling the lanes one by one became a load, an unpack and a permute.
     [[gnu::always_inline]] static Lanes every(double v) {
@@ -117,12 +101,6 @@ class EllipsoidCull {
             return __builtin_shufflevector(first, first, 0, 0);
         else
             return __builtin_shufflevector(first, first, 0, 0, 0, 0);
-    }
-    // A shuffle, not a copy lane by lane, so that the wide vector's low half is read as it is
-    // (a copy kept the ellipsoid's scalars alive to spread them again).
-    template <class WideLanes>
-    [[gnu::always_inline]] static Lanes first_half(const WideLanes& v) {
-        return __builtin_shufflevector(v, v, 0, 1);
     }
     [[gnu::always_inline]] static Mask to_bits(const Lanes& v) {
         return __builtin_bit_cast(Mask, v);

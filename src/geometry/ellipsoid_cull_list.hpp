@@ -23,9 +23,9 @@ template <int N, class Candidate, class Keep>
         if (bounds[j] > 0.0) keep(listed[j], bounds[j]);
 }
 
-/// cull_block over one ellipsoid's list, N at a time, but a tail that fits in half the lanes
-/// goes there: a wheel's 4 + 1 or a body's one or two triangles cost less than in four lanes.
-/// Whole blocks and the tail are separate calls, so that a whole block's count is known.
+/// cull_block over one ellipsoid's list, N at a time, then its tail in N lanes too: with the
+/// frames read in rows, a block of four costs no more instructions than one of two. Whole
+/// blocks and the tail are separate calls, so that a whole block's count is known.
 template <int N, class Candidate, class Keep>
 [[gnu::always_inline]] inline void cull_listed(const Ellipsoid& e,
                                                std::span<const Candidate> listed, Keep& keep) {
@@ -34,12 +34,7 @@ template <int N, class Candidate, class Keep>
     const std::size_t tail = listed.size() % N;
     const std::size_t whole = listed.size() - tail;
     for (std::size_t k = 0; k < whole; k += N) cull_block(cull, &listed[k], N, keep);
-    if (tail == 0) return;
-    if constexpr (N > 2) {
-        if (tail <= N / 2)
-            return cull_block(EllipsoidCull<N / 2>(cull), &listed[whole], tail, keep);
-    }
-    cull_block(cull, &listed[whole], tail, keep);
+    if (tail != 0) cull_block(cull, &listed[whole], tail, keep);
 }
 
 #if defined(__x86_64__) || defined(__i386__)
