@@ -2,7 +2,9 @@
 
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 
 #include "trackphys/geometry/ellipsoid.hpp"
@@ -51,42 +53,28 @@ class EllipsoidCull {
         }
     }
 
-    /// The first N lanes of a wider cull of the same ellipsoid: a list's short tail goes
-    /// into fewer lanes without spreading the ellipsoid again.
-    template <int Wide>
-    [[gnu::always_inline]] explicit EllipsoidCull(const EllipsoidCull<Wide>& wide) {
-        static_assert(Wide == 2 * N);
-        for (int j = 0; j < 3; ++j) {
-            center_[j] = first_half(wide.center_[j]);
-            radii_[j] = first_half(wide.radii_[j]);
-            axes_[j] = {first_half(wide.axes_[j].x), first_half(wide.axes_[j].y),
-                        first_half(wide.axes_[j].z)};
-        }
-    }
-
     /// Lane k: ellipsoid_depth_bound(*t[k], e).
     [[gnu::always_inline]] std::array<double, N> depth_bounds(
         const NormalizedTriangle* const (&t)[N]) const {
-        const Lanes3 origin = gather(t, &NormalizedTriangle::origin);
-        const Lanes3 local{center_[0] - origin.x, center_[1] - origin.y, center_[2] - origin.z};
-        const Lanes3 normal = gather(t, &NormalizedTriangle::normal);
-        const Lanes3 dir_x = gather(t, &NormalizedTriangle::dir_x);
-        const Lanes3 dir_y = gather(t, &NormalizedTriangle::dir_y);
-        const Lanes z = dot(normal, local);
-        const Lanes x = dot(dir_x, local);
-        const Lanes y = dot(dir_y, local);
-        const Lanes hz = extent(normal);
-        const Lanes hx = extent(dir_x);
-        const Lanes hy = extent(dir_y);
-        const Lanes x1 = gather(t, &NormalizedTriangle::x1);
-        const Lanes y2 = gather(t, &NormalizedTriangle::y2);
+        const Frames f = gather(t);
+        const Lanes3 local{center_[0] - f.origin.x, center_[1] - f.origin.y,
+                           center_[2] - f.origin.z};
+        const Lanes z = dot(f.normal, local);
+        const Lanes x = dot(f.dir_x, local);
+        const Lanes y = dot(f.dir_y, local);
+        const Lanes hz = extent(f.normal);
+        const Lanes hx = extent(f.dir_x);
+        const Lanes hy = extent(f.dir_y);
         const Mask apart =
-            (z > hz) | (z < -hz) | (x < -hx) | (x > x1 + hx) | (y < -hy) | (y > y2 + hy);
+            (z > hz) | (z < -hz) | (x < -hx) | (x > f.x1 + hx) | (y < -hy) | (y > f.y2 + hy);
         // hz - |z|, or -infinity where apart: |z| and the choice by bits, as fabs and the
         // scalar's ?: give them.
         const Mask depth = to_bits(hz - from_bits(to_bits(z) & ~kSign));
-        return __builtin_bit_cast(std::array<double, N>,
-                                  (depth & ~apart) | (to_bits(every(kApart)) & apart));
+        const Lanes bounds = from_bits((depth & ~apart) | (to_bits(every(kApart)) & apart));
+        // Stored as it is: a bit_cast to the array went through general registers and the stack.
+        std::array<double, N> out;
+        std::memcpy(out.data(), &bounds, sizeof bounds);
+        return out;
     }
 
   private:
@@ -95,22 +83,24 @@ class EllipsoidCull {
     struct Lanes3 {
         Lanes x, y, z;
     };
+    struct Frames {
+        Lanes3 origin, dir_x, dir_y, normal;
+        Lanes x1, y2;
+    };
+    struct Columns4 {
+        Lanes c0, c1, c2, c3;
+    };
     static constexpr double kApart = -std::numeric_limits<double>::infinity();
     static constexpr std::int64_t kSign = std::numeric_limits<std::int64_t>::min();  // bit 63
 
-    template <int>
-    friend class EllipsoidCull;
-
+    // v in lane 0, shuffled to every lane: GCC 12 makes that one vbroadcastsd from v's place in
+    // memory, where filling the lanes one by one became a load, an unpack and a permute.
     [[gnu::always_inline]] static Lanes every(double v) {
-        Lanes lanes;
-        for (int k = 0; k < N; ++k) lanes[k] = v;
-        return lanes;
-    }
-    template <class WideLanes>
-    [[gnu::always_inline]] static Lanes first_half(const WideLanes& v) {
-        Lanes lanes;
-        for (int k = 0; k < N; ++k) lanes[k] = v[k];
-        return lanes;
+        const Lanes first{v};
+        if constexpr (N == 2)
+            return __builtin_shufflevector(first, first, 0, 0);
+        else
+            return __builtin_shufflevector(first, first, 0, 0, 0, 0);
     }
     [[gnu::always_inline]] static Mask to_bits(const Lanes& v) {
         return __builtin_bit_cast(Mask, v);
@@ -134,6 +124,53 @@ class EllipsoidCull {
             v.z[k] = p.z;
         }
         return v;
+    }
+    // Doubles i to i + 3 of a frame (its layout is checked in gather).
+    [[gnu::always_inline]] static Lanes row(const NormalizedTriangle* t, std::size_t i) {
+        using Row = double __attribute__((vector_size(32), aligned(alignof(double)), may_alias));
+        return *reinterpret_cast<const Row*>(reinterpret_cast<const char*>(t) + i * sizeof(double));
+    }
+    // Doubles i to i + 3 of the four frames, transposed: column c holds each frame's double
+    // i + c. Four 32-byte loads and eight shuffles give four values of the four frames, where a
+    // value at a time took a load, a load-high and an insert for each two.
+    [[gnu::always_inline]] static Columns4 transposed(const NormalizedTriangle* const (&t)[4],
+                                                      std::size_t i) {
+        const Lanes r0 = row(t[0], i), r1 = row(t[1], i), r2 = row(t[2], i), r3 = row(t[3], i);
+        const Lanes even01 = __builtin_shufflevector(r0, r1, 0, 4, 2, 6);
+        const Lanes odd01 = __builtin_shufflevector(r0, r1, 1, 5, 3, 7);
+        const Lanes even23 = __builtin_shufflevector(r2, r3, 0, 4, 2, 6);
+        const Lanes odd23 = __builtin_shufflevector(r2, r3, 1, 5, 3, 7);
+        return {__builtin_shufflevector(even01, even23, 0, 1, 4, 5),
+                __builtin_shufflevector(odd01, odd23, 0, 1, 4, 5),
+                __builtin_shufflevector(even01, even23, 2, 3, 6, 7),
+                __builtin_shufflevector(odd01, odd23, 2, 3, 6, 7)};
+    }
+    // The frames' values the bound reads, frame k in lane k. Four lanes read each frame as
+    // the 15 doubles it is laid out as, in rows of four (the last row, doubles 11-14, ends at
+    // the frame's end); two lanes a value at a time, a load and a load-high each.
+    [[gnu::always_inline]] static Frames gather(const NormalizedTriangle* const (&t)[N]) {
+        if constexpr (N == 4) {
+            using F = NormalizedTriangle;
+            constexpr std::size_t d = sizeof(double);
+            static_assert(sizeof(F) == 15 * d && offsetof(F, origin) == 0 &&
+                          offsetof(F, dir_x) == 3 * d && offsetof(F, dir_y) == 6 * d &&
+                          offsetof(F, normal) == 9 * d && offsetof(F, x1) == 12 * d &&
+                          offsetof(F, y2) == 14 * d);
+            const Columns4 a = transposed(t, 0);
+            const Columns4 b = transposed(t, 4);
+            const Columns4 c = transposed(t, 8);
+            const Columns4 d11 = transposed(t, 11);
+            return {{a.c0, a.c1, a.c2},
+                    {a.c3, b.c0, b.c1},
+                    {b.c2, b.c3, c.c0},
+                    {c.c1, c.c2, c.c3},
+                    d11.c1,
+                    d11.c3};
+        } else {
+            return {gather(t, &NormalizedTriangle::origin), gather(t, &NormalizedTriangle::dir_x),
+                    gather(t, &NormalizedTriangle::dir_y),  gather(t, &NormalizedTriangle::normal),
+                    gather(t, &NormalizedTriangle::x1),     gather(t, &NormalizedTriangle::y2)};
+        }
     }
     // glm::dot's order: (x + y) + z.
     [[gnu::always_inline]] static Lanes dot(const Lanes3& u, const Lanes3& v) {

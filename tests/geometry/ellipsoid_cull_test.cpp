@@ -187,7 +187,7 @@ struct Listed {
 
 // World's cull of one ellipsoid's list keeps exactly the triangles whose scalar bound is
 // above zero, with that bound, in list order, at every list length: whole blocks of lanes
-// and every tail, which repeats a triangle or drops to two lanes.
+// and every tail, which repeats its last triangle in the lanes left over.
 template <class Cull>
 void expect_the_list_culled_as_scalar(Cull cull) {
     test::ContactCaseGenerator cases(2718);
