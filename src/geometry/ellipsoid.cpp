@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <sstream>
 #include <utility>
 
@@ -83,8 +84,15 @@ PlacingRotation::PlacingRotation(const glm::dquat& rotation)
 
 PlacingRotation::PlacingRotation(const glm::dquat& rotation, const glm::dmat3& rotation_matrix)
     : quaternion(rotation), matrix(rotation_matrix) {
-    // Not NaN, not infinite (whose product by zero is NaN), not a zero of either sign.
+    // The product of the 13 is a finite non-zero only if each is (a zero makes it zero or
+    // NaN, an infinity infinite or NaN, a NaN NaN), which answers for nearly every rotation
+    // at once; a zero or infinite product may be an underflow or overflow: ask each entry.
+    double product = rotation.w * rotation.x * rotation.y * rotation.z;
+    for (int k = 0; k < 3; ++k)
+        product *= rotation_matrix[k].x * rotation_matrix[k].y * rotation_matrix[k].z;
     const auto usable = [](double v) { return std::abs(v) > 0.0 && std::isfinite(v); };
+    entries_nonzero = usable(product);
+    if (entries_nonzero || std::isnan(product)) return;
     entries_nonzero =
         usable(rotation.w) && usable(rotation.x) && usable(rotation.y) && usable(rotation.z);
     for (int k = 0; k < 3; ++k)
@@ -109,7 +117,9 @@ void Ellipsoid::place_copy(Ellipsoid& copy, const PlacingRotation& rotation,
               "Ellipsoid::place_copy: the slot is not a copy of this ellipsoid");
     copy.center_ = rotation.matrix * center_ + translation;
     // Unrotated, the sorted axes' entries are exactly 0 and +-1 (mat3_cast of the identity).
-    if (rotation.entries_nonzero && orientation_ == glm::dquat(1.0, 0.0, 0.0, 0.0)) {
+    // The identity's bits: one given with a -0 takes the products.
+    static const glm::dquat identity(1.0, 0.0, 0.0, 0.0);
+    if (rotation.entries_nonzero && std::memcmp(&orientation_, &identity, sizeof identity) == 0) {
         copy.orientation_ = rotation.quaternion;
         for (int k = 0; k < 3; ++k) {
             const glm::dvec3& axis = sorted_axes_[k];
