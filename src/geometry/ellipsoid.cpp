@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <sstream>
 #include <utility>
 
@@ -78,6 +79,27 @@ Ellipsoid::Ellipsoid(Unchecked, const glm::dvec3& center, const glm::dquat& orie
         sorted_axes_[2] = -sorted_axes_[2];
 }
 
+PlacingRotation::PlacingRotation(const glm::dquat& rotation)
+    : PlacingRotation(rotation, glm::mat3_cast(rotation)) {}
+
+PlacingRotation::PlacingRotation(const glm::dquat& rotation, const glm::dmat3& rotation_matrix)
+    : quaternion(rotation), matrix(rotation_matrix) {
+    // The product of the 13 is a finite non-zero only if each is (a zero makes it zero or
+    // NaN, an infinity infinite or NaN, a NaN NaN), which answers for nearly every rotation
+    // at once; a zero or infinite product may be an underflow or overflow: ask each entry.
+    double product = rotation.w * rotation.x * rotation.y * rotation.z;
+    for (int k = 0; k < 3; ++k)
+        product *= rotation_matrix[k].x * rotation_matrix[k].y * rotation_matrix[k].z;
+    const auto usable = [](double v) { return std::abs(v) > 0.0 && std::isfinite(v); };
+    entries_nonzero = usable(product);
+    if (entries_nonzero || std::isnan(product)) return;
+    entries_nonzero =
+        usable(rotation.w) && usable(rotation.x) && usable(rotation.y) && usable(rotation.z);
+    for (int k = 0; k < 3; ++k)
+        entries_nonzero = entries_nonzero && usable(rotation_matrix[k].x) &&
+                          usable(rotation_matrix[k].y) && usable(rotation_matrix[k].z);
+}
+
 Ellipsoid Ellipsoid::transformed(const glm::dquat& rotation, const glm::dvec3& translation) const {
     Ellipsoid moved = *this;
     place_copy(moved, rotation, glm::mat3_cast(rotation), translation);
@@ -86,11 +108,28 @@ Ellipsoid Ellipsoid::transformed(const glm::dquat& rotation, const glm::dvec3& t
 
 void Ellipsoid::place_copy(Ellipsoid& copy, const glm::dquat& rotation,
                            const glm::dmat3& rotation_matrix, const glm::dvec3& translation) const {
+    place_copy(copy, PlacingRotation(rotation, rotation_matrix), translation);
+}
+
+void Ellipsoid::place_copy(Ellipsoid& copy, const PlacingRotation& rotation,
+                           const glm::dvec3& translation) const {
     TP_ASSERT(copy.semi_axes_ == semi_axes_ && copy.sorted_radii_ == sorted_radii_,
               "Ellipsoid::place_copy: the slot is not a copy of this ellipsoid");
-    copy.center_ = rotation_matrix * center_ + translation;
-    copy.orientation_ = rotation * orientation_;
-    copy.sorted_axes_ = rotation_matrix * sorted_axes_;
+    copy.center_ = rotation.matrix * center_ + translation;
+    // Unrotated, the sorted axes' entries are exactly 0 and +-1 (mat3_cast of the identity).
+    // The identity's bits: one given with a -0 takes the products.
+    static const glm::dquat identity(1.0, 0.0, 0.0, 0.0);
+    if (rotation.entries_nonzero && std::memcmp(&orientation_, &identity, sizeof identity) == 0) {
+        copy.orientation_ = rotation.quaternion;
+        for (int k = 0; k < 3; ++k) {
+            const glm::dvec3& axis = sorted_axes_[k];
+            const int along = axis.x != 0.0 ? 0 : axis.y != 0.0 ? 1 : 2;
+            copy.sorted_axes_[k] = rotation.matrix[along] * axis[along];
+        }
+        return;
+    }
+    copy.orientation_ = rotation.quaternion * orientation_;
+    copy.sorted_axes_ = rotation.matrix * sorted_axes_;
 }
 
 glm::dvec3 Ellipsoid::to_sorted_local(const glm::dvec3& world_point) const {

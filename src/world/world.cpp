@@ -236,7 +236,7 @@ void World::list_step_candidates(CarSlot& slot, int steps_left, PhaseStopwatch& 
 // Placing is a tenth of a car's update: a lone car's body ellipsoids, which list no
 // triangles on a clean lap, are left where they were; car pairs need every one (every).
 void World::place_ellipsoids(CarSlot& slot, bool every) {
-    const glm::dmat3 orientation = glm::mat3_cast(slot.car.state().orientation);
+    const PlacingRotation orientation(slot.car.state().orientation);
     for (std::size_t i = 0; i < slot.placed.size(); ++i)
         if (every || !slot.listed[i].candidates().empty())
             slot.car.place_ellipsoid(i, orientation, slot.placed[i]);

@@ -1,8 +1,11 @@
 #include "trackphys/geometry/ellipsoid.hpp"
 
+#include <array>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <random>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -87,6 +90,57 @@ TEST(Ellipsoid, TransformedEqualsBuildingTheMovedEllipsoid) {
         const glm::dvec3 p(normal(rng), normal(rng), normal(rng));
         ASSERT_LE(glm::length(moved.to_sorted_local(p) - rebuilt.to_sorted_local(p)), 1e-12);
     }
+}
+
+template <typename T>
+bool same_bits(const T& a, const T& b) {
+    return std::memcmp(&a, &b, sizeof a) == 0;
+}
+
+// Placing copies the rotation's entries into an unrotated ellipsoid rather than multiplying
+// by its axes' ones and zeros when no entry is a zero, which glm's sums would sign by other
+// rules: every placing must give the bits of glm's products, zeros of either sign included.
+TEST(Ellipsoid, PlacingGivesTheBitsOfGlmsProducts) {
+    std::mt19937_64 rng(11);
+    std::normal_distribution<double> normal;
+    std::uniform_int_distribution<int> pick(0, 15);
+    // Every order of the radii (ties too), unrotated, and one rotated ellipsoid.
+    const std::array<glm::dvec3, 8> axes = {{{0.15, 0.35, 0.35},
+                                             {0.35, 0.15, 0.35},
+                                             {0.35, 0.35, 0.15},
+                                             {0.8, 0.25, 0.6},
+                                             {0.25, 0.8, 0.6},
+                                             {0.6, 0.25, 0.8},
+                                             {0.25, 0.6, 0.8},
+                                             {1.0, 1.0, 1.0}}};
+    std::vector<Ellipsoid> bodies;
+    for (const glm::dvec3& a : axes) bodies.emplace_back(glm::dvec3(0.9, -0.15, 0.0), identity, a);
+    bodies.emplace_back(glm::dvec3(0.0, 0.1, -1.7), glm::dquat(0.9, 0.1, -0.2, 0.3), axes[3]);
+    int copied = 0;
+    for (int trial = 0; trial < 4000; ++trial) {
+        // Some components zero, of either sign, as a car standing level has.
+        const int zeros = trial % 2 ? pick(rng) : 0;
+        std::array<double, 4> q;
+        for (int c = 0; c < 4; ++c)
+            q[c] = zeros >> c & 1 ? (pick(rng) % 2 ? 0.0 : -0.0) : normal(rng);
+        if (zeros == 15) q[0] = 1.0;
+        const glm::dquat rotation = glm::normalize(glm::dquat(q[0], q[1], q[2], q[3]));
+        const glm::dmat3 matrix = glm::mat3_cast(rotation);
+        const PlacingRotation placing(rotation);
+        copied += placing.entries_nonzero;
+        const glm::dvec3 translation(normal(rng) * 100.0, normal(rng), normal(rng));
+        for (const Ellipsoid& body : bodies) {
+            Ellipsoid placed = body;
+            body.place_copy(placed, placing, translation);
+            ASSERT_TRUE(same_bits(placed.center(), matrix * body.center() + translation));
+            ASSERT_TRUE(same_bits(placed.orientation(), rotation * body.orientation()))
+                << "trial " << trial;
+            ASSERT_TRUE(same_bits(placed.sorted_axes(), matrix * body.sorted_axes()))
+                << "trial " << trial;
+            ASSERT_TRUE(same_bits(placed.sorted_radii(), body.sorted_radii()));
+        }
+    }
+    EXPECT_GT(copied, 1000);  // the copies were tested, not only the products
 }
 
 TEST(Ellipsoid, RejectsInvalidInputWithAMessage) {

@@ -64,18 +64,21 @@ class TRACKPHYS_API Car {
     /// The same with the orientation's matrix given, glm::mat3_cast(state().orientation), for
     /// a caller that places every ellipsoid of one state.
     Ellipsoid world_ellipsoid(std::size_t i, const glm::dmat3& orientation_matrix) const {
+        return world_ellipsoid(i, PlacingRotation(state_.orientation, orientation_matrix));
+    }
+    /// The same with the orientation given as a PlacingRotation of state().orientation.
+    Ellipsoid world_ellipsoid(std::size_t i, const PlacingRotation& orientation) const {
         Ellipsoid placed = shape_->body[i];
-        place_ellipsoid(i, orientation_matrix, placed);
+        place_ellipsoid(i, orientation, placed);
         return placed;
     }
     /// The same written into `placed`, a copy of world_ellipsoid(i) of any state, with the
-    /// orientation's matrix given, glm::mat3_cast(state().orientation): a car places all its
-    /// ellipsoids of one state with one matrix, each into its own slot
+    /// orientation given, PlacingRotation(state().orientation): a car places all its
+    /// ellipsoids of one state with one rotation, each into its own slot
     /// (Ellipsoid::place_copy).
-    void place_ellipsoid(std::size_t i, const glm::dmat3& orientation_matrix,
+    void place_ellipsoid(std::size_t i, const PlacingRotation& orientation,
                          Ellipsoid& placed) const {
-        shape_->body[i].place_copy(placed, state_.orientation, orientation_matrix,
-                                   state_.position + lifted(suspension_[i]));
+        shape_->body[i].place_copy(placed, orientation, state_.position + lifted(suspension_[i]));
     }
     /// Suspension compression of ellipsoid i from full droop (m; always 0 for the body).
     double suspension(std::size_t i) const { return suspension_[i]; }

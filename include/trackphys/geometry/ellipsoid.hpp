@@ -12,6 +12,21 @@
 
 namespace trackphys {
 
+/// A rotation that places ellipsoids (Ellipsoid::place_copy): a unit quaternion, its matrix
+/// glm::mat3_cast(quaternion) bit for bit, and whether all 13 entries of the two are finite
+/// and non-zero. An unrotated ellipsoid's sorted axes are coordinate axes, some negated, and
+/// turned by such a rotation glm's products by their ones and zeros come out as the
+/// quaternion itself and the matrix's columns, bit for bit (x * 1 + y * 0 + z * 0 is x for
+/// a finite non-zero x): placing then copies them rather than multiplying.
+struct TRACKPHYS_API PlacingRotation {
+    explicit PlacingRotation(const glm::dquat& rotation);
+    PlacingRotation(const glm::dquat& rotation, const glm::dmat3& rotation_matrix);
+
+    glm::dquat quaternion;
+    glm::dmat3 matrix;
+    bool entries_nonzero;
+};
+
 /// A solid ellipsoid: center c, orientation Q (maps local to world) and semi-axes along
 /// the local x, y, z axes, in any order.
 ///
@@ -60,6 +75,10 @@ class TRACKPHYS_API Ellipsoid {
     /// car places all its ellipsoids with one matrix, each into its slot, and writes only
     /// what a motion changes (centre, orientation, sorted axes), not the radii.
     void place_copy(Ellipsoid& copy, const glm::dquat& rotation, const glm::dmat3& rotation_matrix,
+                    const glm::dvec3& translation) const;
+    /// The same with the rotation's matrix and entries checked once for every ellipsoid it
+    /// places.
+    void place_copy(Ellipsoid& copy, const PlacingRotation& rotation,
                     const glm::dvec3& translation) const;
 
     /// Radius of the smallest sphere about center() that holds the ellipsoid (m).
