@@ -245,13 +245,15 @@ void World::place_ellipsoids(CarSlot& slot, bool every) {
 namespace {
 
 // Nearly every exact test is a wheel standing on a road triangle: the face certificate
-// answers it from the frame the cull read, and only the rest fetch the triangle's own
-// vertices for the kernel.
-Contact exact_contact(const StaticWorld& statics, const TriangleRef& ref,
-                      const NormalizedTriangle& frame, const Ellipsoid& ellipsoid) {
-    if (const std::optional<Contact> face = certified_face_contact(frame, ellipsoid)) return *face;
-    return ellipsoid_triangle_contact(ellipsoid,
-                                      statics.collider(ref.collider).triangle(ref.triangle));
+// answers it from the frame the cull read, with the support along its normal, and only the
+// rest fetch the triangle's own vertices for the kernel.
+ContactWithSupport exact_contact(const StaticWorld& statics, const TriangleRef& ref,
+                                 const NormalizedTriangle& frame, const Ellipsoid& ellipsoid) {
+    if (const std::optional<ContactWithSupport> face = certified_face_contact(frame, ellipsoid))
+        return *face;
+    const Contact contact = ellipsoid_triangle_contact(
+        ellipsoid, statics.collider(ref.collider).triangle(ref.triangle));
+    return {contact, support_extent(ellipsoid, contact.normal)};
 }
 
 }  // namespace
@@ -325,12 +327,12 @@ void World::find_contacts(CarSlot& slot, PhaseStopwatch& watch) {
                     if (bound + kKernelError <= deepest.depth) continue;
                 }
             }
-            const Contact contact = exact_contact(*statics_, s.ref, frame, ellipsoid);
+            const ContactWithSupport contact = exact_contact(*statics_, s.ref, frame, ellipsoid);
             known.remember(s.ref, contact.normal);
             ++watch.profile().exact_tests;
             if (contact.depth > deepest.depth) {
                 deepest = contact;
-                deepest_support = support_extent(ellipsoid, contact.normal);
+                deepest_support = contact.support;
                 slot.deepest_ref[i] = s.ref;
             }
         }
