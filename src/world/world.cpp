@@ -246,9 +246,13 @@ namespace {
 
 // Nearly every exact test is a wheel standing on a road triangle: the face certificate
 // answers it from the frame the cull read, with the support along its normal, and only the
-// rest fetch the triangle's own vertices for the kernel.
-ContactWithSupport exact_contact(const StaticWorld& statics, const TriangleRef& ref,
-                                 const NormalizedTriangle& frame, const Ellipsoid& ellipsoid) {
+// rest fetch the triangle's own vertices for the kernel. Out of line: inlined, its
+// registers and the survivors' loop's do not fit in 16, and GCC copies each survivor's frame
+// to the stack, the bounded ones' too.
+[[gnu::noinline]] ContactWithSupport exact_contact(const StaticWorld& statics,
+                                                   const TriangleRef& ref,
+                                                   const NormalizedTriangle& frame,
+                                                   const Ellipsoid& ellipsoid) {
     if (const std::optional<ContactWithSupport> face = certified_face_contact(frame, ellipsoid))
         return *face;
     const Contact contact = ellipsoid_triangle_contact(
