@@ -279,7 +279,9 @@ void World::find_contacts(CarSlot& slot, PhaseStopwatch& watch) {
     const bool avx2 = detail::cpu_has_avx2();
     for (std::size_t i = 0; i < ellipsoids; ++i) {
         const std::vector<MidPhaseCandidate>& listed = slot.listed[i].candidates();
-        detail::cull_listed_widest(avx2, slot.placed[i], std::span(listed), keep);
+        // Half the calls would be for nothing: a lone car's body ellipsoids list no triangles.
+        if (!listed.empty())
+            detail::cull_listed_widest(avx2, slot.placed[i], std::span(listed), keep);
         slot.kept_start[i + 1] = static_cast<std::uint32_t>(all_kept.size());
         watch.profile().culled_tests += listed.size();
     }
