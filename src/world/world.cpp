@@ -299,8 +299,7 @@ void World::find_contacts(CarSlot& slot, PhaseStopwatch& watch) {
         // Last sub-step's deepest triangle is most likely the deepest again; else the one
         // with the deepest bound.
         auto first = std::find_if(kept.begin(), kept.end(), [&](const Survivor& s) {
-            return s.ref.collider == slot.deepest_ref[i].collider &&
-                   s.ref.triangle == slot.deepest_ref[i].triangle;
+            return CarSlot::same_triangle(s.ref, slot.deepest_ref[i]);
         });
         if (first == kept.end())
             first = std::max_element(
