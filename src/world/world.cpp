@@ -245,13 +245,19 @@ void World::place_ellipsoids(CarSlot& slot, bool every) {
 namespace {
 
 // Nearly every exact test is a wheel standing on a road triangle: the face certificate
-// answers it from the frame the cull read, and only the rest fetch the triangle's own
-// vertices for the kernel.
-Contact exact_contact(const StaticWorld& statics, const TriangleRef& ref,
-                      const NormalizedTriangle& frame, const Ellipsoid& ellipsoid) {
-    if (const std::optional<Contact> face = certified_face_contact(frame, ellipsoid)) return *face;
-    return ellipsoid_triangle_contact(ellipsoid,
-                                      statics.collider(ref.collider).triangle(ref.triangle));
+// answers it from the frame the cull read, with the support along its normal, and only the
+// rest fetch the triangle's own vertices for the kernel. Out of line: inlined, its
+// registers and the survivors' loop's do not fit in 16, and GCC copies each survivor's frame
+// to the stack, the bounded ones' too.
+[[gnu::noinline]] ContactWithSupport exact_contact(const StaticWorld& statics,
+                                                   const TriangleRef& ref,
+                                                   const NormalizedTriangle& frame,
+                                                   const Ellipsoid& ellipsoid) {
+    if (const std::optional<ContactWithSupport> face = certified_face_contact(frame, ellipsoid))
+        return *face;
+    const Contact contact = ellipsoid_triangle_contact(
+        ellipsoid, statics.collider(ref.collider).triangle(ref.triangle));
+    return {contact, support_extent(ellipsoid, contact.normal)};
 }
 
 }  // namespace
@@ -273,7 +279,9 @@ void World::find_contacts(CarSlot& slot, PhaseStopwatch& watch) {
     const bool avx2 = detail::cpu_has_avx2();
     for (std::size_t i = 0; i < ellipsoids; ++i) {
         const std::vector<MidPhaseCandidate>& listed = slot.listed[i].candidates();
-        detail::cull_listed_widest(avx2, slot.placed[i], std::span(listed), keep);
+        // Half the calls would be for nothing: a lone car's body ellipsoids list no triangles.
+        if (!listed.empty())
+            detail::cull_listed_widest(avx2, slot.placed[i], std::span(listed), keep);
         slot.kept_start[i + 1] = static_cast<std::uint32_t>(all_kept.size());
         watch.profile().culled_tests += listed.size();
     }
@@ -291,8 +299,7 @@ void World::find_contacts(CarSlot& slot, PhaseStopwatch& watch) {
         // Last sub-step's deepest triangle is most likely the deepest again; else the one
         // with the deepest bound.
         auto first = std::find_if(kept.begin(), kept.end(), [&](const Survivor& s) {
-            return s.ref.collider == slot.deepest_ref[i].collider &&
-                   s.ref.triangle == slot.deepest_ref[i].triangle;
+            return CarSlot::same_triangle(s.ref, slot.deepest_ref[i]);
         });
         if (first == kept.end())
             first = std::max_element(
@@ -325,12 +332,12 @@ void World::find_contacts(CarSlot& slot, PhaseStopwatch& watch) {
                     if (bound + kKernelError <= deepest.depth) continue;
                 }
             }
-            const Contact contact = exact_contact(*statics_, s.ref, frame, ellipsoid);
+            const ContactWithSupport contact = exact_contact(*statics_, s.ref, frame, ellipsoid);
             known.remember(s.ref, contact.normal);
             ++watch.profile().exact_tests;
             if (contact.depth > deepest.depth) {
                 deepest = contact;
-                deepest_support = support_extent(ellipsoid, contact.normal);
+                deepest_support = contact.support;
                 slot.deepest_ref[i] = s.ref;
             }
         }

@@ -86,6 +86,27 @@ TEST(CertifiedFaceContact, IsExactWhereverItCertifies) {
     EXPECT_LT(share(test::ContactKind::vertex), 0.6);
 }
 
+// The support it returns is support_extent's along the contact normal, to the bit, on
+// either side of the triangle: World bounds the other survivors with it after a new deepest
+// contact instead of computing support_extent again.
+TEST(CertifiedFaceContact, ReturnsTheSupportAlongItsNormalToTheBit) {
+    test::ContactCaseGenerator cases(7);
+    constexpr int kKinds = static_cast<int>(test::ContactKind::count);
+    int certified = 0, below = 0;
+    for (int i = 0; i < 6000; ++i) {
+        const test::ContactCase c = cases.make(static_cast<test::ContactKind>(i % kKinds));
+        if (c.triangle.is_degenerate()) continue;
+        const NormalizedTriangle frame(c.triangle);
+        const std::optional<ContactWithSupport> got = certified_face_contact(frame, c.ellipsoid);
+        if (!got) continue;
+        ++certified;
+        below += glm::dot(got->normal, frame.normal) < 0.0;
+        ASSERT_EQ(got->support, support_extent(c.ellipsoid, got->normal)) << "case " << i;
+    }
+    EXPECT_GT(certified, 1000);
+    EXPECT_GT(below, 20);
+}
+
 /// A wheel (axle along local x) turned by yaw and tilted by camber, its lowest point
 /// depth below the plane y = 0, which a triangle of the given size holds around the
 /// footprint (rotated by spin).

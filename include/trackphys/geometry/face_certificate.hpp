@@ -12,6 +12,13 @@
 
 namespace trackphys {
 
+/// A contact with the ellipsoid's support along its normal, h(normal) =
+/// support_extent(ellipsoid, normal), to the bit: what depth_bound_along needs to bound the
+/// other triangles along that normal.
+struct ContactWithSupport : Contact {
+    double support;  // m
+};
+
 /// The exact contact of the ellipsoid with the triangle when its face decides it, proved by
 /// the kernel's face certificate (docs/design.md#the-face-certificate-in-the-triangles-frame);
 /// nullopt when the proof does not hold with a margin for rounding, and then
@@ -25,9 +32,10 @@ namespace trackphys {
 /// and the touching point z(u) = x(-u) + g u, with x(-u) = -A D^2 A^T u / h(u), lies in the
 /// plane at the centre's in-plane coordinates plus x(-u)'s. The certificate holds when that
 /// point lies in the triangle and g h(u) < r_min^2 (the closest regime; every separated
-/// pair and every shallow contact): then sigma = g(u).
-inline std::optional<Contact> certified_face_contact(const NormalizedTriangle& t,
-                                                     const Ellipsoid& e) {
+/// pair and every shallow contact): then sigma = g(u). The support it returns is h(u), which
+/// the proof computes anyway, by support_extent's operations.
+inline std::optional<ContactWithSupport> certified_face_contact(const NormalizedTriangle& t,
+                                                                const Ellipsoid& e) {
     const glm::dvec3 local = e.center() - t.origin;
     const double z = glm::dot(t.normal, local);
     const double x = glm::dot(t.dir_x, local);
@@ -66,7 +74,7 @@ inline std::optional<Contact> certified_face_contact(const NormalizedTriangle& t
     const bool closest = (g + margin) * h * (1.0 + 0x1p-36) < r.z * r.z;
     // Any NaN fails every comparison and refuses.
     if (!(thick && off_first && off_second && off_third && closest)) return std::nullopt;
-    return Contact{g, u, e.center() + extreme + (0.5 * g) * u};
+    return ContactWithSupport{{g, u, e.center() + extreme + (0.5 * g) * u}, h};
 }
 
 }  // namespace trackphys
