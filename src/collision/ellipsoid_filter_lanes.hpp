@@ -87,6 +87,9 @@ class EllipsoidFilterLanes {
         const Lanes y_gap = max3(min(ay, by) - y2, -max(ay, by), every(0.0));
         rejected |= (y_gap > 0.0) &
                     ((y_gap * y_gap > reach_squared_) | (y_gap * y_gap > support_squared(dir_y)));
+        // Each stage runs only while a lane is left open by the ones before.
+        const unsigned open = bits(~rejected);
+        if (open == 0) return {};
         // The sure accept: the chord's foot over the triangle for some t in [0, 1].
         const Lanes x2 = gather(t, &NormalizedTriangle::x2);
         const Lanes ex = x2 - x1;
@@ -104,7 +107,8 @@ class EllipsoidFilterLanes {
         kept.keep_below(-ya, -yb);
         kept.keep_below(x2 * ya - y2 * xa, x2 * yb - y2 * xb);
         kept.keep_below((xa - x1) * y2 - ya * ex, (xb - x1) * y2 - yb * ex);
-        const Mask accepted = kept.first <= kept.last;
+        const unsigned touched = open & bits(kept.first <= kept.last);
+        if (touched == open) return {touched, 0};
         // The slanted edges' half-planes.
         const Lanes e1 = min(x2 * ay - y2 * ax, x2 * by - y2 * bx);
         const Lanes e2 = min((ax - x1) * y2 - ay * ex, (bx - x1) * y2 - by * ex);
@@ -119,8 +123,7 @@ class EllipsoidFilterLanes {
             (tilted_apart(a, b, dir_x, dir_y, normal, zero, -x1, zero, side * x1) |
              tilted_apart(a, b, dir_x, dir_y, normal, -y2, x2, zero, side * (abs(x2) + y2)) |
              tilted_apart(a, b, dir_x, dir_y, normal, y2, -ex, x1 * y2, side * (abs(ex) + y2)));
-        const Mask open = ~rejected;
-        return {bits(open & accepted), bits(open & ~accepted & ~separated)};
+        return {touched, open & ~touched & bits(~separated)};
     }
 
   private:
