@@ -114,13 +114,27 @@ PlaneTreeQueryCounts PlaneTree::visit(const Shape& shape, std::vector<std::uint3
     if (frames != nullptr) frames->reported_.clear();
     if (nodes_.empty()) return counts;
     TP_ASSERT(from_node < nodes_.size(), "plane tree query: start node out of range");
-    // A popped node at depth k leaves at most one pending sibling per level above it, and
-    // pushes two children of depth k + 1 <= kMaxDepth: never more than kMaxDepth + 1 entries.
-    // A swept ellipsoid on kept frames lists its leaves' slots first and filters them all
-    // at the end, in lanes.
+    // A swept ellipsoid on kept frames gathers its leaves' slots and filters them a batch at
+    // a time in lanes (usually the whole query in one); only the kept ones reach `out`, so
+    // a caller's storage grows no more than with the scalar filter.
     constexpr bool in_lanes = std::is_same_v<Shape, EllipsoidShape>;
     const bool lanes = in_lanes && !frames_.empty();
-    const std::size_t listed_from = out.size();
+    constexpr std::size_t kBatch = 64;
+    std::uint32_t batch[kBatch];
+    std::size_t batched = 0;
+    auto filter_batch = [&] {
+        if constexpr (in_lanes) {
+            const std::size_t kept = filter_in_widest_lanes(shape, frames_.data(), batch, batched);
+            for (std::size_t k = 0; k < kept; ++k) {
+                out.push_back(batch[k]);
+                if (frames != nullptr) frames->reported_.push_back(frames_.data() + batch[k]);
+            }
+            counts.triangles_reported += kept;
+        }
+        batched = 0;
+    };
+    // A popped node at depth k leaves at most one pending sibling per level above it, and
+    // pushes two children of depth k + 1 <= kMaxDepth: never more than kMaxDepth + 1 entries.
     std::uint32_t stack[PlaneTreeSettings::kMaxDepth + 1];
     int top = 0;
     stack[top++] = from_node;
@@ -134,8 +148,10 @@ PlaneTreeQueryCounts PlaneTree::visit(const Shape& shape, std::vector<std::uint3
         if (node.is_leaf()) {
             counts.triangles_filtered += node.count();
             if (lanes)
-                for (std::uint32_t slot = node.first; slot < node.first + node.count(); ++slot)
-                    out.push_back(slot);
+                for (std::uint32_t slot = node.first; slot < node.first + node.count(); ++slot) {
+                    if (batched == kBatch) filter_batch();
+                    batch[batched++] = slot;
+                }
             else
                 filter_leaf(shape, node.first, node.first + node.count(), out, frames, counts);
             continue;
@@ -147,17 +163,7 @@ PlaneTreeQueryCounts PlaneTree::visit(const Shape& shape, std::vector<std::uint3
         if (shape.reaches(nodes_[node.first])) stack[top++] = node.first;
         TP_ASSERT(top <= PlaneTreeSettings::kMaxDepth + 1, "plane tree deeper than kMaxDepth");
     }
-    if constexpr (in_lanes) {
-        if (lanes) {
-            const std::size_t kept = filter_in_widest_lanes(
-                shape, frames_.data(), out.data() + listed_from, out.size() - listed_from);
-            out.resize(listed_from + kept);
-            counts.triangles_reported += kept;
-            if (frames != nullptr)
-                for (std::size_t k = listed_from; k < out.size(); ++k)
-                    frames->reported_.push_back(frames_.data() + out[k]);
-        }
-    }
+    if (batched > 0) filter_batch();
     return counts;
 }
 
