@@ -125,10 +125,12 @@ class EllipsoidCull {
         }
         return v;
     }
-    // Doubles i to i + 3 of a frame (its layout is checked in gather).
+    // Doubles i to i + 3 of a frame (its layout is checked in gather), by memcpy: a frame is
+    // 8-byte aligned, and clang loads through an under-aligned vector type as if aligned.
     [[gnu::always_inline]] static Lanes row(const NormalizedTriangle* t, std::size_t i) {
-        using Row = double __attribute__((vector_size(32), aligned(alignof(double)), may_alias));
-        return *reinterpret_cast<const Row*>(reinterpret_cast<const char*>(t) + i * sizeof(double));
+        Lanes r;
+        std::memcpy(&r, reinterpret_cast<const char*>(t) + i * sizeof(double), sizeof r);
+        return r;
     }
     // Doubles i to i + 3 of the four frames, transposed: column c holds each frame's double
     // i + c. Four 32-byte loads and eight shuffles give four values of the four frames, where a
