@@ -79,26 +79,41 @@ Ellipsoid::Ellipsoid(Unchecked, const glm::dvec3& center, const glm::dquat& orie
         sorted_axes_[2] = -sorted_axes_[2];
 }
 
+namespace {
+
+// Which coordinate axis `axis` is (+-1 in that entry, zeros in the others), or -1.
+int coordinate_axis_index(const glm::dvec3& axis) {
+    if (axis.y == 0.0 && axis.z == 0.0 && std::abs(axis.x) == 1.0) return 0;
+    if (axis.x == 0.0 && axis.z == 0.0 && std::abs(axis.y) == 1.0) return 1;
+    if (axis.x == 0.0 && axis.y == 0.0 && std::abs(axis.z) == 1.0) return 2;
+    return -1;
+}
+
+// Whether the 13 entries of a rotation and its matrix are all finite and non-zero. Their
+// product is a finite non-zero only if each is (a zero makes it zero or NaN, an infinity
+// infinite or NaN, a NaN NaN), which answers for nearly every rotation at once; a zero or
+// infinite product may be an underflow or overflow: ask each entry.
+bool all_finite_nonzero(const glm::dquat& rotation, const glm::dmat3& matrix) {
+    double product = rotation.w * rotation.x * rotation.y * rotation.z;
+    for (int k = 0; k < 3; ++k) product *= matrix[k].x * matrix[k].y * matrix[k].z;
+    const auto usable = [](double v) { return std::abs(v) > 0.0 && std::isfinite(v); };
+    if (usable(product)) return true;
+    if (std::isnan(product)) return false;
+    bool all = usable(rotation.w) && usable(rotation.x) && usable(rotation.y) && usable(rotation.z);
+    for (int k = 0; k < 3; ++k)
+        all = all && usable(matrix[k].x) && usable(matrix[k].y) && usable(matrix[k].z);
+    return all;
+}
+
+}  // namespace
+
 PlacingRotation::PlacingRotation(const glm::dquat& rotation)
     : PlacingRotation(rotation, glm::mat3_cast(rotation)) {}
 
 PlacingRotation::PlacingRotation(const glm::dquat& rotation, const glm::dmat3& rotation_matrix)
-    : quaternion(rotation), matrix(rotation_matrix) {
-    // The product of the 13 is a finite non-zero only if each is (a zero makes it zero or
-    // NaN, an infinity infinite or NaN, a NaN NaN), which answers for nearly every rotation
-    // at once; a zero or infinite product may be an underflow or overflow: ask each entry.
-    double product = rotation.w * rotation.x * rotation.y * rotation.z;
-    for (int k = 0; k < 3; ++k)
-        product *= rotation_matrix[k].x * rotation_matrix[k].y * rotation_matrix[k].z;
-    const auto usable = [](double v) { return std::abs(v) > 0.0 && std::isfinite(v); };
-    entries_nonzero = usable(product);
-    if (entries_nonzero || std::isnan(product)) return;
-    entries_nonzero =
-        usable(rotation.w) && usable(rotation.x) && usable(rotation.y) && usable(rotation.z);
-    for (int k = 0; k < 3; ++k)
-        entries_nonzero = entries_nonzero && usable(rotation_matrix[k].x) &&
-                          usable(rotation_matrix[k].y) && usable(rotation_matrix[k].z);
-}
+    : quaternion(rotation),
+      matrix(rotation_matrix),
+      entries_finite_nonzero(all_finite_nonzero(rotation, rotation_matrix)) {}
 
 Ellipsoid Ellipsoid::transformed(const glm::dquat& rotation, const glm::dvec3& translation) const {
     Ellipsoid moved = *this;
@@ -116,17 +131,21 @@ void Ellipsoid::place_copy(Ellipsoid& copy, const PlacingRotation& rotation,
     TP_ASSERT(copy.semi_axes_ == semi_axes_ && copy.sorted_radii_ == sorted_radii_,
               "Ellipsoid::place_copy: the slot is not a copy of this ellipsoid");
     copy.center_ = rotation.matrix * center_ + translation;
-    // Unrotated, the sorted axes' entries are exactly 0 and +-1 (mat3_cast of the identity).
-    // The identity's bits: one given with a -0 takes the products.
+    // Unrotated: the identity's bits (one given with a -0 takes the products) and sorted
+    // axes that are coordinate axes. An ellipsoid turned and turned back can have the first
+    // without the second, its axes off the coordinate axes by roundings.
     static const glm::dquat identity(1.0, 0.0, 0.0, 0.0);
-    if (rotation.entries_nonzero && std::memcmp(&orientation_, &identity, sizeof identity) == 0) {
-        copy.orientation_ = rotation.quaternion;
-        for (int k = 0; k < 3; ++k) {
-            const glm::dvec3& axis = sorted_axes_[k];
-            const int along = axis.x != 0.0 ? 0 : axis.y != 0.0 ? 1 : 2;
-            copy.sorted_axes_[k] = rotation.matrix[along] * axis[along];
+    if (rotation.entries_finite_nonzero &&
+        std::memcmp(&orientation_, &identity, sizeof identity) == 0) {
+        const std::array<int, 3> along = {coordinate_axis_index(sorted_axes_[0]),
+                                          coordinate_axis_index(sorted_axes_[1]),
+                                          coordinate_axis_index(sorted_axes_[2])};
+        if (along[0] >= 0 && along[1] >= 0 && along[2] >= 0) {
+            copy.orientation_ = rotation.quaternion;
+            for (int k = 0; k < 3; ++k)
+                copy.sorted_axes_[k] = rotation.matrix[along[k]] * sorted_axes_[k][along[k]];
+            return;
         }
-        return;
     }
     copy.orientation_ = rotation.quaternion * orientation_;
     copy.sorted_axes_ = rotation.matrix * sorted_axes_;

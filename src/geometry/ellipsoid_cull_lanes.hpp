@@ -37,7 +37,8 @@ struct DoubleLanes<4> {
 /// the count of instructions changes. The ellipsoid's centre, axes and radii are spread
 /// into every lane once, when the cull is made; the triangles' frames at each test.
 ///
-/// Every member is forced inline, and calls nothing that is not a built-in: four lanes are
+/// Every member is forced inline, and calls nothing that is not a built-in (memcpy and the
+/// vector extensions' shuffles are): four lanes are
 /// 32-byte vectors, which only code compiled for AVX holds in one register, so they run
 /// inside the AVX2 caller (ellipsoid_cull_list.hpp) and never as functions of the
 /// library's own x86-64 level, at any optimisation level.
@@ -71,7 +72,7 @@ class EllipsoidCull {
         // scalar's ?: give them.
         const Mask depth = to_bits(hz - from_bits(to_bits(z) & ~kSign));
         const Lanes bounds = from_bits((depth & ~apart) | (to_bits(every(kApart)) & apart));
-        // Stored as it is: a bit_cast to the array went through general registers and the stack.
+        // Stored as it is, by memcpy (a bit_cast took a detour through the stack).
         std::array<double, N> out;
         std::memcpy(out.data(), &bounds, sizeof bounds);
         return out;
@@ -93,8 +94,7 @@ class EllipsoidCull {
     static constexpr double kApart = -std::numeric_limits<double>::infinity();
     static constexpr std::int64_t kSign = std::numeric_limits<std::int64_t>::min();  // bit 63
 
-    // v in lane 0, shuffled to every lane: GCC 12 makes that one vbroadcastsd from v's place in
-    // memory, where filling the lanes one by one became a load, an unpack and a permute.
+    // v in lane 0, shuffled to every lane: one broadcast from v's place in memory.
     [[gnu::always_inline]] static Lanes every(double v) {
         const Lanes first{v};
         if constexpr (N == 2)
@@ -133,8 +133,7 @@ class EllipsoidCull {
         return r;
     }
     // Doubles i to i + 3 of the four frames, transposed: column c holds each frame's double
-    // i + c. Four 32-byte loads and eight shuffles give four values of the four frames, where a
-    // value at a time took a load, a load-high and an insert for each two.
+    // i + c, from four 32-byte loads and eight shuffles.
     [[gnu::always_inline]] static Columns4 transposed(const NormalizedTriangle* const (&t)[4],
                                                       std::size_t i) {
         const Lanes r0 = row(t[0], i), r1 = row(t[1], i), r2 = row(t[2], i), r3 = row(t[3], i);

@@ -64,6 +64,7 @@ Autopilot::Autopilot(SharedCenterline shared, double length_m, const CarSpec& ca
         throw Error("Autopilot: the track has no centreline");
     if (!(std::isfinite(length_) && length_ > 0.0))
         throw Error("Autopilot: the track's length must be finite and > 0");
+    const std::vector<CenterlineSample>& line = *centerline_;
     if (!(settings_.target_speed > 0.0)) throw Error("Autopilot: target_speed must be > 0");
 
     double front = -std::numeric_limits<double>::infinity();
@@ -74,11 +75,10 @@ Autopilot::Autopilot(SharedCenterline shared, double length_m, const CarSpec& ca
     }
     wheelbase_ = std::isfinite(front - rear) && front > rear ? front - rear : 2.5;
     max_steer_angle_ = car.max_steer_angle;
-    const std::size_t samples = centerline().size();
+    const std::size_t samples = line.size();
     for (std::size_t i = 0; i < samples; ++i)
         max_sample_gap_ = std::max(
-            max_sample_gap_,
-            glm::distance(centerline()[i].position, centerline()[(i + 1) % samples].position));
+            max_sample_gap_, glm::distance(line[i].position, line[(i + 1) % samples].position));
     // Rounded up, so that no bound built on it promises more than the chords give.
     max_sample_gap_ = max_sample_gap_ * (1.0 + 1e-12) + 1e-12;
 
@@ -97,10 +97,9 @@ Autopilot::Autopilot(SharedCenterline shared, double length_m, const CarSpec& ca
                                    car.vehicle->rear_tyre.longitudinal.lowest_friction())
                     : settings_.braking;
     const double k = 0.5 * car.air_density * car.downforce_area / car.mass.mass;
-    const std::size_t n = centerline().size();
+    const std::size_t n = line.size();
     std::vector<double> crest_curvature(n);
-    for (std::size_t i = 0; i < n; ++i)
-        crest_curvature[i] = vertical_curvature(centerline(), i, length_);
+    for (std::size_t i = 0; i < n; ++i) crest_curvature[i] = vertical_curvature(line, i, length_);
     // Over a crest of curvature kappa the road pushes v^2 kappa less per unit mass, like
     // negative downforce. A car with a vehicle model plans its turns and braking with that
     // load: braking or turning over a crest at the flat road's limit slides its tyres
@@ -112,7 +111,7 @@ Autopilot::Autopilot(SharedCenterline shared, double length_m, const CarSpec& ca
     };
     planned_speed_.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
-        const CenterlineSample& s = centerline()[i];
+        const CenterlineSample& s = line[i];
         const double radius = 1.0 / std::max(std::abs(s.curvature), 1e-9);
         const double bank_into_turn = s.curvature >= 0.0 ? s.bank : -s.bank;
         planned_speed_[i] =
@@ -124,7 +123,7 @@ Autopilot::Autopilot(SharedCenterline shared, double length_m, const CarSpec& ca
     for (std::size_t step = 0; step < 2 * n; ++step) {
         const std::size_t i = (2 * n - 1 - step) % n;
         const std::size_t next = (i + 1) % n;
-        double gap = centerline()[next].distance - centerline()[i].distance;
+        double gap = line[next].distance - line[i].distance;
         if (gap <= 0.0) gap += length_;
         const double v_next = planned_speed_[next];
         // Never < 0: a crest may leave no grip to brake with, never a need to speed up.
@@ -135,9 +134,10 @@ Autopilot::Autopilot(SharedCenterline shared, double length_m, const CarSpec& ca
 }
 
 std::size_t Autopilot::find_nearest(const glm::dvec3& position) const {
-    const std::size_t n = centerline().size();
+    const std::vector<CenterlineSample>& line = centerline();
+    const std::size_t n = line.size();
     auto distance2 = [&](std::size_t i) {
-        const glm::dvec3 d = centerline()[i].position - position;
+        const glm::dvec3 d = line[i].position - position;
         return glm::dot(d, d);
     };
     if (!located_) {  // first call: search everything
@@ -178,12 +178,13 @@ std::size_t Autopilot::find_nearest(const glm::dvec3& position) const {
 }
 
 std::size_t Autopilot::sample_ahead(std::size_t from, double distance) const {
-    const std::size_t n = centerline().size();
+    const std::vector<CenterlineSample>& line = centerline();
+    const std::size_t n = line.size();
     std::size_t i = from;
     double travelled = 0.0;
     while (travelled < distance) {
         const std::size_t next = (i + 1) % n;
-        double gap = centerline()[next].distance - centerline()[i].distance;
+        double gap = line[next].distance - line[i].distance;
         if (gap <= 0.0) gap += length_;
         travelled += gap;
         i = next;

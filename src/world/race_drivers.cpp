@@ -15,12 +15,11 @@ namespace trackphys {
 namespace {
 
 // std::fmod(x, length), for a length > 0, without fmod's cost where |x| < 2 length (the
-// gap between two places on the loop): x - length and x + length are exact there
-// (Sterbenz), as fmod is.
+// gap between two places on the loop): |x| - length is exact there (Sterbenz), as fmod
+// is, and takes x's sign as fmod's result does (-0 for x = -length).
 double remainder_toward_zero(double x, double length) {
     if (std::abs(x) < length) return x;
-    if (x >= length && x < 2.0 * length) return x - length;
-    if (x <= -length && x > -2.0 * length) return x + length;
+    if (std::abs(x) < 2.0 * length) return std::copysign(std::abs(x) - length, x);
     return std::fmod(x, length);
 }
 
@@ -201,7 +200,9 @@ void RaceDrivers::drive(World& world) {
         Car& car = world.car(i);
         pilots_[i].set_speed_limit(following_speed(ahead, car.speed()));
         car.set_inputs(pilots_[i].drive(car));
-        // Driving locates the car again, which may move its nearest sample.
+        // Driving locates the car again. At the place after_update located it from, that is
+        // nearly always the same sample, but the windowed search starts from its last answer
+        // and may step on: the cars after i see car i where its pilot now puts it.
         road_positions_[i] = road_position(world, i);
     }
 }

@@ -99,7 +99,8 @@ bool same_bits(const T& a, const T& b) {
 
 // Placing copies the rotation's entries into an unrotated ellipsoid rather than multiplying
 // by its axes' ones and zeros when no entry is a zero, which glm's sums would sign by other
-// rules: every placing must give the bits of glm's products, zeros of either sign included.
+// rules: every placing must give the bits of glm's products, zeros of either sign included,
+// also for an ellipsoid whose orientation has the identity's bits but whose axes do not.
 TEST(Ellipsoid, PlacingGivesTheBitsOfGlmsProducts) {
     std::mt19937_64 rng(11);
     std::normal_distribution<double> normal;
@@ -116,6 +117,19 @@ TEST(Ellipsoid, PlacingGivesTheBitsOfGlmsProducts) {
     std::vector<Ellipsoid> bodies;
     for (const glm::dvec3& a : axes) bodies.emplace_back(glm::dvec3(0.9, -0.15, 0.0), identity, a);
     bodies.emplace_back(glm::dvec3(0.0, 0.1, -1.7), glm::dquat(0.9, 0.1, -0.2, 0.3), axes[3]);
+    // Turned and turned back: the identity's bits again, but axes off the coordinate axes by
+    // roundings, which placing must multiply as glm does.
+    for (int turned = 0; bodies.size() < 20 && turned < 1000; ++turned) {
+        const glm::dquat q =
+            glm::normalize(glm::dquat(normal(rng), normal(rng), normal(rng), normal(rng)));
+        const Ellipsoid back = bodies[3]
+                                   .transformed(q, glm::dvec3(0.0))
+                                   .transformed(glm::conjugate(q), glm::dvec3(0.0));
+        if (same_bits(back.orientation(), identity) &&
+            !same_bits(back.sorted_axes(), bodies[3].sorted_axes()))
+            bodies.push_back(back);
+    }
+    ASSERT_EQ(bodies.size(), 20u) << "turned-back bodies with tilted axes";
     int copied = 0;
     for (int trial = 0; trial < 4000; ++trial) {
         // Some components zero, of either sign, as a car standing level has.
@@ -127,7 +141,7 @@ TEST(Ellipsoid, PlacingGivesTheBitsOfGlmsProducts) {
         const glm::dquat rotation = glm::normalize(glm::dquat(q[0], q[1], q[2], q[3]));
         const glm::dmat3 matrix = glm::mat3_cast(rotation);
         const PlacingRotation placing(rotation);
-        copied += placing.entries_nonzero;
+        copied += placing.entries_finite_nonzero;
         const glm::dvec3 translation(normal(rng) * 100.0, normal(rng), normal(rng));
         for (const Ellipsoid& body : bodies) {
             Ellipsoid placed = body;

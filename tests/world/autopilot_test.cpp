@@ -193,8 +193,6 @@ TEST(Autopilot, LocatesTheSampleTheWindowSearchFindsOnAwkwardCentrelines) {
     EXPECT_EQ(checked, 5 * 5 * 400);
 }
 
-// A 7 km straight: full throttle to 1000 km/h, then full brakes to a stop, steering only
-// to hold the centre line.
 // Autopilots given one centreline share it instead of copying it, drive as one that keeps
 // its own copy, and refuse a centreline they could not drive along.
 TEST(Autopilot, SharesACenterlineAndDrivesAsWithItsOwnCopy) {
@@ -236,6 +234,8 @@ TEST(Autopilot, SharesACenterlineAndDrivesAsWithItsOwnCopy) {
             << length;
 }
 
+// A 7 km straight: full throttle to 1000 km/h, then full brakes to a stop, steering only
+// to hold the centre line.
 TEST(Autopilot, ReachesThousandKmHOnAStraightAndBrakesToAStop) {
     const double width = 14.0;
     World world(test::static_world_of(test::straight_road(7000.0, width, 2.0)));

@@ -80,6 +80,11 @@ class TRACKPHYS_API Car {
                          Ellipsoid& placed) const {
         shape_->body[i].place_copy(placed, orientation, state_.position + lifted(suspension_[i]));
     }
+    /// The same with the orientation's matrix given, glm::mat3_cast(state().orientation).
+    void place_ellipsoid(std::size_t i, const glm::dmat3& orientation_matrix,
+                         Ellipsoid& placed) const {
+        place_ellipsoid(i, PlacingRotation(state_.orientation, orientation_matrix), placed);
+    }
     /// Suspension compression of ellipsoid i from full droop (m; always 0 for the body).
     double suspension(std::size_t i) const { return suspension_[i]; }
     /// Suspension compression of every ellipsoid, in CarSpec order (m).

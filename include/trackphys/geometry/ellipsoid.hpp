@@ -22,9 +22,10 @@ struct TRACKPHYS_API PlacingRotation {
     explicit PlacingRotation(const glm::dquat& rotation);
     PlacingRotation(const glm::dquat& rotation, const glm::dmat3& rotation_matrix);
 
-    glm::dquat quaternion;
-    glm::dmat3 matrix;
-    bool entries_nonzero;
+    // Const: placing trusts entries_finite_nonzero to describe the other two.
+    const glm::dquat quaternion;
+    const glm::dmat3 matrix;
+    const bool entries_finite_nonzero;
 };
 
 /// A solid ellipsoid: center c, orientation Q (maps local to world) and semi-axes along

@@ -16,7 +16,7 @@ namespace trackphys {
 /// support_extent(ellipsoid, normal), to the bit: what depth_bound_along needs to bound the
 /// other triangles along that normal.
 struct ContactWithSupport : Contact {
-    double support;  // m
+    double support;  ///< h(normal) (m)
 };
 
 /// The exact contact of the ellipsoid with the triangle when its face decides it, proved by

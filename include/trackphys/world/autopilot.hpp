@@ -45,7 +45,8 @@ using SharedCenterline = std::shared_ptr<const std::vector<CenterlineSample>>;
 /// Drives a car around a generated track unattended: a speed profile computed from the
 /// centreline (the fastest each turn's radius, bank, grip and downforce allow, with
 /// braking distance before it), throttle and brake to follow it, and pure-pursuit steering
-/// towards a point on the centreline ahead.
+/// towards a point on the centreline ahead. A moved-from Autopilot holds no centreline: assign
+/// to it or destroy it, nothing else.
 class TRACKPHYS_API Autopilot {
   public:
     /// Keeps its own copy of the track's centreline.
