@@ -103,14 +103,19 @@ TEST(MidPhase, EveryModeKeepsWhatTheCarTouchesOnTheDefaultTrack) {
     std::vector<TriangleRef> near;
     for (const std::size_t s : samples) {
         const CenterlineSample& c = w.track.centerline[s];
-        // The car's update box at the centre line, grown by the 2 m it may sit off it.
-        const Aabb update_box = car_update_box(c).padded(2.5);
+        // The car's update box at the centre line, grown by the 2 m it may sit off it and the
+        // bounding spheres of its ellipsoids.
+        const Aabb update_box = car_update_box(c).padded(3.5);
         for (auto& mid : mids) mid->begin_update(update_box);
         // The car off the centre line, a little high or low (0.64 m is resting), slightly
         // rolled, one 1 ms step at 1000 km/h.
-        const glm::dvec3 origin = c.position + c.left * lateral(rng) + c.up * (0.64 + lift(rng));
-        const glm::dquat body = glm::angleAxis(tilt(rng), c.tangent) *
-                                glm::quat_cast(glm::dmat3(c.left, c.up, c.tangent));
+        // One draw a statement: the order of two draws in one expression is the compiler's.
+        const double across = lateral(rng);
+        const double rise = lift(rng);
+        const double roll = tilt(rng);
+        const glm::dvec3 origin = c.position + c.left * across + c.up * (0.64 + rise);
+        const glm::dquat body =
+            glm::angleAxis(roll, c.tangent) * glm::quat_cast(glm::dmat3(c.left, c.up, c.tangent));
         const glm::dvec3 step = c.tangent * (1000.0 / 3.6 * 0.001);
         for (const CarEllipsoid& ce : car.ellipsoids) {
             const glm::dvec3 center = origin + body * ce.center;
