@@ -6,10 +6,10 @@
 # same state hash and final position of the same drive, bit for bit, and the same state
 # hash of a 12-car race (cars that touch) on 1, 2 and 4 threads. The clang++ build also
 # runs the collision, mid-phase, geometry and contact tests, so that the SSE2 code paths
-# are tested, not only driven. The cull's lanes are chosen at run time, not by the build
-# (four with AVX2, else two): on an AVX2 machine both builds drive the four, and the
-# contact tests compare each width with the scalar bound. CI (.ci/run) runs it after
-# scripts/test.sh.
+# are tested, not only driven. The lanes of the cull and of the mid phase's filter are
+# chosen at run time, not by the build (four with AVX2, else two): on an AVX2 machine both
+# builds drive the four, and the contact and mid-phase tests compare each width with the
+# scalar code. CI (.ci/run) runs it after scripts/test.sh.
 #   scripts/determinism.sh [seconds]     (default 10 simulated seconds, seed 7)
 # Exits 0 when they match and the tests pass, 1 when they differ or a test fails, 2 when a
 # build or run fails.
