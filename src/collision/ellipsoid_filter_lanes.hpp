@@ -185,9 +185,13 @@ class EllipsoidFilterLanes {
         return __builtin_bit_cast(
             Lanes, __builtin_bit_cast(Mask, v) & ~__builtin_bit_cast(Mask, every(-0.0)));
     }
+    // A branch a lane, not `(m[k] != 0 ? 1u : 0u) << k`: GCC 12 with UBSan's shift and
+    // bounds checks (the asan preset) reads that shift's count from a copy of k it never
+    // initialises, so the bits land in the wrong lanes (tests/collision/CMakeLists.txt).
     [[gnu::always_inline]] static unsigned bits(const Mask& m) {
         unsigned b = 0;
-        for (int k = 0; k < N; ++k) b |= (m[k] != 0 ? 1u : 0u) << k;
+        for (int k = 0; k < N; ++k)
+            if (m[k] != 0) b |= 1u << k;
         return b;
     }
     [[gnu::always_inline]] static Lanes gather(const NormalizedTriangle* const (&t)[N],
