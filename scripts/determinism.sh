@@ -6,10 +6,11 @@
 # same state hash and final position of the same drive, bit for bit, and the same state
 # hash of a 12-car race (cars that touch) on 1, 2 and 4 threads. The clang++ build also
 # runs the collision, mid-phase, geometry and contact tests, so that the SSE2 code paths
-# are tested, not only driven. The cull's lanes are chosen at run time, not by the build
-# (four with AVX2, else two): on an AVX2 machine both builds drive the four, and the
-# contact tests compare each width with the scalar bound. CI (.ci/run) runs it after
-# scripts/test.sh.
+# are tested, not only driven. The lanes of the cull and of the mid phase's filter are
+# chosen at run time, not by the build (four with AVX2, else two): on an AVX2 machine both
+# builds drive the four, each drives the two too (TRACKPHYS_LANES=2) to the same result, and
+# the contact and mid-phase tests compare each width with the scalar code. CI (.ci/run) runs
+# it after scripts/test.sh.
 #   scripts/determinism.sh [seconds]     (default 10 simulated seconds, seed 7)
 # Exits 0 when they match and the tests pass, 1 when they differ or a test fails, 2 when a
 # build or run fails.
@@ -64,6 +65,14 @@ for compiler in g++ clang++; do
   "$build/trackphys" drive --seed 7 --seconds "$seconds" --json "$out/$compiler.json" >/dev/null ||
     { echo "determinism: the $compiler drive failed" >&2; exit 2; }
   summary "$out/$compiler.json" >"$out/$compiler.txt"
+  # The two-lane cull and filter, which an AVX2 machine takes only when told to.
+  TRACKPHYS_LANES=2 "$build/trackphys" drive --seed 7 --seconds "$seconds" \
+    --json "$out/$compiler-two-lanes.json" >/dev/null ||
+    { echo "determinism: the $compiler drive in two lanes failed" >&2; exit 2; }
+  if [ "$(summary "$out/$compiler-two-lanes.json")" != "$(cat "$out/$compiler.txt")" ]; then
+    echo "determinism: the $compiler drive DIFFERS in two lanes" >&2
+    exit 1
+  fi
   # A race of cars that touch (issue 16): the same hash on 1, 2 and 4 threads.
   for threads in 1 2 4; do
     "$build/trackphys" race --seed 7 --cars 12 --seconds "$race_seconds" --threads "$threads" \

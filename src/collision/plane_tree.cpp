@@ -2,18 +2,71 @@
 
 #include <algorithm>
 #include <bit>
+#include <cstddef>
+#include <type_traits>
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
+#include "collision/ellipsoid_filter_lanes.hpp"
 #include "collision/plane_tree_shapes.hpp"
+#include "core/cpu_features.hpp"
 #include "trackphys/assert.hpp"
 #include "trackphys/collision/plane_tree_frame_cache.hpp"
 
 namespace trackphys {
 
+using collision_detail::EllipsoidFilterLanes;
 using collision_detail::EllipsoidShape;
 using collision_detail::SphereShape;
+
+namespace {
+
+// The swept ellipsoid's filter on kept frames, N at a time: of the `count` candidate slots,
+// keeps those the shape touches, in order and in place, and returns how many. A last block
+// of fewer than N repeats its last frame in the lanes left over.
+template <int N>
+[[gnu::always_inline]] inline std::size_t filter_in_lanes(const EllipsoidShape& shape,
+                                                          const NormalizedTriangle* frames,
+                                                          std::uint32_t* slots, std::size_t count) {
+    const EllipsoidFilterLanes<N> lanes(shape);
+    std::size_t kept = 0;
+    for (std::size_t k = 0; k < count; k += N) {
+        const std::size_t block = std::min<std::size_t>(N, count - k);
+        const NormalizedTriangle* triangles[N];
+        for (std::size_t j = 0; j < N; ++j)
+            triangles[j] = frames + slots[k + std::min(j, block - 1)];
+        const auto decided = lanes.decide(triangles);
+        for (std::size_t j = 0; j < block; ++j) {
+            const unsigned bit = 1u << j;
+            if ((decided.touched & bit) != 0 ||
+                ((decided.undecided & bit) != 0 && shape.touches_exactly(*triangles[j])))
+                slots[kept++] = slots[k + j];
+        }
+    }
+    return kept;
+}
+
+#if defined(__x86_64__) || defined(__i386__)
+// Four lanes, compiled for AVX2 whatever the library's x86-64 level (no FMA: the lanes must
+// round as the scalar filter does). Call it only where cpu_has_avx2().
+[[gnu::target("avx2")]] std::size_t filter_in_four_lanes(const EllipsoidShape& shape,
+                                                         const NormalizedTriangle* frames,
+                                                         std::uint32_t* slots, std::size_t count) {
+    return filter_in_lanes<4>(shape, frames, slots, count);
+}
+#endif
+
+// filter_in_lanes in the widest lanes this CPU runs: four with AVX2, else two (SSE2).
+std::size_t filter_in_widest_lanes(const EllipsoidShape& shape, const NormalizedTriangle* frames,
+                                   std::uint32_t* slots, std::size_t count) {
+#if defined(__x86_64__) || defined(__i386__)
+    if (detail::cpu_has_avx2()) return filter_in_four_lanes(shape, frames, slots, count);
+#endif
+    return filter_in_lanes<2>(shape, frames, slots, count);
+}
+
+}  // namespace
 
 // Inlined into visit: a query filters a handful of small leaves, so a call would cost about
 // as much as the work.
@@ -61,6 +114,25 @@ PlaneTreeQueryCounts PlaneTree::visit(const Shape& shape, std::vector<std::uint3
     if (frames != nullptr) frames->reported_.clear();
     if (nodes_.empty()) return counts;
     TP_ASSERT(from_node < nodes_.size(), "plane tree query: start node out of range");
+    // A swept ellipsoid on kept frames gathers its leaves' slots and filters them a batch at
+    // a time in lanes (usually the whole query in one); only the kept ones reach `out`, so
+    // a caller's storage grows no more than with the scalar filter.
+    constexpr bool in_lanes = std::is_same_v<Shape, EllipsoidShape>;
+    const bool lanes = in_lanes && !frames_.empty();
+    constexpr std::size_t kBatch = 64;
+    std::uint32_t batch[kBatch];
+    std::size_t batched = 0;
+    auto filter_batch = [&] {
+        if constexpr (in_lanes) {
+            const std::size_t kept = filter_in_widest_lanes(shape, frames_.data(), batch, batched);
+            for (std::size_t k = 0; k < kept; ++k) {
+                out.push_back(batch[k]);
+                if (frames != nullptr) frames->reported_.push_back(frames_.data() + batch[k]);
+            }
+            counts.triangles_reported += kept;
+        }
+        batched = 0;
+    };
     // A popped node at depth k leaves at most one pending sibling per level above it, and
     // pushes two children of depth k + 1 <= kMaxDepth: never more than kMaxDepth + 1 entries.
     std::uint32_t stack[PlaneTreeSettings::kMaxDepth + 1];
@@ -75,7 +147,13 @@ PlaneTreeQueryCounts PlaneTree::visit(const Shape& shape, std::vector<std::uint3
         }
         if (node.is_leaf()) {
             counts.triangles_filtered += node.count();
-            filter_leaf(shape, node.first, node.first + node.count(), out, frames, counts);
+            if (lanes)
+                for (std::uint32_t slot = node.first; slot < node.first + node.count(); ++slot) {
+                    if (batched == kBatch) filter_batch();
+                    batch[batched++] = slot;
+                }
+            else
+                filter_leaf(shape, node.first, node.first + node.count(), out, frames, counts);
             continue;
         }
         counts.planes_tested += 2;
@@ -85,6 +163,7 @@ PlaneTreeQueryCounts PlaneTree::visit(const Shape& shape, std::vector<std::uint3
         if (shape.reaches(nodes_[node.first])) stack[top++] = node.first;
         TP_ASSERT(top <= PlaneTreeSettings::kMaxDepth + 1, "plane tree deeper than kMaxDepth");
     }
+    if (batched > 0) filter_batch();
     return counts;
 }
 

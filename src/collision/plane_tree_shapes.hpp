@@ -340,6 +340,12 @@ struct EllipsoidShape {
                 separated(t.y2, -ex, t.x1 * t.y2, std::abs(ex) + t.y2))
                 return false;
         }
+        return touches_exactly(t);
+    }
+
+    /// The filter's last word, for what its bounds leave undecided: the segment-triangle
+    /// distance in the unit-ball frame.
+    bool touches_exactly(const NormalizedTriangle& t) const {
         return segment_within(glm::dvec3(0.0), unit_end, to_unit * (t.vertex(0) - start),
                               to_unit * (t.vertex(1) - start), to_unit * (t.vertex(2) - start),
                               1.0);

@@ -1,5 +1,8 @@
 #include "trackphys/build_target.hpp"
 
+#include <cstdlib>
+#include <string_view>
+
 #include "core/cpu_features.hpp"
 
 namespace trackphys {
@@ -33,6 +36,8 @@ bool cpu_has_avx2() noexcept {
 #if defined(__x86_64__) || defined(__i386__)
     // libgcc's and compiler-rt's answers include the OS's: it saves the 32-byte registers.
     static const bool has = [] {
+        const char* lanes = std::getenv("TRACKPHYS_LANES");
+        if (lanes != nullptr && std::string_view(lanes) == "2") return false;
         __builtin_cpu_init();
         return __builtin_cpu_supports("avx2") != 0;
     }();
