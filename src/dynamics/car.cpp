@@ -12,6 +12,7 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include "dynamics/wheel_force.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/math/types.hpp"
 
@@ -127,26 +128,22 @@ void Car::set_vehicle_state(const VehicleState& state) {
     vehicle_->set_state(state);
 }
 
-double Car::speed() const { return glm::length(state_.linear_velocity); }
-
-ContactMaterial Car::wheel_material(Axle axle) const {
+// The sub-step's small laws are inline: Car is exported and the library built with -fPIC,
+// where a member that is not inline may be interposed, so it is called, never compiled in.
+inline ContactMaterial Car::wheel_material(Axle axle) const {
     ContactMaterial material = spec_.wheel_contact;
     if (axle == Axle::rear) material.friction *= spec_.rear_grip_factor;
     return material;
 }
 
-glm::dvec3 Car::wheel_heading(Axle axle, const glm::dvec3& forward) const {
-    return axle == Axle::front ? state_.orientation * steered_heading_ : forward;
-}
-
 // Drive is a constant force up to the speed where the power limit takes over: F = P / v.
-double Car::drive_available(double speed_now) const {
+inline double Car::drive_available(double speed_now) const {
     return std::min(spec_.max_drive_force, spec_.max_drive_power / std::max(speed_now, 1.0));
 }
 
-WheelCommand Car::wheel_command(Axle axle, const glm::dvec3& heading,
-                                const ContactMaterial& material, double axle_normal_force,
-                                double available) const {
+inline WheelCommand Car::wheel_command(Axle axle, const glm::dvec3& heading,
+                                       const ContactMaterial& material, double axle_normal_force,
+                                       double available) const {
     WheelCommand command;
     command.heading = heading;
     const bool front = axle == Axle::front;
@@ -215,8 +212,9 @@ Wrench Car::contact_wrench(std::span<const Contact> deepest, const WheelLoads& w
             role == EllipsoidRole::body
                 ? body_contact_force(spec_.body_contact, contact.depth, contact.normal,
                                      point_velocity(state_, contact.point))
-                : pressed_wheel_force(materials[axle], wheel_loads[i].load, contact.normal,
-                                      wheel_loads[i].velocity, commands[axle]);
+                : inline_laws::pressed_wheel_force(materials[axle], wheel_loads[i].load,
+                                                   contact.normal, wheel_loads[i].velocity,
+                                                   commands[axle]);
         wrench.add_at_point(force, contact.point, state_.position);
     }
     add_aero_force(wrench, speed_now, forward);
@@ -280,17 +278,6 @@ double Car::inverse_mass_along(const glm::dvec3& normal, const glm::dvec3& point
     const glm::dvec3 body_axis = glm::conjugate(state_.orientation) * glm::cross(lever, normal);
     const glm::dvec3 turn = state_.orientation * (body_axis / spec_.mass.principal_inertia);
     return 1.0 / spec_.mass.mass + glm::dot(normal, glm::cross(turn, lever));
-}
-
-void Car::add_aero_force(Wrench& wrench, double speed_now, const glm::dvec3& forward) const {
-    const glm::dvec3& v = state_.linear_velocity;
-    const double dynamic_pressure = 0.5 * spec_.air_density * glm::dot(v, v);
-    if (speed_now > 0.0) wrench.force -= v * (dynamic_pressure * spec_.drag_area / speed_now);
-    // Downforce pushes along the body's down axis, in proportion to the forward speed.
-    const double forward_speed = glm::dot(v, forward);
-    const glm::dvec3 down = state_.orientation * glm::dvec3(0.0, -1.0, 0.0);
-    wrench.force +=
-        down * (0.5 * spec_.air_density * forward_speed * forward_speed * spec_.downforce_area);
 }
 
 }  // namespace trackphys

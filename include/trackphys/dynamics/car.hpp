@@ -7,6 +7,8 @@
 #include <span>
 #include <vector>
 
+#include <glm/geometric.hpp>
+#include <glm/gtc/quaternion.hpp>
 #include <glm/vec3.hpp>
 
 #include "trackphys/dynamics/car_spec.hpp"
@@ -111,7 +113,7 @@ class TRACKPHYS_API Car {
     double bounding_radius() const { return bounding_radius_; }
 
     /// Speed of the centre of mass (m/s).
-    double speed() const;
+    double speed() const { return glm::length(state_.linear_velocity); }
 
     /// One sub-step of h seconds from each ellipsoid's deepest contact (one per ellipsoid,
     /// in order; depth <= 0 for none): impulses for contacts the springs cannot hold, the
@@ -200,7 +202,9 @@ class TRACKPHYS_API Car {
     glm::dvec3 forward_axis() const { return state_.orientation * glm::dvec3(0.0, 0.0, 1.0); }
     /// The world direction the wheels of an axle roll in (the front ones steered); forward:
     /// forward_axis().
-    glm::dvec3 wheel_heading(Axle axle, const glm::dvec3& forward) const;
+    glm::dvec3 wheel_heading(Axle axle, const glm::dvec3& forward) const {
+        return axle == Axle::front ? state_.orientation * steered_heading_ : forward;
+    }
     void update_suspension(std::span<const Contact> deepest, const WheelLoads& wheel_loads,
                            double h);
     /// The command of each wheel of an axle rolling along heading on material
@@ -215,8 +219,18 @@ class TRACKPHYS_API Car {
     void take_inputs(const CarInputs& inputs);
     /// The contact material of an axle's wheels (rear tyres with their extra grip).
     ContactMaterial wheel_material(Axle axle) const;
-    /// speed_now: speed(); forward: forward_axis().
-    void add_aero_force(Wrench& wrench, double speed_now, const glm::dvec3& forward) const;
+    /// speed_now: speed(); forward: forward_axis(). Defined here, as the sub-step's other small
+    /// laws are, so that both wrenches compile it in rather than call it.
+    void add_aero_force(Wrench& wrench, double speed_now, const glm::dvec3& forward) const {
+        const glm::dvec3& v = state_.linear_velocity;
+        const double dynamic_pressure = 0.5 * spec_.air_density * glm::dot(v, v);
+        if (speed_now > 0.0) wrench.force -= v * (dynamic_pressure * spec_.drag_area / speed_now);
+        // Downforce pushes along the body's down axis, in proportion to the forward speed.
+        const double forward_speed = glm::dot(v, forward);
+        const glm::dvec3 down = state_.orientation * glm::dvec3(0.0, -1.0, 0.0);
+        wrench.force +=
+            down * (0.5 * spec_.air_density * forward_speed * forward_speed * spec_.downforce_area);
+    }
 
     CarSpec spec_;
     RigidBodyState state_;
