@@ -23,6 +23,18 @@ inline glm::dvec3 regularised_friction(double limit, double slip_speed, const gl
     return slip * (-limit / std::max(speed, slip_speed));
 }
 
+// Whether hypot(along, across) <= grip, proved without the hypot; false when it cannot be
+// (then the hypot decides). hypot <= |along| + |across|, equal only when one is 0 (then both
+// are exact), so a sum 1e-12 inside the grip proves it (most sub-steps of a lap). Failing
+// that, a sum of squares 1e-12 inside the grip's square does (nearly all the rest): its
+// roundings are a few parts in 1e16, far inside the margin, for a grip whose square is
+// neither subnormal nor beyond double's range, and a NaN fails both tests.
+inline bool inside_friction_circle(double along, double across, double grip) {
+    if (std::abs(along) + std::abs(across) <= grip * (1.0 - 1e-12)) return true;
+    return grip > 1e-100 && grip < 1e100 &&
+           along * along + across * across <= grip * grip * (1.0 - 1e-12);
+}
+
 // trackphys::pressed_wheel_force.
 inline glm::dvec3 pressed_wheel_force(const ContactMaterial& material, double pressing,
                                       const glm::dvec3& normal, const glm::dvec3& velocity,
@@ -48,10 +60,8 @@ inline glm::dvec3 pressed_wheel_force(const ContactMaterial& material, double pr
         std::clamp(command.drive_force - brake, -command.max_along_force, command.max_along_force);
     double across = -grip * std::clamp(sideways_speed / material.slip_speed, -1.0, 1.0);
 
-    // Friction circle: the tyre cannot transmit more than mu F_n in total. hypot <= |along|
-    // + |across|, equal only when one is 0 (then both are exact), so a sum 1e-12 inside the
-    // grip proves the force inside the circle without the hypot (most sub-steps of a lap).
-    if (!(std::abs(along) + std::abs(across) <= grip * (1.0 - 1e-12))) {
+    // Friction circle: the tyre cannot transmit more than mu F_n in total.
+    if (!inside_friction_circle(along, across, grip)) {
         const double tangential = std::hypot(along, across);
         if (tangential > grip) {
             along *= grip / tangential;
