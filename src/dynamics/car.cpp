@@ -49,6 +49,7 @@ Car::Car(CarSpec spec, const RigidBodyState& initial_state) : spec_(std::move(sp
         const Ellipsoid& body = shape->body.emplace_back(e.center, e.orientation, e.semi_axes);
         shape->parts.push_back(
             {e.role, spec_.deep_contact_fraction * body.sorted_radii().z * (1.0 - 1e-12)});
+        if (e.role != EllipsoidRole::body) shape->wheel_end = shape->parts.size();
         suspension_.push_back(0.0);
         bounding_radius_ =
             std::max(bounding_radius_, glm::length(e.center) + body.bounding_radius());
@@ -160,36 +161,34 @@ inline WheelCommand Car::wheel_command(Axle axle, const glm::dvec3& heading,
 void Car::advance(std::span<const Contact> deepest, const glm::dvec3& gravity, double h) {
     resolve_deep_contacts(deepest);
     WheelLoads wheel_loads;
-    measure_wheel_loads(deepest, wheel_loads);
-    const Wrench wrench =
-        vehicle_ ? vehicle_wrench(deepest, wheel_loads, h) : contact_wrench(deepest, wheel_loads);
+    const AxleLoads least_loads = measure_wheel_loads(deepest, wheel_loads);
+    const Wrench wrench = vehicle_ ? vehicle_wrench(deepest, wheel_loads, h)
+                                   : contact_wrench(deepest, wheel_loads, least_loads);
     update_suspension(deepest, wheel_loads, h);
     trackphys::integrate(state_, spec_.mass, wrench, gravity, h);
 }
 
-void Car::measure_wheel_loads(std::span<const Contact> deepest, WheelLoads& wheel_loads) const {
-    for (std::size_t i = 0; i < deepest.size(); ++i) {
+Car::AxleLoads Car::measure_wheel_loads(std::span<const Contact> deepest,
+                                        WheelLoads& wheel_loads) const {
+    AxleLoads least_loads = {std::numeric_limits<double>::infinity(),
+                             std::numeric_limits<double>::infinity()};
+    // The parts through a pointer read once: a store to wheel_loads could alias shape_.
+    const Part* parts = shape_->parts.data();
+    const std::size_t wheel_end = std::min(deepest.size(), shape_->wheel_end);
+    for (std::size_t i = 0; i < wheel_end; ++i) {
+        if (parts[i].role == EllipsoidRole::body) continue;
         WheelLoad& wheel = wheel_loads[i];
-        if (shape_->parts[i].role == EllipsoidRole::body) {
-            wheel.load = 0.0;
-            continue;
-        }
         wheel.velocity = point_velocity(state_, deepest[i].point);
         wheel.load =
             normal_force(spec_.wheel_contact, deepest[i].depth, deepest[i].normal, wheel.velocity);
+        double& least = least_loads[static_cast<int>(axle_of(parts[i].role))];
+        least = std::min(least, wheel.load);
     }
+    return least_loads;
 }
 
-Wrench Car::contact_wrench(std::span<const Contact> deepest, const WheelLoads& wheel_loads) const {
-    // The least loaded wheel of each axle bounds its drive and brake.
-    double least_loads[2] = {std::numeric_limits<double>::infinity(),
-                             std::numeric_limits<double>::infinity()};
-    for (std::size_t i = 0; i < deepest.size(); ++i) {
-        if (shape_->parts[i].role == EllipsoidRole::body) continue;
-        double& least = least_loads[static_cast<int>(axle_of(i))];
-        least = std::min(least, wheel_loads[i].load);
-    }
-
+Wrench Car::contact_wrench(std::span<const Contact> deepest, const WheelLoads& wheel_loads,
+                           const AxleLoads& least_loads) const {
     // Every wheel of an axle rolls with the same material and command: two of each per
     // sub-step, not one per wheel. The speed and the forward axis serve the aerodynamics too.
     const double speed_now = speed();
@@ -201,11 +200,12 @@ Wrench Car::contact_wrench(std::span<const Contact> deepest, const WheelLoads& w
                       least_loads[0], available),
         wheel_command(Axle::rear, forward, materials[1], least_loads[1], available)};
     Wrench wrench;
+    const Part* parts = shape_->parts.data();
     for (std::size_t i = 0; i < deepest.size(); ++i) {
         const Contact& contact = deepest[i];
         if (!(contact.depth > 0.0)) continue;
-        const EllipsoidRole role = shape_->parts[i].role;
-        const int axle = static_cast<int>(axle_of(i));
+        const EllipsoidRole role = parts[i].role;
+        const int axle = static_cast<int>(axle_of(role));
         // A wheel's load and point velocity are this sub-step's, from measure_wheel_loads
         // (its materials differ from spec_.wheel_contact in friction only).
         const glm::dvec3 force =
@@ -226,8 +226,10 @@ void Car::update_suspension(std::span<const Contact> deepest, const WheelLoads& 
     const Suspension& spring = spec_.suspension;
     const glm::dvec3 up = state_.orientation * glm::dvec3(0.0, 1.0, 0.0);
     if (vehicle_) vehicle_->measure_anti_roll(suspension_);
-    for (std::size_t i = 0; i < deepest.size(); ++i) {
-        if (shape_->parts[i].role == EllipsoidRole::body) continue;
+    const Part* parts = shape_->parts.data();
+    const std::size_t wheel_end = std::min(deepest.size(), shape_->wheel_end);
+    for (std::size_t i = 0; i < wheel_end; ++i) {
+        if (parts[i].role == EllipsoidRole::body) continue;
         double lift = wheel_loads[i].load * glm::dot(deepest[i].normal, up);
         if (vehicle_)
             lift -= vehicle_->anti_roll_force(static_cast<std::size_t>(vehicle_->wheel_slot(i)));

@@ -161,9 +161,10 @@ class TRACKPHYS_API Car {
     /// A wheel's axle, which sets its heading, grip and share of drive and brake; also the
     /// index of per-axle arrays.
     enum class Axle : int { front = 0, rear = 1 };
-    Axle axle_of(std::size_t wheel) const {
-        return shape_->parts[wheel].role == EllipsoidRole::front_wheel ? Axle::front : Axle::rear;
+    static Axle axle_of(EllipsoidRole wheel) {
+        return wheel == EllipsoidRole::front_wheel ? Axle::front : Axle::rear;
     }
+    Axle axle_of(std::size_t wheel) const { return axle_of(shape_->parts[wheel].role); }
     /// What a sub-step reads of an ellipsoid besides its contact, in one small block: not
     /// from the spec's CarEllipsoids (88 bytes each) and the body Ellipsoids (176).
     struct Part {
@@ -177,10 +178,13 @@ class TRACKPHYS_API Car {
     struct Shape {
         std::vector<Ellipsoid> body;  // in CarSpec order
         std::vector<Part> parts;      // the same order
+        /// One past the last wheel: every ellipsoid from here on is body, which the loops
+        /// over wheels need not visit (the presets list their wheels first).
+        std::size_t wheel_end = 0;
         bool same_bits(const Shape& other) const;
     };
     /// A wheel's tyre this sub-step (measure_wheel_loads): the velocity of its contact point
-    /// and the normal force measured at it (N; 0 for the body, whose velocity is not set).
+    /// and the normal force measured at it (N). A body ellipsoid's is not set.
     /// Scratch of one sub-step, on advance's stack: a car's own copy would be written cold
     /// at each of its updates in a big field.
     struct WheelLoad {
@@ -188,12 +192,16 @@ class TRACKPHYS_API Car {
         double load;
     };
     using WheelLoads = std::array<WheelLoad, CarSpec::max_ellipsoids>;
+    /// The load of each axle's least loaded wheel (N; infinity for an axle with none),
+    /// indexed by Axle: it bounds the axle's drive and brake.
+    using AxleLoads = std::array<double, 2>;
 
     void resolve_deep_contacts(std::span<const Contact> deepest);
     /// The tyre's normal force of each wheel and the velocity of its contact point, into
-    /// wheel_loads' first deepest.size().
-    void measure_wheel_loads(std::span<const Contact> deepest, WheelLoads& wheel_loads) const;
-    Wrench contact_wrench(std::span<const Contact> deepest, const WheelLoads& wheel_loads) const;
+    /// wheel_loads' first deepest.size(); returns each axle's least load.
+    AxleLoads measure_wheel_loads(std::span<const Contact> deepest, WheelLoads& wheel_loads) const;
+    Wrench contact_wrench(std::span<const Contact> deepest, const WheelLoads& wheel_loads,
+                          const AxleLoads& least_loads) const;
     /// contact_wrench for a car with a vehicle model; advances its wheels by h.
     Wrench vehicle_wrench(std::span<const Contact> deepest, const WheelLoads& wheel_loads,
                           double h);
