@@ -12,6 +12,7 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include "dynamics/wheel_force.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/math/types.hpp"
 
@@ -48,6 +49,7 @@ Car::Car(CarSpec spec, const RigidBodyState& initial_state) : spec_(std::move(sp
         const Ellipsoid& body = shape->body.emplace_back(e.center, e.orientation, e.semi_axes);
         shape->parts.push_back(
             {e.role, spec_.deep_contact_fraction * body.sorted_radii().z * (1.0 - 1e-12)});
+        if (e.role != EllipsoidRole::body) shape->wheel_end = shape->parts.size();
         suspension_.push_back(0.0);
         bounding_radius_ =
             std::max(bounding_radius_, glm::length(e.center) + body.bounding_radius());
@@ -127,26 +129,22 @@ void Car::set_vehicle_state(const VehicleState& state) {
     vehicle_->set_state(state);
 }
 
-double Car::speed() const { return glm::length(state_.linear_velocity); }
-
-ContactMaterial Car::wheel_material(Axle axle) const {
+// The sub-step's small laws are inline: Car is exported and the library built with -fPIC,
+// where a member that is not inline may be interposed, so it is called, never compiled in.
+inline ContactMaterial Car::wheel_material(Axle axle) const {
     ContactMaterial material = spec_.wheel_contact;
     if (axle == Axle::rear) material.friction *= spec_.rear_grip_factor;
     return material;
 }
 
-glm::dvec3 Car::wheel_heading(Axle axle, const glm::dvec3& forward) const {
-    return axle == Axle::front ? state_.orientation * steered_heading_ : forward;
-}
-
 // Drive is a constant force up to the speed where the power limit takes over: F = P / v.
-double Car::drive_available(double speed_now) const {
+inline double Car::drive_available(double speed_now) const {
     return std::min(spec_.max_drive_force, spec_.max_drive_power / std::max(speed_now, 1.0));
 }
 
-WheelCommand Car::wheel_command(Axle axle, const glm::dvec3& heading,
-                                const ContactMaterial& material, double axle_normal_force,
-                                double available) const {
+inline WheelCommand Car::wheel_command(Axle axle, const glm::dvec3& heading,
+                                       const ContactMaterial& material, double axle_normal_force,
+                                       double available) const {
     WheelCommand command;
     command.heading = heading;
     const bool front = axle == Axle::front;
@@ -163,36 +161,34 @@ WheelCommand Car::wheel_command(Axle axle, const glm::dvec3& heading,
 void Car::advance(std::span<const Contact> deepest, const glm::dvec3& gravity, double h) {
     resolve_deep_contacts(deepest);
     WheelLoads wheel_loads;
-    measure_wheel_loads(deepest, wheel_loads);
-    const Wrench wrench =
-        vehicle_ ? vehicle_wrench(deepest, wheel_loads, h) : contact_wrench(deepest, wheel_loads);
+    const AxleLoads least_loads = measure_wheel_loads(deepest, wheel_loads);
+    const Wrench wrench = vehicle_ ? vehicle_wrench(deepest, wheel_loads, h)
+                                   : contact_wrench(deepest, wheel_loads, least_loads);
     update_suspension(deepest, wheel_loads, h);
     trackphys::integrate(state_, spec_.mass, wrench, gravity, h);
 }
 
-void Car::measure_wheel_loads(std::span<const Contact> deepest, WheelLoads& wheel_loads) const {
-    for (std::size_t i = 0; i < deepest.size(); ++i) {
+Car::AxleLoads Car::measure_wheel_loads(std::span<const Contact> deepest,
+                                        WheelLoads& wheel_loads) const {
+    AxleLoads least_loads = {std::numeric_limits<double>::infinity(),
+                             std::numeric_limits<double>::infinity()};
+    // The parts through a pointer read once: a store to wheel_loads could alias shape_.
+    const Part* parts = shape_->parts.data();
+    const std::size_t wheel_end = std::min(deepest.size(), shape_->wheel_end);
+    for (std::size_t i = 0; i < wheel_end; ++i) {
+        if (parts[i].role == EllipsoidRole::body) continue;
         WheelLoad& wheel = wheel_loads[i];
-        if (shape_->parts[i].role == EllipsoidRole::body) {
-            wheel.load = 0.0;
-            continue;
-        }
         wheel.velocity = point_velocity(state_, deepest[i].point);
         wheel.load =
             normal_force(spec_.wheel_contact, deepest[i].depth, deepest[i].normal, wheel.velocity);
+        double& least = least_loads[static_cast<int>(axle_of(parts[i].role))];
+        least = std::min(least, wheel.load);
     }
+    return least_loads;
 }
 
-Wrench Car::contact_wrench(std::span<const Contact> deepest, const WheelLoads& wheel_loads) const {
-    // The least loaded wheel of each axle bounds its drive and brake.
-    double least_loads[2] = {std::numeric_limits<double>::infinity(),
-                             std::numeric_limits<double>::infinity()};
-    for (std::size_t i = 0; i < deepest.size(); ++i) {
-        if (shape_->parts[i].role == EllipsoidRole::body) continue;
-        double& least = least_loads[static_cast<int>(axle_of(i))];
-        least = std::min(least, wheel_loads[i].load);
-    }
-
+Wrench Car::contact_wrench(std::span<const Contact> deepest, const WheelLoads& wheel_loads,
+                           const AxleLoads& least_loads) const {
     // Every wheel of an axle rolls with the same material and command: two of each per
     // sub-step, not one per wheel. The speed and the forward axis serve the aerodynamics too.
     const double speed_now = speed();
@@ -204,19 +200,21 @@ Wrench Car::contact_wrench(std::span<const Contact> deepest, const WheelLoads& w
                       least_loads[0], available),
         wheel_command(Axle::rear, forward, materials[1], least_loads[1], available)};
     Wrench wrench;
+    const Part* parts = shape_->parts.data();
     for (std::size_t i = 0; i < deepest.size(); ++i) {
         const Contact& contact = deepest[i];
         if (!(contact.depth > 0.0)) continue;
-        const EllipsoidRole role = shape_->parts[i].role;
-        const int axle = static_cast<int>(axle_of(i));
+        const EllipsoidRole role = parts[i].role;
+        const int axle = static_cast<int>(axle_of(role));
         // A wheel's load and point velocity are this sub-step's, from measure_wheel_loads
         // (its materials differ from spec_.wheel_contact in friction only).
         const glm::dvec3 force =
             role == EllipsoidRole::body
                 ? body_contact_force(spec_.body_contact, contact.depth, contact.normal,
                                      point_velocity(state_, contact.point))
-                : pressed_wheel_force(materials[axle], wheel_loads[i].load, contact.normal,
-                                      wheel_loads[i].velocity, commands[axle]);
+                : inline_laws::pressed_wheel_force(materials[axle], wheel_loads[i].load,
+                                                   contact.normal, wheel_loads[i].velocity,
+                                                   commands[axle]);
         wrench.add_at_point(force, contact.point, state_.position);
     }
     add_aero_force(wrench, speed_now, forward);
@@ -228,8 +226,10 @@ void Car::update_suspension(std::span<const Contact> deepest, const WheelLoads& 
     const Suspension& spring = spec_.suspension;
     const glm::dvec3 up = state_.orientation * glm::dvec3(0.0, 1.0, 0.0);
     if (vehicle_) vehicle_->measure_anti_roll(suspension_);
-    for (std::size_t i = 0; i < deepest.size(); ++i) {
-        if (shape_->parts[i].role == EllipsoidRole::body) continue;
+    const Part* parts = shape_->parts.data();
+    const std::size_t wheel_end = std::min(deepest.size(), shape_->wheel_end);
+    for (std::size_t i = 0; i < wheel_end; ++i) {
+        if (parts[i].role == EllipsoidRole::body) continue;
         double lift = wheel_loads[i].load * glm::dot(deepest[i].normal, up);
         if (vehicle_)
             lift -= vehicle_->anti_roll_force(static_cast<std::size_t>(vehicle_->wheel_slot(i)));
@@ -280,17 +280,6 @@ double Car::inverse_mass_along(const glm::dvec3& normal, const glm::dvec3& point
     const glm::dvec3 body_axis = glm::conjugate(state_.orientation) * glm::cross(lever, normal);
     const glm::dvec3 turn = state_.orientation * (body_axis / spec_.mass.principal_inertia);
     return 1.0 / spec_.mass.mass + glm::dot(normal, glm::cross(turn, lever));
-}
-
-void Car::add_aero_force(Wrench& wrench, double speed_now, const glm::dvec3& forward) const {
-    const glm::dvec3& v = state_.linear_velocity;
-    const double dynamic_pressure = 0.5 * spec_.air_density * glm::dot(v, v);
-    if (speed_now > 0.0) wrench.force -= v * (dynamic_pressure * spec_.drag_area / speed_now);
-    // Downforce pushes along the body's down axis, in proportion to the forward speed.
-    const double forward_speed = glm::dot(v, forward);
-    const glm::dvec3 down = state_.orientation * glm::dvec3(0.0, -1.0, 0.0);
-    wrench.force +=
-        down * (0.5 * spec_.air_density * forward_speed * forward_speed * spec_.downforce_area);
 }
 
 }  // namespace trackphys

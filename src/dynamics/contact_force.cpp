@@ -1,30 +1,18 @@
 #include "trackphys/dynamics/contact_force.hpp"
 
-#include <algorithm>
-#include <cmath>
-
 #include <glm/geometric.hpp>
 
+#include "dynamics/wheel_force.hpp"
+
 namespace trackphys {
-namespace {
-
-// Coulomb friction, regularised: the full mu F_n opposes slips faster than slip_speed and
-// scales linearly below it, which acts as a strong viscous damper at rest.
-glm::dvec3 regularised_friction(double limit, double slip_speed, const glm::dvec3& slip) {
-    const double speed = glm::length(slip);
-    if (speed == 0.0) return glm::dvec3(0.0);
-    return slip * (-limit / std::max(speed, slip_speed));
-}
-
-}  // namespace
 
 glm::dvec3 body_contact_force(const ContactMaterial& material, double depth,
                               const glm::dvec3& normal, const glm::dvec3& velocity) {
     const double pressing = normal_force(material, depth, normal, velocity);
     if (pressing == 0.0) return glm::dvec3(0.0);
     const glm::dvec3 slip = velocity - normal * glm::dot(velocity, normal);
-    return normal * pressing +
-           regularised_friction(material.friction * pressing, material.slip_speed, slip);
+    return normal * pressing + inline_laws::regularised_friction(material.friction * pressing,
+                                                                 material.slip_speed, slip);
 }
 
 glm::dvec3 wheel_contact_force(const ContactMaterial& material, double depth,
@@ -37,38 +25,7 @@ glm::dvec3 wheel_contact_force(const ContactMaterial& material, double depth,
 glm::dvec3 pressed_wheel_force(const ContactMaterial& material, double pressing,
                                const glm::dvec3& normal, const glm::dvec3& velocity,
                                const WheelCommand& command) {
-    if (pressing == 0.0) return glm::dvec3(0.0);
-    const double grip = material.friction * pressing;
-
-    // Rolling direction in the contact plane; a wheel pressed on its side (heading along
-    // the normal) has none and only slides.
-    const glm::dvec3 in_plane = command.heading - normal * glm::dot(command.heading, normal);
-    const double in_plane_length = glm::length(in_plane);
-    const glm::dvec3 slip = velocity - normal * glm::dot(velocity, normal);
-    if (in_plane_length < 1e-6)
-        return normal * pressing + regularised_friction(grip, material.slip_speed, slip);
-    const glm::dvec3 forward = in_plane / in_plane_length;
-    const glm::dvec3 lateral = glm::cross(normal, forward);
-
-    const double rolling_speed = glm::dot(slip, forward);
-    const double sideways_speed = glm::dot(slip, lateral);
-    const double brake =
-        command.brake_force * std::clamp(rolling_speed / material.slip_speed, -1.0, 1.0);
-    double along =
-        std::clamp(command.drive_force - brake, -command.max_along_force, command.max_along_force);
-    double across = -grip * std::clamp(sideways_speed / material.slip_speed, -1.0, 1.0);
-
-    // Friction circle: the tyre cannot transmit more than mu F_n in total. hypot <= |along|
-    // + |across|, equal only when one is 0 (then both are exact), so a sum 1e-12 inside the
-    // grip proves the force inside the circle without the hypot (most sub-steps of a lap).
-    if (!(std::abs(along) + std::abs(across) <= grip * (1.0 - 1e-12))) {
-        const double tangential = std::hypot(along, across);
-        if (tangential > grip) {
-            along *= grip / tangential;
-            across *= grip / tangential;
-        }
-    }
-    return normal * pressing + forward * along + lateral * across;
+    return inline_laws::pressed_wheel_force(material, pressing, normal, velocity, command);
 }
 
 }  // namespace trackphys

@@ -1,11 +1,14 @@
 #include "trackphys/dynamics/contact_force.hpp"
 
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include <gtest/gtest.h>
 
 #include <glm/geometric.hpp>
+
+#include "dynamics/wheel_force.hpp"
 
 namespace trackphys {
 namespace {
@@ -109,6 +112,38 @@ TEST(ContactForce, WheelOnABankUsesTheHeadingProjectedIntoTheContactPlane) {
     const glm::dvec3 f = wheel_contact_force(material, 0.01, banked, glm::dvec3(0.0), command);
     EXPECT_NEAR(f.z, 500.0, 1e-9);
     EXPECT_NEAR(glm::dot(f, banked), 2000.0, 1e-9);
+}
+
+// The wheel law takes the hypot only where the shortcut cannot prove a force inside the
+// circle, so the shortcut must never prove one outside, at any scale and on the circle's
+// edge to the ulp; and inside it must prove all but the last 1e-11 of the radius.
+TEST(ContactForce, FrictionCircleShortcutNeverProvesAForceOutside) {
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> exponent(-300.0, 300.0);
+    std::uniform_real_distribution<double> angle(-3.2, 3.2);
+    std::uniform_real_distribution<double> ratio(0.5, 1.5);
+    std::uniform_int_distribution<int> ulps(-40, 40);
+    int proved = 0;
+    for (int i = 0; i < 400000; ++i) {
+        const double grip = std::pow(10.0, exponent(rng));
+        const double radius = grip * (i % 2 == 0 ? ratio(rng) : 1.0 + ulps(rng) * 0x1p-52);
+        const double a = angle(rng);
+        const double along = radius * std::cos(a);
+        const double across = radius * std::sin(a);
+        const double tangential = std::hypot(along, across);
+        const bool inside = inline_laws::inside_friction_circle(along, across, grip);
+        if (inside) {
+            ASSERT_LE(tangential, grip) << along << " " << across << " " << grip;
+        }
+        if (grip > 1e-99 && grip < 1e99 && tangential <= grip * (1.0 - 1e-11)) {
+            ASSERT_TRUE(inside) << along << " " << across << " " << grip;
+        }
+        proved += inside;
+    }
+    EXPECT_GT(proved, 50000);
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    EXPECT_FALSE(inline_laws::inside_friction_circle(nan, 0.0, 1.0));
+    EXPECT_FALSE(inline_laws::inside_friction_circle(0.0, nan, 1.0));
 }
 
 }  // namespace

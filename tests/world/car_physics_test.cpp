@@ -1,6 +1,7 @@
 // The car's physics against analytic cases (docs/design.md#exactness-promises-and-their-tests):
 // static sag, a bounce without damping, Coulomb's stopping distance, and contacts that never
 // tunnel.
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -55,6 +56,29 @@ TEST(CarPhysics, SettlesToTheStaticSagAndStaysStill) {
     run(world, 2.0);
     EXPECT_LT(glm::length(world.car(0).state().position - settled), 1e-4);
     EXPECT_LT(glm::length(world.car(0).state().linear_velocity), 1e-3);
+}
+
+// The sub-step's loops over wheels stop after the last wheel, and the presets list their
+// wheels first: a car listing its body first must drive as the preset does (to rounding,
+// since its contacts' forces are summed in another order).
+TEST(CarPhysics, ACarListingItsBodyFirstDrivesAsThePresetDoes) {
+    const CarSpec preset = CarSpec::default_car();
+    CarSpec body_first = preset;
+    auto& ellipsoids = body_first.ellipsoids;
+    std::stable_partition(ellipsoids.begin(), ellipsoids.end(),
+                          [](const CarEllipsoid& e) { return e.role == EllipsoidRole::body; });
+    ASSERT_EQ(ellipsoids.front().role, EllipsoidRole::body);
+    glm::dvec3 driven[2];
+    for (int k = 0; k < 2; ++k) {
+        World world(test::static_world_of(test::flat_grid(200.0, 100)));
+        world.add_car(k == 0 ? preset : body_first, at_height(0.52));
+        run(world, 1.0);
+        world.car(0).set_inputs({0.6, 0.0, 0.3});
+        run(world, 2.0);
+        driven[k] = world.car(0).state().position;
+    }
+    EXPECT_GT(glm::length(driven[0]), 5.0);
+    EXPECT_LT(glm::length(driven[1] - driven[0]), 1e-6);
 }
 
 // One stiff, undamped, frictionless ball dropped on the ground: a conservative spring,

@@ -7,6 +7,8 @@
 #include <span>
 #include <vector>
 
+#include <glm/geometric.hpp>
+#include <glm/gtc/quaternion.hpp>
 #include <glm/vec3.hpp>
 
 #include "trackphys/dynamics/car_spec.hpp"
@@ -111,7 +113,7 @@ class TRACKPHYS_API Car {
     double bounding_radius() const { return bounding_radius_; }
 
     /// Speed of the centre of mass (m/s).
-    double speed() const;
+    double speed() const { return glm::length(state_.linear_velocity); }
 
     /// One sub-step of h seconds from each ellipsoid's deepest contact (one per ellipsoid,
     /// in order; depth <= 0 for none): impulses for contacts the springs cannot hold, the
@@ -159,9 +161,10 @@ class TRACKPHYS_API Car {
     /// A wheel's axle, which sets its heading, grip and share of drive and brake; also the
     /// index of per-axle arrays.
     enum class Axle : int { front = 0, rear = 1 };
-    Axle axle_of(std::size_t wheel) const {
-        return shape_->parts[wheel].role == EllipsoidRole::front_wheel ? Axle::front : Axle::rear;
+    static Axle axle_of(EllipsoidRole wheel) {
+        return wheel == EllipsoidRole::front_wheel ? Axle::front : Axle::rear;
     }
+    Axle axle_of(std::size_t wheel) const { return axle_of(shape_->parts[wheel].role); }
     /// What a sub-step reads of an ellipsoid besides its contact, in one small block: not
     /// from the spec's CarEllipsoids (88 bytes each) and the body Ellipsoids (176).
     struct Part {
@@ -175,10 +178,13 @@ class TRACKPHYS_API Car {
     struct Shape {
         std::vector<Ellipsoid> body;  // in CarSpec order
         std::vector<Part> parts;      // the same order
+        /// One past the last wheel: every ellipsoid from here on is body, which the loops
+        /// over wheels need not visit (the presets list their wheels first).
+        std::size_t wheel_end = 0;
         bool same_bits(const Shape& other) const;
     };
     /// A wheel's tyre this sub-step (measure_wheel_loads): the velocity of its contact point
-    /// and the normal force measured at it (N; 0 for the body, whose velocity is not set).
+    /// and the normal force measured at it (N). A body ellipsoid's is not set.
     /// Scratch of one sub-step, on advance's stack: a car's own copy would be written cold
     /// at each of its updates in a big field.
     struct WheelLoad {
@@ -186,12 +192,16 @@ class TRACKPHYS_API Car {
         double load;
     };
     using WheelLoads = std::array<WheelLoad, CarSpec::max_ellipsoids>;
+    /// The load of each axle's least loaded wheel (N; infinity for an axle with none),
+    /// indexed by Axle: it bounds the axle's drive and brake.
+    using AxleLoads = std::array<double, 2>;
 
     void resolve_deep_contacts(std::span<const Contact> deepest);
     /// The tyre's normal force of each wheel and the velocity of its contact point, into
-    /// wheel_loads' first deepest.size().
-    void measure_wheel_loads(std::span<const Contact> deepest, WheelLoads& wheel_loads) const;
-    Wrench contact_wrench(std::span<const Contact> deepest, const WheelLoads& wheel_loads) const;
+    /// wheel_loads' first deepest.size(); returns each axle's least load.
+    AxleLoads measure_wheel_loads(std::span<const Contact> deepest, WheelLoads& wheel_loads) const;
+    Wrench contact_wrench(std::span<const Contact> deepest, const WheelLoads& wheel_loads,
+                          const AxleLoads& least_loads) const;
     /// contact_wrench for a car with a vehicle model; advances its wheels by h.
     Wrench vehicle_wrench(std::span<const Contact> deepest, const WheelLoads& wheel_loads,
                           double h);
@@ -200,7 +210,9 @@ class TRACKPHYS_API Car {
     glm::dvec3 forward_axis() const { return state_.orientation * glm::dvec3(0.0, 0.0, 1.0); }
     /// The world direction the wheels of an axle roll in (the front ones steered); forward:
     /// forward_axis().
-    glm::dvec3 wheel_heading(Axle axle, const glm::dvec3& forward) const;
+    glm::dvec3 wheel_heading(Axle axle, const glm::dvec3& forward) const {
+        return axle == Axle::front ? state_.orientation * steered_heading_ : forward;
+    }
     void update_suspension(std::span<const Contact> deepest, const WheelLoads& wheel_loads,
                            double h);
     /// The command of each wheel of an axle rolling along heading on material
@@ -215,8 +227,18 @@ class TRACKPHYS_API Car {
     void take_inputs(const CarInputs& inputs);
     /// The contact material of an axle's wheels (rear tyres with their extra grip).
     ContactMaterial wheel_material(Axle axle) const;
-    /// speed_now: speed(); forward: forward_axis().
-    void add_aero_force(Wrench& wrench, double speed_now, const glm::dvec3& forward) const;
+    /// speed_now: speed(); forward: forward_axis(). Defined here, as the sub-step's other small
+    /// laws are, so that both wrenches compile it in rather than call it.
+    void add_aero_force(Wrench& wrench, double speed_now, const glm::dvec3& forward) const {
+        const glm::dvec3& v = state_.linear_velocity;
+        const double dynamic_pressure = 0.5 * spec_.air_density * glm::dot(v, v);
+        if (speed_now > 0.0) wrench.force -= v * (dynamic_pressure * spec_.drag_area / speed_now);
+        // Downforce pushes along the body's down axis, in proportion to the forward speed.
+        const double forward_speed = glm::dot(v, forward);
+        const glm::dvec3 down = state_.orientation * glm::dvec3(0.0, -1.0, 0.0);
+        wrench.force +=
+            down * (0.5 * spec_.air_density * forward_speed * forward_speed * spec_.downforce_area);
+    }
 
     CarSpec spec_;
     RigidBodyState state_;
