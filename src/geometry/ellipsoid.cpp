@@ -107,8 +107,11 @@ bool all_finite_nonzero(const glm::dquat& rotation, const glm::dmat3& matrix) {
 
 }  // namespace
 
+// The matrix built in place: delegating would build it aside and copy it.
 PlacingRotation::PlacingRotation(const glm::dquat& rotation)
-    : PlacingRotation(rotation, glm::mat3_cast(rotation)) {}
+    : quaternion(rotation),
+      matrix(glm::mat3_cast(rotation)),
+      entries_finite_nonzero(all_finite_nonzero(quaternion, matrix)) {}
 
 PlacingRotation::PlacingRotation(const glm::dquat& rotation, const glm::dmat3& rotation_matrix)
     : quaternion(rotation),
