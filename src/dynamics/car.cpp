@@ -46,7 +46,8 @@ Car::Car(CarSpec spec, const RigidBodyState& initial_state) : spec_(std::move(sp
     set_state(initial_state);
     auto shape = std::make_shared<Shape>();
     for (const CarEllipsoid& e : spec_.ellipsoids) {
-        const Ellipsoid& body = shape->body.emplace_back(e.center, e.orientation, e.semi_axes);
+        const Ellipsoid& body =
+            shape->body.emplace_back(Ellipsoid(e.center, e.orientation, e.semi_axes)).ellipsoid();
         shape->parts.push_back(
             {e.role, spec_.deep_contact_fraction * body.sorted_radii().z * (1.0 - 1e-12)});
         if (e.role != EllipsoidRole::body) shape->wheel_end = shape->parts.size();
@@ -66,7 +67,7 @@ bool Car::Shape::same_bits(const Shape& other) const {
     static_assert(sizeof(Ellipsoid) == 22 * sizeof(double), "an Ellipsoid has no padding");
     if (body.size() != other.body.size()) return false;
     for (std::size_t i = 0; i < body.size(); ++i)
-        if (std::memcmp(&body[i], &other.body[i], sizeof(Ellipsoid)) != 0 ||
+        if (std::memcmp(&body[i].ellipsoid(), &other.body[i].ellipsoid(), sizeof(Ellipsoid)) != 0 ||
             parts[i].role != other.parts[i].role ||
             std::bit_cast<std::uint64_t>(parts[i].deep_contact_depth) !=
                 std::bit_cast<std::uint64_t>(other.parts[i].deep_contact_depth))
@@ -246,7 +247,7 @@ void Car::resolve_deep_contacts(std::span<const Contact> deepest) {
         // margin for its rounding keeps this test exactly the one below: an ordinary
         // contact (a wheel 1 cm deep) skips the rotation and the square root.
         if (!(contact.depth > shape_->parts[i].deep_contact_depth)) continue;
-        const Ellipsoid& e = shape_->body[i];
+        const Ellipsoid& e = shape_->body[i].ellipsoid();
         // The ellipsoid's half-extent along the contact normal (its support h(n)).
         const glm::dvec3 n_local =
             glm::conjugate(state_.orientation) * contact.normal * e.sorted_axes();

@@ -107,8 +107,11 @@ bool all_finite_nonzero(const glm::dquat& rotation, const glm::dmat3& matrix) {
 
 }  // namespace
 
+// The matrix built in place: delegating would build it aside and copy it.
 PlacingRotation::PlacingRotation(const glm::dquat& rotation)
-    : PlacingRotation(rotation, glm::mat3_cast(rotation)) {}
+    : quaternion(rotation),
+      matrix(glm::mat3_cast(rotation)),
+      entries_finite_nonzero(all_finite_nonzero(quaternion, matrix)) {}
 
 PlacingRotation::PlacingRotation(const glm::dquat& rotation, const glm::dmat3& rotation_matrix)
     : quaternion(rotation),
@@ -128,24 +131,34 @@ void Ellipsoid::place_copy(Ellipsoid& copy, const glm::dquat& rotation,
 
 void Ellipsoid::place_copy(Ellipsoid& copy, const PlacingRotation& rotation,
                            const glm::dvec3& translation) const {
+    place_copy(copy, rotation, translation, coordinate_axes());
+}
+
+// Unrotated: the identity's bits (one given with a -0 takes the products) and sorted axes
+// that are coordinate axes. An ellipsoid turned and turned back can have the first without
+// the second, its axes off the coordinate axes by roundings.
+Ellipsoid::CoordinateAxes Ellipsoid::coordinate_axes() const {
+    static const glm::dquat identity(1.0, 0.0, 0.0, 0.0);
+    CoordinateAxes axes{false, {-1, -1, -1}};
+    if (std::memcmp(&orientation_, &identity, sizeof identity) != 0) return axes;
+    for (int k = 0; k < 3; ++k) {
+        axes.along[k] = static_cast<std::int8_t>(coordinate_axis_index(sorted_axes_[k]));
+        if (axes.along[k] < 0) return axes;
+    }
+    axes.unrotated = true;
+    return axes;
+}
+
+void Ellipsoid::place_copy(Ellipsoid& copy, const PlacingRotation& rotation,
+                           const glm::dvec3& translation, const CoordinateAxes& axes) const {
     TP_ASSERT(copy.semi_axes_ == semi_axes_ && copy.sorted_radii_ == sorted_radii_,
               "Ellipsoid::place_copy: the slot is not a copy of this ellipsoid");
     copy.center_ = rotation.matrix * center_ + translation;
-    // Unrotated: the identity's bits (one given with a -0 takes the products) and sorted
-    // axes that are coordinate axes. An ellipsoid turned and turned back can have the first
-    // without the second, its axes off the coordinate axes by roundings.
-    static const glm::dquat identity(1.0, 0.0, 0.0, 0.0);
-    if (rotation.entries_finite_nonzero &&
-        std::memcmp(&orientation_, &identity, sizeof identity) == 0) {
-        const std::array<int, 3> along = {coordinate_axis_index(sorted_axes_[0]),
-                                          coordinate_axis_index(sorted_axes_[1]),
-                                          coordinate_axis_index(sorted_axes_[2])};
-        if (along[0] >= 0 && along[1] >= 0 && along[2] >= 0) {
-            copy.orientation_ = rotation.quaternion;
-            for (int k = 0; k < 3; ++k)
-                copy.sorted_axes_[k] = rotation.matrix[along[k]] * sorted_axes_[k][along[k]];
-            return;
-        }
+    if (axes.unrotated && rotation.entries_finite_nonzero) {
+        copy.orientation_ = rotation.quaternion;
+        for (int k = 0; k < 3; ++k)
+            copy.sorted_axes_[k] = rotation.matrix[axes.along[k]] * sorted_axes_[k][axes.along[k]];
+        return;
     }
     copy.orientation_ = rotation.quaternion * orientation_;
     copy.sorted_axes_ = rotation.matrix * sorted_axes_;

@@ -3,11 +3,11 @@
 #include <cstddef>
 
 #include <glm/geometric.hpp>
-#include <glm/gtc/quaternion.hpp>
 
 #include "trackphys/collision/static_world.hpp"
 #include "trackphys/dynamics/car.hpp"
 #include "trackphys/geometry/aabb.hpp"
+#include "trackphys/geometry/ellipsoid.hpp"
 #include "trackphys/world/world_settings.hpp"
 
 namespace trackphys::detail {
@@ -17,9 +17,9 @@ namespace trackphys::detail {
 /// update and padded by what rotation and a changing velocity can add: any body point moves
 /// at most |omega| R dt by rotation, and gravity alone bends the path by |g| dt^2 / 2.
 inline Aabb car_update_box(const Car& car, const WorldSettings& settings) {
-    // One rotation matrix for all the ellipsoids: this runs for every car on one thread,
-    // before the islands share the update out.
-    const glm::dmat3 orientation = glm::mat3_cast(car.state().orientation);
+    // One placing rotation (its matrix and its entries' check) for all the ellipsoids: this
+    // runs for every car on one thread, before the islands share the update out.
+    const PlacingRotation orientation(car.state().orientation);
     Aabb box;
     for (std::size_t i = 0; i < car.ellipsoid_count(); ++i)
         box.expand(car.world_ellipsoid(i, orientation).bounds());

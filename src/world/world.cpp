@@ -6,6 +6,7 @@
 #include <limits>
 #include <numeric>
 #include <optional>
+#include <span>
 #include <utility>
 
 #include <glm/geometric.hpp>
@@ -237,9 +238,13 @@ void World::list_step_candidates(CarSlot& slot, int steps_left, PhaseStopwatch& 
 // triangles on a clean lap, are left where they were; car pairs need every one (every).
 void World::place_ellipsoids(CarSlot& slot, bool every) {
     const PlacingRotation orientation(slot.car.state().orientation);
-    for (std::size_t i = 0; i < slot.placed.size(); ++i)
-        if (every || !slot.listed[i].candidates().empty())
-            slot.car.place_ellipsoid(i, orientation, slot.placed[i]);
+    // Spans, read once: the vectors themselves would be read again after each placing, a
+    // call that could change them for all the compiler knows.
+    const std::span<Ellipsoid> placed(slot.placed);
+    const std::span<const LookAheadList> listed(slot.listed);
+    for (std::size_t i = 0; i < placed.size(); ++i)
+        if (every || !listed[i].candidates().empty())
+            slot.car.place_ellipsoid(i, orientation, placed[i]);
 }
 
 namespace {

@@ -97,10 +97,29 @@ bool same_bits(const T& a, const T& b) {
     return std::memcmp(&a, &b, sizeof a) == 0;
 }
 
+// Up to `count` copies of `e` turned by random rotations and turned back: the identity's
+// bits again, but axes off the coordinate axes by roundings, which placing must multiply as
+// glm does.
+std::vector<Ellipsoid> turned_back(const Ellipsoid& e, std::size_t count, std::mt19937_64& rng) {
+    std::normal_distribution<double> normal;
+    std::vector<Ellipsoid> back;
+    for (int turned = 0; back.size() < count && turned < 1000; ++turned) {
+        const glm::dquat q =
+            glm::normalize(glm::dquat(normal(rng), normal(rng), normal(rng), normal(rng)));
+        const Ellipsoid there_and_back =
+            e.transformed(q, glm::dvec3(0.0)).transformed(glm::conjugate(q), glm::dvec3(0.0));
+        if (same_bits(there_and_back.orientation(), identity) &&
+            !same_bits(there_and_back.sorted_axes(), e.sorted_axes()))
+            back.push_back(there_and_back);
+    }
+    return back;
+}
+
 // Placing copies the rotation's entries into an unrotated ellipsoid rather than multiplying
 // by its axes' ones and zeros when no entry is a zero, which glm's sums would sign by other
 // rules: every placing must give the bits of glm's products, zeros of either sign included,
-// also for an ellipsoid whose orientation has the identity's bits but whose axes do not.
+// also for an ellipsoid whose orientation has the identity's bits but whose axes do not;
+// a BodyEllipsoid's too, which finds the axes once.
 TEST(Ellipsoid, PlacingGivesTheBitsOfGlmsProducts) {
     std::mt19937_64 rng(11);
     std::normal_distribution<double> normal;
@@ -117,19 +136,10 @@ TEST(Ellipsoid, PlacingGivesTheBitsOfGlmsProducts) {
     std::vector<Ellipsoid> bodies;
     for (const glm::dvec3& a : axes) bodies.emplace_back(glm::dvec3(0.9, -0.15, 0.0), identity, a);
     bodies.emplace_back(glm::dvec3(0.0, 0.1, -1.7), glm::dquat(0.9, 0.1, -0.2, 0.3), axes[3]);
-    // Turned and turned back: the identity's bits again, but axes off the coordinate axes by
-    // roundings, which placing must multiply as glm does.
-    for (int turned = 0; bodies.size() < 20 && turned < 1000; ++turned) {
-        const glm::dquat q =
-            glm::normalize(glm::dquat(normal(rng), normal(rng), normal(rng), normal(rng)));
-        const Ellipsoid back = bodies[3]
-                                   .transformed(q, glm::dvec3(0.0))
-                                   .transformed(glm::conjugate(q), glm::dvec3(0.0));
-        if (same_bits(back.orientation(), identity) &&
-            !same_bits(back.sorted_axes(), bodies[3].sorted_axes()))
-            bodies.push_back(back);
-    }
+    for (const Ellipsoid& back : turned_back(bodies[3], 11, rng)) bodies.push_back(back);
     ASSERT_EQ(bodies.size(), 20u) << "turned-back bodies with tilted axes";
+    std::vector<BodyEllipsoid> keyed;
+    for (const Ellipsoid& body : bodies) keyed.emplace_back(body);
     int copied = 0;
     for (int trial = 0; trial < 4000; ++trial) {
         // Some components zero, of either sign, as a car standing level has.
@@ -143,18 +153,55 @@ TEST(Ellipsoid, PlacingGivesTheBitsOfGlmsProducts) {
         const PlacingRotation placing(rotation);
         copied += placing.entries_finite_nonzero;
         const glm::dvec3 translation(normal(rng) * 100.0, normal(rng), normal(rng));
-        for (const Ellipsoid& body : bodies) {
-            Ellipsoid placed = body;
-            body.place_copy(placed, placing, translation);
-            ASSERT_TRUE(same_bits(placed.center(), matrix * body.center() + translation));
-            ASSERT_TRUE(same_bits(placed.orientation(), rotation * body.orientation()))
-                << "trial " << trial;
-            ASSERT_TRUE(same_bits(placed.sorted_axes(), matrix * body.sorted_axes()))
-                << "trial " << trial;
-            ASSERT_TRUE(same_bits(placed.sorted_radii(), body.sorted_radii()));
+        for (std::size_t b = 0; b < bodies.size(); ++b) {
+            const Ellipsoid& body = bodies[b];
+            std::array<Ellipsoid, 2> placed = {body, body};
+            body.place_copy(placed[0], placing, translation);
+            keyed[b].place_copy(placed[1], placing, translation);
+            for (const Ellipsoid& p : placed) {
+                ASSERT_TRUE(same_bits(p.center(), matrix * body.center() + translation));
+                ASSERT_TRUE(same_bits(p.orientation(), rotation * body.orientation()))
+                    << "trial " << trial << ", body " << b;
+                ASSERT_TRUE(same_bits(p.sorted_axes(), matrix * body.sorted_axes()))
+                    << "trial " << trial << ", body " << b;
+                ASSERT_TRUE(same_bits(p.sorted_radii(), body.sorted_radii()));
+            }
         }
     }
     EXPECT_GT(copied, 1000);  // the copies were tested, not only the products
+}
+
+// A BodyEllipsoid given another ellipsoid must place it by that one's axes, not the ones
+// found for the last: an unrotated ellipsoid replaced by a turned-back copy of itself (the
+// same orientation bits, tilted axes) is multiplied, and the copy replaced by the unrotated
+// one copied, both with glm's bits.
+TEST(BodyEllipsoid, PlacesANewEllipsoidByItsOwnAxes) {
+    std::mt19937_64 rng(5);
+    std::normal_distribution<double> normal;
+    const Ellipsoid unrotated(glm::dvec3(0.0, 0.35, 0.0), identity, glm::dvec3(0.75, 0.4, 1.2));
+    const std::vector<Ellipsoid> backs = turned_back(unrotated, 8, rng);
+    ASSERT_EQ(backs.size(), 8u);
+    int tilted_differ = 0;
+    for (const Ellipsoid& back : backs) {
+        BodyEllipsoid body(unrotated);
+        for (const Ellipsoid& now : {back, unrotated}) {
+            body = BodyEllipsoid(now);
+            for (int trial = 0; trial < 50; ++trial) {
+                const glm::dquat rotation =
+                    glm::normalize(glm::dquat(normal(rng), normal(rng), normal(rng), normal(rng)));
+                const glm::dmat3 matrix = glm::mat3_cast(rotation);
+                Ellipsoid placed = now;
+                body.place_copy(placed, PlacingRotation(rotation), glm::dvec3(1.0, 2.0, 3.0));
+                ASSERT_TRUE(same_bits(placed.orientation(), rotation * now.orientation()));
+                ASSERT_TRUE(same_bits(placed.sorted_axes(), matrix * now.sorted_axes()));
+                // What the other ellipsoid's axes would give is other bits, so the asserts
+                // above tell which axes were used.
+                tilted_differ +=
+                    !same_bits(matrix * back.sorted_axes(), matrix * unrotated.sorted_axes());
+            }
+        }
+    }
+    EXPECT_GT(tilted_differ, 700);
 }
 
 TEST(Ellipsoid, RejectsInvalidInputWithAMessage) {

@@ -52,7 +52,7 @@ class TRACKPHYS_API Car {
     std::size_t ellipsoid_count() const { return shape_->body.size(); }
     /// Ellipsoid i in the body frame (relative to the centre of mass). Cars that share their
     /// ellipsoids (share_ellipsoids_with) return the same object.
-    const Ellipsoid& body_ellipsoid(std::size_t i) const { return shape_->body[i]; }
+    const Ellipsoid& body_ellipsoid(std::size_t i) const { return shape_->body[i].ellipsoid(); }
     /// Makes this car read its body-frame ellipsoids, and what its sub-steps read of each,
     /// from `other`'s copy when the two hold the same bits (cars of one spec): a field of
     /// many cars then keeps one copy warm in the cache rather than one per car. Nothing the
@@ -70,7 +70,7 @@ class TRACKPHYS_API Car {
     }
     /// The same with the orientation given as a PlacingRotation of state().orientation.
     Ellipsoid world_ellipsoid(std::size_t i, const PlacingRotation& orientation) const {
-        Ellipsoid placed = shape_->body[i];
+        Ellipsoid placed = shape_->body[i].ellipsoid();
         place_ellipsoid(i, orientation, placed);
         return placed;
     }
@@ -174,10 +174,11 @@ class TRACKPHYS_API Car {
         double deep_contact_depth;
     };
     /// What the spec fixes of the ellipsoids, never changed after construction: the body
-    /// frame's Ellipsoids (176 bytes each) that placing reads every sub-step, and the Parts.
+    /// frame's Ellipsoids (with what placing finds of them) that placing reads every
+    /// sub-step, and the Parts.
     struct Shape {
-        std::vector<Ellipsoid> body;  // in CarSpec order
-        std::vector<Part> parts;      // the same order
+        std::vector<BodyEllipsoid> body;  // in CarSpec order
+        std::vector<Part> parts;          // the same order
         /// One past the last wheel: every ellipsoid from here on is body, which the loops
         /// over wheels need not visit (the presets list their wheels first).
         std::size_t wheel_end = 0;

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <array>
+#include <cstdint>
 #include <optional>
 #include <string>
 
@@ -88,15 +90,51 @@ class TRACKPHYS_API Ellipsoid {
     Aabb bounds() const;
 
   private:
+    friend class BodyEllipsoid;
+
     struct Unchecked {};
     Ellipsoid(Unchecked, const glm::dvec3& center, const glm::dquat& orientation,
               const glm::dvec3& semi_axes);
+
+    /// For an unrotated ellipsoid (the identity's bits, each sorted axis a coordinate axis,
+    /// some negated), which coordinate axis each sorted axis is: what placing copies by.
+    struct CoordinateAxes {
+        bool unrotated;
+        std::array<std::int8_t, 3> along;
+    };
+    CoordinateAxes coordinate_axes() const;
+    /// place_copy with coordinate_axes() given.
+    void place_copy(Ellipsoid& copy, const PlacingRotation& rotation, const glm::dvec3& translation,
+                    const CoordinateAxes& axes) const;
 
     glm::dvec3 center_;
     glm::dquat orientation_;
     glm::dvec3 semi_axes_;
     glm::dvec3 sorted_radii_;
     glm::dmat3 sorted_axes_;
+};
+
+/// An ellipsoid in a moving body's frame, placed in the world again and again (a car's, at
+/// every sub-step): with what Ellipsoid::place_copy would otherwise find at each placing,
+/// whether it is unrotated and which coordinate axis each sorted axis is, found once. Its
+/// ellipsoid changes only by building a new one, which finds them again: they cannot go
+/// stale.
+class TRACKPHYS_API BodyEllipsoid {
+  public:
+    explicit BodyEllipsoid(const Ellipsoid& ellipsoid)
+        : ellipsoid_(ellipsoid), axes_(ellipsoid.coordinate_axes()) {}
+
+    const Ellipsoid& ellipsoid() const { return ellipsoid_; }
+
+    /// ellipsoid().place_copy(copy, rotation, translation), the same bits.
+    void place_copy(Ellipsoid& copy, const PlacingRotation& rotation,
+                    const glm::dvec3& translation) const {
+        ellipsoid_.place_copy(copy, rotation, translation, axes_);
+    }
+
+  private:
+    Ellipsoid ellipsoid_;
+    Ellipsoid::CoordinateAxes axes_;
 };
 
 }  // namespace trackphys
