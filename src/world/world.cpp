@@ -298,9 +298,8 @@ void World::find_contacts(CarSlot& slot, PhaseStopwatch& watch) {
         if (kept.empty()) continue;
         // Last sub-step's deepest triangle is most likely the deepest again; else the one
         // with the deepest bound.
-        auto first = std::find_if(kept.begin(), kept.end(), [&](const Survivor& s) {
-            return CarSlot::same_triangle(s.ref, slot.deepest_ref[i]);
-        });
+        auto first = std::find_if(kept.begin(), kept.end(),
+                                  [&](const Survivor& s) { return s.ref == slot.deepest_ref[i]; });
         if (first == kept.end())
             first = std::max_element(
                 kept.begin(), kept.end(),
