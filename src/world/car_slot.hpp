@@ -3,6 +3,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -13,6 +14,7 @@
 #include "trackphys/geometry/aabb.hpp"
 #include "trackphys/geometry/contact.hpp"
 #include "trackphys/geometry/ellipsoid.hpp"
+#include "trackphys/geometry/face_certificate.hpp"
 #include "trackphys/world/world.hpp"
 
 namespace trackphys {
@@ -75,7 +77,12 @@ struct World::CarSlot {
     std::vector<Contact> deepest;           // per ellipsoid, this sub-step
     std::vector<TriangleRef> deepest_ref;   // its triangle, tried first next
     std::vector<KnownNormals> known;        // per ellipsoid: recent survivors' normals
-    bool pushed = false;                    // by another car, this sub-step
+    // The first survivors of this sub-step's ellipsoids that have any, in ellipsoid order,
+    // and their face certificates (find_contacts runs them together).
+    std::vector<const NormalizedTriangle*> first_frames;
+    std::vector<const Ellipsoid*> first_ellipsoids;
+    std::vector<std::optional<ContactWithSupport>> first_faces;
+    bool pushed = false;  // by another car, this sub-step
     // The reset policy's memory: the state at the start of this update, the resets.
     RigidBodyState start_state;
     std::vector<double> start_suspension;

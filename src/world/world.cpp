@@ -12,6 +12,7 @@
 
 #include "core/fnv1a.hpp"
 #include "geometry/ellipsoid_cull_list.hpp"
+#include "geometry/face_certificate_lanes.hpp"
 #include "profile/phase_stopwatch.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/geometry/contact.hpp"
@@ -54,6 +55,9 @@ World::CarSlot::CarSlot(Car car_in, MidPhase mid_in)
     deepest.resize(ellipsoids);
     deepest_ref.resize(ellipsoids, TriangleRef{~0u, ~0u});
     known.resize(ellipsoids);
+    first_frames.resize(ellipsoids);
+    first_ellipsoids.resize(ellipsoids);
+    first_faces.resize(ellipsoids);
     placed.reserve(ellipsoids);
     for (std::size_t i = 0; i < ellipsoids; ++i) placed.push_back(car.world_ellipsoid(i));
 }
@@ -244,6 +248,16 @@ void World::place_ellipsoids(CarSlot& slot, bool every) {
 
 namespace {
 
+// The exact contact when the face certificate refuses: the kernel on the triangle's own
+// vertices, with the support along its normal. Out of line, as exact_contact is.
+[[gnu::noinline]] ContactWithSupport kernel_contact(const StaticWorld& statics,
+                                                    const TriangleRef& ref,
+                                                    const Ellipsoid& ellipsoid) {
+    const Contact contact = ellipsoid_triangle_contact(
+        ellipsoid, statics.collider(ref.collider).triangle(ref.triangle));
+    return {contact, support_extent(ellipsoid, contact.normal)};
+}
+
 // Nearly every exact test is a wheel standing on a road triangle: the face certificate
 // answers it from the frame the cull read, with the support along its normal, and only the
 // rest fetch the triangle's own vertices for the kernel. Out of line: inlined, its
@@ -255,9 +269,7 @@ namespace {
                                                    const Ellipsoid& ellipsoid) {
     if (const std::optional<ContactWithSupport> face = certified_face_contact(frame, ellipsoid))
         return *face;
-    const Contact contact = ellipsoid_triangle_contact(
-        ellipsoid, statics.collider(ref.collider).triangle(ref.triangle));
-    return {contact, support_extent(ellipsoid, contact.normal)};
+    return kernel_contact(statics, ref, ellipsoid);
 }
 
 }  // namespace
@@ -291,9 +303,11 @@ void World::find_contacts(CarSlot& slot, PhaseStopwatch& watch) {
     // Exact contact: the deepest over each ellipsoid's survivors. Last sub-step's deepest
     // triangle goes first, else the survivor with the deepest bound; after it, only
     // survivors whose bounds beat the deepest contact found so far can change the answer.
+    // Every first survivor is tested, so their face certificates run first, together in
+    // lanes (nearly every wheel on the road: one test of each wheel a sub-step).
+    std::size_t firsts = 0;
     for (std::size_t i = 0; i < ellipsoids; ++i) {
-        Contact& deepest = slot.deepest[i];
-        deepest.depth = -std::numeric_limits<double>::infinity();
+        slot.deepest[i].depth = -std::numeric_limits<double>::infinity();
         const std::span<Survivor> kept = slot.survivors(i);
         if (kept.empty()) continue;
         // Last sub-step's deepest triangle is most likely the deepest again; else the one
@@ -305,6 +319,18 @@ void World::find_contacts(CarSlot& slot, PhaseStopwatch& watch) {
                 kept.begin(), kept.end(),
                 [](const Survivor& a, const Survivor& b) { return a.depth_bound < b.depth_bound; });
         std::iter_swap(kept.begin(), first);
+        slot.first_frames[firsts] = kept.front().frame;
+        slot.first_ellipsoids[firsts] = &slot.placed[i];
+        ++firsts;
+    }
+    detail::certify_faces_widest(avx2, std::span(slot.first_frames.data(), firsts),
+                                 std::span(slot.first_ellipsoids.data(), firsts),
+                                 slot.first_faces.data());
+    const std::optional<ContactWithSupport>* first_face = slot.first_faces.data();
+    for (std::size_t i = 0; i < ellipsoids; ++i) {
+        Contact& deepest = slot.deepest[i];
+        const std::span<Survivor> kept = slot.survivors(i);
+        if (kept.empty()) continue;
         // After the first contact, the bound along its normal skips the neighbours that
         // cannot beat it (ties within kDepthTie, far below the 1e-9 m contract, included).
         constexpr double kDepthTie = 1e-12;    // m
@@ -331,7 +357,10 @@ void World::find_contacts(CarSlot& slot, PhaseStopwatch& watch) {
                     if (bound + kKernelError <= deepest.depth) continue;
                 }
             }
-            const ContactWithSupport contact = exact_contact(*statics_, s.ref, frame, ellipsoid);
+            const ContactWithSupport contact =
+                &s != kept.data()         ? exact_contact(*statics_, s.ref, frame, ellipsoid)
+                : first_face->has_value() ? **first_face
+                                          : kernel_contact(*statics_, s.ref, ellipsoid);
             known.remember(s.ref, contact.normal);
             ++watch.profile().exact_tests;
             if (contact.depth > deepest.depth) {
@@ -341,6 +370,7 @@ void World::find_contacts(CarSlot& slot, PhaseStopwatch& watch) {
             }
         }
         watch.profile().contacts += deepest.depth > 0.0;
+        ++first_face;
     }
     watch.lap(Phase::exact);
 }
