@@ -77,11 +77,13 @@ struct World::CarSlot {
     std::vector<Contact> deepest;           // per ellipsoid, this sub-step
     std::vector<TriangleRef> deepest_ref;   // its triangle, tried first next
     std::vector<KnownNormals> known;        // per ellipsoid: recent survivors' normals
-    // The first survivors of this sub-step's ellipsoids that have any, in ellipsoid order,
-    // and their face certificates (find_contacts runs them together).
+    // The first survivors of this sub-step's ellipsoids that have any, in ellipsoid order:
+    // their frames, ellipsoids, face certificates (find_contacts runs them together) and
+    // the ellipsoids' indices.
     std::vector<const NormalizedTriangle*> first_frames;
     std::vector<const Ellipsoid*> first_ellipsoids;
     std::vector<std::optional<ContactWithSupport>> first_faces;
+    std::vector<std::size_t> first_owners;
     bool pushed = false;  // by another car, this sub-step
     // The reset policy's memory: the state at the start of this update, the resets.
     RigidBodyState start_state;

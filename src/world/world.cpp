@@ -58,6 +58,7 @@ World::CarSlot::CarSlot(Car car_in, MidPhase mid_in)
     first_frames.resize(ellipsoids);
     first_ellipsoids.resize(ellipsoids);
     first_faces.resize(ellipsoids);
+    first_owners.resize(ellipsoids);
     placed.reserve(ellipsoids);
     for (std::size_t i = 0; i < ellipsoids; ++i) placed.push_back(car.world_ellipsoid(i));
 }
@@ -282,36 +283,28 @@ void World::find_contacts(CarSlot& slot, PhaseStopwatch& watch) {
     // Cull: the ellipsoid's own extent along each listed triangle's frame axes, which also
     // bounds how deep the triangle can be. No bounding-sphere test first: the extents are
     // at most the radius, so it rejects nothing this test keeps, and almost every listed
-    // triangle reaches this test anyway.
+    // triangle reaches this test anyway. Last sub-step's deepest triangle is tested first,
+    // as it is most likely the deepest again, else the survivor with the deepest bound; every
+    // first survivor is tested, so it is picked here and the first survivors' face
+    // certificates run together, in lanes (a wheel on the road: nearly every exact test).
     std::vector<Survivor>& all_kept = slot.kept;
     all_kept.clear();
     const auto keep = [&all_kept](const MidPhaseCandidate& c, double bound) {
         all_kept.push_back({c.ref, c.triangle, bound});
     };
     const bool avx2 = detail::cpu_has_avx2();
-    for (std::size_t i = 0; i < ellipsoids; ++i) {
-        const std::vector<MidPhaseCandidate>& listed = slot.listed[i].candidates();
-        // Half the calls would be for nothing: a lone car's body ellipsoids list no triangles.
-        if (!listed.empty())
-            detail::cull_listed_widest(avx2, slot.placed[i], std::span(listed), keep);
-        slot.kept_start[i + 1] = static_cast<std::uint32_t>(all_kept.size());
-        watch.profile().culled_tests += listed.size();
-    }
-    watch.profile().ellipsoid_substeps += ellipsoids;
-    watch.lap(Phase::cull);
-
-    // Exact contact: the deepest over each ellipsoid's survivors. Last sub-step's deepest
-    // triangle goes first, else the survivor with the deepest bound; after it, only
-    // survivors whose bounds beat the deepest contact found so far can change the answer.
-    // Every first survivor is tested, so their face certificates run first, together in
-    // lanes (nearly every wheel on the road: one test of each wheel a sub-step).
-    std::size_t firsts = 0;
+    std::size_t firsts = 0;  // ellipsoids with survivors
     for (std::size_t i = 0; i < ellipsoids; ++i) {
         slot.deepest[i].depth = -std::numeric_limits<double>::infinity();
+        slot.kept_start[i + 1] = static_cast<std::uint32_t>(all_kept.size());
+        const std::vector<MidPhaseCandidate>& listed = slot.listed[i].candidates();
+        // Half the calls would be for nothing: a lone car's body ellipsoids list no triangles.
+        if (listed.empty()) continue;
+        watch.profile().culled_tests += listed.size();
+        detail::cull_listed_widest(avx2, slot.placed[i], std::span(listed), keep);
+        slot.kept_start[i + 1] = static_cast<std::uint32_t>(all_kept.size());
         const std::span<Survivor> kept = slot.survivors(i);
         if (kept.empty()) continue;
-        // Last sub-step's deepest triangle is most likely the deepest again; else the one
-        // with the deepest bound.
         auto first = std::find_if(kept.begin(), kept.end(),
                                   [&](const Survivor& s) { return s.ref == slot.deepest_ref[i]; });
         if (first == kept.end())
@@ -321,16 +314,22 @@ void World::find_contacts(CarSlot& slot, PhaseStopwatch& watch) {
         std::iter_swap(kept.begin(), first);
         slot.first_frames[firsts] = kept.front().frame;
         slot.first_ellipsoids[firsts] = &slot.placed[i];
+        slot.first_owners[firsts] = i;
         ++firsts;
     }
+    watch.profile().ellipsoid_substeps += ellipsoids;
+    watch.lap(Phase::cull);
+
+    // Exact contact: the deepest over each ellipsoid's survivors, the first one first; after
+    // it, only survivors whose bounds beat the deepest contact found so far can change the
+    // answer.
     detail::certify_faces_widest(avx2, std::span(slot.first_frames.data(), firsts),
                                  std::span(slot.first_ellipsoids.data(), firsts),
                                  slot.first_faces.data());
-    const std::optional<ContactWithSupport>* first_face = slot.first_faces.data();
-    for (std::size_t i = 0; i < ellipsoids; ++i) {
+    for (std::size_t j = 0; j < firsts; ++j) {
+        const std::size_t i = slot.first_owners[j];
         Contact& deepest = slot.deepest[i];
         const std::span<Survivor> kept = slot.survivors(i);
-        if (kept.empty()) continue;
         // After the first contact, the bound along its normal skips the neighbours that
         // cannot beat it (ties within kDepthTie, far below the 1e-9 m contract, included).
         constexpr double kDepthTie = 1e-12;    // m
@@ -338,7 +337,20 @@ void World::find_contacts(CarSlot& slot, PhaseStopwatch& watch) {
         const Ellipsoid& ellipsoid = slot.placed[i];
         double deepest_support = 0.0;  // h(deepest.normal)
         CarSlot::KnownNormals& known = slot.known[i];
-        for (const Survivor& s : kept) {
+        const auto tested = [&](const TriangleRef& ref, const ContactWithSupport& contact) {
+            known.remember(ref, contact.normal);
+            ++watch.profile().exact_tests;
+            if (contact.depth > deepest.depth) {
+                deepest = contact;
+                deepest_support = contact.support;
+                slot.deepest_ref[i] = ref;
+            }
+        };
+        // The first survivor: its certificate's answer, else the kernel's.
+        std::optional<ContactWithSupport>& first_face = slot.first_faces[j];
+        if (!first_face) first_face = kernel_contact(*statics_, kept.front().ref, ellipsoid);
+        tested(kept.front().ref, *first_face);
+        for (const Survivor& s : kept.subspan(1)) {
             if (!(s.depth_bound > deepest.depth)) continue;
             const NormalizedTriangle& frame = *s.frame;
             if (deepest.depth > -std::numeric_limits<double>::infinity()) {
@@ -357,20 +369,9 @@ void World::find_contacts(CarSlot& slot, PhaseStopwatch& watch) {
                     if (bound + kKernelError <= deepest.depth) continue;
                 }
             }
-            const ContactWithSupport contact =
-                &s != kept.data()         ? exact_contact(*statics_, s.ref, frame, ellipsoid)
-                : first_face->has_value() ? **first_face
-                                          : kernel_contact(*statics_, s.ref, ellipsoid);
-            known.remember(s.ref, contact.normal);
-            ++watch.profile().exact_tests;
-            if (contact.depth > deepest.depth) {
-                deepest = contact;
-                deepest_support = contact.support;
-                slot.deepest_ref[i] = s.ref;
-            }
+            tested(s.ref, exact_contact(*statics_, s.ref, frame, ellipsoid));
         }
         watch.profile().contacts += deepest.depth > 0.0;
-        ++first_face;
     }
     watch.lap(Phase::exact);
 }
