@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cstddef>
-#include <optional>
 #include <span>
 
 #include "core/cpu_features.hpp"
@@ -13,15 +12,16 @@
 
 namespace trackphys::detail {
 
-/// certified_face_contact(*t[k], *e[k]) for k < count, into out[k], bit for bit: lane k runs
-/// the scalar function's IEEE operations in its order (glm's dot, vector-matrix and
-/// matrix-vector products and length written out in theirs), and its choices (the push
-/// direction, fabs, the proof's tests) by bits and masks, which is what the scalar ?: and
-/// fabs give. Lanes from count on hold a repeated pair and are not stored.
+/// certified_face_contact(*t[k], *e[k]) for k < count, bit for bit: certified[k] whether it
+/// holds, and then out[k] its answer (else out[k] is left as it was). Lane k runs the scalar
+/// function's IEEE operations in its order (glm's dot, vector-matrix and matrix-vector
+/// products and length written out in theirs), and its choices (the push direction, fabs,
+/// the proof's tests) by bits and masks, which is what the scalar ?: and fabs give. Lanes
+/// from count on hold a repeated pair and are not stored.
 template <int N>
 [[gnu::always_inline]] inline void certify_block(const NormalizedTriangle* const (&t)[N],
                                                  const Ellipsoid* const (&e)[N],
-                                                 std::optional<ContactWithSupport>* out,
+                                                 ContactWithSupport* out, bool* certified,
                                                  std::size_t count) {
     using Ops = LaneOps<N>;
     using Lanes = typename Ops::Lanes;
@@ -67,25 +67,24 @@ template <int N>
         (f.x2 - f.x1) * py - f.y2 * (px - f.x1) >= margin * (f.x1 - f.x2 + f.y2);
     const Mask off_third = f.y2 * px - f.x2 * py >= margin * (f.x2 + f.y2);
     const Mask closest = (g + margin) * h * (1.0 + 0x1p-36) < r.z * r.z;
-    const Mask certified = thick & off_first & off_second & off_third & closest;
+    const Mask holds = thick & off_first & off_second & off_third & closest;
     const Lanes half_g = 0.5 * g;
     const Lanes3 point{c.x + extreme.x + half_g * u.x, c.y + extreme.y + half_g * u.y,
                        c.z + extreme.z + half_g * u.z};
     for (std::size_t k = 0; k < count; ++k) {
+        certified[k] = holds[k] != 0;
         if (certified[k])
-            out[k] = ContactWithSupport{
-                {g[k], {u.x[k], u.y[k], u.z[k]}, {point.x[k], point.y[k], point.z[k]}}, h[k]};
-        else
-            out[k] = std::nullopt;
+            out[k] = {{g[k], {u.x[k], u.y[k], u.z[k]}, {point.x[k], point.y[k], point.z[k]}}, h[k]};
     }
 }
 
-/// certify_block over every pair (frames[j], ellipsoids[j]), N at a time, into out[j]; a
-/// short last block repeats its last pair in the lanes left over.
+/// certify_block over every pair (frames[j], ellipsoids[j]), N at a time, into out[j] and
+/// certified[j]; a short last block repeats its last pair in the lanes left over. Plain
+/// arrays, not optionals, so that a caller's scratch on its stack needs no clearing.
 template <int N>
 [[gnu::always_inline]] inline void certify_faces(std::span<const NormalizedTriangle* const> frames,
                                                  std::span<const Ellipsoid* const> ellipsoids,
-                                                 std::optional<ContactWithSupport>* out) {
+                                                 ContactWithSupport* out, bool* certified) {
     for (std::size_t j = 0; j < frames.size(); j += N) {
         const std::size_t count = std::min<std::size_t>(N, frames.size() - j);
         const NormalizedTriangle* t[N];
@@ -94,7 +93,7 @@ template <int N>
             t[k] = frames[j + std::min(k, count - 1)];
             e[k] = ellipsoids[j + std::min(k, count - 1)];
         }
-        certify_block<N>(t, e, out + j, count);
+        certify_block<N>(t, e, out + j, certified + j, count);
     }
 }
 
@@ -104,27 +103,27 @@ template <int N>
 /// cpu_has_avx2().
 [[gnu::target("avx2")]] inline void certify_faces_avx2(
     std::span<const NormalizedTriangle* const> frames, std::span<const Ellipsoid* const> ellipsoids,
-    std::optional<ContactWithSupport>* out) {
-    certify_faces<4>(frames, ellipsoids, out);
+    ContactWithSupport* out, bool* certified) {
+    certify_faces<4>(frames, ellipsoids, out, certified);
 }
 #endif
 
 /// certify_faces in two lanes, out of line like the four-lane one.
 [[gnu::noinline]] inline void certify_faces_two_lanes(
     std::span<const NormalizedTriangle* const> frames, std::span<const Ellipsoid* const> ellipsoids,
-    std::optional<ContactWithSupport>* out) {
-    certify_faces<2>(frames, ellipsoids, out);
+    ContactWithSupport* out, bool* certified) {
+    certify_faces<2>(frames, ellipsoids, out, certified);
 }
 
 /// certify_faces in the widest lanes this CPU runs: four with AVX2, else two (SSE2).
 inline void certify_faces_widest([[maybe_unused]] bool avx2,
                                  std::span<const NormalizedTriangle* const> frames,
                                  std::span<const Ellipsoid* const> ellipsoids,
-                                 std::optional<ContactWithSupport>* out) {
+                                 ContactWithSupport* out, bool* certified) {
 #if defined(__x86_64__) || defined(__i386__)
-    if (avx2) return certify_faces_avx2(frames, ellipsoids, out);
+    if (avx2) return certify_faces_avx2(frames, ellipsoids, out, certified);
 #endif
-    certify_faces_two_lanes(frames, ellipsoids, out);
+    certify_faces_two_lanes(frames, ellipsoids, out, certified);
 }
 
 }  // namespace trackphys::detail

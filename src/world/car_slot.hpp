@@ -3,7 +3,6 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
-#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -14,7 +13,6 @@
 #include "trackphys/geometry/aabb.hpp"
 #include "trackphys/geometry/contact.hpp"
 #include "trackphys/geometry/ellipsoid.hpp"
-#include "trackphys/geometry/face_certificate.hpp"
 #include "trackphys/world/world.hpp"
 
 namespace trackphys {
@@ -77,14 +75,7 @@ struct World::CarSlot {
     std::vector<Contact> deepest;           // per ellipsoid, this sub-step
     std::vector<TriangleRef> deepest_ref;   // its triangle, tried first next
     std::vector<KnownNormals> known;        // per ellipsoid: recent survivors' normals
-    // The first survivors of this sub-step's ellipsoids that have any, in ellipsoid order:
-    // their frames, ellipsoids, face certificates (find_contacts runs them together) and
-    // the ellipsoids' indices.
-    std::vector<const NormalizedTriangle*> first_frames;
-    std::vector<const Ellipsoid*> first_ellipsoids;
-    std::vector<std::optional<ContactWithSupport>> first_faces;
-    std::vector<std::size_t> first_owners;
-    bool pushed = false;  // by another car, this sub-step
+    bool pushed = false;                    // by another car, this sub-step
     // The reset policy's memory: the state at the start of this update, the resets.
     RigidBodyState start_state;
     std::vector<double> start_suspension;

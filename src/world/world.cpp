@@ -55,10 +55,6 @@ World::CarSlot::CarSlot(Car car_in, MidPhase mid_in)
     deepest.resize(ellipsoids);
     deepest_ref.resize(ellipsoids, TriangleRef{~0u, ~0u});
     known.resize(ellipsoids);
-    first_frames.resize(ellipsoids);
-    first_ellipsoids.resize(ellipsoids);
-    first_faces.resize(ellipsoids);
-    first_owners.resize(ellipsoids);
     placed.reserve(ellipsoids);
     for (std::size_t i = 0; i < ellipsoids; ++i) placed.push_back(car.world_ellipsoid(i));
 }
@@ -293,6 +289,14 @@ void World::find_contacts(CarSlot& slot, PhaseStopwatch& watch) {
         all_kept.push_back({c.ref, c.triangle, bound});
     };
     const bool avx2 = detail::cpu_has_avx2();
+    // The first survivors, in ellipsoid order: their frames, ellipsoids, face certificates
+    // and the ellipsoids' indices. On the stack, where every car's call finds the same warm
+    // lines: in the slot, a big field would miss them at each car's update.
+    std::array<const NormalizedTriangle*, CarSpec::max_ellipsoids> first_frames;
+    std::array<const Ellipsoid*, CarSpec::max_ellipsoids> first_ellipsoids;
+    std::array<ContactWithSupport, CarSpec::max_ellipsoids> first_faces;
+    std::array<bool, CarSpec::max_ellipsoids> first_certified;
+    std::array<std::size_t, CarSpec::max_ellipsoids> first_owners;
     std::size_t firsts = 0;  // ellipsoids with survivors
     for (std::size_t i = 0; i < ellipsoids; ++i) {
         slot.deepest[i].depth = -std::numeric_limits<double>::infinity();
@@ -312,9 +316,9 @@ void World::find_contacts(CarSlot& slot, PhaseStopwatch& watch) {
                 kept.begin(), kept.end(),
                 [](const Survivor& a, const Survivor& b) { return a.depth_bound < b.depth_bound; });
         std::iter_swap(kept.begin(), first);
-        slot.first_frames[firsts] = kept.front().frame;
-        slot.first_ellipsoids[firsts] = &slot.placed[i];
-        slot.first_owners[firsts] = i;
+        first_frames[firsts] = kept.front().frame;
+        first_ellipsoids[firsts] = &slot.placed[i];
+        first_owners[firsts] = i;
         ++firsts;
     }
     watch.profile().ellipsoid_substeps += ellipsoids;
@@ -323,11 +327,11 @@ void World::find_contacts(CarSlot& slot, PhaseStopwatch& watch) {
     // Exact contact: the deepest over each ellipsoid's survivors, the first one first; after
     // it, only survivors whose bounds beat the deepest contact found so far can change the
     // answer.
-    detail::certify_faces_widest(avx2, std::span(slot.first_frames.data(), firsts),
-                                 std::span(slot.first_ellipsoids.data(), firsts),
-                                 slot.first_faces.data());
+    detail::certify_faces_widest(avx2, std::span(first_frames.data(), firsts),
+                                 std::span(first_ellipsoids.data(), firsts), first_faces.data(),
+                                 first_certified.data());
     for (std::size_t j = 0; j < firsts; ++j) {
-        const std::size_t i = slot.first_owners[j];
+        const std::size_t i = first_owners[j];
         Contact& deepest = slot.deepest[i];
         const std::span<Survivor> kept = slot.survivors(i);
         // After the first contact, the bound along its normal skips the neighbours that
@@ -347,9 +351,9 @@ void World::find_contacts(CarSlot& slot, PhaseStopwatch& watch) {
             }
         };
         // The first survivor: its certificate's answer, else the kernel's.
-        std::optional<ContactWithSupport>& first_face = slot.first_faces[j];
-        if (!first_face) first_face = kernel_contact(*statics_, kept.front().ref, ellipsoid);
-        tested(kept.front().ref, *first_face);
+        if (!first_certified[j])
+            first_faces[j] = kernel_contact(*statics_, kept.front().ref, ellipsoid);
+        tested(kept.front().ref, first_faces[j]);
         for (const Survivor& s : kept.subspan(1)) {
             if (!(s.depth_bound > deepest.depth)) continue;
             const NormalizedTriangle& frame = *s.frame;
