@@ -1,12 +1,10 @@
 #pragma once
 
 #include <array>
-#include <bit>
 #include <cstddef>
 #include <cstdint>
 #include <span>
 #include <string>
-#include <type_traits>
 #include <vector>
 
 #include "trackphys/collision/look_ahead_list.hpp"
@@ -21,14 +19,6 @@ namespace trackphys {
 
 // Per-car working memory, kept between updates so a steady state allocates nothing.
 struct World::CarSlot {
-    // One 64-bit compare, where comparing the two members takes two compares and a branch:
-    // the exact phase looks a survivor up among the last deepest and the recent normals.
-    static bool same_triangle(const TriangleRef& a, const TriangleRef& b) {
-        static_assert(std::has_unique_object_representations_v<TriangleRef> &&
-                      sizeof(TriangleRef) == sizeof(std::uint64_t));
-        return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b);
-    }
-
     // A candidate that passed the cull, with an upper bound of its penetration depth.
     struct Survivor {
         TriangleRef ref;
@@ -49,7 +39,7 @@ struct World::CarSlot {
         std::size_t next = 0;
         const KnownNormal* find(const TriangleRef& ref) const {
             for (const KnownNormal& k : entries)
-                if (same_triangle(k.ref, ref)) return &k;
+                if (k.ref == ref) return &k;
             return nullptr;
         }
         void remember(const TriangleRef& ref, const glm::dvec3& normal) {

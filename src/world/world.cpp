@@ -13,6 +13,7 @@
 
 #include "core/fnv1a.hpp"
 #include "geometry/ellipsoid_cull_list.hpp"
+#include "geometry/face_certificate_lanes.hpp"
 #include "profile/phase_stopwatch.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/geometry/contact.hpp"
@@ -249,6 +250,16 @@ void World::place_ellipsoids(CarSlot& slot, bool every) {
 
 namespace {
 
+// The exact contact when the face certificate refuses: the kernel on the triangle's own
+// vertices, with the support along its normal. Out of line, as exact_contact is.
+[[gnu::noinline]] ContactWithSupport kernel_contact(const StaticWorld& statics,
+                                                    const TriangleRef& ref,
+                                                    const Ellipsoid& ellipsoid) {
+    const Contact contact = ellipsoid_triangle_contact(
+        ellipsoid, statics.collider(ref.collider).triangle(ref.triangle));
+    return {contact, support_extent(ellipsoid, contact.normal)};
+}
+
 // Nearly every exact test is a wheel standing on a road triangle: the face certificate
 // answers it from the frame the cull read, with the support along its normal, and only the
 // rest fetch the triangle's own vertices for the kernel. Out of line: inlined, its
@@ -260,9 +271,7 @@ namespace {
                                                    const Ellipsoid& ellipsoid) {
     if (const std::optional<ContactWithSupport> face = certified_face_contact(frame, ellipsoid))
         return *face;
-    const Contact contact = ellipsoid_triangle_contact(
-        ellipsoid, statics.collider(ref.collider).triangle(ref.triangle));
-    return {contact, support_extent(ellipsoid, contact.normal)};
+    return kernel_contact(statics, ref, ellipsoid);
 }
 
 }  // namespace
@@ -275,42 +284,61 @@ void World::find_contacts(CarSlot& slot, PhaseStopwatch& watch) {
     // Cull: the ellipsoid's own extent along each listed triangle's frame axes, which also
     // bounds how deep the triangle can be. No bounding-sphere test first: the extents are
     // at most the radius, so it rejects nothing this test keeps, and almost every listed
-    // triangle reaches this test anyway.
+    // triangle reaches this test anyway. Last sub-step's deepest triangle is tested first,
+    // as it is most likely the deepest again, else the survivor with the deepest bound; every
+    // first survivor is tested, so it is picked here and the first survivors' face
+    // certificates run together, in lanes (a wheel on the road: nearly every exact test).
     std::vector<Survivor>& all_kept = slot.kept;
     all_kept.clear();
     const auto keep = [&all_kept](const MidPhaseCandidate& c, double bound) {
         all_kept.push_back({c.ref, c.triangle, bound});
     };
     const bool avx2 = detail::cpu_has_avx2();
+    // The first survivors, in ellipsoid order: their frames, ellipsoids, face certificates
+    // and the ellipsoids' indices. On the stack, where every car's call finds the same warm
+    // lines: in the slot, a big field would miss them at each car's update.
+    std::array<const NormalizedTriangle*, CarSpec::max_ellipsoids> first_frames;
+    std::array<const Ellipsoid*, CarSpec::max_ellipsoids> first_ellipsoids;
+    std::array<ContactWithSupport, CarSpec::max_ellipsoids> first_faces;
+    std::array<bool, CarSpec::max_ellipsoids> first_certified;
+    std::array<std::size_t, CarSpec::max_ellipsoids> first_owners;
+    std::size_t firsts = 0;  // ellipsoids with survivors
     for (std::size_t i = 0; i < ellipsoids; ++i) {
+        slot.deepest[i].depth = -std::numeric_limits<double>::infinity();
+        slot.kept_start[i + 1] = static_cast<std::uint32_t>(all_kept.size());
         const std::vector<MidPhaseCandidate>& listed = slot.listed[i].candidates();
         // Half the calls would be for nothing: a lone car's body ellipsoids list no triangles.
-        if (!listed.empty())
-            detail::cull_listed_widest(avx2, slot.placed[i], std::span(listed), keep);
-        slot.kept_start[i + 1] = static_cast<std::uint32_t>(all_kept.size());
+        if (listed.empty()) continue;
         watch.profile().culled_tests += listed.size();
-    }
-    watch.profile().ellipsoid_substeps += ellipsoids;
-    watch.lap(Phase::cull);
-
-    // Exact contact: the deepest over each ellipsoid's survivors. Last sub-step's deepest
-    // triangle goes first, else the survivor with the deepest bound; after it, only
-    // survivors whose bounds beat the deepest contact found so far can change the answer.
-    for (std::size_t i = 0; i < ellipsoids; ++i) {
-        Contact& deepest = slot.deepest[i];
-        deepest.depth = -std::numeric_limits<double>::infinity();
+        detail::cull_listed_widest(avx2, slot.placed[i], std::span(listed), keep);
+        slot.kept_start[i + 1] = static_cast<std::uint32_t>(all_kept.size());
         const std::span<Survivor> kept = slot.survivors(i);
         if (kept.empty()) continue;
-        // Last sub-step's deepest triangle is most likely the deepest again; else the one
-        // with the deepest bound.
-        auto first = std::find_if(kept.begin(), kept.end(), [&](const Survivor& s) {
-            return CarSlot::same_triangle(s.ref, slot.deepest_ref[i]);
-        });
+        auto first = std::find_if(kept.begin(), kept.end(),
+                                  [&](const Survivor& s) { return s.ref == slot.deepest_ref[i]; });
         if (first == kept.end())
             first = std::max_element(
                 kept.begin(), kept.end(),
                 [](const Survivor& a, const Survivor& b) { return a.depth_bound < b.depth_bound; });
         std::iter_swap(kept.begin(), first);
+        first_frames[firsts] = kept.front().frame;
+        first_ellipsoids[firsts] = &slot.placed[i];
+        first_owners[firsts] = i;
+        ++firsts;
+    }
+    watch.profile().ellipsoid_substeps += ellipsoids;
+    watch.lap(Phase::cull);
+
+    // Exact contact: the deepest over each ellipsoid's survivors, the first one first; after
+    // it, only survivors whose bounds beat the deepest contact found so far can change the
+    // answer.
+    detail::certify_faces_widest(avx2, std::span(first_frames.data(), firsts),
+                                 std::span(first_ellipsoids.data(), firsts), first_faces.data(),
+                                 first_certified.data());
+    for (std::size_t j = 0; j < firsts; ++j) {
+        const std::size_t i = first_owners[j];
+        Contact& deepest = slot.deepest[i];
+        const std::span<Survivor> kept = slot.survivors(i);
         // After the first contact, the bound along its normal skips the neighbours that
         // cannot beat it (ties within kDepthTie, far below the 1e-9 m contract, included).
         constexpr double kDepthTie = 1e-12;    // m
@@ -318,7 +346,20 @@ void World::find_contacts(CarSlot& slot, PhaseStopwatch& watch) {
         const Ellipsoid& ellipsoid = slot.placed[i];
         double deepest_support = 0.0;  // h(deepest.normal)
         CarSlot::KnownNormals& known = slot.known[i];
-        for (const Survivor& s : kept) {
+        const auto tested = [&](const TriangleRef& ref, const ContactWithSupport& contact) {
+            known.remember(ref, contact.normal);
+            ++watch.profile().exact_tests;
+            if (contact.depth > deepest.depth) {
+                deepest = contact;
+                deepest_support = contact.support;
+                slot.deepest_ref[i] = ref;
+            }
+        };
+        // The first survivor: its certificate's answer, else the kernel's.
+        if (!first_certified[j])
+            first_faces[j] = kernel_contact(*statics_, kept.front().ref, ellipsoid);
+        tested(kept.front().ref, first_faces[j]);
+        for (const Survivor& s : kept.subspan(1)) {
             if (!(s.depth_bound > deepest.depth)) continue;
             const NormalizedTriangle& frame = *s.frame;
             if (deepest.depth > -std::numeric_limits<double>::infinity()) {
@@ -337,14 +378,7 @@ void World::find_contacts(CarSlot& slot, PhaseStopwatch& watch) {
                     if (bound + kKernelError <= deepest.depth) continue;
                 }
             }
-            const ContactWithSupport contact = exact_contact(*statics_, s.ref, frame, ellipsoid);
-            known.remember(s.ref, contact.normal);
-            ++watch.profile().exact_tests;
-            if (contact.depth > deepest.depth) {
-                deepest = contact;
-                deepest_support = contact.support;
-                slot.deepest_ref[i] = s.ref;
-            }
+            tested(s.ref, exact_contact(*statics_, s.ref, frame, ellipsoid));
         }
         watch.profile().contacts += deepest.depth > 0.0;
     }

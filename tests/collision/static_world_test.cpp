@@ -1,6 +1,8 @@
 #include "trackphys/collision/static_world.hpp"
 
 #include <algorithm>
+#include <compare>
+#include <cstdint>
 #include <limits>
 #include <memory>
 #include <random>
@@ -21,6 +23,21 @@ TEST(SweptBox, CoversStartAndEndPadded) {
     EXPECT_EQ(swept.min, glm::dvec3(-0.5, -0.5, -1.5));
     EXPECT_EQ(swept.max, glm::dvec3(7.8, 1.7, 2.5));
     EXPECT_THROW(swept_box(box, {0, 0, 0}, -1.0), Error);
+}
+
+// The one-word == agrees with comparing the members, and with <=>, whichever member differs
+// (including values that differ only in the high half of a word).
+TEST(TriangleRef, EqualExactlyWhenBothMembersAre) {
+    const std::uint32_t values[] = {0u, 1u, 2u, 0x8000'0000u, 0xffff'ffffu};
+    for (std::uint32_t c0 : values)
+        for (std::uint32_t t0 : values)
+            for (std::uint32_t c1 : values)
+                for (std::uint32_t t1 : values) {
+                    const TriangleRef a{c0, t0}, b{c1, t1};
+                    EXPECT_EQ(a == b, c0 == c1 && t0 == t1);
+                    EXPECT_EQ(a != b, !(a == b));
+                    EXPECT_EQ(a == b, (a <=> b) == 0);
+                }
 }
 
 // A world of three colliders (the loop, a soup inside it, the loop again shifted up 0.5 m,

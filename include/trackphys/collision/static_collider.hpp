@@ -1,10 +1,12 @@
 #pragma once
 
 #include <array>
+#include <bit>
 #include <compare>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
+#include <type_traits>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -36,6 +38,14 @@ struct TriangleRef {
 
     /// Ordered by collider, then triangle (sort candidates for a deterministic order).
     auto operator<=>(const TriangleRef&) const = default;
+    /// Equal members, tested as one 64-bit word: the defaulted == compares the two members
+    /// with two compares and a branch, and the exact phase looks a survivor up among the
+    /// last deepest and the recent normals.
+    constexpr bool operator==(const TriangleRef& other) const {
+        static_assert(std::has_unique_object_representations_v<TriangleRef> &&
+                      sizeof(TriangleRef) == sizeof(std::uint64_t));
+        return std::bit_cast<std::uint64_t>(*this) == std::bit_cast<std::uint64_t>(other);
+    }
 };
 
 /// A static triangle mesh ready for queries: validated, degenerate triangles dropped and
