@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <memory>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -81,7 +82,10 @@ TEST_P(WorldWidening, ListsEveryEllipsoidAgainFromTheWiderBox) {
 }
 
 INSTANTIATE_TEST_SUITE_P(World, WorldWidening,
-                         testing::Values(MidPhaseMode::none, MidPhaseMode::per_update_tree));
+                         testing::Values(MidPhaseMode::none, MidPhaseMode::per_update_tree),
+                         [](const testing::TestParamInfo<MidPhaseMode>& info) {
+                             return std::string(to_string(info.param));
+                         });
 
 }  // namespace
 }  // namespace trackphys
