@@ -61,7 +61,7 @@ template <int N>
 std::size_t filter_in_widest_lanes(const EllipsoidShape& shape, const NormalizedTriangle* frames,
                                    std::uint32_t* slots, std::size_t count) {
 #if defined(__x86_64__) || defined(__i386__)
-    if (detail::cpu_has_avx2()) return filter_in_four_lanes(shape, frames, slots, count);
+    if (detail::use_four_lanes()) return filter_in_four_lanes(shape, frames, slots, count);
 #endif
     return filter_in_lanes<2>(shape, frames, slots, count);
 }

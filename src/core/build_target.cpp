@@ -36,8 +36,6 @@ bool cpu_has_avx2() noexcept {
 #if defined(__x86_64__) || defined(__i386__)
     // libgcc's and compiler-rt's answers include the OS's: it saves the 32-byte registers.
     static const bool has = [] {
-        const char* lanes = std::getenv("TRACKPHYS_LANES");
-        if (lanes != nullptr && std::string_view(lanes) == "2") return false;
         __builtin_cpu_init();
         return __builtin_cpu_supports("avx2") != 0;
     }();
@@ -45,6 +43,14 @@ bool cpu_has_avx2() noexcept {
 #else
     return false;
 #endif
+}
+
+bool use_four_lanes() noexcept {
+    static const bool four = [] {
+        const char* lanes = std::getenv("TRACKPHYS_LANES");
+        return cpu_has_avx2() && !(lanes != nullptr && std::string_view(lanes) == "2");
+    }();
+    return four;
 }
 
 }  // namespace trackphys::detail

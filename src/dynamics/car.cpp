@@ -213,9 +213,8 @@ Wrench Car::contact_wrench(std::span<const Contact> deepest, const WheelLoads& w
             role == EllipsoidRole::body
                 ? body_contact_force(spec_.body_contact, contact.depth, contact.normal,
                                      point_velocity(state_, contact.point))
-                : inline_laws::pressed_wheel_force(materials[axle], wheel_loads[i].load,
-                                                   contact.normal, wheel_loads[i].velocity,
-                                                   commands[axle]);
+                : detail::pressed_wheel_force(materials[axle], wheel_loads[i].load, contact.normal,
+                                              wheel_loads[i].velocity, commands[axle]);
         wrench.add_at_point(force, contact.point, state_.position);
     }
     add_aero_force(wrench, speed_now, forward);

@@ -11,8 +11,8 @@ glm::dvec3 body_contact_force(const ContactMaterial& material, double depth,
     const double pressing = normal_force(material, depth, normal, velocity);
     if (pressing == 0.0) return glm::dvec3(0.0);
     const glm::dvec3 slip = velocity - normal * glm::dot(velocity, normal);
-    return normal * pressing + inline_laws::regularised_friction(material.friction * pressing,
-                                                                 material.slip_speed, slip);
+    return normal * pressing +
+           detail::regularised_friction(material.friction * pressing, material.slip_speed, slip);
 }
 
 glm::dvec3 wheel_contact_force(const ContactMaterial& material, double depth,
@@ -25,7 +25,7 @@ glm::dvec3 wheel_contact_force(const ContactMaterial& material, double depth,
 glm::dvec3 pressed_wheel_force(const ContactMaterial& material, double pressing,
                                const glm::dvec3& normal, const glm::dvec3& velocity,
                                const WheelCommand& command) {
-    return inline_laws::pressed_wheel_force(material, pressing, normal, velocity, command);
+    return detail::pressed_wheel_force(material, pressing, normal, velocity, command);
 }
 
 }  // namespace trackphys

@@ -1,9 +1,8 @@
 #pragma once
 
 // The force laws a car's sub-step calls per wheel, defined here so that Car::contact_wrench
-// compiles them into its loop: called across files, each wheel's material, command and
-// force went through memory and the call cost more than a tenth of the law. The exported
-// laws in contact_force.hpp are these same functions.
+// compiles them into its loop rather than passing each wheel's material, command and force
+// through memory in a call. The exported laws in contact_force.hpp call these.
 
 #include <algorithm>
 #include <cmath>
@@ -13,7 +12,7 @@
 
 #include "trackphys/dynamics/contact_force.hpp"
 
-namespace trackphys::inline_laws {
+namespace trackphys::detail {
 
 // Coulomb friction, regularised: the full mu F_n opposes slips faster than slip_speed and
 // scales linearly below it, which acts as a strong viscous damper at rest.
@@ -35,7 +34,7 @@ inline bool inside_friction_circle(double along, double across, double grip) {
            along * along + across * across <= grip * grip * (1.0 - 1e-12);
 }
 
-// trackphys::pressed_wheel_force.
+// The law behind trackphys::pressed_wheel_force (contact_force.hpp), which calls this.
 inline glm::dvec3 pressed_wheel_force(const ContactMaterial& material, double pressing,
                                       const glm::dvec3& normal, const glm::dvec3& velocity,
                                       const WheelCommand& command) {
@@ -71,4 +70,4 @@ inline glm::dvec3 pressed_wheel_force(const ContactMaterial& material, double pr
     return normal * pressing + forward * along + lateral * across;
 }
 
-}  // namespace trackphys::inline_laws
+}  // namespace trackphys::detail

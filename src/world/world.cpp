@@ -293,7 +293,7 @@ void World::find_contacts(CarSlot& slot, PhaseStopwatch& watch) {
     const auto keep = [&all_kept](const MidPhaseCandidate& c, double bound) {
         all_kept.push_back({c.ref, c.triangle, bound});
     };
-    const bool avx2 = detail::cpu_has_avx2();
+    const bool four_lanes = detail::use_four_lanes();
     // The first survivors, in ellipsoid order: their frames, ellipsoids, face certificates
     // and the ellipsoids' indices. On the stack, where every car's call finds the same warm
     // lines: in the slot, a big field would miss them at each car's update.
@@ -310,7 +310,7 @@ void World::find_contacts(CarSlot& slot, PhaseStopwatch& watch) {
         // Half the calls would be for nothing: a lone car's body ellipsoids list no triangles.
         if (listed.empty()) continue;
         watch.profile().culled_tests += listed.size();
-        detail::cull_listed_widest(avx2, slot.placed[i], std::span(listed), keep);
+        detail::cull_listed_widest(four_lanes, slot.placed[i], std::span(listed), keep);
         slot.kept_start[i + 1] = static_cast<std::uint32_t>(all_kept.size());
         const std::span<Survivor> kept = slot.survivors(i);
         if (kept.empty()) continue;
@@ -332,7 +332,7 @@ void World::find_contacts(CarSlot& slot, PhaseStopwatch& watch) {
     // Exact contact: the deepest over each ellipsoid's survivors, the first one first; after
     // it, only survivors whose bounds beat the deepest contact found so far can change the
     // answer.
-    detail::certify_faces_widest(avx2, std::span(first_frames.data(), firsts),
+    detail::certify_faces_widest(four_lanes, std::span(first_frames.data(), firsts),
                                  std::span(first_ellipsoids.data(), firsts), first_faces.data(),
                                  first_certified.data());
     for (std::size_t j = 0; j < firsts; ++j) {

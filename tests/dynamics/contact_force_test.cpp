@@ -131,7 +131,7 @@ TEST(ContactForce, FrictionCircleShortcutNeverProvesAForceOutside) {
         const double along = radius * std::cos(a);
         const double across = radius * std::sin(a);
         const double tangential = std::hypot(along, across);
-        const bool inside = inline_laws::inside_friction_circle(along, across, grip);
+        const bool inside = detail::inside_friction_circle(along, across, grip);
         if (inside) {
             ASSERT_LE(tangential, grip) << along << " " << across << " " << grip;
         }
@@ -142,8 +142,8 @@ TEST(ContactForce, FrictionCircleShortcutNeverProvesAForceOutside) {
     }
     EXPECT_GT(proved, 50000);
     const double nan = std::numeric_limits<double>::quiet_NaN();
-    EXPECT_FALSE(inline_laws::inside_friction_circle(nan, 0.0, 1.0));
-    EXPECT_FALSE(inline_laws::inside_friction_circle(0.0, nan, 1.0));
+    EXPECT_FALSE(detail::inside_friction_circle(nan, 0.0, 1.0));
+    EXPECT_FALSE(detail::inside_friction_circle(0.0, nan, 1.0));
 }
 
 }  // namespace

@@ -138,7 +138,7 @@ TEST(Ellipsoid, PlacingGivesTheBitsOfGlmsProducts) {
     bodies.emplace_back(glm::dvec3(0.0, 0.1, -1.7), glm::dquat(0.9, 0.1, -0.2, 0.3), axes[3]);
     for (const Ellipsoid& back : turned_back(bodies[3], 11, rng)) bodies.push_back(back);
     ASSERT_EQ(bodies.size(), 20u) << "turned-back bodies with tilted axes";
-    std::vector<BodyEllipsoid> keyed;
+    std::vector<detail::BodyEllipsoid> keyed;
     for (const Ellipsoid& body : bodies) keyed.emplace_back(body);
     int copied = 0;
     for (int trial = 0; trial < 4000; ++trial) {
@@ -183,9 +183,9 @@ TEST(BodyEllipsoid, PlacesANewEllipsoidByItsOwnAxes) {
     ASSERT_EQ(backs.size(), 8u);
     int tilted_differ = 0;
     for (const Ellipsoid& back : backs) {
-        BodyEllipsoid body(unrotated);
+        detail::BodyEllipsoid body(unrotated);
         for (const Ellipsoid& now : {back, unrotated}) {
-            body = BodyEllipsoid(now);
+            body = detail::BodyEllipsoid(now);
             for (int trial = 0; trial < 50; ++trial) {
                 const glm::dquat rotation =
                     glm::normalize(glm::dquat(normal(rng), normal(rng), normal(rng), normal(rng)));

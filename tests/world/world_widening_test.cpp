@@ -83,8 +83,8 @@ TEST_P(WorldWidening, ListsEveryEllipsoidAgainFromTheWiderBox) {
 
 INSTANTIATE_TEST_SUITE_P(World, WorldWidening,
                          testing::Values(MidPhaseMode::none, MidPhaseMode::per_update_tree),
-                         [](const testing::TestParamInfo<MidPhaseMode>& info) {
-                             return std::string(to_string(info.param));
+                         [](const testing::TestParamInfo<MidPhaseMode>& instance) {
+                             return std::string(to_string(instance.param));
                          });
 
 }  // namespace

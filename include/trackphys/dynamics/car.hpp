@@ -177,8 +177,8 @@ class TRACKPHYS_API Car {
     /// frame's Ellipsoids (with what placing finds of them) that placing reads every
     /// sub-step, and the Parts.
     struct Shape {
-        std::vector<BodyEllipsoid> body;  // in CarSpec order
-        std::vector<Part> parts;          // the same order
+        std::vector<detail::BodyEllipsoid> body;  // in CarSpec order
+        std::vector<Part> parts;                  // the same order
         /// One past the last wheel: every ellipsoid from here on is body, which the loops
         /// over wheels need not visit (the presets list their wheels first).
         std::size_t wheel_end = 0;
@@ -216,6 +216,8 @@ class TRACKPHYS_API Car {
     }
     void update_suspension(std::span<const Contact> deepest, const WheelLoads& wheel_loads,
                            double h);
+    // wheel_command, drive_available and wheel_material are defined inline in car.cpp: call
+    // them only from there (another file's call would not link).
     /// The command of each wheel of an axle rolling along heading on material
     /// (wheel_material); available: drive_available(), the drive force at this speed (N,
     /// all wheels).

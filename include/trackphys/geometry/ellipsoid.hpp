@@ -14,6 +14,10 @@
 
 namespace trackphys {
 
+namespace detail {
+class BodyEllipsoid;
+}
+
 /// A rotation that places ellipsoids (Ellipsoid::place_copy): a unit quaternion, its matrix
 /// glm::mat3_cast(quaternion) bit for bit, and whether all 13 entries of the two are finite
 /// and non-zero. An unrotated ellipsoid's sorted axes are coordinate axes, some negated, and
@@ -90,7 +94,7 @@ class TRACKPHYS_API Ellipsoid {
     Aabb bounds() const;
 
   private:
-    friend class BodyEllipsoid;
+    friend class detail::BodyEllipsoid;
 
     struct Unchecked {};
     Ellipsoid(Unchecked, const glm::dvec3& center, const glm::dquat& orientation,
@@ -114,12 +118,14 @@ class TRACKPHYS_API Ellipsoid {
     glm::dmat3 sorted_axes_;
 };
 
-/// An ellipsoid in a moving body's frame, placed in the world again and again (a car's, at
-/// every sub-step): with what Ellipsoid::place_copy would otherwise find at each placing,
-/// whether it is unrotated and which coordinate axis each sorted axis is, found once. Its
-/// ellipsoid changes only by building a new one, which finds them again: they cannot go
-/// stale.
-class TRACKPHYS_API BodyEllipsoid {
+namespace detail {
+
+/// Internal (the car's shape holds these): an ellipsoid in a moving body's frame, placed in
+/// the world again and again (a car's, at every sub-step), with what Ellipsoid::place_copy
+/// would otherwise find at each placing, whether it is unrotated and which coordinate axis
+/// each sorted axis is, found once. Its ellipsoid changes only by building a new one, which
+/// finds them again: they cannot go stale.
+class BodyEllipsoid {
   public:
     explicit BodyEllipsoid(const Ellipsoid& ellipsoid)
         : ellipsoid_(ellipsoid), axes_(ellipsoid.coordinate_axes()) {}
@@ -137,4 +143,5 @@ class TRACKPHYS_API BodyEllipsoid {
     Ellipsoid::CoordinateAxes axes_;
 };
 
+}  // namespace detail
 }  // namespace trackphys
