@@ -4,31 +4,12 @@
 // swept ellipsoid query, in the lanes of an N-double vector (N = 4 under AVX2, else 2).
 
 #include <algorithm>
-#include <cmath>
-#include <cstddef>
-#include <cstdint>
 
 #include "collision/plane_tree_shapes.hpp"
+#include "geometry/lane_ops.hpp"
 #include "trackphys/geometry/normalized_triangle.hpp"
 
 namespace trackphys::collision_detail {
-
-// No member exists out of line, so none passes a vector by the ABI GCC warns about for four
-// lanes without AVX; GCC warns at the end of the including file, so the warning stays off
-// there (as in geometry/ellipsoid_cull_lanes.hpp; the filter's test is built at -O0 too).
-#pragma GCC diagnostic ignored "-Wpsabi"
-
-// N doubles in one vector (GCC takes no vector_size that depends on a template's argument).
-template <int N>
-struct FilterLaneVector {};
-template <>
-struct FilterLaneVector<2> {
-    using type = double __attribute__((vector_size(16)));
-};
-template <>
-struct FilterLaneVector<4> {
-    using type = double __attribute__((vector_size(32)));
-};
 
 /// EllipsoidShape::touches's bounds for N frames at once, bit for bit: each lane runs the
 /// scalar filter's IEEE operations in its order (the build contracts no multiply-add), so
@@ -52,62 +33,61 @@ class EllipsoidFilterLanes {
 
     [[gnu::always_inline]] explicit EllipsoidFilterLanes(const EllipsoidShape& shape) {
         for (int j = 0; j < 3; ++j) {
-            start_[j] = every(shape.start[j]);
-            end_[j] = every(shape.end[j]);
+            start_[j] = Ops::every(shape.start[j]);
+            end_[j] = Ops::every(shape.end[j]);
         }
-        m00_ = every(shape.m00);
-        m11_ = every(shape.m11);
-        m22_ = every(shape.m22);
-        m01_ = every(shape.m01);
-        m02_ = every(shape.m02);
-        m12_ = every(shape.m12);
-        reach_squared_ = every(shape.reach_squared);
+        m00_ = Ops::every(shape.m00);
+        m11_ = Ops::every(shape.m11);
+        m22_ = Ops::every(shape.m22);
+        m01_ = Ops::every(shape.m01);
+        m02_ = Ops::every(shape.m02);
+        m12_ = Ops::every(shape.m12);
+        reach_squared_ = Ops::every(shape.reach_squared);
     }
 
     [[gnu::always_inline]] Decisions decide(const NormalizedTriangle* const (&t)[N]) const {
-        const Lanes3 origin = gather(t, &NormalizedTriangle::origin);
+        const Lanes3 origin = Ops::gather(t, &NormalizedTriangle::origin);
         const Lanes3 from_a{start_[0] - origin.x, start_[1] - origin.y, start_[2] - origin.z};
         const Lanes3 from_b{end_[0] - origin.x, end_[1] - origin.y, end_[2] - origin.z};
         // The plane and the local box.
-        const Lanes3 normal = gather(t, &NormalizedTriangle::normal);
-        const Lanes az = dot(normal, from_a), bz = dot(normal, from_b);
+        const Lanes3 normal = Ops::gather(t, &NormalizedTriangle::normal);
+        const Lanes az = Ops::dot(normal, from_a), bz = Ops::dot(normal, from_b);
         const Lanes z_lo = min(az, bz), z_hi = max(az, bz);
-        const Lanes z_gap = max3(z_lo, -z_hi, every(0.0));
+        const Lanes z_gap = max3(z_lo, -z_hi, Ops::every(0.0));
         const Lanes h_sq = support_squared(normal);
         Mask rejected = (z_gap > 0.0) & (z_gap * z_gap > h_sq);
-        const Lanes3 dir_x = gather(t, &NormalizedTriangle::dir_x);
-        const Lanes ax = dot(dir_x, from_a), bx = dot(dir_x, from_b);
-        const Lanes x1 = gather(t, &NormalizedTriangle::x1);
-        const Lanes x_gap = max3(min(ax, bx) - x1, -max(ax, bx), every(0.0));
+        const Lanes3 dir_x = Ops::gather(t, &NormalizedTriangle::dir_x);
+        const Lanes ax = Ops::dot(dir_x, from_a), bx = Ops::dot(dir_x, from_b);
+        const Lanes x1 = Ops::gather(t, &NormalizedTriangle::x1);
+        const Lanes x_gap = max3(min(ax, bx) - x1, -max(ax, bx), Ops::every(0.0));
         rejected |= (x_gap > 0.0) &
                     ((x_gap * x_gap > reach_squared_) | (x_gap * x_gap > support_squared(dir_x)));
-        const Lanes3 dir_y = gather(t, &NormalizedTriangle::dir_y);
-        const Lanes ay = dot(dir_y, from_a), by = dot(dir_y, from_b);
-        const Lanes y2 = gather(t, &NormalizedTriangle::y2);
-        const Lanes y_gap = max3(min(ay, by) - y2, -max(ay, by), every(0.0));
+        const Lanes3 dir_y = Ops::gather(t, &NormalizedTriangle::dir_y);
+        const Lanes ay = Ops::dot(dir_y, from_a), by = Ops::dot(dir_y, from_b);
+        const Lanes y2 = Ops::gather(t, &NormalizedTriangle::y2);
+        const Lanes y_gap = max3(min(ay, by) - y2, -max(ay, by), Ops::every(0.0));
         rejected |= (y_gap > 0.0) &
                     ((y_gap * y_gap > reach_squared_) | (y_gap * y_gap > support_squared(dir_y)));
         // Each stage runs only while a lane is left open by the ones before.
-        const unsigned open = bits(~rejected);
+        const unsigned open = Ops::bits(~rejected);
         if (open == 0) return {};
         // The sure accept: the chord's foot over the triangle for some t in [0, 1].
-        const Lanes x2 = gather(t, &NormalizedTriangle::x2);
+        const Lanes x2 = Ops::gather(t, &NormalizedTriangle::x2);
         const Lanes ex = x2 - x1;
-        Lanes h{};
-        for (int k = 0; k < N; ++k) h[k] = std::sqrt(h_sq[k]);
+        const Lanes h = Ops::sqrt(h_sq);
         const Lanes3 mn{m00_ * normal.x + m01_ * normal.y + m02_ * normal.z,
                         m01_ * normal.x + m11_ * normal.y + m12_ * normal.z,
                         m02_ * normal.x + m12_ * normal.y + m22_ * normal.z};
-        const Lanes mn_x = dot(dir_x, mn) / h_sq, mn_y = dot(dir_y, mn) / h_sq;
+        const Lanes mn_x = Ops::dot(dir_x, mn) / h_sq, mn_y = Ops::dot(dir_y, mn) / h_sq;
         const Lanes xa = ax - az * mn_x, ya = ay - az * mn_y;
         const Lanes xb = bx - bz * mn_x, yb = by - bz * mn_y;
-        Interval kept{every(0.0), every(1.0)};
+        Interval kept{Ops::every(0.0), Ops::every(1.0)};
         kept.keep_below(az - h, bz - h);
         kept.keep_below(-az - h, -bz - h);
         kept.keep_below(-ya, -yb);
         kept.keep_below(x2 * ya - y2 * xa, x2 * yb - y2 * xb);
         kept.keep_below((xa - x1) * y2 - ya * ex, (xb - x1) * y2 - yb * ex);
-        const unsigned touched = open & bits(kept.first <= kept.last);
+        const unsigned touched = open & Ops::bits(kept.first <= kept.last);
         if (touched == open) return {touched, 0};
         // The slanted edges' half-planes.
         const Lanes e1 = min(x2 * ay - y2 * ax, x2 * by - y2 * bx);
@@ -115,34 +95,23 @@ class EllipsoidFilterLanes {
         Mask separated = ((e1 > 0.0) & (e1 * e1 > support_squared(x2 * dir_y - y2 * dir_x))) |
                          ((e2 > 0.0) & (e2 * e2 > support_squared(y2 * dir_x - ex * dir_y)));
         // The tilted separating axes, for a shape on one side of the plane.
-        const Lanes side = select(z_lo > 0.0, every(1.0), every(-1.0));
+        const Lanes side = Ops::select(z_lo > 0.0, Ops::every(1.0), Ops::every(-1.0));
         const Lanes3 a{ax, ay, az}, b{bx, by, bz};
-        const Lanes zero = every(0.0);
+        const Lanes zero = Ops::every(0.0);
         separated |=
             ((z_lo > 0.0) | (z_hi < 0.0)) &
             (tilted_apart(a, b, dir_x, dir_y, normal, zero, -x1, zero, side * x1) |
-             tilted_apart(a, b, dir_x, dir_y, normal, -y2, x2, zero, side * (abs(x2) + y2)) |
-             tilted_apart(a, b, dir_x, dir_y, normal, y2, -ex, x1 * y2, side * (abs(ex) + y2)));
-        return {touched, open & ~touched & bits(~separated)};
+             tilted_apart(a, b, dir_x, dir_y, normal, -y2, x2, zero, side * (Ops::abs(x2) + y2)) |
+             tilted_apart(a, b, dir_x, dir_y, normal, y2, -ex, x1 * y2,
+                          side * (Ops::abs(ex) + y2)));
+        return {touched, open & ~touched & Ops::bits(~separated)};
     }
 
   private:
-    using Lanes = typename FilterLaneVector<N>::type;
-    using Mask = decltype(Lanes{} < Lanes{});  // all ones in a lane where it holds
-    // Three coordinates in lanes, with glm's vector expressions: component by component.
-    struct Lanes3 {
-        Lanes x, y, z;
-
-        [[gnu::always_inline]] friend Lanes3 operator*(const Lanes& s, const Lanes3& u) {
-            return {s * u.x, s * u.y, s * u.z};
-        }
-        [[gnu::always_inline]] friend Lanes3 operator+(const Lanes3& u, const Lanes3& v) {
-            return {u.x + v.x, u.y + v.y, u.z + v.z};
-        }
-        [[gnu::always_inline]] friend Lanes3 operator-(const Lanes3& u, const Lanes3& v) {
-            return {u.x - v.x, u.y - v.y, u.z - v.z};
-        }
-    };
+    using Ops = detail::LaneOps<N>;
+    using Lanes = typename Ops::Lanes;
+    using Mask = typename Ops::Mask;
+    using Lanes3 = typename Ops::Lanes3;
 
     // The t in [first, last] kept so far by EllipsoidShape::touches's keep_below.
     struct Interval {
@@ -155,65 +124,22 @@ class EllipsoidFilterLanes {
             const Mask start = ~neither & ~both & (fa > 0.0);
             const Mask end = ~neither & ~both & ~(fa > 0.0);
             const Lanes crossing = fa / (fa - fb);
-            first = select(both, every(2.0), select(start, max(first, crossing), first));
-            last = select(end, min(last, crossing), last);
+            first =
+                Ops::select(both, Ops::every(2.0), Ops::select(start, max(first, crossing), first));
+            last = Ops::select(end, min(last, crossing), last);
         }
     };
 
-    [[gnu::always_inline]] static Lanes every(double v) {
-        Lanes lanes;
-        for (int k = 0; k < N; ++k) lanes[k] = v;
-        return lanes;
-    }
-    [[gnu::always_inline]] static Lanes select(const Mask& m, const Lanes& yes, const Lanes& no) {
-        return __builtin_bit_cast(
-            Lanes, (__builtin_bit_cast(Mask, yes) & m) | (__builtin_bit_cast(Mask, no) & ~m));
-    }
     // std::min and std::max's choices: the second only when it compares below (above) the
     // first, and std::max({a, b, c})'s first largest.
     [[gnu::always_inline]] static Lanes min(const Lanes& a, const Lanes& b) {
-        return select(b < a, b, a);
+        return Ops::select(b < a, b, a);
     }
     [[gnu::always_inline]] static Lanes max(const Lanes& a, const Lanes& b) {
-        return select(a < b, b, a);
+        return Ops::select(a < b, b, a);
     }
     [[gnu::always_inline]] static Lanes max3(const Lanes& a, const Lanes& b, const Lanes& c) {
         return max(max(a, b), c);
-    }
-    // std::abs: the sign bit cleared.
-    [[gnu::always_inline]] static Lanes abs(const Lanes& v) {
-        return __builtin_bit_cast(
-            Lanes, __builtin_bit_cast(Mask, v) & ~__builtin_bit_cast(Mask, every(-0.0)));
-    }
-    // A branch a lane, not `(m[k] != 0 ? 1u : 0u) << k`: GCC 12 with UBSan's shift and
-    // bounds checks (the asan preset) reads that shift's count from a copy of k it never
-    // initialises, so the bits land in the wrong lanes (tests/collision/CMakeLists.txt).
-    [[gnu::always_inline]] static unsigned bits(const Mask& m) {
-        unsigned b = 0;
-        for (int k = 0; k < N; ++k)
-            if (m[k] != 0) b |= 1u << k;
-        return b;
-    }
-    [[gnu::always_inline]] static Lanes gather(const NormalizedTriangle* const (&t)[N],
-                                               double NormalizedTriangle::*field) {
-        Lanes v{};
-        for (int k = 0; k < N; ++k) v[k] = t[k]->*field;
-        return v;
-    }
-    [[gnu::always_inline]] static Lanes3 gather(const NormalizedTriangle* const (&t)[N],
-                                                glm::dvec3 NormalizedTriangle::*field) {
-        Lanes3 v{};
-        for (int k = 0; k < N; ++k) {
-            const glm::dvec3& p = t[k]->*field;
-            v.x[k] = p.x;
-            v.y[k] = p.y;
-            v.z[k] = p.z;
-        }
-        return v;
-    }
-    // glm::dot's order: (x + y) + z.
-    [[gnu::always_inline]] static Lanes dot(const Lanes3& u, const Lanes3& v) {
-        return u.x * v.x + u.y * v.y + u.z * v.z;
     }
     // touches's `separated`: the sweep's ends a and b beyond the tilted axis
     // d = ux dir_x + uy dir_y + sl normal by more than the ellipsoid reaches along it.

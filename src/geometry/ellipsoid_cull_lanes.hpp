@@ -3,7 +3,7 @@
 #include <array>
 #include <limits>
 
-#include "geometry/double_lanes.hpp"
+#include "geometry/lane_ops.hpp"
 #include "trackphys/geometry/ellipsoid.hpp"
 #include "trackphys/geometry/normalized_triangle.hpp"
 
@@ -34,9 +34,9 @@ class EllipsoidCull {
         const typename Ops::Frames f = Ops::frames(t);
         const Lanes3 local{center_[0] - f.origin.x, center_[1] - f.origin.y,
                            center_[2] - f.origin.z};
-        const Lanes z = dot(f.normal, local);
-        const Lanes x = dot(f.dir_x, local);
-        const Lanes y = dot(f.dir_y, local);
+        const Lanes z = Ops::dot(f.normal, local);
+        const Lanes x = Ops::dot(f.dir_x, local);
+        const Lanes y = Ops::dot(f.dir_y, local);
         const Lanes hz = extent(f.normal);
         const Lanes hx = extent(f.dir_x);
         const Lanes hy = extent(f.dir_y);
@@ -54,14 +54,11 @@ class EllipsoidCull {
     using Lanes3 = typename Ops::Lanes3;
     static constexpr double kApart = -std::numeric_limits<double>::infinity();
 
-    [[gnu::always_inline]] static Lanes dot(const Lanes3& u, const Lanes3& v) {
-        return Ops::dot(u, v);
-    }
     // support_extent's: D (u A), each component in glm's order, then its length.
     [[gnu::always_inline]] Lanes extent(const Lanes3& u) const {
-        const Lanes s0 = radii_[0] * dot(axes_[0], u);
-        const Lanes s1 = radii_[1] * dot(axes_[1], u);
-        const Lanes s2 = radii_[2] * dot(axes_[2], u);
+        const Lanes s0 = radii_[0] * Ops::dot(axes_[0], u);
+        const Lanes s1 = radii_[1] * Ops::dot(axes_[1], u);
+        const Lanes s2 = radii_[2] * Ops::dot(axes_[2], u);
         return Ops::sqrt(s0 * s0 + s1 * s1 + s2 * s2);
     }
 

@@ -5,7 +5,7 @@
 #include <span>
 
 #include "core/cpu_features.hpp"
-#include "geometry/double_lanes.hpp"
+#include "geometry/lane_ops.hpp"
 #include "trackphys/geometry/ellipsoid.hpp"
 #include "trackphys/geometry/face_certificate.hpp"
 #include "trackphys/geometry/normalized_triangle.hpp"

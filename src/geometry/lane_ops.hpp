@@ -27,13 +27,13 @@ struct DoubleLanes<4> {
 
 // No member here exists out of line, so none passes a vector by the ABI GCC warns about for
 // four lanes without AVX; GCC warns at the end of the including file, so the warning stays
-// off there (this header is private: the world's lanes and their tests). Being off, it would
-// not report a call that does pass one (std::bit_cast, a function, is one at -O0;
-// __builtin_bit_cast is not): the lanes' tests are built at -O0 to catch that instead.
+// off there (this header is private: the world's and the mid phase's lanes and their tests).
+// Being off, it would not report a call that does pass one (std::bit_cast, a function, is
+// one at -O0; __builtin_bit_cast is not): the lanes' tests are built at -O0 to catch that.
 #pragma GCC diagnostic ignored "-Wpsabi"
 
 /// What code that runs a scalar function in N lanes at once (N = 2 or 4) shares: the vector
-/// types, spreading a value, reading triangles' frames into lanes, and the few operations
+/// types, spreading a value, reading triangles' frames into lanes, masks to bits, and the few operations
 /// whose order must be the scalar code's (glm's dot, the square root). Each lane runs the
 /// scalar IEEE operations in their order (the build contracts no multiply-add, see
 /// cmake/CompilerOptions.cmake), so the lanes give the scalar bits.
@@ -46,8 +46,19 @@ template <int N>
 struct LaneOps {
     using Lanes = typename DoubleLanes<N>::type;
     using Mask = decltype(Lanes{} < Lanes{});  // all ones in a lane where it holds
+    // Three coordinates in lanes, with glm's vector expressions: component by component.
     struct Lanes3 {
         Lanes x, y, z;
+
+        [[gnu::always_inline]] friend Lanes3 operator*(const Lanes& s, const Lanes3& u) {
+            return {s * u.x, s * u.y, s * u.z};
+        }
+        [[gnu::always_inline]] friend Lanes3 operator+(const Lanes3& u, const Lanes3& v) {
+            return {u.x + v.x, u.y + v.y, u.z + v.z};
+        }
+        [[gnu::always_inline]] friend Lanes3 operator-(const Lanes3& u, const Lanes3& v) {
+            return {u.x - v.x, u.y - v.y, u.z - v.z};
+        }
     };
     struct Frames {
         Lanes3 origin, dir_x, dir_y, normal;
@@ -55,8 +66,15 @@ struct LaneOps {
     };
     static constexpr std::int64_t kSign = std::numeric_limits<std::int64_t>::min();  // bit 63
 
-    // v in lane 0, shuffled to every lane: one broadcast from v's place in memory.
+    // v in lane 0, shuffled to every lane: one broadcast from v's place in memory. A
+    // constant is written into each lane instead, which GCC folds into a vector constant
+    // (it broadcasts a shuffled one again at each use).
     [[gnu::always_inline]] static Lanes every(double v) {
+        if (__builtin_constant_p(v)) {
+            Lanes lanes;
+            for (int k = 0; k < N; ++k) lanes[k] = v;
+            return lanes;
+        }
         const Lanes first{v};
         if constexpr (N == 2)
             return __builtin_shufflevector(first, first, 0, 0);
@@ -76,6 +94,16 @@ struct LaneOps {
     // Lane k: where(k) ? a[k] : b[k], by bits.
     [[gnu::always_inline]] static Lanes select(const Mask& where, const Lanes& a, const Lanes& b) {
         return from_bits((to_bits(a) & where) | (to_bits(b) & ~where));
+    }
+    // Bit k where lane k holds. A branch a lane, not `(m[k] != 0 ? 1u : 0u) << k`: GCC 12
+    // with UBSan's shift and bounds checks (the asan preset) reads that shift's count from a
+    // copy of k it never initialises, so the bits land in the wrong lanes (see the lanes'
+    // UBSan tests in tests/collision and tests/geometry).
+    [[gnu::always_inline]] static unsigned bits(const Mask& m) {
+        unsigned b = 0;
+        for (int k = 0; k < N; ++k)
+            if (m[k] != 0) b |= 1u << k;
+        return b;
     }
     // The value at `field` of each object, object k in lane k.
     template <class T>
