@@ -56,8 +56,6 @@ World::CarSlot::CarSlot(Car car_in, MidPhase mid_in)
     deepest.resize(ellipsoids);
     deepest_ref.resize(ellipsoids, TriangleRef{~0u, ~0u});
     known.resize(ellipsoids);
-    placed.reserve(ellipsoids);
-    for (std::size_t i = 0; i < ellipsoids; ++i) placed.push_back(car.world_ellipsoid(i));
 }
 
 std::size_t World::add_car(const CarSpec& spec, const RigidBodyState& state) {
@@ -125,6 +123,8 @@ void World::run_islands() {
     work.errors.assign(islands, nullptr);
 
     work.worker_profiles.assign(static_cast<std::size_t>(workers), {});
+    if (work.worker_scratch.size() < static_cast<std::size_t>(workers))
+        work.worker_scratch.resize(static_cast<std::size_t>(workers));
     // The trace recorder is not shared between threads.
     work.trace = workers == 1 ? trace_ : nullptr;
     const int items = static_cast<int>(islands);
@@ -153,7 +153,8 @@ void World::island_task(int begin, int end, int worker, void* world) {
     for (int item = begin; item < end; ++item) {
         const std::size_t island = work.schedule[static_cast<std::size_t>(item)];
         try {
-            self.update_island_or_reset(island, watch);
+            self.update_island_or_reset(
+                island, work.worker_scratch[static_cast<std::size_t>(worker)], watch);
         } catch (...) {
             work.errors[island] = std::current_exception();
         }
