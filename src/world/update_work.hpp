@@ -40,8 +40,9 @@ struct World::UpdateWork {
     };
     std::vector<WorkerProfile> worker_profiles;
     // Per worker, kept between updates (only ever grown) so that its sets keep their heap
-    // blocks.
+    // blocks: a set for each car of the field, each as long as the most ellipsoids a car has.
     std::vector<WorkerScratch> worker_scratch;
+    std::size_t scratch_cars = 0;  // the cars they were made for
     // Per island: what stopped its update, rethrown after all islands ran.
     std::vector<std::exception_ptr> errors;
     std::unique_ptr<detail::ThreadPool> pool;  // started at the first update with 2 islands

@@ -123,8 +123,21 @@ void World::run_islands() {
     work.errors.assign(islands, nullptr);
 
     work.worker_profiles.assign(static_cast<std::size_t>(workers), {});
-    if (work.worker_scratch.size() < static_cast<std::size_t>(workers))
-        work.worker_scratch.resize(static_cast<std::size_t>(workers));
+    // Every worker's sets can take an island of the whole field, made when the field or the
+    // workers grow: a steady state allocates nothing, whichever islands a worker is handed.
+    if (work.worker_scratch.size() < static_cast<std::size_t>(workers) ||
+        work.scratch_cars != cars_.size()) {
+        work.worker_scratch.resize(
+            std::max(work.worker_scratch.size(), static_cast<std::size_t>(workers)));
+        std::size_t ellipsoids = 0;
+        for (const CarSlot& slot : cars_)
+            ellipsoids = std::max(ellipsoids, slot.car.ellipsoid_count());
+        for (WorkerScratch& scratch : work.worker_scratch) {
+            scratch.placed.resize(cars_.size());
+            for (std::vector<Ellipsoid>& set : scratch.placed) set.reserve(ellipsoids);
+        }
+        work.scratch_cars = cars_.size();
+    }
     // The trace recorder is not shared between threads.
     work.trace = workers == 1 ? trace_ : nullptr;
     const int items = static_cast<int>(islands);

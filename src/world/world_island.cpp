@@ -22,7 +22,6 @@ void World::step_island(std::size_t island, WorkerScratch& scratch, PhaseStopwat
     const std::span<const std::uint32_t> cars = work.islands.cars(island);
     // Each car's placed ellipsoids, in the worker's sets: copies of its body ellipsoids, as
     // placing wants them (it writes what a motion changes, not the radii).
-    if (scratch.placed.size() < cars.size()) scratch.placed.resize(cars.size());
     for (std::size_t k = 0; k < cars.size(); ++k) {
         CarSlot& slot = cars_[cars[k]];
         std::vector<Ellipsoid>& set = scratch.placed[k];
