@@ -67,7 +67,9 @@ struct World::CarSlot {
     MidPhase mid;
     Aabb update_box;                    // what mid.begin_update covers
     std::vector<LookAheadList> listed;  // per ellipsoid, this step
-    std::vector<Ellipsoid> placed;      // the ellipsoids, this sub-step (place_ellipsoids)
+    // The ellipsoids, this sub-step (place_ellipsoids), in the updating worker's scratch: set
+    // at the start of each of the car's updates (World::step_island), stale after it.
+    std::span<Ellipsoid> placed;
     // Every ellipsoid's culled survivors in one buffer, in ellipsoid order (one block of
     // lines a sub-step rather than a heap block per ellipsoid): see survivors().
     std::vector<Survivor> kept;

@@ -56,8 +56,6 @@ World::CarSlot::CarSlot(Car car_in, MidPhase mid_in)
     deepest.resize(ellipsoids);
     deepest_ref.resize(ellipsoids, TriangleRef{~0u, ~0u});
     known.resize(ellipsoids);
-    placed.reserve(ellipsoids);
-    for (std::size_t i = 0; i < ellipsoids; ++i) placed.push_back(car.world_ellipsoid(i));
 }
 
 std::size_t World::add_car(const CarSpec& spec, const RigidBodyState& state) {
@@ -125,6 +123,21 @@ void World::run_islands() {
     work.errors.assign(islands, nullptr);
 
     work.worker_profiles.assign(static_cast<std::size_t>(workers), {});
+    // Every worker's sets can take an island of the whole field, made when the field or the
+    // workers grow: a steady state allocates nothing, whichever islands a worker is handed.
+    if (work.worker_scratch.size() < static_cast<std::size_t>(workers) ||
+        work.scratch_cars != cars_.size()) {
+        work.worker_scratch.resize(
+            std::max(work.worker_scratch.size(), static_cast<std::size_t>(workers)));
+        std::size_t ellipsoids = 0;
+        for (const CarSlot& slot : cars_)
+            ellipsoids = std::max(ellipsoids, slot.car.ellipsoid_count());
+        for (WorkerScratch& scratch : work.worker_scratch) {
+            scratch.placed.resize(cars_.size());
+            for (std::vector<Ellipsoid>& set : scratch.placed) set.reserve(ellipsoids);
+        }
+        work.scratch_cars = cars_.size();
+    }
     // The trace recorder is not shared between threads.
     work.trace = workers == 1 ? trace_ : nullptr;
     const int items = static_cast<int>(islands);
@@ -153,7 +166,8 @@ void World::island_task(int begin, int end, int worker, void* world) {
     for (int item = begin; item < end; ++item) {
         const std::size_t island = work.schedule[static_cast<std::size_t>(item)];
         try {
-            self.update_island_or_reset(island, watch);
+            self.update_island_or_reset(
+                island, work.worker_scratch[static_cast<std::size_t>(worker)], watch);
         } catch (...) {
             work.errors[island] = std::current_exception();
         }
@@ -294,6 +308,14 @@ void World::find_contacts(CarSlot& slot, PhaseStopwatch& watch) {
         all_kept.push_back({c.ref, c.triangle, bound});
     };
     const bool four_lanes = detail::use_four_lanes();
+    // The per-ellipsoid vectors as spans, read once: the vectors themselves would be read
+    // again after each out-of-line call (the cull, the certificates, the kernel).
+    const std::span<const LookAheadList> lists(slot.listed);
+    const std::span<const Ellipsoid> placed(slot.placed);
+    const std::span<std::uint32_t> kept_start(slot.kept_start);
+    const std::span<Contact> deepest_of(slot.deepest);
+    const std::span<TriangleRef> deepest_ref(slot.deepest_ref);
+    const std::span<CarSlot::KnownNormals> known_of(slot.known);
     // The first survivors, in ellipsoid order: their frames, ellipsoids, face certificates
     // and the ellipsoids' indices. On the stack, where every car's call finds the same warm
     // lines: in the slot, a big field would miss them at each car's update.
@@ -304,25 +326,27 @@ void World::find_contacts(CarSlot& slot, PhaseStopwatch& watch) {
     std::array<std::size_t, CarSpec::max_ellipsoids> first_owners;
     std::size_t firsts = 0;  // ellipsoids with survivors
     for (std::size_t i = 0; i < ellipsoids; ++i) {
-        slot.deepest[i].depth = -std::numeric_limits<double>::infinity();
-        slot.kept_start[i + 1] = static_cast<std::uint32_t>(all_kept.size());
-        const std::vector<MidPhaseCandidate>& listed = slot.listed[i].candidates();
+        deepest_of[i].depth = -std::numeric_limits<double>::infinity();
+        const std::uint32_t start = static_cast<std::uint32_t>(all_kept.size());
+        kept_start[i + 1] = start;
+        const std::vector<MidPhaseCandidate>& listed = lists[i].candidates();
         // Half the calls would be for nothing: a lone car's body ellipsoids list no triangles.
         if (listed.empty()) continue;
         watch.profile().culled_tests += listed.size();
-        detail::cull_listed_widest(four_lanes, slot.placed[i], std::span(listed), keep);
-        slot.kept_start[i + 1] = static_cast<std::uint32_t>(all_kept.size());
-        const std::span<Survivor> kept = slot.survivors(i);
+        detail::cull_listed_widest(four_lanes, placed[i], std::span(listed), keep);
+        kept_start[i + 1] = static_cast<std::uint32_t>(all_kept.size());
+        const std::span<Survivor> kept(all_kept.data() + start, all_kept.size() - start);
         if (kept.empty()) continue;
+        const TriangleRef last_deepest = deepest_ref[i];
         auto first = std::find_if(kept.begin(), kept.end(),
-                                  [&](const Survivor& s) { return s.ref == slot.deepest_ref[i]; });
+                                  [&](const Survivor& s) { return s.ref == last_deepest; });
         if (first == kept.end())
             first = std::max_element(
                 kept.begin(), kept.end(),
                 [](const Survivor& a, const Survivor& b) { return a.depth_bound < b.depth_bound; });
         std::iter_swap(kept.begin(), first);
         first_frames[firsts] = kept.front().frame;
-        first_ellipsoids[firsts] = &slot.placed[i];
+        first_ellipsoids[firsts] = &placed[i];
         first_owners[firsts] = i;
         ++firsts;
     }
@@ -335,24 +359,25 @@ void World::find_contacts(CarSlot& slot, PhaseStopwatch& watch) {
     detail::certify_faces_widest(four_lanes, std::span(first_frames.data(), firsts),
                                  std::span(first_ellipsoids.data(), firsts), first_faces.data(),
                                  first_certified.data());
+    Survivor* const survivors = all_kept.data();
     for (std::size_t j = 0; j < firsts; ++j) {
         const std::size_t i = first_owners[j];
-        Contact& deepest = slot.deepest[i];
-        const std::span<Survivor> kept = slot.survivors(i);
+        Contact& deepest = deepest_of[i];
+        const std::span<Survivor> kept(survivors + kept_start[i], survivors + kept_start[i + 1]);
         // After the first contact, the bound along its normal skips the neighbours that
         // cannot beat it (ties within kDepthTie, far below the 1e-9 m contract, included).
         constexpr double kDepthTie = 1e-12;    // m
         constexpr double kKernelError = 1e-9;  // m, ellipsoid_triangle_contact's accuracy
-        const Ellipsoid& ellipsoid = slot.placed[i];
+        const Ellipsoid& ellipsoid = placed[i];
         double deepest_support = 0.0;  // h(deepest.normal)
-        CarSlot::KnownNormals& known = slot.known[i];
+        CarSlot::KnownNormals& known = known_of[i];
         const auto tested = [&](const TriangleRef& ref, const ContactWithSupport& contact) {
             known.remember(ref, contact.normal);
             ++watch.profile().exact_tests;
             if (contact.depth > deepest.depth) {
                 deepest = contact;
                 deepest_support = contact.support;
-                slot.deepest_ref[i] = ref;
+                deepest_ref[i] = ref;
             }
         };
         // The first survivor: its certificate's answer, else the kernel's.

@@ -117,7 +117,8 @@ void World::check_placement(const Car& car) const {
 // mid-update makes a query of the update throw (non-finite shapes are rejected there);
 // that is the same impossible state, caught and reset here. Any other error, with every
 // car's state still possible, propagates.
-void World::update_island_or_reset(std::size_t island, PhaseStopwatch& watch) {
+void World::update_island_or_reset(std::size_t island, WorkerScratch& scratch,
+                                   PhaseStopwatch& watch) {
     const std::span<const std::uint32_t> cars = work_->islands.cars(island);
     for (const std::uint32_t i : cars) {
         CarSlot& slot = cars_[i];
@@ -128,7 +129,7 @@ void World::update_island_or_reset(std::size_t island, PhaseStopwatch& watch) {
     std::exception_ptr stopped;
     std::string stop_reason;
     try {
-        step_island(island, watch);
+        step_island(island, scratch, watch);
     } catch (const Error& error) {
         stopped = std::current_exception();
         stop_reason = std::string(" (the update stopped: ") + error.what() + ")";

@@ -1,7 +1,9 @@
 // World::step_island: one update of an island of cars (see World's class notes).
 
+#include <cstddef>
 #include <cstdint>
 #include <span>
+#include <vector>
 
 #include "profile/phase_stopwatch.hpp"
 #include "trackphys/world/world.hpp"
@@ -15,9 +17,19 @@ namespace trackphys {
 // meet run the same loop in lockstep: each sub-step finds every car's road contacts from
 // the same instant, then the contacts between cars push them (touch_cars), then each car
 // integrates; so both cars of a pair feel their contact in the same sub-step.
-void World::step_island(std::size_t island, PhaseStopwatch& watch) {
+void World::step_island(std::size_t island, WorkerScratch& scratch, PhaseStopwatch& watch) {
     const UpdateWork& work = *work_;
     const std::span<const std::uint32_t> cars = work.islands.cars(island);
+    // Each car's placed ellipsoids, in the worker's sets: copies of its body ellipsoids, as
+    // placing wants them (it writes what a motion changes, not the radii).
+    for (std::size_t k = 0; k < cars.size(); ++k) {
+        CarSlot& slot = cars_[cars[k]];
+        std::vector<Ellipsoid>& set = scratch.placed[k];
+        set.clear();
+        for (std::size_t i = 0; i < slot.car.ellipsoid_count(); ++i)
+            set.push_back(slot.car.body_ellipsoid(i));
+        slot.placed = set;
+    }
     if (cars.size() == 1) {
         update_car(cars_[cars[0]], work.boxes[cars[0]], watch);
         return;

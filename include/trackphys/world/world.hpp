@@ -130,19 +130,21 @@ class TRACKPHYS_API World {
     struct CarSlot;
     // The update's islands, per-worker profiles and threads (src/world/update_work.hpp).
     struct UpdateWork;
+    // A worker's memory for the cars it is updating (src/world/update_work.hpp).
+    struct WorkerScratch;
 
     void run_islands();
     // The job-system task over the update's islands (context: the World).
     static void island_task(int begin, int end, int worker, void* world);
     // step_island under the reset policy (world_guard.cpp).
-    void update_island_or_reset(std::size_t island, PhaseStopwatch& watch);
+    void update_island_or_reset(std::size_t island, WorkerScratch& scratch, PhaseStopwatch& watch);
     // Why this state breaks the reset policy's limits, or empty.
     std::string impossible_state(const RigidBodyState& state) const;
     // add_car's checks of where the car is (world_guard.cpp).
     void check_placement(const Car& car) const;
     // A lone car runs its whole update alone; an island's cars sub-step together
     // (world_island.cpp).
-    void step_island(std::size_t island, PhaseStopwatch& watch);
+    void step_island(std::size_t island, WorkerScratch& scratch, PhaseStopwatch& watch);
     void update_car(CarSlot& slot, const Aabb& box, PhaseStopwatch& watch);
     void begin_update(CarSlot& slot, const Aabb& box, PhaseStopwatch& watch);
     void list_step_candidates(CarSlot& slot, int steps_left, PhaseStopwatch& watch);

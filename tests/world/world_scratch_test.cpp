@@ -1,0 +1,60 @@
+// A worker places the ellipsoids of every car it updates in its own sets (World's
+// WorkerScratch): cars of different shapes, updated one after another, each drive as they
+// would alone.
+#include <cstring>
+#include <memory>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "trackphys/world/spawn.hpp"
+#include "trackphys/world/world.hpp"
+#include "world/world_scenes.hpp"
+
+namespace trackphys {
+namespace {
+
+bool same_bits(const RigidBodyState& a, const RigidBodyState& b) {
+    return std::memcmp(&a.position, &b.position, sizeof a.position) == 0 &&
+           std::memcmp(&a.orientation, &b.orientation, sizeof a.orientation) == 0 &&
+           std::memcmp(&a.linear_velocity, &b.linear_velocity, sizeof a.linear_velocity) == 0 &&
+           std::memcmp(&a.angular_velocity, &b.angular_velocity, sizeof a.angular_velocity) == 0;
+}
+
+TEST(WorldScratch, CarsOfOtherShapesOnOneWorkerDriveAsAlone) {
+    const auto ground = test::static_world_of(test::flat_grid(200.0, 50));
+    // The default car, the same on taller wheels, and the formula car.
+    CarSpec taller = CarSpec::default_car();
+    for (CarEllipsoid& e : taller.ellipsoids)
+        if (e.role != EllipsoidRole::body) e.semi_axes *= glm::dvec3(1.0, 1.2, 1.2);
+    const std::vector<CarSpec> specs = {CarSpec::default_car(), taller, CarSpec::preset("formula")};
+    WorldSettings one_worker;
+    one_worker.threads = 1;
+    // Far apart (each car an island of its own), so only the worker's sets are shared.
+    const auto start = [&](std::size_t k) {
+        const glm::dvec3 where(-50.0 + 50.0 * static_cast<double>(k), 0.5, 0.0);
+        return place_car_on_surface(*ground, specs[k], where, glm::dquat(1.0, 0.0, 0.0, 0.0));
+    };
+    const CarInputs inputs{.throttle = 0.6, .brake = 0.0, .steer = 0.3};
+
+    World together(ground, one_worker);
+    std::vector<World> alone;
+    for (std::size_t k = 0; k < specs.size(); ++k) {
+        together.add_car(specs[k], start(k));
+        together.car(k).set_inputs(inputs);
+        alone.emplace_back(ground, one_worker);
+        alone[k].add_car(specs[k], start(k));
+        alone[k].car(0).set_inputs(inputs);
+    }
+    for (int update = 0; update < 60; ++update) {
+        together.update();
+        for (World& world : alone) world.update();
+    }
+    for (std::size_t k = 0; k < specs.size(); ++k) {
+        EXPECT_GT(together.contacts(k)[1].depth, 0.0) << "car " << k << " left the ground";
+        EXPECT_TRUE(same_bits(together.car(k).state(), alone[k].car(0).state())) << "car " << k;
+    }
+}
+
+}  // namespace
+}  // namespace trackphys
