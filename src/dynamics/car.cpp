@@ -161,11 +161,13 @@ inline WheelCommand Car::wheel_command(Axle axle, const glm::dvec3& heading,
 
 void Car::advance(std::span<const Contact> deepest, const glm::dvec3& gravity, double h) {
     resolve_deep_contacts(deepest);
+    // The impulses turn the velocities only: the axes hold until integrate.
+    const BodyAxes axes(state_.orientation);
     WheelLoads wheel_loads;
     const AxleLoads least_loads = measure_wheel_loads(deepest, wheel_loads);
-    const Wrench wrench = vehicle_ ? vehicle_wrench(deepest, wheel_loads, h)
-                                   : contact_wrench(deepest, wheel_loads, least_loads);
-    update_suspension(deepest, wheel_loads, h);
+    const Wrench wrench = vehicle_ ? vehicle_wrench(deepest, wheel_loads, axes, h)
+                                   : contact_wrench(deepest, wheel_loads, least_loads, axes);
+    update_suspension(deepest, wheel_loads, axes.up, h);
     trackphys::integrate(state_, spec_.mass, wrench, gravity, h);
 }
 
@@ -189,12 +191,12 @@ Car::AxleLoads Car::measure_wheel_loads(std::span<const Contact> deepest,
 }
 
 Wrench Car::contact_wrench(std::span<const Contact> deepest, const WheelLoads& wheel_loads,
-                           const AxleLoads& least_loads) const {
+                           const AxleLoads& least_loads, const BodyAxes& axes) const {
     // Every wheel of an axle rolls with the same material and command: two of each per
-    // sub-step, not one per wheel. The speed and the forward axis serve the aerodynamics too.
+    // sub-step, not one per wheel. The speed serves the aerodynamics too.
     const double speed_now = speed();
     const double available = drive_available(speed_now);
-    const glm::dvec3 forward = forward_axis();
+    const glm::dvec3& forward = axes.forward;
     const ContactMaterial materials[2] = {wheel_material(Axle::front), wheel_material(Axle::rear)};
     const WheelCommand commands[2] = {
         wheel_command(Axle::front, wheel_heading(Axle::front, forward), materials[0],
@@ -217,14 +219,13 @@ Wrench Car::contact_wrench(std::span<const Contact> deepest, const WheelLoads& w
                                               wheel_loads[i].velocity, commands[axle]);
         wrench.add_at_point(force, contact.point, state_.position);
     }
-    add_aero_force(wrench, speed_now, forward);
+    add_aero_force(wrench, speed_now, axes);
     return wrench;
 }
 
 void Car::update_suspension(std::span<const Contact> deepest, const WheelLoads& wheel_loads,
-                            double h) {
+                            const glm::dvec3& up, double h) {
     const Suspension& spring = spec_.suspension;
-    const glm::dvec3 up = state_.orientation * glm::dvec3(0.0, 1.0, 0.0);
     if (vehicle_) vehicle_->measure_anti_roll(suspension_);
     const Part* parts = shape_->parts.data();
     const std::size_t wheel_end = std::min(deepest.size(), shape_->wheel_end);

@@ -9,11 +9,11 @@
 namespace trackphys {
 
 Wrench Car::vehicle_wrench(std::span<const Contact> deepest, const WheelLoads& wheel_loads,
-                           double h) {
+                           const BodyAxes& axes, double h) {
     Vehicle& vehicle = *vehicle_;
     const double speed_now = speed();
     vehicle.begin_substep(inputs_.throttle, inputs_.brake, speed_now, h);
-    const glm::dvec3 forward = forward_axis();
+    const glm::dvec3& forward = axes.forward;
     Wrench wrench;
     // A body ellipsoid, or a wheel that cannot roll: pushed like the arcade car's body.
     const auto add_body_contact = [&](const Contact& contact) {
@@ -61,7 +61,7 @@ Wrench Car::vehicle_wrench(std::span<const Contact> deepest, const WheelLoads& w
                                 lateral * tyre.lateral,
                             contact.point, state_.position);
     }
-    add_aero_force(wrench, speed_now, forward);
+    add_aero_force(wrench, speed_now, axes);
     return wrench;
 }
 

@@ -59,19 +59,28 @@ TEST(CarPhysics, SettlesToTheStaticSagAndStaysStill) {
 }
 
 // The sub-step's loops over wheels stop after the last wheel, and the presets list their
-// wheels first: a car listing its body first must drive as the preset does (to rounding,
-// since its contacts' forces are summed in another order).
+// wheels first: a car listing its body first, or a body ellipsoid between two wheels (which
+// the loops over wheels must step over, not stop at), must drive as the preset does (to
+// rounding, since its contacts' forces are summed in another order).
 TEST(CarPhysics, ACarListingItsBodyFirstDrivesAsThePresetDoes) {
     const CarSpec preset = CarSpec::default_car();
     CarSpec body_first = preset;
-    auto& ellipsoids = body_first.ellipsoids;
-    std::stable_partition(ellipsoids.begin(), ellipsoids.end(),
+    std::stable_partition(body_first.ellipsoids.begin(), body_first.ellipsoids.end(),
                           [](const CarEllipsoid& e) { return e.role == EllipsoidRole::body; });
-    ASSERT_EQ(ellipsoids.front().role, EllipsoidRole::body);
-    glm::dvec3 driven[2];
-    for (int k = 0; k < 2; ++k) {
+    ASSERT_EQ(body_first.ellipsoids.front().role, EllipsoidRole::body);
+    // The preset's four wheels, then its bodies: move the first body to the middle wheel.
+    CarSpec body_between = preset;
+    auto& between = body_between.ellipsoids;
+    ASSERT_EQ(between[4].role, EllipsoidRole::body);
+    std::rotate(between.begin() + 2, between.begin() + 4, between.begin() + 5);
+    ASSERT_NE(between[1].role, EllipsoidRole::body);
+    ASSERT_EQ(between[2].role, EllipsoidRole::body);
+    ASSERT_NE(between[3].role, EllipsoidRole::body);
+    const CarSpec* specs[] = {&preset, &body_first, &body_between};
+    glm::dvec3 driven[3];
+    for (int k = 0; k < 3; ++k) {
         World world(test::static_world_of(test::flat_grid(200.0, 100)));
-        world.add_car(k == 0 ? preset : body_first, at_height(0.52));
+        world.add_car(*specs[k], at_height(0.52));
         run(world, 1.0);
         world.car(0).set_inputs({0.6, 0.0, 0.3});
         run(world, 2.0);
@@ -79,6 +88,7 @@ TEST(CarPhysics, ACarListingItsBodyFirstDrivesAsThePresetDoes) {
     }
     EXPECT_GT(glm::length(driven[0]), 5.0);
     EXPECT_LT(glm::length(driven[1] - driven[0]), 1e-6);
+    EXPECT_LT(glm::length(driven[2] - driven[0]), 1e-6);
 }
 
 // One stiff, undamped, frictionless ball dropped on the ground: a conservative spring,

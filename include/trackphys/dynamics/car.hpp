@@ -11,6 +11,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/vec3.hpp>
 
+#include "trackphys/dynamics/body_axes.hpp"
 #include "trackphys/dynamics/car_spec.hpp"
 #include "trackphys/dynamics/contact_force.hpp"
 #include "trackphys/dynamics/rigid_body.hpp"
@@ -201,21 +202,21 @@ class TRACKPHYS_API Car {
     /// The tyre's normal force of each wheel and the velocity of its contact point, into
     /// wheel_loads' first deepest.size(); returns each axle's least load.
     AxleLoads measure_wheel_loads(std::span<const Contact> deepest, WheelLoads& wheel_loads) const;
+    /// axes: BodyAxes(state().orientation), this sub-step's (the forward axis is the rear
+    /// wheels' heading and the downforce's speed).
     Wrench contact_wrench(std::span<const Contact> deepest, const WheelLoads& wheel_loads,
-                          const AxleLoads& least_loads) const;
+                          const AxleLoads& least_loads, const BodyAxes& axes) const;
     /// contact_wrench for a car with a vehicle model; advances its wheels by h.
     Wrench vehicle_wrench(std::span<const Contact> deepest, const WheelLoads& wheel_loads,
-                          double h);
-    /// The body's forward axis in the world, state().orientation * (0, 0, 1): the rear
-    /// wheels' heading and the downforce's speed.
-    glm::dvec3 forward_axis() const { return state_.orientation * glm::dvec3(0.0, 0.0, 1.0); }
+                          const BodyAxes& axes, double h);
     /// The world direction the wheels of an axle roll in (the front ones steered); forward:
-    /// forward_axis().
+    /// the body's forward axis.
     glm::dvec3 wheel_heading(Axle axle, const glm::dvec3& forward) const {
         return axle == Axle::front ? state_.orientation * steered_heading_ : forward;
     }
+    /// up: the body's up axis.
     void update_suspension(std::span<const Contact> deepest, const WheelLoads& wheel_loads,
-                           double h);
+                           const glm::dvec3& up, double h);
     // wheel_command, drive_available and wheel_material are defined inline in car.cpp: call
     // them only from there (another file's call would not link).
     /// The command of each wheel of an axle rolling along heading on material
@@ -230,17 +231,16 @@ class TRACKPHYS_API Car {
     void take_inputs(const CarInputs& inputs);
     /// The contact material of an axle's wheels (rear tyres with their extra grip).
     ContactMaterial wheel_material(Axle axle) const;
-    /// speed_now: speed(); forward: forward_axis(). Defined here, as the sub-step's other small
-    /// laws are, so that both wrenches compile it in rather than call it.
-    void add_aero_force(Wrench& wrench, double speed_now, const glm::dvec3& forward) const {
+    /// speed_now: speed(). Defined here, as the sub-step's other small laws are, so that both
+    /// wrenches compile it in rather than call it.
+    void add_aero_force(Wrench& wrench, double speed_now, const BodyAxes& axes) const {
         const glm::dvec3& v = state_.linear_velocity;
         const double dynamic_pressure = 0.5 * spec_.air_density * glm::dot(v, v);
         if (speed_now > 0.0) wrench.force -= v * (dynamic_pressure * spec_.drag_area / speed_now);
         // Downforce pushes along the body's down axis, in proportion to the forward speed.
-        const double forward_speed = glm::dot(v, forward);
-        const glm::dvec3 down = state_.orientation * glm::dvec3(0.0, -1.0, 0.0);
-        wrench.force +=
-            down * (0.5 * spec_.air_density * forward_speed * forward_speed * spec_.downforce_area);
+        const double forward_speed = glm::dot(v, axes.forward);
+        wrench.force += axes.down * (0.5 * spec_.air_density * forward_speed * forward_speed *
+                                     spec_.downforce_area);
     }
 
     CarSpec spec_;

@@ -1,0 +1,61 @@
+#include "trackphys/dynamics/body_axes.hpp"
+
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include <glm/gtc/quaternion.hpp>
+
+namespace trackphys {
+namespace {
+
+// Bits, not values, but any NaN for a NaN: which operand's NaN a sum passes on depends on
+// the order the compiler gives its operands, not on the law.
+bool same_bits(const glm::dvec3& a, const glm::dvec3& b) {
+    for (int c = 0; c < 3; ++c)
+        if (std::isnan(a[c]) ? !std::isnan(b[c]) : std::memcmp(&a[c], &b[c], sizeof(double)) != 0)
+            return false;
+    return true;
+}
+
+// BodyAxes leaves out glm's products by the axes' zeros only where they cannot change a
+// bit: every quaternion, with zero components of either sign (a car standing level),
+// components whose products cancel or underflow, and ones not finite, must give glm's bits.
+TEST(BodyAxes, GiveTheBitsOfGlmsProducts) {
+    std::mt19937_64 rng(13);
+    std::normal_distribution<double> normal;
+    std::uniform_int_distribution<int> pick(0, 15);
+    const double inf = std::numeric_limits<double>::infinity();
+    const std::array<double, 12> special = {0.0,    -0.0,  0.5,     -0.5, 1e-170, -1e-170,
+                                            1e-300, 1e-20, -1e-200, inf,  -inf,   std::nan("")};
+    for (int trial = 0; trial < 200000; ++trial) {
+        std::array<double, 4> q;
+        const int kind = trial % 4;
+        for (int c = 0; c < 4; ++c) {
+            const int p = pick(rng);
+            // Gaussian components, some replaced by special values (a quarter of the trials
+            // are only +-0.5 and zeros, whose products cancel to zeros exactly).
+            if (kind == 0 || (kind == 1 && p < 12))
+                q[c] = normal(rng);
+            else if (kind == 2)
+                q[c] = special[static_cast<std::size_t>(p % 6)];
+            else
+                q[c] = p < 12 ? special[static_cast<std::size_t>(p)] : normal(rng);
+        }
+        glm::dquat rotation(q[0], q[1], q[2], q[3]);
+        if (kind < 2) rotation = glm::normalize(rotation);
+        const BodyAxes axes(rotation);
+        ASSERT_TRUE(same_bits(axes.forward, rotation * glm::dvec3(0.0, 0.0, 1.0)))
+            << "trial " << trial;
+        ASSERT_TRUE(same_bits(axes.up, rotation * glm::dvec3(0.0, 1.0, 0.0))) << "trial " << trial;
+        ASSERT_TRUE(same_bits(axes.down, rotation * glm::dvec3(0.0, -1.0, 0.0)))
+            << "trial " << trial;
+    }
+}
+
+}  // namespace
+}  // namespace trackphys
