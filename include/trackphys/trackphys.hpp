@@ -13,7 +13,6 @@
 #include "trackphys/collision/static_collider.hpp"
 #include "trackphys/collision/static_world.hpp"
 #include "trackphys/collision/swept_ellipsoid.hpp"
-#include "trackphys/dynamics/body_axes.hpp"
 #include "trackphys/dynamics/car.hpp"
 #include "trackphys/dynamics/car_spec.hpp"
 #include "trackphys/dynamics/contact_force.hpp"

@@ -12,6 +12,7 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include "dynamics/body_axes.hpp"
 #include "dynamics/wheel_force.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/math/types.hpp"
@@ -162,7 +163,7 @@ inline WheelCommand Car::wheel_command(Axle axle, const glm::dvec3& heading,
 void Car::advance(std::span<const Contact> deepest, const glm::dvec3& gravity, double h) {
     resolve_deep_contacts(deepest);
     // The impulses turn the velocities only: the axes hold until integrate.
-    const BodyAxes axes(state_.orientation);
+    const detail::BodyAxes axes(state_.orientation);
     WheelLoads wheel_loads;
     const AxleLoads least_loads = measure_wheel_loads(deepest, wheel_loads);
     const Wrench wrench = vehicle_ ? vehicle_wrench(deepest, wheel_loads, axes, h)
@@ -191,7 +192,7 @@ Car::AxleLoads Car::measure_wheel_loads(std::span<const Contact> deepest,
 }
 
 Wrench Car::contact_wrench(std::span<const Contact> deepest, const WheelLoads& wheel_loads,
-                           const AxleLoads& least_loads, const BodyAxes& axes) const {
+                           const AxleLoads& least_loads, const detail::BodyAxes& axes) const {
     // Every wheel of an axle rolls with the same material and command: two of each per
     // sub-step, not one per wheel. The speed serves the aerodynamics too.
     const double speed_now = speed();
@@ -219,7 +220,7 @@ Wrench Car::contact_wrench(std::span<const Contact> deepest, const WheelLoads& w
                                               wheel_loads[i].velocity, commands[axle]);
         wrench.add_at_point(force, contact.point, state_.position);
     }
-    add_aero_force(wrench, speed_now, axes);
+    add_aero_force(wrench, speed_now, axes.forward, axes.down);
     return wrench;
 }
 

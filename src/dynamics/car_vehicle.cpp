@@ -4,12 +4,13 @@
 
 #include <glm/geometric.hpp>
 
+#include "dynamics/body_axes.hpp"
 #include "trackphys/dynamics/car.hpp"
 
 namespace trackphys {
 
 Wrench Car::vehicle_wrench(std::span<const Contact> deepest, const WheelLoads& wheel_loads,
-                           const BodyAxes& axes, double h) {
+                           const detail::BodyAxes& axes, double h) {
     Vehicle& vehicle = *vehicle_;
     const double speed_now = speed();
     vehicle.begin_substep(inputs_.throttle, inputs_.brake, speed_now, h);
@@ -61,7 +62,7 @@ Wrench Car::vehicle_wrench(std::span<const Contact> deepest, const WheelLoads& w
                                 lateral * tyre.lateral,
                             contact.point, state_.position);
     }
-    add_aero_force(wrench, speed_now, axes);
+    add_aero_force(wrench, speed_now, axes.forward, axes.down);
     return wrench;
 }
 

@@ -1,4 +1,4 @@
-#include "trackphys/dynamics/body_axes.hpp"
+#include "dynamics/body_axes.hpp"
 
 #include <array>
 #include <cmath>
@@ -48,7 +48,7 @@ TEST(BodyAxes, GiveTheBitsOfGlmsProducts) {
         }
         glm::dquat rotation(q[0], q[1], q[2], q[3]);
         if (kind < 2) rotation = glm::normalize(rotation);
-        const BodyAxes axes(rotation);
+        const detail::BodyAxes axes(rotation);
         ASSERT_TRUE(same_bits(axes.forward, rotation * glm::dvec3(0.0, 0.0, 1.0)))
             << "trial " << trial;
         ASSERT_TRUE(same_bits(axes.up, rotation * glm::dvec3(0.0, 1.0, 0.0))) << "trial " << trial;

@@ -1,6 +1,7 @@
 // A worker places the ellipsoids of every car it updates in its own sets (World's
 // WorkerScratch): cars of different shapes, updated one after another, each drive as they
 // would alone.
+#include <cstdint>
 #include <cstring>
 #include <memory>
 #include <vector>
@@ -54,6 +55,47 @@ TEST(WorldScratch, CarsOfOtherShapesOnOneWorkerDriveAsAlone) {
         EXPECT_GT(together.contacts(k)[1].depth, 0.0) << "car " << k << " left the ground";
         EXPECT_TRUE(same_bits(together.car(k).state(), alone[k].car(0).state())) << "car " << k;
     }
+}
+
+// A worker's sets are made for the whole field when it changes: cars added after the first
+// update and packed into one island larger than the field was drive as in a world whose
+// sets covered them from the start (four parked cars, far away, islands of their own).
+TEST(WorldScratch, CarsAddedAfterTheFirstUpdateDriveAsInAFieldThatHadThem) {
+    const auto ground = test::static_world_of(test::flat_grid(200.0, 50));
+    const CarSpec spec = CarSpec::default_car();
+    WorldSettings one_worker;
+    one_worker.threads = 1;
+    const auto at = [&](double x, double z) {
+        return place_car_on_surface(*ground, spec, glm::dvec3(x, 0.5, z),
+                                    glm::dquat(1.0, 0.0, 0.0, 0.0));
+    };
+    World grown(ground, one_worker), reference(ground, one_worker);
+    grown.add_car(spec, at(0.0, 0.0));
+    reference.add_car(spec, at(0.0, 0.0));
+    for (int k = 0; k < 4; ++k) reference.add_car(spec, at(-80.0, -80.0 + 12.0 * k));
+    grown.update();
+    reference.update();
+    // Side by side, 2.3 m apart: one island of four.
+    const std::size_t in_reference[4] = {0, 5, 6, 7};
+    for (int k = 1; k < 4; ++k) {
+        grown.add_car(spec, at(2.3 * k, 0.0));
+        reference.add_car(spec, at(2.3 * k, 0.0));
+    }
+    const CarInputs inputs{.throttle = 0.5, .brake = 0.0, .steer = 0.2};
+    for (std::size_t k = 0; k < 4; ++k) {
+        grown.car(k).set_inputs(inputs);
+        reference.car(in_reference[k]).set_inputs(inputs);
+    }
+    std::uint64_t pairs = 0;
+    for (int update = 0; update < 60; ++update) {
+        grown.update();
+        reference.update();
+        pairs += grown.last_profile().car_pairs;
+    }
+    EXPECT_GT(pairs, 0u) << "the four cars never formed an island";
+    for (std::size_t k = 0; k < 4; ++k)
+        EXPECT_TRUE(same_bits(grown.car(k).state(), reference.car(in_reference[k]).state()))
+            << "car " << k;
 }
 
 }  // namespace

@@ -11,7 +11,6 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/vec3.hpp>
 
-#include "trackphys/dynamics/body_axes.hpp"
 #include "trackphys/dynamics/car_spec.hpp"
 #include "trackphys/dynamics/contact_force.hpp"
 #include "trackphys/dynamics/rigid_body.hpp"
@@ -22,6 +21,10 @@
 #include "trackphys/vehicle/vehicle.hpp"
 
 namespace trackphys {
+
+namespace detail {
+struct BodyAxes;  // src/dynamics/body_axes.hpp: the sub-step's body axes
+}  // namespace detail
 
 /// The driver's controls. Out-of-range values are clamped by Car::set_inputs; NaN is
 /// rejected.
@@ -202,13 +205,13 @@ class TRACKPHYS_API Car {
     /// The tyre's normal force of each wheel and the velocity of its contact point, into
     /// wheel_loads' first deepest.size(); returns each axle's least load.
     AxleLoads measure_wheel_loads(std::span<const Contact> deepest, WheelLoads& wheel_loads) const;
-    /// axes: BodyAxes(state().orientation), this sub-step's (the forward axis is the rear
+    /// axes: detail::BodyAxes(state().orientation), this sub-step's (the forward axis is the rear
     /// wheels' heading and the downforce's speed).
     Wrench contact_wrench(std::span<const Contact> deepest, const WheelLoads& wheel_loads,
-                          const AxleLoads& least_loads, const BodyAxes& axes) const;
+                          const AxleLoads& least_loads, const detail::BodyAxes& axes) const;
     /// contact_wrench for a car with a vehicle model; advances its wheels by h.
     Wrench vehicle_wrench(std::span<const Contact> deepest, const WheelLoads& wheel_loads,
-                          const BodyAxes& axes, double h);
+                          const detail::BodyAxes& axes, double h);
     /// The world direction the wheels of an axle roll in (the front ones steered); forward:
     /// the body's forward axis.
     glm::dvec3 wheel_heading(Axle axle, const glm::dvec3& forward) const {
@@ -231,16 +234,17 @@ class TRACKPHYS_API Car {
     void take_inputs(const CarInputs& inputs);
     /// The contact material of an axle's wheels (rear tyres with their extra grip).
     ContactMaterial wheel_material(Axle axle) const;
-    /// speed_now: speed(). Defined here, as the sub-step's other small laws are, so that both
-    /// wrenches compile it in rather than call it.
-    void add_aero_force(Wrench& wrench, double speed_now, const BodyAxes& axes) const {
+    /// speed_now: speed(); forward and down: the body's axes. Defined here, as the sub-step's
+    /// other small laws are, so that both wrenches compile it in rather than call it.
+    void add_aero_force(Wrench& wrench, double speed_now, const glm::dvec3& forward,
+                        const glm::dvec3& down) const {
         const glm::dvec3& v = state_.linear_velocity;
         const double dynamic_pressure = 0.5 * spec_.air_density * glm::dot(v, v);
         if (speed_now > 0.0) wrench.force -= v * (dynamic_pressure * spec_.drag_area / speed_now);
         // Downforce pushes along the body's down axis, in proportion to the forward speed.
-        const double forward_speed = glm::dot(v, axes.forward);
-        wrench.force += axes.down * (0.5 * spec_.air_density * forward_speed * forward_speed *
-                                     spec_.downforce_area);
+        const double forward_speed = glm::dot(v, forward);
+        wrench.force +=
+            down * (0.5 * spec_.air_density * forward_speed * forward_speed * spec_.downforce_area);
     }
 
     CarSpec spec_;

@@ -5,9 +5,9 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/vec3.hpp>
 
-namespace trackphys {
+namespace trackphys::detail {
 
-/// A body's forward (+Z), up (+Y) and down (-Y) axes in the world: bit for bit glm's
+/// Internal to Car's sub-step. A body's forward (+Z), up (+Y) and down (-Y) axes in the world: bit for bit glm's
 /// products orientation * (0, 0, 1), orientation * (0, 1, 0) and orientation * (0, -1, 0),
 /// which a car's sub-step needs for its wheels, suspension and downforce.
 struct BodyAxes {
@@ -48,4 +48,4 @@ struct BodyAxes {
     }
 };
 
-}  // namespace trackphys
+}  // namespace trackphys::detail
