@@ -68,7 +68,7 @@ struct World::CarSlot {
     Aabb update_box;                    // what mid.begin_update covers
     std::vector<LookAheadList> listed;  // per ellipsoid, this step
     // The ellipsoids, this sub-step (place_ellipsoids), in the updating worker's scratch: set
-    // at the start of each of the car's updates (World::step_island), stale after it.
+    // at the start of each of the car's updates (World::step_island), empty outside it.
     std::span<Ellipsoid> placed;
     // Every ellipsoid's culled survivors in one buffer, in ellipsoid order (one block of
     // lines a sub-step rather than a heap block per ellipsoid): see survivors().

@@ -18,9 +18,8 @@ namespace trackphys {
 // CarSlot::placed points into its set during its update. What they hold is dead between
 // updates (each step places every ellipsoid before anything reads it), so a worker's sets,
 // rewritten by every car it updates, stay in its cache, where a set in each car's slot would
-// be written cold at each car's update of a big field. A cache line or more apart, as the
-// workers' profiles are: every placing writes them.
-struct alignas(64) World::WorkerScratch {
+// be written cold at each car's update of a big field.
+struct World::WorkerScratch {
     std::vector<std::vector<Ellipsoid>> placed;
 };
 

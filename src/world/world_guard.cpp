@@ -137,6 +137,7 @@ void World::update_island_or_reset(std::size_t island, WorkerScratch& scratch,
     bool reset_any = false;
     for (const std::uint32_t i : cars) {
         CarSlot& slot = cars_[i];
+        slot.placed = {};  // the worker's sets belong to its next car now
         const std::string why = impossible_state(slot.car.state());
         if (why.empty()) continue;
         reset_any = true;
