@@ -3,7 +3,6 @@
 //   build/release/bench/bench_mesh_io
 // Writes into the system temporary folder and removes the files afterwards.
 
-#include <cstdint>
 #include <filesystem>
 #include <string>
 
@@ -11,6 +10,7 @@
 
 #include "io/mapped_file.hpp"
 #include "io/mesh_checks.hpp"
+#include "support/grid_mesh.hpp"
 #include "trackphys/io/mesh_io.hpp"
 #include "trackphys/io/mesh_load_limits.hpp"
 
@@ -21,20 +21,9 @@ namespace fs = std::filesystem;
 // A 500 x 500 quad height field (250,000 vertices, 500,000 triangles), 0.5 m spacing, with
 // gentle waves so that no triangle is degenerate.
 const trackphys::TriangleMesh& track_sized_mesh() {
-    static const trackphys::TriangleMesh mesh = [] {
-        constexpr int n = 500;
-        trackphys::TriangleMesh m;
-        for (int k = 0; k <= n; ++k)
-            for (int i = 0; i <= n; ++i)
-                m.vertices.push_back({0.5 * i, 0.1 * ((i * 7 + k * 3) % 11), -0.5 * k});
-        const auto id = [](int i, int k) { return static_cast<std::uint32_t>(k * (n + 1) + i); };
-        for (int k = 0; k < n; ++k)
-            for (int i = 0; i < n; ++i) {
-                m.triangles.push_back({id(i, k), id(i + 1, k), id(i + 1, k + 1)});
-                m.triangles.push_back({id(i, k), id(i + 1, k + 1), id(i, k + 1)});
-            }
-        return m;
-    }();
+    static const trackphys::TriangleMesh mesh = trackphys::test::grid_mesh(
+        500, 500,
+        [](int i, int k) { return glm::dvec3(0.5 * i, 0.1 * ((i * 7 + k * 3) % 11), -0.5 * k); });
     return mesh;
 }
 

@@ -1,8 +1,11 @@
 // The race group: a field of cars on the default track (RaceDrivers, as `trackphys race`),
 // 1 to 128 cars on 1 and 2 threads, the cost of a pair of cars that do not touch, and
-// issue 16's targets.
+// issue 16's targets. A field's 1- and 2-thread races run side by side, timed in
+// alternating chunks of updates, so that the threads' ratio and the 1-thread CPU time per
+// car-update see the same phases of a shared host's speed.
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -34,38 +37,78 @@ double mean(const std::vector<double>& x) {
     return sum / static_cast<double>(x.size());
 }
 
-// The race of `cars` cars from the grid: `warm_up` untimed updates (the field spreads out
-// and every buffer reaches its size), then `updates` timed ones, per update the wall clock
-// and this thread's CPU time.
-RaceTiming time_race(const cli::DriveScene& scene, const ColliderPlaneTrees& trees,
-                     std::size_t cars, int threads, int warm_up, int updates) {
-    WorldSettings settings;
-    settings.threads = threads;
-    settings.profile = false;
-    World world(scene.statics, settings, trees);
-    RaceDrivers drivers(*scene.track, CarSpec::default_car(), cars);
-    drivers.add_cars(world);
-    std::vector<double> ns, cpu_ns;
-    ns.reserve(static_cast<std::size_t>(updates));
-    cpu_ns.reserve(static_cast<std::size_t>(updates));
-    for (int u = 0; u < warm_up + updates; ++u) {
-        drivers.drive(world);
-        const double cpu_start = thread_cpu_ns();
-        const auto start = std::chrono::steady_clock::now();
-        world.update();
-        const auto end = std::chrono::steady_clock::now();
-        const double cpu_end = thread_cpu_ns();
-        drivers.after_update(world);
-        if (u < warm_up) continue;
-        ns.push_back(std::chrono::duration<double, std::nano>(end - start).count());
-        cpu_ns.push_back(cpu_end - cpu_start);
+// The race of `cars` cars from the grid on `threads` threads, per timed update the wall
+// clock and this thread's CPU time. Its updates run in chunks between those of another race
+// (interleaved_races), so it keeps its world between them.
+class TimedRace {
+  public:
+    TimedRace(const cli::DriveScene& scene, const ColliderPlaneTrees& trees, std::size_t cars,
+              int threads)
+        : world_(scene.statics, settings(threads), trees),
+          drivers_(*scene.track, CarSpec::default_car(), cars) {
+        drivers_.add_cars(world_);
     }
-    RaceTiming timing;
-    timing.mean_ns = mean(ns);
-    timing.cpu_mean_ns = mean(cpu_ns);
-    timing.update_ns = spread(std::move(ns));
-    timing.state_hash = world.state_hash();
-    return timing;
+
+    // The next `updates` updates, timed or not (the warm-up: the field spreads out and every
+    // buffer reaches its size).
+    void run(int updates, bool timed) {
+        for (int u = 0; u < updates; ++u) {
+            drivers_.drive(world_);
+            const double cpu_start = thread_cpu_ns();
+            const auto start = std::chrono::steady_clock::now();
+            world_.update();
+            const auto end = std::chrono::steady_clock::now();
+            const double cpu_end = thread_cpu_ns();
+            drivers_.after_update(world_);
+            if (!timed) continue;
+            ns_.push_back(std::chrono::duration<double, std::nano>(end - start).count());
+            cpu_ns_.push_back(cpu_end - cpu_start);
+        }
+    }
+
+    RaceTiming timing() const {
+        RaceTiming timing;
+        timing.mean_ns = mean(ns_);
+        timing.cpu_mean_ns = mean(cpu_ns_);
+        timing.update_ns = spread(ns_);
+        timing.state_hash = world_.state_hash();
+        return timing;
+    }
+
+  private:
+    static WorldSettings settings(int threads) {
+        WorldSettings settings;
+        settings.threads = threads;
+        settings.profile = false;
+        return settings;
+    }
+
+    World world_;
+    RaceDrivers drivers_;
+    std::vector<double> ns_, cpu_ns_;
+};
+
+// The same race on 1 and 2 threads, timed in turns: each world's `warm_up` untimed updates,
+// then `updates` timed ones each, in chunks of kChunk updates alternating between the two
+// worlds. The host's speed swings by tens of percent over minutes; one race timed after the
+// other would see different phases of it, and their ratio would measure the host. A chunk
+// is long enough that the first update after the other world's chunk, its caches cold, is
+// one in a hundred (docs/benchmarks.md, "A fair ratio of threads, and the car ahead in
+// track order").
+std::array<RaceTiming, 2> interleaved_races(const cli::DriveScene& scene,
+                                            const ColliderPlaneTrees& trees, std::size_t cars,
+                                            int warm_up, int updates) {
+    constexpr int kChunk = 100;
+    TimedRace one(scene, trees, cars, 1);
+    TimedRace two(scene, trees, cars, 2);
+    one.run(warm_up, false);
+    two.run(warm_up, false);
+    for (int done = 0; done < updates; done += kChunk) {
+        const int chunk = std::min(kChunk, updates - done);
+        one.run(chunk, true);
+        two.run(chunk, true);
+    }
+    return {one.timing(), two.timing()};
 }
 
 // A job system for World that runs every island on this thread, timing each, and hands it
@@ -207,11 +250,13 @@ void bench_race(BenchRun& run) {
     double median_64[3] = {};
     std::uint64_t hash_64[3] = {};
     for (const std::size_t cars : {1, 8, 20, 64, 128}) {
+        run.progress("race", std::to_string(cars) + " cars, 1 and 2 threads in turns");
+        const std::array<RaceTiming, 2> timings =
+            interleaved_races(scene, trees, cars, warm_up, updates);
         for (const int threads : {1, 2}) {
+            const RaceTiming& t = timings[threads - 1];
             const std::string name = std::to_string(cars) + " cars, " + std::to_string(threads) +
                                      " thread" + (threads > 1 ? "s" : "");
-            run.progress("race", name);
-            const RaceTiming t = time_race(scene, trees, cars, threads, warm_up, updates);
             const std::string versus =
                 threads == 1 ? std::string() : std::to_string(cars) + " cars, 1 thread";
             BenchRow& row = run.add("race", name, t.update_ns.median, versus);
@@ -221,7 +266,8 @@ void bench_race(BenchRun& run) {
                            {"max_us", t.update_ns.max * 1e-3},
                            {"per_car_us", per_car_us},
                            {"updates", double(updates)}};
-            row.note = "wall clock per update, after " + std::to_string(warm_up) + " updates";
+            row.note = "wall clock per update, after " + std::to_string(warm_up) +
+                       " updates; 1 and 2 threads in turns";
             if (threads == 1) {
                 // On one thread its CPU time is the whole update, without others' turns.
                 const double cpu_per_car_us = t.cpu_mean_ns * 1e-3 / static_cast<double>(cars);

@@ -10,21 +10,9 @@
 #include <glm/geometric.hpp>
 
 #include "trackphys/error.hpp"
+#include "world/cars_along_track.hpp"
 
 namespace trackphys {
-namespace {
-
-// std::fmod(x, length), for a length > 0, without fmod's cost where |x| < 2 length (the
-// gap between two places on the loop): |x| - length is exact there (Sterbenz), as fmod
-// is, and takes x's sign as fmod's result does (-0 for x = -length).
-double remainder_toward_zero(double x, double length) {
-    if (std::abs(x) < length) return x;
-    if (std::abs(x) < 2.0 * length) return std::copysign(std::abs(x) - length, x);
-    return std::fmod(x, length);
-}
-
-}  // namespace
-
 AutopilotSettings race_autopilot() {
     AutopilotSettings driver;
     driver.lookahead_min = 6.0;
@@ -103,24 +91,16 @@ RaceDrivers::RoadPosition RaceDrivers::road_position(const World& world, std::si
 
 RaceDrivers::CarAhead RaceDrivers::car_ahead(const World& world, std::size_t i, double line,
                                              double from) const {
-    const RoadPosition me = road_positions_[i];
-    const glm::dvec3& velocity = world.car(i).state().linear_velocity;
-    CarAhead nearest{i, std::numeric_limits<double>::infinity(), 0.0};
-    for (std::size_t j = 0; j < pilots_.size(); ++j) {
-        if (j == i) continue;
-        const RoadPosition other = road_positions_[j];
-        if (std::abs(other.across - line) > settings_.lane_width) continue;
-        // Along-track gap, wrapped into [from, length + from).
-        double gap = remainder_toward_zero(other.along - me.along - from, track_->length_m);
-        if (gap < 0.0) gap += track_->length_m;
-        gap += from;
-        if (gap > settings_.pass_look_ahead || !(gap < nearest.gap)) continue;
-        const glm::dvec3 toward = world.car(j).state().position - world.car(i).state().position;
-        const double distance = glm::length(toward);
-        const glm::dvec3 relative = velocity - world.car(j).state().linear_velocity;
-        nearest = {j, gap, distance > 0.0 ? glm::dot(relative, toward) / distance : 0.0};
-    }
-    return nearest;
+    const detail::CarInLane nearest = detail::nearest_car_ahead(
+        road_positions_, cars_along_, i,
+        {line, settings_.lane_width, from, settings_.pass_look_ahead, track_->length_m});
+    const std::size_t j = nearest.car;
+    if (j == i) return {i, nearest.gap, 0.0};
+    const glm::dvec3 toward = world.car(j).state().position - world.car(i).state().position;
+    const double distance = glm::length(toward);
+    const glm::dvec3 relative =
+        world.car(i).state().linear_velocity - world.car(j).state().linear_velocity;
+    return {j, nearest.gap, distance > 0.0 ? glm::dot(relative, toward) / distance : 0.0};
 }
 
 bool RaceDrivers::slower(std::size_t i, const CarAhead& ahead, double closing) const {
@@ -181,8 +161,10 @@ void RaceDrivers::drive(World& world) {
     // standing at the start line, and the grid would find nobody ahead.
     for (std::size_t i = 0; i < pilots_.size(); ++i)
         if (!pilots_[i].located()) pilots_[i].locate(world.car(i));
-    // Where every car is, read once: the lanes below compare each car with every other.
+    // Where every car is, read once and put in track order: the lanes below look for the
+    // cars near each car along the track.
     for (std::size_t i = 0; i < pilots_.size(); ++i) road_positions_[i] = road_position(world, i);
+    detail::order_along_track(road_positions_, cars_along_);
     // Every lane from the same instant, before any car's inputs change.
     for (std::size_t i = 0; i < pilots_.size(); ++i) next_lanes_[i] = lane(world, i);
     const double dt = world.settings().dt_update;
@@ -203,7 +185,9 @@ void RaceDrivers::drive(World& world) {
         // Driving locates the car again. At the place after_update located it from, that is
         // nearly always the same sample, but the windowed search starts from its last answer
         // and may step on: the cars after i see car i where its pilot now puts it.
+        const double along = road_positions_[i].along;
         road_positions_[i] = road_position(world, i);
+        detail::reorder_moved_car(road_positions_, cars_along_, i, along);
     }
 }
 

@@ -14,6 +14,7 @@
 
 #include <glm/gtc/quaternion.hpp>
 
+#include "support/grid_mesh.hpp"
 #include "trackphys/collision/plane_tree.hpp"
 #include "trackphys/collision/plane_tree_frame_cache.hpp"
 #include "trackphys/collision/static_collider.hpp"
@@ -25,17 +26,9 @@ namespace {
 // wide reaches more than a batch of 64 slots.
 TriangleMesh bumpy_ground() {
     constexpr int kCells = 48;
-    TriangleMesh mesh;
-    for (int i = 0; i <= kCells; ++i)
-        for (int j = 0; j <= kCells; ++j)
-            mesh.vertices.emplace_back(i, j, 0.3 * std::sin(0.7 * i) * std::cos(0.5 * j));
-    const auto at = [](int i, int j) { return static_cast<std::uint32_t>(i * (kCells + 1) + j); };
-    for (int i = 0; i < kCells; ++i)
-        for (int j = 0; j < kCells; ++j) {
-            mesh.triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
-            mesh.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
-        }
-    return mesh;
+    return test::grid_mesh(kCells, kCells, [](int i, int j) {
+        return glm::dvec3(i, j, 0.3 * std::sin(0.7 * i) * std::cos(0.5 * j));
+    });
 }
 
 TEST(PlaneTreeLanes, SweptEllipsoidsKeepWhatTheLeafFilterKeeps) {

@@ -18,6 +18,15 @@ namespace trackphys {
 /// of cutting them by metres (docs/design.md, "Races").
 TRACKPHYS_API AutopilotSettings race_autopilot();
 
+namespace detail {
+// Where a car of a race is across the road (m left of the centreline) and along it (m from
+// the start line), at its autopilot's nearest sample.
+struct RoadPosition {
+    double across;
+    double along;
+};
+}  // namespace detail
+
 /// How a field of autopilots races.
 struct RaceSettings {
     /// Each car's pace: its target speed on straights (km/h) and the share of its tyres'
@@ -138,12 +147,7 @@ class TRACKPHYS_API RaceDrivers {
     void set_progress(const RaceProgress& progress);
 
   private:
-    // Where a car is across the road (m left of the centreline) and along it (m from the
-    // start line), at its autopilot's nearest sample.
-    struct RoadPosition {
-        double across;
-        double along;
-    };
+    using RoadPosition = detail::RoadPosition;
     RoadPosition road_position(const World& world, std::size_t car) const;
     // The lane of car i's grid column (m left of the centreline).
     double own_lane(std::size_t car) const;
@@ -153,7 +157,8 @@ class TRACKPHYS_API RaceDrivers {
     double line_towards(std::size_t i, double lane, double dt) const;
     // The nearest car ahead of car i within lane_width of `line`, from `from` m (negative:
     // behind, alongside) to pass_look_ahead m along the track: which, how far ahead (m,
-    // infinite for none) and how fast car i closes in on it (m/s). Reads road_positions_.
+    // infinite for none) and how fast car i closes in on it (m/s). Reads road_positions_
+    // and cars_along_.
     struct CarAhead {
         std::size_t car;
         double gap;
@@ -178,6 +183,7 @@ class TRACKPHYS_API RaceDrivers {
     RaceProgress progress_;                     // all but the autopilots' (pilots stays empty)
     std::vector<double> next_lanes_;            // this update's, chosen before any is set
     std::vector<RoadPosition> road_positions_;  // every car's, during drive()
+    std::vector<std::uint32_t> cars_along_;     // road_positions_' cars in track order
 };
 
 }  // namespace trackphys
