@@ -130,6 +130,8 @@ class TRACKPHYS_API World {
     struct CarSlot;
     // The update's islands, per-worker profiles and threads (src/world/update_work.hpp).
     struct UpdateWork;
+    // A car's working memory that is dead between its updates (src/world/car_scratch.hpp).
+    struct CarScratch;
     // A worker's memory for the cars it is updating (src/world/update_work.hpp).
     struct WorkerScratch;
 
