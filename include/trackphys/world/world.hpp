@@ -118,10 +118,11 @@ class TRACKPHYS_API World {
     void set_trace(TraceRecorder* trace) { trace_ = trace; }
 
     /// Shows the cars as the last update left them to `draw` (see DebugDraw for the calls and
-    /// their order), as `options` selects. A pull: update() does nothing for it. The update
-    /// boxes and triangle lists are the working memory of the last update this object ran
-    /// for the car (none before the first; for a reset car, the undone update's; a snapshot
-    /// does not hold them, so after restore_state they predate the restore).
+    /// their order), as `options` selects. A pull: update() only keeps a copy of the
+    /// triangles' refs for it (a few lines a car). The update boxes and triangle lists are
+    /// the working memory of the last update this object ran for the car (none before the
+    /// first; for a reset car, the undone update's; a snapshot does not hold them, so after
+    /// restore_state they predate the restore).
     void debug_draw(DebugDraw& draw, const DebugDrawOptions& options = {}) const;
 
   private:
