@@ -7,24 +7,19 @@
 #include <string>
 #include <vector>
 
-#include "trackphys/collision/look_ahead_list.hpp"
 #include "trackphys/collision/mid_phase.hpp"
 #include "trackphys/dynamics/car.hpp"
 #include "trackphys/geometry/aabb.hpp"
 #include "trackphys/geometry/contact.hpp"
 #include "trackphys/geometry/ellipsoid.hpp"
 #include "trackphys/world/world.hpp"
+#include "world/car_scratch.hpp"
 
 namespace trackphys {
 
 // Per-car working memory, kept between updates so a steady state allocates nothing.
 struct World::CarSlot {
-    // A candidate that passed the cull, with an upper bound of its penetration depth.
-    struct Survivor {
-        TriangleRef ref;
-        const NormalizedTriangle* frame;  // the mid phase's, valid for the sub-step
-        double depth_bound;
-    };
+    static_assert(CarSpec::max_ellipsoids <= 64, "empty_lists holds a bit per ellipsoid");
 
     // A survivor's contact normal from an earlier sub-step: any unit direction bounds a
     // triangle's depth (depth_bound_along), and a recent normal of its own bounds it tightly.
@@ -52,32 +47,49 @@ struct World::CarSlot {
         }
     };
 
+    // What debug_draw shows of the car's last update, taken from the worker's scratch at its
+    // end (the scratch is another car's by the time a game draws): the refs of the last
+    // step's listed triangles and the last sub-step's survivors, a few lines a car, each
+    // ellipsoid's from its start[i] to [i + 1].
+    struct DrawnLists {
+        void take(const CarScratch& scratch) {
+            listed.clear();
+            listed_start.assign(1, 0u);
+            for (const LookAheadList& list : scratch.listed) {
+                for (const MidPhaseCandidate& c : list.candidates()) listed.push_back(c.ref);
+                listed_start.push_back(static_cast<std::uint32_t>(listed.size()));
+            }
+            kept.assign(scratch.kept.begin(), scratch.kept.end());
+            kept_start.assign(scratch.kept_start.begin(), scratch.kept_start.end());
+        }
+        void reserve(std::size_t listed_room, std::size_t kept_room, std::size_t ellipsoids) {
+            listed.reserve(listed_room);
+            listed_start.reserve(ellipsoids + 1);
+            kept.reserve(kept_room);
+            kept_start.reserve(ellipsoids + 1);
+        }
+        std::vector<TriangleRef> listed;
+        std::vector<std::uint32_t> listed_start;
+        std::vector<CarScratch::Survivor> kept;
+        std::vector<std::uint32_t> kept_start;
+    };
+
     // Per-ellipsoid storage sized for the car, no hint yet.
     CarSlot(Car car_in, MidPhase mid_in);
 
-    // Ellipsoid i's survivors of this sub-step's cull.
-    std::span<Survivor> survivors(std::size_t i) {
-        return {kept.data() + kept_start[i], kept.data() + kept_start[i + 1]};
-    }
-    std::span<const Survivor> survivors(std::size_t i) const {
-        return const_cast<CarSlot&>(*this).survivors(i);
-    }
-
     Car car;
     MidPhase mid;
-    Aabb update_box;                    // what mid.begin_update covers
-    std::vector<LookAheadList> listed;  // per ellipsoid, this step
-    // The ellipsoids, this sub-step (place_ellipsoids), in the updating worker's scratch: set
-    // at the start of each of the car's updates (World::step_island), empty outside it.
-    std::span<Ellipsoid> placed;
-    // Every ellipsoid's culled survivors in one buffer, in ellipsoid order (one block of
-    // lines a sub-step rather than a heap block per ellipsoid): see survivors().
-    std::vector<Survivor> kept;
-    std::vector<std::uint32_t> kept_start;  // ellipsoid i's from kept_start[i] to [i + 1]
-    std::vector<Contact> deepest;           // per ellipsoid, this sub-step
-    std::vector<TriangleRef> deepest_ref;   // its triangle, tried first next
-    std::vector<KnownNormals> known;        // per ellipsoid: recent survivors' normals
-    bool pushed = false;                    // by another car, this sub-step
+    Aabb update_box;  // what mid.begin_update covers
+    // The placed ellipsoids, lists and survivors, in the updating worker's scratch: set at
+    // the start of each of the car's updates (World::step_island), null outside it.
+    CarScratch* scratch = nullptr;
+    // Bit i: ellipsoid i's last look-ahead list was empty (CarScratch::start_car).
+    std::uint64_t empty_lists = ~std::uint64_t{0};
+    DrawnLists drawn;                      // none before the car's first update
+    std::vector<Contact> deepest;          // per ellipsoid, this sub-step
+    std::vector<TriangleRef> deepest_ref;  // its triangle, tried first next
+    std::vector<KnownNormals> known;       // per ellipsoid: recent survivors' normals
+    bool pushed = false;                   // by another car, this sub-step
     // The reset policy's memory: the state at the start of this update, the resets.
     RigidBodyState start_state;
     std::vector<double> start_suspension;

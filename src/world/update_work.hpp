@@ -1,5 +1,6 @@
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <exception>
 #include <memory>
@@ -10,17 +11,54 @@
 #include "trackphys/profile/update_profile.hpp"
 #include "trackphys/world/world.hpp"
 #include "world/car_islands.hpp"
+#include "world/car_scratch.hpp"
 #include "world/thread_pool.hpp"
 
 namespace trackphys {
 
-// A worker's placed ellipsoids, one set per car of the island it is updating: a car's
-// CarSlot::placed points into its set during its update. What they hold is dead between
-// updates (each step places every ellipsoid before anything reads it), so a worker's sets,
-// rewritten by every car it updates, stay in its cache, where a set in each car's slot would
-// be written cold at each car's update of a big field.
+// A worker's scratch for each car of the island it is updating: a car's CarSlot::scratch
+// points at its own during its update.
 struct World::WorkerScratch {
-    std::vector<std::vector<Ellipsoid>> placed;
+    // One for each car of the field (set_cars), each grown to the room any of them has needed
+    // (grow_alike): the first scratch serves every lone car and is warm within a few updates,
+    // the others serve islands of cars, rarer, and would otherwise first grow in a steady state.
+    void set_cars(std::size_t count, std::size_t ellipsoids) {
+        cars.resize(count);
+        if (list_room.size() < ellipsoids) list_room.resize(ellipsoids, 0);
+        for (CarScratch& car : cars) car.reserve(ellipsoids);
+        make_room();
+    }
+    // After an island of `used` cars: if one of its scratches grew, all grow alike.
+    void grow_alike(std::size_t used) {
+        bool grown = false;
+        for (std::size_t k = 0; k < used; ++k) {
+            const CarScratch& car = cars[k];
+            grown |= car.kept.capacity() > kept_room;
+            kept_room = std::max(kept_room, car.kept.capacity());
+            for (std::size_t i = 0; i < car.listed.size(); ++i) {
+                grown |= car.listed[i].capacity() > list_room[i];
+                list_room[i] = std::max(list_room[i], car.listed[i].capacity());
+            }
+        }
+        if (grown) make_room();
+    }
+    void make_room() {
+        for (CarScratch& car : cars) {
+            car.kept.reserve(kept_room);
+            for (std::size_t i = 0; i < list_room.size(); ++i) car.lists[i].reserve(list_room[i]);
+        }
+    }
+
+    // The most listed triangles a car's lists together have held.
+    std::size_t listed_room() const {
+        std::size_t room = 0;
+        for (const std::size_t r : list_room) room += r;
+        return room;
+    }
+
+    std::vector<CarScratch> cars;
+    std::vector<std::size_t> list_room;  // per ellipsoid index: the most candidates listed
+    std::size_t kept_room = 0;           // the most survivors of a sub-step
 };
 
 // What World::update works with besides the cars, kept between updates so a steady state
@@ -38,10 +76,14 @@ struct World::UpdateWork {
         UpdateProfile profile;
     };
     std::vector<WorkerProfile> worker_profiles;
-    // Per worker, kept between updates (only ever grown) so that its sets keep their heap
-    // blocks: a set for each car of the field, each as long as the most ellipsoids a car has.
+    // Per worker, kept between updates (only ever grown) so that its scratch keeps its heap
+    // blocks: one for each car of the field, each for the most ellipsoids a car has.
     std::vector<WorkerScratch> worker_scratch;
     std::size_t scratch_cars = 0;  // the cars they were made for
+    // The room every car's CarSlot::DrawnLists has: the most listed triangles and survivors
+    // any worker's scratch has held, so that copying them allocates nothing once warm.
+    std::size_t drawn_listed_room = 0;
+    std::size_t drawn_kept_room = 0;
     // Per island: what stopped its update, rethrown after all islands ran.
     std::vector<std::exception_ptr> errors;
     std::unique_ptr<detail::ThreadPool> pool;  // started at the first update with 2 islands

@@ -20,6 +20,7 @@
 #include "trackphys/geometry/ellipsoid_cull.hpp"
 #include "trackphys/geometry/face_certificate.hpp"
 #include "vehicle/vehicle_fingerprint.hpp"
+#include "world/car_scratch.hpp"
 #include "world/car_slot.hpp"
 #include "world/update_box.hpp"
 #include "world/update_work.hpp"
@@ -51,8 +52,6 @@ World& World::operator=(World&&) noexcept = default;
 World::CarSlot::CarSlot(Car car_in, MidPhase mid_in)
     : car(std::move(car_in)), mid(std::move(mid_in)) {
     const std::size_t ellipsoids = car.ellipsoid_count();
-    listed.resize(ellipsoids);
-    kept_start.resize(ellipsoids + 1, 0u);
     deepest.resize(ellipsoids);
     deepest_ref.resize(ellipsoids, TriangleRef{~0u, ~0u});
     known.resize(ellipsoids);
@@ -123,19 +122,18 @@ void World::run_islands() {
     work.errors.assign(islands, nullptr);
 
     work.worker_profiles.assign(static_cast<std::size_t>(workers), {});
-    // Every worker's sets can take an island of the whole field, made when the field or the
+    // Every worker's scratch can take an island of the whole field, made when the field or the
     // workers grow: a steady state allocates nothing, whichever islands a worker is handed.
-    if (work.worker_scratch.size() < static_cast<std::size_t>(workers) ||
-        work.scratch_cars != cars_.size()) {
+    const bool field_changed = work.worker_scratch.size() < static_cast<std::size_t>(workers) ||
+                               work.scratch_cars != cars_.size();
+    if (field_changed) {
         work.worker_scratch.resize(
             std::max(work.worker_scratch.size(), static_cast<std::size_t>(workers)));
         std::size_t ellipsoids = 0;
         for (const CarSlot& slot : cars_)
             ellipsoids = std::max(ellipsoids, slot.car.ellipsoid_count());
-        for (WorkerScratch& scratch : work.worker_scratch) {
-            scratch.placed.resize(cars_.size());
-            for (std::vector<Ellipsoid>& set : scratch.placed) set.reserve(ellipsoids);
-        }
+        for (WorkerScratch& scratch : work.worker_scratch)
+            scratch.set_cars(cars_.size(), ellipsoids);
         work.scratch_cars = cars_.size();
     }
     // The trace recorder is not shared between threads.
@@ -151,6 +149,21 @@ void World::run_islands() {
         if (!work.pool || work.pool->thread_count() != workers)
             work.pool = std::make_unique<detail::ThreadPool>(workers);
         work.pool->run(&island_task, items, this);
+    }
+
+    // Every car's drawn lists get the room any worker's scratch has needed (the copy at the end
+    // of each car's update allocates only while that grows, in the first updates).
+    std::size_t listed_room = 0, kept_room = 0;
+    for (const WorkerScratch& scratch : work.worker_scratch) {
+        listed_room = std::max(listed_room, scratch.listed_room());
+        kept_room = std::max(kept_room, scratch.kept_room);
+    }
+    if (field_changed || listed_room > work.drawn_listed_room || kept_room > work.drawn_kept_room) {
+        work.drawn_listed_room = std::max(work.drawn_listed_room, listed_room);
+        work.drawn_kept_room = std::max(work.drawn_kept_room, kept_room);
+        for (CarSlot& slot : cars_)
+            slot.drawn.reserve(work.drawn_listed_room, work.drawn_kept_room,
+                               slot.car.ellipsoid_count());
     }
 
     for (const UpdateWork::WorkerProfile& part : work.worker_profiles) profile_.merge(part.profile);
@@ -196,7 +209,7 @@ void World::begin_update(CarSlot& slot, const Aabb& box, PhaseStopwatch& watch) 
     slot.update_box = box;
     slot.mid.begin_update(box);
     // Lists are queried inside the update box, from entry nodes of that box.
-    for (LookAheadList& list : slot.listed) list.forget();
+    for (LookAheadList& list : slot.scratch->listed) list.forget();
     watch.profile().candidates += slot.mid.broad_phase_candidate_count();
     watch.lap(settings_.mid_phase == MidPhaseMode::per_update_tree ? Phase::mid : Phase::broad);
 }
@@ -212,13 +225,14 @@ void World::list_step_candidates(CarSlot& slot, int steps_left, PhaseStopwatch& 
     const double step_dt = settings_.dt_update / settings_.steps;
     const double spin = glm::length(state.angular_velocity);
     place_ellipsoids(slot, true);
+    CarScratch& scratch = *slot.scratch;
     for (std::size_t i = 0; i < car.ellipsoid_count();) {
         bool widened = false;
-        const Ellipsoid& ellipsoid = slot.placed[i];
+        const Ellipsoid& ellipsoid = scratch.placed[i];
         const glm::dvec3 velocity = point_velocity(state, ellipsoid.center());
         const double margin = spin * ellipsoid.bounding_radius() * step_dt + 10.0 * step_dt;
         const SweptEllipsoid step_shape{ellipsoid, ellipsoid.center() + velocity * step_dt, margin};
-        LookAheadList& listed = slot.listed[i];
+        LookAheadList& listed = scratch.listed[i];
         if (!listed.covers(step_shape)) {
             SweptEllipsoid wanted =
                 look_ahead(step_shape, velocity, step_dt,
@@ -255,8 +269,8 @@ void World::place_ellipsoids(CarSlot& slot, bool every) {
     const PlacingRotation orientation(slot.car.state().orientation);
     // Spans, read once: the vectors themselves would be read again after each placing, a
     // call that could change them for all the compiler knows.
-    const std::span<Ellipsoid> placed(slot.placed);
-    const std::span<const LookAheadList> listed(slot.listed);
+    const std::span<Ellipsoid> placed(slot.scratch->placed);
+    const std::span<const LookAheadList> listed(slot.scratch->listed);
     for (std::size_t i = 0; i < placed.size(); ++i)
         if (every || !listed[i].candidates().empty())
             slot.car.place_ellipsoid(i, orientation, placed[i]);
@@ -292,8 +306,9 @@ namespace {
 
 // The ellipsoids are placed for this sub-step (place_ellipsoids) before it.
 void World::find_contacts(CarSlot& slot, PhaseStopwatch& watch) {
-    using Survivor = CarSlot::Survivor;
+    using Survivor = CarScratch::Survivor;
     const std::size_t ellipsoids = slot.car.ellipsoid_count();
+    CarScratch& scratch = *slot.scratch;
 
     // Cull: the ellipsoid's own extent along each listed triangle's frame axes, which also
     // bounds how deep the triangle can be. No bounding-sphere test first: the extents are
@@ -302,7 +317,7 @@ void World::find_contacts(CarSlot& slot, PhaseStopwatch& watch) {
     // as it is most likely the deepest again, else the survivor with the deepest bound; every
     // first survivor is tested, so it is picked here and the first survivors' face
     // certificates run together, in lanes (a wheel on the road: nearly every exact test).
-    std::vector<Survivor>& all_kept = slot.kept;
+    std::vector<Survivor>& all_kept = scratch.kept;
     all_kept.clear();
     const auto keep = [&all_kept](const MidPhaseCandidate& c, double bound) {
         all_kept.push_back({c.ref, c.triangle, bound});
@@ -310,9 +325,9 @@ void World::find_contacts(CarSlot& slot, PhaseStopwatch& watch) {
     const bool four_lanes = detail::use_four_lanes();
     // The per-ellipsoid vectors as spans, read once: the vectors themselves would be read
     // again after each out-of-line call (the cull, the certificates, the kernel).
-    const std::span<const LookAheadList> lists(slot.listed);
-    const std::span<const Ellipsoid> placed(slot.placed);
-    const std::span<std::uint32_t> kept_start(slot.kept_start);
+    const std::span<const LookAheadList> lists(scratch.listed);
+    const std::span<const Ellipsoid> placed(scratch.placed);
+    const std::span<std::uint32_t> kept_start(scratch.kept_start);
     const std::span<Contact> deepest_of(slot.deepest);
     const std::span<TriangleRef> deepest_ref(slot.deepest_ref);
     const std::span<CarSlot::KnownNormals> known_of(slot.known);
@@ -363,7 +378,7 @@ void World::find_contacts(CarSlot& slot, PhaseStopwatch& watch) {
     for (std::size_t j = 0; j < firsts; ++j) {
         const std::size_t i = first_owners[j];
         Contact& deepest = deepest_of[i];
-        const std::span<Survivor> kept(survivors + kept_start[i], survivors + kept_start[i + 1]);
+        const std::span<Survivor> kept = CarScratch::survivors(survivors, kept_start, i);
         // After the first contact, the bound along its normal skips the neighbours that
         // cannot beat it (ties within kDepthTie, far below the 1e-9 m contract, included).
         constexpr double kDepthTie = 1e-12;    // m

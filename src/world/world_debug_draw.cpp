@@ -1,5 +1,5 @@
 // World::debug_draw: the cars and the collision pipeline's working memory as the last update
-// left them, read from each car's slot (no copy, nothing kept for it during update()).
+// left them, read from each car's slot (CarSlot::DrawnLists for the triangles).
 
 #include "trackphys/world/debug_draw.hpp"
 #include "trackphys/world/world.hpp"
@@ -34,14 +34,16 @@ void World::debug_draw(DebugDraw& draw, const DebugDrawOptions& options) const {
             return DebugTriangle{k, i, ref,
                                  statics_->collider(ref.collider).triangle(ref.triangle)};
         };
+        const CarSlot::DrawnLists& drawn = slot.drawn;
         if (options.listed_triangles)
-            for (std::size_t i = 0; i < ellipsoids; ++i)
-                for (const MidPhaseCandidate& c : slot.listed[i].candidates())
-                    draw.draw_listed_triangle(triangle(i, c.ref));
+            for (std::size_t i = 0; i + 1 < drawn.listed_start.size(); ++i)
+                for (std::uint32_t j = drawn.listed_start[i]; j < drawn.listed_start[i + 1]; ++j)
+                    draw.draw_listed_triangle(triangle(i, drawn.listed[j]));
         if (options.kept_triangles)
-            for (std::size_t i = 0; i < ellipsoids; ++i)
-                for (const CarSlot::Survivor& s : slot.survivors(i))
-                    draw.draw_kept_triangle(triangle(i, s.ref), s.depth_bound);
+            for (std::size_t i = 0; i + 1 < drawn.kept_start.size(); ++i)
+                for (std::uint32_t j = drawn.kept_start[i]; j < drawn.kept_start[i + 1]; ++j)
+                    draw.draw_kept_triangle(triangle(i, drawn.kept[j].ref),
+                                            drawn.kept[j].depth_bound);
     }
 }
 

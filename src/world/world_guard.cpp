@@ -16,6 +16,7 @@
 #include "trackphys/geometry/contact.hpp"
 #include "trackphys/math/types.hpp"
 #include "trackphys/world/world.hpp"
+#include "world/car_scratch.hpp"
 #include "world/car_slot.hpp"
 #include "world/update_work.hpp"
 
@@ -134,10 +135,17 @@ void World::update_island_or_reset(std::size_t island, WorkerScratch& scratch,
         stopped = std::current_exception();
         stop_reason = std::string(" (the update stopped: ") + error.what() + ")";
     }
+    scratch.grow_alike(cars.size());
     bool reset_any = false;
     for (const std::uint32_t i : cars) {
         CarSlot& slot = cars_[i];
-        slot.placed = {};  // the worker's sets belong to its next car now
+        // The worker's scratch belongs to its next car now: keep what the car's next update
+        // and debug_draw need of it.
+        if (slot.scratch) {
+            slot.empty_lists = slot.scratch->empty_lists();
+            slot.drawn.take(*slot.scratch);
+        }
+        slot.scratch = nullptr;
         const std::string why = impossible_state(slot.car.state());
         if (why.empty()) continue;
         reset_any = true;

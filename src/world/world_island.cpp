@@ -8,6 +8,7 @@
 #include "profile/phase_stopwatch.hpp"
 #include "trackphys/world/world.hpp"
 #include "world/car_pair_contact.hpp"
+#include "world/car_scratch.hpp"
 #include "world/car_slot.hpp"
 #include "world/update_work.hpp"
 
@@ -20,15 +21,11 @@ namespace trackphys {
 void World::step_island(std::size_t island, WorkerScratch& scratch, PhaseStopwatch& watch) {
     const UpdateWork& work = *work_;
     const std::span<const std::uint32_t> cars = work.islands.cars(island);
-    // Each car's placed ellipsoids, in the worker's sets: copies of its body ellipsoids, as
-    // placing wants them (it writes what a motion changes, not the radii).
+    // Each car's working memory, in the worker's scratch.
     for (std::size_t k = 0; k < cars.size(); ++k) {
         CarSlot& slot = cars_[cars[k]];
-        std::vector<Ellipsoid>& set = scratch.placed[k];
-        set.clear();
-        for (std::size_t i = 0; i < slot.car.ellipsoid_count(); ++i)
-            set.push_back(slot.car.body_ellipsoid(i));
-        slot.placed = set;
+        scratch.cars[k].start_car(slot.car, slot.empty_lists);
+        slot.scratch = &scratch.cars[k];
     }
     if (cars.size() == 1) {
         update_car(cars_[cars[0]], work.boxes[cars[0]], watch);
@@ -53,7 +50,7 @@ void World::step_island(std::size_t island, WorkerScratch& scratch, PhaseStopwat
                 CarSlot& a = cars_[pair.a];
                 CarSlot& b = cars_[pair.b];
                 const detail::CarPairTouch touch =
-                    detail::touch_cars(a.car, a.placed, b.car, b.placed, h);
+                    detail::touch_cars(a.car, a.scratch->placed, b.car, b.scratch->placed, h);
                 profile.car_pair_tests += touch.exact_tests;
                 // Only an overlap pushes.
                 if (touch.deepest > 0.0) a.pushed = b.pushed = true;

@@ -80,18 +80,19 @@ bool same_bits(const Contact& a, const Contact& b) {
 
 // Three default cars on flat ground, rolling towards a wall at different speeds: wheels on
 // the road from the start, the fastest car's body against the wall within half a second.
-World three_cars() {
+// With `only`, that car alone.
+World three_cars(std::optional<int> only = std::nullopt) {
     auto statics = std::make_shared<StaticWorld>();
     statics->add(std::make_shared<StaticCollider>(test::flat_grid(60.0, 30)));
     statics->add(std::make_shared<StaticCollider>(test::wall(6.0, 60.0, 3.0)));
     World world(statics);
     const CarSpec spec = CarSpec::default_car();
     for (int k = 0; k < 3; ++k) {
+        if (only && k != *only) continue;
         RigidBodyState state;
         state.position = {-10.0 + 10.0 * k, spec.lowest_point_depth() + 0.001, 0.0};
         state.linear_velocity = {0.0, 0.0, 5.0 * (k + 1)};
-        world.add_car(spec, state);
-        world.car(static_cast<std::size_t>(k)).set_inputs({0.5, 0.0, 0.3 * (k - 1)});
+        world.car(world.add_car(spec, state)).set_inputs({0.5, 0.0, 0.3 * (k - 1)});
     }
     return world;
 }
@@ -229,6 +230,33 @@ TEST(DebugDraw, ListsThePipelinesTrianglesAndBoxes) {
             [&](const DebugTriangle& t) { return t.car == c.car && t.ellipsoid == c.ellipsoid; });
         EXPECT_TRUE(on_kept) << "car " << c.car << " ellipsoid " << c.ellipsoid
                              << " has a contact but no kept triangle";
+    }
+}
+
+// The lists and survivors are a worker's scratch during an update, which the next car
+// rewrites: each car's drawn triangles are its own, those a world of that car alone draws.
+TEST(DebugDraw, ACarsTrianglesAreItsOwnWhicheverCarRanAfterIt) {
+    World world = three_cars();
+    std::vector<World> alone;
+    for (int k = 0; k < 3; ++k) alone.push_back(three_cars(k));
+    for (int update = 0; update < 20; ++update) {
+        world.update();
+        for (World& one : alone) one.update();
+    }
+    CallLog log;
+    world.debug_draw(log, DebugDrawOptions::all());
+    for (std::size_t k = 0; k < 3; ++k) {
+        CallLog own;
+        alone[k].debug_draw(own, DebugDrawOptions::all());
+        const auto refs = [](const std::vector<DebugTriangle>& drawn, std::size_t car) {
+            std::vector<std::pair<std::size_t, TriangleRef>> out;
+            for (const DebugTriangle& t : drawn)
+                if (t.car == car) out.push_back({t.ellipsoid, t.ref});
+            return out;
+        };
+        EXPECT_FALSE(own.kept.empty()) << "car " << k;
+        EXPECT_EQ(refs(log.listed, k), refs(own.listed, 0)) << "car " << k;
+        EXPECT_EQ(refs(log.kept, k), refs(own.kept, 0)) << "car " << k;
     }
 }
 

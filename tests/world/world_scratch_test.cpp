@@ -1,6 +1,7 @@
-// A worker places the ellipsoids of every car it updates in its own sets (World's
-// WorkerScratch): cars of different shapes, updated one after another, each drive as they
-// would alone.
+// A worker places the ellipsoids of every car it updates, and lists and culls its triangles,
+// in its own scratch (World's WorkerScratch): cars of different shapes, updated one after
+// another, each drive as they would alone.
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <memory>
@@ -55,6 +56,39 @@ TEST(WorldScratch, CarsOfOtherShapesOnOneWorkerDriveAsAlone) {
         EXPECT_GT(together.contacts(k)[1].depth, 0.0) << "car " << k << " left the ground";
         EXPECT_TRUE(same_bits(together.car(k).state(), alone[k].car(0).state())) << "car " << k;
     }
+}
+
+// The look-ahead lists are the worker's too, but each car's queries look as far ahead as its
+// own last lists say (an empty one to the end of the update), not the previous car's: a car
+// falling from above the road (every list empty) after one on it, on one worker, queries as
+// often as the two do alone.
+TEST(WorldScratch, EachCarsQueriesLookAsFarAheadAsItsOwnLastLists) {
+    const auto ground = test::static_world_of(test::flat_grid(200.0, 50));
+    const CarSpec spec = CarSpec::default_car();
+    WorldSettings one_worker;
+    one_worker.threads = 1;
+    const RigidBodyState on_road = place_car_on_surface(*ground, spec, glm::dvec3(-50.0, 0.5, 0.0),
+                                                        glm::dquat(1.0, 0.0, 0.0, 0.0));
+    RigidBodyState above = on_road;
+    above.position += glm::dvec3(100.0, 1.5, 0.0);
+    World together(ground, one_worker), first(ground, one_worker), second(ground, one_worker);
+    together.add_car(spec, on_road);
+    together.add_car(spec, above);
+    first.add_car(spec, on_road);
+    second.add_car(spec, above);
+    std::size_t queries = 0;
+    for (int update = 0; update < 60; ++update) {
+        together.update();
+        first.update();
+        second.update();
+        const std::size_t alone =
+            first.last_profile().mid_queries + second.last_profile().mid_queries;
+        EXPECT_EQ(together.last_profile().mid_queries, alone) << "update " << update;
+        queries += alone;
+    }
+    EXPECT_TRUE(same_bits(together.car(1).state(), second.car(0).state()));
+    EXPECT_TRUE(std::isfinite(together.contacts(1)[0].depth)) << "the falling car never landed";
+    EXPECT_GT(queries, 0u);
 }
 
 // A worker's sets are made for the whole field when it changes: cars added after the first

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cstddef>
 #include <optional>
 #include <vector>
 
@@ -40,20 +41,34 @@ class TRACKPHYS_API LookAheadList {
     /// Forgets the list (its candidates come from a MidPhase update that has ended); the
     /// next steps_ahead still knows whether it was empty.
     void forget() { shape_.reset(); }
+    /// Forgets the list and takes `was_empty` as whether the last one was empty: a list that
+    /// serves one ellipsoid after another (a worker's, in World) carries each one's memory
+    /// over from its own last list (was_empty()).
+    void start_over(bool was_empty) {
+        shape_.reset();
+        candidates_.clear();
+        was_empty_ = was_empty;
+    }
+    /// Whether the last list refilled was empty (true before the first).
+    bool was_empty() const { return was_empty_; }
     /// How many steps the next query should cover: `look_ahead` (1: each step its own
     /// query, the write-up's loop), or when looking ahead at all and the last list was
     /// empty (a body ellipsoid riding above the road), every step left: an empty list costs
     /// the cull nothing however far it looks, so one query can serve the whole update.
     int steps_ahead(int look_ahead, int steps_left) const {
-        if (look_ahead > 1 && candidates_.empty()) return steps_left;
+        if (look_ahead > 1 && was_empty_) return steps_left;
         return std::min(look_ahead, steps_left);
     }
 
     const std::vector<MidPhaseCandidate>& candidates() const { return candidates_; }
+    /// Room for `candidates` before a refill allocates, and that room.
+    void reserve(std::size_t candidates) { candidates_.reserve(candidates); }
+    std::size_t capacity() const { return candidates_.capacity(); }
 
   private:
     std::vector<MidPhaseCandidate> candidates_;
     std::optional<SweptEllipsoid> shape_;
+    bool was_empty_ = true;
 };
 
 }  // namespace trackphys

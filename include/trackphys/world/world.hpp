@@ -118,10 +118,11 @@ class TRACKPHYS_API World {
     void set_trace(TraceRecorder* trace) { trace_ = trace; }
 
     /// Shows the cars as the last update left them to `draw` (see DebugDraw for the calls and
-    /// their order), as `options` selects. A pull: update() does nothing for it. The update
-    /// boxes and triangle lists are the working memory of the last update this object ran
-    /// for the car (none before the first; for a reset car, the undone update's; a snapshot
-    /// does not hold them, so after restore_state they predate the restore).
+    /// their order), as `options` selects. A pull: update() only keeps a copy of the
+    /// triangles' refs for it (a few lines a car). The update boxes and triangle lists are
+    /// the working memory of the last update this object ran for the car (none before the
+    /// first; for a reset car, the undone update's; a snapshot does not hold them, so after
+    /// restore_state they predate the restore).
     void debug_draw(DebugDraw& draw, const DebugDrawOptions& options = {}) const;
 
   private:
@@ -130,6 +131,8 @@ class TRACKPHYS_API World {
     struct CarSlot;
     // The update's islands, per-worker profiles and threads (src/world/update_work.hpp).
     struct UpdateWork;
+    // A car's working memory that is dead between its updates (src/world/car_scratch.hpp).
+    struct CarScratch;
     // A worker's memory for the cars it is updating (src/world/update_work.hpp).
     struct WorkerScratch;
 
