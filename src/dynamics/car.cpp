@@ -165,29 +165,15 @@ void Car::advance(std::span<const Contact> deepest, const glm::dvec3& gravity, d
     // The impulses turn the velocities only: the axes hold until integrate.
     const detail::BodyAxes axes(state_.orientation);
     WheelLoads wheel_loads;
-    Wrench wrench;
-    if (vehicle_) {
-        measure_wheel_loads<false>(deepest, wheel_loads, axes.up, h);
-        wrench = vehicle_wrench(deepest, wheel_loads, axes, h);
-        update_suspension(deepest, wheel_loads, axes.up, h);
-    } else {
-        // The arcade wrench reads no travel: each wheel's advances as its load is measured.
-        const AxleLoads least_loads = measure_wheel_loads<true>(deepest, wheel_loads, axes.up, h);
-        wrench = contact_wrench(deepest, wheel_loads, least_loads, axes);
-    }
+    const AxleLoads least_loads = measure_wheel_loads(deepest, wheel_loads);
+    const Wrench wrench = vehicle_ ? vehicle_wrench(deepest, wheel_loads, axes, h)
+                                   : contact_wrench(deepest, wheel_loads, least_loads, axes);
+    update_suspension(deepest, wheel_loads, axes.up, h);
     trackphys::integrate(state_, spec_.mass, wrench, gravity, h);
 }
 
-inline void Car::advance_travel(std::size_t i, double lift, double h) {
-    const Suspension& spring = spec_.suspension;
-    // Massless wheel: the damper passes what the spring does not hold.
-    const double rate = (lift - spring.stiffness * suspension_[i]) / spring.damping;
-    suspension_[i] = std::clamp(suspension_[i] + h * rate, 0.0, spring.travel);
-}
-
-template <bool kAdvanceTravel>
-Car::AxleLoads Car::measure_wheel_loads(std::span<const Contact> deepest, WheelLoads& wheel_loads,
-                                        const glm::dvec3& up, double h) {
+Car::AxleLoads Car::measure_wheel_loads(std::span<const Contact> deepest,
+                                        WheelLoads& wheel_loads) const {
     AxleLoads least_loads = {std::numeric_limits<double>::infinity(),
                              std::numeric_limits<double>::infinity()};
     // The parts through a pointer read once: a store to wheel_loads could alias shape_.
@@ -201,8 +187,6 @@ Car::AxleLoads Car::measure_wheel_loads(std::span<const Contact> deepest, WheelL
             normal_force(spec_.wheel_contact, deepest[i].depth, deepest[i].normal, wheel.velocity);
         double& least = least_loads[static_cast<int>(axle_of(parts[i].role))];
         least = std::min(least, wheel.load);
-        if constexpr (kAdvanceTravel)
-            advance_travel(i, wheel.load * glm::dot(deepest[i].normal, up), h);
     }
     return least_loads;
 }
@@ -242,15 +226,18 @@ Wrench Car::contact_wrench(std::span<const Contact> deepest, const WheelLoads& w
 
 void Car::update_suspension(std::span<const Contact> deepest, const WheelLoads& wheel_loads,
                             const glm::dvec3& up, double h) {
-    vehicle_->measure_anti_roll(suspension_);
+    const Suspension& spring = spec_.suspension;
+    if (vehicle_) vehicle_->measure_anti_roll(suspension_);
     const Part* parts = shape_->parts.data();
     const std::size_t wheel_end = std::min(deepest.size(), shape_->wheel_end);
     for (std::size_t i = 0; i < wheel_end; ++i) {
         if (parts[i].role == EllipsoidRole::body) continue;
-        const double lift =
-            wheel_loads[i].load * glm::dot(deepest[i].normal, up) -
-            vehicle_->anti_roll_force(static_cast<std::size_t>(vehicle_->wheel_slot(i)));
-        advance_travel(i, lift, h);
+        double lift = wheel_loads[i].load * glm::dot(deepest[i].normal, up);
+        if (vehicle_)
+            lift -= vehicle_->anti_roll_force(static_cast<std::size_t>(vehicle_->wheel_slot(i)));
+        // Massless wheel: the damper passes what the spring does not hold.
+        const double rate = (lift - spring.stiffness * suspension_[i]) / spring.damping;
+        suspension_[i] = std::clamp(suspension_[i] + h * rate, 0.0, spring.travel);
     }
 }
 

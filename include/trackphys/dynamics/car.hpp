@@ -203,12 +203,8 @@ class TRACKPHYS_API Car {
 
     void resolve_deep_contacts(std::span<const Contact> deepest);
     /// The tyre's normal force of each wheel and the velocity of its contact point, into
-    /// wheel_loads' first deepest.size(); returns each axle's least load. kAdvanceTravel
-    /// (the arcade car): each wheel's suspension travel also advances by h in the same loop,
-    /// as update_suspension's would (up: the body's up axis). Defined in car.cpp.
-    template <bool kAdvanceTravel>
-    AxleLoads measure_wheel_loads(std::span<const Contact> deepest, WheelLoads& wheel_loads,
-                                  const glm::dvec3& up, double h);
+    /// wheel_loads' first deepest.size(); returns each axle's least load.
+    AxleLoads measure_wheel_loads(std::span<const Contact> deepest, WheelLoads& wheel_loads) const;
     /// axes: detail::BodyAxes(state().orientation), this sub-step's (the forward axis is the rear
     /// wheels' heading and the downforce's speed).
     Wrench contact_wrench(std::span<const Contact> deepest, const WheelLoads& wheel_loads,
@@ -221,13 +217,9 @@ class TRACKPHYS_API Car {
     glm::dvec3 wheel_heading(Axle axle, const glm::dvec3& forward) const {
         return axle == Axle::front ? state_.orientation * steered_heading_ : forward;
     }
-    /// The vehicle car's suspension travel over h, after its wrench, with its anti-roll
-    /// bars; up: the body's up axis.
+    /// up: the body's up axis.
     void update_suspension(std::span<const Contact> deepest, const WheelLoads& wheel_loads,
                            const glm::dvec3& up, double h);
-    /// Wheel i's travel over h under lift, the tyre's load along the body's up axis (N).
-    /// Inline in car.cpp.
-    void advance_travel(std::size_t i, double lift, double h);
     // wheel_command, drive_available and wheel_material are defined inline in car.cpp: call
     // them only from there (another file's call would not link).
     /// The command of each wheel of an axle rolling along heading on material
