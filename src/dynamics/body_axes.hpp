@@ -18,16 +18,18 @@ struct BodyAxes {
     explicit BodyAxes(const glm::dquat& q) {
         const double x = q.x, y = q.y, z = q.z, w = q.w;
         // glm rotates v as v + (uv w + uuv) 2, uv = (x, y, z) x v and uuv = (x, y, z) x uv,
-        // and multiplies by the axis's zeros too. When x, y, z and their pairwise products
-        // are not zero and all are finite, each product by a zero is a zero beside a term
-        // that is not, or is summed into a component that 1 + ... or 0 + ... settles, so
-        // leaving it out keeps every bit; down is then 0 - up (rounding is symmetric, and
-        // 0 - 0 gives glm's +0). Otherwise (a car standing level, yaw only) glm's products.
-        const double xz = x * z, zy = z * y, yx = y * x;
-        if (!(xz != 0.0 && zy != 0.0 && yx != 0.0 && std::isfinite(xz * y * w))) [[unlikely]] {
+        // and multiplies by the axis's zeros too. With x, y, z and w finite, each product by a
+        // zero is a zero, so every value glm forms has this code's bits or is a zero of the
+        // other sign (adding a zero to a non-zero or multiplying it keeps that), and the
+        // axis's own 0 + or 1 + at the end of each component drops a zero's sign; down is
+        // then 0 - up (rounding is symmetric, and 0 - 0 gives glm's +0). A component not
+        // finite makes glm's product by a zero a NaN: glm's products.
+        if (!(std::isfinite(x) && std::isfinite(y) && std::isfinite(z) && std::isfinite(w)))
+            [[unlikely]] {
             *this = glms_products(q);
             return;
         }
+        const double xz = x * z, zy = z * y, yx = y * x;
         // Forward: uv = (y, -x, 0), uuv = (x z, z y, x (-x) - y y).
         forward = {0.0 + (y * w + xz) * 2.0, 0.0 + (-x * w + zy) * 2.0,
                    1.0 + (x * -x - y * y) * 2.0};
@@ -38,7 +40,7 @@ struct BodyAxes {
 
   private:
     BodyAxes() = default;
-    // Out of the way of the sub-step's code, which takes it only for a car standing level.
+    // Out of the way of the sub-step's code, which takes it only for a state not finite.
     [[gnu::cold, gnu::noinline]] static BodyAxes glms_products(const glm::dquat& q) {
         BodyAxes axes;
         axes.forward = q * glm::dvec3(0.0, 0.0, 1.0);

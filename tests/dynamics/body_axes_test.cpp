@@ -57,5 +57,42 @@ TEST(BodyAxes, GiveTheBitsOfGlmsProducts) {
     }
 }
 
+// A car standing level, or pitched or rolled only, has zeros in its quaternion; components
+// so large that their products overflow are still finite. Both take the short products.
+TEST(BodyAxes, GiveTheBitsOfGlmsProductsForZerosAndOverflow) {
+    const std::array<double, 4> zeros = {0.0, -0.0, 0.0, -0.0};
+    int checked = 0;
+    for (int axis = 0; axis < 3; ++axis)
+        for (int step = -8; step <= 8; ++step)
+            for (int signs = 0; signs < 16; ++signs) {
+                const double half = 0.19634954084936207 * step;  // pi / 16 a step
+                std::array<double, 4> q = {std::cos(half), zeros[signs % 4], zeros[signs / 4],
+                                           zeros[(signs + 1) % 4]};
+                q[static_cast<std::size_t>(axis) + 1] = std::sin(half);
+                if (step == 0) q[static_cast<std::size_t>(axis) + 1] = zeros[signs % 2];
+                for (const double w_sign : {1.0, -1.0}) {
+                    const glm::dquat rotation(w_sign * q[0], q[1], q[2], q[3]);
+                    const detail::BodyAxes axes(rotation);
+                    ASSERT_TRUE(same_bits(axes.forward, rotation * glm::dvec3(0.0, 0.0, 1.0)))
+                        << axis << " " << step << " " << signs;
+                    ASSERT_TRUE(same_bits(axes.up, rotation * glm::dvec3(0.0, 1.0, 0.0)))
+                        << axis << " " << step << " " << signs;
+                    ASSERT_TRUE(same_bits(axes.down, rotation * glm::dvec3(0.0, -1.0, 0.0)))
+                        << axis << " " << step << " " << signs;
+                    ++checked;
+                }
+            }
+    EXPECT_EQ(checked, 3 * 17 * 16 * 2);
+    const std::array<double, 5> large = {1e200, -1e200, 1e160, -3e155, 1.7976931348623157e308};
+    for (std::size_t a = 0; a < large.size(); ++a)
+        for (std::size_t b = 0; b < large.size(); ++b) {
+            const glm::dquat rotation(large[a], large[b], large[(a + b) % 5], large[(a + 2) % 5]);
+            const detail::BodyAxes axes(rotation);
+            ASSERT_TRUE(same_bits(axes.forward, rotation * glm::dvec3(0.0, 0.0, 1.0))) << a << b;
+            ASSERT_TRUE(same_bits(axes.up, rotation * glm::dvec3(0.0, 1.0, 0.0))) << a << b;
+            ASSERT_TRUE(same_bits(axes.down, rotation * glm::dvec3(0.0, -1.0, 0.0))) << a << b;
+        }
+}
+
 }  // namespace
 }  // namespace trackphys

@@ -49,6 +49,11 @@ TEST(CarPhysics, SettlesToTheStaticSagAndStaysStill) {
     }
     const double sag = spec.mass.mass * 9.81 / spec.wheel_contact.stiffness / wheels;
     EXPECT_NEAR(total_depth / wheels, sag, 0.01 * sag);
+    // The suspension's springs carry it too: each wheel's travel holds its tyre's load.
+    double total_travel = 0.0;
+    for (const double travel : world.car(0).suspension()) total_travel += travel;
+    const double spring_sag = spec.mass.mass * 9.81 / spec.suspension.stiffness / wheels;
+    EXPECT_NEAR(total_travel / wheels, spring_sag, 0.01 * spring_sag);
     EXPECT_LT(glm::length(world.car(0).state().linear_velocity), 1e-3);
 
     // No creeping: two more seconds move it by less than 0.1 mm.
