@@ -7,9 +7,10 @@
 
 namespace trackphys::detail {
 
-/// Internal to Car's sub-step. A body's forward (+Z), up (+Y) and down (-Y) axes in the world: bit for bit glm's
-/// products orientation * (0, 0, 1), orientation * (0, 1, 0) and orientation * (0, -1, 0),
-/// which a car's sub-step needs for its wheels, suspension and downforce.
+/// Internal to Car's sub-step. A body's forward (+Z), up (+Y) and down (-Y) axes in the
+/// world: bit for bit glm's products orientation * (0, 0, 1), orientation * (0, 1, 0) and
+/// orientation * (0, -1, 0), which a car's sub-step needs for its wheels, suspension and
+/// downforce.
 struct BodyAxes {
     glm::dvec3 forward;
     glm::dvec3 up;

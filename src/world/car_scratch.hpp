@@ -30,7 +30,10 @@ struct World::CarScratch {
     // Room for a car of up to `ellipsoids` ellipsoids, so a steady state allocates nothing.
     void reserve(std::size_t ellipsoids) {
         placed.reserve(ellipsoids);
-        if (lists.size() < ellipsoids) lists.resize(ellipsoids);
+        if (lists.size() < ellipsoids) {
+            lists.resize(ellipsoids);
+            listed = {};  // viewed the old lists; start_car views the new
+        }
         kept_start.reserve(ellipsoids + 1);
     }
 

@@ -52,15 +52,24 @@ struct World::CarSlot {
     // step's listed triangles and the last sub-step's survivors, a few lines a car, each
     // ellipsoid's from its start[i] to [i + 1].
     struct DrawnLists {
-        void take(const CarScratch& scratch) {
+        // A survivor as drawn: its triangle and depth bound (the mid phase's frame pointer
+        // it carried in the scratch is stale once the sub-step ends).
+        struct Kept {
+            TriangleRef ref;
+            double depth_bound;
+        };
+
+        void take(const CarScratch& last) {
             listed.clear();
             listed_start.assign(1, 0u);
-            for (const LookAheadList& list : scratch.listed) {
+            for (const LookAheadList& list : last.listed) {
                 for (const MidPhaseCandidate& c : list.candidates()) listed.push_back(c.ref);
                 listed_start.push_back(static_cast<std::uint32_t>(listed.size()));
             }
-            kept.assign(scratch.kept.begin(), scratch.kept.end());
-            kept_start.assign(scratch.kept_start.begin(), scratch.kept_start.end());
+            kept.clear();
+            for (const CarScratch::Survivor& survivor : last.kept)
+                kept.push_back({survivor.ref, survivor.depth_bound});
+            kept_start.assign(last.kept_start.begin(), last.kept_start.end());
         }
         void reserve(std::size_t listed_room, std::size_t kept_room, std::size_t ellipsoids) {
             listed.reserve(listed_room);
@@ -70,7 +79,7 @@ struct World::CarSlot {
         }
         std::vector<TriangleRef> listed;
         std::vector<std::uint32_t> listed_start;
-        std::vector<CarScratch::Survivor> kept;
+        std::vector<Kept> kept;
         std::vector<std::uint32_t> kept_start;
     };
 

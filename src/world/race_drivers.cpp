@@ -50,6 +50,18 @@ RaceDrivers::RaceDrivers(const Track& track, const CarSpec& car, std::size_t car
         throw Error("RaceSettings: lane_change_speed must be finite and > 0");
     if (!(settings_.rescue_distance > 0.0))
         throw Error("RaceSettings: rescue_distance must be > 0 (infinity: never rescue)");
+    // The lane rules keep the field in track order (cars_along_track.hpp), which holds only
+    // for places along the track in [0, length_m): read_track checks a map's track, a track
+    // built by hand is checked here.
+    if (!(std::isfinite(track.length_m) && track.length_m > 0.0))
+        throw Error("RaceDrivers: the track's length must be finite and > 0");
+    for (const CenterlineSample& sample : track.centerline)
+        if (!(sample.distance >= 0.0 && sample.distance < track.length_m)) {
+            std::ostringstream why;
+            why << "RaceDrivers: a centreline sample at " << sample.distance
+                << " m along the track is outside [0, " << track.length_m << ") m";
+            throw Error(why.str());
+        }
     // One copy of the centreline for the whole field.
     const auto centerline = std::make_shared<const std::vector<CenterlineSample>>(track.centerline);
     for (std::size_t i = 0; i < cars; ++i) {

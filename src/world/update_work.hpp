@@ -25,7 +25,9 @@ struct World::WorkerScratch {
     void set_cars(std::size_t count, std::size_t ellipsoids) {
         cars.resize(count);
         if (list_room.size() < ellipsoids) list_room.resize(ellipsoids, 0);
-        for (CarScratch& car : cars) car.reserve(ellipsoids);
+        // make_room reserves every list of list_room, which may be longer than this field's
+        // cars need (a larger car earlier).
+        for (CarScratch& car : cars) car.reserve(list_room.size());
         make_room();
     }
     // After an island of `used` cars: if one of its scratches grew, all grow alike.

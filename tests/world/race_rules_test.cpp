@@ -93,6 +93,26 @@ TEST(RaceRules, SettingsThatCannotActAsWrittenAreRefused) {
               "(no error)");
 }
 
+// The field is kept in track order, which needs every centreline place along the track in
+// [0, length): a track built by hand with one outside (or not a number) is refused.
+TEST(RaceRules, ATrackWithPlacesOutsideItsLengthIsRefused) {
+    const test::TrackWorld& track = test::default_track();
+    const auto error_with = [&](double distance) {
+        Track broken = track.track;
+        broken.centerline[1].distance = distance;
+        return test::error_of([&] { RaceDrivers(broken, CarSpec::default_car(), 2); });
+    };
+    EXPECT_EQ(error_with(track.track.centerline[1].distance), "(no error)");
+    for (const double distance : {-1.0, track.track.length_m, std::nan("")})
+        EXPECT_NE(error_with(distance).find("RaceDrivers: a centreline sample at"),
+                  std::string::npos)
+            << distance;
+    Track no_length = track.track;
+    no_length.length_m = std::numeric_limits<double>::infinity();
+    EXPECT_EQ(test::error_of([&] { RaceDrivers(no_length, CarSpec::default_car(), 2); }),
+              "RaceDrivers: the track's length must be finite and > 0");
+}
+
 // The field's autopilots share one copy of the track's centreline (a copy each would be
 // most of a race's memory beside the road).
 TEST(RaceRules, TheFieldSharesOneCenterline) {

@@ -107,8 +107,9 @@ struct RaceProgress {
 class TRACKPHYS_API RaceDrivers {
   public:
     /// Throws trackphys::Error for no cars, speeds or grip shares that are not finite and
-    /// > 0 or in the wrong order, negative lane distances or rule thresholds, or a
-    /// merge_gap beyond pass_look_ahead.
+    /// > 0 or in the wrong order, negative lane distances or rule thresholds, a
+    /// merge_gap beyond pass_look_ahead, or a track whose length is not finite and > 0 or
+    /// with a centreline sample outside [0, length_m) along it.
     RaceDrivers(const Track& track, const CarSpec& car, std::size_t cars,
                 RaceSettings settings = {});
 
