@@ -92,6 +92,56 @@ TEST(CarsAlongTrack, TheNearestCarAheadIsTheOneEveryCarScannedFinds) {
     EXPECT_GT(tied, 1000);
 }
 
+// Where other - me - from is exactly -length or +length, gap_along's remainder is a zero
+// (-0 and +0): such a car is at `from`, the nearest a lane can hold, and must sit in the run
+// that starts there, not at the end of the run before it, where the reading stops before it.
+// A power-of-two loop with places on sixteenths of it lands there exactly (+length from
+// -1/16 of a lap: me 0, other 15/16; -length from +1/16: me 15/16, other 0), which the
+// random fields above, on 61, 250 and 3200 m, never do. From -1/16 and +1/16 a boundary car
+// is alone past its boundary; from -1/2 and +1/2 cars lie on both sides of it, so a car put
+// in the wrong run has cars before it there.
+TEST(CarsAlongTrack, ACarExactlyALapFromTheQuerysStartIsFoundAsInTheScan) {
+    int at_minus_length = 0, at_plus_length = 0;
+    unsigned seed = 1000;
+    for (const double length : {64.0, 4096.0}) {
+        for (const std::size_t cars : {2, 3, 5, 12, 40}) {
+            for (int field_count = 0; field_count < 40; ++field_count) {
+                RandomField field(seed++, length, 16);
+                std::vector<RoadPosition> positions;
+                for (std::size_t c = 0; c < cars; ++c) positions.push_back(field.car());
+                std::vector<std::uint32_t> order;
+                order_along_track(positions, order);
+                for (std::size_t i = 0; i < cars; ++i) {
+                    for (const double from :
+                         {-length / 2.0, -length / 16.0, 0.0, length / 16.0, length / 2.0}) {
+                        // Gaps are in [from, from + length).
+                        for (const double look_ahead : {from + length / 8.0, from + length / 2.0,
+                                                        std::numeric_limits<double>::infinity()}) {
+                            for (const double line : {-2.0, 2.0, 0.7}) {
+                                const LaneQuery query{line, 2.5, from, look_ahead, length};
+                                const CarInLane fast =
+                                    nearest_car_ahead(positions, order, i, query);
+                                const CarInLane slow = every_car_scanned(positions, i, query);
+                                ASSERT_EQ(fast.car, slow.car)
+                                    << "car " << i << " of " << cars << ", from " << from;
+                                ASSERT_EQ(fast.gap, slow.gap);
+                                if (slow.car == i) continue;
+                                const double d =
+                                    positions[slow.car].along - positions[i].along - from;
+                                if (d == -length) ++at_minus_length;
+                                if (d == length) ++at_plus_length;
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+    // Both boundaries held the nearest car, many times.
+    EXPECT_GT(at_minus_length, 100);
+    EXPECT_GT(at_plus_length, 100);
+}
+
 // Two places a rounding apart ahead of a car near the end of the lap: their gaps round to
 // one value, and the lower index wins the tie, as in a scan of every car, though the order
 // along the track reads the other first.

@@ -203,20 +203,27 @@ TEST(DebugDraw, OptionsOffCallNothingOfThem) {
     EXPECT_EQ(only_kept.events.size(), only_kept.kept.size());
 }
 
-TEST(DebugDraw, ListsThePipelinesTrianglesAndBoxes) {
-    World world = three_cars();
-    for (int update = 0; update < 5; ++update) world.update();
-    CallLog log;
-    world.debug_draw(log, DebugDrawOptions::all());
-
+// The pipeline's lists as drawn, car by car: each car's update box holds the car, and its
+// listed triangles meet that box (its queries' shapes lie in it: a triangle of another
+// car's lists need not); the kept triangles are listed ones of the same car and ellipsoid,
+// with a positive depth bound, each the collider's own triangle; an ellipsoid with a contact
+// kept at least one.
+void expect_the_pipelines_lists(const World& world, const CallLog& log) {
     ASSERT_EQ(log.boxes.size(), world.car_count());
     for (std::size_t k = 0; k < world.car_count(); ++k)
         EXPECT_TRUE(log.boxes[k].contains(world.car(k).state().position)) << "car " << k;
-    // The kept triangles are listed ones, with a positive depth bound, each the collider's
-    // own triangle; an ellipsoid with a contact kept at least one.
+    const auto bounds = [](const DebugTriangle& t) {
+        Aabb box;
+        for (int v = 0; v < 3; ++v) box.expand(t.triangle[v]);
+        return box;
+    };
     std::set<std::tuple<std::size_t, std::size_t, TriangleRef>> listed;
-    for (const DebugTriangle& t : log.listed) listed.insert({t.car, t.ellipsoid, t.ref});
-    ASSERT_FALSE(log.kept.empty());
+    for (const DebugTriangle& t : log.listed) {
+        listed.insert({t.car, t.ellipsoid, t.ref});
+        EXPECT_TRUE(bounds(t).overlaps(log.boxes[t.car]))
+            << "car " << t.car << " ellipsoid " << t.ellipsoid
+            << " lists a triangle outside its box";
+    }
     for (std::size_t j = 0; j < log.kept.size(); ++j) {
         const DebugTriangle& t = log.kept[j];
         EXPECT_TRUE(listed.contains({t.car, t.ellipsoid, t.ref})) << "kept but not listed";
@@ -231,6 +238,15 @@ TEST(DebugDraw, ListsThePipelinesTrianglesAndBoxes) {
         EXPECT_TRUE(on_kept) << "car " << c.car << " ellipsoid " << c.ellipsoid
                              << " has a contact but no kept triangle";
     }
+}
+
+TEST(DebugDraw, ListsThePipelinesTrianglesAndBoxes) {
+    World world = three_cars();
+    for (int update = 0; update < 5; ++update) world.update();
+    CallLog log;
+    world.debug_draw(log, DebugDrawOptions::all());
+    ASSERT_FALSE(log.kept.empty());
+    expect_the_pipelines_lists(world, log);
 }
 
 // The lists and survivors are a worker's scratch during an update, which the next car
@@ -258,6 +274,61 @@ TEST(DebugDraw, ACarsTrianglesAreItsOwnWhicheverCarRanAfterIt) {
         EXPECT_EQ(refs(log.listed, k), refs(own.listed, 0)) << "car " << k;
         EXPECT_EQ(refs(log.kept, k), refs(own.kept, 0)) << "car " << k;
     }
+}
+
+// Three default cars side by side on flat ground, 2.15 m apart (5 cm between their wheels),
+// driving straight at different throttles: their update boxes overlap (each pads the car by
+// broad_phase_margin), so they are one island of three, yet they never touch. With `only`,
+// that car alone.
+World side_by_side(std::optional<int> only = std::nullopt) {
+    auto statics = std::make_shared<StaticWorld>();
+    statics->add(std::make_shared<StaticCollider>(test::flat_grid(60.0, 30)));
+    World world(statics);
+    const CarSpec spec = CarSpec::default_car();
+    for (int k = 0; k < 3; ++k) {
+        if (only && k != *only) continue;
+        RigidBodyState state;
+        state.position = {2.15 * (k - 1), spec.lowest_point_depth() + 0.001, -10.0};
+        state.linear_velocity = {0.0, 0.0, 5.0};
+        world.car(world.add_car(spec, state)).set_inputs({0.2 + 0.3 * k, 0.0, 0.0});
+    }
+    return world;
+}
+
+// A worker keeps one scratch per car of the island it updates (the k-th car's lists in the
+// k-th): each car of an island draws its own lists and survivors, not another position's.
+// The cars never touch, so nothing pushes and each car's lists are those of the car alone.
+TEST(DebugDraw, EachCarOfAnIslandDrawsItsOwnLists) {
+    World world = side_by_side();
+    std::vector<World> alone;
+    for (int k = 0; k < 3; ++k) alone.push_back(side_by_side(k));
+    const auto refs = [](const std::vector<DebugTriangle>& drawn, std::size_t car) {
+        std::vector<std::pair<std::size_t, TriangleRef>> out;
+        for (const DebugTriangle& t : drawn)
+            if (t.car == car) out.push_back({t.ellipsoid, t.ref});
+        return out;
+    };
+    std::size_t kept[3] = {};
+    for (int update = 0; update < 20; ++update) {
+        world.update();
+        for (World& one : alone) one.update();
+        ASSERT_EQ(world.last_profile().car_pairs, 2u) << "update " << update << ": not one island";
+        ASSERT_EQ(world.last_profile().car_contacts, 0u) << "update " << update;
+        if (update < 5) continue;  // the wheels are on the road from here
+        CallLog log;
+        world.debug_draw(log, DebugDrawOptions::all());
+        expect_the_pipelines_lists(world, log);
+        for (std::size_t k = 0; k < 3; ++k) {
+            CallLog own;
+            alone[k].debug_draw(own, DebugDrawOptions::all());
+            kept[k] += own.kept.size();
+            EXPECT_EQ(refs(log.listed, k), refs(own.listed, 0))
+                << "update " << update << " car " << k;
+            EXPECT_EQ(refs(log.kept, k), refs(own.kept, 0)) << "update " << update << " car " << k;
+        }
+        if (HasFailure()) return;
+    }
+    for (std::size_t k = 0; k < 3; ++k) EXPECT_GT(kept[k], 0u) << "car " << k << " kept nothing";
 }
 
 std::string read_file(const std::filesystem::path& path) {

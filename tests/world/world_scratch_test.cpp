@@ -91,6 +91,51 @@ TEST(WorldScratch, EachCarsQueriesLookAsFarAheadAsItsOwnLastLists) {
     EXPECT_GT(queries, 0u);
 }
 
+// The same in an island of two: a car on the road and, beside it, one falling from 0.5 m
+// higher, 2.15 m apart (5 cm between their wheels, inside the update boxes' margins), so
+// one island whose cars never touch: nothing pushes, and each car drives and queries as it
+// does alone. The falling car is the island's second, its lists the worker's second set
+// (WorkerScratch::cars[1]): the empty bits it keeps for its next update must be its own,
+// not the first set's (the road car's wheels list the road while the falling car's lists
+// are still empty). The bits change no state, only how far the queries look ahead, so the
+// query count is what shows them.
+TEST(WorldScratch, EachCarOfAnIslandQueriesAsFarAheadAsItsOwnLastLists) {
+    const auto ground = test::static_world_of(test::flat_grid(200.0, 50));
+    const CarSpec spec = CarSpec::default_car();
+    WorldSettings one_worker;
+    one_worker.threads = 1;
+    const RigidBodyState on_road = place_car_on_surface(*ground, spec, glm::dvec3(-1.075, 0.5, 0.0),
+                                                        glm::dquat(1.0, 0.0, 0.0, 0.0));
+    RigidBodyState above = on_road;
+    above.position += glm::dvec3(2.15, 0.5, 0.0);
+    World together(ground, one_worker), first(ground, one_worker), second(ground, one_worker);
+    together.add_car(spec, on_road);
+    together.add_car(spec, above);
+    first.add_car(spec, on_road);
+    second.add_car(spec, above);
+    const CarInputs inputs{.throttle = 0.5, .brake = 0.0, .steer = 0.0};
+    together.car(0).set_inputs(inputs);
+    together.car(1).set_inputs(inputs);
+    first.car(0).set_inputs(inputs);
+    second.car(0).set_inputs(inputs);
+    std::size_t queries = 0;
+    for (int update = 0; update < 60; ++update) {
+        together.update();
+        first.update();
+        second.update();
+        ASSERT_EQ(together.last_profile().car_pairs, 1u) << "update " << update << ": no island";
+        ASSERT_EQ(together.last_profile().car_contacts, 0u) << "update " << update;
+        const std::size_t alone =
+            first.last_profile().mid_queries + second.last_profile().mid_queries;
+        EXPECT_EQ(together.last_profile().mid_queries, alone) << "update " << update;
+        queries += alone;
+    }
+    EXPECT_TRUE(same_bits(together.car(0).state(), first.car(0).state()));
+    EXPECT_TRUE(same_bits(together.car(1).state(), second.car(0).state()));
+    EXPECT_TRUE(std::isfinite(together.contacts(1)[0].depth)) << "the falling car never landed";
+    EXPECT_GT(queries, 0u);
+}
+
 // A worker's sets are made for the whole field when it changes: cars added after the first
 // update and packed into one island larger than the field was drive as in a world whose
 // sets covered them from the start (four parked cars, far away, islands of their own).
