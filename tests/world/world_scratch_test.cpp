@@ -58,37 +58,60 @@ TEST(WorldScratch, CarsOfOtherShapesOnOneWorkerDriveAsAlone) {
     }
 }
 
-// The look-ahead lists are the worker's too, but each car's queries look as far ahead as its
-// own last lists say (an empty one to the end of the update), not the previous car's: a car
-// falling from above the road (every list empty) after one on it, on one worker, queries as
-// often as the two do alone.
-TEST(WorldScratch, EachCarsQueriesLookAsFarAheadAsItsOwnLastLists) {
+// Two cars on one worker, the first on the road at `on_road` and the second `offset` from
+// it, driven with `inputs` (none: the cars' defaults), query as often in one world as the
+// two do alone, update by update, and the second ends in the bits it reaches alone. With
+// `one_island` they must step as one island of cars that never touch, and the first must
+// end as alone too. Returns the queries counted.
+std::size_t expect_queries_as_alone(glm::dvec3 on_road_at, glm::dvec3 offset,
+                                    const CarInputs* inputs, bool one_island) {
     const auto ground = test::static_world_of(test::flat_grid(200.0, 50));
     const CarSpec spec = CarSpec::default_car();
     WorldSettings one_worker;
     one_worker.threads = 1;
-    const RigidBodyState on_road = place_car_on_surface(*ground, spec, glm::dvec3(-50.0, 0.5, 0.0),
-                                                        glm::dquat(1.0, 0.0, 0.0, 0.0));
-    RigidBodyState above = on_road;
-    above.position += glm::dvec3(100.0, 1.5, 0.0);
+    const RigidBodyState on_road =
+        place_car_on_surface(*ground, spec, on_road_at, glm::dquat(1.0, 0.0, 0.0, 0.0));
+    RigidBodyState other = on_road;
+    other.position += offset;
     World together(ground, one_worker), first(ground, one_worker), second(ground, one_worker);
     together.add_car(spec, on_road);
-    together.add_car(spec, above);
+    together.add_car(spec, other);
     first.add_car(spec, on_road);
-    second.add_car(spec, above);
+    second.add_car(spec, other);
+    if (inputs != nullptr)
+        for (World* world : {&together, &first, &second})
+            for (std::size_t i = 0; i < world->car_count(); ++i) world->car(i).set_inputs(*inputs);
     std::size_t queries = 0;
     for (int update = 0; update < 60; ++update) {
         together.update();
         first.update();
         second.update();
+        if (one_island) {
+            EXPECT_EQ(together.last_profile().car_pairs, 1u)
+                << "update " << update << ": no island";
+            EXPECT_EQ(together.last_profile().car_contacts, 0u) << "update " << update;
+        }
         const std::size_t alone =
             first.last_profile().mid_queries + second.last_profile().mid_queries;
         EXPECT_EQ(together.last_profile().mid_queries, alone) << "update " << update;
         queries += alone;
     }
+    if (one_island) {
+        EXPECT_TRUE(same_bits(together.car(0).state(), first.car(0).state()));
+    }
     EXPECT_TRUE(same_bits(together.car(1).state(), second.car(0).state()));
     EXPECT_TRUE(std::isfinite(together.contacts(1)[0].depth)) << "the falling car never landed";
-    EXPECT_GT(queries, 0u);
+    return queries;
+}
+
+// The look-ahead lists are the worker's too, but each car's queries look as far ahead as its
+// own last lists say (an empty one to the end of the update), not the previous car's: a car
+// falling from above the road (every list empty) after one on it, on one worker, queries as
+// often as the two do alone.
+TEST(WorldScratch, EachCarsQueriesLookAsFarAheadAsItsOwnLastLists) {
+    EXPECT_GT(expect_queries_as_alone(glm::dvec3(-50.0, 0.5, 0.0), glm::dvec3(100.0, 1.5, 0.0),
+                                      nullptr, false),
+              0u);
 }
 
 // The same in an island of two: a car on the road and, beside it, one falling from 0.5 m
@@ -100,40 +123,10 @@ TEST(WorldScratch, EachCarsQueriesLookAsFarAheadAsItsOwnLastLists) {
 // are still empty). The bits change no state, only how far the queries look ahead, so the
 // query count is what shows them.
 TEST(WorldScratch, EachCarOfAnIslandQueriesAsFarAheadAsItsOwnLastLists) {
-    const auto ground = test::static_world_of(test::flat_grid(200.0, 50));
-    const CarSpec spec = CarSpec::default_car();
-    WorldSettings one_worker;
-    one_worker.threads = 1;
-    const RigidBodyState on_road = place_car_on_surface(*ground, spec, glm::dvec3(-1.075, 0.5, 0.0),
-                                                        glm::dquat(1.0, 0.0, 0.0, 0.0));
-    RigidBodyState above = on_road;
-    above.position += glm::dvec3(2.15, 0.5, 0.0);
-    World together(ground, one_worker), first(ground, one_worker), second(ground, one_worker);
-    together.add_car(spec, on_road);
-    together.add_car(spec, above);
-    first.add_car(spec, on_road);
-    second.add_car(spec, above);
     const CarInputs inputs{.throttle = 0.5, .brake = 0.0, .steer = 0.0};
-    together.car(0).set_inputs(inputs);
-    together.car(1).set_inputs(inputs);
-    first.car(0).set_inputs(inputs);
-    second.car(0).set_inputs(inputs);
-    std::size_t queries = 0;
-    for (int update = 0; update < 60; ++update) {
-        together.update();
-        first.update();
-        second.update();
-        ASSERT_EQ(together.last_profile().car_pairs, 1u) << "update " << update << ": no island";
-        ASSERT_EQ(together.last_profile().car_contacts, 0u) << "update " << update;
-        const std::size_t alone =
-            first.last_profile().mid_queries + second.last_profile().mid_queries;
-        EXPECT_EQ(together.last_profile().mid_queries, alone) << "update " << update;
-        queries += alone;
-    }
-    EXPECT_TRUE(same_bits(together.car(0).state(), first.car(0).state()));
-    EXPECT_TRUE(same_bits(together.car(1).state(), second.car(0).state()));
-    EXPECT_TRUE(std::isfinite(together.contacts(1)[0].depth)) << "the falling car never landed";
-    EXPECT_GT(queries, 0u);
+    EXPECT_GT(expect_queries_as_alone(glm::dvec3(-1.075, 0.5, 0.0), glm::dvec3(2.15, 0.5, 0.0),
+                                      &inputs, true),
+              0u);
 }
 
 // A worker's sets are made for the whole field when it changes: cars added after the first
