@@ -18,11 +18,13 @@ inline btTransform bullet_pose(const Ellipsoid& e) {
                        to_bullet(e.center()));
 }
 
-inline PairPeerDepth bullet_pair_depth(const Ellipsoid& a, const Ellipsoid& b) {
+/// GJK distance, else EPA penetration, from `guess` (in a's local frame, where Bullet
+/// forms the Minkowski difference).
+inline PairPeerDepth bullet_pair_depth_from(const Ellipsoid& a, const Ellipsoid& b,
+                                            const btTransform& pose_a, const btTransform& pose_b,
+                                            const btVector3& guess) {
     const BulletEllipsoidShape shape_a(to_bullet(a.semi_axes()));
     const BulletEllipsoidShape shape_b(to_bullet(b.semi_axes()));
-    const btTransform pose_a = bullet_pose(a), pose_b = bullet_pose(b);
-    const btVector3 guess = to_bullet(b.center() - a.center());
     btGjkEpaSolver2::sResults results;
     const bool answered =
         btGjkEpaSolver2::Distance(&shape_a, pose_a, &shape_b, pose_b, guess, results) ||
@@ -32,9 +34,29 @@ inline PairPeerDepth bullet_pair_depth(const Ellipsoid& a, const Ellipsoid& b) {
     return {-double(results.distance), false};
 }
 
+inline PairPeerDepth bullet_pair_depth(const Ellipsoid& a, const Ellipsoid& b) {
+    const btTransform pose_a = bullet_pose(a), pose_b = bullet_pose(b);
+    return bullet_pair_depth_from(a, b, pose_a, pose_b, to_bullet(b.center() - a.center()));
+}
+
+/// Started from an earlier contact's normal: GJK's first support point is taken in the
+/// direction -guess of A - B, which for a separated pair is the minimiser n = -normal, so
+/// the guess is the normal in a's local frame.
+inline PairPeerDepth bullet_warm_pair_depth(const Ellipsoid& a, const Ellipsoid& b,
+                                            const glm::dvec3& normal) {
+    const btTransform pose_a = bullet_pose(a), pose_b = bullet_pose(b);
+    const btVector3 guess = pose_a.getBasis().transpose() * to_bullet(normal);
+    return bullet_pair_depth_from(a, b, pose_a, pose_b, guess);
+}
+
 /// The method, named after the precision it was built with ("bullet_float_gjk_epa").
 inline PairPeer bullet_pair_peer() {
     return {std::string("bullet_") + bullet_precision() + "_gjk_epa", bullet_pair_depth};
+}
+
+/// The same, started from the earlier contact's normal.
+inline WarmPairPeer bullet_warm_pair_peer() {
+    return {std::string("bullet_") + bullet_precision() + "_gjk_epa", bullet_warm_pair_depth};
 }
 
 }  // namespace trackphys::peers

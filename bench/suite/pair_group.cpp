@@ -3,9 +3,11 @@
 // double one), FCL's two solvers and MuJoCo's convex collider on the same families of pairs
 // (peers/ellipsoid_pair_peer_harness.hpp: 1000 pairs each, 40 with --quick), each pair
 // timed over 16 back-to-back calls and its depth checked against the long-double
-// reference; then ellipsoids_may_touch on pairs it rejects, by each certificate. Adds the
-// issue's four target lines, each met only while ours holds its depth contract on every
-// family (and the rejections only while every rejected pair is beyond reach).
+// reference; the car-like pairs again, started from their contacts a sub-step earlier
+// (ours and Bullet); then ellipsoids_may_touch on pairs it rejects, by each certificate.
+// Adds the four target lines, each met only while ours holds its depth contract on
+// every family (and the rejections only while every rejected pair is beyond reach), and
+// the warm start's, met only while the warm contacts hold it.
 
 #include <algorithm>
 #include <cmath>
@@ -131,6 +133,39 @@ void bench_pair_peers(BenchRun& run) {
         }
     }
 
+    // The car-like pairs again, each started from its contact one physics sub-step earlier
+    // (0.25 ms) under a relative motion drawn per pair (up to 20 m/s and 3 rad/s; see
+    // test::PairCaseGenerator::earlier): ours and Bullet's GJK/EPA given the same start.
+    run.progress(kGroup, "car-like, warm: the contacts a sub-step earlier");
+    const peers::WarmPairFamily warm = peers::make_warm_pairs(families.front(), 4040);
+    std::vector<double> turn = warm.turn;
+    std::sort(turn.begin(), turn.end());
+    const double turn_median = turn[turn.size() / 2], turn_p90 = turn[turn.size() * 9 / 10];
+    std::vector<peers::WarmPairPeer> warm_methods{peers::ours_warm_pair_peer()};
+#if TRACKPHYS_HAVE_BULLET
+    warm_methods.push_back(peers::bullet_warm_pair_peer());
+#endif
+    double warm_ns = 0.0, warm_error = 0.0;
+    bool warm_contract = true;
+    for (std::size_t m = 0; m < warm_methods.size(); ++m) {
+        const std::string name = "car-like, warm: " + warm_methods[m].name;
+        run.progress(kGroup, name);
+        const peers::PairScore s = peers::score(warm_methods[m], warm);
+        BenchRow& row = run.add(kGroup, name, s.median_ns,
+                                m ? "car-like, warm: trackphys" : "car_like: trackphys");
+        row.figures = {{"pairs", double(warm.family.cases.size())},
+                       {"err_max_m", s.max_error},
+                       {"failures", double(s.failures)},
+                       {"turn_median_rad", turn_median},
+                       {"turn_p90_rad", turn_p90}};
+        if (m > 0 && !s.worst.empty()) row.note = "worst " + s.worst;
+        if (m == 0) {
+            warm_ns = s.median_ns;
+            warm_error = s.max_error;
+            warm_contract = peers::holds_contract(s, warm.family);
+        }
+    }
+
     run.progress(kGroup, "rejections and their references");
     const RejectionSets rejections = rejection_sets(run.quick() ? 300 : 3000);
     const double spheres_ns = rejection_ns(rejections.by_spheres, run);
@@ -158,6 +193,13 @@ void bench_pair_peers(BenchRun& run) {
     run.add_target("ellipsoid pair, car-like: 150 ns / our median (" +
                        std::to_string(int(std::lround(ours_ns))) + " ns)",
                    150.0 / ours_ns, 1.0, contract, pair_evidence);
+    std::snprintf(evidence, sizeof evidence,
+                  "warm: err_max %.2g m over %zu car-like pairs; the minimiser turns %.2g rad "
+                  "(median), %.2g (90th percentile) in a sub-step",
+                  warm_error, warm.family.cases.size(), turn_median, turn_p90);
+    run.add_target("ellipsoid pair, car-like, warm start: 150 ns / our median (" +
+                       std::to_string(int(std::lround(warm_ns))) + " ns)",
+                   150.0 / warm_ns, 1.0, warm_contract, evidence);
     const double slower_rejection = std::max(spheres_ns, gap_ns);
     std::snprintf(evidence, sizeof evidence, "spheres %.1f ns, gap %.1f ns; %zu rejected pairs, %s",
                   spheres_ns, gap_ns, rejections.by_spheres.size() + rejections.by_gap.size(),

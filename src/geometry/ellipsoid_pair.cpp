@@ -94,11 +94,28 @@ bool unit_frame(const Ellipsoid& a, const Ellipsoid& b, double& scale, detail::P
     return true;
 }
 
+/// The warm descent's start in a's sorted frame for the previous contact's normal of the
+/// ordered pair (n = -normal points from a towards b), brought within the evaluation's
+/// range; false for a zero, infinite or NaN one, which takes the cold path.
+bool warm_start(const glm::dvec3& previous_normal, const glm::dmat3& axes, glm::dvec3& start) {
+    start = -(previous_normal * axes);  // A^T n
+    const double length2 = glm::dot(start, start);
+    if (length2 >= 0x1p-60 && length2 <= 0x1p60) return true;
+    if (std::isnan(length2)) return false;
+    const glm::dvec3 m = abs_each(start);
+    const double largest = std::max({m.x, m.y, m.z});
+    if (!(largest > 0.0 && largest <= std::numeric_limits<double>::max())) return false;
+    start /= largest;  // rare: a length outside 2^-30..2^30 or overflowing when squared
+    return true;
+}
+
 /// The contact of a and b, which come in key order; `swapped` when the caller's arguments
-/// were the other way round, so that the normal points the other way. The normal is turned
-/// here, before it leaves the registers: turning the returned Contact in memory makes the
-/// caller's wide loads wait on this function's narrow stores.
-Contact ordered_contact(const Ellipsoid& a, const Ellipsoid& b, bool swapped) {
+/// were the other way round, so that the normal points the other way. `solve` maps the
+/// frame to the solution (cold or warm). The normal is turned here, before it leaves the
+/// registers: turning the returned Contact in memory makes the caller's wide loads wait on
+/// this function's narrow stores.
+template <class Solve>
+Contact ordered_contact(const Ellipsoid& a, const Ellipsoid& b, bool swapped, Solve solve) {
     double scale;
     detail::PairFrame frame;
     if (!unit_frame(a, b, scale, frame)) {
@@ -106,7 +123,7 @@ Contact ordered_contact(const Ellipsoid& a, const Ellipsoid& b, bool swapped) {
         if (swapped) far.normal = -far.normal;
         return far;
     }
-    const detail::PairSolution s = detail::solve_pair(frame);
+    const detail::PairSolution s = solve(frame);
     const glm::dmat3& axes = a.sorted_axes();
     const glm::dvec3 extreme_a = a.center() + axes * s.extreme_a * scale;
     const glm::dvec3 extreme_b = b.center() + axes * s.extreme_b * scale;
@@ -115,11 +132,32 @@ Contact ordered_contact(const Ellipsoid& a, const Ellipsoid& b, bool swapped) {
     return {s.depth * scale, swapped ? towards_b : -towards_b, 0.5 * extreme_a + 0.5 * extreme_b};
 }
 
+/// The solver for the ordered pair (first, ...) started from the caller's previous normal,
+/// negated when the pair was swapped (so that (b, a, -normal) runs as (a, b, normal)).
+auto warm_solver(const Ellipsoid& first, const glm::dvec3& previous_normal, bool swapped) {
+    return [&first, &previous_normal, swapped](const detail::PairFrame& frame) {
+        glm::dvec3 start;
+        const glm::dvec3 normal = swapped ? -previous_normal : previous_normal;
+        return warm_start(normal, first.sorted_axes(), start) ? detail::solve_pair(frame, start)
+                                                              : detail::solve_pair(frame);
+    };
+}
+
+const auto cold_solver = [](const detail::PairFrame& frame) { return detail::solve_pair(frame); };
+
 }  // namespace
 
 Contact ellipsoid_ellipsoid_contact(const Ellipsoid& a, const Ellipsoid& b) {
     const bool swapped = key(b) < key(a);
-    return ordered_contact(swapped ? b : a, swapped ? a : b, swapped);
+    return ordered_contact(swapped ? b : a, swapped ? a : b, swapped, cold_solver);
+}
+
+Contact ellipsoid_ellipsoid_contact(const Ellipsoid& a, const Ellipsoid& b,
+                                    const glm::dvec3& previous_normal) {
+    const bool swapped = key(b) < key(a);
+    const Ellipsoid& first = swapped ? b : a;
+    return ordered_contact(first, swapped ? a : b, swapped,
+                           warm_solver(first, previous_normal, swapped));
 }
 
 bool ellipsoids_may_touch(const Ellipsoid& a, const Ellipsoid& b, double reach) {
@@ -142,14 +180,31 @@ bool ellipsoids_may_touch(const Ellipsoid& a, const Ellipsoid& b, double reach) 
 
 namespace detail {
 
-PairSolution pair_solution(const Ellipsoid& a, const Ellipsoid& b) {
-    const bool swap = key(b) < key(a);
+namespace {
+
+/// The solution as the public call's `solve` finds it, for the tests and the benchmark.
+template <class Solve>
+PairSolution ordered_solution(const Ellipsoid& a, const Ellipsoid& b, Solve solve) {
     double scale;
     PairFrame frame;
-    if (!unit_frame(swap ? b : a, swap ? a : b, scale, frame))
+    if (!unit_frame(a, b, scale, frame))
         return {0.0, glm::dvec3(0.0), glm::dvec3(0.0), glm::dvec3(0.0), PairPath::far_field, 0,
                 0.0};
-    return solve_pair(frame);
+    return solve(frame);
+}
+
+}  // namespace
+
+PairSolution pair_solution(const Ellipsoid& a, const Ellipsoid& b) {
+    const bool swap = key(b) < key(a);
+    return ordered_solution(swap ? b : a, swap ? a : b, cold_solver);
+}
+
+PairSolution pair_solution(const Ellipsoid& a, const Ellipsoid& b,
+                           const glm::dvec3& previous_normal) {
+    const bool swap = key(b) < key(a);
+    const Ellipsoid& first = swap ? b : a;
+    return ordered_solution(first, swap ? a : b, warm_solver(first, previous_normal, swap));
 }
 
 }  // namespace detail

@@ -622,17 +622,30 @@ Descent from_axes(PairFunction& f, Descent best, const PairFrame& frame) {
     return best;
 }
 
+/// Which certificate makes a descent's end the global minimum: separated or
+/// inscribed_balls, or searched when neither holds.
+PairPath certificate(const PairFunction& f, const Descent& result) {
+    const Sample& at = result.at;
+    if (result.converged && at.h < 0.0) return PairPath::separated;
+    if (result.converged && at.h <= f.inscribed(at) + kSearchTolerance)
+        return PairPath::inscribed_balls;
+    return PairPath::searched;
+}
+
+/// The solution at a descent's end. One Newton step of 1 / sqrt towards unit length: an
+/// evaluation's normalisation rounds a few times, and an axis-aligned minimiser should
+/// come out as that axis exactly.
+PairSolution solution(const Sample& at, PairPath path, int evaluations, double lower_bound) {
+    const dvec3 n = at.n * (1.5 - 0.5 * glm::dot(at.n, at.n));
+    return {at.h, n, at.xa, -at.xb, path, evaluations, lower_bound};
+}
+
 }  // namespace
 
 PairSolution solve_pair(const PairFrame& frame) {
     PairFunction f(frame);
     Descent result = descend(f, f.at(first_guess(frame, f.support_matrix_b())));
-    PairPath path = PairPath::searched;
-    const Sample& at = result.at;
-    if (result.converged && at.h < 0.0)
-        path = PairPath::separated;
-    else if (result.converged && at.h <= f.inscribed(at) + kSearchTolerance)
-        path = PairPath::inscribed_balls;
+    PairPath path = certificate(f, result);
     double lower_bound = result.at.h;
     if (path == PairPath::searched) {
         double unresolved = std::numeric_limits<double>::infinity();
@@ -640,10 +653,19 @@ PairSolution solve_pair(const PairFrame& frame) {
         lower_bound = std::min(result.at.h - kSearchTolerance, unresolved);
         if (unresolved < result.at.h - kSearchTolerance) path = PairPath::unproven;
     }
-    // One Newton step of 1 / sqrt towards unit length: an evaluation's normalisation rounds
-    // a few times, and an axis-aligned minimiser should come out as that axis exactly.
-    const dvec3 n = result.at.n * (1.5 - 0.5 * glm::dot(result.at.n, result.at.n));
-    return {result.at.h, n, result.at.xa, -result.at.xb, path, f.evaluations, lower_bound};
+    return solution(result.at, path, f.evaluations, lower_bound);
+}
+
+PairSolution solve_pair(const PairFrame& frame, const dvec3& start) {
+    PairFunction f(frame);
+    const Descent warm = descend(f, f.at(start));
+    const PairPath path = certificate(f, warm);
+    if (path != PairPath::searched) return solution(warm.at, path, f.evaluations, warm.at.h);
+    // Not certified: the cold call's path from its own first guess, so that no start can
+    // make the answer worse than the cold call's (it is then the cold call's, bit for bit).
+    PairSolution cold = solve_pair(frame);
+    cold.evaluations += f.evaluations;
+    return cold;
 }
 
 }  // namespace trackphys::detail

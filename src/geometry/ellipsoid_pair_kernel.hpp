@@ -50,8 +50,18 @@ struct PairSolution {
 /// with every component below 2^500 in magnitude.
 PairSolution solve_pair(const PairFrame& frame);
 
+/// The same minimum with the first descent started at `start` (a direction, |start| within
+/// 2^-30..2^30) instead of the first guess: a descent certified by either certificate is
+/// the answer; otherwise solve_pair(frame)'s, bit for bit, with the warm descent's
+/// evaluations counted too.
+PairSolution solve_pair(const PairFrame& frame, const glm::dvec3& start);
+
 /// How ellipsoid_ellipsoid_contact(a, b) establishes its answer, and how many evaluations
 /// of h it takes (for the tests and the benchmark).
 PairSolution pair_solution(const Ellipsoid& a, const Ellipsoid& b);
+
+/// How ellipsoid_ellipsoid_contact(a, b, previous_normal) establishes its answer.
+PairSolution pair_solution(const Ellipsoid& a, const Ellipsoid& b,
+                           const glm::dvec3& previous_normal);
 
 }  // namespace trackphys::detail

@@ -168,6 +168,21 @@ class PairCaseGenerator {
         return make(PairKind::car_like);
     }
 
+    /// c's pair one physics sub-step (10 ms / 40 = 0.25 ms) earlier, under a relative motion
+    /// drawn for it: a moves against b at up to 20 m/s and turns about its centre at up to
+    /// 3 rad/s, each in a uniform direction with a uniform magnitude. The earlier contact's
+    /// normal is a warm start for c.
+    PairCase earlier(const PairCase& c) {
+        constexpr double kSubStep = 0.01 / 40.0;
+        const glm::dvec3 velocity = unit_vector() * uniform(0.0, 20.0);
+        const glm::dvec3 axis = unit_vector();
+        const double rate = uniform(0.0, 3.0);
+        const glm::dquat turn = glm::angleAxis(-rate * kSubStep, axis);
+        const Ellipsoid a(c.a.center() - velocity * kSubStep,
+                          glm::normalize(turn * c.a.orientation()), c.a.semi_axes());
+        return {a, c.b, c.kind};
+    }
+
     /// The support point of e in direction n (world).
     static glm::dvec3 support_point(const Ellipsoid& e, const glm::dvec3& n) {
         const glm::dvec3 local = n * e.sorted_axes();

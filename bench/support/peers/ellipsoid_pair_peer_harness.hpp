@@ -15,11 +15,14 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <functional>
 #include <string>
 #include <vector>
+
+#include <glm/geometric.hpp>
 
 #include "support/ellipsoid_pair_cases.hpp"
 #include "support/ellipsoid_pair_reference.hpp"
@@ -49,15 +52,17 @@ struct PairScore {
     std::string worst;  ///< the pair with the largest error
 };
 
-inline PairScore score(const PairPeer& peer, const PairFamily& family) {
+/// `call(i)` (pair i's depth) timed over 16 back-to-back calls per pair of the family and
+/// scored against the reference.
+template <class Call>
+PairScore score_calls(const PairFamily& family, const Call& call) {
     constexpr int kPairRepeat = 16;
     PairScore s;
     std::vector<double> ns;
     for (std::size_t i = 0; i < family.cases.size(); ++i) {
-        const test::PairCase& c = family.cases[i];
         PairPeerDepth answer{};
         const auto start = std::chrono::steady_clock::now();
-        for (int k = 0; k < kPairRepeat; ++k) answer = peer.depth(c.a, c.b);
+        for (int k = 0; k < kPairRepeat; ++k) answer = call(i);
         const auto stop = std::chrono::steady_clock::now();
         ns.push_back(std::chrono::duration<double, std::nano>(stop - start).count() / kPairRepeat);
         if (answer.failed) {
@@ -78,10 +83,55 @@ inline PairScore score(const PairPeer& peer, const PairFamily& family) {
     return s;
 }
 
+inline PairScore score(const PairPeer& peer, const PairFamily& family) {
+    return score_calls(
+        family, [&](std::size_t i) { return peer.depth(family.cases[i].a, family.cases[i].b); });
+}
+
+/// A method started from the normal of the pair's earlier contact (a warm start).
+struct WarmPairPeer {
+    std::string name;
+    std::function<PairPeerDepth(const Ellipsoid&, const Ellipsoid&, const glm::dvec3&)> depth;
+};
+
+/// A family's pairs with, for each, the normal of its contact one physics sub-step earlier
+/// (test::PairCaseGenerator::earlier) and the angle between the two contacts' normals.
+struct WarmPairFamily {
+    PairFamily family;
+    std::vector<glm::dvec3> starts;
+    std::vector<double> turn;  ///< rad
+};
+
+inline WarmPairFamily make_warm_pairs(const PairFamily& family, std::uint64_t seed) {
+    test::PairCaseGenerator generator(seed);
+    WarmPairFamily warm{family, {}, {}};
+    for (const test::PairCase& c : family.cases) {
+        const test::PairCase before = generator.earlier(c);
+        const glm::dvec3 start = ellipsoid_ellipsoid_contact(before.a, before.b).normal;
+        const glm::dvec3 now = ellipsoid_ellipsoid_contact(c.a, c.b).normal;
+        warm.starts.push_back(start);
+        warm.turn.push_back(std::atan2(glm::length(glm::cross(start, now)), glm::dot(start, now)));
+    }
+    return warm;
+}
+
+inline PairScore score(const WarmPairPeer& peer, const WarmPairFamily& warm) {
+    return score_calls(warm.family, [&](std::size_t i) {
+        return peer.depth(warm.family.cases[i].a, warm.family.cases[i].b, warm.starts[i]);
+    });
+}
+
 /// Ours, as a method of the comparison.
 inline PairPeer ours_pair_peer() {
     return {"trackphys", [](const Ellipsoid& a, const Ellipsoid& b) {
                 return PairPeerDepth{ellipsoid_ellipsoid_contact(a, b).depth, false};
+            }};
+}
+
+/// Ours started from the earlier contact's normal.
+inline WarmPairPeer ours_warm_pair_peer() {
+    return {"trackphys", [](const Ellipsoid& a, const Ellipsoid& b, const glm::dvec3& start) {
+                return PairPeerDepth{ellipsoid_ellipsoid_contact(a, b, start).depth, false};
             }};
 }
 

@@ -21,6 +21,19 @@ namespace trackphys {
 /// NaN, never throws.
 TRACKPHYS_API Contact ellipsoid_ellipsoid_contact(const Ellipsoid& a, const Ellipsoid& b);
 
+/// ellipsoid_ellipsoid_contact(a, b) started from the normal of an earlier contact of the
+/// same pair (its `normal`, as returned for (a, b)): the same contract (the global minimum,
+/// certified or found by the same search), usually two evaluations of h instead of three
+/// when the pair has moved little since (docs/ellipsoid_pair.md, "Warm start"). A zero,
+/// non-finite or misleading start costs time, never accuracy. The descent starts at the
+/// previous minimiser and ends when it is certified (apart, or shallow); when it is not, the
+/// call answers as the cold one does, bit for bit. A certified answer is not the cold call's
+/// bits: both descents end at the same minimiser within ~2^-40 rad, within the same
+/// contract. Swapping the arguments and negating the start negates the normal and changes
+/// nothing else, bit for bit.
+TRACKPHYS_API Contact ellipsoid_ellipsoid_contact(const Ellipsoid& a, const Ellipsoid& b,
+                                                  const glm::dvec3& previous_normal);
+
 /// Whether a and b may come within `reach` (m, >= 0) of each other: false only when a
 /// certificate proves them farther apart, i.e. ellipsoid_ellipsoid_contact(a, b).depth
 /// < -reach; true proves nothing. The certificates, cheapest first: the bounding spheres,
