@@ -4,8 +4,11 @@
 #include <array>
 #include <bit>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <span>
+#include <stdexcept>
 
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
@@ -13,9 +16,9 @@
 #include "geometry/ellipsoid_pair_kernel.hpp"
 #include "trackphys/math/types.hpp"
 
-// The public entry: orders the pair, moves it into the first ellipsoid's sorted frame at
-// unit scale (a rotation and a power of two, which keep the answer) and maps the solution
-// back (docs/ellipsoid_pair.md).
+// The public entries: each orders the pair, moves it into the first ellipsoid's sorted frame
+// at unit scale (a rotation and a power of two, which keep the answer) and maps the solution
+// back (docs/ellipsoid_pair.md); the batch solves the frames' common path in lanes.
 
 namespace trackphys {
 namespace {
@@ -94,19 +97,12 @@ bool unit_frame(const Ellipsoid& a, const Ellipsoid& b, double& scale, detail::P
     return true;
 }
 
-/// The contact of a and b, which come in key order; `swapped` when the caller's arguments
-/// were the other way round, so that the normal points the other way. The normal is turned
-/// here, before it leaves the registers: turning the returned Contact in memory makes the
-/// caller's wide loads wait on this function's narrow stores.
-Contact ordered_contact(const Ellipsoid& a, const Ellipsoid& b, bool swapped) {
-    double scale;
-    detail::PairFrame frame;
-    if (!unit_frame(a, b, scale, frame)) {
-        Contact far = far_field(a, b, scale);
-        if (swapped) far.normal = -far.normal;
-        return far;
-    }
-    const detail::PairSolution s = detail::solve_pair(frame);
+/// A solution in a's sorted frame at unit scale back in world space; `swapped` when the
+/// caller's arguments were the other way round, so that the normal points the other way.
+/// The normal is turned here, before it leaves the registers: turning the returned Contact
+/// in memory makes the caller's wide loads wait on this function's narrow stores.
+Contact world_contact(const Ellipsoid& a, const Ellipsoid& b, bool swapped, double scale,
+                      const detail::PairSolution& s) {
     const glm::dmat3& axes = a.sorted_axes();
     const glm::dvec3 extreme_a = a.center() + axes * s.extreme_a * scale;
     const glm::dvec3 extreme_b = b.center() + axes * s.extreme_b * scale;
@@ -115,11 +111,74 @@ Contact ordered_contact(const Ellipsoid& a, const Ellipsoid& b, bool swapped) {
     return {s.depth * scale, swapped ? towards_b : -towards_b, 0.5 * extreme_a + 0.5 * extreme_b};
 }
 
+/// The contact of a and b, which come in key order (`swapped` as for world_contact).
+Contact ordered_contact(const Ellipsoid& a, const Ellipsoid& b, bool swapped) {
+    double scale;
+    detail::PairFrame frame;
+    if (!unit_frame(a, b, scale, frame)) {
+        Contact far = far_field(a, b, scale);
+        if (swapped) far.normal = -far.normal;
+        return far;
+    }
+    return world_contact(a, b, swapped, scale, detail::solve_pair(frame));
+}
+
+/// A pair of the batch in key order, and its frame's scale.
+struct OrderedPair {
+    const Ellipsoid* a;
+    const Ellipsoid* b;
+    bool swapped;
+    double scale;
+    std::size_t index;  // in the batch
+};
+
+// The batch runs in chunks of this many pairs, its frames and solutions on the stack.
+constexpr std::size_t kChunk = 64;
+
+/// ellipsoid_ellipsoid_contacts over one chunk: the frames in scalar code (a far-field pair
+/// takes the single call), the common path in lanes, solve_pair for the pairs it leaves.
+void contacts_chunk(std::span<const Ellipsoid> a, std::span<const Ellipsoid> b,
+                    std::span<Contact> contacts) {
+    std::array<OrderedPair, kChunk> pairs;
+    std::array<detail::PairFrame, kChunk> frames;
+    std::array<detail::PairSolution, kChunk> solutions;
+    std::array<bool, kChunk> kept;
+    std::size_t framed = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        const bool swapped = key(b[i]) < key(a[i]);
+        OrderedPair& p = pairs[framed];
+        p = {swapped ? &b[i] : &a[i], swapped ? &a[i] : &b[i], swapped, 0.0, i};
+        if (unit_frame(*p.a, *p.b, p.scale, frames[framed]))
+            ++framed;
+        else
+            contacts[i] = ordered_contact(*p.a, *p.b, swapped);
+    }
+    detail::solve_pairs_on_common_path(std::span(frames.data(), framed),
+                                       std::span(solutions.data(), framed),
+                                       std::span(kept.data(), framed));
+    for (std::size_t j = 0; j < framed; ++j) {
+        const OrderedPair& p = pairs[j];
+        if (!kept[j]) solutions[j] = detail::solve_pair(frames[j]);
+        contacts[p.index] = world_contact(*p.a, *p.b, p.swapped, p.scale, solutions[j]);
+    }
+}
+
 }  // namespace
 
 Contact ellipsoid_ellipsoid_contact(const Ellipsoid& a, const Ellipsoid& b) {
     const bool swapped = key(b) < key(a);
     return ordered_contact(swapped ? b : a, swapped ? a : b, swapped);
+}
+
+void ellipsoid_ellipsoid_contacts(std::span<const Ellipsoid> a, std::span<const Ellipsoid> b,
+                                  std::span<Contact> contacts) {
+    if (a.size() != b.size() || a.size() != contacts.size())
+        throw std::invalid_argument("ellipsoid_ellipsoid_contacts: spans of different sizes");
+    for (std::size_t start = 0; start < a.size(); start += kChunk) {
+        const std::size_t count = std::min(kChunk, a.size() - start);
+        contacts_chunk(a.subspan(start, count), b.subspan(start, count),
+                       contacts.subspan(start, count));
+    }
 }
 
 bool ellipsoids_may_touch(const Ellipsoid& a, const Ellipsoid& b, double reach) {
@@ -142,11 +201,15 @@ bool ellipsoids_may_touch(const Ellipsoid& a, const Ellipsoid& b, double reach) 
 
 namespace detail {
 
-PairSolution pair_solution(const Ellipsoid& a, const Ellipsoid& b) {
+bool pair_frame(const Ellipsoid& a, const Ellipsoid& b, PairFrame& frame) {
     const bool swap = key(b) < key(a);
     double scale;
+    return unit_frame(swap ? b : a, swap ? a : b, scale, frame);
+}
+
+PairSolution pair_solution(const Ellipsoid& a, const Ellipsoid& b) {
     PairFrame frame;
-    if (!unit_frame(swap ? b : a, swap ? a : b, scale, frame))
+    if (!pair_frame(a, b, frame))
         return {0.0, glm::dvec3(0.0), glm::dvec3(0.0), glm::dvec3(0.0), PairPath::far_field, 0,
                 0.0};
     return solve_pair(frame);
