@@ -177,6 +177,11 @@ void ellipsoid_ellipsoid_contacts(std::span<const Ellipsoid> a, std::span<const 
                                   std::span<Contact> contacts) {
     if (a.size() != b.size() || a.size() != contacts.size())
         throw std::invalid_argument("ellipsoid_ellipsoid_contacts: spans of different sizes");
+    // One pair: the single call, without the chunk's arrays and the lanes' dispatch.
+    if (a.size() == 1) {
+        contacts[0] = ellipsoid_ellipsoid_contact(a[0], b[0]);
+        return;
+    }
     for (std::size_t start = 0; start < a.size(); start += kChunk) {
         const std::size_t count = std::min(kChunk, a.size() - start);
         contacts_chunk(a.subspan(start, count), b.subspan(start, count),

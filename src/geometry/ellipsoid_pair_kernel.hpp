@@ -83,7 +83,8 @@ PairSolution pair_solution(const Ellipsoid& a, const Ellipsoid& b);
 /// guess, definite Newton steps that decrease h, the quadratic-region stop and the separated
 /// or inscribed-balls certificate, four frames at a time in AVX2 lanes where use_four_lanes(),
 /// two otherwise. kept[i] says whether frames[i] stayed on that path: then solutions[i] is
-/// solve_pair(frames[i]) bit for bit; else solutions[i] is unset and the caller solves it.
+/// solve_pair(frames[i]) bit for bit; else (and for a lone last frame, which the lanes would
+/// take longer over than solve_pair) solutions[i] is unset and the caller solves it.
 /// The three spans have one size.
 void solve_pairs_on_common_path(std::span<const PairFrame> frames,
                                 std::span<PairSolution> solutions, std::span<bool> kept);

@@ -13,8 +13,9 @@
 namespace trackphys::detail {
 namespace {
 
-/// The frames N at a time; fewer than N at the end repeat the last frame in the lanes left
-/// over (their answers are dropped).
+/// The frames N at a time; two or three at the end repeat the last frame in the lanes left
+/// over (their answers are dropped). A lone last frame is left to the caller's solve_pair,
+/// which takes less time than a block of lanes for one pair.
 template <int N>
 [[gnu::always_inline]] inline void solve_in_lanes(std::span<const PairFrame> frames,
                                                   std::span<PairSolution> solutions,
@@ -22,6 +23,10 @@ template <int N>
     PairSolution spare;
     for (std::size_t start = 0; start < frames.size(); start += N) {
         const std::size_t count = std::min<std::size_t>(N, frames.size() - start);
+        if (count == 1) {
+            kept[start] = false;
+            break;
+        }
         const PairFrame* block[N];
         PairSolution* out[N];
         for (std::size_t k = 0; k < N; ++k) {
