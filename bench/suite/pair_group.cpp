@@ -4,20 +4,26 @@
 // (peers/ellipsoid_pair_peer_harness.hpp: 1000 pairs each, 40 with --quick), each pair
 // timed over 16 back-to-back calls and its depth checked against the long-double
 // reference; the car-like pairs again, started from their contacts a sub-step earlier
-// (ours and Bullet); then ellipsoids_may_touch on pairs it rejects, by each certificate.
-// Adds the four target lines, each met only while ours holds its depth contract on
-// every family (and the rejections only while every rejected pair is beyond reach), and
-// the warm start's, met only while the warm contacts hold it.
+// (ours and Bullet); then the batched call (ellipsoid_ellipsoid_contacts) on each family,
+// checked bit for bit against the single call; then ellipsoids_may_touch on pairs it
+// rejects, by each certificate. Adds the four target lines, each met only while
+// ours holds its depth contract on every family (and the rejections only while every
+// rejected pair is beyond reach); the warm start's, met only while the warm contacts hold
+// it; and the batch's, met only while its contacts are also the single call's.
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <span>
 #include <string>
 #include <vector>
 
 #include <glm/geometric.hpp>
 
 #include "bench_suite.hpp"
+#include "geometry/ellipsoid_pair_kernel.hpp"
 #include "peers/ellipsoid_pair_peer_harness.hpp"
 #include "support/ellipsoid_pair_cases.hpp"
 #include "support/ellipsoid_pair_reference.hpp"
@@ -80,6 +86,85 @@ double rejection_ns(const std::vector<test::PairCase>& cases, const BenchRun& ru
             i = i + 1 == cases.size() ? 0 : i + 1;
         },
         int(cases.size()), run.batches(21, 101));
+}
+
+/// Pairs as the batched call takes them.
+struct PairLists {
+    std::vector<Ellipsoid> a, b;
+    std::vector<double> reference;  ///< the long-double depth of each pair
+};
+
+/// The family's pairs; with `unsearched`, only those the single call certifies without its
+/// search (the typical pairs, whose time the single call's median measures).
+PairLists pair_lists(const peers::PairFamily& family, bool unsearched) {
+    PairLists lists;
+    for (std::size_t i = 0; i < family.cases.size(); ++i) {
+        const test::PairCase& c = family.cases[i];
+        const detail::PairPath path = detail::pair_solution(c.a, c.b).path;
+        if (unsearched &&
+            (path == detail::PairPath::searched || path == detail::PairPath::unproven))
+            continue;
+        lists.a.push_back(c.a);
+        lists.b.push_back(c.b);
+        lists.reference.push_back(family.reference[i]);
+    }
+    return lists;
+}
+
+bool same_bits(const Contact& x, const Contact& y) {
+    const auto b = [](double v) { return std::bit_cast<std::uint64_t>(v); };
+    return b(x.depth) == b(y.depth) && b(x.normal.x) == b(y.normal.x) &&
+           b(x.normal.y) == b(y.normal.y) && b(x.normal.z) == b(y.normal.z) &&
+           b(x.point.x) == b(y.point.x) && b(x.point.y) == b(y.point.y) &&
+           b(x.point.z) == b(y.point.z);
+}
+
+/// The batched call on a list of pairs: whether every contact is the single call's bit for
+/// bit, its depth's largest error against the reference, and the time per pair (the median
+/// of repeated passes over the whole list, divided by its length) of one call over the list,
+/// of calls of eight pairs (a car pair's worth) and of the single call pair by pair, the three
+/// taking turns pass by pass.
+struct BatchScore {
+    bool same_bits = true;
+    double max_error = 0.0, batch_ns = 0.0, eights_ns = 0.0, single_ns = 0.0;
+};
+
+BatchScore score_batch(const PairLists& lists, const BenchRun& run) {
+    const std::size_t count = lists.a.size();
+    std::vector<Contact> contacts(count);
+    ellipsoid_ellipsoid_contacts(lists.a, lists.b, contacts);
+    BatchScore s;
+    for (std::size_t i = 0; i < count; ++i) {
+        if (!same_bits(contacts[i], ellipsoid_ellipsoid_contact(lists.a[i], lists.b[i])))
+            s.same_bits = false;
+        const double error = std::abs(contacts[i].depth - lists.reference[i]);
+        s.max_error = std::isnan(error) ? INFINITY : std::max(s.max_error, error);
+    }
+    const std::span<const Ellipsoid> a(lists.a), b(lists.b);
+    const std::span<Contact> out(contacts);
+    const std::vector<double> ns = median_call_ns_in_turns(
+        {[&] {
+             ellipsoid_ellipsoid_contacts(a, b, out);
+             keep(contacts.front());
+         },
+         [&] {
+             for (std::size_t start = 0; start < count; start += 8) {
+                 const std::size_t n = std::min<std::size_t>(8, count - start);
+                 ellipsoid_ellipsoid_contacts(a.subspan(start, n), b.subspan(start, n),
+                                              out.subspan(start, n));
+             }
+             keep(contacts.front());
+         },
+         [&] {
+             for (std::size_t i = 0; i < count; ++i)
+                 out[i] = ellipsoid_ellipsoid_contact(a[i], b[i]);
+             keep(contacts.front());
+         }},
+        1, run.batches(5, 21));
+    s.batch_ns = ns[0] / double(count);
+    s.eights_ns = ns[1] / double(count);
+    s.single_ns = ns[2] / double(count);
+    return s;
 }
 
 }  // namespace
@@ -166,6 +251,36 @@ void bench_pair_peers(BenchRun& run) {
         }
     }
 
+    // The batch on every family, and on the car-like pairs certified without a search: the
+    // mean over a whole family is mostly its few searched pairs (2% of the car-like ones take 80-90%
+    // of its time), which the single call's median leaves out.
+    bool batch_same = true;
+    double batch_car_like_ns = 0.0, batch_car_like_whole_ns = 0.0;
+    for (const peers::PairFamily& family : families) {
+        const std::string name = test::pair_kind_name(family.kind);
+        for (const bool unsearched : {false, true}) {
+            if (unsearched && family.kind != test::PairKind::car_like) continue;
+            const std::string pairs = name + (unsearched ? ", unsearched" : "");
+            run.progress(kGroup, pairs + ": trackphys batch");
+            const PairLists lists = pair_lists(family, unsearched);
+            const BatchScore s = score_batch(lists, run);
+            batch_same = batch_same && s.same_bits;
+            const auto figures = [&](BenchRow& row) {
+                row.figures = {{"pairs", double(lists.a.size())},
+                               {"err_max_m", s.max_error},
+                               {"same_bits", s.same_bits ? 1.0 : 0.0}};
+                if (!s.same_bits) row.note = "NOT the single call's bits";
+            };
+            const std::string single = pairs + ": trackphys one call a pair";
+            figures(run.add(kGroup, single, s.single_ns));
+            figures(run.add(kGroup, pairs + ": trackphys batch", s.batch_ns, single));
+            if (family.kind == test::PairKind::car_like) {
+                figures(run.add(kGroup, pairs + ": trackphys batches of 8", s.eights_ns, single));
+                (unsearched ? batch_car_like_ns : batch_car_like_whole_ns) = s.batch_ns;
+            }
+        }
+    }
+
     run.progress(kGroup, "rejections and their references");
     const RejectionSets rejections = rejection_sets(run.quick() ? 300 : 3000);
     const double spheres_ns = rejection_ns(rejections.by_spheres, run);
@@ -200,6 +315,14 @@ void bench_pair_peers(BenchRun& run) {
     run.add_target("ellipsoid pair, car-like, warm start: 150 ns / our median (" +
                        std::to_string(int(std::lround(warm_ns))) + " ns)",
                    150.0 / warm_ns, 1.0, warm_contract, evidence);
+    std::snprintf(evidence, sizeof evidence,
+                  "; car-like pairs certified without a search (the whole family, searches "
+                  "included: %.0f ns); the batch's contacts %s the single call's",
+                  batch_car_like_whole_ns, batch_same ? "are" : "are NOT");
+    run.add_target("ellipsoid pair, car-like, batched: 150 ns / our time per pair (" +
+                       std::to_string(int(std::lround(batch_car_like_ns))) + " ns)",
+                   150.0 / batch_car_like_ns, 1.0, contract && batch_same,
+                   pair_evidence + evidence);
     const double slower_rejection = std::max(spheres_ns, gap_ns);
     std::snprintf(evidence, sizeof evidence, "spheres %.1f ns, gap %.1f ns; %zu rejected pairs, %s",
                   spheres_ns, gap_ns, rejections.by_spheres.size() + rejections.by_gap.size(),

@@ -4,8 +4,11 @@
 #include <array>
 #include <bit>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <span>
+#include <stdexcept>
 
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
@@ -13,9 +16,9 @@
 #include "geometry/ellipsoid_pair_kernel.hpp"
 #include "trackphys/math/types.hpp"
 
-// The public entry: orders the pair, moves it into the first ellipsoid's sorted frame at
-// unit scale (a rotation and a power of two, which keep the answer) and maps the solution
-// back (docs/ellipsoid_pair.md).
+// The public entries: each orders the pair, moves it into the first ellipsoid's sorted frame
+// at unit scale (a rotation and a power of two, which keep the answer) and maps the solution
+// back (docs/ellipsoid_pair.md); the batch solves the frames' common path in lanes.
 
 namespace trackphys {
 namespace {
@@ -109,11 +112,25 @@ bool warm_start(const glm::dvec3& previous_normal, const glm::dmat3& axes, glm::
     return true;
 }
 
-/// The contact of a and b, which come in key order; `swapped` when the caller's arguments
-/// were the other way round, so that the normal points the other way. `solve` maps the
-/// frame to the solution (cold or warm). The normal is turned here, before it leaves the
-/// registers: turning the returned Contact in memory makes the caller's wide loads wait on
-/// this function's narrow stores.
+/// A solution in a's sorted frame at unit scale back in world space; `swapped` when the
+/// caller's arguments were the other way round, so that the normal points the other way.
+/// The normal is turned here, before it leaves the registers: turning the returned Contact
+/// in memory makes the caller's wide loads wait on this function's narrow stores. Forced
+/// inline: as a call between solve_pair and the single call's return it cost 31 instructions
+/// a pair.
+[[gnu::always_inline]] inline Contact world_contact(const Ellipsoid& a, const Ellipsoid& b,
+                                                    bool swapped, double scale,
+                                                    const detail::PairSolution& s) {
+    const glm::dmat3& axes = a.sorted_axes();
+    const glm::dvec3 extreme_a = a.center() + axes * s.extreme_a * scale;
+    const glm::dvec3 extreme_b = b.center() + axes * s.extreme_b * scale;
+    const glm::dvec3 towards_b = axes * s.n;  // the normal of the swapped pair
+    // Halves first: the sum of two points near the largest double would overflow.
+    return {s.depth * scale, swapped ? towards_b : -towards_b, 0.5 * extreme_a + 0.5 * extreme_b};
+}
+
+/// The contact of a and b, which come in key order (`swapped` as for world_contact); `solve`
+/// maps the frame to the solution (cold or warm).
 template <class Solve>
 Contact ordered_contact(const Ellipsoid& a, const Ellipsoid& b, bool swapped, Solve solve) {
     double scale;
@@ -123,13 +140,7 @@ Contact ordered_contact(const Ellipsoid& a, const Ellipsoid& b, bool swapped, So
         if (swapped) far.normal = -far.normal;
         return far;
     }
-    const detail::PairSolution s = solve(frame);
-    const glm::dmat3& axes = a.sorted_axes();
-    const glm::dvec3 extreme_a = a.center() + axes * s.extreme_a * scale;
-    const glm::dvec3 extreme_b = b.center() + axes * s.extreme_b * scale;
-    const glm::dvec3 towards_b = axes * s.n;  // the normal of the swapped pair
-    // Halves first: the sum of two points near the largest double would overflow.
-    return {s.depth * scale, swapped ? towards_b : -towards_b, 0.5 * extreme_a + 0.5 * extreme_b};
+    return world_contact(a, b, swapped, scale, solve(frame));
 }
 
 /// The solver for the ordered pair (first, ...) started from the caller's previous normal,
@@ -145,6 +156,46 @@ auto warm_solver(const Ellipsoid& first, const glm::dvec3& previous_normal, bool
 
 const auto cold_solver = [](const detail::PairFrame& frame) { return detail::solve_pair(frame); };
 
+/// A pair of the batch in key order, and its frame's scale.
+struct OrderedPair {
+    const Ellipsoid* a;
+    const Ellipsoid* b;
+    bool swapped;
+    double scale;
+    std::size_t index;  // in the batch
+};
+
+// The batch runs in chunks of this many pairs, its frames and solutions on the stack.
+constexpr std::size_t kChunk = 64;
+
+/// ellipsoid_ellipsoid_contacts over one chunk: the frames in scalar code (a far-field pair
+/// takes the single call), the common path in lanes, solve_pair for the pairs it leaves.
+void contacts_chunk(std::span<const Ellipsoid> a, std::span<const Ellipsoid> b,
+                    std::span<Contact> contacts) {
+    std::array<OrderedPair, kChunk> pairs;
+    std::array<detail::PairFrame, kChunk> frames;
+    std::array<detail::PairSolution, kChunk> solutions;
+    std::array<bool, kChunk> kept;
+    std::size_t framed = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        const bool swapped = key(b[i]) < key(a[i]);
+        OrderedPair& p = pairs[framed];
+        p = {swapped ? &b[i] : &a[i], swapped ? &a[i] : &b[i], swapped, 0.0, i};
+        if (unit_frame(*p.a, *p.b, p.scale, frames[framed]))
+            ++framed;
+        else
+            contacts[i] = ellipsoid_ellipsoid_contact(a[i], b[i]);
+    }
+    detail::solve_pairs_on_common_path(std::span(frames.data(), framed),
+                                       std::span(solutions.data(), framed),
+                                       std::span(kept.data(), framed));
+    for (std::size_t j = 0; j < framed; ++j) {
+        const OrderedPair& p = pairs[j];
+        if (!kept[j]) solutions[j] = detail::solve_pair(frames[j]);
+        contacts[p.index] = world_contact(*p.a, *p.b, p.swapped, p.scale, solutions[j]);
+    }
+}
+
 }  // namespace
 
 Contact ellipsoid_ellipsoid_contact(const Ellipsoid& a, const Ellipsoid& b) {
@@ -158,6 +209,22 @@ Contact ellipsoid_ellipsoid_contact(const Ellipsoid& a, const Ellipsoid& b,
     const Ellipsoid& first = swapped ? b : a;
     return ordered_contact(first, swapped ? a : b, swapped,
                            warm_solver(first, previous_normal, swapped));
+}
+
+void ellipsoid_ellipsoid_contacts(std::span<const Ellipsoid> a, std::span<const Ellipsoid> b,
+                                  std::span<Contact> contacts) {
+    if (a.size() != b.size() || a.size() != contacts.size())
+        throw std::invalid_argument("ellipsoid_ellipsoid_contacts: spans of different sizes");
+    // One pair: the single call, without the chunk's arrays and the lanes' dispatch.
+    if (a.size() == 1) {
+        contacts[0] = ellipsoid_ellipsoid_contact(a[0], b[0]);
+        return;
+    }
+    for (std::size_t start = 0; start < a.size(); start += kChunk) {
+        const std::size_t count = std::min(kChunk, a.size() - start);
+        contacts_chunk(a.subspan(start, count), b.subspan(start, count),
+                       contacts.subspan(start, count));
+    }
 }
 
 bool ellipsoids_may_touch(const Ellipsoid& a, const Ellipsoid& b, double reach) {
@@ -194,6 +261,12 @@ PairSolution ordered_solution(const Ellipsoid& a, const Ellipsoid& b, Solve solv
 }
 
 }  // namespace
+
+bool pair_frame(const Ellipsoid& a, const Ellipsoid& b, PairFrame& frame) {
+    const bool swap = key(b) < key(a);
+    double scale;
+    return unit_frame(swap ? b : a, swap ? a : b, scale, frame);
+}
 
 PairSolution pair_solution(const Ellipsoid& a, const Ellipsoid& b) {
     const bool swap = key(b) < key(a);

@@ -74,25 +74,7 @@ struct Descent {
     bool converged;
 };
 
-// A descent stops when its Newton step is this short (rad): the value is then exact to
-// rounding (the error in h is quadratic in the step) and the direction to ~1e-12.
-constexpr double kStepTolerance = 0x1p-40;
-// Longest step of a descent (rad): Newton's quadratic model is trusted this far.
-constexpr double kTrustRadius = 0.5;
-// Newton steps shorter than this (rad), with a positive-definite Hessian, are taken
-// without a line search. Newton's error after a step of length L is about K L^2, K
-// estimated from the step before as L / L_prev^2: a step that leaves it below
-// kDirectionTolerance, or is itself shorter than kLastStep (~2^-52 rad after it even with no
-// estimate), is the last, and the descent ends at its second-order model
-// (PairFunction::stepped) without evaluating h there.
-constexpr double kQuadraticRegion = 0x1p-20;
-constexpr double kDirectionTolerance = 0x1p-40;
-constexpr double kLastStep = 0x1p-26;
-constexpr int kDescentCap = 64;
 constexpr int kHalvingCap = 40;
-// The search drops a square whose lower bound is within this of the best value (unit
-// scale: 2^-37 of the larger semi-axis, 7e-12 of it); the answer is then exact to it.
-constexpr double kSearchTolerance = 0x1p-37;
 // Squares are not split below this half-size (1e-9 rad), nor is the search run past this
 // many evaluations (a near-constant h, as of two equal spheres about one centre, defeats
 // any bound; its minimum is then as good as any value). A needle's valley reaches it too,
@@ -134,6 +116,8 @@ class PairFunction {
     /// The radius of the ball inside K tangent at p(n): r_min,A^2 / a + r_min,B^2 / b.
     double inscribed(const Sample& s) const { return ra2_.z * s.inv_a + rb2_.z * s.inv_b; }
 
+    // Lane twin: PairLanes::at (ellipsoid_pair_lanes.hpp), the same operations
+    // in the same order; the EllipsoidPairBatch tests fail when they differ.
     /// The sample at the direction of m (|m| within 2^-30..2^30: with radii of 2^-200..2,
     /// l^2 A^2 B^2 below stays a normal number).
     /// One division serves the three inverses: with l = |m|, A = a(m) and B = b(m),
@@ -168,6 +152,8 @@ class PairFunction {
         return s;
     }
 
+    // Lane twin: PairLanes::definite_step (ellipsoid_pair_lanes.hpp), the same operations
+    // in the same order; the EllipsoidPairBatch tests fail when they differ.
     /// The Newton step on the sphere at s, when the Hessian there is positive definite with
     /// its least eigenvalue above `floor`: false otherwise. No tangent basis: the Hessian of
     /// h on R^3, H = (D_A^2 - x_A x_A^T) / a + (M_B - x_B x_B^T) / b, has n in its kernel,
@@ -257,6 +243,8 @@ class PairFunction {
         return k;
     }
 
+    // Lane twin: PairLanes::stepped (ellipsoid_pair_lanes.hpp), the same operations
+    // in the same order; the EllipsoidPairBatch tests fail when they differ.
     /// The sample at n + step for a Newton step short enough (below 2^-20 rad) that its
     /// second-order model is exact to rounding: h by the model's minimum h + g.step / 2
     /// (g = p - h n, and Hess step = -g; its error is the third order, ~2^-60), the support
@@ -292,6 +280,8 @@ class PairFunction {
 
     static dvec3 cofactor(const dvec3& r) { return {r.y * r.z, r.x * r.z, r.x * r.y}; }
 
+    // Lane twin: PairLanes' constructor (ellipsoid_pair_lanes.hpp), the same operations
+    // in the same order; the EllipsoidPairBatch tests fail when they differ.
     static std::array<double, 6> support_matrix(const glm::dmat3& axes, const dvec3& r2) {
         const auto entry = [&](int i, int j) {
             return r2.x * axes[0][i] * axes[0][j] + r2.y * axes[1][i] * axes[1][j] +
@@ -344,6 +334,8 @@ dvec3 shifted_step(const PairFunction& f, const Sample& s) {
     return s1 * t1 + s2 * t2;
 }
 
+// Lane twin: PairLanes::solve's loop (ellipsoid_pair_lanes.hpp), the same operations
+// in the same order; the EllipsoidPairBatch tests fail when they differ.
 /// The start is taken by reference: passed by value, the caller's copy into the argument
 /// reloads the sample it has just stored with loads that straddle those stores, and waits.
 Descent descend(PairFunction& f, const Sample& start) {
@@ -558,6 +550,8 @@ Descent search(PairFunction& f, Descent best, double& unresolved) {
     return best;
 }
 
+// Lane twin: PairLanes::first_guess (ellipsoid_pair_lanes.hpp), the same operations
+// in the same order; the EllipsoidPairBatch tests fail when they differ.
 /// Where the minimiser would be if a, b and h kept their values at the centre line
 /// u = -d / |d|: the minimiser solves (M_A / a + M_B / b - h I) n = -d (the critical point
 /// condition p = h n), so with a(u), b(u) and h(u) frozen, n is that system's solution.
@@ -642,6 +636,8 @@ PairSolution solution(const Sample& at, PairPath path, int evaluations, double l
 
 }  // namespace
 
+// Lane twin: the end of PairLanes::solve (ellipsoid_pair_lanes.hpp), the same operations
+// in the same order; the EllipsoidPairBatch tests fail when they differ.
 PairSolution solve_pair(const PairFrame& frame) {
     PairFunction f(frame);
     Descent result = descend(f, f.at(first_guess(frame, f.support_matrix_b())));

@@ -11,4 +11,5 @@ target_sources(trackphys PRIVATE
   geometry/writeup_root_finders.cpp)
 target_sources(trackphys PRIVATE
   geometry/ellipsoid_pair.cpp
-  geometry/ellipsoid_pair_kernel.cpp)
+  geometry/ellipsoid_pair_kernel.cpp
+  geometry/ellipsoid_pair_lanes.cpp)

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <span>
+
 #include "trackphys/export.hpp"
 #include "trackphys/geometry/contact.hpp"
 #include "trackphys/geometry/ellipsoid.hpp"
@@ -33,6 +35,13 @@ TRACKPHYS_API Contact ellipsoid_ellipsoid_contact(const Ellipsoid& a, const Elli
 /// nothing else, bit for bit.
 TRACKPHYS_API Contact ellipsoid_ellipsoid_contact(const Ellipsoid& a, const Ellipsoid& b,
                                                   const glm::dvec3& previous_normal);
+
+/// contacts[i] = ellipsoid_ellipsoid_contact(a[i], b[i]) bit for bit, for every i; the
+/// spans have one size (else std::invalid_argument). Faster per pair than the single call
+/// (the common pairs run four at a time in AVX2 lanes where the CPU has them).
+TRACKPHYS_API void ellipsoid_ellipsoid_contacts(std::span<const Ellipsoid> a,
+                                                std::span<const Ellipsoid> b,
+                                                std::span<Contact> contacts);
 
 /// Whether a and b may come within `reach` (m, >= 0) of each other: false only when a
 /// certificate proves them farther apart, i.e. ellipsoid_ellipsoid_contact(a, b).depth

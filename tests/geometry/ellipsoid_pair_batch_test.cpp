@@ -1,0 +1,192 @@
+// The batched ellipsoid-ellipsoid contact against the single call, bit for bit, and the
+// lanes of its common path against solve_pair. Run in four lanes on an AVX2 machine and again
+// in two (twolanes., TRACKPHYS_LANES=2).
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <random>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "geometry/ellipsoid_pair_kernel.hpp"
+#include "support/ellipsoid_pair_cases.hpp"
+#include "trackphys/geometry/ellipsoid_pair.hpp"
+
+namespace trackphys {
+namespace {
+
+using test::PairCase;
+using test::PairCaseGenerator;
+using test::PairKind;
+
+#if defined(__SANITIZE_ADDRESS__)
+constexpr int kPerFamily = 150;  // ~10x slower under AddressSanitizer
+#else
+constexpr int kPerFamily = 1000;
+#endif
+
+std::uint64_t bits(double v) { return std::bit_cast<std::uint64_t>(v); }
+
+bool same_bits(const glm::dvec3& u, const glm::dvec3& v) {
+    return bits(u.x) == bits(v.x) && bits(u.y) == bits(v.y) && bits(u.z) == bits(v.z);
+}
+
+/// Every contact of the batch against the single call, with the pair's index on failure.
+void expect_batch_is_single(const std::vector<Ellipsoid>& a, const std::vector<Ellipsoid>& b,
+                            const std::string& what) {
+    std::vector<Contact> batch(a.size());
+    ellipsoid_ellipsoid_contacts(a, b, batch);
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        const Contact single = ellipsoid_ellipsoid_contact(a[i], b[i]);
+        ASSERT_EQ(bits(batch[i].depth), bits(single.depth)) << what << " pair " << i;
+        ASSERT_TRUE(same_bits(batch[i].normal, single.normal)) << what << " pair " << i;
+        ASSERT_TRUE(same_bits(batch[i].point, single.point)) << what << " pair " << i;
+    }
+}
+
+/// The pairs in batches of each size (the lanes' block of four and its neighbours, a car
+/// pair's eight, the whole list), in order and shuffled.
+void expect_every_batching_is_single(std::vector<PairCase> cases, const std::string& what) {
+    std::mt19937_64 rng(7);
+    for (const bool shuffled : {false, true}) {
+        if (shuffled) std::shuffle(cases.begin(), cases.end(), rng);
+        for (const std::size_t size :
+             {std::size_t(0), std::size_t(1), std::size_t(3), std::size_t(4), std::size_t(5),
+              std::size_t(7), std::size_t(8), std::size_t(9), cases.size()}) {
+            if (size == 0) {
+                expect_batch_is_single({}, {}, what + ", an empty batch");
+                continue;
+            }
+            for (std::size_t start = 0; start < cases.size(); start += size) {
+                const std::size_t count = std::min(size, cases.size() - start);
+                std::vector<Ellipsoid> a, b;
+                for (std::size_t i = start; i < start + count; ++i) {
+                    a.push_back(cases[i].a);
+                    b.push_back(cases[i].b);
+                }
+                expect_batch_is_single(a, b,
+                                       what + (shuffled ? " shuffled" : "") + ", batches of " +
+                                           std::to_string(size) + " from " + std::to_string(start));
+                if (::testing::Test::HasFatalFailure()) return;
+            }
+        }
+    }
+}
+
+std::vector<PairCase> family(PairKind kind, int count, std::uint64_t seed) {
+    PairCaseGenerator generator(seed);
+    std::vector<PairCase> cases;
+    for (int i = 0; i < count; ++i) cases.push_back(generator.make(kind));
+    return cases;
+}
+
+TEST(EllipsoidPairBatch, EqualsTheSingleCallOnEveryFamily) {
+    for (int k = 0; k < static_cast<int>(PairKind::count); ++k) {
+        const auto kind = static_cast<PairKind>(k);
+        expect_every_batching_is_single(family(kind, kPerFamily, 1500 + k),
+                                        test::pair_kind_name(kind));
+        if (HasFatalFailure()) return;
+    }
+}
+
+TEST(EllipsoidPairBatch, EqualsTheSingleCallOnHostilePairs) {
+    PairCaseGenerator generator(1515);
+    std::vector<PairCase> cases;
+    const auto add = [&](const Ellipsoid& a, const Ellipsoid& b) {
+        cases.push_back({a, b, PairKind::car_like});
+    };
+    const double huge = std::numeric_limits<double>::max();
+    for (int i = 0; i < 40; ++i) {
+        const glm::dquat q = generator.rotation();
+        const Ellipsoid car(generator.unit_vector() * generator.uniform(0.0, 3.0), q,
+                            generator.car_axes());
+        // Far field, both ways round.
+        const Ellipsoid far(generator.unit_vector() * std::ldexp(1.0, 520 + 11 * i),
+                            generator.rotation(), generator.car_axes());
+        add(car, far);
+        add(far, car);
+        // Coincident centres, identical, and a needle through a disc.
+        add(car, Ellipsoid(car.center(), generator.rotation(), generator.car_axes()));
+        add(car, car);
+        add(Ellipsoid(car.center(), q, {2.0, 1e-4, 1e-4}),
+            Ellipsoid(car.center() + generator.unit_vector() * 0.1, generator.rotation(),
+                      {1.0, 1.0, 1e-3}));
+        // Car-like pairs scaled by 2^-500..2^500.
+        const PairCase c = generator.make(PairKind::car_like);
+        const double s = std::ldexp(1.0, -500 + 25 * i);
+        const auto scaled = [s](const Ellipsoid& e) {
+            return Ellipsoid(e.center() * s, e.orientation(), e.semi_axes() * s);
+        };
+        add(scaled(c.a), scaled(c.b));
+        // Finite extremes: lengths 1e-300..1e300, coordinates up to the largest double.
+        const auto any_length = [&] { return std::pow(10.0, generator.uniform(-300.0, 300.0)); };
+        const auto any_coordinate = [&] {
+            const double x = generator.uniform(0, 1);
+            if (x < 0.1) return 0.0;
+            if (x < 0.15) return huge * (x < 0.125 ? 1 : -1);
+            return any_length() * (generator.uniform(0, 1) < 0.5 ? 1 : -1);
+        };
+        const auto any_ellipsoid = [&] {
+            return Ellipsoid({any_coordinate(), any_coordinate(), any_coordinate()},
+                             generator.rotation(), {any_length(), any_length(), any_length()});
+        };
+        const Ellipsoid e = any_ellipsoid();
+        add(e, i % 3 == 0 ? e : any_ellipsoid());
+    }
+    expect_every_batching_is_single(cases, "hostile");
+}
+
+TEST(EllipsoidPairBatch, SpansOfDifferentSizesThrow) {
+    const Ellipsoid e({0.0, 0.0, 0.0}, glm::dquat(1.0, 0.0, 0.0, 0.0), {1.0, 1.0, 1.0});
+    std::vector<Ellipsoid> two{e, e}, one{e};
+    std::vector<Contact> contacts_two(2), contacts_one(1);
+    EXPECT_THROW(ellipsoid_ellipsoid_contacts(two, one, contacts_two), std::invalid_argument);
+    EXPECT_THROW(ellipsoid_ellipsoid_contacts(one, two, contacts_two), std::invalid_argument);
+    EXPECT_THROW(ellipsoid_ellipsoid_contacts(two, two, contacts_one), std::invalid_argument);
+    EXPECT_NO_THROW(ellipsoid_ellipsoid_contacts(two, two, contacts_two));
+}
+
+/// The lanes keep most car-like pairs (a lane that always gave up would pass the tests
+/// above), and what they keep is solve_pair's answer, path and evaluations included.
+TEST(EllipsoidPairBatch, LanesKeepTheCommonPathWithSolvePairsBits) {
+    for (const PairKind kind : {PairKind::car_like, PairKind::grazing, PairKind::far,
+                                PairKind::spheres, PairKind::sphere_ellipsoid}) {
+        std::vector<detail::PairFrame> frames;
+        for (const PairCase& c : family(kind, kPerFamily, 1600)) {
+            detail::PairFrame frame;
+            if (detail::pair_frame(c.a, c.b, frame)) frames.push_back(frame);
+        }
+        std::vector<detail::PairSolution> solutions(frames.size());
+        std::unique_ptr<bool[]> kept(new bool[frames.size()]);
+        detail::solve_pairs_on_common_path(frames, solutions, std::span(kept.get(), frames.size()));
+        std::size_t count = 0;
+        for (std::size_t i = 0; i < frames.size(); ++i) {
+            if (!kept[i]) continue;
+            ++count;
+            const detail::PairSolution want = detail::solve_pair(frames[i]);
+            const detail::PairSolution& got = solutions[i];
+            const std::string what =
+                std::string(test::pair_kind_name(kind)) + " frame " + std::to_string(i);
+            ASSERT_EQ(bits(got.depth), bits(want.depth)) << what;
+            ASSERT_TRUE(same_bits(got.n, want.n)) << what;
+            ASSERT_TRUE(same_bits(got.extreme_a, want.extreme_a)) << what;
+            ASSERT_TRUE(same_bits(got.extreme_b, want.extreme_b)) << what;
+            ASSERT_EQ(got.path, want.path) << what;
+            ASSERT_EQ(got.evaluations, want.evaluations) << what;
+            ASSERT_EQ(bits(got.lower_bound), bits(want.lower_bound)) << what;
+        }
+        EXPECT_GT(double(count), 0.9 * double(frames.size())) << test::pair_kind_name(kind);
+    }
+}
+
+}  // namespace
+}  // namespace trackphys
