@@ -252,8 +252,8 @@ void bench_pair_peers(BenchRun& run) {
     }
 
     // The batch on every family, and on the car-like pairs certified without a search: the
-    // mean over a whole family is mostly its few searched pairs (2% of the car-like ones take 80-90%
-    // of its time), which the single call's median leaves out.
+    // mean over a whole family is mostly its few searched pairs (2% of the car-like ones
+    // take 80-90% of its time), which the single call's median leaves out.
     bool batch_same = true;
     double batch_car_like_ns = 0.0, batch_car_like_whole_ns = 0.0;
     for (const peers::PairFamily& family : families) {

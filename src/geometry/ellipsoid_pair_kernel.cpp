@@ -34,8 +34,9 @@
 //   rho = r_min,A^2 / a(n) + r_min,B^2 / b(n) inside K, tangent to K at p(n). At a critical
 //   point with 0 <= h <= rho, the ball of radius h about the origin lies inside that one, so
 //   K holds it and no direction has h below: the critical value is the global one.
-// - Otherwise, descents from both ellipsoids' axes, then a branch-and-bound search. For unit c and any n, h(n) >= p(c).n (p(c) is a
-//   point of K), so on the cap of directions within angle theta of c,
+// - Otherwise, descents from both ellipsoids' axes, then a branch-and-bound search. For
+//   unit c and any n, h(n) >= p(c).n (p(c) is a point of K), so on the cap of directions
+//   within angle theta of c,
 //       h(n) >= (h(c) >= 0 ? cos(theta) h(c) : h(c)) - sin(theta) |p_t(c)|,
 //   p_t the part of p(c) orthogonal to c. The cube's faces, cut into squares, cover the
 //   sphere; a square whose bound cannot beat the best value found so far is dropped, a
