@@ -34,9 +34,13 @@ inline PairPeerDepth bullet_pair_depth_from(const Ellipsoid& a, const Ellipsoid&
     return {-double(results.distance), false};
 }
 
+/// Started from the centre line, the best guess a cold call has: GJK takes its first
+/// support point of A - B at -guess, and for a separated pair the point of A - B nearest the
+/// origin lies about along cA - cB, so the guess is cA - cB in a's local frame.
 inline PairPeerDepth bullet_pair_depth(const Ellipsoid& a, const Ellipsoid& b) {
     const btTransform pose_a = bullet_pose(a), pose_b = bullet_pose(b);
-    return bullet_pair_depth_from(a, b, pose_a, pose_b, to_bullet(b.center() - a.center()));
+    const btVector3 guess = pose_a.getBasis().transpose() * to_bullet(a.center() - b.center());
+    return bullet_pair_depth_from(a, b, pose_a, pose_b, guess);
 }
 
 /// Started from an earlier contact's normal: GJK's first support point is taken in the
