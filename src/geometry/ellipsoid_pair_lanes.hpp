@@ -39,13 +39,8 @@ class PairLanes {
             }
         ra2_ = times(ra, ra);
         rb2_ = times(rb_, rb_);
-        // PairFunction::support_matrix's entries, in its order.
-        const auto entry = [&](int i, int j) {
-            return rb2_.x * component(b_axes_[0], i) * component(b_axes_[0], j) +
-                   rb2_.y * component(b_axes_[1], i) * component(b_axes_[1], j) +
-                   rb2_.z * component(b_axes_[2], i) * component(b_axes_[2], j);
-        };
-        mb_ = {entry(0, 0), entry(1, 1), entry(2, 2), entry(0, 1), entry(0, 2), entry(1, 2)};
+        mb_ = {support_entry(0, 0), support_entry(1, 1), support_entry(2, 2),
+               support_entry(0, 1), support_entry(0, 2), support_entry(1, 2)};
     }
 
     /// Bit k where lane k stayed on the common path, with its solution in solutions[k].
@@ -128,6 +123,14 @@ class PairLanes {
     }
     [[gnu::always_inline]] static Lanes component(const Lanes3& u, int i) {
         return i == 0 ? u.x : i == 1 ? u.y : u.z;
+    }
+    // PairFunction::support_matrix's entry (i, j), in its order. A member, not a lambda: a
+    // lambda is not forced inline, and at -O0 it would return a 32-byte vector from code of
+    // the library's own level to the AVX2 caller (lane_ops.hpp).
+    [[gnu::always_inline]] Lanes support_entry(int i, int j) const {
+        return rb2_.x * component(b_axes_[0], i) * component(b_axes_[0], j) +
+               rb2_.y * component(b_axes_[1], i) * component(b_axes_[1], j) +
+               rb2_.z * component(b_axes_[2], i) * component(b_axes_[2], j);
     }
     [[gnu::always_inline]] static Lanes3 chosen(const Mask& where, const Lanes3& u,
                                                 const Lanes3& v) {
