@@ -155,6 +155,32 @@ TEST(EllipsoidPairBatch, SpansOfDifferentSizesThrow) {
     EXPECT_NO_THROW(ellipsoid_ellipsoid_contacts(two, two, contacts_two));
 }
 
+/// Solves the frames on the common path and checks that what the lanes keep is solve_pair's
+/// answer, path and evaluations included; returns how many frames they kept.
+std::size_t expect_kept_frames_are_solve_pairs(const std::vector<detail::PairFrame>& frames,
+                                               const std::string& what) {
+    std::vector<detail::PairSolution> solutions(frames.size());
+    std::unique_ptr<bool[]> kept(new bool[frames.size()]);
+    detail::solve_pairs_on_common_path(frames, solutions, std::span(kept.get(), frames.size()));
+    std::size_t count = 0;
+    for (std::size_t i = 0; i < frames.size(); ++i) {
+        if (!kept[i]) continue;
+        ++count;
+        const detail::PairSolution want = detail::solve_pair(frames[i]);
+        const detail::PairSolution& got = solutions[i];
+        const std::string frame = what + " frame " + std::to_string(i);
+        EXPECT_EQ(bits(got.depth), bits(want.depth)) << frame;
+        EXPECT_TRUE(same_bits(got.n, want.n)) << frame;
+        EXPECT_TRUE(same_bits(got.extreme_a, want.extreme_a)) << frame;
+        EXPECT_TRUE(same_bits(got.extreme_b, want.extreme_b)) << frame;
+        EXPECT_EQ(got.path, want.path) << frame;
+        EXPECT_EQ(got.evaluations, want.evaluations) << frame;
+        EXPECT_EQ(bits(got.lower_bound), bits(want.lower_bound)) << frame;
+        if (::testing::Test::HasFailure()) break;
+    }
+    return count;
+}
+
 /// The lanes keep most car-like pairs (a lane that always gave up would pass the tests
 /// above), and what they keep is solve_pair's answer, path and evaluations included.
 TEST(EllipsoidPairBatch, LanesKeepTheCommonPathWithSolvePairsBits) {
@@ -165,27 +191,31 @@ TEST(EllipsoidPairBatch, LanesKeepTheCommonPathWithSolvePairsBits) {
             detail::PairFrame frame;
             if (detail::pair_frame(c.a, c.b, frame)) frames.push_back(frame);
         }
-        std::vector<detail::PairSolution> solutions(frames.size());
-        std::unique_ptr<bool[]> kept(new bool[frames.size()]);
-        detail::solve_pairs_on_common_path(frames, solutions, std::span(kept.get(), frames.size()));
-        std::size_t count = 0;
-        for (std::size_t i = 0; i < frames.size(); ++i) {
-            if (!kept[i]) continue;
-            ++count;
-            const detail::PairSolution want = detail::solve_pair(frames[i]);
-            const detail::PairSolution& got = solutions[i];
-            const std::string what =
-                std::string(test::pair_kind_name(kind)) + " frame " + std::to_string(i);
-            ASSERT_EQ(bits(got.depth), bits(want.depth)) << what;
-            ASSERT_TRUE(same_bits(got.n, want.n)) << what;
-            ASSERT_TRUE(same_bits(got.extreme_a, want.extreme_a)) << what;
-            ASSERT_TRUE(same_bits(got.extreme_b, want.extreme_b)) << what;
-            ASSERT_EQ(got.path, want.path) << what;
-            ASSERT_EQ(got.evaluations, want.evaluations) << what;
-            ASSERT_EQ(bits(got.lower_bound), bits(want.lower_bound)) << what;
-        }
-        EXPECT_GT(double(count), 0.9 * double(frames.size())) << test::pair_kind_name(kind);
+        const std::string what = test::pair_kind_name(kind);
+        const std::size_t kept = expect_kept_frames_are_solve_pairs(frames, what);
+        EXPECT_GT(double(kept), 0.9 * double(frames.size())) << what;
     }
+}
+
+/// Car-like pairs 2^5 to 2^64 m apart: the first guess's length grows as a high power of the
+/// distance, past 2^-60..2^60, where the lanes scale it back by a power of two as solve_pair
+/// does, and past 2^-600..2^600 (from about 2^29 m), where solve_pair starts on the centre
+/// line and the lanes drop the frame. Up to 2^28 m every frame is kept (a lane that did not
+/// scale the guess back would overflow there), and every kept one is solve_pair's.
+TEST(EllipsoidPairBatch, LanesScaleAFarPairsFirstGuessAsSolvePairDoes) {
+    PairCaseGenerator generator(1700);
+    std::vector<detail::PairFrame> scaled, beyond;
+    for (int exponent = 5; exponent <= 64; ++exponent)
+        for (int j = 0; j < 4; ++j) {
+            const PairCase c = generator.make(PairKind::car_like);
+            const Ellipsoid b(c.a.center() + generator.unit_vector() * std::ldexp(1.0, exponent),
+                              c.b.orientation(), c.b.semi_axes());
+            detail::PairFrame frame;
+            ASSERT_TRUE(detail::pair_frame(c.a, b, frame));
+            (exponent <= 28 ? scaled : beyond).push_back(frame);
+        }
+    EXPECT_EQ(expect_kept_frames_are_solve_pairs(scaled, "2^5..2^28 m apart"), scaled.size());
+    expect_kept_frames_are_solve_pairs(beyond, "2^29..2^64 m apart");
 }
 
 }  // namespace
