@@ -219,8 +219,8 @@ void bench_pair_peers(BenchRun& run) {
     }
 
     // The car-like pairs again, each started from its contact one physics sub-step earlier
-    // (0.25 ms) under a relative motion drawn per pair (up to 20 m/s and 3 rad/s; see
-    // test::PairCaseGenerator::earlier): ours and Bullet's GJK/EPA given the same start.
+    // under a relative motion drawn per pair (test::PairCaseGenerator::earlier): ours and
+    // Bullet's GJK/EPA given the same start.
     run.progress(kGroup, "car-like, warm: the contacts a sub-step earlier");
     const peers::WarmPairFamily warm = peers::make_warm_pairs(families.front(), 4040);
     std::vector<double> turn = warm.turn;
@@ -252,8 +252,8 @@ void bench_pair_peers(BenchRun& run) {
     }
 
     // The batch on every family, and on the car-like pairs certified without a search: the
-    // mean over a whole family is mostly its few searched pairs (2% of the car-like ones
-    // take 80-90% of its time), which the single call's median leaves out.
+    // mean over a whole family is mostly its few searched pairs, which the single call's
+    // median leaves out.
     bool batch_same = true;
     double batch_car_like_ns = 0.0, batch_car_like_whole_ns = 0.0;
     for (const peers::PairFamily& family : families) {
@@ -319,7 +319,7 @@ void bench_pair_peers(BenchRun& run) {
                   "; car-like pairs certified without a search (the whole family, searches "
                   "included: %.0f ns); the batch's contacts %s the single call's",
                   batch_car_like_whole_ns, batch_same ? "are" : "are NOT");
-    run.add_target("ellipsoid pair, car-like, batched: 150 ns / our time per pair (" +
+    run.add_target("ellipsoid pair, car-like, batched: 150 ns / our mean time a pair (" +
                        std::to_string(int(std::lround(batch_car_like_ns))) + " ns)",
                    150.0 / batch_car_like_ns, 1.0, contract && batch_same,
                    pair_evidence + evidence);

@@ -116,8 +116,8 @@ bool warm_start(const glm::dvec3& previous_normal, const glm::dmat3& axes, glm::
 /// caller's arguments were the other way round, so that the normal points the other way.
 /// The normal is turned here, before it leaves the registers: turning the returned Contact
 /// in memory makes the caller's wide loads wait on this function's narrow stores. Forced
-/// inline: as a call between solve_pair and the single call's return it cost 31 instructions
-/// a pair.
+/// inline, so that the single call keeps its solution in registers although the batch calls
+/// this too.
 [[gnu::always_inline]] inline Contact world_contact(const Ellipsoid& a, const Ellipsoid& b,
                                                     bool swapped, double scale,
                                                     const detail::PairSolution& s) {

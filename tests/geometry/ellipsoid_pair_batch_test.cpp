@@ -28,11 +28,7 @@ using test::PairCase;
 using test::PairCaseGenerator;
 using test::PairKind;
 
-#if defined(__SANITIZE_ADDRESS__)
-constexpr int kPerFamily = 150;  // ~10x slower under AddressSanitizer
-#else
-constexpr int kPerFamily = 1000;
-#endif
+constexpr int kPerFamily = test::kSanitized ? 150 : 1000;
 
 std::uint64_t bits(double v) { return std::bit_cast<std::uint64_t>(v); }
 

@@ -34,11 +34,7 @@ using test::PairCase;
 using test::PairCaseGenerator;
 using test::PairKind;
 
-#if defined(__SANITIZE_ADDRESS__)
-constexpr bool kSanitized = true;  // ~10x slower: fewer pairs keep the suite in seconds
-#else
-constexpr bool kSanitized = false;
-#endif
+using test::kSanitized;
 
 /// The pair count per family: 1000 (11k in all), 150 under AddressSanitizer, or
 /// TRACKPHYS_PAIR_CASES.

@@ -31,11 +31,7 @@ using test::PairCase;
 using test::PairCaseGenerator;
 using test::PairKind;
 
-#if defined(__SANITIZE_ADDRESS__)
-constexpr bool kSanitized = true;  // ~10x slower: fewer pairs keep the suite in seconds
-#else
-constexpr bool kSanitized = false;
-#endif
+using test::kSanitized;
 constexpr int kPairsPerKind = kSanitized ? 40 : 300;
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
@@ -100,7 +96,9 @@ TEST(EllipsoidPairWarm, SwappingTheArgumentsAndTheStartNegatesTheNormalBitForBit
                           std::bit_cast<std::uint64_t>(ba.depth))
                     << describe(c) << " from " << start.name;
                 for (int j = 0; j < 3; ++j) {
-                    ASSERT_EQ(ab.normal[j], -ba.normal[j]) << describe(c) << " from " << start.name;
+                    ASSERT_EQ(std::bit_cast<std::uint64_t>(ab.normal[j]),
+                              std::bit_cast<std::uint64_t>(-ba.normal[j]))
+                        << describe(c) << " from " << start.name;
                     ASSERT_EQ(std::bit_cast<std::uint64_t>(ab.point[j]),
                               std::bit_cast<std::uint64_t>(ba.point[j]))
                         << describe(c) << " from " << start.name;
@@ -127,6 +125,29 @@ TEST(EllipsoidPairWarm, StartingAtTheMinimiserTakesFewerEvaluations) {
         ASSERT_LT(warm.evaluations, cold.evaluations) << describe(c);
     }
     EXPECT_GT(certified, 900);
+}
+
+// The start is a direction: scaled by any finite factor it takes the same path and as many
+// evaluations (the call brings its length into the evaluation's range first).
+TEST(EllipsoidPairWarm, AStartsLengthChangesNothing) {
+    PairCaseGenerator generator(25);
+    int certified = 0;
+    for (int i = 0; i < 200; ++i) {
+        const PairCase c = generator.make(PairKind::car_like);
+        const glm::dvec3 normal = ellipsoid_ellipsoid_contact(c.a, c.b).normal;
+        const detail::PairSolution unit = detail::pair_solution(c.a, c.b, normal);
+        if (unit.path != detail::PairPath::separated &&
+            unit.path != detail::PairPath::inscribed_balls)
+            continue;
+        ++certified;
+        for (const double scale : {0x1p-1000, 1e-300, 0x1p-200, 0x1p-40, 0x1p40, 0x1p200, 1e300}) {
+            const detail::PairSolution scaled = detail::pair_solution(c.a, c.b, normal * scale);
+            ASSERT_EQ(scaled.path, unit.path) << describe(c) << " scaled by " << scale;
+            ASSERT_EQ(scaled.evaluations, unit.evaluations)
+                << describe(c) << " scaled by " << scale;
+        }
+    }
+    EXPECT_GT(certified, 180);
 }
 
 // A start that is not certified leaves the answer to the cold call's path: the same bits.
