@@ -41,7 +41,9 @@ struct DoubleLanes<4> {
 /// Every member is forced inline, and calls nothing that is not a built-in (memcpy and the
 /// vector extensions' shuffles are): four lanes are 32-byte vectors, which only code
 /// compiled for AVX holds in one register, so they run inside an AVX2 caller and never as
-/// functions of the library's own x86-64 level, at any optimisation level.
+/// functions of the library's own x86-64 level, at any optimisation level. The same holds for
+/// code built on these: every function or lambda that takes or returns lanes is forced
+/// inline, and its tests run it at -O0 too (a lambda is not inlined there on its own).
 template <int N>
 struct LaneOps {
     using Lanes = typename DoubleLanes<N>::type;
