@@ -37,8 +37,9 @@ TRACKPHYS_API Contact ellipsoid_ellipsoid_contact(const Ellipsoid& a, const Elli
                                                   const glm::dvec3& previous_normal);
 
 /// contacts[i] = ellipsoid_ellipsoid_contact(a[i], b[i]) bit for bit, for every i; the
-/// spans have one size (else std::invalid_argument). Faster per pair than the single call
-/// (the common pairs run four at a time in AVX2 lanes where the CPU has them).
+/// spans have one size (else std::invalid_argument). From two pairs up, the pairs that need
+/// no search take less time each than in the single call: they run four at a time in AVX2
+/// lanes where the CPU has them, two at a time otherwise (docs/ellipsoid_pair.md).
 TRACKPHYS_API void ellipsoid_ellipsoid_contacts(std::span<const Ellipsoid> a,
                                                 std::span<const Ellipsoid> b,
                                                 std::span<Contact> contacts);
