@@ -97,8 +97,11 @@ inline BulletContact bullet_gjk_epa(const Ellipsoid& e, const Triangle& t) {
     btTriangleShape triangle(to_bullet(t[0]), to_bullet(t[1]), to_bullet(t[2]));
     triangle.setMargin(0);
     const btTransform identity = btTransform::getIdentity();
+    // GJK takes its first support point of ellipsoid - triangle at -guess in the ellipsoid's
+    // frame: the best a cold call has is the line from the triangle's centroid to the centre.
     const glm::dvec3 centroid = (t[0] + t[1] + t[2]) / 3.0;
-    const btVector3 guess = to_bullet(centroid - e.center());
+    const btVector3 guess =
+        ellipsoid_pose.getBasis().transpose() * to_bullet(e.center() - centroid);
     btGjkEpaSolver2::sResults results;
     const bool answered =
         btGjkEpaSolver2::Distance(&ellipsoid, ellipsoid_pose, &triangle, identity, guess,
