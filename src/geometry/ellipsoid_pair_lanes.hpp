@@ -79,9 +79,11 @@ class PairLanes {
             if (Ops::bits(active) == 0) break;
             const Sample trial = at(next);
             // Outside the quadratic region the scalar code takes the step only where h does
-            // not increase, and ends where n does not move: both leave the path here.
-            const Mask moved = (trial.n.x != s.n.x) | (trial.n.y != s.n.y) | (trial.n.z != s.n.z);
-            dropped |= active & ~quadratic & ~((trial.h <= s.h) & moved);
+            // not increase: elsewhere it halves the step, which leaves the path. Its other
+            // exit there, a trial whose n has not moved, needs no test here: the step is
+            // tangent and at least 2^-20 rad long, so the trial's n differs from s.n (only
+            // the halvings make it that short).
+            dropped |= active & ~quadratic & ~(trial.h <= s.h);
             active &= ~dropped;
             previous2 = Ops::select(active, length2, previous2);
             s = chosen(active, trial, s);
