@@ -1,5 +1,4 @@
 target_sources(trackphys PRIVATE
-  vehicle/car_presets.cpp
   vehicle/drivetrain.cpp
   vehicle/tyre.cpp
   vehicle/vehicle.cpp
