@@ -1,8 +1,8 @@
-// Mid phase on the default track's tightest banked turn at 1000 km/h (tightest_turn_scene.hpp):
-// per update, the triangles each ellipsoid tests per sub-step and the time for the three
-// MidPhaseModes, queried per step with each ellipsoid's swept bounding sphere or the swept
-// ellipsoid itself, every step or looking ahead as World does; the tree build per collider (time, bytes a triangle); and how well each
-// split rule copes with the road's thin triangles (filtered / reported per query).
+// Mid phase on the default track's tightest banked turn at 1000 km/h (tightest_turn_scene.hpp): per
+// update, the triangles each ellipsoid tests per sub-step and the time for the three MidPhaseModes,
+// queried per step with each ellipsoid's swept bounding sphere or the swept ellipsoid itself, every
+// step or looking ahead as World does; the tree build per collider (time, bytes a triangle); and
+// how well each split rule copes with the road's thin triangles (filtered / reported per query).
 //
 //   cmake --build --preset release -j2 --target bench_midphase
 //   build/release/bench/bench_midphase

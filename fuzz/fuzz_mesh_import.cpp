@@ -1,11 +1,11 @@
 // libFuzzer target: the mesh importer path we own, bytes -> file -> load_mesh ->
 // StaticCollider.
 //
-// The first byte picks the file extension (so load_mesh picks the reader and its check),
-// the rest is the file; TRACKPHYS_FUZZ_MESH_EXTENSION (e.g. ".ply") fixes the extension
-// instead, to search one format at a time (docs/testing.md, "Fuzzing"). Every input must end in a mesh that StaticCollider accepts, or in trackphys::Error
-// (from load_mesh or from StaticCollider); any other exception, crash, sanitizer report,
-// leak or hang is a finding.
+// The first byte picks the file extension (so load_mesh picks the reader and its check), the rest
+// is the file; TRACKPHYS_FUZZ_MESH_EXTENSION (e.g. ".ply") fixes the extension instead, to search
+// one format at a time (docs/testing.md, "Fuzzing"). Every input must end in a mesh that
+// StaticCollider accepts, or in trackphys::Error (from load_mesh or from StaticCollider); any other
+// exception, crash, sanitizer report, leak or hang is a finding.
 //
 // assimp itself is Debian's uninstrumented build: libFuzzer sees coverage of trackphys only
 // (it learns the formats through our code's reaction to them), and AddressSanitizer checks

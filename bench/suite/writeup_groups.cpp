@@ -281,10 +281,10 @@ void bench_mid_phase(BenchRun& run) {
     }
 }
 
-// The whole update of one car (default car, default track seed 7, autopilot from the start)
-// in each mid-phase mode, queried every step or looking ahead, World's profile off (and the default mode with it on, the cost of
-// the per-phase clock reads), the cars taking turns by blocks; the write-up's budget is the
-// reference row.
+// The whole update of one car (default car, default track seed 7, autopilot from the start) in each
+// mid-phase mode, queried every step or looking ahead, World's profile off (and the default mode
+// with it on, the cost of the per-phase clock reads), the cars taking turns by blocks; the
+// write-up's budget is the reference row.
 void bench_update(BenchRun& run) {
     run.progress("update", "default track");
     const cli::DriveScene scene = cli::make_track_scene(kDemoTrackSeed);

@@ -19,7 +19,7 @@ int main() {
                                     loaded.vertices[t[2]]);
     const trackphys::NormalizedTriangle normalized(first);
     const trackphys::Ellipsoid wheel({1.0, 0.3, -1.0}, glm::dquat(1.0, 0.0, 0.0, 0.0),
-                                     {0.35, 0.35, 0.15});
+                                     {0.15, 0.35, 0.35});  // thin along the axle (x)
     const bool maybe = normalized.may_touch_sphere(wheel.center(), wheel.bounding_radius());
     std::printf("%zu triangles read back, road normal (%.1f, %.1f, %.1f), wheel may touch: %s\n",
                 loaded.triangles.size(), normalized.normal.x, normalized.normal.y,

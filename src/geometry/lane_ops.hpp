@@ -32,10 +32,10 @@ struct DoubleLanes<4> {
 // one at -O0; __builtin_bit_cast is not): the lanes' tests are built at -O0 to catch that.
 #pragma GCC diagnostic ignored "-Wpsabi"
 
-/// What code that runs a scalar function in N lanes at once (N = 2 or 4) shares: the vector
-/// types, spreading a value, reading triangles' frames into lanes, masks to bits, and the few operations
-/// whose order must be the scalar code's (glm's dot, the square root). Each lane runs the
-/// scalar IEEE operations in their order (the build contracts no multiply-add, see
+/// What code that runs a scalar function in N lanes at once (N = 2 or 4) shares: the vector types,
+/// spreading a value, reading triangles' frames into lanes, masks to bits, and the few operations
+/// whose order must be the scalar code's (glm's dot, the square root). Each lane runs the scalar
+/// IEEE operations in their order (the build contracts no multiply-add, see
 /// cmake/CompilerOptions.cmake), so the lanes give the scalar bits.
 ///
 /// Every member is forced inline, and calls nothing that is not a built-in (memcpy and the

@@ -15,7 +15,8 @@ namespace trackphys::track_detail {
 /// (it is only continuous, not smooth, at the control points):
 ///     bank = max_bank * clamp(kappa_smooth * full_bank_radius, -1, 1).
 /// Rows are spaced for a target edge length on the outer road edge,
-///     edge(kappa) = clamp(edge_tight * sqrt(1 / (|kappa| tight_radius)), edge_tight, edge_straight)
+///     edge(kappa) = clamp(edge_tight * sqrt(1 / (|kappa| tight_radius)),
+///                         edge_tight, edge_straight)
 /// (a constant chord error: the sagitta edge^2 / 8R is the same for every radius), and a row
 /// step ds on the centreline stretches to ds (1 + |kappa| w / 2) on the outer edge, so the
 /// row density is rho(s) = (1 + |kappa| w/2) / edge(kappa) rows per metre with kappa the

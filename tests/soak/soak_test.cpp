@@ -1,11 +1,11 @@
-// The soak (CTest label "long", docs/testing.md, "Bad input and long runs"): long drives checked after every
-// update. (a) One simulated hour of the default track by autopilot, the target speed
+// The soak (CTest label "long", docs/testing.md, "Bad input and long runs"): long drives checked
+// after every update. (a) One simulated hour of the default track by autopilot, the target speed
 // changing every lap up to 1000 km/h. (b) Free driving on a real-world track mesh (TORCS's
-// g-track-1, fetched by scripts/fetch_torcs_track.sh). After every update: the state is
-// finite, the car is above the road (a ray straight down from its centre of mass hits the
-// surface; on the generated track also its height above the road plane of the nearest
-// centreline sample), inside the walls (lateral offset from the centreline), its energy
-// within what the engine could have given it; and the process's memory stays flat.
+// g-track-1, fetched by scripts/fetch_torcs_track.sh). After every update: the state is finite, the
+// car is above the road (a ray straight down from its centre of mass hits the surface; on the
+// generated track also its height above the road plane of the nearest centreline sample), inside
+// the walls (lateral offset from the centreline), its energy within what the engine could have
+// given it; and the process's memory stays flat.
 
 #include <algorithm>
 #include <array>

@@ -255,10 +255,10 @@ TEST(VehiclePhysics, SkidpadReachesThePeakGripTheTyresAllow) {
     EXPECT_NEAR(best, reference, 0.03 * reference);
 }
 
-// Jolt's traction test: one driven wheel on ice (a twentieth of the grip), 30% throttle
-// (the good tyre's grip, not more) in first gear (an automatic box shifts up on the spinning wheel's speed, and each shift
-// lets the engine spin up again), no traction control (it would brake the spinning wheel
-// itself). The limited-slip clutch can hold 1500 N m: a locking differential.
+// Jolt's traction test: one driven wheel on ice (a twentieth of the grip), 30% throttle (the good
+// tyre's grip, not more) in first gear (an automatic box shifts up on the spinning wheel's speed,
+// and each shift lets the engine spin up again), no traction control (it would brake the spinning
+// wheel itself). The limited-slip clutch can hold 1500 N m: a locking differential.
 double distance_with_a_rear_wheel_on_ice(DifferentialKind rear) {
     CarSpec spec = CarSpec::preset("gt");
     spec.vehicle->traction_control = false;

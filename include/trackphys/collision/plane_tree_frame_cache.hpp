@@ -14,13 +14,13 @@ namespace trackphys {
 class PlaneTree;
 
 /// The frames that queries of collider plane trees build (the trees that keep none,
-/// PlaneTreeFrames::built), kept so that later queries reuse them instead of building them
-/// again (a car's queries meet the same few road triangles step after step), at addresses
-/// that stay put until clear(): MidPhase candidates point at them. For a tree that keeps
-/// its frames, reported() points into the tree, whose frames live as long as it does. Frames are kept by leaf run (up to 64 slots
-/// of one leaf, side by side in slot order), so that a query finds a leaf's frames with one
-/// lookup. No allocation once the storage has grown to the most room that runs take
-/// between two clear() calls.
+/// PlaneTreeFrames::built), kept so that later queries reuse them instead of building them again (a
+/// car's queries meet the same few road triangles step after step), at addresses that stay put
+/// until clear(): MidPhase candidates point at them. For a tree that keeps its frames, reported()
+/// points into the tree, whose frames live as long as it does. Frames are kept by leaf run (up to
+/// 64 slots of one leaf, side by side in slot order), so that a query finds a leaf's frames with
+/// one lookup. No allocation once the storage has grown to the most room that runs take between two
+/// clear() calls.
 class TRACKPHYS_API PlaneTreeFrameCache {
   public:
     /// The largest run: a leaf of more slots is kept as several runs.

@@ -40,9 +40,9 @@ struct WheelCommand {
     double max_along_force = std::numeric_limits<double>::infinity();
 };
 
-/// A wheel: normal force; drive and brake (together up to max_along_force) along the
-/// heading projected onto the contact plane; lateral grip as regularised Coulomb friction against sideways slip; the
-/// tangential total limited to the friction circle mu F_n.
+/// A wheel: normal force; drive and brake (together up to max_along_force) along the heading
+/// projected onto the contact plane; lateral grip as regularised Coulomb friction against sideways
+/// slip; the tangential total limited to the friction circle mu F_n.
 TRACKPHYS_API glm::dvec3 wheel_contact_force(const ContactMaterial& material, double depth,
                                              const glm::dvec3& normal, const glm::dvec3& velocity,
                                              const WheelCommand& command);

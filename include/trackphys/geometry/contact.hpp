@@ -27,7 +27,9 @@ struct Contact {
 
 /// sigma = min over unit u of max_i (u . q_i) + ||D u|| in the ellipsoid's frame, found
 /// among the face, edge and vertex candidates (every local minimum of each), with exact
-/// early exits for shallow contacts. Depth is exact to ~1e-12 m; degenerate triangles
+/// early exits for shallow contacts. Depth within 1e-9 m of the truth for every input
+/// (measured ~1e-15 m typical, 1e-10 m for kilometre-sized triangles); normal within 1e-6
+/// rad and point within 1e-6 m wherever the minimiser is unique. Degenerate triangles
 /// (collinear or coincident vertices) act as the segment or point they are. Never NaN.
 TRACKPHYS_API Contact ellipsoid_triangle_contact(const Ellipsoid& ellipsoid,
                                                  const Triangle& triangle);

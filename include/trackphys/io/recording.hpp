@@ -86,10 +86,11 @@ class TRACKPHYS_API RecordingWriter : private DebugDraw {
     RecordingWriter(const RecordingWriter&) = delete;
     RecordingWriter& operator=(const RecordingWriter&) = delete;
 
-    /// Writes the line of the update `world` ran last: its time, state hash and update time
-    /// (when settings().profile), and each car's pose, speed, suspension, inputs and contacts
-    /// as World::debug_draw reports them, with its vehicle model's telemetry if it has one. laps[k]: car k's laps completed, when someone
-    /// counts them (empty: no one does). The world's cars must be the header's.
+    /// Writes the line of the update `world` ran last: its time, state hash and update time (when
+    /// settings().profile), and each car's pose, speed, suspension, inputs and contacts as
+    /// World::debug_draw reports them, with its vehicle model's telemetry if it has one. laps[k]:
+    /// car k's laps completed, when someone counts them (empty: no one does). The world's cars must
+    /// be the header's.
     void write_frame(const World& world, std::span<const std::optional<int>> laps = {});
 
     /// Starts the line of the update that ended at time t (s), with the world's state hash

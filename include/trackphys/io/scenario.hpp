@@ -85,9 +85,9 @@ TRACKPHYS_API Scenario parse_scenario(std::string_view json_text,
                                       const std::string& source = "scenario",
                                       const std::filesystem::path& base_folder = {});
 
-/// parse_scenario of a file's contents, relative names taken from the file's folder; the
-/// message also names the file when it is missing, a folder or a device, unreadable, empty or larger
-/// than 16 MiB.
+/// parse_scenario of a file's contents, relative names taken from the file's folder; the message
+/// also names the file when it is missing, a folder or a device, unreadable, empty or larger than
+/// 16 MiB.
 TRACKPHYS_API Scenario load_scenario(const std::filesystem::path& file);
 
 /// scenario as a JSON document (the car inline, every key that applies to its mode: the
