@@ -22,7 +22,9 @@ struct TRACKPHYS_API Triangle {
     glm::dvec3 area_normal() const;
     /// Unit normal; (0,0,0) for a degenerate triangle.
     glm::dvec3 normal() const;
+    /// Area (m^2).
     double area() const;
+    /// The axis-aligned box of the three vertices.
     Aabb bounds() const;
     /// Length of the longest edge in metres.
     double longest_edge() const;

@@ -24,6 +24,7 @@ TRACKPHYS_API Summary summarize(std::vector<double> values);
 /// time, and the mean counts per update.
 class TRACKPHYS_API ProfileStatistics {
   public:
+    /// Adds one update's profile.
     void add(const UpdateProfile& profile);
 
     std::size_t updates() const { return update_us_.size(); }
@@ -32,6 +33,7 @@ class TRACKPHYS_API ProfileStatistics {
         return summarize(phase_us_[static_cast<std::size_t>(phase)]);
     }
 
+    /// UpdateProfile's candidates, exact_tests and contacts, each a mean per update.
     double mean_candidates() const;
     double mean_exact_tests() const;
     double mean_contacts() const;

@@ -20,10 +20,14 @@ class TRACKPHYS_API TraceRecorder {
 
     explicit TraceRecorder(std::size_t max_events = 2'000'000);
 
+    /// Records the zone `name` from begin to end on the trace's row `thread` (the trace's
+    /// "tid": any number that tells the threads apart, e.g. a worker's index).
     void record(const char* name, Clock::time_point begin, Clock::time_point end,
                 std::uint32_t thread = 0);
 
+    /// Zones recorded, at most max_events.
     std::size_t size() const { return events_.size(); }
+    /// Zones not recorded because max_events were already.
     std::size_t dropped() const { return dropped_; }
 
     /// Writes the trace; timestamps are microseconds since the recorder was made.

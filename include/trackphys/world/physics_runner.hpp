@@ -46,6 +46,7 @@ class TRACKPHYS_API PhysicsRunner {
     /// Starts the physics thread, which runs until stop() or until the world has run
     /// `last_update` updates. Throws trackphys::Error when it runs already.
     void run_to(std::uint64_t last_update);
+    /// run_to with no last update: the thread runs until stop().
     void start() { run_to(UINT64_MAX); }
     /// Stops the thread after the update it is in and waits for it; rethrows what stopped
     /// it, if an update threw.
@@ -59,6 +60,7 @@ class TRACKPHYS_API PhysicsRunner {
     /// counted by late_inputs(); on time, a recorded input stream replays bit-identically.
     /// Throws trackphys::Error for a car that does not exist or NaN inputs.
     void set_inputs(std::uint64_t update, std::size_t car, const CarInputs& inputs);
+    /// How many set_inputs calls came after their update had run (see set_inputs).
     std::uint64_t late_inputs() const { return late_inputs_.load(std::memory_order_relaxed); }
 
     /// The last published update number (render thread).

@@ -126,6 +126,7 @@ class TRACKPHYS_API RaceDrivers {
     void after_update(World& world);
 
     std::size_t car_count() const { return pilots_.size(); }
+    /// Laps car `car` has completed: its crossings of the start line after the first.
     int laps(std::size_t car) const;
     /// Fewest laps completed by any car.
     int fewest_laps() const;
