@@ -12,6 +12,7 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include "trackphys/detail/body_ellipsoid.hpp"
 #include "trackphys/error.hpp"
 
 namespace trackphys {

@@ -11,6 +11,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/vec3.hpp>
 
+#include "trackphys/detail/body_ellipsoid.hpp"
 #include "trackphys/dynamics/car_spec.hpp"
 #include "trackphys/dynamics/contact_force.hpp"
 #include "trackphys/dynamics/rigid_body.hpp"
