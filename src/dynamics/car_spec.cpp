@@ -83,6 +83,17 @@ std::string CarSpec::validate() const {
     check_positive(why, "mass.principal_inertia.x", mass.principal_inertia.x);
     check_positive(why, "mass.principal_inertia.y", mass.principal_inertia.y);
     check_positive(why, "mass.principal_inertia.z", mass.principal_inertia.z);
+    // Every body has I_x + I_y >= I_z (the integrals of x^2 + z^2 and y^2 + z^2 hold the one
+    // of x^2 + y^2), and so on round; moments that break it spin the car up without bound.
+    // The margin lets a flat body's equality through its rounding.
+    for (int k = 0; k < 3 && why.tellp() == 0; ++k) {
+        const glm::dvec3& i = mass.principal_inertia;
+        const double others = i[(k + 1) % 3] + i[(k + 2) % 3];
+        if (!(i[k] <= others * (1.0 + 0x1p-40)))
+            why << "CarSpec.mass.principal_inertia."
+                << "xyz"[k] << " is " << i[k] << ", more than the other two moments together ("
+                << others << "): no body has such moments";
+    }
     if (why.tellp() == 0 && (ellipsoids.empty() || ellipsoids.size() > max_ellipsoids))
         why << "CarSpec.ellipsoids must hold 1 to " << max_ellipsoids << " ellipsoids, got "
             << ellipsoids.size();

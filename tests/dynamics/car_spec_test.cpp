@@ -18,6 +18,15 @@ TEST(CarSpec, DefaultCarIsValidWithFourWheelsAndFourBodyParts) {
     EXPECT_DOUBLE_EQ(car.mass.mass, 1200.0);
 }
 
+TEST(CarSpec, AFlatBodysMomentsPass) {
+    // A plate's moments meet I_z = I_x + I_y, up to their rounding.
+    CarSpec spec = CarSpec::default_car();
+    spec.mass = MassProperties::solid_box(1200.0, {1.9, 4.3, 0.0});
+    EXPECT_EQ(spec.validate(), "");
+    spec.mass.principal_inertia.z *= 1.0 + 0x1p-30;
+    EXPECT_NE(spec.validate(), "");
+}
+
 TEST(CarSpec, ValidationNamesTheField) {
     struct Case {
         void (*spoil)(CarSpec&);
@@ -27,6 +36,14 @@ TEST(CarSpec, ValidationNamesTheField) {
         {[](CarSpec& c) { c.mass.mass = -1.0; },
          "CarSpec.mass.mass must be finite and > 0, got -1"},
         {[](CarSpec& c) { c.mass.principal_inertia.z = 0.0; }, "CarSpec.mass.principal_inertia.z"},
+        {[](CarSpec& c) {
+             c.mass.principal_inertia = {1.0, 1.0, 100.0};
+         },
+         "CarSpec.mass.principal_inertia.z is 100, more than the other two moments together (2)"},
+        {[](CarSpec& c) {
+             c.mass.principal_inertia = {5.0, 1.0, 2.0};
+         },
+         "CarSpec.mass.principal_inertia.x is 5, more than the other two moments together (3)"},
         {[](CarSpec& c) { c.ellipsoids.clear(); }, "CarSpec.ellipsoids must hold 1 to 64"},
         {[](CarSpec& c) { c.ellipsoids[2].semi_axes.y = 0.0; },
          "CarSpec.ellipsoids[2].semi_axes.y must be finite and > 0, got 0"},
