@@ -12,7 +12,7 @@ required=(
   libgtest-dev # tests
   libbenchmark-dev # benchmarks
   libglm-dev # vector, quaternion and matrix types in double (public headers)
-  libassimp-dev # mesh import and export: OBJ, glTF/GLB, PLY, AC3D, FBX...
+  libassimp-dev # mesh import and export (the formats docs/building.md lists)
   zlib1g-dev # libassimp-dev's CMake target links /usr/lib/x86_64-linux-gnu/libz.so by path
              # but does not depend on the package that holds it: without it every link
              # against assimp::assimp fails ("No rule to make target .../libz.so")

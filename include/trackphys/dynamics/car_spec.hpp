@@ -65,7 +65,7 @@ struct TRACKPHYS_API CarSpec {
     /// Contact with another car, for every ellipsoid (wheels too: a bump between cars is
     /// no tyre force). A pair of cars uses the mean of their two materials, so the law is
     /// the same seen from either car. Stiffer than the road contacts: two cars closing at
-    /// 10 m/s sink 4 cm into each other (v sqrt(m_pair / k), m_pair = 600 kg); faster
+    /// 10 m/s sink at most 2.4 cm into each other (v sqrt(m_pair / k), m_pair = 600 kg); faster
     /// impacts are stopped by the deep-contact impulse (see World).
     ContactMaterial car_contact{1.0e8, 1.0e5, 0.5, 0.001};
     /// The rear tyres are wider: their friction is wheel_contact.friction times this. With
