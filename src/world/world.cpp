@@ -59,6 +59,7 @@ World::CarSlot::CarSlot(Car car_in, MidPhase mid_in)
 
 std::size_t World::add_car(const CarSpec& spec, const RigidBodyState& state) {
     Car car(spec, state);
+    check_integrable(spec);
     check_placement(car);
     // Every car of one spec reads the same body-frame ellipsoids: one shared copy stays
     // warm in a big field, where each car's own would be cold at each of its updates.

@@ -41,7 +41,47 @@ double distance_to(const Aabb& box, const glm::dvec3& p) {
     return glm::length(outside);
 }
 
+// A lower bound of the car's mass as a contact at body-frame point r feels it: the least
+// m_eff = 1 / (1/m + (r x n)^T I^-1 (r x n)) over unit n. (r x n)^T I^-1 (r x n) is at most
+// the trace of [r]x^T I^-1 [r]x, sum_i (|r|^2 - r_i^2) / I_i, its largest eigenvalue's at
+// most twice (the matrix has rank 2).
+double effective_mass_floor(const MassProperties& mass, const glm::dvec3& r) {
+    const double r2 = glm::dot(r, r);
+    const glm::dvec3& inertia = mass.principal_inertia;
+    const double turning =
+        (r2 - r.x * r.x) / inertia.x + (r2 - r.y * r.y) / inertia.y + (r2 - r.z * r.z) / inertia.z;
+    return 1.0 / (1.0 / mass.mass + turning);
+}
+
 }  // namespace
+
+void World::check_integrable(const CarSpec& spec) const {
+    // Semi-implicit Euler integrates x'' = -(k x + c x') / m stably while h^2 k / m +
+    // 2 h c / m <= 4 (the update matrix's determinant 1 - h c / m and trace 2 - h c / m -
+    // h^2 k / m). A spring beyond it does not slow the simulation down gracefully: the car
+    // gains energy at every sub-step, is reset at every update and sweeps the whole map.
+    const double h = settings_.substep_dt();
+    for (std::size_t i = 0; i < spec.ellipsoids.size(); ++i) {
+        const CarEllipsoid& e = spec.ellipsoids[i];
+        const double m = effective_mass_floor(spec.mass, e.center);
+        const bool wheel = e.role != EllipsoidRole::body;
+        for (const auto& [name, material] :
+             {std::pair{wheel ? "wheel_contact" : "body_contact",
+                        wheel ? spec.wheel_contact : spec.body_contact},
+              std::pair{"car_contact", spec.car_contact}}) {
+            const double growth = h * h * material.stiffness / m + 2.0 * h * material.damping / m;
+            if (growth <= 4.0) continue;
+            std::ostringstream why;
+            why << "World::add_car: CarSpec." << name << " (stiffness " << material.stiffness
+                << " N/m, damping " << material.damping << " N s/m) is too stiff for a sub-step of "
+                << h << " s at ellipsoid " << i << " (" << role_name(e.role)
+                << "), where the car's effective mass may be as low as " << m
+                << " kg: h^2 k / m + 2 h c / m is " << growth << ", above the 4 that the "
+                << "integrator keeps stable";
+            throw Error(why.str());
+        }
+    }
+}
 
 std::string World::impossible_state(const RigidBodyState& s) const {
     // Once per car and update: the common case decides without building a message (a NaN or
