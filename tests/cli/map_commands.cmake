@@ -33,6 +33,10 @@ trackphys_cli_test(map.race_map_or_seed 1 "--seed picks a generated track, but t
 set_tests_properties(map.race_pinned_state_hash map.race_a_mesh_map_needs_a_track
                      map.race_map_or_seed PROPERTIES FIXTURES_REQUIRED baked_maps)
 
+trackphys_cli_test(map.drive_rejects_a_device_as_map 1 "map '/dev/zero': not a regular file"
+                   drive --map /dev/zero --seconds 1)
+trackphys_cli_test(map.drive_rejects_a_folder_as_map 1 "map '[^']*a_folder.obj': is a folder, not a file"
+                   drive --map ${in}/a_folder.obj --seconds 1)
 trackphys_cli_test(map.drive_rejects_a_mesh_as_map 1 "map '.*flat_ground.obj': wrong magic"
                    drive --map ${flat} --seconds 1)
 trackphys_cli_test(map.bake_mesh_or_seed 1 "give a mesh file or --seed"
