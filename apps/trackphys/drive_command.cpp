@@ -138,6 +138,27 @@ std::optional<SavePoint> parse_save_at(const DriveOptions& o, double drive_secon
     return point;
 }
 
+// A snapshot at or past the drive's end would resume a drive of nothing: a silent success.
+void check_resume_before_the_end(const std::filesystem::path& file, double snapshot_seconds,
+                                 double end_seconds, const DriveSession& saved, int laps) {
+    const std::string name = "--resume '" + file.string() + "': ";
+    char text[160];
+    if (laps > 0 && saved.lap_times_s.size() >= static_cast<std::size_t>(laps)) {
+        const std::size_t done = saved.lap_times_s.size();
+        std::snprintf(text, sizeof text,
+                      "the snapshot's drive has already completed %zu lap%s, the drive's end "
+                      "(--laps %d)",
+                      done, done == 1 ? "" : "s", laps);
+        throw Error(name + text);
+    }
+    if (snapshot_seconds >= end_seconds - 1e-9) {
+        std::snprintf(text, sizeof text,
+                      "the snapshot is at %.2f s, at or after the drive's end (--seconds %g)",
+                      snapshot_seconds, end_seconds);
+        throw Error(name + text);
+    }
+}
+
 void run(const DriveOptions& o, const CLI::App& command) {
     if (o.track != "default")
         throw Error("--track '" + o.track + "': the only generated track is 'default'");
@@ -204,6 +225,7 @@ void run(const DriveOptions& o, const CLI::App& command) {
     }
     const int laps = !s.free_mode() && s.laps == 0 && s.seconds == 0.0 ? 1 : s.laps;
     const double seconds = s.seconds > 0.0 ? s.seconds : laps * kMaxSecondsPerLap;
+    if (resume) check_resume_before_the_end(o.resume, world.time(), seconds, session, laps);
 
     std::unique_ptr<TraceRecorder> trace;
     if (!trace_file.empty()) {
