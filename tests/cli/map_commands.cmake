@@ -43,6 +43,14 @@ trackphys_cli_test(map.bake_mesh_or_seed 1 "give a mesh file or --seed"
                    bake ${flat} --seed 3 --out ${maps}/both.tpmap)
 trackphys_cli_test(map.bake_needs_tpmap_name 1 "ends in .tpmap"
                    bake --seed 3 --out ${maps}/track.bin)
+# bake's numbers are checked as drive's and race's are: named, shown as %g, one --threads range.
+foreach(chunk IN ITEMS 0 -5 inf nan)
+  trackphys_cli_test_leaves_nothing(map.bake_rejects_chunk_${chunk} 1 "--chunk must be finite and > 0 m, got ${chunk}"
+                                    ${out}/bake_chunk_${chunk} bake ${flat} --chunk ${chunk} --out ${out}/bake_chunk_${chunk}/f.tpmap)
+endforeach()
+trackphys_cli_test_leaves_nothing(map.bake_rejects_too_many_threads 1
+                                  "--threads must be in \\[0, 256\\] \\(0: the hardware's count\\), got 100000"
+                                  ${out}/bake_threads bake --seed 3 --threads 100000 --out ${out}/bake_threads/t.tpmap)
 
 # Scenario files name a map as track.map.
 file(WRITE ${in}/scenario_map.json "{\"track\": {\"map\": \"${maps}/seed7.tpmap\"}, \"seconds\": 2}\n")
