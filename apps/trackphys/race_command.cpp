@@ -80,11 +80,16 @@ constexpr std::pair<const char*, const char*> kFieldOptions[] = {
     {"Scenario.seconds", "--seconds"},
 };
 
-void check(const RaceOptions& o) {
+void check(const RaceOptions& o, const CLI::App& command) {
     if (o.cars < 1 || o.cars > static_cast<std::size_t>(max_scenario_cars))
         throw Error("--cars must be in [1, " + std::to_string(max_scenario_cars) + "], got " +
                     std::to_string(o.cars));
     check_threads(o.threads);
+    if (!o.trace.empty() && command.count("--threads") > 0 && o.threads != 1)
+        throw Error(
+            "--trace runs the updates on one thread (a trace records only the calling "
+            "thread): leave out --threads " +
+            std::to_string(o.threads) + " or give --threads 1");
 }
 
 // The classification: most laps first, then furthest along the track.
@@ -101,7 +106,7 @@ std::vector<RaceCarResult> classify(const RaceDrivers& drivers, const World& wor
 }
 
 void run(const RaceOptions& o, const CLI::App& command) {
-    check(o);
+    check(o, command);
     const Race race = build_race(o, command);
     const Scenario& s = race.scenario;
     if (std::string why = s.validate(); !why.empty())
@@ -123,7 +128,8 @@ void run(const RaceOptions& o, const CLI::App& command) {
                     "' was baked from a mesh and has no centreline for the grid and the "
                     "autopilots: race on a map baked from a track (bake --seed)");
     WorldSettings settings;
-    settings.threads = o.threads;
+    // The trace records the calling thread's zones only: a full profile needs one thread.
+    settings.threads = o.trace.empty() ? o.threads : 1;
     World world(scene.statics, settings, scene.plane_trees);
     const CarSpec& car = s.car;
     RaceDrivers drivers(*scene.track, car, cars, race.settings);
@@ -200,7 +206,10 @@ void run(const RaceOptions& o, const CLI::App& command) {
                     shown(seconds) + " simulated seconds");
     if (!json.empty()) write_race_json(report, json);
     if (!svg.empty()) write_drive_svg(plot, scene.track, svg);
-    if (trace) write_trace_file(*trace, trace_file, o.trace);
+    if (trace) {
+        write_trace_file(*trace, trace_file, o.trace);
+        std::printf("trace        %s, the updates run on one thread\n", o.trace.string().c_str());
+    }
     if (recording) recording->finish();
     commit_with_track_mesh(outputs, recording_plan, scene);
 }
@@ -236,7 +245,8 @@ void add_race_command(CLI::App& app) {
         ->capture_default_str();
     command->add_option("--json", o->json, "Write the figures as JSON");
     command->add_option("--trace", o->trace,
-                        "Write a Chrome trace (Perfetto) of the updates run on one thread");
+                        "Write a Chrome trace (Perfetto) of the updates; runs them on one "
+                        "thread, since a trace records only the calling thread's");
     command->add_option("--svg", o->svg,
                         "Plot every car's path over the track and the update times");
     command->add_option("--record", o->record,
