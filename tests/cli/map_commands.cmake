@@ -33,6 +33,10 @@ trackphys_cli_test(map.race_map_or_seed 1 "--seed picks a generated track, but t
 set_tests_properties(map.race_pinned_state_hash map.race_a_mesh_map_needs_a_track
                      map.race_map_or_seed PROPERTIES FIXTURES_REQUIRED baked_maps)
 
+# info reads a file named .tpmap as a map: one without the magic is a bad map, not a mesh.
+file(WRITE ${in}/garbage.tpmap "hello world, not a map")
+trackphys_cli_test(map.info_rejects_a_tpmap_without_the_magic 1 "map '[^']*garbage.tpmap': wrong magic \\(not a trackphys map file\\)"
+                   info ${in}/garbage.tpmap)
 trackphys_cli_test(map.drive_rejects_a_device_as_map 1 "map '/dev/zero': not a regular file"
                    drive --map /dev/zero --seconds 1)
 trackphys_cli_test(map.drive_rejects_a_folder_as_map 1 "map '[^']*a_folder.obj': is a folder, not a file"
