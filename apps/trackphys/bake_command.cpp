@@ -2,6 +2,7 @@
 // once and writes them to a map file that drive --map loads without rebuilding.
 
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
@@ -25,7 +26,7 @@ struct BakeOptions {
     std::uint64_t seed = kDemoTrackSeed;
     std::filesystem::path out;
     double chunk_m = 100.0;
-    unsigned threads = 0;
+    int threads = 0;
     MeshLoadLimits mesh_limits;
 };
 
@@ -39,6 +40,9 @@ void run_bake(const BakeOptions& o, const CLI::App& command) {
         throw Error("give a mesh file or --seed (a generated track), not both");
     if (!from_mesh && command.count("--chunk") > 0)
         throw Error("--chunk splits a mesh file; a generated track comes in its own chunks");
+    if (!(std::isfinite(o.chunk_m) && o.chunk_m > 0.0))
+        throw Error("--chunk must be finite and > 0 m, got " + shown(o.chunk_m));
+    check_threads(o.threads);
     if (o.out.extension() != ".tpmap")
         throw Error("--out '" + o.out.string() + "': a map file's name ends in .tpmap");
     const auto start = std::chrono::steady_clock::now();
@@ -48,7 +52,7 @@ void run_bake(const BakeOptions& o, const CLI::App& command) {
         const TriangleMesh mesh = load_mesh(o.mesh, o.mesh_limits);
         try {
             map = bake_map(split_into_chunks(mesh, o.chunk_m), PlaneTreeSettings::precomputed(),
-                           o.threads);
+                           static_cast<unsigned>(o.threads));
         } catch (const Error& e) {  // a chunk the collider refuses (coordinates beyond its limit)
             throw Error("mesh file '" + o.mesh.string() + "': " + e.what());
         }
@@ -56,7 +60,8 @@ void run_bake(const BakeOptions& o, const CLI::App& command) {
     } else {
         TrackParams params;
         params.seed = o.seed;
-        map = bake_track_map(generate_track(params), PlaneTreeSettings::precomputed(), o.threads);
+        map = bake_track_map(generate_track(params), PlaneTreeSettings::precomputed(),
+                             static_cast<unsigned>(o.threads));
         source = "generated track, seed " + std::to_string(o.seed);
     }
     const double bake_s = seconds_since(start);
@@ -92,11 +97,9 @@ void add_bake_command(CLI::App& app) {
         ->check(not_negative())
         ->capture_default_str();
     command->add_option("--out", o->out, "the map file to write (MAP.tpmap)")->required();
-    command->add_option("--chunk", o->chunk_m, "a mesh's collider cells on x and z (m)")
-        ->check(CLI::PositiveNumber)
+    command->add_option("--chunk", o->chunk_m, "a mesh's collider cells on x and z (m, > 0)")
         ->capture_default_str();
-    command->add_option("--threads", o->threads, "threads to build on (0: one per core)")
-        ->check(not_negative())
+    command->add_option("--threads", o->threads, "threads to build on, 0 to 256 (0: one per core)")
         ->capture_default_str();
     add_mesh_limit_options(*command, o->mesh_limits);
     command->callback([o, command] { run_bake(*o, *command); });

@@ -90,6 +90,7 @@ Scenario build_scenario(const DriveOptions& o, const CLI::App& command) {
     if (given("--target-speed")) s.target_speed_kmh = f.target_speed_kmh;
     if (given("--throttle")) s.inputs.throttle = f.inputs.throttle;
     if (given("--steer")) s.inputs.steer = f.inputs.steer;
+    refuse_zero_duration(command, f.laps, f.seconds);
     if (given("--laps")) s.laps = f.laps;
     if (given("--seconds")) s.seconds = f.seconds;
 
@@ -113,11 +114,7 @@ Scenario build_scenario(const DriveOptions& o, const CLI::App& command) {
         why = "Scenario.cars is " + std::to_string(s.cars) +
               ": drive drives one car (race a field with trackphys race --scenario)";
     if (why.empty()) return s;
-    for (const auto& [field, option] : kFieldOptions)
-        if (why.rfind(field, 0) == 0 && given(option))
-            throw Error(std::string(option) + ": " + why);
-    if (!o.scenario_file.empty()) why = "scenario '" + o.scenario_file.string() + "': " + why;
-    throw Error(why);
+    fail_scenario(why, kFieldOptions, command, o.scenario_file);
 }
 
 std::optional<SavePoint> parse_save_at(const DriveOptions& o, double drive_seconds) {
@@ -134,8 +131,29 @@ std::optional<SavePoint> parse_save_at(const DriveOptions& o, double drive_secon
         throw Error("--save-at '" + time + "': the time must be a finite number of seconds >= 0");
     if (drive_seconds > 0.0 && point.seconds > drive_seconds + 1e-9)
         throw Error("--save-at " + time + " is after the drive's end (--seconds " +
-                    std::to_string(drive_seconds) + ")");
+                    shown(drive_seconds) + ")");
     return point;
+}
+
+// A snapshot at or past the drive's end would resume a drive of nothing: a silent success.
+void check_resume_before_the_end(const std::filesystem::path& file, double snapshot_seconds,
+                                 double end_seconds, const DriveSession& saved, int laps) {
+    const std::string name = "--resume '" + file.string() + "': ";
+    char text[160];
+    if (laps > 0 && saved.lap_times_s.size() >= static_cast<std::size_t>(laps)) {
+        const std::size_t done = saved.lap_times_s.size();
+        std::snprintf(text, sizeof text,
+                      "the snapshot's drive has already completed %zu lap%s, the drive's end "
+                      "(--laps %d)",
+                      done, done == 1 ? "" : "s", laps);
+        throw Error(name + text);
+    }
+    if (snapshot_seconds >= end_seconds - 1e-9) {
+        std::snprintf(text, sizeof text,
+                      "the snapshot is at %.2f s, at or after the drive's end (--seconds %g)",
+                      snapshot_seconds, end_seconds);
+        throw Error(name + text);
+    }
 }
 
 void run(const DriveOptions& o, const CLI::App& command) {
@@ -204,6 +222,7 @@ void run(const DriveOptions& o, const CLI::App& command) {
     }
     const int laps = !s.free_mode() && s.laps == 0 && s.seconds == 0.0 ? 1 : s.laps;
     const double seconds = s.seconds > 0.0 ? s.seconds : laps * kMaxSecondsPerLap;
+    if (resume) check_resume_before_the_end(o.resume, world.time(), seconds, session, laps);
 
     std::unique_ptr<TraceRecorder> trace;
     if (!trace_file.empty()) {
@@ -296,12 +315,12 @@ void run(const DriveOptions& o, const CLI::App& command) {
 
     print_drive_report(report);
     if (save_at && !saved)
-        throw Error("--save-at " + o.save_at.first + ": the drive ended at " +
-                    std::to_string(world.time()) + " s, before that time; no snapshot written");
+        throw Error("--save-at " + o.save_at.first + ": the drive ended at " + shown(world.time()) +
+                    " s, before that time; no snapshot written");
     if (laps > 0 && report.laps_completed < laps)
         throw Error("the car completed " + std::to_string(report.laps_completed) + " of " +
-                    std::to_string(laps) + " laps in " + std::to_string(seconds) +
-                    " simulated seconds");
+                    std::to_string(laps) + (laps == 1 ? " lap" : " laps") + " in " +
+                    shown(seconds) + " simulated seconds");
     if (!json.empty()) write_drive_json(report, json);
     if (!svg.empty()) write_drive_svg(plot, scene.track, svg);
     if (trace) write_trace_file(*trace, trace_file, o.trace);
@@ -350,8 +369,8 @@ void add_drive_command(CLI::App& app) {
                         "Drive on this baked map (trackphys bake): by autopilot when it was "
                         "baked from a generated track, else in free mode (needs --spawn)");
     command->add_option("--laps", o->flags.laps,
-                        "Laps to drive by autopilot (default 1 without --seconds)");
-    command->add_option("--seconds", o->flags.seconds, "Simulated seconds to drive");
+                        "Laps to drive by autopilot, >= 1 (default 1 without --seconds)");
+    command->add_option("--seconds", o->flags.seconds, "Simulated seconds to drive (> 0)");
     command
         ->add_option("--target-speed", o->flags.target_speed_kmh,
                      "Autopilot speed on straights (km/h)")

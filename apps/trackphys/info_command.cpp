@@ -2,6 +2,7 @@
 // map holds (map_info.cpp).
 
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <string>
 
@@ -10,6 +11,8 @@
 #include "commands.hpp"
 #include "map_info.hpp"
 #include "mesh_limit_options.hpp"
+#include "trackphys/collision/static_collider.hpp"
+#include "trackphys/error.hpp"
 #include "trackphys/io/map_file.hpp"
 #include "trackphys/io/mesh_io.hpp"
 
@@ -65,10 +68,20 @@ void print_text(const InfoOptions& options, const MeshLoadReport& r) {
 }
 
 void run_info(const InfoOptions& options) {
-    if (is_map_file(options.file)) return print_map_info(options.file, options.json);
+    // A file named .tpmap is read as a map, so one without the magic is called a bad map,
+    // not a mesh format trackphys does not read.
+    if (is_map_file(options.file) || std::filesystem::path(options.file).extension() == ".tpmap")
+        return print_map_info(options.file, options.json);
     MeshLoadReport report;
-    load_mesh(options.file, report,
-              options.mesh_limits);  // throws trackphys::Error on bad input: main reports it
+    // Throws trackphys::Error on bad input: main reports it.
+    const TriangleMesh mesh = load_mesh(options.file, report, options.mesh_limits);
+    // A mesh every loader reads can still be one no collider takes (a coordinate beyond its
+    // limit): bake and drive --mesh would refuse it, so info does too.
+    try {
+        const StaticCollider collider(mesh);
+    } catch (const Error& e) {
+        throw Error("mesh file '" + options.file + "': a static collider refuses it: " + e.what());
+    }
     if (options.json)
         print_json(options, report);
     else

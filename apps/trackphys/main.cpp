@@ -1,5 +1,6 @@
 #include <cstdio>
 #include <exception>
+#include <string>
 
 #include <CLI/CLI.hpp>
 
@@ -29,6 +30,15 @@ int main(int argc, char** argv) {
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
+        // CLI11 says only "A subcommand is required" for a word that names no command.
+        if (app.get_subcommands().empty() && argc > 1 && argv[1][0] != '-') {
+            std::string commands;
+            for (const CLI::App* command : app.get_subcommands([](CLI::App*) { return true; }))
+                commands += (commands.empty() ? "" : ", ") + command->get_name();
+            std::fprintf(stderr, "trackphys: error: '%s' is not a command (%s; see --help)\n",
+                         argv[1], commands.c_str());
+            return e.get_exit_code();
+        }
         return app.exit(e);
     } catch (const trackphys::Error& e) {
         std::fprintf(stderr, "trackphys: error: %s\n", e.what());

@@ -5,6 +5,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "commands.hpp"
@@ -60,6 +61,7 @@ Race build_race(const RaceOptions& o, const CLI::App& command) {
         throw Error("--seed picks a generated track, but this race is on the map '" +
                     o.map.string() + "'");
     if (given("--seed")) s.seed = o.seed;
+    refuse_zero_duration(command, o.laps, o.seconds);
     if (given("--laps")) s.laps = o.laps;
     if (given("--seconds")) s.seconds = o.seconds;
     // The field's speeds as the default race's (420 to 600 km/h) for a target of 600.
@@ -71,16 +73,23 @@ Race build_race(const RaceOptions& o, const CLI::App& command) {
 // A lap that takes longer than this (simulated) means a car is stuck: give up (as drive).
 constexpr double kMaxSecondsPerLap = 600.0;
 
-void check(const RaceOptions& o) {
+// The option that sets each Scenario field race reads, to name it in validate()'s messages.
+constexpr std::pair<const char*, const char*> kFieldOptions[] = {
+    {"Scenario.cars", "--cars"},
+    {"Scenario.laps", "--laps"},
+    {"Scenario.seconds", "--seconds"},
+};
+
+void check(const RaceOptions& o, const CLI::App& command) {
     if (o.cars < 1 || o.cars > static_cast<std::size_t>(max_scenario_cars))
         throw Error("--cars must be in [1, " + std::to_string(max_scenario_cars) + "], got " +
                     std::to_string(o.cars));
-    if (o.laps < 0) throw Error("--laps must be >= 0, got " + std::to_string(o.laps));
-    if (!(o.seconds >= 0.0 && o.seconds < 1e7))
-        throw Error("--seconds must be finite and >= 0, got " + std::to_string(o.seconds));
-    if (o.threads < 0 || o.threads > 256)
-        throw Error("--threads must be in [0, 256] (0: the hardware's count), got " +
-                    std::to_string(o.threads));
+    check_threads(o.threads);
+    if (!o.trace.empty() && command.count("--threads") > 0 && o.threads != 1)
+        throw Error(
+            "--trace runs the updates on one thread (a trace records only the calling "
+            "thread): leave out --threads " +
+            std::to_string(o.threads) + " or give --threads 1");
 }
 
 // The classification: most laps first, then furthest along the track.
@@ -97,10 +106,11 @@ std::vector<RaceCarResult> classify(const RaceDrivers& drivers, const World& wor
 }
 
 void run(const RaceOptions& o, const CLI::App& command) {
-    check(o);
+    check(o, command);
     const Race race = build_race(o, command);
     const Scenario& s = race.scenario;
-    if (std::string why = s.validate(); !why.empty()) throw Error(why);
+    if (std::string why = s.validate(); !why.empty())
+        fail_scenario(why, kFieldOptions, command, o.scenario_file);
     const auto cars = static_cast<std::size_t>(s.cars);
     // As drive: outputs staged first and put in place only after the race succeeded.
     const InterruptGuard interrupt_guard;
@@ -118,7 +128,8 @@ void run(const RaceOptions& o, const CLI::App& command) {
                     "' was baked from a mesh and has no centreline for the grid and the "
                     "autopilots: race on a map baked from a track (bake --seed)");
     WorldSettings settings;
-    settings.threads = o.threads;
+    // The trace records the calling thread's zones only: a full profile needs one thread.
+    settings.threads = o.trace.empty() ? o.threads : 1;
     World world(scene.statics, settings, scene.plane_trees);
     const CarSpec& car = s.car;
     RaceDrivers drivers(*scene.track, car, cars, race.settings);
@@ -191,11 +202,14 @@ void run(const RaceOptions& o, const CLI::App& command) {
     print_race_report(report);
     if (laps > 0 && report.laps_completed < laps)
         throw Error("the last car completed " + std::to_string(report.laps_completed) + " of " +
-                    std::to_string(laps) + " laps in " + std::to_string(seconds) +
-                    " simulated seconds");
+                    std::to_string(laps) + (laps == 1 ? " lap" : " laps") + " in " +
+                    shown(seconds) + " simulated seconds");
     if (!json.empty()) write_race_json(report, json);
     if (!svg.empty()) write_drive_svg(plot, scene.track, svg);
-    if (trace) write_trace_file(*trace, trace_file, o.trace);
+    if (trace) {
+        write_trace_file(*trace, trace_file, o.trace);
+        std::printf("trace        %s, the updates run on one thread\n", o.trace.string().c_str());
+    }
     if (recording) recording->finish();
     commit_with_track_mesh(outputs, recording_plan, scene);
 }
@@ -223,15 +237,16 @@ void add_race_command(CLI::App& app) {
         ->check(not_negative())
         ->capture_default_str();
     command->add_option("--laps", o->laps,
-                        "Laps every car must complete (default 1 without --seconds)");
-    command->add_option("--seconds", o->seconds, "Simulated seconds to race");
+                        "Laps every car must complete, >= 1 (default 1 without --seconds)");
+    command->add_option("--seconds", o->seconds, "Simulated seconds to race (> 0)");
     command
         ->add_option("--threads", o->threads,
                      "Threads to update the world on (0: the hardware's count)")
         ->capture_default_str();
     command->add_option("--json", o->json, "Write the figures as JSON");
     command->add_option("--trace", o->trace,
-                        "Write a Chrome trace (Perfetto) of the updates run on one thread");
+                        "Write a Chrome trace (Perfetto) of the updates; runs them on one "
+                        "thread, since a trace records only the calling thread's");
     command->add_option("--svg", o->svg,
                         "Plot every car's path over the track and the update times");
     command->add_option("--record", o->record,

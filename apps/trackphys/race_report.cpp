@@ -26,9 +26,10 @@ double per_car_us(const RaceReport& r) {
 
 void print_race_report(const RaceReport& r) {
     std::printf("scene        %s\n", r.scene.c_str());
-    std::printf("race         %zu cars on %d threads, %.2f s simulated in %" PRIu64
+    std::printf("race         %zu car%s on %d thread%s, %.2f s simulated in %" PRIu64
                 " updates (%.2f s wall clock)\n",
-                r.cars, r.threads, r.simulated_s, r.updates, r.wall_s);
+                r.cars, r.cars == 1 ? "" : "s", r.threads, r.threads == 1 ? "" : "s", r.simulated_s,
+                r.updates, r.wall_s);
     std::printf("%4s %4s %8s %6s %5s %10s %10s %7s\n", "pos", "car", "km/h", "grip %", "laps",
                 "best lap", "last lap", "resets");
     for (std::size_t i = 0; i < r.classification.size(); ++i) {

@@ -16,14 +16,13 @@
 #include "trackphys/error.hpp"
 #include "trackphys/geometry/triangle_mesh.hpp"
 #include "trackphys/io/mesh_io.hpp"
+#include "trackphys/io/regular_file.hpp"
 
 namespace trackphys::cli {
 namespace {
 
 std::string read_recording(const std::filesystem::path& path) {
-    std::error_code error;
-    if (!std::filesystem::is_regular_file(path, error))
-        throw Error("recording '" + path.string() + "': no such file");
+    require_regular_file(path, "recording '" + path.string() + "'");
     std::ifstream in(path, std::ios::binary);
     std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     if (in.bad()) throw Error("recording '" + path.string() + "': cannot read it");
@@ -39,6 +38,24 @@ nlohmann::json read_header(const std::string& text, const std::filesystem::path&
                     "': not a trackphys recording (its first line must be a header with "
                     "\"format\":\"trackphys-recording\")");
     return header;
+}
+
+// Every frame line is a JSON object, as the viewer requires (viewer/src/recording.ts): a
+// recording cut short by a crash or a full disk is refused here, naming the line as the
+// page would, not written into a page that then refuses it.
+void check_frames(std::string_view text, const std::filesystem::path& path) {
+    std::size_t line = 1;
+    for (std::size_t at = text.find('\n'); at != std::string_view::npos && at + 1 < text.size();) {
+        ++line;
+        const std::size_t end = std::min(text.find('\n', at + 1), text.size());
+        const std::string_view frame = text.substr(at + 1, end - at - 1);
+        const std::size_t first = frame.find_first_not_of(" \t\r");
+        if (first == std::string_view::npos || frame[first] != '{' ||
+            !nlohmann::json::accept(frame))
+            throw Error("recording '" + path.string() + "': line " + std::to_string(line) +
+                        ": not a JSON object (a truncated or corrupt recording)");
+        at = end;
+    }
 }
 
 std::string deflate(std::string_view bytes) {
@@ -126,6 +143,7 @@ std::string make_replay_page(const std::filesystem::path& recording, std::string
                              const MeshLoadLimits& mesh_limits, ReplayPageStats& stats) {
     const std::string text = read_recording(recording);
     const nlohmann::json header = read_header(text, recording);
+    check_frames(text, recording);
     stats.recording_bytes = text.size();
     const std::string name = attribute(recording.filename().string());
 

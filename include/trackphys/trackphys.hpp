@@ -36,6 +36,7 @@
 #include "trackphys/io/mesh_io.hpp"
 #include "trackphys/io/mesh_load_limits.hpp"
 #include "trackphys/io/recording.hpp"
+#include "trackphys/io/regular_file.hpp"
 #include "trackphys/io/scenario.hpp"
 #include "trackphys/io/snapshot_file.hpp"
 #include "trackphys/math/symmetric_eigen.hpp"

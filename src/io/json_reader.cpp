@@ -4,9 +4,9 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
-#include <system_error>
 
 #include "trackphys/error.hpp"
+#include "trackphys/io/regular_file.hpp"
 
 namespace trackphys::json_io {
 namespace {
@@ -64,12 +64,7 @@ void fail(const std::string& source, const std::string& path, const std::string&
 
 std::string read_text_file(const fs::path& path, const char* what) {
     const std::string name = std::string(what) + " '" + path.string() + "'";
-    std::error_code error;
-    const fs::file_status status = fs::status(path, error);
-    if (!fs::exists(status)) throw Error(name + ": no such file");
-    if (fs::is_directory(status)) throw Error(name + ": is a folder, not a file");
-    // A device or a pipe (/dev/stdin) could block or never end.
-    if (!fs::is_regular_file(status)) throw Error(name + ": not a regular file");
+    require_regular_file(path, name);
     std::ifstream in(path, std::ios::binary);
     if (!in) throw Error(name + ": cannot open it for reading");
     std::string text;

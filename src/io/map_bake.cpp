@@ -20,6 +20,7 @@ StaticMap bake_map(std::span<const TriangleMesh> meshes, const PlaneTreeSettings
             trees[i] = std::make_shared<PlaneTree>(make_collider_plane_tree(*collider, settings));
             colliders[i] = std::move(collider);
         } catch (const Error& e) {
+            if (n == 1) throw;
             throw Error("mesh " + std::to_string(i) + ": " + e.what());
         }
     });

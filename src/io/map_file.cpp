@@ -18,6 +18,7 @@
 #include "map_codec.hpp"
 #include "mapped_file.hpp"
 #include "trackphys/error.hpp"
+#include "trackphys/io/regular_file.hpp"
 
 namespace trackphys {
 namespace {
@@ -363,8 +364,7 @@ StaticMap load_static_world(const std::filesystem::path& path,
                             const std::optional<PlaneTreeSettings>& expected, unsigned threads,
                             std::size_t frame_budget_bytes) {
     const std::string source = "map '" + path.string() + "'";
-    std::error_code error;
-    if (std::filesystem::is_directory(path, error)) throw Error(source + ": is a folder");
+    require_regular_file(path, source);
     // Mapped, not read: the arrays are copied once, from the page cache into the structures.
     const detail::MappedFile file(path, "map");
     return decode_map(file.bytes(), source, expected, threads, frame_budget_bytes);

@@ -307,10 +307,12 @@ class SceneMerger {
             // (a glTF can place one mesh many times: the file's size does not bound this).
             if (mesh_.vertices.size() > limits_.max_vertices)
                 fail(path_, "more than " + std::to_string(limits_.max_vertices) +
-                                " vertices, the limit max_vertices");
+                                (limits_.max_vertices == 1 ? " vertex" : " vertices") +
+                                ", the limit max_vertices");
             if (mesh_.triangles.size() == limits_.max_triangles)
                 fail(path_, "more than " + std::to_string(limits_.max_triangles) +
-                                " triangles, the limit max_triangles");
+                                (limits_.max_triangles == 1 ? " triangle" : " triangles") +
+                                ", the limit max_triangles");
             mesh_.triangles.push_back(indices);
             report_.bounds.expand(triangle.bounds());
             report_.area += triangle.area();

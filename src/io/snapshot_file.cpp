@@ -2,14 +2,15 @@
 
 #include "trackphys/io/snapshot_file.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <cstring>
 #include <fstream>
-#include <iterator>
 #include <system_error>
 
 #include "core/fnv1a.hpp"
 #include "trackphys/error.hpp"
+#include "trackphys/io/regular_file.hpp"
 
 namespace trackphys {
 namespace {
@@ -91,6 +92,46 @@ class Reader {
     std::string_view in_;
     std::size_t at_ = 0;
 };
+
+struct Header {
+    std::uint64_t payload_bytes;
+    std::uint64_t checksum;
+};
+
+// The header's fields, checked; `bytes` begins with the file's first bytes.
+Header read_header(std::string_view bytes) {
+    if (bytes.size() < kHeaderBytes)
+        throw Error("snapshot: " + std::to_string(bytes.size()) + " bytes, shorter than the " +
+                    std::to_string(kHeaderBytes) + "-byte header (truncated or not a snapshot)");
+    if (std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0)
+        throw Error("snapshot: wrong magic (not a trackphys snapshot file)");
+    Reader header(bytes.substr(sizeof kMagic, kHeaderBytes - sizeof kMagic));
+    const std::uint32_t version = header.u32("format version");
+    if (version != kSnapshotFormatVersion)
+        throw Error("snapshot: format version " + std::to_string(version) +
+                    ", this build reads only version " + std::to_string(kSnapshotFormatVersion));
+    if (const std::uint32_t reserved = header.u32("reserved"); reserved != 0)
+        throw Error("snapshot: the reserved header field is " + std::to_string(reserved) +
+                    ", not 0");
+    const std::uint64_t length = header.u64("payload length");
+    return {length, header.u64("checksum")};
+}
+
+void check_payload_size(std::uint64_t announced, std::uint64_t available) {
+    if (announced > available)
+        throw Error("snapshot: truncated: the header announces " + std::to_string(announced) +
+                    " payload bytes, the file has " + std::to_string(available));
+    if (announced < available)
+        throw Error("snapshot: " + std::to_string(available - announced) +
+                    " bytes of trailing garbage after the payload");
+}
+
+// decode_snapshot's messages begin "snapshot: "; a file's messages name it there instead.
+[[noreturn]] void fail_naming(const std::string& source, std::string_view why) {
+    constexpr std::string_view prefix = "snapshot: ";
+    if (why.starts_with(prefix)) why.remove_prefix(prefix.size());
+    throw Error(source + ": " + std::string(why));
+}
 
 // Every field but `profile`, `threads` and `jobs`, which do not change results. (A new field
 // also needs a new format version, and settings_difference in world_snapshot.cpp.)
@@ -230,30 +271,10 @@ std::string encode_snapshot(const WorldSnapshot& snapshot, std::string_view user
 }
 
 SnapshotFile decode_snapshot(std::string_view bytes) {
-    if (bytes.size() < kHeaderBytes)
-        throw Error("snapshot: " + std::to_string(bytes.size()) + " bytes, shorter than the " +
-                    std::to_string(kHeaderBytes) + "-byte header (truncated or not a snapshot)");
-    if (std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0)
-        throw Error("snapshot: wrong magic (not a trackphys snapshot file)");
-    Reader header(bytes.substr(sizeof kMagic, kHeaderBytes - sizeof kMagic));
-    const std::uint32_t version = header.u32("format version");
-    if (version != kSnapshotFormatVersion)
-        throw Error("snapshot: format version " + std::to_string(version) +
-                    ", this build reads only version " + std::to_string(kSnapshotFormatVersion));
-    if (const std::uint32_t reserved = header.u32("reserved"); reserved != 0)
-        throw Error("snapshot: the reserved header field is " + std::to_string(reserved) +
-                    ", not 0");
-    const std::uint64_t length = header.u64("payload length");
-    const std::uint64_t expected = header.u64("checksum");
-    const std::size_t available = bytes.size() - kHeaderBytes;
-    if (length > available)
-        throw Error("snapshot: truncated: the header announces " + std::to_string(length) +
-                    " payload bytes, the file has " + std::to_string(available));
-    if (length < available)
-        throw Error("snapshot: " + std::to_string(available - length) +
-                    " bytes of trailing garbage after the payload");
+    const Header header = read_header(bytes);
+    check_payload_size(header.payload_bytes, bytes.size() - kHeaderBytes);
     const std::string_view payload = bytes.substr(kHeaderBytes);
-    if (checksum(payload) != expected)
+    if (checksum(payload) != header.checksum)
         throw Error("snapshot: checksum mismatch (the file is corrupted)");
 
     Reader r(payload);
@@ -307,14 +328,26 @@ void save_snapshot(const std::filesystem::path& path, const WorldSnapshot& snaps
 }
 
 SnapshotFile load_snapshot(const std::filesystem::path& path) {
+    const std::string source = "snapshot '" + path.string() + "'";
+    require_regular_file(path, source);
+    std::error_code error;
+    const std::uintmax_t size = std::filesystem::file_size(path, error);
+    if (error) throw Error(source + ": cannot read its size: " + error.message());
     std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error("cannot open the snapshot '" + path.string() + "'");
-    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (in.bad()) throw Error("cannot read the snapshot '" + path.string() + "'");
+    if (!in) throw Error(source + ": cannot open it for reading");
+    // The header first: its payload length must match the file's size before the payload is
+    // read, so a file is never read past what it announces.
+    std::string bytes(static_cast<std::size_t>(std::min<std::uintmax_t>(size, kHeaderBytes)), '\0');
     try {
+        in.read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+        const Header header = read_header(bytes);
+        check_payload_size(header.payload_bytes, size - kHeaderBytes);
+        bytes.resize(kHeaderBytes + static_cast<std::size_t>(header.payload_bytes));
+        in.read(bytes.data() + kHeaderBytes, static_cast<std::streamsize>(header.payload_bytes));
+        if (!in) throw Error("snapshot: cannot read it (did it change while it was read?)");
         return decode_snapshot(bytes);
     } catch (const Error& e) {
-        throw Error("'" + path.string() + "': " + e.what());
+        fail_naming(source, e.what());
     }
 }
 

@@ -21,6 +21,7 @@ target_sources(trackphys PRIVATE
   io/stl_check.cpp
   io/recording.cpp
   io/recording_world.cpp
+  io/regular_file.cpp
   io/scenario.cpp
   io/snapshot_file.cpp
   io/vehicle_spec_json.cpp)

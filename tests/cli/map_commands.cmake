@@ -33,12 +33,28 @@ trackphys_cli_test(map.race_map_or_seed 1 "--seed picks a generated track, but t
 set_tests_properties(map.race_pinned_state_hash map.race_a_mesh_map_needs_a_track
                      map.race_map_or_seed PROPERTIES FIXTURES_REQUIRED baked_maps)
 
+# info reads a file named .tpmap as a map: one without the magic is a bad map, not a mesh.
+file(WRITE ${in}/garbage.tpmap "hello world, not a map")
+trackphys_cli_test(map.info_rejects_a_tpmap_without_the_magic 1 "map '[^']*garbage.tpmap': wrong magic \\(not a trackphys map file\\)"
+                   info ${in}/garbage.tpmap)
+trackphys_cli_test(map.drive_rejects_a_device_as_map 1 "map '/dev/zero': not a regular file"
+                   drive --map /dev/zero --seconds 1)
+trackphys_cli_test(map.drive_rejects_a_folder_as_map 1 "map '[^']*a_folder.obj': is a folder, not a file"
+                   drive --map ${in}/a_folder.obj --seconds 1)
 trackphys_cli_test(map.drive_rejects_a_mesh_as_map 1 "map '.*flat_ground.obj': wrong magic"
                    drive --map ${flat} --seconds 1)
 trackphys_cli_test(map.bake_mesh_or_seed 1 "give a mesh file or --seed"
                    bake ${flat} --seed 3 --out ${maps}/both.tpmap)
 trackphys_cli_test(map.bake_needs_tpmap_name 1 "ends in .tpmap"
                    bake --seed 3 --out ${maps}/track.bin)
+# bake's numbers are checked as drive's and race's are: named, shown as %g, one --threads range.
+foreach(chunk IN ITEMS 0 -5 inf nan)
+  trackphys_cli_test_leaves_nothing(map.bake_rejects_chunk_${chunk} 1 "--chunk must be finite and > 0 m, got ${chunk}"
+                                    ${out}/bake_chunk_${chunk} bake ${flat} --chunk ${chunk} --out ${out}/bake_chunk_${chunk}/f.tpmap)
+endforeach()
+trackphys_cli_test_leaves_nothing(map.bake_rejects_too_many_threads 1
+                                  "--threads must be in \\[0, 256\\] \\(0: the hardware's count\\), got 100000"
+                                  ${out}/bake_threads bake --seed 3 --threads 100000 --out ${out}/bake_threads/t.tpmap)
 
 # Scenario files name a map as track.map.
 file(WRITE ${in}/scenario_map.json "{\"track\": {\"map\": \"${maps}/seed7.tpmap\"}, \"seconds\": 2}\n")

@@ -163,7 +163,9 @@ TEST(SnapshotFile, AFailedWriteLeavesNoFile) {
     EXPECT_FALSE(fs::exists(folder / "taken.partial"));
 
     // Loading what is not there.
-    EXPECT_NE(error_of([&] { load_snapshot(folder / "absent.snap"); }).find("cannot open"),
+    EXPECT_NE(error_of([&] {
+                  load_snapshot(folder / "absent.snap");
+              }).find("snapshot '" + (folder / "absent.snap").string() + "': no such file"),
               std::string::npos);
     // Overwriting a snapshot replaces it whole.
     save_snapshot(folder / "a.snap", snapshot);
@@ -174,6 +176,35 @@ TEST(SnapshotFile, AFailedWriteLeavesNoFile) {
     std::size_t files = 0;
     for ([[maybe_unused]] const auto& entry : fs::directory_iterator(folder)) ++files;
     EXPECT_EQ(files, 2u) << "a.snap and the taken/ folder, nothing else";
+    fs::remove_all(folder);
+}
+
+// load_snapshot reads the header, then only the payload it announces, and only when the file
+// holds exactly that: a file cut short or grown is refused, naming it, before its payload is
+// read.
+TEST(SnapshotFile, LoadRefusesAFileWhoseSizeIsNotTheHeaders) {
+    const fs::path folder = fresh_folder("file_size");
+    const std::string bytes = encode_snapshot(small_snapshot());
+    const auto write = [&](const char* name, const std::string& text) {
+        std::ofstream(folder / name, std::ios::binary) << text;
+        return folder / name;
+    };
+    const fs::path grown = write("grown.snap", bytes + "xyz");
+    EXPECT_NE(error_of([&] {
+                  load_snapshot(grown);
+              }).find("snapshot '" + grown.string() + "': 3 bytes of trailing garbage"),
+              std::string::npos);
+    const fs::path cut = write("cut.snap", bytes.substr(0, 100));
+    EXPECT_NE(error_of([&] { load_snapshot(cut); })
+                  .find("snapshot '" + cut.string() + "': truncated: the header announces " +
+                        std::to_string(bytes.size() - 32) + " payload bytes, the file has 68"),
+              std::string::npos);
+    const fs::path folder_path = folder / "a_folder.snap";
+    fs::create_directories(folder_path);
+    EXPECT_NE(error_of([&] { load_snapshot(folder_path); }).find("': is a folder, not a file"),
+              std::string::npos);
+    EXPECT_EQ(load_snapshot(write("whole.snap", bytes)).world.update_count,
+              small_snapshot().update_count);
     fs::remove_all(folder);
 }
 

@@ -338,14 +338,20 @@ await check("a recording dropped with its .glb track shows the track", () =>
     }),
 );
 
-await check("a malformed recording, opened or dropped, shows a readable error", () =>
+await check("a malformed recording is refused by view and, dropped, shows a readable error", () =>
     withPage(browser, async ({ page, open }) => {
-        const broken = makePage(writeRecording("malformed", malformedRecording()), "malformed");
-        await open(broken);
+        // `trackphys view` names the bad line as the page does, and writes no page.
+        const malformed = writeRecording("malformed", malformedRecording());
+        assert.throws(
+            () => makePage(malformed, "malformed"),
+            (e) => /line 3: not a JSON object/.test(String(e.stderr)),
+        );
+        const v1 = makePage(writeRecording("version_1", versionOneRecording(3)), "version_1");
+        await waitReady(page, await open(v1));
+        await dropFiles(page, [["malformed.jsonl", malformedRecording()]]);
         const error = page.locator('[data-testid="error"]');
         await error.waitFor({ state: "visible", timeout: 10000 });
         assert.match(await error.textContent(), /line 3: not JSON/);
-        assert.notEqual(await page.evaluate(() => document.body.dataset.ready), "1");
         await dropFiles(page, [["notes.txt", "hello"]]);
         await page.waitForFunction(() =>
             document.querySelector('[data-testid="error"]').textContent.includes("not a trackphys recording"),

@@ -42,7 +42,8 @@ struct StaticMap {
 /// `settings`, on up to `threads` threads (0: std::thread::hardware_concurrency()). The
 /// result does not depend on the thread count. Its trees build their frames
 /// (PlaneTreeFrames::built): a bake is for writing, and a map file stores no frames.
-/// Throws trackphys::Error naming the mesh when a StaticCollider refuses it.
+/// Throws a StaticCollider's trackphys::Error when it refuses a mesh, prefixed "mesh i: "
+/// when there are several.
 TRACKPHYS_API StaticMap bake_map(
     std::span<const TriangleMesh> meshes,
     const PlaneTreeSettings& settings = PlaneTreeSettings::precomputed(), unsigned threads = 0);

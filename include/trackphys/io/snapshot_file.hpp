@@ -56,8 +56,10 @@ TRACKPHYS_API SnapshotFile decode_snapshot(std::string_view bytes);
 TRACKPHYS_API void save_snapshot(const std::filesystem::path& path, const WorldSnapshot& snapshot,
                                  std::string_view user_data = {});
 
-/// Reads and decodes a snapshot file (decode_snapshot); throws trackphys::Error naming the
-/// path and the reason.
+/// Reads and decodes a snapshot file (decode_snapshot); throws trackphys::Error
+/// "snapshot '<path>': <reason>", also for a path that is not a regular file (a folder, a
+/// device, a pipe) and for a file whose size is not the header's plus the payload length
+/// it announces: that is checked before the payload is read.
 TRACKPHYS_API SnapshotFile load_snapshot(const std::filesystem::path& path);
 
 }  // namespace trackphys
