@@ -60,26 +60,24 @@ void World::check_integrable(const CarSpec& spec) const {
     // 2 h c / m <= 4 (the update matrix's determinant 1 - h c / m and trace 2 - h c / m -
     // h^2 k / m). A spring beyond it does not slow the simulation down gracefully: the car
     // gains energy at every sub-step, is reset at every update and sweeps the whole map.
+    // Only the road's materials: car_contact acts between two cars, with their mean
+    // material on their pair's mass, which no one car's spec decides.
     const double h = settings_.substep_dt();
     for (std::size_t i = 0; i < spec.ellipsoids.size(); ++i) {
         const CarEllipsoid& e = spec.ellipsoids[i];
         const double m = effective_mass_floor(spec.mass, e.center);
         const bool wheel = e.role != EllipsoidRole::body;
-        for (const auto& [name, material] :
-             {std::pair{wheel ? "wheel_contact" : "body_contact",
-                        wheel ? spec.wheel_contact : spec.body_contact},
-              std::pair{"car_contact", spec.car_contact}}) {
-            const double growth = h * h * material.stiffness / m + 2.0 * h * material.damping / m;
-            if (growth <= 4.0) continue;
-            std::ostringstream why;
-            why << "World::add_car: CarSpec." << name << " (stiffness " << material.stiffness
-                << " N/m, damping " << material.damping << " N s/m) is too stiff for a sub-step of "
-                << h << " s at ellipsoid " << i << " (" << role_name(e.role)
-                << "), where the car's effective mass may be as low as " << m
-                << " kg: h^2 k / m + 2 h c / m is " << growth << ", above the 4 that the "
-                << "integrator keeps stable";
-            throw Error(why.str());
-        }
+        const ContactMaterial& material = wheel ? spec.wheel_contact : spec.body_contact;
+        const double growth = h * h * material.stiffness / m + 2.0 * h * material.damping / m;
+        if (growth <= 4.0) continue;
+        std::ostringstream why;
+        why << "World::add_car: CarSpec." << (wheel ? "wheel_contact" : "body_contact")
+            << " (stiffness " << material.stiffness << " N/m, damping " << material.damping
+            << " N s/m) is too stiff for a sub-step of " << h << " s at ellipsoid " << i << " ("
+            << role_name(e.role) << "), where the car's effective mass may be as low as " << m
+            << " kg: h^2 k / m + 2 h c / m is " << growth
+            << ", above the 4 that the integrator keeps stable";
+        throw Error(why.str());
     }
 }
 

@@ -231,7 +231,6 @@ CarSpec one_ball_car(const glm::dvec3& center, double stiffness) {
     spec.mass.principal_inertia = glm::dvec3(2.0);
     spec.ellipsoids = {{center, glm::dvec3(0.2), {1, 0, 0, 0}, EllipsoidRole::body}};
     spec.body_contact = {stiffness, 0.0, 0.5, 0.05};
-    spec.car_contact = {1.0, 0.0, 0.5, 0.05};
     return spec;
 }
 

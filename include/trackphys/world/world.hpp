@@ -65,10 +65,10 @@ class TRACKPHYS_API World {
     const StaticWorld& statics() const { return *statics_; }
 
     /// Adds a car; returns its index (0, 1, 2... in order). Throws trackphys::Error, naming
-    /// the reason, for an invalid spec or state (see Car), a spec whose contact springs the
-    /// sub-step cannot integrate stably (h^2 k / m + 2 h c / m above 4 for a contact material's
-    /// stiffness k and damping c at one of its ellipsoids, m a lower bound of the car's
-    /// effective mass there), a state the reset policy would
+    /// the reason, for an invalid spec or state (see Car), a spec whose road contact springs
+    /// the sub-step cannot integrate stably (h^2 k / m + 2 h c / m above 4 for the
+    /// wheel_contact or body_contact stiffness k and damping c at one of its ellipsoids, m a
+    /// lower bound of the car's effective mass there), a state the reset policy would
     /// reset (too fast, spinning too fast), a car inside geometry (an ellipsoid deeper than
     /// half its smallest semi-axis into a static triangle) or far outside the map (its centre
     /// of mass farther than settings().max_spawn_distance from every collider's box; a world
