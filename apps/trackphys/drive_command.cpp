@@ -16,6 +16,7 @@
 #include "drive_scene.hpp"
 #include "drive_session.hpp"
 #include "drive_svg.hpp"
+#include "file_clashes.hpp"
 #include "interrupt_guard.hpp"
 #include "json_file.hpp"
 #include "mesh_limit_options.hpp"
@@ -172,6 +173,19 @@ void run(const DriveOptions& o, const CLI::App& command) {
         std::fputs(scenario_to_json(printed).c_str(), stdout);
         return;
     }
+    refuse_file_clashes({{"--scenario", o.scenario_file},
+                         {"--car", o.car_file},
+                         {s.mesh == o.flags.mesh ? "--mesh" : "the scenario's track.mesh", s.mesh},
+                         {s.map == o.flags.map ? "--map" : "the scenario's track.map", s.map},
+                         {"--resume", o.resume}},
+                        {{"--json", o.json},
+                         {"--trace", o.trace},
+                         {"--record", o.record},
+                         {"--record's track mesh",
+                          o.record.empty() ? o.record : recording_track_mesh_file(o.record)},
+                         {"--svg", o.svg},
+                         {"--telemetry", o.telemetry},
+                         {"--save-at", o.save_at.second}});
     // Every output is checked and staged before the drive, and put in place only after it
     // succeeded: a failure anywhere, Ctrl-C included, leaves none of them behind (the
     // snapshot of --save-at too).
@@ -232,10 +246,8 @@ void run(const DriveOptions& o, const CLI::App& command) {
     std::unique_ptr<RecordingWriter> recording;
     DriveRecordingPlan recording_plan;
     if (!record.empty()) {
-        recording_plan =
-            plan_drive_recording(o.record, scene, s.mesh, s.car, world.settings().dt_update);
-        if (!recording_plan.track_mesh_file.empty())
-            check_destination(recording_plan.track_mesh_file, "--record's track mesh");
+        recording_plan = plan_drive_recording(o.record, scene, s.car, world.settings().dt_update);
+        check_destination(recording_plan.track_mesh_file, "--record's track mesh");
         recording = std::make_unique<RecordingWriter>(record, recording_plan.header);
     }
 

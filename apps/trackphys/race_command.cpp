@@ -12,6 +12,7 @@
 #include "drive_recording.hpp"
 #include "drive_scene.hpp"
 #include "drive_svg.hpp"
+#include "file_clashes.hpp"
 #include "interrupt_guard.hpp"
 #include "json_file.hpp"
 #include "progress_bar.hpp"
@@ -112,6 +113,13 @@ void run(const RaceOptions& o, const CLI::App& command) {
     if (std::string why = s.validate(); !why.empty())
         fail_scenario(why, kFieldOptions, command, o.scenario_file);
     const auto cars = static_cast<std::size_t>(s.cars);
+    refuse_file_clashes({{"--scenario", o.scenario_file}, {"--map", o.map}},
+                        {{"--json", o.json},
+                         {"--trace", o.trace},
+                         {"--record", o.record},
+                         {"--record's track mesh",
+                          o.record.empty() ? o.record : recording_track_mesh_file(o.record)},
+                         {"--svg", o.svg}});
     // As drive: outputs staged first and put in place only after the race succeeded.
     const InterruptGuard interrupt_guard;
     StagedOutputs outputs;
@@ -146,7 +154,7 @@ void run(const RaceOptions& o, const CLI::App& command) {
     DriveRecordingPlan recording_plan;
     std::vector<std::optional<int>> laps_done(cars);
     if (!record.empty()) {
-        recording_plan = plan_drive_recording(o.record, scene, {}, car, settings.dt_update, cars);
+        recording_plan = plan_drive_recording(o.record, scene, car, settings.dt_update, cars);
         check_destination(recording_plan.track_mesh_file, "--record's track mesh");
         recording = std::make_unique<RecordingWriter>(record, recording_plan.header);
     }
