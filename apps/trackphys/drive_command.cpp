@@ -21,6 +21,7 @@
 #include "json_file.hpp"
 #include "mesh_limit_options.hpp"
 #include "progress_bar.hpp"
+#include "reset_streak.hpp"
 #include "staged_outputs.hpp"
 #include "telemetry_csv.hpp"
 #include "trackphys/error.hpp"
@@ -226,6 +227,7 @@ void run(const DriveOptions& o, const CLI::App& command) {
     // Resuming: the same static world, settings and car (restore_state checks their
     // fingerprints), then the snapshot's state, update count and time.
     if (resume) world.restore_state(resume->world);
+    ResetStreak reset_streak(world);
 
     std::optional<Autopilot> autopilot;
     if (!s.free_mode()) {
@@ -286,6 +288,7 @@ void run(const DriveOptions& o, const CLI::App& command) {
         car.set_inputs(autopilot ? autopilot->drive(car) : s.inputs);
         const int laps_before = autopilot ? autopilot->laps() : 0;
         world.update();
+        reset_streak.after_update(world);
         if (autopilot) {
             autopilot->locate(car);
             if (autopilot->laps() > laps_before) {

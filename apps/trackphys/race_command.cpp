@@ -17,6 +17,7 @@
 #include "json_file.hpp"
 #include "progress_bar.hpp"
 #include "race_report.hpp"
+#include "reset_streak.hpp"
 #include "staged_outputs.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/io/recording.hpp"
@@ -142,6 +143,8 @@ void run(const RaceOptions& o, const CLI::App& command) {
     const CarSpec& car = s.car;
     RaceDrivers drivers(*scene.track, car, cars, race.settings);
     drivers.add_cars(world);
+    ResetStreak reset_streak(world);
+    std::vector<std::uint64_t> rescues(cars);
 
     const int laps = s.laps == 0 && s.seconds == 0.0 ? 1 : s.laps;
     const double seconds = s.seconds > 0.0 ? s.seconds : laps * kMaxSecondsPerLap;
@@ -175,6 +178,8 @@ void run(const RaceOptions& o, const CLI::App& command) {
         drivers.drive(world);
         world.update();
         drivers.after_update(world);
+        for (std::size_t i = 0; i < cars; ++i) rescues[i] = drivers.rescues(i);
+        reset_streak.after_update(world, rescues);
         const UpdateProfile& profile = world.last_profile();
         report.profile.add(profile);
         report.car_contacts += profile.car_contacts;
