@@ -167,11 +167,10 @@ void run(const DriveOptions& o, const CLI::App& command) {
         return;
     }
     if (o.print_scenario) {
-        // A scenario file reads relative names from its own folder, wherever it is saved.
-        Scenario printed = s;
-        if (!printed.mesh.empty()) printed.mesh = std::filesystem::absolute(printed.mesh);
-        if (!printed.map.empty()) printed.map = std::filesystem::absolute(printed.map);
-        std::fputs(scenario_to_json(printed).c_str(), stdout);
+        // s's names are as given, relative to the current folder (a --scenario file's
+        // relative names joined to its folder): right for a scenario file saved there, which
+        // reads them from its own folder.
+        std::fputs(scenario_to_json(s).c_str(), stdout);
         return;
     }
     refuse_file_clashes({{"--scenario", o.scenario_file},
