@@ -11,6 +11,7 @@
 #include <string>
 
 #include "commands.hpp"
+#include "file_clashes.hpp"
 #include "mesh_limit_options.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/geometry/mesh_chunks.hpp"
@@ -45,6 +46,7 @@ void run_bake(const BakeOptions& o, const CLI::App& command) {
     check_threads(o.threads);
     if (o.out.extension() != ".tpmap")
         throw Error("--out '" + o.out.string() + "': a map file's name ends in .tpmap");
+    refuse_file_clashes({{"MESH", o.mesh}}, {{"--out", o.out}});
     const auto start = std::chrono::steady_clock::now();
     StaticMap map;
     std::string source;

@@ -16,10 +16,12 @@
 #include "drive_scene.hpp"
 #include "drive_session.hpp"
 #include "drive_svg.hpp"
+#include "file_clashes.hpp"
 #include "interrupt_guard.hpp"
 #include "json_file.hpp"
 #include "mesh_limit_options.hpp"
 #include "progress_bar.hpp"
+#include "reset_streak.hpp"
 #include "staged_outputs.hpp"
 #include "telemetry_csv.hpp"
 #include "trackphys/error.hpp"
@@ -165,13 +167,25 @@ void run(const DriveOptions& o, const CLI::App& command) {
         return;
     }
     if (o.print_scenario) {
-        // A scenario file reads relative names from its own folder, wherever it is saved.
-        Scenario printed = s;
-        if (!printed.mesh.empty()) printed.mesh = std::filesystem::absolute(printed.mesh);
-        if (!printed.map.empty()) printed.map = std::filesystem::absolute(printed.map);
-        std::fputs(scenario_to_json(printed).c_str(), stdout);
+        // s's names are as given, relative to the current folder (a --scenario file's
+        // relative names joined to its folder): right for a scenario file saved there, which
+        // reads them from its own folder.
+        std::fputs(scenario_to_json(s).c_str(), stdout);
         return;
     }
+    refuse_file_clashes({{"--scenario", o.scenario_file},
+                         {"--car", o.car_file},
+                         {s.mesh == o.flags.mesh ? "--mesh" : "the scenario's track.mesh", s.mesh},
+                         {s.map == o.flags.map ? "--map" : "the scenario's track.map", s.map},
+                         {"--resume", o.resume}},
+                        {{"--json", o.json},
+                         {"--trace", o.trace},
+                         {"--record", o.record},
+                         {"--record's track mesh",
+                          o.record.empty() ? o.record : recording_track_mesh_file(o.record)},
+                         {"--svg", o.svg},
+                         {"--telemetry", o.telemetry},
+                         {"--save-at", o.save_at.second}});
     // Every output is checked and staged before the drive, and put in place only after it
     // succeeded: a failure anywhere, Ctrl-C included, leaves none of them behind (the
     // snapshot of --save-at too).
@@ -212,6 +226,7 @@ void run(const DriveOptions& o, const CLI::App& command) {
     // Resuming: the same static world, settings and car (restore_state checks their
     // fingerprints), then the snapshot's state, update count and time.
     if (resume) world.restore_state(resume->world);
+    ResetStreak reset_streak(world);
 
     std::optional<Autopilot> autopilot;
     if (!s.free_mode()) {
@@ -232,10 +247,8 @@ void run(const DriveOptions& o, const CLI::App& command) {
     std::unique_ptr<RecordingWriter> recording;
     DriveRecordingPlan recording_plan;
     if (!record.empty()) {
-        recording_plan =
-            plan_drive_recording(o.record, scene, s.mesh, s.car, world.settings().dt_update);
-        if (!recording_plan.track_mesh_file.empty())
-            check_destination(recording_plan.track_mesh_file, "--record's track mesh");
+        recording_plan = plan_drive_recording(o.record, scene, s.car, world.settings().dt_update);
+        check_destination(recording_plan.track_mesh_file, "--record's track mesh");
         recording = std::make_unique<RecordingWriter>(record, recording_plan.header);
     }
 
@@ -274,6 +287,7 @@ void run(const DriveOptions& o, const CLI::App& command) {
         car.set_inputs(autopilot ? autopilot->drive(car) : s.inputs);
         const int laps_before = autopilot ? autopilot->laps() : 0;
         world.update();
+        reset_streak.after_update(world);
         if (autopilot) {
             autopilot->locate(car);
             if (autopilot->laps() > laps_before) {

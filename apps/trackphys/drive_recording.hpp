@@ -10,19 +10,23 @@
 
 namespace trackphys::cli {
 
-/// What `drive --record FILE` writes: the recording's header and, for a generated track,
-/// the track mesh beside the recording (FILE's stem + ".track.glb"), which the header
-/// names; a mesh file driven on is named by its path relative to FILE's folder instead.
+/// What `drive --record FILE` and `race --record FILE` write: the recording's header and
+/// the track mesh driven on, beside the recording (recording_track_mesh_file), which the
+/// header names by its file name, so that the two move together and `view` reads nothing
+/// outside the recording's folder.
 struct DriveRecordingPlan {
     RecordingHeader header;
-    std::filesystem::path track_mesh_file;  ///< to write, empty when the mesh exists
+    std::filesystem::path track_mesh_file;  ///< to write
 };
+
+/// The track mesh that `--record record` writes beside the recording: its folder, its stem
+/// + ".track.glb".
+std::filesystem::path recording_track_mesh_file(const std::filesystem::path& record);
 
 /// `cars` cars of one spec (drive: 1; race: the field).
 DriveRecordingPlan plan_drive_recording(const std::filesystem::path& record,
-                                        const DriveScene& scene,
-                                        const std::filesystem::path& mesh_file, const CarSpec& car,
-                                        double dt, std::size_t cars = 1);
+                                        const DriveScene& scene, const CarSpec& car, double dt,
+                                        std::size_t cars = 1);
 
 /// Writes the plan's track mesh, if any, then puts the staged outputs in place; removes the
 /// mesh again if they cannot be (save_mesh is atomic itself), as `trackphys track` does

@@ -78,7 +78,7 @@ void run_info(const InfoOptions& options) {
     // A mesh every loader reads can still be one no collider takes (a coordinate beyond its
     // limit): bake and drive --mesh would refuse it, so info does too.
     try {
-        const StaticCollider collider(mesh);
+        StaticCollider::check(mesh);
     } catch (const Error& e) {
         throw Error("mesh file '" + options.file + "': a static collider refuses it: " + e.what());
     }

@@ -1,4 +1,6 @@
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <exception>
 #include <string>
 
@@ -7,6 +9,21 @@
 #include "commands.hpp"
 #include "trackphys/build_target.hpp"
 #include "trackphys/error.hpp"
+
+namespace {
+
+// A report lost to a full disk or a closed pipe is a failure: stdout is fully buffered when
+// it is not a terminal, so a write error often shows only at this last flush.
+int check_stdout(int exit_code) {
+    errno = 0;
+    if (std::fflush(stdout) == 0 && !std::ferror(stdout)) return exit_code;
+    const int error = errno;
+    std::fprintf(stderr, "trackphys: error: cannot write to standard output%s%s\n",
+                 error != 0 ? ": " : "", error != 0 ? std::strerror(error) : "");
+    return exit_code != 0 ? exit_code : 1;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
     if (!trackphys::cpu_runs_build_target()) {
@@ -39,7 +56,7 @@ int main(int argc, char** argv) {
                          argv[1], commands.c_str());
             return e.get_exit_code();
         }
-        return app.exit(e);
+        return check_stdout(app.exit(e));
     } catch (const trackphys::Error& e) {
         std::fprintf(stderr, "trackphys: error: %s\n", e.what());
         return 1;
@@ -47,5 +64,5 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "trackphys: unexpected error: %s\n", e.what());
         return 2;
     }
-    return 0;
+    return check_stdout(0);
 }

@@ -12,10 +12,12 @@
 #include "drive_recording.hpp"
 #include "drive_scene.hpp"
 #include "drive_svg.hpp"
+#include "file_clashes.hpp"
 #include "interrupt_guard.hpp"
 #include "json_file.hpp"
 #include "progress_bar.hpp"
 #include "race_report.hpp"
+#include "reset_streak.hpp"
 #include "staged_outputs.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/io/recording.hpp"
@@ -112,6 +114,13 @@ void run(const RaceOptions& o, const CLI::App& command) {
     if (std::string why = s.validate(); !why.empty())
         fail_scenario(why, kFieldOptions, command, o.scenario_file);
     const auto cars = static_cast<std::size_t>(s.cars);
+    refuse_file_clashes({{"--scenario", o.scenario_file}, {"--map", o.map}},
+                        {{"--json", o.json},
+                         {"--trace", o.trace},
+                         {"--record", o.record},
+                         {"--record's track mesh",
+                          o.record.empty() ? o.record : recording_track_mesh_file(o.record)},
+                         {"--svg", o.svg}});
     // As drive: outputs staged first and put in place only after the race succeeded.
     const InterruptGuard interrupt_guard;
     StagedOutputs outputs;
@@ -134,6 +143,8 @@ void run(const RaceOptions& o, const CLI::App& command) {
     const CarSpec& car = s.car;
     RaceDrivers drivers(*scene.track, car, cars, race.settings);
     drivers.add_cars(world);
+    ResetStreak reset_streak(world);
+    std::vector<std::uint64_t> rescues(cars);
 
     const int laps = s.laps == 0 && s.seconds == 0.0 ? 1 : s.laps;
     const double seconds = s.seconds > 0.0 ? s.seconds : laps * kMaxSecondsPerLap;
@@ -146,7 +157,7 @@ void run(const RaceOptions& o, const CLI::App& command) {
     DriveRecordingPlan recording_plan;
     std::vector<std::optional<int>> laps_done(cars);
     if (!record.empty()) {
-        recording_plan = plan_drive_recording(o.record, scene, {}, car, settings.dt_update, cars);
+        recording_plan = plan_drive_recording(o.record, scene, car, settings.dt_update, cars);
         check_destination(recording_plan.track_mesh_file, "--record's track mesh");
         recording = std::make_unique<RecordingWriter>(record, recording_plan.header);
     }
@@ -167,6 +178,8 @@ void run(const RaceOptions& o, const CLI::App& command) {
         drivers.drive(world);
         world.update();
         drivers.after_update(world);
+        for (std::size_t i = 0; i < cars; ++i) rescues[i] = drivers.rescues(i);
+        reset_streak.after_update(world, rescues);
         const UpdateProfile& profile = world.last_profile();
         report.profile.add(profile);
         report.car_contacts += profile.car_contacts;

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cinttypes>
 #include <cstdio>
+#include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -12,10 +14,14 @@
 namespace trackphys::cli {
 namespace {
 
-double best_lap(const RaceCarResult& car) {
-    return car.lap_times_s.empty()
-               ? 0.0
-               : *std::min_element(car.lap_times_s.begin(), car.lap_times_s.end());
+// "-" for a car that has not finished a lap: a time of 0.00 would read as a lap.
+std::string lap_text(const std::vector<double>& lap_times_s, bool best) {
+    if (lap_times_s.empty()) return "-";
+    char text[32];
+    std::snprintf(
+        text, sizeof text, "%.2f",
+        best ? *std::min_element(lap_times_s.begin(), lap_times_s.end()) : lap_times_s.back());
+    return text;
 }
 
 double per_car_us(const RaceReport& r) {
@@ -34,9 +40,9 @@ void print_race_report(const RaceReport& r) {
                 "best lap", "last lap", "resets");
     for (std::size_t i = 0; i < r.classification.size(); ++i) {
         const RaceCarResult& c = r.classification[i];
-        std::printf("%4zu %4zu %8.0f %6.1f %5d %10.2f %10.2f %7" PRIu64 "\n", i + 1, c.car,
-                    c.target_kmh, 100.0 * c.grip_use, c.laps, best_lap(c),
-                    c.lap_times_s.empty() ? 0.0 : c.lap_times_s.back(), c.resets);
+        std::printf("%4zu %4zu %8.0f %6.1f %5d %10s %10s %7" PRIu64 "\n", i + 1, c.car,
+                    c.target_kmh, 100.0 * c.grip_use, c.laps, lap_text(c.lap_times_s, true).c_str(),
+                    lap_text(c.lap_times_s, false).c_str(), c.resets);
     }
     std::printf("laps         %d by every car\n", r.laps_completed);
     std::printf("car contacts %" PRIu64 " sub-steps of touching pairs, deepest %.4f m\n",

@@ -139,24 +139,35 @@ std::string attribute(std::string text) {
 
 }  // namespace
 
-std::string make_replay_page(const std::filesystem::path& recording, std::string_view bundle,
-                             const MeshLoadLimits& mesh_limits, ReplayPageStats& stats) {
-    const std::string text = read_recording(recording);
-    const nlohmann::json header = read_header(text, recording);
-    check_frames(text, recording);
-    stats.recording_bytes = text.size();
-    const std::string name = attribute(recording.filename().string());
-
-    std::string track;
+ReplayRecording read_replay_recording(const std::filesystem::path& file) {
+    ReplayRecording recording{file, read_recording(file), {}};
+    const nlohmann::json header = read_header(recording.text, file);
+    check_frames(recording.text, file);
     if (header.contains("track") && header["track"].is_object() &&
         header["track"].contains("mesh") && header["track"]["mesh"].is_string()) {
-        const std::filesystem::path mesh_file =
-            recording.parent_path() / header["track"]["mesh"].get<std::string>();
+        const std::filesystem::path track = header["track"]["mesh"].get<std::string>();
+        if (track.empty() || track != track.filename() || track == "." || track == "..")
+            throw Error("recording '" + file.string() + "': its track '" + track.string() +
+                        "' is not a plain file name in the recording's folder (a recording "
+                        "names the track drive --record wrote beside it)");
+        recording.track_file = file.parent_path() / track;
+    }
+    return recording;
+}
+
+std::string make_replay_page(const ReplayRecording& recording, std::string_view bundle,
+                             const MeshLoadLimits& mesh_limits, ReplayPageStats& stats) {
+    const std::string& text = recording.text;
+    stats.recording_bytes = text.size();
+    const std::string name = attribute(recording.file.filename().string());
+
+    std::string track;
+    if (!recording.track_file.empty()) {
         TriangleMesh mesh;
         try {
-            mesh = load_mesh(mesh_file, mesh_limits);
+            mesh = load_mesh(recording.track_file, mesh_limits);
         } catch (const Error& e) {
-            throw Error("recording '" + recording.string() + "': its track: " + e.what());
+            throw Error("recording '" + recording.file.string() + "': its track: " + e.what());
         }
         stats.track_triangles = mesh.triangles.size();
         track =
@@ -164,7 +175,7 @@ std::string make_replay_page(const std::filesystem::path& recording, std::string
             "data-vertices=\"" +
             std::to_string(mesh.vertices.size()) + "\" data-triangles=\"" +
             std::to_string(mesh.triangles.size()) + "\">" +
-            base64(deflate(pack_track(mesh, mesh_file))) + "</script>\n";
+            base64(deflate(pack_track(mesh, recording.track_file))) + "</script>\n";
     }
 
     std::string page =

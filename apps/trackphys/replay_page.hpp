@@ -15,13 +15,26 @@ struct ReplayPageStats {
     std::size_t page_bytes = 0;
 };
 
+/// A recording as `trackphys view` reads it: checked to be a trackphys recording whose
+/// every frame line is a JSON object, and the track mesh its header names.
+struct ReplayRecording {
+    std::filesystem::path file;
+    std::string text;
+    std::filesystem::path track_file;  ///< in file's folder; empty when it has no track
+};
+
+/// Reads and checks the recording. Throws trackphys::Error when it is not a trackphys
+/// recording, or when its track is not a plain file name (no folder, not absolute): a
+/// recording names the track that `drive --record` wrote beside it, and a page must not
+/// embed whatever file a recording points to.
+ReplayRecording read_replay_recording(const std::filesystem::path& file);
+
 /// One self-contained HTML page that replays the recording: the viewer bundle, the
-/// recording and its track mesh (named in the header, relative to the recording) inside it,
-/// zlib-compressed and base64-encoded (docs/viewer.md, "The page"). Only the header is
-/// checked here; the viewer reports a malformed frame on the page, naming its line. Throws
-/// trackphys::Error when the file is not a trackphys recording or its track cannot be read
-/// within mesh_limits.
-std::string make_replay_page(const std::filesystem::path& recording, std::string_view bundle,
+/// recording and its track mesh inside it, zlib-compressed and base64-encoded
+/// (docs/viewer.md, "The page"). The viewer reports a malformed frame's values on the page,
+/// naming its line. Throws trackphys::Error when the track cannot be read within
+/// mesh_limits.
+std::string make_replay_page(const ReplayRecording& recording, std::string_view bundle,
                              const MeshLoadLimits& mesh_limits, ReplayPageStats& stats);
 
 }  // namespace trackphys::cli

@@ -38,10 +38,6 @@ fs::path StagedOutputs::stage(const fs::path& destination, const std::string& op
     check_destination(destination, option);
     const std::string name = option + " '" + destination.string() + "'";
     const fs::path folder = destination.has_parent_path() ? destination.parent_path() : ".";
-    std::error_code error;
-    for (const Staged& s : staged_)
-        if (fs::weakly_canonical(s.destination, error) == fs::weakly_canonical(destination, error))
-            throw Error(name + ": " + s.option + " writes the same file");
     // A hidden name in the same folder: the same file system, so the final rename is atomic.
     // Appended piecewise: GCC 12 warns falsely (-Wrestrict) on "." + std::string.
     std::string hidden = ".";

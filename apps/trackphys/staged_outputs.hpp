@@ -12,8 +12,8 @@ namespace trackphys::cli {
 void check_destination(const std::filesystem::path& destination, const std::string& option);
 
 /// The files one command writes, put in place together or not at all. stage() checks a
-/// destination up front (its folder exists and takes a new file, it is not a folder, no
-/// other option names it) and creates an empty temporary file beside it, which the command
+/// destination up front (its folder exists and takes a new file, it is not a folder; that no
+/// other option names it is refuse_file_clashes's check, file_clashes.hpp) and creates an empty temporary file beside it, which the command
 /// then writes; commit() renames every temporary onto its destination once all are
 /// written. Until then nothing exists under a destination's name, and the destructor
 /// removes the temporaries: an error anywhere (a bad option found late, the car failing

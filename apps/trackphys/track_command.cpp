@@ -7,6 +7,7 @@
 #include <system_error>
 
 #include "commands.hpp"
+#include "file_clashes.hpp"
 #include "staged_outputs.hpp"
 #include "track_mesh.hpp"
 #include "track_svg.hpp"
@@ -62,6 +63,7 @@ void print_summary(const Track& track, double seconds) {
 
 void run(const TrackOptions& options) {
     // Check the output names before spending time on the track.
+    refuse_file_clashes({}, {{"--out", options.out}, {"--svg", options.svg}});
     if (!options.out.empty() && !can_save_mesh_as(options.out))
         throw Error("--out '" + options.out.string() + "': the extension must be " +
                     saved_mesh_extensions);

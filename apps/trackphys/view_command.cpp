@@ -6,6 +6,7 @@
 #include <string>
 
 #include "commands.hpp"
+#include "file_clashes.hpp"
 #include "mesh_limit_options.hpp"
 #include "replay_page.hpp"
 #include "staged_outputs.hpp"
@@ -28,11 +29,15 @@ void run(const ViewOptions& o) {
             "this trackphys was built without the replay viewer: install Node.js and "
             "npm, run scripts/setup.sh (it runs npm ci in viewer/) and build again "
             "with -DTRACKPHYS_BUILD_VIEWER=ON");
+    const auto start = std::chrono::steady_clock::now();
+    const ReplayRecording recording = read_replay_recording(o.recording);
+    refuse_file_clashes(
+        {{"RECORDING", o.recording}, {"the recording's track", recording.track_file}},
+        {{"--out", o.out}});
     StagedOutputs outputs;
     const std::filesystem::path staged = outputs.stage(o.out, "--out");
-    const auto start = std::chrono::steady_clock::now();
     ReplayPageStats stats;
-    const std::string page = make_replay_page(o.recording, bundle, o.mesh_limits, stats);
+    const std::string page = make_replay_page(recording, bundle, o.mesh_limits, stats);
     std::ofstream out(staged, std::ios::binary);
     out.write(page.data(), static_cast<std::streamsize>(page.size()));
     if (!out.flush()) throw Error("--out '" + o.out.string() + "': cannot write the page");

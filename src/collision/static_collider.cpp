@@ -75,6 +75,10 @@ std::size_t capacity_bytes(const std::vector<T>& v) {
 
 }  // namespace
 
+void StaticCollider::check(const TriangleMesh& mesh) {
+    static_cast<void>(collision_detail::validate_and_keep(mesh));
+}
+
 StaticCollider::StaticCollider(const TriangleMesh& mesh) {
     const std::vector<std::uint32_t> kept = collision_detail::validate_and_keep(mesh);
 

@@ -58,6 +58,30 @@ TEST(StaticCollider, RejectsInvalidMeshesWithMessages) {
     EXPECT_NE(message.find("vertex 7"), std::string::npos) << message;
 }
 
+std::string check_error_of(const TriangleMesh& mesh) {
+    try {
+        StaticCollider::check(mesh);
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "";
+}
+
+TEST(StaticCollider, CheckRefusesWhatTheConstructorRefuses) {
+    std::vector<TriangleMesh> refused(3, single_triangle());
+    refused[0].vertices[1].x = std::numeric_limits<double>::quiet_NaN();
+    refused[1].vertices[2].z = 2e18;
+    refused[2].triangles.push_back({0, 1, 7});
+    for (const TriangleMesh& mesh : refused) {
+        EXPECT_NE(check_error_of(mesh), "");
+        EXPECT_EQ(check_error_of(mesh), error_of(mesh));
+    }
+    TriangleMesh degenerate = single_triangle();
+    degenerate.vertices[2] = {2, 0, 0};
+    for (const TriangleMesh& mesh : {single_triangle(), degenerate, TriangleMesh{}})
+        EXPECT_EQ(check_error_of(mesh), "");
+}
+
 TEST(StaticCollider, EmptyColliderAnswersNothing) {
     const StaticCollider collider{TriangleMesh{}};
     std::vector<std::uint32_t> out;

@@ -93,6 +93,10 @@ class TRACKPHYS_API StaticCollider {
     /// of range, or there are more than kMaxTriangles triangles.
     explicit StaticCollider(const TriangleMesh& mesh);
 
+    /// Throws what the constructor would throw for this mesh, without building the BVH:
+    /// whether a collider accepts the mesh, for one pass over it (trackphys info).
+    static void check(const TriangleMesh& mesh);
+
     /// Appends to `out` the mesh index of every kept triangle whose box overlaps `box`.
     void query_aabb(const Aabb& box, std::vector<std::uint32_t>& out) const;
     /// query_aabb appending (collider_id, triangle) pairs instead (the world's broad phase;
