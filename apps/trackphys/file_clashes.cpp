@@ -24,8 +24,8 @@ void refuse_file_clashes(std::initializer_list<NamedFile> inputs,
         const std::string name = output->option + " '" + output->path.string() + "': ";
         for (const NamedFile& input : inputs)
             if (!input.path.empty() && same_file(output->path, input.path))
-                throw Error(name + "the same file as " + input.option + " '" +
-                            input.path.string() + "', which it would overwrite");
+                throw Error(name + "the same file as " + input.option + " '" + input.path.string() +
+                            "', which it would overwrite");
         for (auto other = outputs.begin(); other != output; ++other)
             if (!other->path.empty() && same_file(output->path, other->path))
                 throw Error(name + "the same file as " + other->option + " '" +

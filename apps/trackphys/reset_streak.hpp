@@ -28,10 +28,10 @@ class ResetStreak {
 
   private:
     struct Car {
-        std::uint64_t resets = 0;  ///< World::car_resets before this update
+        std::uint64_t resets = 0;   ///< World::car_resets before this update
         std::uint64_t rescues = 0;  ///< rescues before this update
-        std::uint64_t streak = 0;  ///< consecutive updates that reset it
-        double since_s = 0.0;      ///< the simulated time when the streak's first update began
+        std::uint64_t streak = 0;   ///< consecutive updates that reset it
+        double since_s = 0.0;       ///< the simulated time when the streak's first update began
     };
     std::vector<Car> cars_;
     double previous_time_s_ = 0.0;
