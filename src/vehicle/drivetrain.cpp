@@ -136,6 +136,17 @@ void Vehicle::begin_substep(double throttle, double brake, double car_speed, dou
         Wheel& wheel = wheels_[w];
         const double slip = state_.wheels[w].slip_ratio;
         wheel.slip = tyre_of(wheel).normalised(slip, state_.wheels[w].lateral_slip);
+        // In the air the tyre has no slip to read: traction control compares the wheel's
+        // speed with the car's instead, as real systems compare the driven wheels with the
+        // undriven ones, so that a wheel held at full throttle does not spin up before it
+        // lands (the slip ratio of that speed difference, over at least low_speed).
+        wheel.airborne_drive_torque = wheel.drive_torque;
+        if (spec_.traction_control && wheel.drive_torque > 0.0) {
+            const double airborne_slip = (state_.wheels[w].spin * wheel.radius - car_speed) /
+                                         std::max(car_speed, spec_.low_speed);
+            wheel.airborne_drive_torque *=
+                slip_limiter(airborne_slip / tyre_of(wheel).peak_slip_ratio());
+        }
         if (spec_.traction_control && wheel.drive_torque > 0.0 && slip > 0.0)
             wheel.drive_torque *= slip_limiter(wheel.slip.combined);
         wheel.brake_torque = brake * wheel.brake_share;

@@ -2,6 +2,7 @@
 // from the torque curve, gears and the tyre's slip limit; 100-0 from the tyres' peak; a
 // limited-slip differential against an open one with a wheel on ice; a parked car that
 // stays put; and snapshots that carry the wheels and the gearbox.
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -181,6 +182,53 @@ TEST(VehiclePhysics, AcceleratesAndBrakesAsTheReferencesSay) {
     RecordProperty("braking_s", std::to_string(t));
     RecordProperty("braking_reference_s", std::to_string(braking));
     EXPECT_NEAR(t, braking, 0.03 * braking) << "100 km/h to 1 m/s in " << t << " s";
+}
+
+// Seconds of full throttle until the car's forward speed reaches 5 km/h.
+double seconds_to_walking_pace(World& world) {
+    double t = 0.0;
+    while (forward_speed(world.car(0)) < 5.0 / 3.6 && t < 5.0) {
+        drive(world, {1.0, 0.0, 0.0}, world.settings().dt_update);
+        t += world.settings().dt_update;
+    }
+    return t;
+}
+
+// Full throttle from the spawn, 1 mm above the road, and a landing with the driven wheels
+// spinning: once down, the car must launch about as a car settled on its tyres does, not
+// sit at walking pace while traction control cuts the drive and a slip ratio built in the
+// air relaxes at |V_x| / sigma (0.88 s to 5 km/h for the gt, 0.78 s for the formula).
+TEST(VehiclePhysics, ThrottleHeldFromTheSpawnOrALandingLaunchesAsFromRest) {
+    for (const char* preset : {"gt", "formula"}) {
+        SCOPED_TRACE(preset);
+        const CarSpec spec = CarSpec::preset(preset);
+        World settled = world_with(test::flat_grid(400.0, 20), spec);
+        drive(settled, {}, 1.0);
+        const double from_rest = seconds_to_walking_pace(settled);
+
+        World spawned = world_with(test::flat_grid(400.0, 20), spec);
+        drive(spawned, {1.0, 0.0, 0.0}, spawned.settings().dt_update);
+        for (const WheelTelemetry& wheel : spawned.car(0).vehicle()->telemetry())
+            ASSERT_EQ(wheel.load, 0.0) << "the car did not start in the air";
+        const double from_spawn = seconds_to_walking_pace(spawned);
+
+        World landing = world_with(test::flat_grid(400.0, 20), spec);
+        VehicleState spinning = landing.car(0).vehicle()->state();
+        for (WheelState& wheel : spinning.wheels) wheel.spin = 30.0;
+        landing.car(0).set_vehicle_state(spinning);
+        const double from_landing = seconds_to_walking_pace(landing);
+
+        RecordProperty(std::string(preset) + "_to_5_kmh_from_rest_s", std::to_string(from_rest));
+        RecordProperty(std::string(preset) + "_to_5_kmh_from_spawn_s", std::to_string(from_spawn));
+        RecordProperty(std::string(preset) + "_to_5_kmh_landing_spinning_s",
+                       std::to_string(from_landing));
+        EXPECT_LT(from_spawn, from_rest + 0.2)
+            << "5 km/h after " << from_spawn << " s from the spawn, " << from_rest
+            << " s from rest";
+        EXPECT_LT(from_landing, from_rest + 0.2)
+            << "5 km/h after " << from_landing << " s landing, " << from_rest << " s from rest";
+        EXPECT_EQ(spawned.car_resets(0) + landing.car_resets(0), 0u);
+    }
 }
 
 // Skidpad: a flat 100 m radius circle at a slowly rising speed (0.15 m/s each second),

@@ -111,6 +111,7 @@ class TRACKPHYS_API Vehicle {
         // drivetrain's output.
         NormalisedSlip slip;
         double drive_torque = 0.0;
+        double airborne_drive_torque = 0.0;  // the drive when the wheel carries no load
         double brake_torque = 0.0;
     };
     struct Axle {
