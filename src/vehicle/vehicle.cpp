@@ -68,12 +68,6 @@ Vehicle::Vehicle(const CarSpec& spec)
     telemetry_.resize(wheels_.size());
 }
 
-VehicleState Vehicle::at_rest() const {
-    VehicleState rest;
-    rest.wheels.resize(wheels_.size());
-    return rest;
-}
-
 void Vehicle::set_state(const VehicleState& state) {
     const auto reject = [](const std::string& why) { throw Error("vehicle state: " + why); };
     if (state.wheels.size() != wheels_.size())

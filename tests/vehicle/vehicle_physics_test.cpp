@@ -231,6 +231,54 @@ TEST(VehiclePhysics, ThrottleHeldFromTheSpawnOrALandingLaunchesAsFromRest) {
     }
 }
 
+// A teleport (Car::set_state, a race's rescue) of a gt stopped in first gear to 60 m/s:
+// it must arrive rolling, its wheels spun to the road's speed without slip, in a gear
+// for that speed, its suspension at full droop as placing assumes, and drive on, not
+// land on stopped wheels that skid while the engine, dragged over its redline in first
+// gear, has its fuel cut.
+TEST(VehiclePhysics, ATeleportedCarArrivesRollingInAGearForItsSpeed) {
+    const CarSpec spec = CarSpec::preset("gt");
+    World world = world_with(test::flat_grid(2000.0, 20), spec, 0.0, -900.0);
+    drive(world, {}, 1.0);
+    Car& car = world.car(0);
+    ASSERT_EQ(car.vehicle()->state().gear, 1);
+    ASSERT_GT(car.suspension(0) + car.suspension(1), 0.0);
+
+    // Placed 800 m on, as a rescue places a car: on its wheels at full droop.
+    const double speed = 60.0;
+    RigidBodyState moved =
+        place_car_on_surface(world.statics(), spec, {0.0, 20.0, -100.0}, car.state().orientation);
+    moved.linear_velocity = moved.orientation * glm::dvec3(0.0, 0.0, speed);
+    car.set_state(moved);
+    const VehicleState& rolling = car.vehicle()->state();
+    const GearboxSpec& box = spec.vehicle->gearbox;
+    const double radius = PointCar(spec, 0.0).radius;
+    for (const WheelState& wheel : rolling.wheels) {
+        EXPECT_DOUBLE_EQ(wheel.spin, speed / radius);
+        EXPECT_EQ(wheel.slip_ratio, 0.0);
+        EXPECT_EQ(wheel.lateral_slip, 0.0);
+    }
+    const auto rpm_in = [&](int gear) {
+        return speed / radius * box.ratios[static_cast<std::size_t>(gear - 1)] * box.final_drive *
+               60.0 / (2.0 * std::numbers::pi);
+    };
+    EXPECT_LE(rpm_in(rolling.gear), box.shift_up_rpm);
+    EXPECT_GT(rpm_in(rolling.gear - 1), box.shift_up_rpm) << "gear " << rolling.gear;
+    EXPECT_EQ(rolling.clutch, 1.0);
+    for (double travel : car.suspension()) EXPECT_EQ(travel, 0.0);
+
+    double slowest = speed, fastest_engine = 0.0;
+    for (int i = 0; i < 100; ++i) {
+        drive(world, {1.0, 0.0, 0.0}, world.settings().dt_update);
+        slowest = std::min(slowest, forward_speed(car));
+        fastest_engine = std::max(fastest_engine, car.vehicle()->engine_rpm());
+    }
+    EXPECT_LE(fastest_engine, spec.vehicle->engine.redline_rpm);
+    EXPECT_GT(slowest, speed - 0.5) << "slowed to " << slowest << " m/s";
+    EXPECT_GT(forward_speed(car), speed);
+    EXPECT_EQ(world.car_resets(0), 0u);
+}
+
 // Skidpad: a flat 100 m radius circle at a slowly rising speed (0.15 m/s each second),
 // steered by pure pursuit with yaw damping. The best lateral acceleration v^2 / r, over a
 // second, while the car holds the circle within 2 m, against what the tyres' peak allows at
