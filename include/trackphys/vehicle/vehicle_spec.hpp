@@ -34,7 +34,7 @@ struct GearboxSpec {
     double shift_time = 0.1;           ///< s without drive while the gear changes
     double clutch_engage_time = 0.05;  ///< s for the clutch to close after a shift
     /// Below this drivetrain speed the clutch slips: the engine holds this speed and passes
-    /// its torque at it (a launch).
+    /// its torque at it (a launch). In [engine.idle_rpm, shift_up_rpm].
     double launch_rpm = 3000.0;
 };
 
