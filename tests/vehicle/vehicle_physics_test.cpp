@@ -98,9 +98,11 @@ struct PointCar {
 };
 
 // 0 to 100 km/h of a rear-driven car by explicit integration in 0.1 ms steps: the engine's
-// force through the gear (at launch_rpm while the clutch slips), capped by the rear tyres'
-// peak under the load transfer, less drag, on the mass plus the wheels' and the engine's
-// rotating inertia; no drive while a shift lasts, then the clutch closes linearly.
+// force through the gear (at launch_rpm while the clutch slips) less drag, on the mass plus
+// the wheels' and the engine's rotating inertia; or, when the rear tyres' peak under the
+// load transfer limits, that peak less drag on the mass and the undriven wheels only (the
+// engine's surplus torque then turns the engine and the driven wheels, not the car). No
+// drive while a shift lasts, then the clutch closes linearly.
 double reference_zero_to_100(const PointCar& car) {
     const double m = car.spec.mass.mass;
     const double r = car.radius;
@@ -117,7 +119,9 @@ double reference_zero_to_100(const PointCar& car) {
         const double rotating =
             4.0 * car.v.wheel_inertia / (r * r) +
             (locked ? clutch * car.v.engine.inertia * ratio * ratio / (r * r) : 0.0);
-        a = (std::min(engine, grip) - car.aero(car.spec.drag_area, speed)) / (m + rotating);
+        const double undriven = 2.0 * car.v.wheel_inertia / (r * r);
+        const double drag = car.aero(car.spec.drag_area, speed);
+        a = std::min((engine - drag) / (m + rotating), (grip - drag) / (m + undriven));
         speed += a * dt;
         t += dt;
         if (shift_left > 0.0) {
