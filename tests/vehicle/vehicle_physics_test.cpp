@@ -1,7 +1,8 @@
 // The vehicle model against references computed here, independently of it: 0-100 km/h
 // from the torque curve, gears and the tyre's slip limit; 100-0 from the tyres' peak; a
 // limited-slip differential against an open one with a wheel on ice; a parked car that
-// stays put; and snapshots that carry the wheels and the gearbox.
+// stays put; a launch after landing, a teleport, a brake and a reset that leave the wheels
+// as they should; and snapshots that carry the wheels and the gearbox.
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -281,6 +282,58 @@ TEST(VehiclePhysics, ATeleportedCarArrivesRollingInAGearForItsSpeed) {
     EXPECT_GT(slowest, speed - 0.5) << "slowed to " << slowest << " m/s";
     EXPECT_GT(forward_speed(car), speed);
     EXPECT_EQ(world.car_resets(0), 0u);
+}
+
+// Full brake from 20 m/s to a stop, through the explicit spin update above low_speed and
+// the damped one below it: the brake takes each wheel's spin towards zero and holds it
+// there, never past it (a brake that reversed a wheel would push the car backwards).
+TEST(VehiclePhysics, ABrakeStopsAWheelAndNeverReversesIt) {
+    for (const bool anti_lock : {true, false}) {
+        SCOPED_TRACE(anti_lock ? "anti-lock" : "no anti-lock");
+        CarSpec spec = CarSpec::preset("gt");
+        spec.vehicle->anti_lock = anti_lock;
+        World world = world_with(test::flat_grid(2000.0, 20), spec, 0.0, -900.0);
+        drive(world, {}, 1.0);
+        while (forward_speed(world.car(0)) < 20.0)
+            drive(world, {1.0, 0.0, 0.0}, world.settings().dt_update);
+        double slowest_spin = 0.0;
+        for (int i = 0; i < 600; ++i) {
+            drive(world, {0.0, 1.0, 0.0}, world.settings().dt_update);
+            for (const WheelState& wheel : world.car(0).vehicle()->state().wheels)
+                slowest_spin = std::min(slowest_spin, wheel.spin);
+        }
+        EXPECT_EQ(slowest_spin, 0.0);
+        EXPECT_LT(world.car(0).speed(), 1e-3);
+        for (const WheelState& wheel : world.car(0).vehicle()->state().wheels)
+            EXPECT_EQ(wheel.spin, 0.0);
+    }
+}
+
+// The World's reset policy puts a gt that broke WorldSettings::max_car_speed (30 m/s here)
+// in second gear back where its update began, at rest: its vehicle too, wheels still,
+// first gear, clutch closed (Vehicle::at_rest), and it drives off again from there.
+TEST(VehiclePhysics, AResetCarStartsAgainAtRestInFirstGear) {
+    const CarSpec spec = CarSpec::preset("gt");
+    WorldSettings settings;
+    settings.max_car_speed = 30.0;
+    World world(test::static_world_of(test::flat_grid(2000.0, 20)), settings);
+    const RigidBodyState start = place_car_on_surface(world.statics(), spec, {0.0, 20.0, -900.0},
+                                                      glm::dquat(1.0, 0.0, 0.0, 0.0));
+    world.add_car(spec, start);
+    int updates = 0, gear_before = 1;
+    while (world.car_resets(0) == 0 && updates++ < 2000) {
+        gear_before = world.car(0).vehicle()->state().gear;
+        drive(world, {1.0, 0.0, 0.0}, world.settings().dt_update);
+    }
+    ASSERT_EQ(world.car_resets(0), 1u);
+    EXPECT_GT(gear_before, 1);
+    const Vehicle& vehicle = *world.car(0).vehicle();
+    EXPECT_EQ(vehicle.state(), vehicle.at_rest());
+    EXPECT_EQ(vehicle.state().gear, 1);
+    EXPECT_EQ(world.car(0).speed(), 0.0);
+    drive(world, {1.0, 0.0, 0.0}, 1.0);
+    EXPECT_GT(forward_speed(world.car(0)), 5.0);
+    EXPECT_EQ(world.car_resets(0), 1u);
 }
 
 // Skidpad: a flat 100 m radius circle at a slowly rising speed (0.15 m/s each second),
