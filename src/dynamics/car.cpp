@@ -85,6 +85,10 @@ void Car::set_state(const RigidBodyState& state) {
     check_state(state);
     state_ = state;
     state_.orientation = glm::normalize(state.orientation);
+    std::fill(suspension_.begin(), suspension_.end(), 0.0);
+    if (vehicle_)
+        vehicle_->set_state(vehicle_->rolling_at(
+            glm::dot(state_.linear_velocity, state_.orientation * glm::dvec3(0.0, 0.0, 1.0))));
 }
 
 void Car::set_inputs(const CarInputs& inputs) { take_inputs(clamped(inputs)); }

@@ -33,7 +33,7 @@ TyreSpec wider(TyreSpec tyre) {
     return tyre;
 }
 
-// A GT3-class coupe: 1300 kg, 480 N m (about 330 kW at 6500 rpm), six gears, slicks,
+// A GT3-class coupe: 1300 kg, 480 N m at 5000 rpm (338 kW at most, near 8500), six gears, slicks,
 // rear drive through a limited-slip differential, moderate downforce.
 CarSpec gt_car() {
     CarSpec spec = CarSpec::default_car();

@@ -35,6 +35,24 @@ double limited_slip_transfer(double a, double b, double capacity, double inertia
 
 }  // namespace
 
+// A teleported car in the gear the shifter would have reached under throttle.
+VehicleState Vehicle::rolling_at(double speed) const {
+    VehicleState rolling;
+    for (const Wheel& wheel : wheels_) rolling.wheels.push_back({.spin = speed / wheel.radius});
+    const GearboxSpec& box = spec_.gearbox;
+    const int top = static_cast<int>(box.ratios.size());
+    // The driven wheels' mean spin, as the gearbox sees it (drive shares sum to 1).
+    double driven_spin = 0.0;
+    for (std::size_t w = 0; w < wheels_.size(); ++w)
+        driven_spin += wheels_[w].drive_share * rolling.wheels[w].spin;
+    const auto rpm_in = [&](int gear) {
+        return driven_spin * box.ratios[static_cast<std::size_t>(gear - 1)] * box.final_drive *
+               kRpmPerRadPerSecond;
+    };
+    while (rolling.gear < top && rpm_in(rolling.gear) > box.shift_up_rpm) ++rolling.gear;
+    return rolling;
+}
+
 double Vehicle::engine_torque(double rpm, double throttle) const {
     const EngineSpec& engine = spec_.engine;
     if (rpm > engine.redline_rpm) return -engine.friction_torque;  // the limiter cuts fuel
@@ -136,6 +154,17 @@ void Vehicle::begin_substep(double throttle, double brake, double car_speed, dou
         Wheel& wheel = wheels_[w];
         const double slip = state_.wheels[w].slip_ratio;
         wheel.slip = tyre_of(wheel).normalised(slip, state_.wheels[w].lateral_slip);
+        // In the air the tyre has no slip to read: traction control compares the wheel's
+        // speed with the car's instead, as real systems compare the driven wheels with the
+        // undriven ones, so that a wheel held at full throttle does not spin up before it
+        // lands (the slip ratio of that speed difference, over at least low_speed).
+        wheel.airborne_drive_torque = wheel.drive_torque;
+        if (spec_.traction_control && wheel.drive_torque > 0.0) {
+            const double airborne_slip = (state_.wheels[w].spin * wheel.radius - car_speed) /
+                                         std::max(car_speed, spec_.low_speed);
+            wheel.airborne_drive_torque *=
+                slip_limiter(airborne_slip / tyre_of(wheel).peak_slip_ratio());
+        }
         if (spec_.traction_control && wheel.drive_torque > 0.0 && slip > 0.0)
             wheel.drive_torque *= slip_limiter(wheel.slip.combined);
         wheel.brake_torque = brake * wheel.brake_share;

@@ -51,10 +51,11 @@ std::string MagicFormulaCurve::validate(const std::string& prefix) const {
         why << prefix << "shape must be in (1, 2], got " << shape;
     if (why.tellp() == 0 && !(std::isfinite(curvature) && curvature <= 1.0))
         why << prefix << "curvature must be finite and <= 1, got " << curvature;
-    // With E = 1, Phi = atan(u) < pi/2 never reaches tan(pi / 2C) when C is near 1.
+    // With E = 1, Phi = atan(u) < pi/2 never reaches tan(pi / 2C) when C is near 1: it
+    // does for C > pi / (2 atan(pi/2)) = 1.5647.
     if (why.tellp() == 0 && curvature == 1.0 &&
         !(std::tan(0.5 * std::numbers::pi / shape) < 0.5 * std::numbers::pi))
-        why << prefix << "shape must exceed 1.6 when curvature is 1 (no peak), got " << shape;
+        why << prefix << "shape must exceed 1.565 when curvature is 1 (no peak), got " << shape;
     if (why.tellp() == 0 && !(std::isfinite(friction_load_slope) && friction_load_slope <= 0.0 &&
                               friction_load_slope > -1.0))
         why << prefix << "friction_load_slope must be in (-1, 0], got " << friction_load_slope;

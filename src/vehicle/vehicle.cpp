@@ -14,6 +14,10 @@ namespace {
 // A slip beyond this is a wheel spinning or sliding far past any curve's peak; the bound
 // keeps a wheel spinning at standstill (|V_x| = 0, no relaxation) finite.
 constexpr double kMaxSlip = 50.0;
+// The slip ratio's range, MF 5.2's default KPUMIN / KPUMAX: the curves are fitted up to
+// a wheel locked (-1) or spinning a little faster than that forwards, and a wheel spinning
+// at standstill has no measured force beyond the sliding one they reach there.
+constexpr double kMaxSlipRatio = 1.5;
 
 }  // namespace
 
@@ -64,12 +68,6 @@ Vehicle::Vehicle(const CarSpec& spec)
     telemetry_.resize(wheels_.size());
 }
 
-VehicleState Vehicle::at_rest() const {
-    VehicleState rest;
-    rest.wheels.resize(wheels_.size());
-    return rest;
-}
-
 void Vehicle::set_state(const VehicleState& state) {
     const auto reject = [](const std::string& why) { throw Error("vehicle state: " + why); };
     if (state.wheels.size() != wheels_.size())
@@ -118,19 +116,27 @@ TyreForce Vehicle::wheel_force(std::size_t w, double load, double rolling_veloci
     } else {
         if (load > 0.0)
             force = tyre_of(wheel).force(wheel.slip, tyre_of(wheel).peaks(load, wheel.road_grip));
-        const double torque = wheel.drive_torque - r * force.longitudinal;
+        const double drive = load > 0.0 ? wheel.drive_torque : wheel.airborne_drive_torque;
+        const double torque = drive - r * force.longitudinal;
         s.spin = braked(s.spin + h * wheel.inverse_inertia * torque,
                         h * wheel.inverse_inertia * wheel.brake_torque);
     }
     s.road_torque = 0.0;
     if (load > 0.0) {
         s.road_torque = -r * force.longitudinal;
-        // sigma dk/dt + |V_x| k = w R - V_x, implicit Euler.
-        const double rate_x = h * wheel.longitudinal_relaxation_rate;
-        const double rate_y = h * wheel.lateral_relaxation_rate;
+        // sigma dk/dt + |V_x| k = w R - V_x, implicit Euler. Past its peak slip the contact
+        // patch slides: the carcass keeps the peak's deflection sigma k_peak and no more, so
+        // the relaxation length shrinks to sigma k_peak / |k| (the slip normalised by its
+        // peak, from the start of the sub-step). A slip built by a wheel that spun in the air
+        // or at standstill then follows the wheel at once, instead of at |V_x| / sigma, which
+        // is walking pace after a landing (docs/vehicle.md, "Relaxation length").
+        const double rate_x = h * wheel.longitudinal_relaxation_rate *
+                              std::max(1.0, std::abs(wheel.slip.longitudinal));
+        const double rate_y =
+            h * wheel.lateral_relaxation_rate * std::max(1.0, std::abs(wheel.slip.lateral));
         s.slip_ratio = std::clamp(
             (s.slip_ratio + rate_x * (s.spin * r - rolling_velocity)) / (1.0 + rate_x * speed),
-            -kMaxSlip, kMaxSlip);
+            -kMaxSlipRatio, kMaxSlipRatio);
         s.lateral_slip =
             std::clamp((s.lateral_slip - rate_y * lateral_velocity) / (1.0 + rate_y * speed),
                        -kMaxSlip, kMaxSlip);

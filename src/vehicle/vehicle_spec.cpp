@@ -79,6 +79,14 @@ std::string VehicleSpec::validate() const {
     check.non_negative("gearbox.shift_time", gearbox.shift_time);
     check.positive("gearbox.clutch_engage_time", gearbox.clutch_engage_time);
     check.positive("gearbox.launch_rpm", gearbox.launch_rpm);
+    // Above the redline the engine's torque at launch_rpm is the fuel cut's drag, which
+    // would turn the wheels backwards under throttle; below idle the engine would stall.
+    std::ostringstream launch_range;
+    launch_range << "must be in [engine.idle_rpm, gearbox.shift_up_rpm] = [" << engine.idle_rpm
+                 << ", " << gearbox.shift_up_rpm << "], got " << gearbox.launch_rpm;
+    check.require(
+        gearbox.launch_rpm >= engine.idle_rpm && gearbox.launch_rpm <= gearbox.shift_up_rpm,
+        "gearbox.launch_rpm", launch_range.str());
 
     check_differential(check, "front_differential", front_differential);
     check_differential(check, "rear_differential", rear_differential);

@@ -53,6 +53,43 @@ double effective_mass_floor(const MassProperties& mass, const glm::dvec3& r) {
     return 1.0 / (1.0 / mass.mass + turning);
 }
 
+// Above low_speed a wheel's spin is explicit against its tyre's force and its slip ratio
+// implicit (Vehicle::wheel_force): I w' = -R C k, sigma k' = R w - V - |V| k. Linearised
+// about zero slip, with a = h R C / I and b = h R / sigma, the update matrix has determinant
+// 1 / d and trace 1 + (1 - a b) / d, d = 1 + h |V| / sigma: stable while
+//     a b = h^2 R^2 C / (I sigma) < 4 + 2 h |V| / sigma,
+// least at the lowest speed of that update, low_speed. C = B C D is the curve's slope at
+// zero slip, D at three times the nominal load (the top of the range the friction follows
+// its load slope over) on a dry road; the wheel's inertia alone, as an undriven wheel's or
+// one whose clutch is open. Empty when every wheel holds; else why not.
+std::string wheel_spin_unstable(const CarSpec& spec, double h) {
+    const VehicleSpec& v = *spec.vehicle;
+    for (std::size_t i = 0; i < spec.ellipsoids.size(); ++i) {
+        const CarEllipsoid& e = spec.ellipsoids[i];
+        if (e.role == EllipsoidRole::body) continue;
+        const bool front = e.role == EllipsoidRole::front_wheel;
+        const TyreSpec& tyre = front ? v.front_tyre : v.rear_tyre;
+        const MagicFormulaCurve& curve = tyre.longitudinal;
+        const double load = MagicFormulaCurve::kMaxLoadRatio * tyre.nominal_load;
+        const double slope = curve.stiffness * curve.shape * curve.peak(load, tyre.nominal_load);
+        const double sigma = tyre.longitudinal_relaxation;
+        const double r = e.semi_axes.y;
+        const double growth = h * h * r * r * slope / (v.wheel_inertia * sigma);
+        const double limit = 4.0 + 2.0 * h * v.low_speed / sigma;
+        if (growth < limit) continue;
+        std::ostringstream why;
+        why << "World::add_car: CarSpec.vehicle." << (front ? "front_tyre" : "rear_tyre")
+            << "'s wheel spin is too stiff for a sub-step of " << h << " s at ellipsoid " << i
+            << ": h^2 R^2 C / (wheel_inertia sigma) is " << growth
+            << " (slip stiffness C = " << slope << " N at " << load << " N of load, R " << r
+            << " m, wheel_inertia " << v.wheel_inertia << " kg m^2, longitudinal_relaxation "
+            << sigma << " m), not below the " << limit
+            << " (4 + 2 h low_speed / sigma) that the explicit spin update keeps stable";
+        return why.str();
+    }
+    return {};
+}
+
 }  // namespace
 
 void World::check_integrable(const CarSpec& spec) const {
@@ -79,6 +116,8 @@ void World::check_integrable(const CarSpec& spec) const {
             << ", above the 4 that the integrator keeps stable";
         throw Error(why.str());
     }
+    if (spec.vehicle)
+        if (std::string why = wheel_spin_unstable(spec, h); !why.empty()) throw Error(why);
 }
 
 std::string World::impossible_state(const RigidBodyState& s) const {

@@ -108,6 +108,12 @@ TEST(CarSpecJson, EveryBadFileNamesTheKeyAndTheReason) {
          "vehicle: the arcade car has no vehicle model: give \"model\": \"gt\""},
         {R"({"model": "gt", "vehicle": {"gearbox": {"ratios": [3, 0]}}})",
          "CarSpec.vehicle.gearbox.ratios[1] must be finite and > 0, got 0"},
+        {R"({"model": "gt", "vehicle": {"gearbox": {"launch_rpm": 9000}}})",
+         "CarSpec.vehicle.gearbox.launch_rpm must be in [engine.idle_rpm, "
+         "gearbox.shift_up_rpm] = [1000, 8000], got 9000"},
+        {R"({"model": "formula", "vehicle": {"gearbox": {"launch_rpm": 3000}}})",
+         "CarSpec.vehicle.gearbox.launch_rpm must be in [engine.idle_rpm, "
+         "gearbox.shift_up_rpm] = [4000, 12500], got 3000"},
         {R"({"model": "formula", "vehicle": {"rear_tyre": {"lateral": {"shape": 2.5}}}})",
          "CarSpec.vehicle.rear_tyre.lateral.shape must be in (1, 2], got 2.5"},
         {R"({"model": "gt", "vehicle": {"rear_differential": {"kind": "welded"}}})",

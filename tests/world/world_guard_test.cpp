@@ -277,5 +277,45 @@ TEST(Preconditions, ContactsTooStiffForTheSubStepAreRejected) {
         EXPECT_NO_THROW(world.add_car(CarSpec::preset(name), at({0.0, 5.0, 0.0}))) << name;
 }
 
+// A vehicle's wheel spin, explicit against its tyre's force above low_speed, is stable while
+// h^2 R^2 C / (I sigma) < 4 + 2 h low_speed / sigma, C = B C D at three nominal loads
+// (physreview: the gt's tyre force swung over its full +-D at 8.33 ms sub-steps).
+TEST(Preconditions, AWheelSpinTooStiffForTheSubStepIsRejected) {
+    const CarSpec gt = CarSpec::preset("gt");
+    World fine(test::static_world_of(test::flat_grid(40.0, 8)));
+    EXPECT_NO_THROW(fine.add_car(gt, at({0.0, 5.0, 0.0})));
+
+    WorldSettings coarse;  // 8.33 ms sub-steps: 60 updates a second, 2 steps of 1 sub-step
+    coarse.dt_update = 1.0 / 60.0;
+    coarse.steps = 2;
+    coarse.substeps = 1;
+    World world(test::static_world_of(test::flat_grid(40.0, 8)), coarse);
+    const std::string why = error_of([&] { world.add_car(gt, at({0.0, 5.0, 0.0})); });
+    EXPECT_NE(why.find("_tyre's wheel spin is too stiff for a sub-step of 0.00833"),
+              std::string::npos)
+        << why;
+
+    // At the bound, from the formula for the grippier rear tyre: a wheel a hair lighter is
+    // refused, one a hair heavier taken.
+    const double h = fine.settings().substep_dt();
+    const TyreSpec& tyre = gt.vehicle->rear_tyre;
+    const double load = 3.0 * tyre.nominal_load;
+    const double slope = tyre.longitudinal.stiffness * tyre.longitudinal.shape *
+                         tyre.longitudinal.friction *
+                         (1.0 + 2.0 * tyre.longitudinal.friction_load_slope) * load;
+    const double sigma = tyre.longitudinal_relaxation;
+    const double r = 0.35;
+    const double inertia =
+        h * h * r * r * slope / (sigma * (4.0 + 2.0 * h * gt.vehicle->low_speed / sigma));
+    CarSpec light = gt;
+    light.vehicle->wheel_inertia = inertia * (1.0 - 1e-9);
+    EXPECT_NE(error_of([&] {
+                  fine.add_car(light, at({0.0, 5.0, 10.0}));
+              }).find("rear_tyre's wheel spin"),
+              std::string::npos);
+    light.vehicle->wheel_inertia = inertia * (1.0 + 1e-9);
+    EXPECT_NO_THROW(fine.add_car(light, at({0.0, 5.0, 10.0})));
+}
+
 }  // namespace
 }  // namespace trackphys

@@ -46,7 +46,12 @@ class TRACKPHYS_API Car {
 
     const CarSpec& spec() const { return spec_; }
     const RigidBodyState& state() const { return state_; }
-    /// Replaces the state (teleport, restore). Throws trackphys::Error if not finite.
+    /// Moves the car (a teleport, a rescue): replaces the state, puts the suspension at
+    /// full droop (as place_car_on_surface and a new Car assume), and gives a vehicle
+    /// model Vehicle::rolling_at(the new velocity along the car's heading): wheels spun to
+    /// the road's speed without slip, in a gear for it. Restoring a snapshot is
+    /// World::restore_state's (Car::restore, set_vehicle_state). Throws trackphys::Error if
+    /// not finite.
     void set_state(const RigidBodyState& state);
     const CarInputs& inputs() const { return inputs_; }
     /// Sets the inputs, clamped to their ranges (infinities too). Throws trackphys::Error

@@ -60,7 +60,11 @@ class TRACKPHYS_API Vehicle {
     void set_state(const VehicleState& state);
 
     /// This vehicle's state at rest: wheels still, first gear, clutch closed (a reset).
-    VehicleState at_rest() const;
+    VehicleState at_rest() const { return rolling_at(0.0); }
+    /// This vehicle's state rolling at speed (m/s, along its heading) as if it had driven
+    /// so (a teleport): every wheel spinning at speed / R without slip, no road torque, the
+    /// lowest gear whose engine speed is at most shift_up_rpm, the clutch closed.
+    VehicleState rolling_at(double speed) const;
 
     /// The wheel slot of ellipsoid i (-1 for a body ellipsoid).
     int wheel_slot(std::size_t ellipsoid) const { return slot_of_ellipsoid_[ellipsoid]; }
@@ -111,6 +115,7 @@ class TRACKPHYS_API Vehicle {
         // drivetrain's output.
         NormalisedSlip slip;
         double drive_torque = 0.0;
+        double airborne_drive_torque = 0.0;  // the drive when the wheel carries no load
         double brake_torque = 0.0;
     };
     struct Axle {

@@ -34,7 +34,7 @@ struct GearboxSpec {
     double shift_time = 0.1;           ///< s without drive while the gear changes
     double clutch_engage_time = 0.05;  ///< s for the clutch to close after a shift
     /// Below this drivetrain speed the clutch slips: the engine holds this speed and passes
-    /// its torque at it (a launch).
+    /// its torque at it (a launch). In [engine.idle_rpm, shift_up_rpm].
     double launch_rpm = 3000.0;
 };
 
@@ -64,8 +64,10 @@ struct VehicleSpec {
     DifferentialSpec rear_differential;
     DifferentialSpec centre_differential;  ///< between the axles (all-wheel drive only)
     double max_brake_torque = 8000.0;      ///< N m over all wheels at full brake
-    /// Anti-lock brakes and traction control: each wheel's brake or drive torque falls off
-    /// as its slip ratio passes the tyre's peak slip, so the tyre stays near its peak.
+    /// Anti-lock brakes and traction control: a braked or driven wheel's torque fades out
+    /// as its tyre's combined normalised slip (1 on the friction ellipse) goes from 0.9 to
+    /// 1.2, so the tyre stays near its peak; anti-lock above 1 m/s only. In the air
+    /// traction control reads the wheel's speed over the car's instead.
     bool anti_lock = true;
     bool traction_control = true;
     double front_anti_roll = 0.0;  ///< N/m per metre of travel difference across the axle

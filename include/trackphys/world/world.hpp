@@ -68,7 +68,11 @@ class TRACKPHYS_API World {
     /// the reason, for an invalid spec or state (see Car), a spec whose road contact springs
     /// the sub-step cannot integrate stably (h^2 k / m + 2 h c / m above 4 for the
     /// wheel_contact or body_contact stiffness k and damping c at one of its ellipsoids, m a
-    /// lower bound of the car's effective mass there), a state the reset policy would
+    /// lower bound of the car's effective mass there) or, with a vehicle model, whose
+    /// explicit wheel-spin update it cannot (h^2 R^2 C / (I sigma) not below
+    /// 4 + 2 h low_speed / sigma: wheel radius R, wheel inertia I, the tyre's longitudinal
+    /// slip stiffness C at three nominal loads and relaxation length sigma), a state the
+    /// reset policy would
     /// reset (too fast, spinning too fast), a car inside geometry (an ellipsoid deeper than
     /// half its smallest semi-axis into a static triangle) or far outside the map (its centre
     /// of mass farther than settings().max_spawn_distance from every collider's box; a world
@@ -148,7 +152,8 @@ class TRACKPHYS_API World {
     std::string impossible_state(const RigidBodyState& state) const;
     // add_car's checks of where the car is (world_guard.cpp).
     void check_placement(const Car& car) const;
-    // add_car's check that the sub-step integrates the spec's contacts stably (world_guard.cpp).
+    // add_car's check that the sub-step integrates the spec's contacts and wheel spins
+    // stably (world_guard.cpp).
     void check_integrable(const CarSpec& spec) const;
     // A lone car runs its whole update alone; an island's cars sub-step together
     // (world_island.cpp).
