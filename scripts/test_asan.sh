@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # The test suite under AddressSanitizer + UndefinedBehaviorSanitizer (the asan preset, built
 # in build/asan): CI (.ci/run) runs it after scripts/test.sh. The same tests as
-# scripts/test.sh (without the labels "long" and "browser"); any sanitizer report fails its
-# test. Extra arguments go to ctest.
+# scripts/test.sh but those labelled "browser" and the lanes' UBSan copies
+# (tests/CMakeLists.txt: this build is one); any sanitizer report fails its test. Extra
+# arguments go to ctest.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
