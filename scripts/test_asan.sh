@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # The test suite under AddressSanitizer + UndefinedBehaviorSanitizer (the asan preset, built
 # in build/asan): CI (.ci/run) runs it after scripts/test.sh. The same tests as
-# scripts/test.sh (without the labels "long" and "browser"); any sanitizer report fails its
-# test. Extra arguments go to ctest.
+# scripts/test.sh but those labelled "browser" or "release_only" and the lanes' UBSan copies
+# (tests/CMakeLists.txt: this build is one); any sanitizer report fails its test. Extra
+# arguments go to ctest.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -10,5 +11,7 @@ scripts/setup.sh
 cmake --preset asan
 cmake --build --preset asan --parallel "$(nproc)"
 # Not the browser tests: they test the viewer's JavaScript in chromium, the same with either
-# build of the page's writer, whose C++ the cli.view_* tests exercise here.
-ctest --preset asan --label-exclude 'long|browser' "$@"
+# build of the page's writer, whose C++ the cli.view_* tests exercise here. Not the tests
+# labelled release_only either: long under the sanitizers, and shorter tests run their code
+# (each says which).
+ctest --preset asan --label-exclude 'long|browser|release_only' "$@"

@@ -18,13 +18,15 @@
 
 #include "collision/brute_force_match.hpp"
 #include "support/real_tracks.hpp"
+#include "support/sanitized.hpp"
 #include "trackphys/collision/brute_force_collider.hpp"
 #include "trackphys/collision/static_collider.hpp"
 
 namespace trackphys {
 namespace {
 
-constexpr int kTrackQueries = 4000;  // of each kind below, per track
+// Of each kind below, per track; the first quarter of the same sequence under AddressSanitizer.
+constexpr int kTrackQueries = test::kSanitized ? 1000 : 4000;
 
 class RealTrackMatch : public ::testing::TestWithParam<std::string> {};
 

@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "collision/collision_meshes.hpp"
+#include "support/sanitized.hpp"
 #include "trackphys/collision/brute_force_collider.hpp"
 #include "trackphys/error.hpp"
 
@@ -61,8 +62,10 @@ TEST(StaticWorld, MatchesBruteForceOverColliders) {
     std::uniform_real_distribution<double> u01(0.0, 1.0), unit(-1.0, 1.0);
     std::vector<TriangleRef> got, want;
     std::vector<std::uint32_t> ids;
+    // The first quarter of the same sequence under AddressSanitizer.
+    const std::size_t queries = test::kSanitized ? 2500 : 10000;
     std::size_t found = 0, hits = 0;
-    for (int i = 0; i < 10000; ++i) {
+    for (std::size_t i = 0; i < queries; ++i) {
         const Aabb box =
             i % 5 == 0
                 ? Aabb{glm::dvec3(unit(rng), unit(rng), unit(rng)) * 120.0,
@@ -99,8 +102,8 @@ TEST(StaticWorld, MatchesBruteForceOverColliders) {
         ASSERT_EQ(hit->hit.triangle, best->hit.triangle) << "ray " << i;
         ASSERT_EQ(hit->hit.distance, best->hit.distance) << "ray " << i;
     }
-    EXPECT_GT(found, 8000u);
-    EXPECT_GT(hits, 5000u);
+    EXPECT_GT(found, queries * 4 / 5);
+    EXPECT_GT(hits, queries / 2);
 }
 
 }  // namespace

@@ -11,16 +11,10 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include "support/sanitized.hpp"
 #include "trackphys/geometry/ellipsoid.hpp"
 
 namespace trackphys::test {
-
-// The pair tests take fewer pairs under AddressSanitizer, which runs them ~10x slower.
-#if defined(__SANITIZE_ADDRESS__)
-inline constexpr bool kSanitized = true;
-#else
-inline constexpr bool kSanitized = false;
-#endif
 
 enum class PairKind {
     spheres,           ///< two spheres at any distance from coincident to 1 m apart
