@@ -65,18 +65,21 @@ class TRACKPHYS_API World {
     const StaticWorld& statics() const { return *statics_; }
 
     /// Adds a car; returns its index (0, 1, 2... in order). Throws trackphys::Error, naming
-    /// the reason, for an invalid spec or state (see Car), a spec whose road contact springs
-    /// the sub-step cannot integrate stably (h^2 k / m + 2 h c / m above 4 for the
-    /// wheel_contact or body_contact stiffness k and damping c at one of its ellipsoids, m a
-    /// lower bound of the car's effective mass there) or, with a vehicle model, whose
-    /// explicit wheel-spin update it cannot (h^2 R^2 C / (I sigma) not below
-    /// 4 + 2 h low_speed / sigma: wheel radius R, wheel inertia I, the tyre's longitudinal
-    /// slip stiffness C at three nominal loads and relaxation length sigma), a state the
-    /// reset policy would
-    /// reset (too fast, spinning too fast), a car inside geometry (an ellipsoid deeper than
-    /// half its smallest semi-axis into a static triangle) or far outside the map (its centre
-    /// of mass farther than settings().max_spawn_distance from every collider's box; a world
-    /// without triangles has no map and accepts any position).
+    /// the reason, for:
+    /// - an invalid spec or state (see Car);
+    /// - a spec whose road contact springs the sub-step cannot integrate stably
+    ///   (h^2 k / m + 2 h c / m above 4 for the wheel_contact or body_contact stiffness k
+    ///   and damping c at one of its ellipsoids, m a lower bound of the car's effective
+    ///   mass there);
+    /// - with a vehicle model, a spec whose explicit wheel-spin update the sub-step cannot
+    ///   integrate (h^2 R^2 C / (I sigma) not below 4 + 2 h low_speed / sigma: wheel radius
+    ///   R, wheel inertia I, the tyre's longitudinal slip stiffness C at three nominal
+    ///   loads and relaxation length sigma);
+    /// - a state the reset policy would reset (too fast, spinning too fast);
+    /// - a car inside geometry (an ellipsoid deeper than half its smallest semi-axis into a
+    ///   static triangle) or far outside the map (its centre of mass farther than
+    ///   settings().max_spawn_distance from every collider's box; a world without
+    ///   triangles has no map and accepts any position).
     std::size_t add_car(const CarSpec& spec, const RigidBodyState& state);
     std::size_t car_count() const;
     /// Car i (throws std::out_of_range past car_count()): its inputs and state may be set
