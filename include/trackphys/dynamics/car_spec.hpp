@@ -86,7 +86,10 @@ struct TRACKPHYS_API CarSpec {
     /// Share of the brake force at the front wheels: more than half, so that the rear
     /// keeps its grip under braking and the car stays straight.
     double front_brake_share = 0.6;
-    double max_steer_angle = 0.6;  ///< rad at full steer, at low speed
+    /// Both front wheels' angle at full steer (rad), at every speed and without Ackermann
+    /// geometry: a game that wants less lock at speed scales CarInputs::steer itself, as the
+    /// autopilot does through its steering law.
+    double max_steer_angle = 0.6;
     /// A contact deeper than this share of the ellipsoid's half-extent along the contact
     /// normal, still approaching, is stopped by an impulse (see Car::advance).
     /// Half of a wheel's radius is 17 cm, twice its compression under 5 g of cornering.
