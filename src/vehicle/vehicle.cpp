@@ -68,6 +68,16 @@ Vehicle::Vehicle(const CarSpec& spec)
     telemetry_.resize(wheels_.size());
 }
 
+void Vehicle::set_road_grip(std::size_t w, double grip) {
+    if (w >= wheels_.size())
+        throw Error("set_road_grip: wheel slot " + std::to_string(w) + " of " +
+                    std::to_string(wheels_.size()));
+    if (!(std::isfinite(grip) && grip > 0.0))
+        throw Error("set_road_grip: wheel slot " + std::to_string(w) + ": grip " +
+                    std::to_string(grip) + " is not finite and above 0");
+    wheels_[w].road_grip = grip;
+}
+
 void Vehicle::set_state(const VehicleState& state) {
     const auto reject = [](const std::string& why) { throw Error("vehicle state: " + why); };
     if (state.wheels.size() != wheels_.size())

@@ -5,6 +5,7 @@
 // as they should; and snapshots that carry the wheels and the gearbox.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <string>
 
@@ -12,6 +13,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "support/error_message.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/io/snapshot_file.hpp"
 #include "trackphys/world/spawn.hpp"
@@ -334,6 +336,24 @@ TEST(VehiclePhysics, AResetCarStartsAgainAtRestInFirstGear) {
     drive(world, {1.0, 0.0, 0.0}, 1.0);
     EXPECT_GT(forward_speed(world.car(0)), 5.0);
     EXPECT_EQ(world.car_resets(0), 1u);
+}
+
+// Road grip is the environment's, set by the game wheel by wheel: a slot past the wheels or
+// a grip that is not finite and above 0 is refused, naming the slot (a negative grip would
+// push the tyre along its slip, zero would leave its force 0 / 0).
+TEST(VehiclePhysics, RoadGripMustBeFiniteAndAboveZeroForAWheelThatExists) {
+    Vehicle vehicle(CarSpec::preset("gt"));
+    const std::size_t wheels = vehicle.state().wheels.size();
+    EXPECT_NO_THROW(vehicle.set_road_grip(wheels - 1, 0.05));
+    const std::string past = test::error_of([&] { vehicle.set_road_grip(wheels, 1.0); });
+    EXPECT_NE(past.find("wheel slot " + std::to_string(wheels) + " of " + std::to_string(wheels)),
+              std::string::npos)
+        << past;
+    for (const double grip : {0.0, -0.5, std::numeric_limits<double>::quiet_NaN(),
+                              std::numeric_limits<double>::infinity()}) {
+        const std::string why = test::error_of([&] { vehicle.set_road_grip(1, grip); });
+        EXPECT_NE(why.find("wheel slot 1: grip"), std::string::npos) << grip << ": " << why;
+    }
 }
 
 // Skidpad: a flat 100 m radius circle at a slowly rising speed (0.15 m/s each second),

@@ -70,8 +70,11 @@ class TRACKPHYS_API Vehicle {
     int wheel_slot(std::size_t ellipsoid) const { return slot_of_ellipsoid_[ellipsoid]; }
 
     /// The grip of the road under wheel slot w relative to a dry road (1 by default; 0.05
-    /// for ice): scales its tyre's peaks. Part of the environment, not of the state.
-    void set_road_grip(std::size_t w, double grip) { wheels_[w].road_grip = grip; }
+    /// for ice): scales its tyre's peaks. Part of the environment, not of the state (a
+    /// snapshot does not carry it). Throws trackphys::Error for a slot past the wheels or a
+    /// grip that is not finite and above 0 (a negative one would push the tyre along its
+    /// slip, adding energy; zero would leave its force 0 / 0).
+    void set_road_grip(std::size_t w, double grip);
 
     /// The drivetrain's share of a sub-step of h seconds: the shifter, the clutch, the
     /// engine's torque through the gearbox and differentials, and the brakes, at throttle
