@@ -7,6 +7,7 @@
 
 #include "trackphys/dynamics/car_spec.hpp"
 #include "trackphys/error.hpp"
+#include "vehicle/rolling_radius.hpp"
 
 namespace trackphys {
 namespace {
@@ -33,8 +34,7 @@ Vehicle::Vehicle(const CarSpec& spec)
         Wheel wheel;
         wheel.ellipsoid = i;
         wheel.front = e.role == EllipsoidRole::front_wheel;
-        // The rolling radius lies in the body's y-z plane (CarSpec: width along x).
-        wheel.radius = e.semi_axes.y;
+        wheel.radius = detail::rolling_radius(e);
         wheel.inverse_inertia = 1.0 / spec_.wheel_inertia;
         wheel.anti_roll = wheel.front ? spec_.front_anti_roll : spec_.rear_anti_roll;
         const TyreSpec& tyre = wheel.front ? spec_.front_tyre : spec_.rear_tyre;

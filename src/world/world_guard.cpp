@@ -16,6 +16,7 @@
 #include "trackphys/geometry/contact.hpp"
 #include "trackphys/math/types.hpp"
 #include "trackphys/world/world.hpp"
+#include "vehicle/rolling_radius.hpp"
 #include "world/car_scratch.hpp"
 #include "world/car_slot.hpp"
 #include "world/update_work.hpp"
@@ -73,7 +74,7 @@ std::string wheel_spin_unstable(const CarSpec& spec, double h) {
         const double load = MagicFormulaCurve::kMaxLoadRatio * tyre.nominal_load;
         const double slope = curve.stiffness * curve.shape * curve.peak(load, tyre.nominal_load);
         const double sigma = tyre.longitudinal_relaxation;
-        const double r = e.semi_axes.y;
+        const double r = detail::rolling_radius(e);
         const double growth = h * h * r * r * slope / (v.wheel_inertia * sigma);
         const double limit = 4.0 + 2.0 * h * v.low_speed / sigma;
         if (growth < limit) continue;

@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/quaternion.hpp>
 
 #include "support/error_message.hpp"
 #include "trackphys/error.hpp"
@@ -353,6 +354,28 @@ TEST(VehiclePhysics, RoadGripMustBeFiniteAndAboveZeroForAWheelThatExists) {
                               std::numeric_limits<double>::infinity()}) {
         const std::string why = test::error_of([&] { vehicle.set_road_grip(1, grip); });
         EXPECT_NE(why.find("wheel slot 1: grip"), std::string::npos) << grip << ": " << why;
+    }
+}
+
+// A wheel rolls on its ellipsoid's extent along the body's up axis, however the ellipsoid
+// is turned: the gt's wheels, their 0.15 m width laid along y and turned a quarter about z
+// so that the width is along x again, roll on 0.35 m as before (semi_axes.y was 0.15).
+// Unturned wheels keep semi_axes.y bit for bit.
+TEST(VehiclePhysics, AWheelRollsOnItsExtentAlongTheBodysUpAxis) {
+    const CarSpec gt = CarSpec::preset("gt");
+    CarSpec turned = gt;
+    for (CarEllipsoid& e : turned.ellipsoids) {
+        if (e.role == EllipsoidRole::body) continue;
+        e.semi_axes = {e.semi_axes.y, e.semi_axes.x, e.semi_axes.z};
+        e.orientation = glm::angleAxis(0.5 * std::numbers::pi, glm::dvec3(0.0, 0.0, 1.0));
+    }
+    const double speed = 10.0;
+    const VehicleState plain = Vehicle(gt).rolling_at(speed);
+    const VehicleState rolled = Vehicle(turned).rolling_at(speed);
+    ASSERT_EQ(plain.wheels.size(), rolled.wheels.size());
+    for (std::size_t w = 0; w < plain.wheels.size(); ++w) {
+        EXPECT_EQ(plain.wheels[w].spin, speed / 0.35);
+        EXPECT_NEAR(rolled.wheels[w].spin, speed / 0.35, 1e-12);
     }
 }
 
