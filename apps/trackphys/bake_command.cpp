@@ -6,13 +6,11 @@
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
-#include <memory>
 #include <optional>
 #include <string>
 
 #include "commands.hpp"
 #include "file_clashes.hpp"
-#include "mesh_limit_options.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/geometry/mesh_chunks.hpp"
 #include "trackphys/io/map_file.hpp"
@@ -22,24 +20,17 @@
 namespace trackphys::cli {
 namespace {
 
-struct BakeOptions {
-    std::filesystem::path mesh;
-    std::uint64_t seed = kDemoTrackSeed;
-    std::filesystem::path out;
-    double chunk_m = 100.0;
-    int threads = 0;
-    MeshLoadLimits mesh_limits;
-};
-
 double seconds_since(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-void run_bake(const BakeOptions& o, const CLI::App& command) {
+}  // namespace
+
+void run_bake(const BakeOptions& o, const OptionGiven& given) {
     const bool from_mesh = !o.mesh.empty();
-    if (from_mesh && command.count("--seed") > 0)
+    if (from_mesh && given("--seed"))
         throw Error("give a mesh file or --seed (a generated track), not both");
-    if (!from_mesh && command.count("--chunk") > 0)
+    if (!from_mesh && given("--chunk"))
         throw Error("--chunk splits a mesh file; a generated track comes in its own chunks");
     if (!(std::isfinite(o.chunk_m) && o.chunk_m > 0.0))
         throw Error("--chunk must be finite and > 0 m, got " + shown(o.chunk_m));
@@ -83,28 +74,6 @@ void run_bake(const BakeOptions& o, const CLI::App& command) {
     std::printf("map          %s, %.1f MB, %.1f bytes a triangle\n", o.out.string().c_str(),
                 double(bytes) / 1e6, kept > 0 ? double(bytes) / double(kept) : 0.0);
     std::printf("time         %.3f s to build, %.3f s to write\n", bake_s, write_s);
-}
-
-}  // namespace
-
-void add_bake_command(CLI::App& app) {
-    auto o = std::make_shared<BakeOptions>();
-    CLI::App* command = app.add_subcommand(
-        "bake",
-        "Build every collider's BVH and plane tree once, for a mesh file (split into --chunk "
-        "cells, one collider each) or a generated track (--seed, one collider per chunk), and "
-        "write them to a map file that `drive --map` loads without rebuilding");
-    command->add_option("MESH", o->mesh, "the mesh file to bake (any format `info` reads)");
-    command->add_option("--seed", o->seed, "bake the generated track of this seed instead")
-        ->check(not_negative())
-        ->capture_default_str();
-    command->add_option("--out", o->out, "the map file to write (MAP.tpmap)")->required();
-    command->add_option("--chunk", o->chunk_m, "a mesh's collider cells on x and z (m, > 0)")
-        ->capture_default_str();
-    command->add_option("--threads", o->threads, "threads to build on, 0 to 256 (0: one per core)")
-        ->capture_default_str();
-    add_mesh_limit_options(*command, o->mesh_limits);
-    command->callback([o, command] { run_bake(*o, *command); });
 }
 
 }  // namespace trackphys::cli

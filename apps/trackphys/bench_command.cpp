@@ -7,18 +7,12 @@
 
 namespace trackphys::cli {
 
-void add_bench_command(CLI::App& app) {
-    CLI::App* command = app.add_subcommand(
-        "bench",
-        "Moved: the benchmark suite is the trackphys-bench program (built with the benchmarks)");
-    command->allow_extras();
-    command->callback([] {
-        throw Error(
-            "the benchmark suite is its own program now: trackphys-bench, built with "
-            "-DTRACKPHYS_BUILD_BENCHMARKS=ON (the default for a top-level build) as "
-            "build/<preset>/bench/trackphys-bench, not installed; "
-            "run trackphys-bench --help");
-    });
+void run_bench() {
+    throw Error(
+        "the benchmark suite is its own program now: trackphys-bench, built with "
+        "-DTRACKPHYS_BUILD_BENCHMARKS=ON (the default for a top-level build) as "
+        "build/<preset>/bench/trackphys-bench, not installed; "
+        "run trackphys-bench --help");
 }
 
 }  // namespace trackphys::cli

@@ -1,30 +1,31 @@
 #pragma once
 
+#include <cstddef>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <span>
 #include <string>
 #include <utility>
-
-#include <CLI/CLI.hpp>
+#include <vector>
 
 #include "trackphys/error.hpp"
+#include "trackphys/io/mesh_load_limits.hpp"
+#include "trackphys/io/scenario.hpp"
+#include "trackphys/track/track_params.hpp"
 
 namespace trackphys::cli {
 
-// Each subcommand of `trackphys` lives in its own file and registers itself here: it adds
-// its options to a new subcommand of app and sets the callback that runs it. A callback
-// reports failure by throwing (trackphys::Error or CLI::Error); main turns that into a
-// message on stderr and a non-zero exit.
+// Each subcommand of `trackphys` runs in its own file, from a plain struct of its options.
+// Only command_line.cpp (which declares every option and help text and calls the run
+// functions) and main.cpp (which parses) include CLI11: it is header-only and slow to
+// compile. A run function reports failure by throwing trackphys::Error; main turns that
+// into a message on stderr and a non-zero exit.
 
-/// Rejects a leading minus sign: CLI11 reads "-1" into an unsigned option as 2^64 - 1.
-inline CLI::Validator not_negative() {
-    return CLI::Validator(
-        [](const std::string& text) {
-            return text.rfind('-', 0) == 0 ? std::string("must be >= 0, got " + text) : "";
-        },
-        "UINT", "not_negative");
-}
+/// Whether the command line gave an option ("--laps"), for the rules that tell a value given
+/// from a default.
+using OptionGiven = std::function<bool(const std::string& option)>;
 
 /// A number as messages show it, %g-style like Scenario's ("2", "1e+300"), never
 /// std::to_string's six decimals or its 300 digits.
@@ -43,10 +44,10 @@ inline void check_threads(long long threads) {
 
 /// Refuses an explicit --laps 0 or --seconds 0: Scenario reads 0 as "not given" and would
 /// drive a lap for a user who asked for none.
-inline void refuse_zero_duration(const CLI::App& command, int laps, double seconds) {
-    if (command.count("--laps") > 0 && laps == 0)
+inline void refuse_zero_duration(const OptionGiven& given, int laps, double seconds) {
+    if (given("--laps") && laps == 0)
         throw Error("--laps must be >= 1, got 0 (leave it out for the default)");
-    if (command.count("--seconds") > 0 && seconds == 0.0)
+    if (given("--seconds") && seconds == 0.0)
         throw Error("--seconds must be > 0, got 0 (leave it out for the default)");
 }
 
@@ -56,21 +57,81 @@ using FieldOptions = std::span<const std::pair<const char*, const char*>>;
 /// Throws Scenario::validate()'s message `why` named after its source: the option that set
 /// the field it names when that option was given, else the scenario file when there is one.
 [[noreturn]] inline void fail_scenario(const std::string& why, FieldOptions fields,
-                                       const CLI::App& command,
+                                       const OptionGiven& given,
                                        const std::filesystem::path& scenario_file) {
     for (const auto& [field, option] : fields)
-        if (why.rfind(field, 0) == 0 && command.count(option) > 0)
+        if (why.rfind(field, 0) == 0 && given(option))
             throw Error(std::string(option) + ": " + why);
     if (!scenario_file.empty()) throw Error("scenario '" + scenario_file.string() + "': " + why);
     throw Error(why);
 }
 
-void add_drive_command(CLI::App& app);
-void add_race_command(CLI::App& app);
-void add_track_command(CLI::App& app);
-void add_info_command(CLI::App& app);
-void add_bench_command(CLI::App& app);
-void add_view_command(CLI::App& app);
-void add_bake_command(CLI::App& app);
+/// `trackphys drive`. The scene options (--seed to --steer, --laps, --seconds) are read into
+/// a default Scenario; the drive copies those given explicitly over the scenario file.
+struct DriveOptions {
+    std::string track = "default";
+    std::filesystem::path scenario_file, car_file;
+    std::string car_preset;
+    bool print_car = false;
+    bool print_scenario = false;
+    Scenario flags;
+    std::vector<double> spawn;
+    std::filesystem::path json, trace, record, svg, telemetry;
+    std::pair<std::string, std::string> save_at;  // T FILE
+    std::filesystem::path resume;
+    MeshLoadLimits mesh_limits;
+};
+void run_drive(const DriveOptions& options, const OptionGiven& given);
+
+/// `trackphys race`.
+struct RaceOptions {
+    std::filesystem::path scenario_file;
+    std::uint64_t seed = kDemoTrackSeed;
+    std::size_t cars = 20;
+    int laps = 0;
+    double seconds = 0.0;
+    int threads = 0;
+    std::filesystem::path map;  ///< a baked map instead of the generated track
+    std::filesystem::path json, trace, record, svg;
+};
+void run_race(const RaceOptions& options, const OptionGiven& given);
+
+/// `trackphys track`.
+struct TrackOptions {
+    TrackParams params;
+    std::filesystem::path out;  ///< mesh file (any format save_mesh writes), empty for none
+    std::filesystem::path svg;  ///< picture, empty for none
+};
+void run_track(const TrackOptions& options);
+
+/// `trackphys info`.
+struct InfoOptions {
+    std::string file;
+    bool json = false;
+    MeshLoadLimits mesh_limits;
+};
+void run_info(const InfoOptions& options);
+
+/// `trackphys bake`.
+struct BakeOptions {
+    std::filesystem::path mesh;
+    std::uint64_t seed = kDemoTrackSeed;
+    std::filesystem::path out;
+    double chunk_m = 100.0;
+    int threads = 0;
+    MeshLoadLimits mesh_limits;
+};
+void run_bake(const BakeOptions& options, const OptionGiven& given);
+
+/// `trackphys bench`, which only says where the benchmarks went (always throws).
+[[noreturn]] void run_bench();
+
+/// `trackphys view`.
+struct ViewOptions {
+    std::filesystem::path recording;
+    std::filesystem::path out;
+    MeshLoadLimits mesh_limits;
+};
+void run_view(const ViewOptions& options);
 
 }  // namespace trackphys::cli

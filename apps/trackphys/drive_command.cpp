@@ -19,7 +19,6 @@
 #include "file_clashes.hpp"
 #include "interrupt_guard.hpp"
 #include "json_file.hpp"
-#include "mesh_limit_options.hpp"
 #include "progress_bar.hpp"
 #include "reset_streak.hpp"
 #include "staged_outputs.hpp"
@@ -35,22 +34,6 @@
 
 namespace trackphys::cli {
 namespace {
-
-// The command line. The scene options (--seed to --steer, --laps, --seconds) are read into
-// a default Scenario; build_scenario copies those given explicitly over the scenario file.
-struct DriveOptions {
-    std::string track = "default";
-    std::filesystem::path scenario_file, car_file;
-    std::string car_preset;
-    bool print_car = false;
-    bool print_scenario = false;
-    Scenario flags;
-    std::vector<double> spawn;
-    std::filesystem::path json, trace, record, svg, telemetry;
-    std::pair<std::string, std::string> save_at;  // T FILE
-    std::filesystem::path resume;
-    MeshLoadLimits mesh_limits;
-};
 
 // --save-at T FILE, checked; the snapshot is written to `staged` (staged_outputs.hpp).
 struct SavePoint {
@@ -78,8 +61,7 @@ constexpr std::pair<const char*, const char*> kFieldOptions[] = {
 // The scenario file (or the defaults) with the car file and every scene option given on
 // the command line applied over it: a flag overrides the same field of the file. A flag
 // that the resulting mode does not use is an error rather than silently ignored.
-Scenario build_scenario(const DriveOptions& o, const CLI::App& command) {
-    const auto given = [&](const char* option) { return command.count(option) > 0; };
+Scenario build_scenario(const DriveOptions& o, const OptionGiven& given) {
     Scenario s = o.scenario_file.empty() ? Scenario{} : load_scenario(o.scenario_file);
     if (!o.car_file.empty()) s.car = load_car_spec(o.car_file);
     if (given("--car-preset")) s.car = CarSpec::preset(o.car_preset);
@@ -92,7 +74,7 @@ Scenario build_scenario(const DriveOptions& o, const CLI::App& command) {
     if (given("--target-speed")) s.target_speed_kmh = f.target_speed_kmh;
     if (given("--throttle")) s.inputs.throttle = f.inputs.throttle;
     if (given("--steer")) s.inputs.steer = f.inputs.steer;
-    refuse_zero_duration(command, f.laps, f.seconds);
+    refuse_zero_duration(given, f.laps, f.seconds);
     if (given("--laps")) s.laps = f.laps;
     if (given("--seconds")) s.seconds = f.seconds;
 
@@ -116,7 +98,7 @@ Scenario build_scenario(const DriveOptions& o, const CLI::App& command) {
         why = "Scenario.cars is " + std::to_string(s.cars) +
               ": drive drives one car (race a field with trackphys race --scenario)";
     if (why.empty()) return s;
-    fail_scenario(why, kFieldOptions, command, o.scenario_file);
+    fail_scenario(why, kFieldOptions, given, o.scenario_file);
 }
 
 std::optional<SavePoint> parse_save_at(const DriveOptions& o, double drive_seconds) {
@@ -158,10 +140,12 @@ void check_resume_before_the_end(const std::filesystem::path& file, double snaps
     }
 }
 
-void run(const DriveOptions& o, const CLI::App& command) {
+}  // namespace
+
+void run_drive(const DriveOptions& o, const OptionGiven& given) {
     if (o.track != "default")
         throw Error("--track '" + o.track + "': the only generated track is 'default'");
-    const Scenario s = build_scenario(o, command);
+    const Scenario s = build_scenario(o, given);
     if (o.print_car) {
         std::fputs(car_spec_to_json(s.car).c_str(), stdout);
         return;
@@ -341,93 +325,6 @@ void run(const DriveOptions& o, const CLI::App& command) {
     if (recording) recording->finish();
     if (telemetry) telemetry->finish();
     commit_with_track_mesh(outputs, recording_plan, scene);
-}
-
-}  // namespace
-
-void add_drive_command(CLI::App& app) {
-    auto o = std::make_shared<DriveOptions>();
-    CLI::App* command = app.add_subcommand(
-        "drive",
-        "Drive the default car (or --car, or a --scenario file): laps of a generated track by "
-        "autopilot, or free on any mesh; prints lap time, top speed and the per-phase profile of "
-        "every update. Options given with --scenario override the file's values");
-    command->add_option("--scenario", o->scenario_file,
-                        "Read track, car, driver and duration from this JSON file (see "
-                        "docs/cli.md, 'Car spec and scenario files')");
-    CLI::Option* car_file = command->add_option(
-        "--car", o->car_file, "Read the car spec from this JSON file (see --print-car)");
-    command
-        ->add_option("--car-preset", o->car_preset,
-                     "Drive a preset car: arcade (the default car), gt or formula "
-                     "(docs/vehicle.md); in a --car file, \"model\" picks one")
-        ->excludes(car_file);
-    CLI::Option* print_car = command->add_flag(
-        "--print-car", o->print_car,
-        "Print the car spec (default, --car or the scenario's) as JSON and exit: a starting "
-        "point for a --car file");
-    command
-        ->add_flag(
-            "--print-scenario", o->print_scenario,
-            "Print the scenario these options describe as JSON and exit: a starting point for a "
-            "--scenario file")
-        ->excludes(print_car);
-    command->add_option("--track", o->track, "Generated track to drive (default)")
-        ->capture_default_str();
-    command->add_option("--seed", o->flags.seed, "Seed of the generated track")
-        ->check(not_negative())
-        ->capture_default_str();
-    command->add_option("--mesh", o->flags.mesh,
-                        "Drive on this mesh file instead (free mode, needs --spawn)");
-    command->add_option("--map", o->flags.map,
-                        "Drive on this baked map (trackphys bake): by autopilot when it was "
-                        "baked from a generated track, else in free mode (needs --spawn)");
-    command->add_option("--laps", o->flags.laps,
-                        "Laps to drive by autopilot, >= 1 (default 1 without --seconds)");
-    command->add_option("--seconds", o->flags.seconds, "Simulated seconds to drive (> 0)");
-    command
-        ->add_option("--target-speed", o->flags.target_speed_kmh,
-                     "Autopilot speed on straights (km/h)")
-        ->capture_default_str();
-    command
-        ->add_option("--spawn", o->spawn,
-                     "Free mode: start above x,y,z (the car lands on the surface below)")
-        ->delimiter(',')
-        ->expected(3);
-    command
-        ->add_option("--heading", o->flags.heading_deg,
-                     "Free mode: heading about +Y in degrees (0 = +X, 90 = -Z)")
-        ->capture_default_str();
-    command->add_option("--throttle", o->flags.inputs.throttle, "Free mode: fixed throttle 0..1")
-        ->capture_default_str();
-    command
-        ->add_option("--steer", o->flags.inputs.steer,
-                     "Free mode: fixed steering -1..1 (+1 = left)")
-        ->capture_default_str();
-    command->add_option("--json", o->json, "Write the figures as JSON");
-    command->add_option("--trace", o->trace,
-                        "Write a Chrome trace (Perfetto) of every update's phases");
-    command->add_option(
-        "--record", o->record,
-        "Write car poses, contacts and vehicle telemetry per update (JSON Lines) for a "
-        "viewer");
-    command->add_option("--telemetry", o->telemetry,
-                        "Write per-update telemetry as CSV with named channels (speed, inputs; "
-                        "with a vehicle model rpm, gear and each wheel's slip, load and spin)");
-    command->add_option("--svg", o->svg, "Plot the path over the track and the update times");
-    command
-        ->add_option(
-            "--save-at", o->save_at,
-            "Save a snapshot to FILE when the simulated time reaches T seconds, and keep driving")
-        ->type_name("T FILE");
-    command
-        ->add_option(
-            "--resume", o->resume,
-            "Continue the drive saved in this snapshot (give the original drive's options; "
-            "--seconds and --laps count from the original start)")
-        ->type_name("FILE");
-    add_mesh_limit_options(*command, o->mesh_limits);
-    command->callback([o, command] { run(*o, *command); });
 }
 
 }  // namespace trackphys::cli

@@ -3,14 +3,12 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <memory>
 #include <string>
 
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
 #include "map_info.hpp"
-#include "mesh_limit_options.hpp"
 #include "trackphys/collision/static_collider.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/io/map_file.hpp"
@@ -18,12 +16,6 @@
 
 namespace trackphys::cli {
 namespace {
-
-struct InfoOptions {
-    std::string file;
-    bool json = false;
-    MeshLoadLimits mesh_limits;
-};
 
 nlohmann::json to_json(const glm::dvec3& v) { return nlohmann::json::array({v.x, v.y, v.z}); }
 
@@ -67,6 +59,8 @@ void print_text(const InfoOptions& options, const MeshLoadReport& r) {
     std::printf("%-20s %zu\n", "mirrored instances", r.mirrored_instances);
 }
 
+}  // namespace
+
 void run_info(const InfoOptions& options) {
     // A file named .tpmap is read as a map, so one without the magic is called a bad map,
     // not a mesh format trackphys does not read.
@@ -86,23 +80,6 @@ void run_info(const InfoOptions& options) {
         print_json(options, report);
     else
         print_text(options, report);
-}
-
-}  // namespace
-
-void add_info_command(CLI::App& app) {
-    CLI::App* command = app.add_subcommand(
-        "info",
-        "Read a mesh file (glTF/GLB, OBJ, PLY, STL, AC3D or OFF) "
-        "the way a static collider would, and print its triangle and vertex counts, bounds, "
-        "area and what was dropped (degenerate triangles, points, lines); or describe a baked "
-        "map (trackphys bake): format, build options, colliders, memory, track");
-    auto options = std::make_shared<InfoOptions>();
-    command->add_option("MESHFILE", options->file, "the mesh file or map file (.tpmap) to read")
-        ->required();
-    command->add_flag("--json", options->json, "print the figures as one JSON object");
-    add_mesh_limit_options(*command, options->mesh_limits);
-    command->callback([options] { run_info(*options); });
 }
 
 }  // namespace trackphys::cli

@@ -6,7 +6,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "commands.hpp"
+#include "command_line.hpp"
 #include "trackphys/build_target.hpp"
 #include "trackphys/error.hpp"
 
@@ -36,13 +36,7 @@ int main(int argc, char** argv) {
     CLI::App app{"trackphys: racing-game physics, ellipsoid cars on triangle-mesh tracks",
                  "trackphys"};
     app.require_subcommand(1);
-    trackphys::cli::add_drive_command(app);
-    trackphys::cli::add_race_command(app);
-    trackphys::cli::add_track_command(app);
-    trackphys::cli::add_info_command(app);
-    trackphys::cli::add_bake_command(app);
-    trackphys::cli::add_bench_command(app);
-    trackphys::cli::add_view_command(app);
+    trackphys::cli::add_commands(app);
 
     try {
         app.parse(argc, argv);

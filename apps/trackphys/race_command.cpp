@@ -29,17 +29,6 @@
 namespace trackphys::cli {
 namespace {
 
-struct RaceOptions {
-    std::filesystem::path scenario_file;
-    std::uint64_t seed = kDemoTrackSeed;
-    std::size_t cars = 20;
-    int laps = 0;
-    double seconds = 0.0;
-    int threads = 0;
-    std::filesystem::path map;  ///< a baked map instead of the generated track
-    std::filesystem::path json, trace, record, svg;
-};
-
 // What a race runs: the scenario file's track seed, car, field, autopilot speed and
 // duration (or the defaults: 20 default cars), with every option given on the command line
 // over it.
@@ -48,8 +37,7 @@ struct Race {
     RaceSettings settings;
 };
 
-Race build_race(const RaceOptions& o, const CLI::App& command) {
-    const auto given = [&](const char* option) { return command.count(option) > 0; };
+Race build_race(const RaceOptions& o, const OptionGiven& given) {
     Race race;
     Scenario& s = race.scenario;
     if (!o.scenario_file.empty()) {
@@ -63,7 +51,7 @@ Race build_race(const RaceOptions& o, const CLI::App& command) {
         throw Error("--seed picks a generated track, but this race is on the map '" +
                     o.map.string() + "'");
     if (given("--seed")) s.seed = o.seed;
-    refuse_zero_duration(command, o.laps, o.seconds);
+    refuse_zero_duration(given, o.laps, o.seconds);
     if (given("--laps")) s.laps = o.laps;
     if (given("--seconds")) s.seconds = o.seconds;
     // The field's speeds as the default race's (420 to 600 km/h) for a target of 600.
@@ -82,12 +70,12 @@ constexpr std::pair<const char*, const char*> kFieldOptions[] = {
     {"Scenario.seconds", "--seconds"},
 };
 
-void check(const RaceOptions& o, const CLI::App& command) {
+void check(const RaceOptions& o, const OptionGiven& given) {
     if (o.cars < 1 || o.cars > static_cast<std::size_t>(max_scenario_cars))
         throw Error("--cars must be in [1, " + std::to_string(max_scenario_cars) + "], got " +
                     std::to_string(o.cars));
     check_threads(o.threads);
-    if (!o.trace.empty() && command.count("--threads") > 0 && o.threads != 1)
+    if (!o.trace.empty() && given("--threads") && o.threads != 1)
         throw Error(
             "--trace runs the updates on one thread (a trace records only the calling "
             "thread): leave out --threads " +
@@ -107,12 +95,14 @@ std::vector<RaceCarResult> classify(const RaceDrivers& drivers, const World& wor
     return results;
 }
 
-void run(const RaceOptions& o, const CLI::App& command) {
-    check(o, command);
-    const Race race = build_race(o, command);
+}  // namespace
+
+void run_race(const RaceOptions& o, const OptionGiven& given) {
+    check(o, given);
+    const Race race = build_race(o, given);
     const Scenario& s = race.scenario;
     if (std::string why = s.validate(); !why.empty())
-        fail_scenario(why, kFieldOptions, command, o.scenario_file);
+        fail_scenario(why, kFieldOptions, given, o.scenario_file);
     const auto cars = static_cast<std::size_t>(s.cars);
     refuse_file_clashes({{"--scenario", o.scenario_file}, {"--map", o.map}},
                         {{"--json", o.json},
@@ -225,47 +215,6 @@ void run(const RaceOptions& o, const CLI::App& command) {
     }
     if (recording) recording->finish();
     commit_with_track_mesh(outputs, recording_plan, scene);
-}
-
-}  // namespace
-
-void add_race_command(CLI::App& app) {
-    auto o = std::make_shared<RaceOptions>();
-    CLI::App* command = app.add_subcommand(
-        "race",
-        "Race a field of default cars on a generated track: a two-column grid, each car on its "
-        "own autopilot and target speed, passing slower cars on the side; the cars collide. "
-        "Prints the classification and the per-update profile of the whole world");
-    command->add_option("--scenario", o->scenario_file,
-                        "Race a scenario file: its track seed, car (every car's), cars, "
-                        "autopilot target speed (the fastest car's), laps and seconds; options "
-                        "given with it override the file's values");
-    command->add_option("--seed", o->seed, "Seed of the generated track")
-        ->check(not_negative())
-        ->capture_default_str();
-    command->add_option("--map", o->map,
-                        "Race on this baked map (trackphys bake --seed) instead of generating "
-                        "the track");
-    command->add_option("--cars", o->cars, "Cars on the grid (1 to 128)")
-        ->check(not_negative())
-        ->capture_default_str();
-    command->add_option("--laps", o->laps,
-                        "Laps every car must complete, >= 1 (default 1 without --seconds)");
-    command->add_option("--seconds", o->seconds, "Simulated seconds to race (> 0)");
-    command
-        ->add_option("--threads", o->threads,
-                     "Threads to update the world on (0: the hardware's count)")
-        ->capture_default_str();
-    command->add_option("--json", o->json, "Write the figures as JSON");
-    command->add_option("--trace", o->trace,
-                        "Write a Chrome trace (Perfetto) of the updates; runs them on one "
-                        "thread, since a trace records only the calling thread's");
-    command->add_option("--svg", o->svg,
-                        "Plot every car's path over the track and the update times");
-    command->add_option("--record", o->record,
-                        "Write every car's pose, contacts and (gt, formula) vehicle telemetry per "
-                        "update (JSON Lines) for a viewer");
-    command->callback([o, command] { run(*o, *command); });
 }
 
 }  // namespace trackphys::cli

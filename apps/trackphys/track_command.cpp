@@ -2,7 +2,6 @@
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
-#include <memory>
 #include <string>
 #include <system_error>
 
@@ -18,12 +17,6 @@
 
 namespace trackphys::cli {
 namespace {
-
-struct TrackOptions {
-    TrackParams params;
-    std::filesystem::path out;  ///< mesh file (any format save_mesh writes), empty for none
-    std::filesystem::path svg;  ///< picture, empty for none
-};
 
 // Writes the merged track mesh to path (format by extension).
 void write_track_mesh(const Track& track, const std::filesystem::path& path) {
@@ -61,7 +54,9 @@ void print_summary(const Track& track, double seconds) {
     std::printf("generated in %.1f ms\n", seconds * 1000.0);
 }
 
-void run(const TrackOptions& options) {
+}  // namespace
+
+void run_track(const TrackOptions& options) {
     // Check the output names before spending time on the track.
     refuse_file_clashes({}, {{"--out", options.out}, {"--svg", options.svg}});
     if (!options.out.empty() && !can_save_mesh_as(options.out))
@@ -89,59 +84,6 @@ void run(const TrackOptions& options) {
     }
     for (const std::filesystem::path* written : {&options.svg, &options.out})
         if (!written->empty()) std::printf("wrote        %s\n", written->string().c_str());
-}
-
-}  // namespace
-
-void add_track_command(CLI::App& app) {
-    auto options = std::make_shared<TrackOptions>();
-    TrackParams& p = options->params;
-    p.seed = kDemoTrackSeed;
-    CLI::App* command = app.add_subcommand(
-        "track",
-        "Generate a closed, banked race track (Bezier loop) and print its figures; "
-        "optionally write its mesh and a top-view picture");
-    command->add_option("--seed", p.seed, "Random seed (same seed, same track)")
-        ->check(not_negative())
-        ->capture_default_str();
-    command->add_option("--length", p.length_m, "Centreline length (m)")->capture_default_str();
-    command->add_option("--width", p.width_m, "Road width (m)")->capture_default_str();
-    command->add_option("--max-bank", p.max_bank_deg, "Largest bank angle (degrees)")
-        ->capture_default_str();
-    command
-        ->add_option("--full-bank-radius", p.full_bank_radius_m,
-                     "Turns this tight or tighter get the full bank (m)")
-        ->capture_default_str();
-    command
-        ->add_option("--elevation", p.elevation_amplitude_m,
-                     "Height amplitude of the control points (m)")
-        ->capture_default_str();
-    command->add_option("--wall-height", p.wall_height_m, "Wall height (m)")->capture_default_str();
-    command->add_option("--min-radius", p.min_turn_radius_m, "Tightest allowed turn radius (m)")
-        ->capture_default_str();
-    command
-        ->add_option("--edge-tight", p.edge_tight_m,
-                     "Density: road edge length along the track in tight turns (m)")
-        ->capture_default_str();
-    command
-        ->add_option("--edge-straight", p.edge_straight_m,
-                     "Density: road edge length on straights (m)")
-        ->capture_default_str();
-    command
-        ->add_option("--tight-radius", p.tight_radius_m,
-                     "Density: turns this tight or tighter get --edge-tight (m)")
-        ->capture_default_str();
-    command->add_option("--strips", p.strips, "Density: road strips across the width")
-        ->capture_default_str();
-    command
-        ->add_option("--chunk-length", p.chunk_length_m,
-                     "Collider chunk length along the track (m)")
-        ->capture_default_str();
-    command->add_option("--out", options->out,
-                        "Write the track mesh (FILE.glb, .gltf, .obj, .ply or .stl)");
-    command->add_option("--svg", options->svg,
-                        "Write a top view coloured by bank angle (FILE.svg)");
-    command->callback([options] { run(*options); });
 }
 
 }  // namespace trackphys::cli
