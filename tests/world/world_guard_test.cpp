@@ -210,6 +210,18 @@ TEST(Preconditions, ACarFarOutsideTheMapIsRejected) {
     EXPECT_NO_THROW(empty.add_car(CarSpec::default_car(), at({1e6, 0.0, 0.0})));
 }
 
+TEST(Preconditions, ACarIndexPastTheLastCarIsAnErrorNamingBoth) {
+    World world(std::make_shared<StaticWorld>());
+    world.add_car(CarSpec::default_car(), at({0.0, 5.0, 0.0}));
+    const World& read_only = world;
+    for (const std::string& why :
+         {error_of([&] { world.car(1); }), error_of([&] { read_only.car(1); }),
+          error_of([&] { world.contacts(1); }), error_of([&] { world.car_resets(1); }),
+          error_of([&] { world.last_reset_reason(1); })})
+        EXPECT_NE(why.find("no car 1: the world has 1 car"), std::string::npos) << why;
+    EXPECT_NO_THROW(world.car(0));
+}
+
 TEST(Preconditions, ImpossibleStartsAreRejected) {
     World world(test::static_world_of(test::flat_grid(40.0, 8)));
     EXPECT_NE(error_of([&] {

@@ -82,9 +82,10 @@ class TRACKPHYS_API World {
     ///   triangles has no map and accepts any position).
     std::size_t add_car(const CarSpec& spec, const RigidBodyState& state);
     std::size_t car_count() const;
-    /// Car i (throws std::out_of_range past car_count()): its inputs and state may be set
-    /// through it, but it must not be replaced by another car (assigned), since the world
-    /// places its ellipsoids into copies made by add_car; add another car instead.
+    /// Car i (throws trackphys::Error past car_count(), as every call taking a car index
+    /// does): its inputs and state may be set through it, but it must not be replaced by
+    /// another car (assigned), since the world places its ellipsoids into copies made by
+    /// add_car; add another car instead.
     Car& car(std::size_t i);
     const Car& car(std::size_t i) const;
 
@@ -146,6 +147,9 @@ class TRACKPHYS_API World {
     // A worker's memory for the cars it is updating (src/world/update_work.hpp).
     struct WorkerScratch;
 
+    // Car i's slot; throws trackphys::Error naming i and car_count() past the last car.
+    CarSlot& car_slot(std::size_t i);
+    const CarSlot& car_slot(std::size_t i) const;
     void run_islands();
     // The job-system task over the update's islands (context: the World).
     static void island_task(int begin, int end, int worker, void* world);
