@@ -60,13 +60,21 @@ World::CarSlot::CarSlot(Car car_in, MidPhase mid_in)
 std::size_t World::add_car(const CarSpec& spec, const RigidBodyState& state) {
     Car car(spec, state);
     check_integrable(spec);
-    check_placement(car);
+    check_placement(car, "World::add_car");
     // Every car of one spec reads the same body-frame ellipsoids: one shared copy stays
     // warm in a big field, where each car's own would be cold at each of its updates.
     for (const CarSlot& other : cars_)
         if (car.share_ellipsoids_with(other.car)) break;
     cars_.emplace_back(std::move(car), MidPhase(settings_.mid_phase, *statics_, trees_));
     return cars_.size() - 1;
+}
+
+void World::teleport_car(std::size_t i, const RigidBodyState& state) {
+    CarSlot& slot = car_slot(i);
+    Car moved = slot.car;
+    moved.set_state(state);
+    check_placement(moved, "World::teleport_car");
+    slot.car.set_state(state);
 }
 
 std::size_t World::car_count() const { return cars_.size(); }

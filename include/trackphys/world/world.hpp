@@ -81,6 +81,11 @@ class TRACKPHYS_API World {
     ///   settings().max_spawn_distance from every collider's box; a world without
     ///   triangles has no map and accepts any position).
     std::size_t add_car(const CarSpec& spec, const RigidBodyState& state);
+    /// Moves car i to `state` (Car::set_state: a teleport, with the vehicle rolling at the
+    /// new speed) after add_car's checks of where a car may be: throws trackphys::Error
+    /// naming the reason, changing nothing, for a state the reset policy would reset, a
+    /// car far outside the map or inside geometry. car(i).set_state moves it unchecked.
+    void teleport_car(std::size_t i, const RigidBodyState& state);
     std::size_t car_count() const;
     /// Car i (throws trackphys::Error past car_count(), as every call taking a car index
     /// does): its inputs and state may be set through it, but it must not be replaced by
@@ -158,7 +163,7 @@ class TRACKPHYS_API World {
     // Why this state breaks the reset policy's limits, or empty.
     std::string impossible_state(const RigidBodyState& state) const;
     // add_car's checks of where the car is (world_guard.cpp).
-    void check_placement(const Car& car) const;
+    void check_placement(const Car& car, const char* caller) const;
     // add_car's check that the sub-step integrates the spec's contacts and wheel spins
     // stably (world_guard.cpp).
     void check_integrable(const CarSpec& spec) const;
