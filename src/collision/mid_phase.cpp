@@ -66,7 +66,9 @@ MidPhase::MidPhase(MidPhaseMode mode, const StaticWorld& world,
 void MidPhase::check_tree_count() const {
     if (mode_ == MidPhaseMode::precomputed_tree && trees_->size() != world_->size())
         throw Error("MidPhase (precomputed_tree): " + std::to_string(trees_->size()) +
-                    " plane trees for " + std::to_string(world_->size()) + " colliders");
+                    " plane trees for " + std::to_string(world_->size()) +
+                    " colliders: the static world gained colliders after its plane trees were"
+                    " made (make the World, or the trees, after the last StaticWorld::add)");
 }
 
 void MidPhase::begin_update(const Aabb& update_box) {

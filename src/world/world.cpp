@@ -60,7 +60,7 @@ World::CarSlot::CarSlot(Car car_in, MidPhase mid_in)
 std::size_t World::add_car(const CarSpec& spec, const RigidBodyState& state) {
     Car car(spec, state);
     check_integrable(spec);
-    check_placement(car);
+    check_placement(car, "World::add_car");
     // Every car of one spec reads the same body-frame ellipsoids: one shared copy stays
     // warm in a big field, where each car's own would be cold at each of its updates.
     for (const CarSlot& other : cars_)
@@ -69,12 +69,31 @@ std::size_t World::add_car(const CarSpec& spec, const RigidBodyState& state) {
     return cars_.size() - 1;
 }
 
+void World::teleport_car(std::size_t i, const RigidBodyState& state) {
+    CarSlot& slot = car_slot(i);
+    Car moved = slot.car;
+    moved.set_state(state);
+    check_placement(moved, "World::teleport_car");
+    slot.car.set_state(state);
+}
+
 std::size_t World::car_count() const { return cars_.size(); }
-Car& World::car(std::size_t i) { return cars_.at(i).car; }
-const Car& World::car(std::size_t i) const { return cars_.at(i).car; }
-std::span<const Contact> World::contacts(std::size_t i) const { return cars_.at(i).deepest; }
-std::uint64_t World::car_resets(std::size_t i) const { return cars_.at(i).resets; }
-const std::string& World::last_reset_reason(std::size_t i) const { return cars_.at(i).last_reset; }
+Car& World::car(std::size_t i) { return car_slot(i).car; }
+const Car& World::car(std::size_t i) const { return car_slot(i).car; }
+std::span<const Contact> World::contacts(std::size_t i) const { return car_slot(i).deepest; }
+std::uint64_t World::car_resets(std::size_t i) const { return car_slot(i).resets; }
+const std::string& World::last_reset_reason(std::size_t i) const { return car_slot(i).last_reset; }
+
+World::CarSlot& World::car_slot(std::size_t i) {
+    return const_cast<CarSlot&>(std::as_const(*this).car_slot(i));
+}
+
+const World::CarSlot& World::car_slot(std::size_t i) const {
+    if (i >= cars_.size())
+        throw Error("no car " + std::to_string(i) + ": the world has " +
+                    std::to_string(cars_.size()) + (cars_.size() == 1 ? " car" : " cars"));
+    return cars_[i];
+}
 
 void World::update() {
     profile_ = UpdateProfile{};
@@ -175,6 +194,18 @@ void World::run_islands() {
 void World::island_task(int begin, int end, int worker, void* world) {
     World& self = *static_cast<World*>(world);
     UpdateWork& work = *self.work_;
+    // A worker index past worker_count has no scratch or profile to use: the islands of
+    // the range fail with the reason, which update() throws on the game's thread.
+    if (worker < 0 || static_cast<std::size_t>(worker) >= work.worker_scratch.size()) {
+        const Error error(
+            "JobSystem ran World's task on worker " + std::to_string(worker) +
+            ", outside 0 .. worker_count - 1 = " + std::to_string(work.worker_scratch.size() - 1) +
+            " (set JobSystem.worker_count to the number of workers)");
+        for (int item = begin; item < end; ++item)
+            work.errors[work.schedule[static_cast<std::size_t>(item)]] =
+                std::make_exception_ptr(error);
+        return;
+    }
     PhaseStopwatch watch(work.worker_profiles[static_cast<std::size_t>(worker)].profile,
                          self.settings_.profile, work.trace);
     for (int item = begin; item < end; ++item) {

@@ -147,10 +147,10 @@ std::string World::impossible_state(const RigidBodyState& s) const {
     return why.str();
 }
 
-void World::check_placement(const Car& car) const {
+void World::check_placement(const Car& car, const char* caller) const {
     const RigidBodyState& state = car.state();
     if (std::string why = impossible_state(state); !why.empty())
-        throw Error("World::add_car: " + why);
+        throw Error(std::string(caller) + ": " + why);
 
     // Far outside the map: farther than max_spawn_distance from every collider's box.
     double nearest = std::numeric_limits<double>::infinity();
@@ -160,7 +160,7 @@ void World::check_placement(const Car& car) const {
     }
     if (std::isfinite(nearest) && nearest > settings_.max_spawn_distance) {
         std::ostringstream why;
-        why << "World::add_car: the car's centre of mass (" << state.position.x << ", "
+        why << caller << ": the car's centre of mass (" << state.position.x << ", "
             << state.position.y << ", " << state.position.z << ") is " << nearest
             << " m from the nearest collider's box, farther than WorldSettings.max_spawn_distance ("
             << settings_.max_spawn_distance << " m): the car is far outside the map";
@@ -180,7 +180,7 @@ void World::check_placement(const Car& car) const {
                 ellipsoid, statics_->collider(ref.collider).triangle(ref.triangle));
             if (contact.depth > limit) {
                 std::ostringstream why;
-                why << "World::add_car: ellipsoid " << i << " ("
+                why << caller << ": ellipsoid " << i << " ("
                     << role_name(car.spec().ellipsoids[i].role) << ") is " << contact.depth
                     << " m deep in collider " << ref.collider << "'s triangle " << ref.triangle
                     << ", more than half its smallest semi-axis (" << limit

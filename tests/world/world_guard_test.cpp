@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <utility>
 
 #include <gtest/gtest.h>
 
@@ -208,6 +209,36 @@ TEST(Preconditions, ACarFarOutsideTheMapIsRejected) {
     // A world without triangles has no map: anywhere goes.
     World empty(std::make_shared<StaticWorld>());
     EXPECT_NO_THROW(empty.add_car(CarSpec::default_car(), at({1e6, 0.0, 0.0})));
+}
+
+TEST(Preconditions, ATeleportIsCheckedAsAnAddedCarIs) {
+    World world(test::static_world_of(test::flat_grid(40.0, 8)));
+    const std::size_t car = world.add_car(CarSpec::default_car(), at({0.0, 0.501, 0.0}));
+    for (const auto& [state, reason] :
+         {std::pair{at({0.0, 0.2, 0.0}), "inside geometry"},
+          std::pair{at({5000.0, 1.0, 0.0}), "far outside the map"},
+          std::pair{at({0.0, 1.0, 0.0}, {1e4, 0.0, 0.0}), "WorldSettings.max_car_speed"}}) {
+        const std::string why = error_of([&] { world.teleport_car(car, state); });
+        EXPECT_NE(why.find(std::string("World::teleport_car: ")), std::string::npos) << why;
+        EXPECT_NE(why.find(reason), std::string::npos) << why;
+        EXPECT_EQ(world.car(car).state().position, glm::dvec3(0.0, 0.501, 0.0))
+            << "a refused teleport leaves the car where it was";
+    }
+    world.teleport_car(car, at({10.0, 0.501, -10.0}, {0.0, 0.0, 20.0}));
+    EXPECT_EQ(world.car(car).state().position, glm::dvec3(10.0, 0.501, -10.0));
+    EXPECT_EQ(world.car(car).state().linear_velocity, glm::dvec3(0.0, 0.0, 20.0));
+}
+
+TEST(Preconditions, ACarIndexPastTheLastCarIsAnErrorNamingBoth) {
+    World world(std::make_shared<StaticWorld>());
+    world.add_car(CarSpec::default_car(), at({0.0, 5.0, 0.0}));
+    const World& read_only = world;
+    for (const std::string& why :
+         {error_of([&] { world.car(1); }), error_of([&] { read_only.car(1); }),
+          error_of([&] { world.contacts(1); }), error_of([&] { world.car_resets(1); }),
+          error_of([&] { world.last_reset_reason(1); })})
+        EXPECT_NE(why.find("no car 1: the world has 1 car"), std::string::npos) << why;
+    EXPECT_NO_THROW(world.car(0));
 }
 
 TEST(Preconditions, ImpossibleStartsAreRejected) {

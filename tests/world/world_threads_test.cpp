@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 
+#include "support/error_message.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/world/autopilot.hpp"
 #include "trackphys/world/race_grid.hpp"
@@ -99,6 +101,17 @@ TEST(WorldThreads, PluggedInJobSystemGivesTheSameHash) {
     field.run(kUpdates);
     EXPECT_EQ(field.world().state_hash(), reference.world().state_hash());
     EXPECT_EQ(jobs.enqueued, kUpdates);
+}
+
+// BackwardsJobs runs items on workers 0, 1 and 2: a job system that says it has two
+// workers must not hand World a third's index to write scratch memory that is not there.
+TEST(WorldThreads, AWorkerIndexPastWorkerCountIsAnError) {
+    BackwardsJobs jobs;
+    WorldSettings settings;
+    settings.jobs = {&BackwardsJobs::enqueue, &BackwardsJobs::finish, &jobs, 2};
+    Field field(settings);
+    const std::string why = test::error_of([&] { field.run(1); });
+    EXPECT_NE(why.find("worker 2, outside 0 .. worker_count - 1 = 1"), std::string::npos) << why;
 }
 
 TEST(WorldThreads, SnapshotOfTheWholeFieldResumesBitForBit) {

@@ -39,7 +39,10 @@ class TRACKPHYS_API StaticWorld {
     StaticWorld& operator=(StaticWorld&&) noexcept;
 
     /// Adds a collider; returns its id (0, 1, 2... in order of addition). Throws
-    /// trackphys::Error on a null pointer.
+    /// trackphys::Error on a null pointer. Add every collider before making a World over
+    /// this static world: a World in MidPhaseMode::precomputed_tree (the default) holds a
+    /// plane tree per collider from its construction, and its add_car and update throw
+    /// trackphys::Error once the counts differ.
     std::uint32_t add(std::shared_ptr<const StaticCollider> collider);
 
     /// Number of colliders (ids are 0 .. size() - 1).

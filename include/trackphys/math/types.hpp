@@ -5,12 +5,24 @@
 /// types are the public vocabulary: glm::dvec3, glm::dquat (local -> world), glm::dmat3.
 
 #include <cmath>
+#include <cstddef>
 
 #include <glm/gtc/quaternion.hpp>
 #include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
 
 namespace trackphys {
+
+// The library is compiled with glm's default layout, and its headers hand these types across
+// the boundary by reference: a game that includes them with glm settings that change the
+// layout would have the library read its vertices and states at the wrong offsets.
+static_assert(sizeof(glm::dvec3) == 3 * sizeof(double),
+              "trackphys needs glm's default dvec3 of three packed doubles: do not define "
+              "GLM_FORCE_DEFAULT_ALIGNED_GENTYPES (or GLM_FORCE_ALIGNED_GENTYPES) where "
+              "trackphys headers are included");
+static_assert(offsetof(glm::dquat, w) == 3 * sizeof(double),
+              "trackphys needs glm's default dquat storage x, y, z, w: do not define "
+              "GLM_FORCE_QUAT_DATA_WXYZ where trackphys headers are included");
 
 /// True when every component is finite (neither NaN nor infinite).
 inline bool is_finite(const glm::dvec3& v) {

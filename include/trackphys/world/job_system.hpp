@@ -20,7 +20,10 @@ struct JobSystem {
                           void* user_context) = nullptr;
     void (*finish_task)(void* user_task, void* user_context) = nullptr;
     void* user_context = nullptr;  ///< passed back to both callbacks
-    int worker_count = 1;          ///< worker indices a task may see: 0 .. worker_count - 1
+    /// The worker indices a task may see: 0 .. worker_count - 1. World keeps scratch memory
+    /// per index; a task run on an index outside them updates nothing of its range, and
+    /// World::update throws trackphys::Error naming the index.
+    int worker_count = 1;
 
     /// Whether a job system is plugged in (both callbacks set).
     bool plugged_in() const { return enqueue_task != nullptr && finish_task != nullptr; }

@@ -81,10 +81,16 @@ class TRACKPHYS_API World {
     ///   settings().max_spawn_distance from every collider's box; a world without
     ///   triangles has no map and accepts any position).
     std::size_t add_car(const CarSpec& spec, const RigidBodyState& state);
+    /// Moves car i to `state` (Car::set_state: a teleport, with the vehicle rolling at the
+    /// new speed) after add_car's checks of where a car may be: throws trackphys::Error
+    /// naming the reason, changing nothing, for a state the reset policy would reset, a
+    /// car far outside the map or inside geometry. car(i).set_state moves it unchecked.
+    void teleport_car(std::size_t i, const RigidBodyState& state);
     std::size_t car_count() const;
-    /// Car i (throws std::out_of_range past car_count()): its inputs and state may be set
-    /// through it, but it must not be replaced by another car (assigned), since the world
-    /// places its ellipsoids into copies made by add_car; add another car instead.
+    /// Car i (throws trackphys::Error past car_count(), as every call taking a car index
+    /// does): its inputs and state may be set through it, but it must not be replaced by
+    /// another car (assigned), since the world places its ellipsoids into copies made by
+    /// add_car; add another car instead.
     Car& car(std::size_t i);
     const Car& car(std::size_t i) const;
 
@@ -146,6 +152,9 @@ class TRACKPHYS_API World {
     // A worker's memory for the cars it is updating (src/world/update_work.hpp).
     struct WorkerScratch;
 
+    // Car i's slot; throws trackphys::Error naming i and car_count() past the last car.
+    CarSlot& car_slot(std::size_t i);
+    const CarSlot& car_slot(std::size_t i) const;
     void run_islands();
     // The job-system task over the update's islands (context: the World).
     static void island_task(int begin, int end, int worker, void* world);
@@ -154,7 +163,7 @@ class TRACKPHYS_API World {
     // Why this state breaks the reset policy's limits, or empty.
     std::string impossible_state(const RigidBodyState& state) const;
     // add_car's checks of where the car is (world_guard.cpp).
-    void check_placement(const Car& car) const;
+    void check_placement(const Car& car, const char* caller) const;
     // add_car's check that the sub-step integrates the spec's contacts and wheel spins
     // stably (world_guard.cpp).
     void check_integrable(const CarSpec& spec) const;
