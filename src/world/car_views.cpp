@@ -49,7 +49,8 @@ void take_view(const Car& car, const CarView& last, double dt, CarView& out) {
         wheel.steer_angle = front ? car.steer_angle() : 0.0;
         wheel.spin = vehicle ? vehicle->state().wheels[vehicle->wheel_slot(i)].spin : 0.0;
         wheel.spin_angle = last.wheels[w].spin_angle + 0.5 * (last_spin + wheel.spin) * dt;
-        wheel.orientation = wheel_orientation(state.orientation, wheel.steer_angle, wheel.spin_angle);
+        wheel.orientation =
+            wheel_orientation(state.orientation, wheel.steer_angle, wheel.spin_angle);
     }
 }
 

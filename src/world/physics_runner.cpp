@@ -41,6 +41,10 @@ PhysicsRunner::~PhysicsRunner() {
 
 void PhysicsRunner::run_to(std::uint64_t last_update) {
     if (thread_.joinable()) throw Error("PhysicsRunner::run_to: the physics thread runs already");
+    if (world_.car_count() != cars_)
+        throw Error("PhysicsRunner::run_to: the world has " + std::to_string(world_.car_count()) +
+                    " cars, the runner publishes " + std::to_string(cars_) +
+                    " (a runner's world keeps its cars)");
     stopping_.store(false);
     error_ = nullptr;
     thread_ = std::thread([this, last_update] { loop(last_update); });

@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <array>
+#include <cstddef>
 #include <cstring>
 #include <limits>
 #include <numeric>
 #include <optional>
 #include <span>
+#include <string>
 #include <utility>
 
 #include <glm/geometric.hpp>
@@ -67,6 +69,18 @@ std::size_t World::add_car(const CarSpec& spec, const RigidBodyState& state) {
         if (car.share_ellipsoids_with(other.car)) break;
     cars_.emplace_back(std::move(car), MidPhase(settings_.mid_phase, *statics_, trees_));
     return cars_.size() - 1;
+}
+
+// What a car keeps between updates is in its slot, which moves down with it; the update's
+// per-car records (boxes, islands) are rebuilt at every update.
+void World::remove_car(std::size_t i) {
+    if (i >= cars_.size())
+        throw Error("World::remove_car: no car " + std::to_string(i) + " (" +
+                    std::to_string(cars_.size()) + " cars)");
+    cars_.erase(cars_.begin() + static_cast<std::ptrdiff_t>(i));
+    // The workers' scratch is sized at the next update for the field it has then: by the car
+    // count alone, a removal and an add_car of a car with more ellipsoids would go unseen.
+    work_->scratch_cars = 0;
 }
 
 std::size_t World::car_count() const { return cars_.size(); }

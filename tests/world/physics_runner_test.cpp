@@ -306,6 +306,13 @@ TEST(PhysicsRunner, RenderThreadReadsViewsWhileThePhysicsThreadRuns) {
     EXPECT_GT(runner.view(0, runner.world().time()).wheels[0].spin_angle, 0.0);
 }
 
+TEST(PhysicsRunner, RefusesToRunAWorldWhoseCarsChanged) {
+    PhysicsRunner runner(two_cars(), false);
+    runner.world().remove_car(1);
+    EXPECT_THROW(runner.run_to(1), Error);
+    EXPECT_EQ(runner.world().update_count(), 0u);
+}
+
 TEST(PhysicsRunner, StopEndsAnOpenRun) {
     PhysicsRunner runner(two_cars(), true);
     runner.start();

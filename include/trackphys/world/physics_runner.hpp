@@ -22,7 +22,9 @@ namespace trackphys {
 /// (CarView: pose, velocities, wheels, engine) per car for any render time without locks
 /// and without torn reads.
 ///
-/// The cars published are those the world had when the runner was made (in index order).
+/// The cars published are those the world had when the runner was made (in index order):
+/// the render thread may read the published states at any time, so they cannot grow or
+/// shrink, and run_to refuses a world that world() has added a car to or removed one from.
 ///
 /// Threads: one game thread (start, run_to, stop, set_inputs, world) and one render thread
 /// (pose, view, published_update); the physics thread is the runner's own. Inputs go through a
@@ -39,7 +41,8 @@ class TRACKPHYS_API PhysicsRunner {
     PhysicsRunner& operator=(const PhysicsRunner&) = delete;
 
     /// Starts the physics thread, which runs until stop() or until the world has run
-    /// `last_update` updates. Throws trackphys::Error when it runs already.
+    /// `last_update` updates. Throws trackphys::Error when it runs already or the world's
+    /// car count is no longer the runner's (see the class notes).
     void run_to(std::uint64_t last_update);
     /// run_to with no last update: the thread runs until stop().
     void start() { run_to(UINT64_MAX); }
