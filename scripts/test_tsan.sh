@@ -14,5 +14,5 @@ cmake --build --preset tsan --parallel "$(nproc)" --target world_threaded_tests 
 # halt_on_error: the first report fails the test (its exit code), rather than a summary.
 TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1 ${TSAN_OPTIONS:-}" \
   ctest --preset tsan \
-  --tests-regex '^((WorldThreads|PhysicsRunner)\.|MapFile\.(BakeGivesTheSameMapOnAnyThreadCount|AnyThreadCount))' \
+  --tests-regex '^((WorldThreads|PhysicsRunner)\.|Presets/PhysicsRunnerView\.|MapFile\.(BakeGivesTheSameMapOnAnyThreadCount|AnyThreadCount))' \
   "$@"

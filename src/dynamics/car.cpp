@@ -97,7 +97,7 @@ void Car::set_inputs(const CarInputs& inputs) { take_inputs(clamped(inputs)); }
 void Car::take_inputs(const CarInputs& inputs) {
     inputs_ = inputs;
     // Body +Z is forward; front wheels turn about body +Y (positive steer = left).
-    const double angle = inputs_.steer * spec_.max_steer_angle;
+    const double angle = steer_angle();
     steered_heading_ = glm::dvec3(std::sin(angle), 0.0, std::cos(angle));
 }
 

@@ -7,15 +7,16 @@
 #include <utility>
 
 #include "trackphys/error.hpp"
+#include "world/car_views.hpp"
 
 namespace trackphys {
 namespace {
 
-std::vector<CarPose> poses_of(const World& world) {
-    std::vector<CarPose> poses;
+std::vector<CarView> views_of(const World& world) {
+    std::vector<CarView> views;
     for (std::size_t i = 0; i < world.car_count(); ++i)
-        poses.push_back({world.car(i).state().position, world.car(i).state().orientation});
-    return poses;
+        views.push_back(detail::sized_view(world.car(i)));
+    return views;
 }
 
 }  // namespace
@@ -23,13 +24,13 @@ std::vector<CarPose> poses_of(const World& world) {
 PhysicsRunner::PhysicsRunner(World world, bool real_time)
     : world_(std::move(world)), cars_(world_.car_count()), real_time_(real_time) {
     // Every buffer starts as the current state (both ends of the pair), sized for the cars
-    // so that publishing never allocates.
+    // (and each car for its wheels) so that publishing never allocates.
+    last_published_ = views_of(world_);
     for (Frame& frame : frames_) {
         frame.update = world_.update_count();
         frame.previous_time = frame.time = world_.time();
-        frame.previous = frame.current = poses_of(world_);
+        frame.previous = frame.current = last_published_;
     }
-    last_published_ = poses_of(world_);
     last_published_time_ = world_.time();
 }
 
@@ -40,6 +41,10 @@ PhysicsRunner::~PhysicsRunner() {
 
 void PhysicsRunner::run_to(std::uint64_t last_update) {
     if (thread_.joinable()) throw Error("PhysicsRunner::run_to: the physics thread runs already");
+    if (world_.car_count() != cars_)
+        throw Error("PhysicsRunner::run_to: the world has " + std::to_string(world_.car_count()) +
+                    " cars, the runner publishes " + std::to_string(cars_) +
+                    " (a runner's world keeps its cars)");
     stopping_.store(false);
     error_ = nullptr;
     thread_ = std::thread([this, last_update] { loop(last_update); });
@@ -107,13 +112,13 @@ void PhysicsRunner::loop(std::uint64_t last_update) {
 
 void PhysicsRunner::publish() {
     Frame& frame = frames_[back_];
-    // The pair is (the last published state, this one). Same sizes: no allocation.
+    // The pair is (the last published state, this one). Same sizes, down to the wheels: the
+    // copies assign into storage the frames already hold, no allocation.
     frame.previous = last_published_;
     frame.previous_time = last_published_time_;
-    for (std::size_t i = 0; i < world_.car_count(); ++i) {
-        const RigidBodyState& s = world_.car(i).state();
-        frame.current[i] = {s.position, s.orientation};
-    }
+    const double dt = world_.settings().dt_update;
+    for (std::size_t i = 0; i < cars_; ++i)
+        detail::take_view(world_.car(i), last_published_[i], dt, frame.current[i]);
     last_published_ = frame.current;
     last_published_time_ = world_.time();
     frame.update = world_.update_count();
@@ -129,16 +134,20 @@ const PhysicsRunner::Frame& PhysicsRunner::front() const {
 
 std::uint64_t PhysicsRunner::published_update() const { return front().update; }
 
+double PhysicsRunner::Frame::alpha(double t) const {
+    const double span = time - previous_time;
+    return span > 0.0 ? std::clamp((t - previous_time) / span, 0.0, 1.0) : 1.0;
+}
+
 CarPose PhysicsRunner::pose(std::size_t car, double t) const {
     const Frame& frame = front();
-    const CarPose& older = frame.previous.at(car);
-    const CarPose& newer = frame.current.at(car);
-    const double span = frame.time - frame.previous_time;
-    const double alpha = span > 0.0 ? std::clamp((t - frame.previous_time) / span, 0.0, 1.0) : 1.0;
-    if (alpha == 0.0) return older;
-    if (alpha == 1.0) return newer;
-    return {older.position + (newer.position - older.position) * alpha,
-            glm::slerp(older.orientation, newer.orientation, alpha)};
+    return detail::interpolate(frame.previous.at(car).pose, frame.current.at(car).pose,
+                               frame.alpha(t));
+}
+
+void PhysicsRunner::view(std::size_t car, double t, CarView& out) const {
+    const Frame& frame = front();
+    detail::interpolate(frame.previous.at(car), frame.current.at(car), frame.alpha(t), out);
 }
 
 }  // namespace trackphys

@@ -1,6 +1,7 @@
 target_sources(trackphys PRIVATE
   world/autopilot.cpp
   world/car_islands.cpp
+  world/car_views.cpp
   world/car_pair_contact.cpp
   world/cars_along_track.cpp
   world/physics_runner.cpp

@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <array>
+#include <cstddef>
 #include <cstring>
 #include <limits>
 #include <numeric>
 #include <optional>
 #include <span>
+#include <string>
 #include <utility>
 
 #include <glm/geometric.hpp>
@@ -75,6 +77,16 @@ void World::teleport_car(std::size_t i, const RigidBodyState& state) {
     moved.set_state(state);
     check_placement(moved, "World::teleport_car");
     slot.car.set_state(state);
+}
+
+// What a car keeps between updates is in its slot, which moves down with it; the update's
+// per-car records (boxes, islands) are rebuilt at every update.
+void World::remove_car(std::size_t i) {
+    car_slot(i);  // throws past the last car
+    cars_.erase(cars_.begin() + static_cast<std::ptrdiff_t>(i));
+    // The workers' scratch is sized at the next update for the field it has then: by the car
+    // count alone, a removal and an add_car of a car with more ellipsoids would go unseen.
+    work_->scratch_cars = 0;
 }
 
 std::size_t World::car_count() const { return cars_.size(); }

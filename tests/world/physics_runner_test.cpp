@@ -1,6 +1,7 @@
-// PhysicsRunner: stamped inputs replay bit-identically, the published pair of states
-// interpolates between its ends, and a render thread reads it while the physics thread
-// runs (these tests also run under ThreadSanitizer: scripts/test_tsan.sh).
+// PhysicsRunner: stamped inputs replay bit-identically, the published pair of states (poses
+// and views) is the world's and interpolates between its ends, and a render thread reads it
+// while the physics thread runs (these tests also run under ThreadSanitizer:
+// scripts/test_tsan.sh).
 #include "trackphys/world/physics_runner.hpp"
 
 #include <atomic>
@@ -12,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/quaternion.hpp>
 
 #include "trackphys/error.hpp"
 #include "trackphys/world/world.hpp"
@@ -21,9 +23,8 @@ namespace trackphys {
 namespace {
 
 // Two cars side by side on flat ground.
-World two_cars() {
+World two_cars(const CarSpec& spec = CarSpec::default_car()) {
     World world(test::static_world_of(test::flat_grid(400.0, 40)));
-    const CarSpec spec = CarSpec::default_car();
     for (const double x : {-3.0, 3.0}) {
         RigidBodyState state;
         state.position = {x, spec.lowest_point_depth() + 0.001, -150.0};
@@ -139,6 +140,177 @@ TEST(PhysicsRunner, RenderThreadReadsWhileThePhysicsThreadRuns) {
     EXPECT_TRUE(finite);
     EXPECT_EQ(runner.published_update(), 20u);
     EXPECT_GT(runner.world().car(0).state().position.z, -150.0);
+}
+
+// Every field of two views bit for bit.
+void expect_same_view(const CarView& a, const CarView& b) {
+    EXPECT_EQ(a.pose.position, b.pose.position);
+    EXPECT_EQ(a.pose.orientation, b.pose.orientation);
+    EXPECT_EQ(a.linear_velocity, b.linear_velocity);
+    EXPECT_EQ(a.angular_velocity, b.angular_velocity);
+    EXPECT_EQ(a.engine_rpm, b.engine_rpm);
+    EXPECT_EQ(a.gear, b.gear);
+    ASSERT_EQ(a.wheels.size(), b.wheels.size());
+    for (std::size_t w = 0; w < a.wheels.size(); ++w) {
+        EXPECT_EQ(a.wheels[w].ellipsoid, b.wheels[w].ellipsoid);
+        EXPECT_EQ(a.wheels[w].position, b.wheels[w].position);
+        EXPECT_EQ(a.wheels[w].orientation, b.wheels[w].orientation);
+        EXPECT_EQ(a.wheels[w].suspension, b.wheels[w].suspension);
+        EXPECT_EQ(a.wheels[w].steer_angle, b.wheels[w].steer_angle);
+        EXPECT_EQ(a.wheels[w].spin, b.wheels[w].spin);
+        EXPECT_EQ(a.wheels[w].spin_angle, b.wheels[w].spin_angle);
+    }
+}
+
+// The wheel's orientation relative to the body: steered about +Y, spun about +X.
+glm::dquat wheel_in_body(double steer_angle, double spin_angle) {
+    return glm::angleAxis(steer_angle, glm::dvec3(0.0, 1.0, 0.0)) *
+           glm::angleAxis(spin_angle, glm::dvec3(1.0, 0.0, 0.0));
+}
+
+// The arcade car and a vehicle-model car, accelerating and steering left.
+class PhysicsRunnerView : public ::testing::TestWithParam<const char*> {
+  protected:
+    PhysicsRunnerView() : runner_(two_cars(CarSpec::preset(GetParam())), false) {
+        runner_.set_inputs(1, 0, {1.0, 0.0, 0.4});
+    }
+    bool has_vehicle() { return runner_.world().car(0).vehicle() != nullptr; }
+    PhysicsRunner runner_;
+};
+
+TEST_P(PhysicsRunnerView, PublishedViewIsTheWorldsState) {
+    runner_.run_to(60);
+    runner_.wait();
+    const World& world = runner_.world();
+    const Car& car = world.car(0);
+    const CarView view = runner_.view(0, world.time());
+
+    EXPECT_EQ(view.pose.position, car.state().position);
+    EXPECT_EQ(view.pose.orientation, car.state().orientation);
+    EXPECT_EQ(view.linear_velocity, car.state().linear_velocity);
+    EXPECT_EQ(view.angular_velocity, car.state().angular_velocity);
+    ASSERT_GT(glm::length(view.linear_velocity), 1.0) << "the car does not drive";
+    const Vehicle* vehicle = car.vehicle();
+    EXPECT_EQ(view.engine_rpm, vehicle ? vehicle->engine_rpm() : 0.0);
+    EXPECT_EQ(view.gear, vehicle ? vehicle->state().gear : 0);
+    if (vehicle) {
+        EXPECT_GT(view.engine_rpm, 0.0);
+    }
+
+    ASSERT_EQ(view.wheels.size(), 4u);
+    int front = 0;
+    for (const WheelView& wheel : view.wheels) {
+        const std::size_t i = wheel.ellipsoid;
+        ASSERT_LT(i, car.ellipsoid_count());
+        const EllipsoidRole role = car.spec().ellipsoids[i].role;
+        ASSERT_NE(role, EllipsoidRole::body);
+        front += role == EllipsoidRole::front_wheel;
+        EXPECT_EQ(wheel.position, car.world_ellipsoid(i).center());
+        EXPECT_EQ(wheel.suspension, car.suspension(i));
+        EXPECT_GT(wheel.suspension, 0.0) << "the wheel carries no load";
+        EXPECT_EQ(wheel.steer_angle, role == EllipsoidRole::front_wheel ? car.steer_angle() : 0.0);
+        const double spin = vehicle ? vehicle->state().wheels[vehicle->wheel_slot(i)].spin : 0.0;
+        EXPECT_EQ(wheel.spin, spin);
+        if (vehicle) {
+            EXPECT_GT(wheel.spin_angle, 1.0) << "the wheel has not turned";
+        }
+        const glm::dquat in_body = glm::inverse(view.pose.orientation) * wheel.orientation;
+        const glm::dquat expected = wheel_in_body(wheel.steer_angle, wheel.spin_angle);
+        EXPECT_NEAR(std::abs(glm::dot(in_body, expected)), 1.0, 1e-12);
+    }
+    EXPECT_EQ(front, 2);
+    EXPECT_GT(car.steer_angle(), 0.0);
+}
+
+TEST_P(PhysicsRunnerView, ViewInterpolatesBetweenThePublishedStates) {
+    runner_.run_to(60);
+    runner_.wait();
+    const double t0 = runner_.world().time();
+    const CarView before = runner_.view(0, t0);
+    runner_.run_to(61);
+    runner_.wait();
+    const double t1 = runner_.world().time();
+    const CarView after = runner_.view(0, t1);
+
+    expect_same_view(runner_.view(0, t0), before);
+    expect_same_view(runner_.view(0, t0 - 1.0), before);
+    expect_same_view(runner_.view(0, t1 + 1.0), after);
+    // The spin angle advances by the trapezoid of the update's two spins.
+    for (std::size_t w = 0; w < after.wheels.size(); ++w)
+        EXPECT_EQ(after.wheels[w].spin_angle,
+                  before.wheels[w].spin_angle +
+                      0.5 * (before.wheels[w].spin + after.wheels[w].spin) * (t1 - t0));
+
+    CarView mid;
+    for (const double share : {0.25, 0.5, 0.75}) {
+        const double t = t0 + share * (t1 - t0);
+        runner_.view(0, t, mid);
+        const CarPose pose = runner_.pose(0, t);
+        EXPECT_EQ(mid.pose.position, pose.position);
+        EXPECT_EQ(mid.pose.orientation, pose.orientation);
+        EXPECT_NEAR(mid.engine_rpm,
+                    before.engine_rpm + share * (after.engine_rpm - before.engine_rpm), 1e-9);
+        EXPECT_NEAR(glm::length(mid.linear_velocity - before.linear_velocity),
+                    share * glm::length(after.linear_velocity - before.linear_velocity), 1e-9);
+        EXPECT_EQ(mid.gear, after.gear);
+        ASSERT_EQ(mid.wheels.size(), after.wheels.size());
+        for (std::size_t w = 0; w < mid.wheels.size(); ++w) {
+            const WheelView& a = before.wheels[w];
+            const WheelView& b = after.wheels[w];
+            const WheelView& m = mid.wheels[w];
+            EXPECT_NEAR(m.spin_angle, a.spin_angle + share * (b.spin_angle - a.spin_angle), 1e-9);
+            EXPECT_NEAR(m.suspension, a.suspension + share * (b.suspension - a.suspension), 1e-12);
+            EXPECT_NEAR(glm::length(m.position - a.position),
+                        share * glm::length(b.position - a.position), 1e-9);
+            const glm::dquat in_body = glm::inverse(mid.pose.orientation) * m.orientation;
+            EXPECT_NEAR(std::abs(glm::dot(in_body, wheel_in_body(m.steer_angle, m.spin_angle))),
+                        1.0, 1e-12);
+        }
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Presets, PhysicsRunnerView, ::testing::Values("arcade", "gt"));
+
+// A render thread reading views while the physics thread runs a vehicle-model car in real
+// time: every view it reads is complete (four wheels, a gear) and finite, and the wheels'
+// angles only move forward under full throttle.
+TEST(PhysicsRunner, RenderThreadReadsViewsWhileThePhysicsThreadRuns) {
+    PhysicsRunner runner(two_cars(CarSpec::preset("gt")), true);
+    runner.set_inputs(1, 0, {1.0, 0.0, 0.0});
+    std::atomic<bool> done{false};
+    bool complete = true;
+    bool finite = true;
+    bool forward = true;
+    double last_angle = 0.0;
+    std::thread render([&] {
+        CarView view;
+        while (!done.load()) {
+            const double t = 0.01 * static_cast<double>(runner.published_update()) - 0.005;
+            runner.view(0, t, view);
+            complete = complete && view.wheels.size() == 4 && view.gear >= 1;
+            for (const WheelView& wheel : view.wheels)
+                finite = finite && std::isfinite(wheel.position.x) &&
+                         std::isfinite(wheel.orientation.w) && std::isfinite(wheel.spin_angle);
+            if (view.wheels.empty()) continue;
+            forward = forward && view.wheels[0].spin_angle >= last_angle;
+            last_angle = view.wheels[0].spin_angle;
+        }
+    });
+    runner.run_to(20);
+    runner.wait();
+    done.store(true);
+    render.join();
+    EXPECT_TRUE(complete);
+    EXPECT_TRUE(finite);
+    EXPECT_TRUE(forward);
+    EXPECT_GT(runner.view(0, runner.world().time()).wheels[0].spin_angle, 0.0);
+}
+
+TEST(PhysicsRunner, RefusesToRunAWorldWhoseCarsChanged) {
+    PhysicsRunner runner(two_cars(), false);
+    runner.world().remove_car(1);
+    EXPECT_THROW(runner.run_to(1), Error);
+    EXPECT_EQ(runner.world().update_count(), 0u);
 }
 
 TEST(PhysicsRunner, StopEndsAnOpenRun) {

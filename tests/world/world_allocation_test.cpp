@@ -1,7 +1,8 @@
 // World::update allocates nothing once a field of cars has warmed up (issue 16): every
-// buffer an update needs is kept between updates. A binary of its own, because it replaces
-// the global operator new to count the allocations made inside World::update, on every
-// thread of the world's pool.
+// buffer an update needs is kept between updates; nor does PhysicsRunner's publishing of
+// each update, nor a render thread's reading of it. A binary of its own, because it
+// replaces the global operator new to count the allocations made inside World::update, on
+// every thread of the world's pool, and on the runner's physics thread.
 #include <atomic>
 #include <cstdint>
 #include <cstdlib>
@@ -9,9 +10,11 @@
 
 #include <gtest/gtest.h>
 
+#include "trackphys/world/physics_runner.hpp"
 #include "trackphys/world/race_drivers.hpp"
 #include "trackphys/world/world.hpp"
 #include "world/track_world.hpp"
+#include "world/world_scenes.hpp"
 
 namespace {
 
@@ -80,6 +83,46 @@ INSTANTIATE_TEST_SUITE_P(FrameSources, WorldAllocation,
                          [](const ::testing::TestParamInfo<PlaneTreeFrames>& source) {
                              return source.param == PlaneTreeFrames::kept ? "kept" : "built";
                          });
+
+// Two vehicle-model cars driving on flat ground on a runner: once warm, a run of 200 updates
+// allocates what a run of none does (the physics thread's start), so publishing the views
+// allocates nothing; a render thread reading a view into a CarView it keeps allocates
+// nothing either.
+TEST(PhysicsRunnerAllocation, PublishingAndReadingViewsAllocateNothingOnceWarm) {
+    World world(test::static_world_of(test::flat_grid(400.0, 40)));
+    const CarSpec spec = CarSpec::preset("gt");
+    for (const double x : {-3.0, 3.0}) {
+        RigidBodyState state;
+        state.position = {x, spec.lowest_point_depth() + 0.001, -150.0};
+        world.add_car(spec, state);
+    }
+    PhysicsRunner runner(std::move(world), false);
+    runner.set_inputs(1, 0, {1.0, 0.0, 0.3});
+    runner.set_inputs(1, 1, {0.8, 0.0, -0.3});
+    runner.run_to(200);
+    runner.wait();
+    const auto allocations_of_run_to = [&](std::uint64_t last_update) {
+        allocations.store(0);
+        counting.store(true);
+        runner.run_to(last_update);
+        runner.wait();
+        counting.store(false);
+        return allocations.load();
+    };
+    const std::uint64_t start_only = allocations_of_run_to(200);
+    EXPECT_EQ(allocations_of_run_to(400), start_only) << "allocations in 200 updates";
+
+    const double t = runner.world().time() - 0.005;
+    CarView view;
+    runner.view(0, t, view);
+    allocations.store(0);
+    counting.store(true);
+    runner.view(1, t, view);
+    runner.view(0, t + 1.0, view);
+    counting.store(false);
+    EXPECT_EQ(allocations.load(), 0u);
+    EXPECT_EQ(view.wheels.size(), 4u);
+}
 
 }  // namespace
 }  // namespace trackphys

@@ -58,6 +58,9 @@ class TRACKPHYS_API Car {
     /// naming the input when one is NaN: a NaN is a bug upstream (a controller dividing by
     /// zero), not a command, and guessing a value for it would hide that bug.
     void set_inputs(const CarInputs& inputs);
+    /// The front wheels' steer angle for the inputs (rad, > 0 to the left): inputs().steer
+    /// times CarSpec::max_steer_angle. The rear wheels do not steer.
+    double steer_angle() const { return inputs_.steer * spec_.max_steer_angle; }
 
     std::size_t ellipsoid_count() const { return shape_->body.size(); }
     /// Ellipsoid i in the body frame (relative to the centre of mass). Cars that share their

@@ -8,29 +8,26 @@
 #include <thread>
 #include <vector>
 
-#include <glm/gtc/quaternion.hpp>
-#include <glm/vec3.hpp>
-
 #include "trackphys/dynamics/car.hpp"
 #include "trackphys/export.hpp"
+#include "trackphys/world/car_view.hpp"
 #include "trackphys/world/world.hpp"
 
 namespace trackphys {
 
-/// Where a car is, for drawing it.
-struct CarPose {
-    glm::dvec3 position{0.0};
-    glm::dquat orientation{1.0, 0.0, 0.0, 0.0};
-};
-
 /// A World on a physics thread of its own, the "fix your timestep" loop of a game: the
 /// thread runs World::update every dt_update (in real time, or as fast as it can), applies
 /// each car's inputs at the update they are stamped with, and after every update publishes
-/// the last two states, from which a render thread reads an interpolated pose per car for
-/// any render time without locks and without torn reads.
+/// the last two states, from which a render thread reads an interpolated pose or view
+/// (CarView: pose, velocities, wheels, engine) per car for any render time without locks
+/// and without torn reads.
+///
+/// The cars published are those the world had when the runner was made (in index order):
+/// the render thread may read the published states at any time, so they cannot grow or
+/// shrink, and run_to refuses a world that world() has added a car to or removed one from.
 ///
 /// Threads: one game thread (start, run_to, stop, set_inputs, world) and one render thread
-/// (pose, published_update); the physics thread is the runner's own. Inputs go through a
+/// (pose, view, published_update); the physics thread is the runner's own. Inputs go through a
 /// mutex (a few per update); publishing is a lock-free triple buffer (the render thread
 /// always reads a complete pair of states, the newest one published).
 class TRACKPHYS_API PhysicsRunner {
@@ -44,7 +41,8 @@ class TRACKPHYS_API PhysicsRunner {
     PhysicsRunner& operator=(const PhysicsRunner&) = delete;
 
     /// Starts the physics thread, which runs until stop() or until the world has run
-    /// `last_update` updates. Throws trackphys::Error when it runs already.
+    /// `last_update` updates. Throws trackphys::Error when it runs already or the world's
+    /// car count is no longer the runner's (see the class notes).
     void run_to(std::uint64_t last_update);
     /// run_to with no last update: the thread runs until stop().
     void start() { run_to(UINT64_MAX); }
@@ -69,6 +67,19 @@ class TRACKPHYS_API PhysicsRunner {
     /// published states (linearly, and slerp for the orientation): the older state's pose
     /// at or before its time, the newer one's at or after its time (render thread).
     CarPose pose(std::size_t car, double t) const;
+    /// Car `car`'s view at simulated time `t` (s) between the last two published states, as
+    /// pose() interpolates, into `out` (render thread; no allocation once `out` has held
+    /// this car's wheels). The ends are the states' views exactly; in between, velocities,
+    /// engine rpm and each wheel's position, suspension, steer, spin and spin angle are
+    /// linear, each wheel's orientation is made from the interpolated body orientation and
+    /// angles, and the gear is the newer state's. Throws std::out_of_range for no such car.
+    void view(std::size_t car, double t, CarView& out) const;
+    /// The same, returned (allocates the wheels).
+    CarView view(std::size_t car, double t) const {
+        CarView out;
+        view(car, t, out);
+        return out;
+    }
 
     /// The world, only while the thread is not running (throws trackphys::Error then).
     World& world();
@@ -79,8 +90,10 @@ class TRACKPHYS_API PhysicsRunner {
         std::uint64_t update = 0;
         double previous_time = 0.0;
         double time = 0.0;
-        std::vector<CarPose> previous;
-        std::vector<CarPose> current;
+        std::vector<CarView> previous;
+        std::vector<CarView> current;
+        // How far from previous_time to time simulated time t is (0..1, 1 for no span).
+        double alpha(double t) const;
     };
     struct StampedInputs {
         std::uint64_t update;
@@ -110,7 +123,7 @@ class TRACKPHYS_API PhysicsRunner {
     static constexpr unsigned kFresh = 4;
     Frame frames_[3];
     unsigned back_ = 0;
-    std::vector<CarPose> last_published_;  // physics thread's
+    std::vector<CarView> last_published_;  // physics thread's
     double last_published_time_ = 0.0;
     mutable unsigned front_ = 2;
     mutable std::atomic<unsigned> middle_{1};

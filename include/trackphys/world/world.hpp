@@ -86,6 +86,18 @@ class TRACKPHYS_API World {
     /// naming the reason, changing nothing, for a state the reset policy would reset, a
     /// car far outside the map or inside geometry. car(i).set_state moves it unchecked.
     void teleport_car(std::size_t i, const RigidBodyState& state);
+    /// Removes car i (a retirement, a player leaving) between updates. Indices work as
+    /// std::vector::erase's: the cars before i keep theirs, each car after it moves down one
+    /// (car j becomes j - 1), so a game that keeps a car's index drops it or decrements it
+    /// past i; removing the last car changes no index. Every remaining car keeps everything
+    /// (state, inputs, suspension, contacts, resets, reset reason, vehicle state), and
+    /// update_count() and time() go on. Deterministic like update(): the same removals after
+    /// the same updates give bit-identical states on any number of threads. Snapshots list
+    /// the cars in index order: save_state() afterwards holds the remaining cars, which
+    /// restore into a world of the same specs added in that order; a snapshot from before
+    /// the removal has a car more and restore_state() refuses it. Throws trackphys::Error
+    /// past car_count().
+    void remove_car(std::size_t i);
     std::size_t car_count() const;
     /// Car i (throws trackphys::Error past car_count(), as every call taking a car index
     /// does): its inputs and state may be set through it, but it must not be replaced by
