@@ -70,6 +70,7 @@ void read_gearbox(ObjectReader& in, GearboxSpec& g) {
     in.read("shift_time", g.shift_time);
     in.read("clutch_engage_time", g.clutch_engage_time);
     in.read("launch_rpm", g.launch_rpm);
+    in.read("reverse_ratio", g.reverse_ratio);
 }
 
 void read_differential(ObjectReader& in, DifferentialSpec& d) {
@@ -155,7 +156,8 @@ Json vehicle_to_json(const VehicleSpec& v) {
           {"shift_down_rpm", v.gearbox.shift_down_rpm},
           {"shift_time", v.gearbox.shift_time},
           {"clutch_engage_time", v.gearbox.clutch_engage_time},
-          {"launch_rpm", v.gearbox.launch_rpm}}},
+          {"launch_rpm", v.gearbox.launch_rpm},
+          {"reverse_ratio", v.gearbox.reverse_ratio}}},
         {"front_differential", differential_to_json(v.front_differential)},
         {"rear_differential", differential_to_json(v.rear_differential)},
         {"centre_differential", differential_to_json(v.centre_differential)},

@@ -91,8 +91,9 @@ void Vehicle::set_state(const VehicleState& state) {
                    std::to_string(kMaxSlip));
     }
     const int gears = static_cast<int>(spec_.gearbox.ratios.size());
-    if (!(state.gear >= 1 && state.gear <= gears))
-        reject("gear " + std::to_string(state.gear) + " is not in 1.." + std::to_string(gears));
+    if (!((state.gear >= 1 && state.gear <= gears) || state.gear == VehicleState::reverse_gear))
+        reject("gear " + std::to_string(state.gear) + " is not in 1.." + std::to_string(gears) +
+               " nor reverse (" + std::to_string(VehicleState::reverse_gear) + ")");
     if (!(state.shift_time_left >= 0.0 && state.shift_time_left <= spec_.gearbox.shift_time))
         reject("shift_time_left is not in [0, gearbox.shift_time]");
     if (!(state.clutch >= 0.0 && state.clutch <= 1.0)) reject("clutch is not in [0, 1]");

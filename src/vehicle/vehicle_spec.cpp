@@ -71,6 +71,7 @@ std::string VehicleSpec::validate() const {
     for (std::size_t k = 0; k < gearbox.ratios.size(); ++k)
         check.positive("gearbox.ratios[" + std::to_string(k) + "]", gearbox.ratios[k]);
     check.positive("gearbox.final_drive", gearbox.final_drive);
+    check.positive("gearbox.reverse_ratio", gearbox.reverse_ratio);
     check.positive("gearbox.shift_down_rpm", gearbox.shift_down_rpm);
     check.require(gearbox.shift_up_rpm > gearbox.shift_down_rpm, "gearbox.shift_up_rpm",
                   "must exceed gearbox.shift_down_rpm");

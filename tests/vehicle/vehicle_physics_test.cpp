@@ -2,9 +2,11 @@
 // from the torque curve, gears and the tyre's slip limit; 100-0 from the tyres' peak; a
 // limited-slip differential against an open one with a wheel on ice; a parked car that
 // stays put; a launch after landing, a teleport, a brake and a reset that leave the wheels
-// as they should; and snapshots that carry the wheels and the gearbox.
+// as they should; snapshots that carry the wheels and the gearbox; and reverse, for the
+// arcade car too.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numbers>
 #include <string>
@@ -509,6 +511,94 @@ TEST(VehiclePhysics, StandsStillOnFlatGroundAndOnATwentyPercentSlopeWithBrakes) 
         for (glm::dvec3& vertex : slope.vertices) vertex.y = 0.2 * vertex.z;  // rises to +Z
         World uphill = world_with(slope, spec);
         expect_parked(uphill, {0.0, 1.0, 0.0});
+    }
+}
+
+// Flat ground with a wall across +Z at z = wall_z, facing a car that comes from z < wall_z.
+TriangleMesh ground_with_wall(double wall_z) {
+    TriangleMesh scene = test::flat_grid(200.0, 40);
+    const TriangleMesh barrier = test::wall(wall_z, 20.0, 3.0);
+    const auto base = static_cast<std::uint32_t>(scene.vertices.size());
+    scene.vertices.insert(scene.vertices.end(), barrier.vertices.begin(), barrier.vertices.end());
+    for (auto t : barrier.triangles)
+        scene.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+    return scene;
+}
+
+// Whether the car is in reverse gear; true for the arcade car, which has no gears.
+bool in_reverse_gear_if_geared(const Car& car) {
+    return !car.vehicle() || car.vehicle()->state().gear == VehicleState::reverse_gear;
+}
+
+// A car driven nose first into a wall backs away from it at full reverse (throttle -1):
+// the vehicle model through its reverse gear, the arcade car by its reverse drive force up
+// to max_reverse_speed. Clamped to 0, as the throttle was, it would stay at the wall.
+TEST(VehiclePhysics, EveryCarBacksAwayFromAWallAtFullReverse) {
+    for (const char* preset : {"arcade", "gt", "formula"}) {
+        SCOPED_TRACE(preset);
+        const CarSpec spec = CarSpec::preset(preset);
+        World world = world_with(ground_with_wall(6.0), spec);
+        drive(world, {0.3, 0.0, 0.0}, 4.0);
+        Car& car = world.car(0);
+        const double at_wall = car.state().position.z;
+        ASSERT_GT(at_wall, 6.0 - 2.7) << "the car did not reach the wall";
+        ASSERT_LT(std::abs(forward_speed(car)), 0.2) << "the car is not stopped by the wall";
+
+        drive(world, {-1.0, 0.0, 0.0}, 3.0);
+        const double backed = at_wall - car.state().position.z;
+        RecordProperty(std::string(preset) + "_reversed_in_3_s_m", std::to_string(backed));
+        EXPECT_GT(backed, 5.0);
+        EXPECT_LT(forward_speed(car), -2.0);
+        EXPECT_TRUE(in_reverse_gear_if_geared(car));
+        EXPECT_EQ(world.car_resets(0), 0u);
+        // A snapshot file carries the reverse gear.
+        world.restore_state(decode_snapshot(encode_snapshot(world.save_state())).world);
+        EXPECT_TRUE(in_reverse_gear_if_geared(car));
+        if (spec.vehicle) continue;
+        // The arcade car's reverse drive fades to none at max_reverse_speed.
+        drive(world, {-1.0, 0.0, 0.0}, 3.0);
+        EXPECT_LE(-forward_speed(car), spec.max_reverse_speed);
+        EXPECT_GT(-forward_speed(car), 0.9 * spec.max_reverse_speed);
+    }
+}
+
+// Reverse engages only once the car is nearly stopped: at 20 m/s a negative throttle is a
+// closed throttle (the car coasts exactly as at throttle 0, in a forward gear); braked to a
+// stop with it held, the car then drives backwards.
+TEST(VehiclePhysics, ANegativeThrottleAtSpeedCoastsAndReversesOnlyOnceStopped) {
+    for (const char* preset : {"arcade", "gt"}) {
+        SCOPED_TRACE(preset);
+        const CarSpec spec = CarSpec::preset(preset);
+        World coasting = world_with(test::flat_grid(2000.0, 20), spec, 0.0, -900.0);
+        World reversing = world_with(test::flat_grid(2000.0, 20), spec, 0.0, -900.0);
+        for (World* world : {&coasting, &reversing}) {
+            drive(*world, {}, 1.0);
+            while (forward_speed(world->car(0)) < 20.0)
+                drive(*world, {1.0, 0.0, 0.0}, world->settings().dt_update);
+        }
+        drive(coasting, {0.0, 0.0, 0.0}, 1.0);
+        drive(reversing, {-1.0, 0.0, 0.0}, 1.0);
+        Car& car = reversing.car(0);
+        if (spec.vehicle) {
+            EXPECT_GE(car.vehicle()->state().gear, 1);
+        }
+        EXPECT_GT(forward_speed(car), 19.0);
+        EXPECT_EQ(forward_speed(car), forward_speed(coasting.car(0)));
+
+        while (forward_speed(car) > 0.1)
+            drive(reversing, {-1.0, 1.0, 0.0}, reversing.settings().dt_update);
+        drive(reversing, {-1.0, 0.0, 0.0}, 2.0);
+        EXPECT_LT(forward_speed(car), -2.0);
+        EXPECT_TRUE(in_reverse_gear_if_geared(car));
+        // And forwards again once the reversing car is nearly stopped.
+        while (forward_speed(car) < -0.1)
+            drive(reversing, {0.0, 1.0, 0.0}, reversing.settings().dt_update);
+        drive(reversing, {1.0, 0.0, 0.0}, 2.0);
+        EXPECT_GT(forward_speed(car), 2.0);
+        if (spec.vehicle) {
+            EXPECT_EQ(car.vehicle()->state().gear, 1);
+        }
+        EXPECT_EQ(reversing.car_resets(0), 0u);
     }
 }
 

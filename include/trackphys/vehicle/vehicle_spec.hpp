@@ -36,6 +36,11 @@ struct GearboxSpec {
     /// Below this drivetrain speed the clutch slips: the engine holds this speed and passes
     /// its torque at it (a launch). In [engine.idle_rpm, shift_up_rpm].
     double launch_rpm = 3000.0;
+    /// The reverse gear's ratio (> 0; it turns the wheels backwards). The shifter engages
+    /// it under a negative throttle once the car is nearly stopped or rolling backwards
+    /// (CarInputs), and first gear again under a positive one; it never shifts on rpm in
+    /// reverse, so the redline bounds the speed backwards.
+    double reverse_ratio = 3.5;
 };
 
 enum class DifferentialKind {
