@@ -66,6 +66,7 @@ CarSpec gt_car() {
     v.max_brake_torque = 10000.0;
     v.front_anti_roll = 3.0e4;
     v.rear_anti_roll = 2.0e4;
+    v.rolling_resistance = 0.012;
     spec.vehicle = v;
     return spec;
 }
@@ -103,6 +104,7 @@ CarSpec formula_car() {
     v.max_brake_torque = 9000.0;
     v.front_anti_roll = 2.0e4;
     v.rear_anti_roll = 1.5e4;
+    v.rolling_resistance = 0.010;
     spec.vehicle = v;
     return spec;
 }

@@ -133,6 +133,7 @@ void vehicle_from_json(const Json& value, const std::string& path, const std::st
     in.read("front_anti_roll", v.front_anti_roll);
     in.read("rear_anti_roll", v.rear_anti_roll);
     in.read("low_speed", v.low_speed);
+    in.read("rolling_resistance", v.rolling_resistance);
     in.finish();
 }
 
@@ -167,6 +168,7 @@ Json vehicle_to_json(const VehicleSpec& v) {
         {"front_anti_roll", v.front_anti_roll},
         {"rear_anti_roll", v.rear_anti_roll},
         {"low_speed", v.low_speed},
+        {"rolling_resistance", v.rolling_resistance},
     };
 }
 

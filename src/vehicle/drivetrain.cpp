@@ -154,12 +154,15 @@ void Vehicle::begin_substep(double throttle, double brake, double car_speed, dou
     const double direction = reversing ? -1.0 : 1.0;  // of the drive, along the wheels' spin
 
     // Above launch_rpm the closed clutch locks engine and wheels together. Below it the
-    // clutch slips with the engine held at launch_rpm, passing that speed's torque.
+    // clutch slips with the engine held at launch_rpm, passing that speed's torque under
+    // the pedal and, as the pedal closes, the engine's drag at the drivetrain's speed
+    // (proportional to it, so none at standstill: a parked car does not creep).
     const bool locked = rpm >= box.launch_rpm;
     engine_rpm_ = locked ? rpm : (pedal > 0.0 ? box.launch_rpm : spec_.engine.idle_rpm);
-    const double torque =
-        locked ? gearbox_torque(engine_torque(rpm, pedal), overall_ratio)
-               : state_.clutch * overall_ratio * pedal * engine_torque(box.launch_rpm, 1.0);
+    const double torque = locked ? gearbox_torque(engine_torque(rpm, pedal), overall_ratio)
+                                 : state_.clutch * overall_ratio *
+                                       (pedal * engine_torque(box.launch_rpm, 1.0) +
+                                        (1.0 - pedal) * engine_torque(rpm, 0.0));
     for (Wheel& wheel : wheels_) wheel.drive_torque = wheel.drive_share * torque;
 
     // The limited-slip clutches move torque from the faster output to the slower.

@@ -19,6 +19,9 @@ constexpr double kMaxSlip = 50.0;
 // a wheel locked (-1) or spinning a little faster than that forwards, and a wheel spinning
 // at standstill has no measured force beyond the sliding one they reach there.
 constexpr double kMaxSlipRatio = 1.5;
+// Rolling resistance grows from none at standstill to its full c_rr F_z at this rolling
+// speed (m/s): a parked car feels none, so it does not creep on the tyres' jitter.
+constexpr double kRollingResistanceFade = 0.5;
 
 }  // namespace
 
@@ -156,6 +159,10 @@ TyreForce Vehicle::wheel_force(std::size_t w, double load, double rolling_veloci
     // facets for a few sub-steps lands with the deflection it left with, instead of
     // building its force up again over a relaxation length at every skip.
     telemetry_[w] = {s.slip_ratio, s.lateral_slip, load, s.spin};
+    // Rolling resistance, c_rr F_z against the rolling direction: the carcass's hysteresis,
+    // which holds the car back at the contact without turning the wheel.
+    force.longitudinal -= spec_.rolling_resistance * load *
+                          std::clamp(rolling_velocity / kRollingResistanceFade, -1.0, 1.0);
     return force;
 }
 

@@ -96,6 +96,10 @@ std::string VehicleSpec::validate() const {
     check.non_negative("front_anti_roll", front_anti_roll);
     check.non_negative("rear_anti_roll", rear_anti_roll);
     check.positive("low_speed", low_speed);
+    std::ostringstream rolling_range;
+    rolling_range << "must be in [0, 0.1], got " << rolling_resistance;
+    check.require(rolling_resistance >= 0.0 && rolling_resistance <= 0.1, "rolling_resistance",
+                  rolling_range.str());
     return check.str();
 }
 

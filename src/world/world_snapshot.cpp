@@ -27,7 +27,7 @@ void add(core::Fnv1a& hash, const ContactMaterial& m) {
 
 // Every field of CarSpec goes into its fingerprint. The size checks fail to compile when a
 // field is added, as a reminder to hash it too (then update the sizes).
-static_assert(sizeof(CarSpec) == 784, "a new CarSpec field must join fingerprint(CarSpec)");
+static_assert(sizeof(CarSpec) == 792, "a new CarSpec field must join fingerprint(CarSpec)");
 static_assert(sizeof(CarEllipsoid) == 88,
               "a new CarEllipsoid field must join fingerprint(CarSpec)");
 

@@ -83,6 +83,9 @@ TEST(CarSpecJson, PresetsRoundTripAndModelPicksTheBase) {
     EXPECT_EQ(gt.drag_area, 0.7);
     EXPECT_EQ(gt.vehicle->gearbox.final_drive, 3.9);
     EXPECT_EQ(gt.vehicle->gearbox.reverse_ratio, 3.1);
+    EXPECT_EQ(parse_car_spec(R"({"model": "gt", "vehicle": {"rolling_resistance": 0.015}})")
+                  .vehicle->rolling_resistance,
+              0.015);
     EXPECT_EQ(parse_car_spec(R"({"max_reverse_speed": 6})").max_reverse_speed, 6.0);
     EXPECT_EQ(gt.vehicle->gearbox.ratios, CarSpec::preset("gt").vehicle->gearbox.ratios);
     EXPECT_EQ(gt.vehicle->rear_differential.kind, DifferentialKind::open);
@@ -113,6 +116,8 @@ TEST(CarSpecJson, EveryBadFileNamesTheKeyAndTheReason) {
          "CarSpec.vehicle.gearbox.ratios[1] must be finite and > 0, got 0"},
         {R"({"model": "gt", "vehicle": {"gearbox": {"reverse_ratio": 0}}})",
          "CarSpec.vehicle.gearbox.reverse_ratio must be finite and > 0, got 0"},
+        {R"({"model": "gt", "vehicle": {"rolling_resistance": 0.5}})",
+         "CarSpec.vehicle.rolling_resistance must be in [0, 0.1], got 0.5"},
         {R"({"max_reverse_speed": -2})",
          "CarSpec.max_reverse_speed must be finite and >= 0, got -2"},
         {R"({"model": "gt", "vehicle": {"gearbox": {"launch_rpm": 9000}}})",

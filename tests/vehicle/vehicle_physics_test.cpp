@@ -2,8 +2,8 @@
 // from the torque curve, gears and the tyre's slip limit; 100-0 from the tyres' peak; a
 // limited-slip differential against an open one with a wheel on ice; a parked car that
 // stays put; a launch after landing, a teleport, a brake and a reset that leave the wheels
-// as they should; snapshots that carry the wheels and the gearbox; and reverse, for the
-// arcade car too.
+// as they should; snapshots that carry the wheels and the gearbox; a coast slowed by drag,
+// rolling resistance and engine braking; and reverse, for the arcade car too.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -71,6 +71,11 @@ struct PointCar {
     double aero(double area, double speed) const {
         return 0.5 * spec.air_density * area * speed * speed;
     }
+    // Air drag and rolling resistance, c_rr of the weight and the downforce (N).
+    double resistance(double speed) const {
+        return aero(spec.drag_area, speed) +
+               v.rolling_resistance * (spec.mass.mass * g + aero(spec.downforce_area, speed));
+    }
     // The axle loads (N) at speed and forward acceleration a (m/s^2): weight and downforce
     // shared as the centre of mass sits, plus the load transfer m a h / L.
     double front_load(double speed, double a) const {
@@ -104,9 +109,10 @@ struct PointCar {
 };
 
 // 0 to 100 km/h of a rear-driven car by explicit integration in 0.1 ms steps: the engine's
-// force through the gear (at launch_rpm while the clutch slips) less drag, on the mass plus
-// the wheels' and the engine's rotating inertia; or, when the rear tyres' peak under the
-// load transfer limits, that peak less drag on the mass and the undriven wheels only (the
+// force through the gear (at launch_rpm while the clutch slips) less drag and rolling
+// resistance, on the mass plus the wheels' and the engine's rotating inertia; or, when the
+// rear tyres' peak under the load transfer limits, that peak less the same on the mass and
+// the undriven wheels only (the
 // engine's surplus torque then turns the engine and the driven wheels, not the car). No
 // drive while a shift lasts, then the clutch closes linearly.
 double reference_zero_to_100(const PointCar& car) {
@@ -126,7 +132,7 @@ double reference_zero_to_100(const PointCar& car) {
             4.0 * car.v.wheel_inertia / (r * r) +
             (locked ? clutch * car.v.engine.inertia * ratio * ratio / (r * r) : 0.0);
         const double undriven = 2.0 * car.v.wheel_inertia / (r * r);
-        const double drag = car.aero(car.spec.drag_area, speed);
+        const double drag = car.resistance(speed);
         a = std::min((engine - drag) / (m + rotating), (grip - drag) / (m + undriven));
         speed += a * dt;
         t += dt;
@@ -146,7 +152,7 @@ double reference_zero_to_100(const PointCar& car) {
 }
 
 // 100 km/h to 1 m/s with every tyre at its longitudinal peak (anti-lock) under the load
-// transfer, plus drag.
+// transfer, plus drag and rolling resistance.
 double reference_braking(const PointCar& car) {
     const double m = car.spec.mass.mass;
     double speed = 100.0 / 3.6, decel = 0.0, t = 0.0;
@@ -154,7 +160,7 @@ double reference_braking(const PointCar& car) {
     while (speed > 1.0) {
         const double grip = PointCar::axle_peak(car.v.front_tyre, car.front_load(speed, -decel)) +
                             PointCar::axle_peak(car.v.rear_tyre, car.rear_load(speed, -decel));
-        decel = (grip + car.aero(car.spec.drag_area, speed)) / m;
+        decel = (grip + car.resistance(speed)) / m;
         speed -= decel * dt;
         t += dt;
     }
@@ -511,6 +517,48 @@ TEST(VehiclePhysics, StandsStillOnFlatGroundAndOnATwentyPercentSlopeWithBrakes) 
         for (glm::dvec3& vertex : slope.vertices) vertex.y = 0.2 * vertex.z;  // rises to +Z
         World uphill = world_with(slope, spec);
         expect_parked(uphill, {0.0, 1.0, 0.0});
+    }
+}
+
+// Coasting in gear at closed throttle on the flat near 40 km/h, the deceleration over one
+// second against what drag, rolling resistance (c_rr of the load, downforce included) and
+// the engine's drag through the gear (friction_torque rpm / redline) add up to, on the
+// mass and the wheels' inertia (the clutch slips below launch_rpm, so the engine's inertia
+// is not the car's). With drag alone, as before, the gt slowed at 0.044 m/s^2.
+TEST(VehiclePhysics, ACoastingCarSlowsByDragRollingResistanceAndEngineBraking) {
+    for (const char* preset : {"gt", "formula"}) {
+        SCOPED_TRACE(preset);
+        const CarSpec spec = CarSpec::preset(preset);
+        const VehicleSpec& v = *spec.vehicle;
+        World world = world_with(test::flat_grid(2000.0, 20), spec, 0.0, -900.0);
+        drive(world, {}, 1.0);
+        Car& car = world.car(0);
+        while (forward_speed(car) < 45.0 / 3.6)
+            drive(world, {1.0, 0.0, 0.0}, world.settings().dt_update);
+        drive(world, {}, 0.5);  // the clutch and the tyres settle at closed throttle
+        const double v0 = forward_speed(car);
+        const int gear = car.vehicle()->state().gear;
+        drive(world, {}, 1.0);
+        const double v1 = forward_speed(car);
+        ASSERT_EQ(car.vehicle()->state().gear, gear) << "a shift during the measurement";
+        const double measured = v0 - v1;
+
+        const double speed = 0.5 * (v0 + v1);
+        const double r = PointCar(spec, 0.0).radius;
+        const double ratio =
+            v.gearbox.ratios[static_cast<std::size_t>(gear - 1)] * v.gearbox.final_drive;
+        const double rpm = speed / r * ratio * 60.0 / (2.0 * std::numbers::pi);
+        ASSERT_LT(rpm, v.gearbox.launch_rpm);
+        const double aero = 0.5 * spec.air_density * speed * speed;
+        const double drag = aero * spec.drag_area;
+        const double rolling =
+            v.rolling_resistance * (spec.mass.mass * g + aero * spec.downforce_area);
+        const double engine = v.engine.friction_torque * rpm / v.engine.redline_rpm * ratio / r;
+        const double expected =
+            (drag + rolling + engine) / (spec.mass.mass + 4.0 * v.wheel_inertia / (r * r));
+        RecordProperty(std::string(preset) + "_coast_m_s2", std::to_string(measured));
+        RecordProperty(std::string(preset) + "_coast_reference_m_s2", std::to_string(expected));
+        EXPECT_NEAR(measured, expected, 0.1 * expected) << "at " << speed * 3.6 << " km/h";
     }
 }
 

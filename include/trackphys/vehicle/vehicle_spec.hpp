@@ -80,6 +80,10 @@ struct VehicleSpec {
     /// Below this speed the tyres add damping to their deflection (m/s), so that a car
     /// coming to rest does not rock on its tyres' springs.
     double low_speed = 3.0;
+    /// Rolling resistance coefficient c_rr, in [0, 0.1]: each wheel on the road is held
+    /// back by c_rr F_z against its rolling direction, faded in over the first 0.5 m/s of
+    /// rolling speed so that a car at rest does not creep.
+    double rolling_resistance = 0.012;
 
     /// Empty when every field is in range; else the first problem, naming the field
     /// (e.g. "CarSpec.vehicle.gearbox.ratios[2] must be finite and > 0, got 0").
