@@ -3,7 +3,8 @@
 // limited-slip differential against an open one with a wheel on ice; a parked car that
 // stays put; a launch after landing, a teleport, a brake and a reset that leave the wheels
 // as they should; snapshots that carry the wheels and the gearbox; a coast slowed by drag,
-// rolling resistance and engine braking; and reverse, for the arcade car too.
+// rolling resistance and engine braking; a sideways slide gripping as the curve says at
+// low speed; and reverse, for the arcade car too.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -559,6 +560,39 @@ TEST(VehiclePhysics, ACoastingCarSlowsByDragRollingResistanceAndEngineBraking) {
         RecordProperty(std::string(preset) + "_coast_m_s2", std::to_string(measured));
         RecordProperty(std::string(preset) + "_coast_reference_m_s2", std::to_string(expected));
         EXPECT_NEAR(measured, expected, 0.1 * expected) << "at " << speed * 3.6 << " km/h";
+    }
+}
+
+// A front wheel sliding sideways at 5 and 20 m/s, rolling just below and just above
+// low_speed, its lateral slip at that slide's steady state -V_y / V_x: its lateral force is
+// the same either side (within 3%) and never more than the curve's for that slip. The
+// damper below low_speed faded by the rolling speed alone pushed it to the ellipse's edge,
+// the curve's peak D, up to 23% more than the sliding value just above.
+TEST(VehiclePhysics, ASidewaysSlidingWheelGripsAsTheCurveSaysEitherSideOfLowSpeed) {
+    const CarSpec spec = CarSpec::preset("gt");
+    const Tyre tyre(spec.vehicle->front_tyre);
+    ASSERT_EQ(spec.ellipsoids[0].role, EllipsoidRole::front_wheel);
+    const double load = 3000.0, h = 0.002, low = spec.vehicle->low_speed;
+    for (const double sideways : {5.0, 20.0}) {
+        SCOPED_TRACE(sideways);
+        double lateral[2];
+        for (const int side : {0, 1}) {
+            const double rolling = (side == 0 ? 0.99 : 1.01) * low;
+            Vehicle vehicle(spec);
+            VehicleState state = vehicle.rolling_at(rolling);
+            for (WheelState& wheel : state.wheels) wheel.lateral_slip = -sideways / rolling;
+            vehicle.set_state(state);
+            vehicle.begin_substep(0.0, 0.0, std::hypot(rolling, sideways), h);
+            lateral[side] = vehicle.wheel_force(0, load, rolling, sideways, h).lateral;
+            const double curve = tyre.force(0.0, -sideways / rolling, load).lateral;
+            EXPECT_LE(std::abs(lateral[side]), std::abs(curve) * (1.0 + 1e-12))
+                << "rolling at " << rolling << " m/s";
+        }
+        RecordProperty("sliding_" + std::to_string(static_cast<int>(sideways)) + "_m_s_below_n",
+                       std::to_string(lateral[0]));
+        RecordProperty("sliding_" + std::to_string(static_cast<int>(sideways)) + "_m_s_above_n",
+                       std::to_string(lateral[1]));
+        EXPECT_NEAR(lateral[0], lateral[1], 0.03 * std::abs(lateral[1]));
     }
 }
 
