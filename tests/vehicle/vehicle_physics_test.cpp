@@ -525,7 +525,7 @@ TEST(VehiclePhysics, StandsStillOnFlatGroundAndOnATwentyPercentSlopeWithBrakes) 
 // second against what drag, rolling resistance (c_rr of the load, downforce included) and
 // the engine's drag through the gear (friction_torque rpm / redline) add up to, on the
 // mass and the wheels' inertia (the clutch slips below launch_rpm, so the engine's inertia
-// is not the car's). With drag alone, as before, the gt slowed at 0.044 m/s^2.
+// is not the car's). Drag alone, all there was before, gives the gt 0.044 m/s^2 there.
 TEST(VehiclePhysics, ACoastingCarSlowsByDragRollingResistanceAndEngineBraking) {
     for (const char* preset : {"gt", "formula"}) {
         SCOPED_TRACE(preset);
