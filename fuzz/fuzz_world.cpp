@@ -97,7 +97,7 @@ CarInputs decode_inputs(bool raw, const std::uint8_t* data, std::size_t size, st
         in.brake = read<double>(data, size, offset + 8);
         in.steer = read<double>(data, size, offset + 16);
     } else {
-        in.throttle = read<std::uint8_t>(data, size, offset) / 255.0;
+        in.throttle = (read<std::uint8_t>(data, size, offset) - 127.5) / 127.5;  // < 0 reverse
         in.brake = read<std::uint8_t>(data, size, offset + 1) / 255.0;
         in.steer = (read<std::uint8_t>(data, size, offset + 2) - 127.5) / 127.5;
     }

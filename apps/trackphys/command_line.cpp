@@ -119,7 +119,9 @@ void add_drive_command(CLI::App& app) {
         ->add_option("--heading", o->flags.heading_deg,
                      "Free mode: heading about +Y in degrees (0 = +X, 90 = -Z)")
         ->capture_default_str();
-    command->add_option("--throttle", o->flags.inputs.throttle, "Free mode: fixed throttle 0..1")
+    command
+        ->add_option("--throttle", o->flags.inputs.throttle,
+                     "Free mode: fixed throttle -1..1 (< 0: reverse, once nearly stopped)")
         ->capture_default_str();
     command
         ->add_option("--steer", o->flags.inputs.steer,

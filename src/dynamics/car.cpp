@@ -36,7 +36,7 @@ double clamp_input(const char* name, double value, double low, double high) {
 
 // The inputs clamped to their ranges; throws for NaN.
 CarInputs clamped(const CarInputs& in) {
-    return {clamp_input("throttle", in.throttle, 0.0, 1.0),
+    return {clamp_input("throttle", in.throttle, -1.0, 1.0),
             clamp_input("brake", in.brake, 0.0, 1.0), clamp_input("steer", in.steer, -1.0, 1.0)};
 }
 
@@ -109,7 +109,7 @@ void Car::restore(const RigidBodyState& state, const CarInputs& inputs,
     const CarInputs in_range = clamped(inputs);
     if (in_range.throttle != inputs.throttle || in_range.brake != inputs.brake ||
         in_range.steer != inputs.steer)
-        throw Error("car inputs: out of range (throttle and brake 0..1, steer -1..1)");
+        throw Error("car inputs: out of range (throttle and steer -1..1, brake 0..1)");
     set_suspension(suspension);
     state_ = state;
     take_inputs(inputs);
@@ -146,6 +146,13 @@ inline ContactMaterial Car::wheel_material(Axle axle) const {
 // Drive is a constant force up to the speed where the power limit takes over: F = P / v.
 inline double Car::drive_available(double speed_now) const {
     return std::min(spec_.max_drive_force, spec_.max_drive_power / std::max(speed_now, 1.0));
+}
+
+inline double Car::reverse_available(double speed_now, double forward_speed) const {
+    if (!(forward_speed < CarSpec::reverse_engage_speed && spec_.max_reverse_speed > 0.0))
+        return 0.0;
+    return drive_available(speed_now) *
+           std::clamp(1.0 + forward_speed / spec_.max_reverse_speed, 0.0, 1.0);
 }
 
 inline WheelCommand Car::wheel_command(Axle axle, const glm::dvec3& heading,
@@ -200,8 +207,12 @@ Wrench Car::contact_wrench(std::span<const Contact> deepest, const WheelLoads& w
     // Every wheel of an axle rolls with the same material and command: two of each per
     // sub-step, not one per wheel. The speed serves the aerodynamics too.
     const double speed_now = speed();
-    const double available = drive_available(speed_now);
     const glm::dvec3& forward = axes.forward;
+    // A negative throttle times the force backwards drives the car backwards.
+    const double available =
+        inputs_.throttle < 0.0
+            ? reverse_available(speed_now, glm::dot(state_.linear_velocity, forward))
+            : drive_available(speed_now);
     const ContactMaterial materials[2] = {wheel_material(Axle::front), wheel_material(Axle::rear)};
     const WheelCommand commands[2] = {
         wheel_command(Axle::front, wheel_heading(Axle::front, forward), materials[0],

@@ -55,6 +55,7 @@ CarSpec gt_car() {
     v.engine.inertia = 0.15;
     v.engine.friction_torque = 60.0;
     v.gearbox.ratios = {3.2, 2.3, 1.8, 1.45, 1.2, 1.0};
+    v.gearbox.reverse_ratio = 3.5;
     v.gearbox.final_drive = 3.6;
     v.gearbox.shift_up_rpm = 8000.0;
     v.gearbox.shift_down_rpm = 4000.0;
@@ -65,6 +66,7 @@ CarSpec gt_car() {
     v.max_brake_torque = 10000.0;
     v.front_anti_roll = 3.0e4;
     v.rear_anti_roll = 2.0e4;
+    v.rolling_resistance = 0.012;
     spec.vehicle = v;
     return spec;
 }
@@ -91,6 +93,7 @@ CarSpec formula_car() {
     v.engine.inertia = 0.06;
     v.engine.friction_torque = 80.0;
     v.gearbox.ratios = {2.9, 2.3, 1.9, 1.6, 1.42, 1.28, 1.17, 1.08};
+    v.gearbox.reverse_ratio = 3.2;
     v.gearbox.final_drive = 4.0;
     v.gearbox.shift_up_rpm = 12500.0;
     v.gearbox.shift_down_rpm = 8000.0;
@@ -101,6 +104,7 @@ CarSpec formula_car() {
     v.max_brake_torque = 9000.0;
     v.front_anti_roll = 2.0e4;
     v.rear_anti_roll = 1.5e4;
+    v.rolling_resistance = 0.010;
     spec.vehicle = v;
     return spec;
 }

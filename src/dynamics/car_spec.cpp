@@ -116,6 +116,7 @@ std::string CarSpec::validate() const {
     check_non_negative(why, "suspension.travel", suspension.travel);
     check_non_negative(why, "max_drive_force", max_drive_force);
     check_non_negative(why, "max_drive_power", max_drive_power);
+    check_non_negative(why, "max_reverse_speed", max_reverse_speed);
     if (why.tellp() == 0 && !(front_drive_share >= 0.0 && front_drive_share <= 1.0))
         why << "CarSpec.front_drive_share must be in [0, 1], got " << front_drive_share;
     if (why.tellp() == 0 && !(front_brake_share >= 0.0 && front_brake_share <= 1.0))

@@ -110,6 +110,7 @@ CarSpec car_spec_from_json(const Json& value, const std::string& path, const std
     in.read("front_drive_share", spec.front_drive_share);
     in.read("traction_limit", spec.traction_limit);
     in.read("max_drive_power", spec.max_drive_power);
+    in.read("max_reverse_speed", spec.max_reverse_speed);
     in.read("max_brake_force", spec.max_brake_force);
     in.read("front_brake_share", spec.front_brake_share);
     in.read("max_steer_angle", spec.max_steer_angle);
@@ -160,6 +161,7 @@ Json car_spec_to_json_value(const CarSpec& spec) {
         {"front_drive_share", spec.front_drive_share},
         {"traction_limit", spec.traction_limit},
         {"max_drive_power", spec.max_drive_power},
+        {"max_reverse_speed", spec.max_reverse_speed},
         {"max_brake_force", spec.max_brake_force},
         {"front_brake_share", spec.front_brake_share},
         {"max_steer_angle", spec.max_steer_angle},

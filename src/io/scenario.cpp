@@ -114,7 +114,7 @@ std::string Scenario::validate() const {
     if (why.tellp() == 0 && !(target_speed_kmh > 0.0 && target_speed_kmh <= max_target_speed_kmh))
         why << "Scenario.target_speed_kmh must be in (0, " << max_target_speed_kmh << "], got "
             << target_speed_kmh;
-    check_range(why, "inputs.throttle", inputs.throttle, 0.0, 1.0);
+    check_range(why, "inputs.throttle", inputs.throttle, -1.0, 1.0);
     check_range(why, "inputs.brake", inputs.brake, 0.0, 1.0);
     check_range(why, "inputs.steer", inputs.steer, -1.0, 1.0);
     check_range(why, "cars", cars, 1.0, max_scenario_cars);

@@ -70,6 +70,7 @@ void read_gearbox(ObjectReader& in, GearboxSpec& g) {
     in.read("shift_time", g.shift_time);
     in.read("clutch_engage_time", g.clutch_engage_time);
     in.read("launch_rpm", g.launch_rpm);
+    in.read("reverse_ratio", g.reverse_ratio);
 }
 
 void read_differential(ObjectReader& in, DifferentialSpec& d) {
@@ -132,6 +133,7 @@ void vehicle_from_json(const Json& value, const std::string& path, const std::st
     in.read("front_anti_roll", v.front_anti_roll);
     in.read("rear_anti_roll", v.rear_anti_roll);
     in.read("low_speed", v.low_speed);
+    in.read("rolling_resistance", v.rolling_resistance);
     in.finish();
 }
 
@@ -155,7 +157,8 @@ Json vehicle_to_json(const VehicleSpec& v) {
           {"shift_down_rpm", v.gearbox.shift_down_rpm},
           {"shift_time", v.gearbox.shift_time},
           {"clutch_engage_time", v.gearbox.clutch_engage_time},
-          {"launch_rpm", v.gearbox.launch_rpm}}},
+          {"launch_rpm", v.gearbox.launch_rpm},
+          {"reverse_ratio", v.gearbox.reverse_ratio}}},
         {"front_differential", differential_to_json(v.front_differential)},
         {"rear_differential", differential_to_json(v.rear_differential)},
         {"centre_differential", differential_to_json(v.centre_differential)},
@@ -165,6 +168,7 @@ Json vehicle_to_json(const VehicleSpec& v) {
         {"front_anti_roll", v.front_anti_roll},
         {"rear_anti_roll", v.rear_anti_roll},
         {"low_speed", v.low_speed},
+        {"rolling_resistance", v.rolling_resistance},
     };
 }
 

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "trackphys/dynamics/car_spec.hpp"
 #include "trackphys/vehicle/vehicle.hpp"
 
 namespace trackphys {
@@ -69,9 +70,19 @@ double Vehicle::engine_torque(double rpm, double throttle) const {
     return throttle * full - (1.0 - throttle) * friction;
 }
 
-// Up a gear above shift_up_rpm under throttle, down below shift_down_rpm; a change opens
-// the clutch for shift_time, then it closes over clutch_engage_time.
-void Vehicle::shift_gears(double drivetrain_rpm, double throttle, double h) {
+double Vehicle::gear_ratio() const {
+    const GearboxSpec& box = spec_.gearbox;
+    return state_.gear == VehicleState::reverse_gear
+               ? -box.reverse_ratio
+               : box.ratios[static_cast<std::size_t>(state_.gear - 1)];
+}
+
+// Into reverse under a negative throttle once the wheels roll forwards slower than
+// CarSpec::reverse_engage_speed, and back into first under a positive one once they roll
+// backwards slower than that; otherwise up a gear above shift_up_rpm under throttle, down
+// below shift_down_rpm (never in reverse, which has one gear). A change opens the clutch
+// for shift_time, then it closes over clutch_engage_time.
+void Vehicle::shift_gears(double drivetrain_rpm, double throttle, double rolling_speed, double h) {
     const GearboxSpec& box = spec_.gearbox;
     if (state_.shift_time_left > 0.0) {
         state_.shift_time_left = std::max(0.0, state_.shift_time_left - h);
@@ -81,8 +92,15 @@ void Vehicle::shift_gears(double drivetrain_rpm, double throttle, double h) {
     state_.clutch = std::min(1.0, state_.clutch + h / box.clutch_engage_time);
     if (state_.clutch < 1.0) return;
     const int top = static_cast<int>(box.ratios.size());
+    constexpr int reverse = VehicleState::reverse_gear;
     int gear = state_.gear;
-    if (drivetrain_rpm > box.shift_up_rpm && gear < top && throttle > 0.0)
+    if (throttle < 0.0 && gear != reverse && rolling_speed < CarSpec::reverse_engage_speed)
+        gear = reverse;
+    else if (throttle > 0.0 && gear == reverse && rolling_speed > -CarSpec::reverse_engage_speed)
+        gear = 1;
+    else if (gear == reverse)
+        return;
+    else if (drivetrain_rpm > box.shift_up_rpm && gear < top && throttle > 0.0)
         ++gear;
     else if (drivetrain_rpm < box.shift_down_rpm && gear > 1)
         --gear;
@@ -113,25 +131,38 @@ void Vehicle::begin_substep(double throttle, double brake, double car_speed, dou
     // The gearbox output turns at sum f_k w_k (the differentials average their outputs).
     double driven_spin = 0.0;
     double axle_spin[2] = {0.0, 0.0};  // front, rear
+    double rolling_speed = 0.0;        // the wheels' mean, as the shifter sees the car move
     for (std::size_t w = 0; w < wheels_.size(); ++w) {
         driven_spin += wheels_[w].drive_share * state_.wheels[w].spin;
         axle_spin[wheels_[w].front ? 0 : 1] += state_.wheels[w].spin;
+        rolling_speed += state_.wheels[w].spin * wheels_[w].radius;
     }
     for (int axle : {0, 1}) axle_spin[axle] /= std::max(axles_[axle].wheels, 1);
+    rolling_speed /= static_cast<double>(std::max<std::size_t>(wheels_.size(), 1));
 
     const GearboxSpec& box = spec_.gearbox;
-    shift_gears(driven_spin * box.ratios[state_.gear - 1] * box.final_drive * kRpmPerRadPerSecond,
-                throttle, h);
-    const double gear_ratio = box.ratios[state_.gear - 1] * box.final_drive;
-    const double rpm = driven_spin * gear_ratio * kRpmPerRadPerSecond;
+    shift_gears(driven_spin * gear_ratio() * box.final_drive * kRpmPerRadPerSecond, throttle,
+                rolling_speed, h);
+    // In reverse the ratio is negative: the engine turns forwards (rpm > 0) while the wheels
+    // turn backwards, and its torque drives them backwards.
+    const double overall_ratio = gear_ratio() * box.final_drive;
+    const double rpm = driven_spin * overall_ratio * kRpmPerRadPerSecond;
+    // The pedal the engine sees: the throttle's size in the gear's direction, closed when
+    // the driver asks for the other direction before the shifter could engage it.
+    const bool reversing = state_.gear == VehicleState::reverse_gear;
+    const double pedal = reversing ? std::max(-throttle, 0.0) : std::max(throttle, 0.0);
+    const double direction = reversing ? -1.0 : 1.0;  // of the drive, along the wheels' spin
 
     // Above launch_rpm the closed clutch locks engine and wheels together. Below it the
-    // clutch slips with the engine held at launch_rpm, passing that speed's torque.
+    // clutch slips with the engine held at launch_rpm, passing that speed's torque under
+    // the pedal and, as the pedal closes, the engine's drag at the drivetrain's speed
+    // (proportional to it, so none at standstill: a parked car does not creep).
     const bool locked = rpm >= box.launch_rpm;
-    engine_rpm_ = locked ? rpm : (throttle > 0.0 ? box.launch_rpm : spec_.engine.idle_rpm);
-    const double torque =
-        locked ? gearbox_torque(engine_torque(rpm, throttle), gear_ratio)
-               : state_.clutch * gear_ratio * throttle * engine_torque(box.launch_rpm, 1.0);
+    engine_rpm_ = locked ? rpm : (pedal > 0.0 ? box.launch_rpm : spec_.engine.idle_rpm);
+    const double torque = locked ? gearbox_torque(engine_torque(rpm, pedal), overall_ratio)
+                                 : state_.clutch * overall_ratio *
+                                       (pedal * engine_torque(box.launch_rpm, 1.0) +
+                                        (1.0 - pedal) * engine_torque(rpm, 0.0));
     for (Wheel& wheel : wheels_) wheel.drive_torque = wheel.drive_share * torque;
 
     // The limited-slip clutches move torque from the faster output to the slower.
@@ -158,19 +189,23 @@ void Vehicle::begin_substep(double throttle, double brake, double car_speed, dou
         // speed with the car's instead, as real systems compare the driven wheels with the
         // undriven ones, so that a wheel held at full throttle does not spin up before it
         // lands (the slip ratio of that speed difference, over at least low_speed).
+        // Driving and braking are read along the drive's direction: in reverse a driven
+        // wheel spins backwards (slip < 0) and a braked one is held back (slip > 0).
         wheel.airborne_drive_torque = wheel.drive_torque;
-        if (spec_.traction_control && wheel.drive_torque > 0.0) {
-            const double airborne_slip = (state_.wheels[w].spin * wheel.radius - car_speed) /
-                                         std::max(car_speed, spec_.low_speed);
+        if (spec_.traction_control && direction * wheel.drive_torque > 0.0) {
+            const double airborne_slip =
+                (direction * state_.wheels[w].spin * wheel.radius - car_speed) /
+                std::max(car_speed, spec_.low_speed);
             wheel.airborne_drive_torque *=
                 slip_limiter(airborne_slip / tyre_of(wheel).peak_slip_ratio());
         }
-        if (spec_.traction_control && wheel.drive_torque > 0.0 && slip > 0.0)
+        if (spec_.traction_control && direction * wheel.drive_torque > 0.0 &&
+            direction * slip > 0.0)
             wheel.drive_torque *= slip_limiter(wheel.slip.combined);
         wheel.brake_torque = brake * wheel.brake_share;
         // Anti-lock acts above walking pace only, as real systems do: at rest the brake
         // must hold the car however the tyres deflect.
-        if (spec_.anti_lock && car_speed > 1.0 && slip < 0.0)
+        if (spec_.anti_lock && car_speed > 1.0 && direction * slip < 0.0)
             wheel.brake_torque *= slip_limiter(wheel.slip.combined);
     }
 }

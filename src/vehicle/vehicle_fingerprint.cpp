@@ -4,7 +4,7 @@ namespace trackphys {
 namespace {
 
 // The size checks fail to compile when a field is added, as a reminder to hash it too.
-static_assert(sizeof(VehicleSpec) == 488, "a new VehicleSpec field must join its fingerprint");
+static_assert(sizeof(VehicleSpec) == 504, "a new VehicleSpec field must join its fingerprint");
 static_assert(sizeof(TyreSpec) == 104, "a new TyreSpec field must join the fingerprint");
 
 void add(core::Fnv1a& hash, const MagicFormulaCurve& c) {
@@ -35,13 +35,14 @@ std::uint64_t fingerprint(const VehicleSpec& v) {
         hash.add(x);
     hash.add(static_cast<std::uint64_t>(v.gearbox.ratios.size()));
     for (const double ratio : v.gearbox.ratios) hash.add(ratio);
-    for (const double x :
-         {v.gearbox.final_drive, v.gearbox.shift_up_rpm, v.gearbox.shift_down_rpm,
-          v.gearbox.shift_time, v.gearbox.clutch_engage_time, v.gearbox.launch_rpm})
+    for (const double x : {v.gearbox.final_drive, v.gearbox.shift_up_rpm, v.gearbox.shift_down_rpm,
+                           v.gearbox.shift_time, v.gearbox.clutch_engage_time, v.gearbox.launch_rpm,
+                           v.gearbox.reverse_ratio})
         hash.add(x);
     add(hash, v.front_differential), add(hash, v.rear_differential),
         add(hash, v.centre_differential);
-    for (const double x : {v.max_brake_torque, v.front_anti_roll, v.rear_anti_roll, v.low_speed})
+    for (const double x : {v.max_brake_torque, v.front_anti_roll, v.rear_anti_roll, v.low_speed,
+                           v.rolling_resistance})
         hash.add(x);
     hash.add(static_cast<std::uint64_t>(v.anti_lock)),
         hash.add(static_cast<std::uint64_t>(v.traction_control));

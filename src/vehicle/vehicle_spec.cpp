@@ -71,6 +71,7 @@ std::string VehicleSpec::validate() const {
     for (std::size_t k = 0; k < gearbox.ratios.size(); ++k)
         check.positive("gearbox.ratios[" + std::to_string(k) + "]", gearbox.ratios[k]);
     check.positive("gearbox.final_drive", gearbox.final_drive);
+    check.positive("gearbox.reverse_ratio", gearbox.reverse_ratio);
     check.positive("gearbox.shift_down_rpm", gearbox.shift_down_rpm);
     check.require(gearbox.shift_up_rpm > gearbox.shift_down_rpm, "gearbox.shift_up_rpm",
                   "must exceed gearbox.shift_down_rpm");
@@ -95,6 +96,10 @@ std::string VehicleSpec::validate() const {
     check.non_negative("front_anti_roll", front_anti_roll);
     check.non_negative("rear_anti_roll", rear_anti_roll);
     check.positive("low_speed", low_speed);
+    std::ostringstream rolling_range;
+    rolling_range << "must be in [0, 0.1], got " << rolling_resistance;
+    check.require(rolling_resistance >= 0.0 && rolling_resistance <= 0.1, "rolling_resistance",
+                  rolling_range.str());
     return check.str();
 }
 

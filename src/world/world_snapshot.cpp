@@ -27,7 +27,7 @@ void add(core::Fnv1a& hash, const ContactMaterial& m) {
 
 // Every field of CarSpec goes into its fingerprint. The size checks fail to compile when a
 // field is added, as a reminder to hash it too (then update the sizes).
-static_assert(sizeof(CarSpec) == 768, "a new CarSpec field must join fingerprint(CarSpec)");
+static_assert(sizeof(CarSpec) == 792, "a new CarSpec field must join fingerprint(CarSpec)");
 static_assert(sizeof(CarEllipsoid) == 88,
               "a new CarEllipsoid field must join fingerprint(CarSpec)");
 
@@ -87,7 +87,7 @@ std::string car_problem(const CarSnapshot& car) {
     if (!is_finite(s.linear_velocity)) return "linear_velocity is not finite";
     if (!is_finite(s.angular_velocity)) return "angular_velocity is not finite";
     const CarInputs& in = car.inputs;
-    if (!(in.throttle >= 0.0 && in.throttle <= 1.0)) return "throttle is not in [0, 1]";
+    if (!(in.throttle >= -1.0 && in.throttle <= 1.0)) return "throttle is not in [-1, 1]";
     if (!(in.brake >= 0.0 && in.brake <= 1.0)) return "brake is not in [0, 1]";
     if (!(in.steer >= -1.0 && in.steer <= 1.0)) return "steer is not in [-1, 1]";
     if (car.suspension.empty()) return "it has no ellipsoids";
@@ -109,8 +109,10 @@ std::string car_problem(const CarSnapshot& car) {
             if (!(std::isfinite(w.spin) && std::isfinite(w.slip_ratio) &&
                   std::isfinite(w.lateral_slip) && std::isfinite(w.road_torque)))
                 return "a vehicle wheel's spin or slip is not finite";
-        if (!(car.vehicle->gear >= 1 && std::isfinite(car.vehicle->shift_time_left) &&
-              car.vehicle->clutch >= 0.0 && car.vehicle->clutch <= 1.0))
+        const int gear = car.vehicle->gear;
+        if (!((gear >= 1 || gear == VehicleState::reverse_gear) &&
+              std::isfinite(car.vehicle->shift_time_left) && car.vehicle->clutch >= 0.0 &&
+              car.vehicle->clutch <= 1.0))
             return "the vehicle's gear, shift time or clutch is out of range";
     }
     return {};
@@ -142,10 +144,10 @@ std::uint64_t fingerprint(const CarSpec& spec) {
     hash.add(spec.rear_grip_factor);
     hash.add(spec.suspension.stiffness), hash.add(spec.suspension.damping),
         hash.add(spec.suspension.travel);
-    for (const double x :
-         {spec.max_drive_force, spec.front_drive_share, spec.traction_limit, spec.max_drive_power,
-          spec.max_brake_force, spec.front_brake_share, spec.max_steer_angle,
-          spec.deep_contact_fraction, spec.drag_area, spec.downforce_area, spec.air_density})
+    for (const double x : {spec.max_drive_force, spec.front_drive_share, spec.traction_limit,
+                           spec.max_drive_power, spec.max_brake_force, spec.front_brake_share,
+                           spec.max_steer_angle, spec.deep_contact_fraction, spec.drag_area,
+                           spec.downforce_area, spec.air_density, spec.max_reverse_speed})
         hash.add(x);
     if (spec.vehicle) hash.add(fingerprint(*spec.vehicle));
     return hash.value;

@@ -60,6 +60,13 @@ TEST(CarSpec, ValidationNamesTheField) {
         {[](CarSpec& c) { c.max_steer_angle = 2.0; }, "CarSpec.max_steer_angle must be below 1.5"},
         {[](CarSpec& c) { c.drag_area = std::numeric_limits<double>::infinity(); },
          "CarSpec.drag_area"},
+        {[](CarSpec& c) { c.max_reverse_speed = std::numeric_limits<double>::quiet_NaN(); },
+         "CarSpec.max_reverse_speed must be finite and >= 0"},
+        {[](CarSpec& c) {
+             c = CarSpec::preset("gt");
+             c.vehicle->gearbox.reverse_ratio = -3.0;
+         },
+         "CarSpec.vehicle.gearbox.reverse_ratio must be finite and > 0, got -3"},
     };
     for (const Case& c : cases) {
         CarSpec spec = CarSpec::default_car();

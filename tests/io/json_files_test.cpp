@@ -75,12 +75,18 @@ TEST(CarSpecJson, PresetsRoundTripAndModelPicksTheBase) {
     }
     // Keys beside "model" change the preset.
     const CarSpec gt = parse_car_spec(
-        R"({"model": "gt", "drag_area": 0.7, "vehicle": {"gearbox": {"final_drive": 3.9},
+        R"({"model": "gt", "drag_area": 0.7, "vehicle": {"gearbox": {"final_drive": 3.9,
+            "reverse_ratio": 3.1},
             "rear_differential": {"kind": "open"}, "traction_control": false}})");
     ASSERT_TRUE(gt.vehicle.has_value());
     EXPECT_EQ(gt.vehicle->model, "gt");
     EXPECT_EQ(gt.drag_area, 0.7);
     EXPECT_EQ(gt.vehicle->gearbox.final_drive, 3.9);
+    EXPECT_EQ(gt.vehicle->gearbox.reverse_ratio, 3.1);
+    EXPECT_EQ(parse_car_spec(R"({"model": "gt", "vehicle": {"rolling_resistance": 0.015}})")
+                  .vehicle->rolling_resistance,
+              0.015);
+    EXPECT_EQ(parse_car_spec(R"({"max_reverse_speed": 6})").max_reverse_speed, 6.0);
     EXPECT_EQ(gt.vehicle->gearbox.ratios, CarSpec::preset("gt").vehicle->gearbox.ratios);
     EXPECT_EQ(gt.vehicle->rear_differential.kind, DifferentialKind::open);
     EXPECT_FALSE(gt.vehicle->traction_control);
@@ -108,6 +114,12 @@ TEST(CarSpecJson, EveryBadFileNamesTheKeyAndTheReason) {
          "vehicle: the arcade car has no vehicle model: give \"model\": \"gt\""},
         {R"({"model": "gt", "vehicle": {"gearbox": {"ratios": [3, 0]}}})",
          "CarSpec.vehicle.gearbox.ratios[1] must be finite and > 0, got 0"},
+        {R"({"model": "gt", "vehicle": {"gearbox": {"reverse_ratio": 0}}})",
+         "CarSpec.vehicle.gearbox.reverse_ratio must be finite and > 0, got 0"},
+        {R"({"model": "gt", "vehicle": {"rolling_resistance": 0.5}})",
+         "CarSpec.vehicle.rolling_resistance must be in [0, 0.1], got 0.5"},
+        {R"({"max_reverse_speed": -2})",
+         "CarSpec.max_reverse_speed must be finite and >= 0, got -2"},
         {R"({"model": "gt", "vehicle": {"gearbox": {"launch_rpm": 9000}}})",
          "CarSpec.vehicle.gearbox.launch_rpm must be in [engine.idle_rpm, "
          "gearbox.shift_up_rpm] = [1000, 8000], got 9000"},
@@ -223,7 +235,9 @@ TEST(ScenarioJson, EveryBadFileNamesTheKeyAndTheReason) {
         {R"({"track": {"spawn": [0, 1, 0]}, "inputs": {}, "autopilot": {}})",
          "give either 'autopilot' or 'inputs'"},
         {R"({"track": {"spawn": [0, 1, 0]}, "inputs": {"throttle": 1.5}, "seconds": 1})",
-         "Scenario.inputs.throttle must be in [0, 1], got 1.5"},
+         "Scenario.inputs.throttle must be in [-1, 1], got 1.5"},
+        {R"({"track": {"spawn": [0, 1, 0]}, "inputs": {"throttle": -1.5}, "seconds": 1})",
+         "Scenario.inputs.throttle must be in [-1, 1], got -1.5"},
         {R"({"track": {"spawn": [0, 1, 0]}, "inputs": {"steer": -2}, "seconds": 1})",
          "Scenario.inputs.steer must be in [-1, 1], got -2"},
         {R"({"track": {"spawn": [0, 1, 0]}, "inputs": {"gear": 2}, "seconds": 1})",

@@ -2,9 +2,12 @@
 // from the torque curve, gears and the tyre's slip limit; 100-0 from the tyres' peak; a
 // limited-slip differential against an open one with a wheel on ice; a parked car that
 // stays put; a launch after landing, a teleport, a brake and a reset that leave the wheels
-// as they should; and snapshots that carry the wheels and the gearbox.
+// as they should; snapshots that carry the wheels and the gearbox; a coast slowed by drag,
+// rolling resistance and engine braking; a sideways slide gripping as the curve says at
+// low speed; and reverse, for the arcade car too.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numbers>
 #include <string>
@@ -69,6 +72,11 @@ struct PointCar {
     double aero(double area, double speed) const {
         return 0.5 * spec.air_density * area * speed * speed;
     }
+    // Air drag and rolling resistance, c_rr of the weight and the downforce (N).
+    double resistance(double speed) const {
+        return aero(spec.drag_area, speed) +
+               v.rolling_resistance * (spec.mass.mass * g + aero(spec.downforce_area, speed));
+    }
     // The axle loads (N) at speed and forward acceleration a (m/s^2): weight and downforce
     // shared as the centre of mass sits, plus the load transfer m a h / L.
     double front_load(double speed, double a) const {
@@ -102,9 +110,10 @@ struct PointCar {
 };
 
 // 0 to 100 km/h of a rear-driven car by explicit integration in 0.1 ms steps: the engine's
-// force through the gear (at launch_rpm while the clutch slips) less drag, on the mass plus
-// the wheels' and the engine's rotating inertia; or, when the rear tyres' peak under the
-// load transfer limits, that peak less drag on the mass and the undriven wheels only (the
+// force through the gear (at launch_rpm while the clutch slips) less drag and rolling
+// resistance, on the mass plus the wheels' and the engine's rotating inertia; or, when the
+// rear tyres' peak under the load transfer limits, that peak less the same on the mass and
+// the undriven wheels only (the
 // engine's surplus torque then turns the engine and the driven wheels, not the car). No
 // drive while a shift lasts, then the clutch closes linearly.
 double reference_zero_to_100(const PointCar& car) {
@@ -124,7 +133,7 @@ double reference_zero_to_100(const PointCar& car) {
             4.0 * car.v.wheel_inertia / (r * r) +
             (locked ? clutch * car.v.engine.inertia * ratio * ratio / (r * r) : 0.0);
         const double undriven = 2.0 * car.v.wheel_inertia / (r * r);
-        const double drag = car.aero(car.spec.drag_area, speed);
+        const double drag = car.resistance(speed);
         a = std::min((engine - drag) / (m + rotating), (grip - drag) / (m + undriven));
         speed += a * dt;
         t += dt;
@@ -144,7 +153,7 @@ double reference_zero_to_100(const PointCar& car) {
 }
 
 // 100 km/h to 1 m/s with every tyre at its longitudinal peak (anti-lock) under the load
-// transfer, plus drag.
+// transfer, plus drag and rolling resistance.
 double reference_braking(const PointCar& car) {
     const double m = car.spec.mass.mass;
     double speed = 100.0 / 3.6, decel = 0.0, t = 0.0;
@@ -152,7 +161,7 @@ double reference_braking(const PointCar& car) {
     while (speed > 1.0) {
         const double grip = PointCar::axle_peak(car.v.front_tyre, car.front_load(speed, -decel)) +
                             PointCar::axle_peak(car.v.rear_tyre, car.rear_load(speed, -decel));
-        decel = (grip + car.aero(car.spec.drag_area, speed)) / m;
+        decel = (grip + car.resistance(speed)) / m;
         speed -= decel * dt;
         t += dt;
     }
@@ -509,6 +518,169 @@ TEST(VehiclePhysics, StandsStillOnFlatGroundAndOnATwentyPercentSlopeWithBrakes) 
         for (glm::dvec3& vertex : slope.vertices) vertex.y = 0.2 * vertex.z;  // rises to +Z
         World uphill = world_with(slope, spec);
         expect_parked(uphill, {0.0, 1.0, 0.0});
+    }
+}
+
+// Coasting in gear at closed throttle on the flat near 40 km/h, the deceleration over one
+// second against what drag, rolling resistance (c_rr of the load, downforce included) and
+// the engine's drag through the gear (friction_torque rpm / redline) add up to, on the
+// mass and the wheels' inertia (the clutch slips below launch_rpm, so the engine's inertia
+// is not the car's). Drag alone, all there was before, gives the gt 0.044 m/s^2 there.
+TEST(VehiclePhysics, ACoastingCarSlowsByDragRollingResistanceAndEngineBraking) {
+    for (const char* preset : {"gt", "formula"}) {
+        SCOPED_TRACE(preset);
+        const CarSpec spec = CarSpec::preset(preset);
+        const VehicleSpec& v = *spec.vehicle;
+        World world = world_with(test::flat_grid(2000.0, 20), spec, 0.0, -900.0);
+        drive(world, {}, 1.0);
+        Car& car = world.car(0);
+        while (forward_speed(car) < 45.0 / 3.6)
+            drive(world, {1.0, 0.0, 0.0}, world.settings().dt_update);
+        drive(world, {}, 0.5);  // the clutch and the tyres settle at closed throttle
+        const double v0 = forward_speed(car);
+        const int gear = car.vehicle()->state().gear;
+        drive(world, {}, 1.0);
+        const double v1 = forward_speed(car);
+        ASSERT_EQ(car.vehicle()->state().gear, gear) << "a shift during the measurement";
+        const double measured = v0 - v1;
+
+        const double speed = 0.5 * (v0 + v1);
+        const double r = PointCar(spec, 0.0).radius;
+        const double ratio =
+            v.gearbox.ratios[static_cast<std::size_t>(gear - 1)] * v.gearbox.final_drive;
+        const double rpm = speed / r * ratio * 60.0 / (2.0 * std::numbers::pi);
+        ASSERT_LT(rpm, v.gearbox.launch_rpm);
+        const double aero = 0.5 * spec.air_density * speed * speed;
+        const double drag = aero * spec.drag_area;
+        const double rolling =
+            v.rolling_resistance * (spec.mass.mass * g + aero * spec.downforce_area);
+        const double engine = v.engine.friction_torque * rpm / v.engine.redline_rpm * ratio / r;
+        const double expected =
+            (drag + rolling + engine) / (spec.mass.mass + 4.0 * v.wheel_inertia / (r * r));
+        RecordProperty(std::string(preset) + "_coast_m_s2", std::to_string(measured));
+        RecordProperty(std::string(preset) + "_coast_reference_m_s2", std::to_string(expected));
+        EXPECT_NEAR(measured, expected, 0.1 * expected) << "at " << speed * 3.6 << " km/h";
+    }
+}
+
+// A front wheel sliding sideways at 5 and 20 m/s, rolling just below and just above
+// low_speed, its lateral slip at that slide's steady state -V_y / V_x: its lateral force is
+// the same either side (within 3%) and never more than the curve's for that slip. The
+// damper below low_speed faded by the rolling speed alone pushed it to the ellipse's edge,
+// the curve's peak D, up to 23% more than the sliding value just above.
+TEST(VehiclePhysics, ASidewaysSlidingWheelGripsAsTheCurveSaysEitherSideOfLowSpeed) {
+    const CarSpec spec = CarSpec::preset("gt");
+    const Tyre tyre(spec.vehicle->front_tyre);
+    ASSERT_EQ(spec.ellipsoids[0].role, EllipsoidRole::front_wheel);
+    const double load = 3000.0, h = 0.002, low = spec.vehicle->low_speed;
+    for (const double sideways : {5.0, 20.0}) {
+        SCOPED_TRACE(sideways);
+        double lateral[2];
+        for (const int side : {0, 1}) {
+            const double rolling = (side == 0 ? 0.99 : 1.01) * low;
+            Vehicle vehicle(spec);
+            VehicleState state = vehicle.rolling_at(rolling);
+            for (WheelState& wheel : state.wheels) wheel.lateral_slip = -sideways / rolling;
+            vehicle.set_state(state);
+            vehicle.begin_substep(0.0, 0.0, std::hypot(rolling, sideways), h);
+            lateral[side] = vehicle.wheel_force(0, load, rolling, sideways, h).lateral;
+            const double curve = tyre.force(0.0, -sideways / rolling, load).lateral;
+            EXPECT_LE(std::abs(lateral[side]), std::abs(curve) * (1.0 + 1e-12))
+                << "rolling at " << rolling << " m/s";
+        }
+        RecordProperty("sliding_" + std::to_string(static_cast<int>(sideways)) + "_m_s_below_n",
+                       std::to_string(lateral[0]));
+        RecordProperty("sliding_" + std::to_string(static_cast<int>(sideways)) + "_m_s_above_n",
+                       std::to_string(lateral[1]));
+        EXPECT_NEAR(lateral[0], lateral[1], 0.03 * std::abs(lateral[1]));
+    }
+}
+
+// Flat ground with a wall across +Z at z = wall_z, facing a car that comes from z < wall_z.
+TriangleMesh ground_with_wall(double wall_z) {
+    TriangleMesh scene = test::flat_grid(200.0, 40);
+    const TriangleMesh barrier = test::wall(wall_z, 20.0, 3.0);
+    const auto base = static_cast<std::uint32_t>(scene.vertices.size());
+    scene.vertices.insert(scene.vertices.end(), barrier.vertices.begin(), barrier.vertices.end());
+    for (auto t : barrier.triangles)
+        scene.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+    return scene;
+}
+
+// Whether the car is in reverse gear; true for the arcade car, which has no gears.
+bool in_reverse_gear_if_geared(const Car& car) {
+    return !car.vehicle() || car.vehicle()->state().gear == VehicleState::reverse_gear;
+}
+
+// A car driven nose first into a wall backs away from it at full reverse (throttle -1):
+// the vehicle model through its reverse gear, the arcade car by its reverse drive force up
+// to max_reverse_speed. Clamped to 0, as the throttle was, it would stay at the wall.
+TEST(VehiclePhysics, EveryCarBacksAwayFromAWallAtFullReverse) {
+    for (const char* preset : {"arcade", "gt", "formula"}) {
+        SCOPED_TRACE(preset);
+        const CarSpec spec = CarSpec::preset(preset);
+        World world = world_with(ground_with_wall(6.0), spec);
+        drive(world, {0.3, 0.0, 0.0}, 4.0);
+        Car& car = world.car(0);
+        const double at_wall = car.state().position.z;
+        ASSERT_GT(at_wall, 6.0 - 2.7) << "the car did not reach the wall";
+        ASSERT_LT(std::abs(forward_speed(car)), 0.2) << "the car is not stopped by the wall";
+
+        drive(world, {-1.0, 0.0, 0.0}, 3.0);
+        const double backed = at_wall - car.state().position.z;
+        RecordProperty(std::string(preset) + "_reversed_in_3_s_m", std::to_string(backed));
+        EXPECT_GT(backed, 5.0);
+        EXPECT_LT(forward_speed(car), -2.0);
+        EXPECT_TRUE(in_reverse_gear_if_geared(car));
+        EXPECT_EQ(world.car_resets(0), 0u);
+        // A snapshot file carries the reverse gear.
+        world.restore_state(decode_snapshot(encode_snapshot(world.save_state())).world);
+        EXPECT_TRUE(in_reverse_gear_if_geared(car));
+        if (spec.vehicle) continue;
+        // The arcade car's reverse drive fades to none at max_reverse_speed.
+        drive(world, {-1.0, 0.0, 0.0}, 3.0);
+        EXPECT_LE(-forward_speed(car), spec.max_reverse_speed);
+        EXPECT_GT(-forward_speed(car), 0.9 * spec.max_reverse_speed);
+    }
+}
+
+// Reverse engages only once the car is nearly stopped: at 20 m/s a negative throttle is a
+// closed throttle (the car coasts exactly as at throttle 0, in a forward gear); braked to a
+// stop with it held, the car then drives backwards.
+TEST(VehiclePhysics, ANegativeThrottleAtSpeedCoastsAndReversesOnlyOnceStopped) {
+    for (const char* preset : {"arcade", "gt"}) {
+        SCOPED_TRACE(preset);
+        const CarSpec spec = CarSpec::preset(preset);
+        World coasting = world_with(test::flat_grid(2000.0, 20), spec, 0.0, -900.0);
+        World reversing = world_with(test::flat_grid(2000.0, 20), spec, 0.0, -900.0);
+        for (World* world : {&coasting, &reversing}) {
+            drive(*world, {}, 1.0);
+            while (forward_speed(world->car(0)) < 20.0)
+                drive(*world, {1.0, 0.0, 0.0}, world->settings().dt_update);
+        }
+        drive(coasting, {0.0, 0.0, 0.0}, 1.0);
+        drive(reversing, {-1.0, 0.0, 0.0}, 1.0);
+        Car& car = reversing.car(0);
+        if (spec.vehicle) {
+            EXPECT_GE(car.vehicle()->state().gear, 1);
+        }
+        EXPECT_GT(forward_speed(car), 19.0);
+        EXPECT_EQ(forward_speed(car), forward_speed(coasting.car(0)));
+
+        while (forward_speed(car) > 0.1)
+            drive(reversing, {-1.0, 1.0, 0.0}, reversing.settings().dt_update);
+        drive(reversing, {-1.0, 0.0, 0.0}, 2.0);
+        EXPECT_LT(forward_speed(car), -2.0);
+        EXPECT_TRUE(in_reverse_gear_if_geared(car));
+        // And forwards again once the reversing car is nearly stopped.
+        while (forward_speed(car) < -0.1)
+            drive(reversing, {0.0, 1.0, 0.0}, reversing.settings().dt_update);
+        drive(reversing, {1.0, 0.0, 0.0}, 2.0);
+        EXPECT_GT(forward_speed(car), 2.0);
+        if (spec.vehicle) {
+            EXPECT_EQ(car.vehicle()->state().gear, 1);
+        }
+        EXPECT_EQ(reversing.car_resets(0), 0u);
     }
 }
 

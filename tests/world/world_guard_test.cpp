@@ -168,6 +168,11 @@ TEST(Preconditions, NaNInputsAreRejectedAndInfinitiesClamped) {
     EXPECT_EQ(car.inputs().throttle, 1.0);
     EXPECT_EQ(car.inputs().brake, 0.0);
     EXPECT_EQ(car.inputs().steer, 1.0);
+    // A negative throttle asks for reverse: kept down to -1, clamped beyond.
+    car.set_inputs({-0.4, 0.0, 0.0});
+    EXPECT_EQ(car.inputs().throttle, -0.4);
+    car.set_inputs({-kInf, 0.0, 0.0});
+    EXPECT_EQ(car.inputs().throttle, -1.0);
 }
 
 TEST(Preconditions, ACarInsideGeometryIsRejected) {

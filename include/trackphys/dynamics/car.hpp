@@ -29,10 +29,21 @@ struct BodyAxes;  // src/dynamics/body_axes.hpp: the sub-step's body axes
 
 /// The driver's controls. Out-of-range values are clamped by Car::set_inputs; NaN is
 /// rejected.
+///
+/// Reverse is a negative throttle: -1 asks for the full drive backwards. It drives the car
+/// backwards only once the car is nearly stopped or already rolling backwards (forward
+/// speed below CarSpec::reverse_engage_speed); while the car rolls forward faster than that
+/// a negative throttle is a closed throttle, and the car coasts (as an automatic gearbox
+/// refuses reverse at speed). A positive throttle likewise drives forwards again only once
+/// a reversing car is nearly stopped or rolling forwards. A game that maps one key to
+/// "brake, then reverse" sends brake while the car rolls forward and a negative throttle
+/// once it has stopped.
 struct CarInputs {
-    double throttle = 0.0;  ///< 0..1, fraction of the available drive force
-    double brake = 0.0;     ///< 0..1, fraction of the brake force
-    double steer = 0.0;     ///< -1..1, +1 = full left
+    /// -1..1, fraction of the available drive force: > 0 forwards, < 0 in reverse (see
+    /// above); the vehicle model's engine sees its size as the pedal.
+    double throttle = 0.0;
+    double brake = 0.0;  ///< 0..1, fraction of the brake force
+    double steer = 0.0;  ///< -1..1, +1 = full left
 };
 
 /// A car: its spec (validated), its rigid-body state and its inputs, and the force laws
@@ -54,7 +65,8 @@ class TRACKPHYS_API Car {
     /// not finite.
     void set_state(const RigidBodyState& state);
     const CarInputs& inputs() const { return inputs_; }
-    /// Sets the inputs, clamped to their ranges (infinities too). Throws trackphys::Error
+    /// Sets the inputs, clamped to their ranges (throttle and steer -1..1, brake 0..1;
+    /// infinities too). Throws trackphys::Error
     /// naming the input when one is NaN: a NaN is a bug upstream (a controller dividing by
     /// zero), not a command, and guessing a value for it would hide that bug.
     void set_inputs(const CarInputs& inputs);
@@ -239,6 +251,11 @@ class TRACKPHYS_API Car {
                                double available) const;
     /// speed_now: speed().
     double drive_available(double speed_now) const;
+    /// The drive force backwards at this speed (N, all wheels, >= 0): drive_available()
+    /// once the car is nearly stopped or rolling backwards, fading linearly to none at
+    /// CarSpec::max_reverse_speed; none while it rolls forwards. forward_speed: the
+    /// velocity along the body's forward axis (m/s).
+    double reverse_available(double speed_now, double forward_speed) const;
     /// Sets inputs_ (already in range) and the steered heading that follows from them.
     void take_inputs(const CarInputs& inputs);
     /// The contact material of an axle's wheels (rear tyres with their extra grip).

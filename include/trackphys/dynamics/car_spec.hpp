@@ -57,6 +57,11 @@ struct Suspension {
 struct TRACKPHYS_API CarSpec {
     /// The most ellipsoids a car may have.
     static constexpr std::size_t max_ellipsoids = 64;
+    /// A negative throttle drives a car backwards, and a positive one forwards again, only
+    /// below this speed in the old direction (m/s): nearly stopped or already rolling the
+    /// new way (CarInputs). The arcade car reads its body's forward speed, the vehicle
+    /// model its wheels' mean rolling speed, as a gearbox does.
+    static constexpr double reverse_engage_speed = 1.0;
 
     MassProperties mass;
     std::vector<CarEllipsoid> ellipsoids;
@@ -82,6 +87,10 @@ struct TRACKPHYS_API CarSpec {
     /// lateral grip that keeps the car on its line.
     double traction_limit = 0.8;
     double max_drive_power = 6.0e6;  ///< W: drive force is min(max_drive_force, P / v)
+    /// Top speed in reverse (m/s): the reverse drive force (a negative CarInputs::throttle)
+    /// fades linearly from the full drive force at rest to none at this speed backwards;
+    /// 0 gives the car no reverse. The vehicle model's reverse is its gearbox's instead.
+    double max_reverse_speed = 10.0;
     double max_brake_force = 3.0e4;  ///< N over all wheels, bounded by grip
     /// Share of the brake force at the front wheels: more than half, so that the rear
     /// keeps its grip under braking and the car stays straight.

@@ -58,7 +58,8 @@ struct TRACKPHYS_API Scenario {
     double heading_deg = 0.0;  ///< free mode: about +Y, 0 = +X, 90 = -Z (degrees)
     CarSpec car = CarSpec::default_car();
     double target_speed_kmh = 600.0;  ///< autopilot: speed on straights, (0, 1500]
-    CarInputs inputs{0.5, 0.0, 0.0};  ///< free mode: fixed throttle, brake, steer
+    /// Free mode: fixed throttle (-1..1, < 0 reverse), brake (0..1) and steer (-1..1).
+    CarInputs inputs{0.5, 0.0, 0.0};
     /// Duration: laps of the generated track (autopilot only) and/or simulated seconds,
     /// whichever ends first; both 0 means one lap (autopilot). Free mode needs seconds.
     int laps = 0;

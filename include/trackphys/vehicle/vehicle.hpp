@@ -29,8 +29,11 @@ struct WheelState {
 
 /// Everything of a Vehicle that a later sub-step reads: its part of a car's snapshot.
 struct VehicleState {
+    /// The gear value of reverse (GearboxSpec::reverse_ratio).
+    static constexpr int reverse_gear = -1;
+
     std::vector<WheelState> wheels;  ///< in CarSpec ellipsoid order, wheels only
-    int gear = 1;                    ///< 1 = first
+    int gear = 1;                    ///< 1 = first .. the top gear; reverse_gear in reverse
     double shift_time_left = 0.0;    ///< s until the gear change completes
     double clutch = 1.0;             ///< engagement, 0 open .. 1 closed
 
@@ -78,7 +81,8 @@ class TRACKPHYS_API Vehicle {
 
     /// The drivetrain's share of a sub-step of h seconds: the shifter, the clutch, the
     /// engine's torque through the gearbox and differentials, and the brakes, at throttle
-    /// and brake in 0..1 and the car's speed (m/s), into each wheel's torques.
+    /// in -1..1 (< 0 asks for reverse, CarInputs), brake in 0..1 and the car's speed (m/s),
+    /// into each wheel's torques.
     void begin_substep(double throttle, double brake, double car_speed, double h);
 
     /// The tyre force in its contact frame (N) of wheel slot w under load (N, 0 when in
@@ -128,7 +132,10 @@ class TRACKPHYS_API Vehicle {
 
     TyreForce slow_wheel_force(const Wheel& wheel, WheelState& s, double load,
                                double rolling_velocity, double lateral_velocity, double h);
-    void shift_gears(double drivetrain_rpm, double throttle, double h);
+    /// rolling_speed: the wheels' mean rolling speed (m/s, < 0 backwards).
+    void shift_gears(double drivetrain_rpm, double throttle, double rolling_speed, double h);
+    /// The current gear's ratio, negative in reverse (without the final drive).
+    double gear_ratio() const;
     double engine_torque(double rpm, double throttle) const;
     double gearbox_torque(double engine_torque, double gear_ratio) const;
     void lock_axle(bool front, double torque, double h);

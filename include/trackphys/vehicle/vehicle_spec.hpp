@@ -36,6 +36,11 @@ struct GearboxSpec {
     /// Below this drivetrain speed the clutch slips: the engine holds this speed and passes
     /// its torque at it (a launch). In [engine.idle_rpm, shift_up_rpm].
     double launch_rpm = 3000.0;
+    /// The reverse gear's ratio (> 0; it turns the wheels backwards). The shifter engages
+    /// it under a negative throttle once the car is nearly stopped or rolling backwards
+    /// (CarInputs), and first gear again under a positive one; it never shifts on rpm in
+    /// reverse, so the redline bounds the speed backwards.
+    double reverse_ratio = 3.5;
 };
 
 enum class DifferentialKind {
@@ -75,6 +80,10 @@ struct VehicleSpec {
     /// Below this speed the tyres add damping to their deflection (m/s), so that a car
     /// coming to rest does not rock on its tyres' springs.
     double low_speed = 3.0;
+    /// Rolling resistance coefficient c_rr, in [0, 0.1]: each wheel on the road is held
+    /// back by c_rr F_z against its rolling direction, faded in over the first 0.5 m/s of
+    /// rolling speed so that a car at rest does not creep.
+    double rolling_resistance = 0.012;
 
     /// Empty when every field is in range; else the first problem, naming the field
     /// (e.g. "CarSpec.vehicle.gearbox.ratios[2] must be finite and > 0, got 0").

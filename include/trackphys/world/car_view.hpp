@@ -43,8 +43,8 @@ struct CarView {
     glm::dvec3 linear_velocity{0.0};   ///< of the centre of mass, world (m/s)
     glm::dvec3 angular_velocity{0.0};  ///< world (rad/s)
     /// The vehicle model's engine speed of the last sub-step (rev/min; Vehicle::engine_rpm)
-    /// and gear (1 = first; VehicleState::gear); 0 and 0 for the arcade car, which has
-    /// neither.
+    /// and gear (1 = first, -1 = reverse; VehicleState::gear); 0 and 0 for the arcade car,
+    /// which has neither.
     double engine_rpm = 0.0;
     int gear = 0;
     std::vector<WheelView> wheels;  ///< the spec's wheels, in CarSpec order
