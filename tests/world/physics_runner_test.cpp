@@ -235,11 +235,13 @@ TEST_P(PhysicsRunnerView, ViewInterpolatesBetweenThePublishedStates) {
     expect_same_view(runner_.view(0, t0), before);
     expect_same_view(runner_.view(0, t0 - 1.0), before);
     expect_same_view(runner_.view(0, t1 + 1.0), after);
-    // The spin angle advances by the trapezoid of the update's two spins.
+    // The spin angle advances by the trapezoid of the update's two spins over dt_update (t1 -
+    // t0 is that to rounding only).
+    const double dt = runner_.world().settings().dt_update;
     for (std::size_t w = 0; w < after.wheels.size(); ++w)
         EXPECT_EQ(after.wheels[w].spin_angle,
                   before.wheels[w].spin_angle +
-                      0.5 * (before.wheels[w].spin + after.wheels[w].spin) * (t1 - t0));
+                      0.5 * (before.wheels[w].spin + after.wheels[w].spin) * dt);
 
     CarView mid;
     for (const double share : {0.25, 0.5, 0.75}) {
