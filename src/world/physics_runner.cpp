@@ -22,7 +22,10 @@ std::vector<CarView> views_of(const World& world) {
 }  // namespace
 
 PhysicsRunner::PhysicsRunner(World world, bool real_time)
-    : world_(std::move(world)), cars_(world_.car_count()), real_time_(real_time) {
+    : world_(std::move(world)),
+      cars_(world_.car_count()),
+      roster_version_(world_.roster_version()),
+      real_time_(real_time) {
     // Every buffer starts as the current state (both ends of the pair), sized for the cars
     // (and each car for its wheels) so that publishing never allocates.
     last_published_ = views_of(world_);
@@ -41,10 +44,11 @@ PhysicsRunner::~PhysicsRunner() {
 
 void PhysicsRunner::run_to(std::uint64_t last_update) {
     if (thread_.joinable()) throw Error("PhysicsRunner::run_to: the physics thread runs already");
-    if (world_.car_count() != cars_)
-        throw Error("PhysicsRunner::run_to: the world has " + std::to_string(world_.car_count()) +
-                    " cars, the runner publishes " + std::to_string(cars_) +
-                    " (a runner's world keeps its cars)");
+    if (world_.roster_version() != roster_version_)
+        throw Error(
+            "PhysicsRunner::run_to: cars were added to or removed from world() since "
+            "the runner was made (it publishes the " +
+            std::to_string(cars_) + " cars it was made with: make a new runner for another field)");
     stopping_.store(false);
     error_ = nullptr;
     thread_ = std::thread([this, last_update] { loop(last_update); });
@@ -66,7 +70,7 @@ World& PhysicsRunner::world() {
 }
 
 void PhysicsRunner::set_inputs(std::uint64_t update, std::size_t car, const CarInputs& inputs) {
-    if (car >= cars_) throw Error("PhysicsRunner::set_inputs: no car " + std::to_string(car));
+    check_car(car, "PhysicsRunner::set_inputs");
     if (std::isnan(inputs.throttle) || std::isnan(inputs.brake) || std::isnan(inputs.steer))
         throw Error("PhysicsRunner::set_inputs: NaN input for car " + std::to_string(car));
     std::lock_guard lock(inputs_mutex_);
@@ -134,20 +138,27 @@ const PhysicsRunner::Frame& PhysicsRunner::front() const {
 
 std::uint64_t PhysicsRunner::published_update() const { return front().update; }
 
+void PhysicsRunner::check_car(std::size_t car, const char* caller) const {
+    if (car >= cars_)
+        throw Error(std::string(caller) + ": no car " + std::to_string(car) + ": the runner has " +
+                    std::to_string(cars_) + (cars_ == 1 ? " car" : " cars"));
+}
+
 double PhysicsRunner::Frame::alpha(double t) const {
     const double span = time - previous_time;
     return span > 0.0 ? std::clamp((t - previous_time) / span, 0.0, 1.0) : 1.0;
 }
 
 CarPose PhysicsRunner::pose(std::size_t car, double t) const {
+    check_car(car, "PhysicsRunner::pose");
     const Frame& frame = front();
-    return detail::interpolate(frame.previous.at(car).pose, frame.current.at(car).pose,
-                               frame.alpha(t));
+    return detail::interpolate(frame.previous[car].pose, frame.current[car].pose, frame.alpha(t));
 }
 
 void PhysicsRunner::view(std::size_t car, double t, CarView& out) const {
+    check_car(car, "PhysicsRunner::view");
     const Frame& frame = front();
-    detail::interpolate(frame.previous.at(car), frame.current.at(car), frame.alpha(t), out);
+    detail::interpolate(frame.previous[car], frame.current[car], frame.alpha(t), out);
 }
 
 }  // namespace trackphys

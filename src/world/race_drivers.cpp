@@ -168,7 +168,15 @@ double RaceDrivers::following_speed(const CarAhead& ahead, double speed) const {
     return std::max(speed - ahead.closing + kGapRate * (ahead.gap - keep), kCrawling);
 }
 
+void RaceDrivers::check_field(const World& world, const char* caller) const {
+    if (world.car_count() != pilots_.size())
+        throw Error(std::string(caller) + ": the world has " + std::to_string(world.car_count()) +
+                    " cars, the race " + std::to_string(pilots_.size()) +
+                    " (a race drives the field add_cars put in the world)");
+}
+
 void RaceDrivers::drive(World& world) {
+    check_field(world, "RaceDrivers::drive");
     // Before the first update a pilot has not found its car: every car would read as
     // standing at the start line, and the grid would find nobody ahead.
     for (std::size_t i = 0; i < pilots_.size(); ++i)
@@ -204,6 +212,7 @@ void RaceDrivers::drive(World& world) {
 }
 
 void RaceDrivers::after_update(World& world) {
+    check_field(world, "RaceDrivers::after_update");
     for (std::size_t i = 0; i < pilots_.size(); ++i) {
         const int before = pilots_[i].laps();
         pilots_[i].locate(world.car(i));

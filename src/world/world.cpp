@@ -68,6 +68,7 @@ std::size_t World::add_car(const CarSpec& spec, const RigidBodyState& state) {
     for (const CarSlot& other : cars_)
         if (car.share_ellipsoids_with(other.car)) break;
     cars_.emplace_back(std::move(car), MidPhase(settings_.mid_phase, *statics_, trees_));
+    ++roster_version_;
     return cars_.size() - 1;
 }
 
@@ -84,6 +85,7 @@ void World::teleport_car(std::size_t i, const RigidBodyState& state) {
 void World::remove_car(std::size_t i) {
     car_slot(i);  // throws past the last car
     cars_.erase(cars_.begin() + static_cast<std::ptrdiff_t>(i));
+    ++roster_version_;
     // The workers' scratch is sized at the next update for the field it has then: by the car
     // count alone, a removal and an add_car of a car with more ellipsoids would go unseen.
     work_->scratch_cars = 0;

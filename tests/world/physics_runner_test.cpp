@@ -7,6 +7,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstdint>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -15,6 +16,7 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include "support/error_message.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/world/world.hpp"
 #include "world/world_scenes.hpp"
@@ -309,10 +311,27 @@ TEST(PhysicsRunner, RenderThreadReadsViewsWhileThePhysicsThreadRuns) {
 }
 
 TEST(PhysicsRunner, RefusesToRunAWorldWhoseCarsChanged) {
+    PhysicsRunner removed(two_cars(), false);
+    removed.world().remove_car(1);
+    EXPECT_THROW(removed.run_to(1), Error);
+    EXPECT_EQ(removed.world().update_count(), 0u);
+
+    // The same count, another car: its views would be read with the old car's wheels.
+    PhysicsRunner replaced(two_cars(CarSpec::preset("gt")), false);
+    RigidBodyState state = replaced.world().car(0).state();
+    state.position.y = CarSpec::default_car().lowest_point_depth() + 0.001;
+    replaced.world().remove_car(0);
+    replaced.world().add_car(CarSpec::default_car(), state);
+    EXPECT_THROW(replaced.run_to(1), Error);
+    EXPECT_EQ(replaced.world().update_count(), 0u);
+}
+
+TEST(PhysicsRunner, ACarPastThePublishedOnesIsAnErrorNamingBoth) {
     PhysicsRunner runner(two_cars(), false);
-    runner.world().remove_car(1);
-    EXPECT_THROW(runner.run_to(1), Error);
-    EXPECT_EQ(runner.world().update_count(), 0u);
+    for (const std::string& why : {test::error_of([&] { runner.pose(2, 0.0); }),
+                                   test::error_of([&] { runner.view(2, 0.0); }),
+                                   test::error_of([&] { runner.set_inputs(1, 2, CarInputs{}); })})
+        EXPECT_NE(why.find("no car 2: the runner has 2 cars"), std::string::npos) << why;
 }
 
 TEST(PhysicsRunner, StopEndsAnOpenRun) {

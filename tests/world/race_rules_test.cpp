@@ -67,6 +67,19 @@ TEST(RaceRules, TheFirstInputsSeeEveryCarWhereItStands) {
     EXPECT_EQ(drivers.autopilot(0).speed_limit(), std::numeric_limits<double>::infinity());
 }
 
+// A race drives the field add_cars made: after a car is removed its pilots would drive
+// the wrong cars, so drive and after_update refuse the world.
+TEST(RaceRules, AWorldWhoseFieldChangedIsRefused) {
+    const test::TrackWorld& track = test::default_track();
+    World world(track.statics, WorldSettings{}, track.trees);
+    RaceDrivers drivers(track.track, CarSpec::default_car(), 3);
+    drivers.add_cars(world);
+    world.remove_car(1);
+    for (const std::string& why : {test::error_of([&] { drivers.drive(world); }),
+                                   test::error_of([&] { drivers.after_update(world); })})
+        EXPECT_NE(why.find("the world has 2 cars, the race 3"), std::string::npos) << why;
+}
+
 // The lanes are read no farther than pass_look_ahead, so a merge_gap beyond it would act as
 // pass_look_ahead: refused, naming both. The rule thresholds are validated with the rest.
 TEST(RaceRules, SettingsThatCannotActAsWrittenAreRefused) {

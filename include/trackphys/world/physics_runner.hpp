@@ -72,7 +72,8 @@ class TRACKPHYS_API PhysicsRunner {
     /// this car's wheels). The ends are the states' views exactly; in between, velocities,
     /// engine rpm and each wheel's position, suspension, steer, spin and spin angle are
     /// linear, each wheel's orientation is made from the interpolated body orientation and
-    /// angles, and the gear is the newer state's. Throws std::out_of_range for no such car.
+    /// angles, and the gear is the newer state's. Throws trackphys::Error for no such car, as pose and
+    /// set_inputs do.
     void view(std::size_t car, double t, CarView& out) const;
     /// The same, returned (allocates the wheels).
     CarView view(std::size_t car, double t) const {
@@ -101,6 +102,8 @@ class TRACKPHYS_API PhysicsRunner {
         CarInputs inputs;
     };
 
+    // Throws trackphys::Error naming the caller for a car past the published ones.
+    void check_car(std::size_t car, const char* caller) const;
     void loop(std::uint64_t last_update);
     void apply_due_inputs();
     void publish();
@@ -109,6 +112,7 @@ class TRACKPHYS_API PhysicsRunner {
 
     World world_;
     std::size_t cars_;
+    std::uint64_t roster_version_;  // the world's when the runner was made
     bool real_time_;
     std::thread thread_;
     std::atomic<bool> stopping_{false};

@@ -116,7 +116,8 @@ class TRACKPHYS_API RaceDrivers {
     /// Adds the field to `world` (which must hold no cars yet) on the grid.
     void add_cars(World& world) const;
     /// Sets every car's inputs for the next World::update, from where every car stands
-    /// (the first call locates them all before any car decides).
+    /// (the first call locates them all before any car decides). Throws trackphys::Error,
+    /// as after_update does, when the world's car count is not the race's.
     void drive(World& world);
     /// Call after each World::update: counts the laps each car completed in it, timed at
     /// world.time(), and rescues every car that left the track (RaceSettings::
@@ -150,6 +151,8 @@ class TRACKPHYS_API RaceDrivers {
 
   private:
     using RoadPosition = detail::RoadPosition;
+    // Throws unless the world holds as many cars as the race drives.
+    void check_field(const World& world, const char* caller) const;
     RoadPosition road_position(const World& world, std::size_t car) const;
     // The lane of car i's grid column (m left of the centreline).
     double own_lane(std::size_t car) const;

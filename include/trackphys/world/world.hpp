@@ -99,6 +99,10 @@ class TRACKPHYS_API World {
     /// past car_count().
     void remove_car(std::size_t i);
     std::size_t car_count() const;
+    /// How many add_car and remove_car calls the world has had: a holder of car indices
+    /// (PhysicsRunner) keeps it to tell that the cars are still those it knows, which the
+    /// count alone does not (a removal and an add leave it as it was).
+    std::uint64_t roster_version() const { return roster_version_; }
     /// Car i (throws trackphys::Error past car_count(), as every call taking a car index
     /// does): its inputs and state may be set through it, but it must not be replaced by
     /// another car (assigned), since the world places its ellipsoids into copies made by
@@ -193,6 +197,7 @@ class TRACKPHYS_API World {
     WorldSettings settings_;
     std::shared_ptr<const ColliderPlaneTrees> trees_;  // never null; every car's MidPhase reads it
     std::vector<CarSlot> cars_;
+    std::uint64_t roster_version_ = 0;
     std::unique_ptr<UpdateWork> work_;
     std::uint64_t updates_ = 0;
     UpdateProfile profile_;
