@@ -13,8 +13,9 @@ Wrench Car::vehicle_wrench(std::span<const Contact> deepest, const WheelLoads& w
                            const detail::BodyAxes& axes, double h) {
     Vehicle& vehicle = *vehicle_;
     const double speed_now = speed();
-    vehicle.begin_substep(inputs_.throttle, inputs_.brake, speed_now, h);
     const glm::dvec3& forward = axes.forward;
+    vehicle.begin_substep(inputs_.throttle, inputs_.brake, speed_now,
+                          glm::dot(state_.linear_velocity, forward), h);
     Wrench wrench;
     // A body ellipsoid, or a wheel that cannot roll: pushed like the arcade car's body.
     const auto add_body_contact = [&](const Contact& contact) {

@@ -40,6 +40,10 @@ double limited_slip_transfer(double a, double b, double capacity, double inertia
 VehicleState Vehicle::rolling_at(double speed) const {
     VehicleState rolling;
     for (const Wheel& wheel : wheels_) rolling.wheels.push_back({.spin = speed / wheel.radius});
+    if (speed <= -CarSpec::reverse_engage_speed) {
+        rolling.gear = VehicleState::reverse_gear;
+        return rolling;
+    }
     const GearboxSpec& box = spec_.gearbox;
     const int top = static_cast<int>(box.ratios.size());
     // The driven wheels' mean spin, as the gearbox sees it (drive shares sum to 1).
@@ -82,7 +86,8 @@ double Vehicle::gear_ratio() const {
 // backwards slower than that; otherwise up a gear above shift_up_rpm under throttle, down
 // below shift_down_rpm (never in reverse, which has one gear). A change opens the clutch
 // for shift_time, then it closes over clutch_engage_time.
-void Vehicle::shift_gears(double drivetrain_rpm, double throttle, double rolling_speed, double h) {
+void Vehicle::shift_gears(double drivetrain_rpm, double throttle, double rolling_speed,
+                          double forward_speed, double h) {
     const GearboxSpec& box = spec_.gearbox;
     if (state_.shift_time_left > 0.0) {
         state_.shift_time_left = std::max(0.0, state_.shift_time_left - h);
@@ -94,9 +99,13 @@ void Vehicle::shift_gears(double drivetrain_rpm, double throttle, double rolling
     const int top = static_cast<int>(box.ratios.size());
     constexpr int reverse = VehicleState::reverse_gear;
     int gear = state_.gear;
-    if (throttle < 0.0 && gear != reverse && rolling_speed < CarSpec::reverse_engage_speed)
+    // Wheels and body both nearly stopped or moving the new way: locked wheels on a car
+    // still sliding forwards read as stopped.
+    constexpr double engage = CarSpec::reverse_engage_speed;
+    if (throttle < 0.0 && gear != reverse && rolling_speed < engage && forward_speed < engage)
         gear = reverse;
-    else if (throttle > 0.0 && gear == reverse && rolling_speed > -CarSpec::reverse_engage_speed)
+    else if (throttle > 0.0 && gear == reverse && rolling_speed > -engage &&
+             forward_speed > -engage)
         gear = 1;
     else if (gear == reverse)
         return;
@@ -127,7 +136,8 @@ double Vehicle::gearbox_torque(double engine_torque, double gear_ratio) const {
            (1.0 + coupling * gear_ratio * drive_shares_squared_);
 }
 
-void Vehicle::begin_substep(double throttle, double brake, double car_speed, double h) {
+void Vehicle::begin_substep(double throttle, double brake, double car_speed, double forward_speed,
+                            double h) {
     // The gearbox output turns at sum f_k w_k (the differentials average their outputs).
     double driven_spin = 0.0;
     double axle_spin[2] = {0.0, 0.0};  // front, rear
@@ -142,7 +152,7 @@ void Vehicle::begin_substep(double throttle, double brake, double car_speed, dou
 
     const GearboxSpec& box = spec_.gearbox;
     shift_gears(driven_spin * gear_ratio() * box.final_drive * kRpmPerRadPerSecond, throttle,
-                rolling_speed, h);
+                rolling_speed, forward_speed, h);
     // In reverse the ratio is negative: the engine turns forwards (rpm > 0) while the wheels
     // turn backwards, and its torque drives them backwards.
     const double overall_ratio = gear_ratio() * box.final_drive;
@@ -151,7 +161,8 @@ void Vehicle::begin_substep(double throttle, double brake, double car_speed, dou
     // the driver asks for the other direction before the shifter could engage it.
     const bool reversing = state_.gear == VehicleState::reverse_gear;
     const double pedal = reversing ? std::max(-throttle, 0.0) : std::max(throttle, 0.0);
-    const double direction = reversing ? -1.0 : 1.0;  // of the drive, along the wheels' spin
+    const double direction = reversing ? -1.0 : 1.0;         // of the drive, along the wheels' spin
+    const double moving = forward_speed < 0.0 ? -1.0 : 1.0;  // of the car along its heading
 
     // Above launch_rpm the closed clutch locks engine and wheels together. Below it the
     // clutch slips with the engine held at launch_rpm, passing that speed's torque under
@@ -204,8 +215,9 @@ void Vehicle::begin_substep(double throttle, double brake, double car_speed, dou
             wheel.drive_torque *= slip_limiter(wheel.slip.combined);
         wheel.brake_torque = brake * wheel.brake_share;
         // Anti-lock acts above walking pace only, as real systems do: at rest the brake
-        // must hold the car however the tyres deflect.
-        if (spec_.anti_lock && car_speed > 1.0 && direction * slip < 0.0)
+        // must hold the car however the tyres deflect. A braked wheel turns slower than
+        // the road moves, whichever way the car goes and whatever the gear.
+        if (spec_.anti_lock && car_speed > 1.0 && moving * slip < 0.0)
             wheel.brake_torque *= slip_limiter(wheel.slip.combined);
     }
 }

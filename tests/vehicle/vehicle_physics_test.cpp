@@ -296,6 +296,71 @@ TEST(VehiclePhysics, ATeleportedCarArrivesRollingInAGearForItsSpeed) {
     EXPECT_EQ(world.car_resets(0), 0u);
 }
 
+// A reversing car teleported (a rescue of a car backing out) keeps reversing: at or below
+// -reverse_engage_speed it arrives in reverse, where the shifter would hold it; above, in
+// a forward gear.
+TEST(VehiclePhysics, ATeleportBackwardsArrivesInReverse) {
+    const Vehicle gt(CarSpec::preset("gt"));
+    const double engage = CarSpec::reverse_engage_speed;
+    EXPECT_EQ(gt.rolling_at(-5.0).gear, VehicleState::reverse_gear);
+    EXPECT_EQ(gt.rolling_at(-engage).gear, VehicleState::reverse_gear);
+    EXPECT_EQ(gt.rolling_at(-0.5 * engage).gear, 1);
+    for (const WheelState& wheel : gt.rolling_at(-5.0).wheels) EXPECT_LT(wheel.spin, 0.0);
+}
+
+// A car sliding at `speed` along its heading (< 0 backwards) on the flat, its wheels rolling
+// with it in `gear`: a spun car still in a forward gear, or one braking on locked wheels.
+World sliding(const CarSpec& spec, double speed, int gear) {
+    World world = world_with(test::flat_grid(2000.0, 20), spec, 0.0, -500.0);
+    drive(world, {}, 1.0);
+    Car& car = world.car(0);
+    RigidBodyState state = car.state();
+    state.linear_velocity = state.orientation * glm::dvec3(0.0, 0.0, speed);
+    car.set_state(state);
+    VehicleState rolling = car.vehicle()->rolling_at(speed);
+    rolling.gear = gear;
+    car.set_vehicle_state(rolling);
+    return world;
+}
+
+// A braked wheel turns slower than the road moves whichever way the car goes: anti-lock
+// must read the slip against the car's motion, not against the gear's direction. A gt spun
+// round, sliding backwards at 15 m/s in first gear under full brake, keeps its wheels
+// turning (near the peak slip), as it does sliding forwards.
+TEST(VehiclePhysics, AntiLockHoldsTheWheelsOfACarSlidingBackwardsInAForwardGear) {
+    for (const double speed : {15.0, -15.0}) {
+        SCOPED_TRACE(speed);
+        const CarSpec spec = CarSpec::preset("gt");
+        const double radius = PointCar(spec, 0.0).radius;
+        World world = sliding(spec, speed, 1);
+        const Car& car = world.car(0);
+        double least_rolling_share = 1.0;
+        for (int i = 0; i < 30; ++i) {
+            drive(world, {0.0, 1.0, 0.0}, world.settings().dt_update);
+            for (const WheelState& wheel : car.vehicle()->state().wheels)
+                least_rolling_share =
+                    std::min(least_rolling_share, wheel.spin * radius / forward_speed(car));
+        }
+        EXPECT_GT(std::abs(forward_speed(car)), 10.0);
+        EXPECT_GT(least_rolling_share, 0.5) << "a wheel locked";
+    }
+}
+
+// Reverse engages only once the car is nearly stopped, wheels and body: a gt without
+// anti-lock, braked to locked wheels at 30 m/s with the throttle at -1, must not engage
+// reverse while it still slides forwards (its wheels' rolling speed alone reads 0).
+TEST(VehiclePhysics, LockedWheelsOnACarSlidingForwardsDoNotEngageReverse) {
+    CarSpec spec = CarSpec::preset("gt");
+    spec.vehicle->anti_lock = false;
+    World world = sliding(spec, 30.0, 3);
+    const Car& car = world.car(0);
+    while (forward_speed(car) > 2.0) {
+        drive(world, {-1.0, 1.0, 0.0}, world.settings().dt_update);
+        ASSERT_NE(car.vehicle()->state().gear, VehicleState::reverse_gear)
+            << "at " << forward_speed(car) << " m/s";
+    }
+}
+
 // Full brake from 20 m/s to a stop, through the explicit spin update above low_speed and
 // the damped one below it: the brake takes each wheel's spin towards zero and holds it
 // there, never past it (a brake that reversed a wheel would push the car backwards).
@@ -582,7 +647,7 @@ TEST(VehiclePhysics, ASidewaysSlidingWheelGripsAsTheCurveSaysEitherSideOfLowSpee
             VehicleState state = vehicle.rolling_at(rolling);
             for (WheelState& wheel : state.wheels) wheel.lateral_slip = -sideways / rolling;
             vehicle.set_state(state);
-            vehicle.begin_substep(0.0, 0.0, std::hypot(rolling, sideways), h);
+            vehicle.begin_substep(0.0, 0.0, std::hypot(rolling, sideways), rolling, h);
             lateral[side] = vehicle.wheel_force(0, load, rolling, sideways, h).lateral;
             const double curve = tyre.force(0.0, -sideways / rolling, load).lateral;
             EXPECT_LE(std::abs(lateral[side]), std::abs(curve) * (1.0 + 1e-12))

@@ -66,7 +66,9 @@ class TRACKPHYS_API Vehicle {
     VehicleState at_rest() const { return rolling_at(0.0); }
     /// This vehicle's state rolling at speed (m/s, along its heading) as if it had driven
     /// so (a teleport): every wheel spinning at speed / R without slip, no road torque, the
-    /// lowest gear whose engine speed is at most shift_up_rpm, the clutch closed.
+    /// lowest gear whose engine speed is at most shift_up_rpm (reverse at or below
+    /// -CarSpec::reverse_engage_speed, where the shifter keeps a reversing car), the clutch
+    /// closed.
     VehicleState rolling_at(double speed) const;
 
     /// The wheel slot of ellipsoid i (-1 for a body ellipsoid).
@@ -81,9 +83,10 @@ class TRACKPHYS_API Vehicle {
 
     /// The drivetrain's share of a sub-step of h seconds: the shifter, the clutch, the
     /// engine's torque through the gearbox and differentials, and the brakes, at throttle
-    /// in -1..1 (< 0 asks for reverse, CarInputs), brake in 0..1 and the car's speed (m/s),
-    /// into each wheel's torques.
-    void begin_substep(double throttle, double brake, double car_speed, double h);
+    /// in -1..1 (< 0 asks for reverse, CarInputs), brake in 0..1, the car's speed (m/s) and
+    /// its velocity along its heading (m/s, < 0 backwards), into each wheel's torques.
+    void begin_substep(double throttle, double brake, double car_speed, double forward_speed,
+                       double h);
 
     /// The tyre force in its contact frame (N) of wheel slot w under load (N, 0 when in
     /// the air) with the contact point moving at rolling_velocity along the wheel's
@@ -132,8 +135,10 @@ class TRACKPHYS_API Vehicle {
 
     TyreForce slow_wheel_force(const Wheel& wheel, WheelState& s, double load,
                                double rolling_velocity, double lateral_velocity, double h);
-    /// rolling_speed: the wheels' mean rolling speed (m/s, < 0 backwards).
-    void shift_gears(double drivetrain_rpm, double throttle, double rolling_speed, double h);
+    /// rolling_speed: the wheels' mean rolling speed; forward_speed: the body's along its
+    /// heading (m/s, < 0 backwards).
+    void shift_gears(double drivetrain_rpm, double throttle, double rolling_speed,
+                     double forward_speed, double h);
     /// The current gear's ratio, negative in reverse (without the final drive).
     double gear_ratio() const;
     double engine_torque(double rpm, double throttle) const;

@@ -34,7 +34,9 @@ struct GearboxSpec {
     double shift_time = 0.1;           ///< s without drive while the gear changes
     double clutch_engage_time = 0.05;  ///< s for the clutch to close after a shift
     /// Below this drivetrain speed the clutch slips: the engine holds this speed and passes
-    /// its torque at it (a launch). In [engine.idle_rpm, shift_up_rpm].
+    /// its torque at it under the pedal (a launch) and, as the pedal closes, its drag at the
+    /// drivetrain's speed (engine braking that fades to none at standstill). In
+    /// [engine.idle_rpm, shift_up_rpm].
     double launch_rpm = 3000.0;
     /// The reverse gear's ratio (> 0; it turns the wheels backwards). The shifter engages
     /// it under a negative throttle once the car is nearly stopped or rolling backwards
@@ -82,7 +84,9 @@ struct VehicleSpec {
     double low_speed = 3.0;
     /// Rolling resistance coefficient c_rr, in [0, 0.1]: each wheel on the road is held
     /// back by c_rr F_z against its rolling direction, faded in over the first 0.5 m/s of
-    /// rolling speed so that a car at rest does not creep.
+    /// its contact's speed along the wheel's heading so that a car at rest does not creep.
+    /// It adds to the tyre's force after the friction ellipse (a locked wheel sliding on
+    /// a road of grip 1 is held back by (mu + c_rr) F_z).
     double rolling_resistance = 0.012;
 
     /// Empty when every field is in range; else the first problem, naming the field
