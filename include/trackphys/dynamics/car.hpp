@@ -34,8 +34,10 @@ struct BodyAxes;  // src/dynamics/body_axes.hpp: the sub-step's body axes
 /// backwards only once the car is nearly stopped or already rolling backwards (forward
 /// speed below CarSpec::reverse_engage_speed); while the car rolls forward faster than that
 /// a negative throttle is a closed throttle, and the car coasts (as an automatic gearbox
-/// refuses reverse at speed). A positive throttle likewise drives forwards again only once
-/// a reversing car is nearly stopped or rolling forwards. A game that maps one key to
+/// refuses reverse at speed). A vehicle model in reverse gear likewise takes a positive
+/// throttle as a closed one until the car is nearly stopped or rolling forwards; the
+/// arcade car, which has no gear, drives forwards at any speed under a positive throttle
+/// (a spun car sliding backwards can drive out of it). A game that maps one key to
 /// "brake, then reverse" sends brake while the car rolls forward and a negative throttle
 /// once it has stopped.
 struct CarInputs {

@@ -57,10 +57,11 @@ struct Suspension {
 struct TRACKPHYS_API CarSpec {
     /// The most ellipsoids a car may have.
     static constexpr std::size_t max_ellipsoids = 64;
-    /// A negative throttle drives a car backwards, and a positive one forwards again, only
-    /// below this speed in the old direction (m/s): nearly stopped or already rolling the
-    /// new way (CarInputs). The arcade car reads its body's forward speed, the vehicle
-    /// model its wheels' mean rolling speed, as a gearbox does.
+    /// A negative throttle drives a car backwards only below this forward speed (m/s):
+    /// nearly stopped or already rolling backwards; a vehicle model in reverse gear goes
+    /// back to first under a positive throttle only below this speed backwards (CarInputs).
+    /// The arcade car reads its body's forward speed, the vehicle model its wheels' mean
+    /// rolling speed, as a gearbox does.
     static constexpr double reverse_engage_speed = 1.0;
 
     MassProperties mass;

@@ -22,7 +22,7 @@ struct CarPose {
 struct WheelView {
     std::size_t ellipsoid = 0;  ///< its index in CarSpec::ellipsoids
     /// The wheel ellipsoid's centre in the world (m): Car::world_ellipsoid(i).center(),
-    /// moved up the body by its suspension travel.
+    /// which is already where the suspension travel puts it.
     glm::dvec3 position{0.0};
     glm::dquat orientation{1.0, 0.0, 0.0, 0.0};  ///< the wheel's frame (see above)
     double suspension = 0.0;   ///< compression from full droop (m), Car::suspension(i)
