@@ -81,9 +81,9 @@ double Vehicle::gear_ratio() const {
                : box.ratios[static_cast<std::size_t>(state_.gear - 1)];
 }
 
-// Into reverse under a negative throttle once the wheels roll forwards slower than
-// CarSpec::reverse_engage_speed, and back into first under a positive one once they roll
-// backwards slower than that; otherwise up a gear above shift_up_rpm under throttle, down
+// Into reverse under a negative throttle once the wheels and the body move forwards slower
+// than CarSpec::reverse_engage_speed, and back into first under a positive one once they
+// move backwards slower than that; otherwise up a gear above shift_up_rpm under throttle, down
 // below shift_down_rpm (never in reverse, which has one gear). A change opens the clutch
 // for shift_time, then it closes over clutch_engage_time.
 void Vehicle::shift_gears(double drivetrain_rpm, double throttle, double rolling_speed,
