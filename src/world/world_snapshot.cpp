@@ -12,6 +12,7 @@
 #include <glm/geometric.hpp>
 
 #include "core/fnv1a.hpp"
+#include "dynamics/car_access.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/math/types.hpp"
 #include "trackphys/world/world.hpp"
@@ -216,7 +217,7 @@ void World::restore_state(const WorldSnapshot& snapshot) {
             reject("car " + std::to_string(i) + ": " + why);
         try {
             Car copy = car;
-            copy.restore(saved.state, saved.inputs, saved.suspension);
+            detail::CarAccess::restore(copy, saved.state, saved.inputs, saved.suspension);
             if (saved.vehicle.has_value() != (car.vehicle() != nullptr))
                 throw Error(car.vehicle() ? "the snapshot has no vehicle state for its model"
                                           : "the snapshot has a vehicle state for an arcade car");
@@ -230,7 +231,7 @@ void World::restore_state(const WorldSnapshot& snapshot) {
     for (std::size_t i = 0; i < cars_.size(); ++i) {
         CarSlot& slot = cars_[i];
         const CarSnapshot& saved = snapshot.cars[i];
-        slot.car = std::move(restored[i]);
+        detail::CarAccess::replace(slot.car, std::move(restored[i]));
         slot.deepest = saved.contacts;
         slot.deepest_ref = saved.deepest_refs;
         slot.resets = saved.resets;
