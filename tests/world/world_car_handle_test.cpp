@@ -6,8 +6,9 @@
 #include <span>
 #include <type_traits>
 
-#include <glm/vec3.hpp>
 #include <gtest/gtest.h>
+
+#include <glm/vec3.hpp>
 
 #include "trackphys/dynamics/car.hpp"
 #include "trackphys/vehicle/vehicle.hpp"
@@ -32,7 +33,9 @@ concept CanSetSuspension = requires(C& car, std::span<const double> travel) {
     car.set_suspension(travel);
 };
 template <class C>
-concept CanShareEllipsoids = requires(C& car, const C& other) { car.share_ellipsoids_with(other); };
+concept CanShareEllipsoids = requires(C& car, const C& other) {
+    car.share_ellipsoids_with(other);
+};
 template <class C>
 concept CanPlaceEllipsoid = requires(const C& car, PlacingRotation rotation, Ellipsoid& placed) {
     car.place_ellipsoid(std::size_t{0}, rotation, placed);
@@ -44,7 +47,9 @@ concept CanStepVehicle = requires(V& vehicle, std::span<const double> travel) {
     vehicle.measure_anti_roll(travel);
 };
 template <class V>
-concept CanSetRoadGrip = requires(V& vehicle) { vehicle.set_road_grip(std::size_t{0}, 0.5); };
+concept CanSetRoadGrip = requires(V& vehicle) {
+    vehicle.set_road_grip(std::size_t{0}, 0.5);
+};
 
 using Handle = decltype(std::declval<World&>().car(0));
 
