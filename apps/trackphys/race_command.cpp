@@ -175,6 +175,9 @@ void run_race(const RaceOptions& o, const OptionGiven& given) {
         report.car_contacts += profile.car_contacts;
         report.max_car_penetration_m =
             std::max(report.max_car_penetration_m, profile.max_car_penetration);
+        const ContactEvents events = world.contact_events();
+        report.car_touches += events.car_touch_begins.size();
+        report.body_hits += events.body_hits.size();
         if (!svg.empty()) {
             for (std::size_t i = 0; i < cars; ++i) {
                 plot.paths[i].points.push_back(world.car(i).state().position);

@@ -17,6 +17,7 @@
 #include "trackphys/world/world.hpp"
 #include "vehicle/vehicle_fingerprint.hpp"
 #include "world/car_slot.hpp"
+#include "world/update_work.hpp"
 
 namespace trackphys {
 namespace {
@@ -237,6 +238,8 @@ void World::restore_state(const WorldSnapshot& snapshot) {
         slot.last_reset.clear();
     }
     updates_ = snapshot.update_count;
+    work_->touches.forget();
+    work_->body_hits.clear();
 }
 
 }  // namespace trackphys

@@ -1,5 +1,5 @@
 // World::update allocates nothing once a field of cars has warmed up (issue 16): every
-// buffer an update needs is kept between updates; nor does PhysicsRunner's publishing of
+// buffer an update needs is kept between updates, its contact events' too; nor does PhysicsRunner's publishing of
 // each update, nor a render thread's reading of it. A binary of its own, because it
 // replaces the global operator new to count the allocations made inside World::update, on
 // every thread of the world's pool, and on the runner's physics thread.
@@ -66,16 +66,21 @@ TEST_P(WorldAllocation, ARaceOnTwoThreadsAllocatesNothingOnceWarm) {
     drivers.add_cars(world);
 
     std::uint64_t contacts = 0;
+    std::uint64_t touches = 0;
     for (int u = 0; u < kWarmUpdates + kCountedUpdates; ++u) {
         drivers.drive(world);
         counting.store(u >= kWarmUpdates);
         world.update();
         counting.store(false);
         drivers.after_update(world);
-        if (u >= kWarmUpdates) contacts += world.last_profile().car_contacts;
+        if (u >= kWarmUpdates) {
+            contacts += world.last_profile().car_contacts;
+            touches += world.contact_events().car_touch_begins.size();
+        }
     }
     EXPECT_EQ(allocations.load(), 0u) << "allocations in " << kCountedUpdates << " updates";
     EXPECT_GT(contacts, 0u) << "the counted updates had no car-car contact to allocate for";
+    EXPECT_GT(touches, 0u) << "the counted updates began no touch to record";
 }
 
 INSTANTIATE_TEST_SUITE_P(FrameSources, WorldAllocation,

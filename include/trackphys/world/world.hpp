@@ -14,6 +14,7 @@
 #include "trackphys/export.hpp"
 #include "trackphys/geometry/contact.hpp"
 #include "trackphys/profile/update_profile.hpp"
+#include "trackphys/world/contact_events.hpp"
 #include "trackphys/world/debug_draw.hpp"
 #include "trackphys/world/world_settings.hpp"
 #include "trackphys/world/world_snapshot.hpp"
@@ -118,6 +119,17 @@ class TRACKPHYS_API World {
     /// impossible state (see the class notes).
     void update();
 
+    /// What touched what during the last update (docs/design.md#contact-events): cars that
+    /// began or stopped touching each other, with where and how fast, and body ellipsoids
+    /// that started touching the static world (wheels rolling on the road are not events).
+    /// Read after update(); the same for any number of threads or a job system. A reset
+    /// car's hits of the undone update are dropped. Which car pairs are touching is the
+    /// World object's memory, not part of a snapshot: after restore_state every pair in
+    /// contact begins again at the next update; remove_car forgets the removed car's touches
+    /// (no end event) and empties the list. Recording them allocates nothing once a field is
+    /// warm.
+    ContactEvents contact_events() const;
+
     /// How many times car i was reset (counted over the whole simulation: snapshots keep it).
     std::uint64_t car_resets(std::size_t i) const;
     /// Why car i was last reset by this World object ("update N: speed ... m/s is above
@@ -172,6 +184,7 @@ class TRACKPHYS_API World {
     CarSlot& car_slot(std::size_t i);
     const CarSlot& car_slot(std::size_t i) const;
     void run_islands();
+    void collect_contact_events();
     // The job-system task over the update's islands (context: the World).
     static void island_task(int begin, int end, int worker, void* world);
     // step_island under the reset policy (world_guard.cpp).
