@@ -45,13 +45,13 @@ void CarTouches::finish(std::span<const CarPair> pairs) {
             came_apart(touching_[last]);
         const PairRecord& r = records_[i];
         Touching now{a, b, r.deepest};
-        const bool went_on = last < touching_.size() && touching_[last].a == a &&
-                             touching_[last].b == b;
+        const bool went_on =
+            last < touching_.size() && touching_[last].a == a && touching_[last].b == b;
         if (went_on)
             now.deepest = std::max(now.deepest, touching_[last++].deepest);
         else
-            begins_.push_back({a, b, r.first.point, r.first.normal, r.first.depth,
-                               r.approach_speed});
+            begins_.push_back(
+                {a, b, r.first.point, r.first.normal, r.first.depth, r.approach_speed});
         if (r.touching_at_end)
             next_touching_.push_back(now);
         else

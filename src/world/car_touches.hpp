@@ -54,7 +54,7 @@ class CarTouches {
         bool touching_at_end = false;  // at its last sub-step
         double deepest = 0.0;          // m, over the update
         Contact first{0.0, glm::dvec3(0.0, 1.0, 0.0), glm::dvec3(0.0)};  // first sub-step's
-        double approach_speed = 0.0;   // m/s, at the first sub-step
+        double approach_speed = 0.0;  // m/s, at the first sub-step
     };
     // A pair touching at the end of an update, with its deepest overlap since it began.
     struct Touching {
@@ -64,7 +64,7 @@ class CarTouches {
     };
 
     std::size_t room_ = 0;                // pairs every list has room for
-    std::vector<PairRecord> records_;    // per pair of this update
+    std::vector<PairRecord> records_;     // per pair of this update
     std::vector<std::uint32_t> touched_;  // this update's touched records, by (a, b)
     std::vector<Touching> touching_;      // at the end of the last update, by (a, b)
     std::vector<Touching> next_touching_;

@@ -2,6 +2,8 @@
 // touch, a car driven into a wall hits it with its body, a car rolling on the road hits
 // nothing. That the events do not depend on threads is tested with the bumping field of
 // world_threads_test.cpp.
+#include "trackphys/world/contact_events.hpp"
+
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -11,7 +13,6 @@
 
 #include <glm/geometric.hpp>
 
-#include "trackphys/world/contact_events.hpp"
 #include "trackphys/world/world.hpp"
 #include "world/world_scenes.hpp"
 

@@ -38,9 +38,9 @@ struct CarTouchEndEvent {
 /// updates gives none.
 struct BodyHitEvent {
     std::uint32_t car = 0;
-    std::uint32_t ellipsoid = 0;  ///< index into the car's CarSpec::ellipsoids
-    TriangleRef triangle;         ///< the triangle of the deepest contact
-    glm::dvec3 point{0.0};        ///< contact point (m, world)
+    std::uint32_t ellipsoid = 0;       ///< index into the car's CarSpec::ellipsoids
+    TriangleRef triangle;              ///< the triangle of the deepest contact
+    glm::dvec3 point{0.0};             ///< contact point (m, world)
     glm::dvec3 normal{0.0, 1.0, 0.0};  ///< unit, out of the triangle towards the car
     double depth = 0.0;                ///< overlap at that sub-step (m, > 0)
     /// How fast the body point moved into the triangle along the normal (m/s; > 0 into it).

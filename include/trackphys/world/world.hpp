@@ -138,11 +138,16 @@ class TRACKPHYS_API World {
 
     /// The complete dynamic state (see WorldSnapshot): a few hundred bytes per car.
     WorldSnapshot save_state() const;
+    /// The same into `into`, reusing its vectors: saving into a snapshot already saved from
+    /// this world (the same cars) allocates nothing, as rollback netcode saving every frame
+    /// wants.
+    void save_state(WorldSnapshot& into) const;
     /// Puts the world back into a saved state: the next update() gives bit-identical results
     /// to the world it was saved from. The world must have the same static colliders, the
     /// same stepping settings and the same cars (number and CarSpec, added in the same order;
     /// their current states do not matter). Throws trackphys::Error naming what differs or
-    /// what is invalid, and then changes nothing.
+    /// what is invalid, and then changes nothing. Checks everything first and then writes
+    /// each car in place: it allocates nothing (but on error).
     void restore_state(const WorldSnapshot& snapshot);
 
     /// Simulated time (s) and number of updates run.
