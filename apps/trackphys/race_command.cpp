@@ -126,7 +126,7 @@ void run_race(const RaceOptions& o, const OptionGiven& given) {
         throw Error("the map '" + o.map.string() +
                     "' was baked from a mesh and has no centreline for the grid and the "
                     "autopilots: race on a map baked from a track (bake --seed)");
-    WorldSettings settings;
+    WorldSettings settings = tool_world_settings();
     // The trace records the calling thread's zones only: a full profile needs one thread.
     settings.threads = o.trace.empty() ? o.threads : 1;
     World world(scene.statics, settings, scene.plane_trees);

@@ -95,7 +95,7 @@ INSTANTIATE_TEST_SUITE_P(FrameSources, WorldAllocation,
 // allocates nothing; a render thread reading a view into a CarView it keeps allocates
 // nothing either.
 TEST(PhysicsRunnerAllocation, PublishingAndReadingViewsAllocateNothingOnceWarm) {
-    World world(test::static_world_of(test::flat_grid(400.0, 40)));
+    World world(test::static_world_of(test::flat_grid(400.0, 40)), test::tool_settings());
     const CarSpec spec = CarSpec::preset("gt");
     for (const double x : {-3.0, 3.0}) {
         RigidBodyState state;
