@@ -313,7 +313,7 @@ void bench_update(BenchRun& run) {
     std::vector<std::uint64_t> tested(std::size(combinations), 0),
         substeps(std::size(combinations), 0);
     for (const Combination& c : combinations) {
-        WorldSettings settings;
+        WorldSettings settings = cli::tool_world_settings();
         settings.mid_phase = c.mode;
         settings.mid_phase_look_ahead = c.look_ahead;
         settings.profile = c.profile;

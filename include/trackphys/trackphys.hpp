@@ -52,6 +52,7 @@
 #include "trackphys/vehicle/vehicle_spec.hpp"
 #include "trackphys/world/autopilot.hpp"
 #include "trackphys/world/car_view.hpp"
+#include "trackphys/world/contact_events.hpp"
 #include "trackphys/world/debug_draw.hpp"
 #include "trackphys/world/job_system.hpp"
 #include "trackphys/world/physics_runner.hpp"

@@ -101,8 +101,8 @@ void Car::take_inputs(const CarInputs& inputs) {
     steered_heading_ = glm::dvec3(std::sin(angle), 0.0, std::cos(angle));
 }
 
-void Car::restore(const RigidBodyState& state, const CarInputs& inputs,
-                  std::span<const double> suspension) {
+void Car::check_restore(const RigidBodyState& state, const CarInputs& inputs,
+                        std::span<const double> suspension) const {
     check_state(state);
     if (!(std::abs(glm::length(state.orientation) - 1.0) <= 1e-6))
         throw Error("car state: orientation is not a unit quaternion");
@@ -110,12 +110,23 @@ void Car::restore(const RigidBodyState& state, const CarInputs& inputs,
     if (in_range.throttle != inputs.throttle || in_range.brake != inputs.brake ||
         in_range.steer != inputs.steer)
         throw Error("car inputs: out of range (throttle and steer -1..1, brake 0..1)");
-    set_suspension(suspension);
+    check_suspension(suspension);
+}
+
+void Car::restore(const RigidBodyState& state, const CarInputs& inputs,
+                  std::span<const double> suspension) {
+    check_restore(state, inputs, suspension);
+    std::copy(suspension.begin(), suspension.end(), suspension_.begin());
     state_ = state;
     take_inputs(inputs);
 }
 
 void Car::set_suspension(std::span<const double> travel) {
+    check_suspension(travel);
+    std::copy(travel.begin(), travel.end(), suspension_.begin());
+}
+
+void Car::check_suspension(std::span<const double> travel) const {
     if (travel.size() != suspension_.size())
         throw Error("car suspension: " + std::to_string(travel.size()) + " values for " +
                     std::to_string(suspension_.size()) + " ellipsoids");
@@ -127,12 +138,16 @@ void Car::set_suspension(std::span<const double> travel) {
                         "'s travel must be in [0, " + std::to_string(limit) + "] m, got " +
                         std::to_string(travel[i]));
     }
-    std::copy(travel.begin(), travel.end(), suspension_.begin());
 }
 
 void Car::set_vehicle_state(const VehicleState& state) {
-    if (!vehicle_) throw Error("car: the arcade car has no vehicle state to set");
+    check_vehicle_state(state);
     vehicle_->set_state(state);
+}
+
+void Car::check_vehicle_state(const VehicleState& state) const {
+    if (!vehicle_) throw Error("car: the arcade car has no vehicle state to set");
+    vehicle_->check_state(state);
 }
 
 // The sub-step's small laws are inline: Car is exported and the library built with -fPIC,

@@ -82,6 +82,11 @@ void Vehicle::set_road_grip(std::size_t w, double grip) {
 }
 
 void Vehicle::set_state(const VehicleState& state) {
+    check_state(state);
+    state_ = state;
+}
+
+void Vehicle::check_state(const VehicleState& state) const {
     const auto reject = [](const std::string& why) { throw Error("vehicle state: " + why); };
     if (state.wheels.size() != wheels_.size())
         reject(std::to_string(state.wheels.size()) + " wheels for " +
@@ -100,7 +105,6 @@ void Vehicle::set_state(const VehicleState& state) {
     if (!(state.shift_time_left >= 0.0 && state.shift_time_left <= spec_.gearbox.shift_time))
         reject("shift_time_left is not in [0, gearbox.shift_time]");
     if (!(state.clutch >= 0.0 && state.clutch <= 1.0)) reject("clutch is not in [0, 1]");
-    state_ = state;
 }
 
 namespace {

@@ -121,6 +121,8 @@ class TRACKPHYS_API Car {
     /// Replaces the suspension compressions (restore, reset). Throws trackphys::Error unless
     /// there is one per ellipsoid, each in [0, CarSpec::suspension.travel] (0 for the body).
     void set_suspension(std::span<const double> travel);
+    /// Throws what set_suspension() would throw for `travel`, changing nothing.
+    void check_suspension(std::span<const double> travel) const;
     /// Replaces state, inputs and suspension with exactly these bits (no renormalisation, no
     /// clamping), as World::restore_state needs for bit-identical results. Throws
     /// trackphys::Error, changing nothing, when set_state or set_suspension would reject
@@ -128,6 +130,10 @@ class TRACKPHYS_API Car {
     /// of its range.
     void restore(const RigidBodyState& state, const CarInputs& inputs,
                  std::span<const double> suspension);
+    /// Throws what restore() would throw for these, changing nothing: a caller restoring
+    /// several cars checks them all first, then restores each in place.
+    void check_restore(const RigidBodyState& state, const CarInputs& inputs,
+                       std::span<const double> suspension) const;
     /// The vehicle model (wheel spins, slips, gear, clutch, telemetry) of a car whose spec
     /// has a `vehicle`; null for the arcade car.
     const Vehicle* vehicle() const { return vehicle_ ? &*vehicle_ : nullptr; }
@@ -136,6 +142,8 @@ class TRACKPHYS_API Car {
     /// Replaces the vehicle model's state (restore). Throws trackphys::Error when the car
     /// has no vehicle model or Vehicle::set_state rejects the state.
     void set_vehicle_state(const VehicleState& state);
+    /// Throws what set_vehicle_state() would throw for `state`, changing nothing.
+    void check_vehicle_state(const VehicleState& state) const;
     /// Radius about the centre of mass of a sphere holding every ellipsoid (m).
     double bounding_radius() const { return bounding_radius_; }
 

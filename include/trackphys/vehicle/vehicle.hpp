@@ -61,6 +61,8 @@ class TRACKPHYS_API Vehicle {
     /// Replaces the state. Throws trackphys::Error naming the field when it does not fit
     /// this vehicle (wheel count, gear range) or is not finite.
     void set_state(const VehicleState& state);
+    /// Throws what set_state() would throw for `state`, changing nothing.
+    void check_state(const VehicleState& state) const;
 
     /// This vehicle's state at rest: wheels still, first gear, clutch closed (a reset).
     VehicleState at_rest() const { return rolling_at(0.0); }

@@ -14,6 +14,7 @@
 #include "trackphys/export.hpp"
 #include "trackphys/geometry/contact.hpp"
 #include "trackphys/profile/update_profile.hpp"
+#include "trackphys/world/contact_events.hpp"
 #include "trackphys/world/debug_draw.hpp"
 #include "trackphys/world/world_settings.hpp"
 #include "trackphys/world/world_snapshot.hpp"
@@ -118,6 +119,17 @@ class TRACKPHYS_API World {
     /// impossible state (see the class notes).
     void update();
 
+    /// What touched what during the last update (docs/design.md#contact-events): cars that
+    /// began or stopped touching each other, with where and how fast, and body ellipsoids
+    /// that started touching the static world (wheels rolling on the road are not events).
+    /// Read after update(); the same for any number of threads or a job system. A reset
+    /// car's hits of the undone update are dropped. Which car pairs are touching is the
+    /// World object's memory, not part of a snapshot: after restore_state every pair in
+    /// contact begins again at the next update; remove_car forgets the removed car's touches
+    /// (no end event) and empties the list. Recording them allocates nothing once a field is
+    /// warm.
+    ContactEvents contact_events() const;
+
     /// How many times car i was reset (counted over the whole simulation: snapshots keep it).
     std::uint64_t car_resets(std::size_t i) const;
     /// Why car i was last reset by this World object ("update N: speed ... m/s is above
@@ -126,11 +138,16 @@ class TRACKPHYS_API World {
 
     /// The complete dynamic state (see WorldSnapshot): a few hundred bytes per car.
     WorldSnapshot save_state() const;
+    /// The same into `into`, reusing its vectors: saving into a snapshot already saved from
+    /// this world (the same cars) allocates nothing, as rollback netcode saving every frame
+    /// wants.
+    void save_state(WorldSnapshot& into) const;
     /// Puts the world back into a saved state: the next update() gives bit-identical results
     /// to the world it was saved from. The world must have the same static colliders, the
     /// same stepping settings and the same cars (number and CarSpec, added in the same order;
     /// their current states do not matter). Throws trackphys::Error naming what differs or
-    /// what is invalid, and then changes nothing.
+    /// what is invalid, and then changes nothing. Checks everything first and then writes
+    /// each car in place: it allocates nothing (but on error).
     void restore_state(const WorldSnapshot& snapshot);
 
     /// Simulated time (s) and number of updates run.
@@ -172,6 +189,7 @@ class TRACKPHYS_API World {
     CarSlot& car_slot(std::size_t i);
     const CarSlot& car_slot(std::size_t i) const;
     void run_islands();
+    void collect_contact_events();
     // The job-system task over the update's islands (context: the World).
     static void island_task(int begin, int end, int worker, void* world);
     // step_island under the reset policy (world_guard.cpp).

@@ -51,14 +51,17 @@ struct TRACKPHYS_API WorldSettings {
     double max_spawn_distance = 1000.0;
     /// Threads World::update spreads the islands of cars over (>= 0, at most 256): 0 for
     /// the hardware's count, 1 to run on the calling thread alone. World starts its pool
-    /// the first time an update has two islands. Results do not depend on it.
-    int threads = 0;
+    /// the first time an update has two islands. Results do not depend on it. The default
+    /// is a game's: its own workers have the cores, and the pool's threads spin up to
+    /// 100 us before they sleep; plug the game's job system in (`jobs`) or raise this for a
+    /// big field. World also builds the colliders' plane trees on thread_count() threads.
+    int threads = 1;
     /// A game's own job system; when plugged in, World uses it instead of its own threads
     /// (and `threads` is not used). Results do not depend on it.
     JobSystem jobs;
     /// Measure per-phase times in the UpdateProfile (reads the clock a few times per
-    /// sub-step); counts are kept either way.
-    bool profile = true;
+    /// sub-step, a share of the update: docs/benchmarks.md); counts are kept either way. Off by default, as a game runs; trackphys's own tools turn it on.
+    bool profile = false;
 
     /// `threads` with 0 resolved to the hardware's count (at least 1).
     int thread_count() const;
