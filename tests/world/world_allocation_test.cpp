@@ -1,9 +1,10 @@
 // World::update allocates nothing once a field of cars has warmed up (issue 16): every
-// buffer an update needs is kept between updates, its contact events' too; nor does PhysicsRunner's publishing of
-// each update, nor a render thread's reading of it. A binary of its own, because it
-// replaces the global operator new to count the allocations made inside World::update, on
-// every thread of the world's pool, and on the runner's physics thread. Nor do saving into a
-// kept snapshot and restoring one, which rollback netcode does every frame.
+// buffer an update needs is kept between updates, its contact events' too; nor does
+// PhysicsRunner's publishing of each update, nor a render thread's reading of it, nor saving
+// into a kept snapshot and restoring one, which rollback netcode does every frame. A binary
+// of its own, because it replaces the global operator new to count the allocations made
+// inside World::update, on every thread of the world's pool, and on the runner's physics
+// thread.
 #include <atomic>
 #include <cstdint>
 #include <cstdlib>

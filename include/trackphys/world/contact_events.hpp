@@ -49,8 +49,8 @@ struct BodyHitEvent {
 
 /// What touched what during the last World::update(), in an order that depends on the
 /// inputs alone (not on threads or the job system): begins and ends by (car_a, car_b), hits
-/// by car, each car's in the order they happened. Views into the World's buffers, valid until its next update(),
-/// add_car, remove_car or restore_state.
+/// by car, each car's in the order they happened. Views into the World's buffers, valid
+/// until its next update(), add_car, remove_car or restore_state.
 struct ContactEvents {
     std::span<const CarTouchBeginEvent> car_touch_begins;
     std::span<const CarTouchEndEvent> car_touch_ends;

@@ -60,7 +60,8 @@ struct TRACKPHYS_API WorldSettings {
     /// (and `threads` is not used). Results do not depend on it.
     JobSystem jobs;
     /// Measure per-phase times in the UpdateProfile (reads the clock a few times per
-    /// sub-step, a share of the update: docs/benchmarks.md); counts are kept either way. Off by default, as a game runs; trackphys's own tools turn it on.
+    /// sub-step, a share of the update: docs/benchmarks.md); counts are kept either way.
+    /// Off by default, as a game runs; trackphys's own tools turn it on.
     bool profile = false;
 
     /// `threads` with 0 resolved to the hardware's count (at least 1).
