@@ -29,8 +29,8 @@ TriangleMesh road_with_patch() {
     mesh.surfaces.resize(mesh.triangles.size());
     for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
         const auto& tri = mesh.triangles[t];
-        const double z = (mesh.vertices[tri[0]].z + mesh.vertices[tri[1]].z +
-                          mesh.vertices[tri[2]].z) / 3.0;
+        const double z =
+            (mesh.vertices[tri[0]].z + mesh.vertices[tri[1]].z + mesh.vertices[tri[2]].z) / 3.0;
         mesh.surfaces[t] = z > 20.0 ? SurfaceId{1} : SurfaceId{0};
     }
     return mesh;
@@ -117,7 +117,8 @@ TEST(Surfaces, ContactSurfaceNamesTheDeepestTriangleAndItsSurface) {
             EXPECT_EQ(touched->triangle, world.save_state().cars[car].deepest_refs[k]);
         }
     }
-    const std::string past = test::error_of([&] { world.contact_surface(0, spec.ellipsoids.size()); });
+    const std::string past =
+        test::error_of([&] { world.contact_surface(0, spec.ellipsoids.size()); });
     EXPECT_NE(past.find("has no ellipsoid"), std::string::npos) << past;
 }
 
