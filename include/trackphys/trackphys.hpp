@@ -59,6 +59,7 @@
 #include "trackphys/world/race_drivers.hpp"
 #include "trackphys/world/race_grid.hpp"
 #include "trackphys/world/spawn.hpp"
+#include "trackphys/world/surface.hpp"
 #include "trackphys/world/world.hpp"
 #include "trackphys/world/world_settings.hpp"
 #include "trackphys/world/world_snapshot.hpp"

@@ -14,6 +14,7 @@
 
 #include "dynamics/body_axes.hpp"
 #include "dynamics/wheel_force.hpp"
+#include "trackphys/assert.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/math/types.hpp"
 
@@ -186,14 +187,16 @@ inline WheelCommand Car::wheel_command(Axle axle, const glm::dvec3& heading,
     return command;
 }
 
-void Car::advance(std::span<const Contact> deepest, const glm::dvec3& gravity, double h) {
+void Car::advance(std::span<const Contact> deepest, const glm::dvec3& gravity, double h,
+                  std::span<const double> grip) {
+    TP_ASSERT(grip.empty() || grip.size() == deepest.size(), "one grip per ellipsoid, or none");
     resolve_deep_contacts(deepest);
     // The impulses turn the velocities only: the axes hold until integrate.
     const detail::BodyAxes axes(state_.orientation);
     WheelLoads wheel_loads;
     const AxleLoads least_loads = measure_wheel_loads(deepest, wheel_loads);
-    const Wrench wrench = vehicle_ ? vehicle_wrench(deepest, wheel_loads, axes, h)
-                                   : contact_wrench(deepest, wheel_loads, least_loads, axes);
+    const Wrench wrench = vehicle_ ? vehicle_wrench(deepest, grip, wheel_loads, axes, h)
+                                   : contact_wrench(deepest, grip, wheel_loads, least_loads, axes);
     update_suspension(deepest, wheel_loads, axes.up, h);
     trackphys::integrate(state_, spec_.mass, wrench, gravity, h);
 }
@@ -217,8 +220,9 @@ Car::AxleLoads Car::measure_wheel_loads(std::span<const Contact> deepest,
     return least_loads;
 }
 
-Wrench Car::contact_wrench(std::span<const Contact> deepest, const WheelLoads& wheel_loads,
-                           const AxleLoads& least_loads, const detail::BodyAxes& axes) const {
+Wrench Car::contact_wrench(std::span<const Contact> deepest, std::span<const double> grip,
+                           const WheelLoads& wheel_loads, const AxleLoads& least_loads,
+                           const detail::BodyAxes& axes) const {
     // Every wheel of an axle rolls with the same material and command: two of each per
     // sub-step, not one per wheel. The speed serves the aerodynamics too.
     const double speed_now = speed();
@@ -242,12 +246,19 @@ Wrench Car::contact_wrench(std::span<const Contact> deepest, const WheelLoads& w
         const int axle = static_cast<int>(axle_of(role));
         // A wheel's load and point velocity are this sub-step's, from measure_wheel_loads
         // (its materials differ from spec_.wheel_contact in friction only).
-        const glm::dvec3 force =
-            role == EllipsoidRole::body
-                ? body_contact_force(spec_.body_contact, contact.depth, contact.normal,
-                                     point_velocity(state_, contact.point))
-                : detail::pressed_wheel_force(materials[axle], wheel_loads[i].load, contact.normal,
-                                              wheel_loads[i].velocity, commands[axle]);
+        // The surface scales the axle's friction and traction limit for this wheel alone.
+        const double surface_grip = grip.empty() ? 1.0 : grip[i];
+        glm::dvec3 force;
+        if (role == EllipsoidRole::body) {
+            force = body_contact_force(on_surface(spec_.body_contact, surface_grip), contact.depth,
+                                       contact.normal, point_velocity(state_, contact.point));
+        } else {
+            WheelCommand command = commands[axle];
+            command.max_along_force *= surface_grip;
+            force = detail::pressed_wheel_force(on_surface(materials[axle], surface_grip),
+                                                wheel_loads[i].load, contact.normal,
+                                                wheel_loads[i].velocity, command);
+        }
         wrench.add_at_point(force, contact.point, state_.position);
     }
     add_aero_force(wrench, speed_now, axes.forward, axes.down);

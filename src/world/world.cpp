@@ -36,6 +36,7 @@ World::World(std::shared_ptr<const StaticWorld> statics, WorldSettings settings,
       work_(std::make_unique<UpdateWork>()) {
     if (!statics_) throw Error("World: the static world is null");
     if (std::string why = settings_.validate(); !why.empty()) throw Error(why);
+    check_surfaces();
     if (settings_.mid_phase != MidPhaseMode::precomputed_tree)
         trees.clear();
     else if (trees.empty())
@@ -45,6 +46,22 @@ World::World(std::shared_ptr<const StaticWorld> statics, WorldSettings settings,
     // The phase clock's rate is measured once, over a millisecond: here rather than inside
     // the first update, whose time it would otherwise carry.
     if (settings_.profile) static_cast<void>(TickClock::microseconds_per_tick());
+}
+
+void World::check_surfaces() const {
+    const std::vector<Surface>& table = settings_.surfaces;
+    if (table.empty()) return;
+    for (std::uint32_t id = 0; id < statics_->size(); ++id) {
+        const StaticCollider& collider = statics_->collider(id);
+        if (collider.highest_surface() < table.size()) continue;
+        const std::span<const SurfaceId> surfaces = collider.surfaces();
+        for (std::uint32_t t = 0; t < surfaces.size(); ++t)
+            if (surfaces[t] >= table.size() && collider.has_triangle(t))
+                throw Error("World: collider " + std::to_string(id) + "'s triangle " +
+                            std::to_string(t) + " is surface " + std::to_string(surfaces[t]) +
+                            ", beyond WorldSettings.surfaces (" + std::to_string(table.size()) +
+                            " entries)");
+    }
 }
 
 World::~World() = default;
@@ -102,6 +119,15 @@ const Car& World::car(std::size_t i) const { return car_slot(i).car; }
 std::span<const Contact> World::contacts(std::size_t i) const { return car_slot(i).deepest; }
 ContactEvents World::contact_events() const {
     return {work_->touches.begins(), work_->touches.ends(), work_->body_hits};
+}
+std::optional<ContactSurface> World::contact_surface(std::size_t i, std::size_t ellipsoid) const {
+    const CarSlot& slot = car_slot(i);
+    if (ellipsoid >= slot.deepest.size())
+        throw Error("car " + std::to_string(i) + " has no ellipsoid " + std::to_string(ellipsoid) +
+                    " (it has " + std::to_string(slot.deepest.size()) + ")");
+    if (!(slot.deepest[ellipsoid].depth > 0.0)) return std::nullopt;
+    const TriangleRef ref = slot.deepest_ref[ellipsoid];
+    return ContactSurface{ref, statics_->collider(ref.collider).surface(ref.triangle)};
 }
 std::uint64_t World::car_resets(std::size_t i) const { return car_slot(i).resets; }
 const std::string& World::last_reset_reason(std::size_t i) const { return car_slot(i).last_reset; }
@@ -502,8 +528,25 @@ void World::find_contacts(CarSlot& slot, PhaseStopwatch& watch) {
     watch.lap(Phase::exact);
 }
 
+// Each ellipsoid's grip is its deepest triangle's surface's, which find_contacts has just
+// named; without a surface table every surface is the dry road, and there is nothing to read.
 void World::advance(CarSlot& slot, PhaseStopwatch& watch) {
-    slot.car.advance(slot.deepest, settings_.gravity, settings_.substep_dt());
+    const std::span<const Surface> table(settings_.surfaces);
+    if (table.empty()) {
+        slot.car.advance(slot.deepest, settings_.gravity, settings_.substep_dt());
+    } else {
+        const std::span<const Contact> deepest(slot.deepest);
+        std::array<double, CarSpec::max_ellipsoids> grip;
+        for (std::size_t i = 0; i < deepest.size(); ++i) {
+            grip[i] = 1.0;
+            if (!(deepest[i].depth > 0.0)) continue;
+            const TriangleRef ref = slot.deepest_ref[i];
+            const std::span<const SurfaceId> surfaces = statics_->collider(ref.collider).surfaces();
+            grip[i] = table[surfaces.empty() ? 0 : surfaces[ref.triangle]].grip;
+        }
+        slot.car.advance(deepest, settings_.gravity, settings_.substep_dt(),
+                         std::span<const double>(grip.data(), deepest.size()));
+    }
     watch.lap(Phase::integrate);
 }
 

@@ -171,7 +171,13 @@ class TRACKPHYS_API Car {
     /// - With a vehicle model (CarSpec::vehicle), the wheels' tangential forces come from
     ///   their spinning wheels and Magic Formula tyres instead (docs/vehicle.md), and the
     ///   anti-roll bars join the suspension.
-    void advance(std::span<const Contact> deepest, const glm::dvec3& gravity, double h);
+    /// - Surfaces: `grip` holds each ellipsoid's Surface::grip (in order, finite and > 0), the
+    ///   grip of the surface under its contact relative to the dry road; it scales the
+    ///   friction of that contact (wheel and body; a vehicle model's tyre peaks, on top of
+    ///   Vehicle::set_road_grip) and the traction limit of an arcade wheel. Empty: the dry
+    ///   road under every ellipsoid (World passes it from WorldSettings::surfaces).
+    void advance(std::span<const Contact> deepest, const glm::dvec3& gravity, double h,
+                 std::span<const double> grip = {});
 
     /// Applies an impulse J (N s, world) at world point p: v += J / m and
     /// omega += I_world^-1 ((p - x) x J), as a force J / h over a sub-step of h would.
@@ -238,11 +244,18 @@ class TRACKPHYS_API Car {
     AxleLoads measure_wheel_loads(std::span<const Contact> deepest, WheelLoads& wheel_loads) const;
     /// axes: detail::BodyAxes(state().orientation), this sub-step's (the forward axis is the rear
     /// wheels' heading and the downforce's speed).
-    Wrench contact_wrench(std::span<const Contact> deepest, const WheelLoads& wheel_loads,
-                          const AxleLoads& least_loads, const detail::BodyAxes& axes) const;
+    /// grip: advance's, empty for 1 everywhere.
+    Wrench contact_wrench(std::span<const Contact> deepest, std::span<const double> grip,
+                          const WheelLoads& wheel_loads, const AxleLoads& least_loads,
+                          const detail::BodyAxes& axes) const;
     /// contact_wrench for a car with a vehicle model; advances its wheels by h.
-    Wrench vehicle_wrench(std::span<const Contact> deepest, const WheelLoads& wheel_loads,
-                          const detail::BodyAxes& axes, double h);
+    Wrench vehicle_wrench(std::span<const Contact> deepest, std::span<const double> grip,
+                          const WheelLoads& wheel_loads, const detail::BodyAxes& axes, double h);
+    /// `material` with its friction scaled by a surface's grip (times 1 leaves its bits).
+    static ContactMaterial on_surface(ContactMaterial material, double grip) {
+        material.friction *= grip;
+        return material;
+    }
     /// The world direction the wheels of an axle roll in (the front ones steered); forward:
     /// the body's forward axis.
     glm::dvec3 wheel_heading(Axle axle, const glm::dvec3& forward) const {

@@ -16,6 +16,7 @@
 #include "trackphys/profile/update_profile.hpp"
 #include "trackphys/world/contact_events.hpp"
 #include "trackphys/world/debug_draw.hpp"
+#include "trackphys/world/surface.hpp"
 #include "trackphys/world/world_settings.hpp"
 #include "trackphys/world/world_snapshot.hpp"
 
@@ -47,7 +48,8 @@ class TraceRecorder;
 /// had reached).
 class TRACKPHYS_API World {
   public:
-    /// Throws trackphys::Error on a null static world or invalid settings. In the
+    /// Throws trackphys::Error on a null static world, invalid settings or a triangle whose
+    /// surface id is beyond a non-empty settings.surfaces. In the
     /// precomputed_tree mid-phase mode the colliders' plane trees are built here (the
     /// costliest part of making a World), on settings.thread_count() short-lived threads
     /// even with a job system plugged in, unless `trees` holds them already (one per
@@ -114,6 +116,11 @@ class TRACKPHYS_API World {
     /// Car i's deepest contact per ellipsoid (in CarSpec order) at the last sub-step of
     /// the last update; depth <= 0 where an ellipsoid touched nothing.
     std::span<const Contact> contacts(std::size_t i) const;
+    /// What ellipsoid `ellipsoid` (in CarSpec order) of car i touched at the last sub-step of
+    /// the last update: the triangle of its deepest contact, contacts(i)[ellipsoid], and that
+    /// triangle's surface id; nullopt where it touched nothing (depth <= 0). Throws
+    /// trackphys::Error past car_count() or the car's ellipsoids.
+    std::optional<ContactSurface> contact_surface(std::size_t i, std::size_t ellipsoid) const;
 
     /// Advances every car by settings().dt_update, resetting any car that ends it in an
     /// impossible state (see the class notes).
@@ -194,6 +201,8 @@ class TRACKPHYS_API World {
     static void island_task(int begin, int end, int worker, void* world);
     // step_island under the reset policy (world_guard.cpp).
     void update_island_or_reset(std::size_t island, WorkerScratch& scratch, PhaseStopwatch& watch);
+    // Throws naming the first triangle whose surface id settings_.surfaces has no entry for.
+    void check_surfaces() const;
     // Why this state breaks the reset policy's limits, or empty.
     std::string impossible_state(const RigidBodyState& state) const;
     // add_car's checks of where the car is (world_guard.cpp).
