@@ -97,8 +97,11 @@ int main(int argc, char** argv) {
         glm::normalize(glm::quat_cast(glm::dmat3(start.left, start.up, start.tangent)));
 
     std::vector<Drive> drives;
+    // Profiled, as trackphys drive runs (the library's default is off).
+    WorldSettings settings;
+    settings.profile = true;
     const auto add_drive = [&](std::string name, std::optional<DebugDrawOptions> drawn) {
-        auto world = std::make_unique<World>(statics, WorldSettings{}, trees);
+        auto world = std::make_unique<World>(statics, settings, trees);
         world->add_car(spec, state);
         drives.push_back(
             {std::move(name), std::move(world), Autopilot(track, spec), drawn, {}, {}, {}});

@@ -58,6 +58,17 @@ void BM_SaveState(benchmark::State& state) {
 }
 BENCHMARK(BM_SaveState)->Unit(benchmark::kMicrosecond);
 
+// Into a kept snapshot, as rollback netcode saves every frame: no allocation.
+void BM_SaveStateInto(benchmark::State& state) {
+    const Scene& s = scene();
+    WorldSnapshot into;
+    for (auto _ : state) {
+        s.world->save_state(into);
+        benchmark::DoNotOptimize(into);
+    }
+}
+BENCHMARK(BM_SaveStateInto)->Unit(benchmark::kMicrosecond);
+
 void BM_RestoreState(benchmark::State& state) {
     const Scene& s = scene();
     for (auto _ : state) s.world->restore_state(s.snapshot);

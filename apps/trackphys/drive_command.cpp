@@ -202,7 +202,7 @@ void run_drive(const DriveOptions& o, const OptionGiven& given) {
         throw Error("the map '" + s.map.string() +
                     "' was baked from a mesh and has no centreline for the autopilot: give "
                     "--spawn x,y,z to drive it in free mode");
-    World world(scene.statics, {}, scene.plane_trees);
+    World world(scene.statics, tool_world_settings(), scene.plane_trees);
     const RigidBodyState start =
         s.free_mode() ? spawn_on_surface(*scene.statics, s.car, *s.spawn, s.heading_deg)
                       : start_on_track(*scene.track, s.car);

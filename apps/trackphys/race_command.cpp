@@ -126,7 +126,7 @@ void run_race(const RaceOptions& o, const OptionGiven& given) {
         throw Error("the map '" + o.map.string() +
                     "' was baked from a mesh and has no centreline for the grid and the "
                     "autopilots: race on a map baked from a track (bake --seed)");
-    WorldSettings settings;
+    WorldSettings settings = tool_world_settings();
     // The trace records the calling thread's zones only: a full profile needs one thread.
     settings.threads = o.trace.empty() ? o.threads : 1;
     World world(scene.statics, settings, scene.plane_trees);
@@ -175,6 +175,9 @@ void run_race(const RaceOptions& o, const OptionGiven& given) {
         report.car_contacts += profile.car_contacts;
         report.max_car_penetration_m =
             std::max(report.max_car_penetration_m, profile.max_car_penetration);
+        const ContactEvents events = world.contact_events();
+        report.car_touches += events.car_touch_begins.size();
+        report.body_hits += events.body_hits.size();
         if (!svg.empty()) {
             for (std::size_t i = 0; i < cars; ++i) {
                 plot.paths[i].points.push_back(world.car(i).state().position);

@@ -47,6 +47,8 @@ void print_race_report(const RaceReport& r) {
     std::printf("laps         %d by every car\n", r.laps_completed);
     std::printf("car contacts %" PRIu64 " sub-steps of touching pairs, deepest %.4f m\n",
                 r.car_contacts, r.max_car_penetration_m);
+    std::printf("events       %" PRIu64 " car touches begun, %" PRIu64 " body hits\n",
+                r.car_touches, r.body_hits);
     print_profile_table(r.profile);
     std::printf("per car      %.2f us per car-update (mean update / cars)\n", per_car_us(r));
     std::printf("resets       %" PRIu64 " (%" PRIu64 " of them rescues off the track)\n", r.resets,
@@ -67,6 +69,8 @@ void write_race_json(const RaceReport& r, const std::filesystem::path& path) {
     json["per_car_us"] = per_car_us(r);
     json["car_contacts"] = r.car_contacts;
     json["max_car_penetration_m"] = r.max_car_penetration_m;
+    json["car_touches"] = r.car_touches;
+    json["body_hits"] = r.body_hits;
     json["resets"] = r.resets;
     json["rescues"] = r.rescues;
     json["state_hash"] = hash_hex(r.state_hash);

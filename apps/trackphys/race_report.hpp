@@ -33,8 +33,10 @@ struct RaceReport {
     std::vector<RaceCarResult> classification;  ///< by laps, then distance, leader first
     std::uint64_t car_contacts = 0;             ///< UpdateProfile::car_contacts, summed
     double max_car_penetration_m = 0.0;
-    std::uint64_t resets = 0;   ///< over all cars, rescues included
-    std::uint64_t rescues = 0;  ///< over all cars
+    std::uint64_t car_touches = 0;  ///< car pairs that began touching (World::contact_events)
+    std::uint64_t body_hits = 0;    ///< body ellipsoids that hit the static world
+    std::uint64_t resets = 0;       ///< over all cars, rescues included
+    std::uint64_t rescues = 0;      ///< over all cars
     std::uint64_t state_hash = 0;
     ProfileStatistics profile;
 };

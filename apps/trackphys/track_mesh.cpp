@@ -15,6 +15,9 @@ TriangleMesh merge_chunks(const Track& track) {
                                chunk.mesh.vertices.end());
         for (const auto& t : chunk.mesh.triangles)
             merged.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+        merged.surfaces.insert(merged.surfaces.end(), chunk.mesh.surfaces.begin(),
+                               chunk.mesh.surfaces.end());
+        merged.surfaces.resize(merged.triangles.size());  // a chunk without ids: surface 0
     }
     return merged;
 }

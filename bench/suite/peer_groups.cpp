@@ -209,7 +209,7 @@ void bench_update_peers(BenchRun& run) {
     const cli::DriveScene scene = cli::make_track_scene(kDemoTrackSeed);
     const CarSpec spec = CarSpec::default_car();
     const int updates = run.quick() ? 100 : 500;
-    WorldSettings settings;
+    WorldSettings settings = cli::tool_world_settings();
     settings.profile = false;
     World world(scene.statics, settings);
     world.add_car(spec, cli::start_on_track(*scene.track, spec));

@@ -28,7 +28,7 @@ void bench_vehicle(BenchRun& run) {
         const CarSpec spec = CarSpec::preset(presets[i]);
         ColliderPlaneTrees trees;
         if (!worlds.empty()) trees = worlds.front()->plane_trees();
-        worlds.push_back(std::make_unique<World>(scene.statics, WorldSettings{}, trees));
+        worlds.push_back(std::make_unique<World>(scene.statics, cli::tool_world_settings(), trees));
         World& world = *worlds.back();
         world.add_car(spec, cli::start_on_track(*scene.track, spec));
         drivers.push_back({&world.car(0), [&world, &exact_tests, i] {

@@ -283,8 +283,9 @@ void bench_mid_phase(BenchRun& run) {
 
 // The whole update of one car (default car, default track seed 7, autopilot from the start) in each
 // mid-phase mode, queried every step or looking ahead, World's profile off (and the default mode
-// with it on, the cost of the per-phase clock reads), the cars taking turns by blocks; the
-// write-up's budget is the reference row.
+// with it on, the cost of the per-phase clock reads, and with a surface table of ones, the cost
+// of reading each wheel's surface: the same drive, bit for bit), the cars taking turns by
+// blocks; the write-up's budget is the reference row.
 void bench_update(BenchRun& run) {
     run.progress("update", "default track");
     const cli::DriveScene scene = cli::make_track_scene(kDemoTrackSeed);
@@ -298,6 +299,7 @@ void bench_update(BenchRun& run) {
         int look_ahead;
         bool profile;
         const char* name;
+        bool surface_table = false;
     };
     const int look_ahead = WorldSettings{}.mid_phase_look_ahead;
     const Combination combinations[] = {
@@ -306,17 +308,20 @@ void bench_update(BenchRun& run) {
         {MidPhaseMode::precomputed_tree, 1, false, "precomputed trees, every step"},
         {MidPhaseMode::precomputed_tree, look_ahead, false,
          "precomputed trees, looking ahead (default)"},
-        {MidPhaseMode::precomputed_tree, look_ahead, true, "default, profile on"}};
+        {MidPhaseMode::precomputed_tree, look_ahead, true, "default, profile on"},
+        {MidPhaseMode::precomputed_tree, look_ahead, false, "default, surface table (road, walls)",
+         true}};
     run.progress("update", "worlds and precomputed trees");
     std::vector<std::unique_ptr<World>> worlds;
     std::vector<Driver> drivers;
     std::vector<std::uint64_t> tested(std::size(combinations), 0),
         substeps(std::size(combinations), 0);
     for (const Combination& c : combinations) {
-        WorldSettings settings;
+        WorldSettings settings = cli::tool_world_settings();
         settings.mid_phase = c.mode;
         settings.mid_phase_look_ahead = c.look_ahead;
         settings.profile = c.profile;
+        if (c.surface_table) settings.surfaces = {Surface{1.0}, Surface{1.0}};
         // The precomputed worlds share one set of trees.
         ColliderPlaneTrees trees;
         for (const auto& w : worlds)

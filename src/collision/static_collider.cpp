@@ -122,7 +122,24 @@ StaticCollider::StaticCollider(const TriangleMesh& mesh) {
         for (const std::uint32_t v : mesh.triangles[triangle]) hash.add(mesh.vertices[v]);
     }
     content_hash_ = hash.value;
+    // All zeros is stored as none: the queries and the world then skip the lookup.
+    if (std::any_of(mesh.surfaces.begin(), mesh.surfaces.end(), [](SurfaceId s) { return s != 0; }))
+        surfaces_ = mesh.surfaces;
     quantize_slot_boxes();
+}
+
+SurfaceId StaticCollider::surface(std::uint32_t index) const {
+    if (index >= mesh_triangle_count())
+        throw Error("StaticCollider::surface: triangle " + std::to_string(index) +
+                    " is past the mesh's " + std::to_string(mesh_triangle_count()));
+    return surfaces_.empty() ? SurfaceId{0} : surfaces_[index];
+}
+
+SurfaceId StaticCollider::highest_surface() const {
+    SurfaceId highest = 0;
+    for (std::uint32_t t = 0; t < surfaces_.size(); ++t)
+        if (triangle_to_slot_[t] != kNoSlot) highest = std::max(highest, surfaces_[t]);
+    return highest;
 }
 
 // The grids, and each slot's float box (rounded outward, as the builder saw it, so inside
@@ -637,7 +654,8 @@ NormalizedTriangle StaticCollider::normalized_triangle(std::uint32_t index) cons
 std::size_t StaticCollider::bytes_used() const {
     return sizeof(*this) + capacity_bytes(vertices_) + capacity_bytes(slot_vertices_) +
            capacity_bytes(triangle_to_slot_) + capacity_bytes(slot_blocks_) +
-           capacity_bytes(nodes_) + capacity_bytes(grids_) + capacity_bytes(node_grid_);
+           capacity_bytes(nodes_) + capacity_bytes(grids_) + capacity_bytes(node_grid_) +
+           capacity_bytes(surfaces_);
 }
 
 }  // namespace trackphys

@@ -14,6 +14,7 @@
 
 #include "dynamics/body_axes.hpp"
 #include "dynamics/wheel_force.hpp"
+#include "trackphys/assert.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/math/types.hpp"
 #include "vehicle/vehicle_access.hpp"
@@ -102,8 +103,8 @@ void Car::take_inputs(const CarInputs& inputs) {
     steered_heading_ = glm::dvec3(std::sin(angle), 0.0, std::cos(angle));
 }
 
-void Car::restore(const RigidBodyState& state, const CarInputs& inputs,
-                  std::span<const double> suspension) {
+void Car::check_restore(const RigidBodyState& state, const CarInputs& inputs,
+                        std::span<const double> suspension) const {
     check_state(state);
     if (!(std::abs(glm::length(state.orientation) - 1.0) <= 1e-6))
         throw Error("car state: orientation is not a unit quaternion");
@@ -111,12 +112,23 @@ void Car::restore(const RigidBodyState& state, const CarInputs& inputs,
     if (in_range.throttle != inputs.throttle || in_range.brake != inputs.brake ||
         in_range.steer != inputs.steer)
         throw Error("car inputs: out of range (throttle and steer -1..1, brake 0..1)");
-    set_suspension(suspension);
+    check_suspension(suspension);
+}
+
+void Car::restore(const RigidBodyState& state, const CarInputs& inputs,
+                  std::span<const double> suspension) {
+    check_restore(state, inputs, suspension);
+    std::copy(suspension.begin(), suspension.end(), suspension_.begin());
     state_ = state;
     take_inputs(inputs);
 }
 
 void Car::set_suspension(std::span<const double> travel) {
+    check_suspension(travel);
+    std::copy(travel.begin(), travel.end(), suspension_.begin());
+}
+
+void Car::check_suspension(std::span<const double> travel) const {
     if (travel.size() != suspension_.size())
         throw Error("car suspension: " + std::to_string(travel.size()) + " values for " +
                     std::to_string(suspension_.size()) + " ellipsoids");
@@ -128,12 +140,16 @@ void Car::set_suspension(std::span<const double> travel) {
                         "'s travel must be in [0, " + std::to_string(limit) + "] m, got " +
                         std::to_string(travel[i]));
     }
-    std::copy(travel.begin(), travel.end(), suspension_.begin());
 }
 
 void Car::set_vehicle_state(const VehicleState& state) {
-    if (!vehicle_) throw Error("car: the arcade car has no vehicle state to set");
+    check_vehicle_state(state);
     vehicle_->set_state(state);
+}
+
+void Car::check_vehicle_state(const VehicleState& state) const {
+    if (!vehicle_) throw Error("car: the arcade car has no vehicle state to set");
+    vehicle_->check_state(state);
 }
 
 // The sub-step's small laws are inline: Car is exported and the library built with -fPIC,
@@ -172,14 +188,16 @@ inline WheelCommand Car::wheel_command(Axle axle, const glm::dvec3& heading,
     return command;
 }
 
-void Car::advance(std::span<const Contact> deepest, const glm::dvec3& gravity, double h) {
+void Car::advance(std::span<const Contact> deepest, const glm::dvec3& gravity, double h,
+                  std::span<const double> grip) {
+    TP_ASSERT(grip.empty() || grip.size() == deepest.size(), "one grip per ellipsoid, or none");
     resolve_deep_contacts(deepest);
     // The impulses turn the velocities only: the axes hold until integrate.
     const detail::BodyAxes axes(state_.orientation);
     WheelLoads wheel_loads;
     const AxleLoads least_loads = measure_wheel_loads(deepest, wheel_loads);
-    const Wrench wrench = vehicle_ ? vehicle_wrench(deepest, wheel_loads, axes, h)
-                                   : contact_wrench(deepest, wheel_loads, least_loads, axes);
+    const Wrench wrench = vehicle_ ? vehicle_wrench(deepest, grip, wheel_loads, axes, h)
+                                   : contact_wrench(deepest, grip, wheel_loads, least_loads, axes);
     update_suspension(deepest, wheel_loads, axes.up, h);
     trackphys::integrate(state_, spec_.mass, wrench, gravity, h);
 }
@@ -203,8 +221,9 @@ Car::AxleLoads Car::measure_wheel_loads(std::span<const Contact> deepest,
     return least_loads;
 }
 
-Wrench Car::contact_wrench(std::span<const Contact> deepest, const WheelLoads& wheel_loads,
-                           const AxleLoads& least_loads, const detail::BodyAxes& axes) const {
+Wrench Car::contact_wrench(std::span<const Contact> deepest, std::span<const double> grip,
+                           const WheelLoads& wheel_loads, const AxleLoads& least_loads,
+                           const detail::BodyAxes& axes) const {
     // Every wheel of an axle rolls with the same material and command: two of each per
     // sub-step, not one per wheel. The speed serves the aerodynamics too.
     const double speed_now = speed();
@@ -228,12 +247,19 @@ Wrench Car::contact_wrench(std::span<const Contact> deepest, const WheelLoads& w
         const int axle = static_cast<int>(axle_of(role));
         // A wheel's load and point velocity are this sub-step's, from measure_wheel_loads
         // (its materials differ from spec_.wheel_contact in friction only).
-        const glm::dvec3 force =
-            role == EllipsoidRole::body
-                ? body_contact_force(spec_.body_contact, contact.depth, contact.normal,
-                                     point_velocity(state_, contact.point))
-                : detail::pressed_wheel_force(materials[axle], wheel_loads[i].load, contact.normal,
-                                              wheel_loads[i].velocity, commands[axle]);
+        // The surface scales the axle's friction and traction limit for this wheel alone.
+        const double surface_grip = grip.empty() ? 1.0 : grip[i];
+        glm::dvec3 force;
+        if (role == EllipsoidRole::body) {
+            force = body_contact_force(on_surface(spec_.body_contact, surface_grip), contact.depth,
+                                       contact.normal, point_velocity(state_, contact.point));
+        } else {
+            WheelCommand command = commands[axle];
+            command.max_along_force *= surface_grip;
+            force = detail::pressed_wheel_force(on_surface(materials[axle], surface_grip),
+                                                wheel_loads[i].load, contact.normal,
+                                                wheel_loads[i].velocity, command);
+        }
         wrench.add_at_point(force, contact.point, state_.position);
     }
     add_aero_force(wrench, speed_now, axes.forward, axes.down);

@@ -2,7 +2,6 @@
 
 #include <cstddef>
 #include <span>
-#include <utility>
 
 #include <glm/vec3.hpp>
 
@@ -15,8 +14,8 @@ namespace trackphys::detail {
 // tests include. Each forwards to the Car member of the same name, documented there.
 struct CarAccess {
     static void advance(Car& car, std::span<const Contact> deepest, const glm::dvec3& gravity,
-                        double h) {
-        car.advance(deepest, gravity, h);
+                        double h, std::span<const double> grip = {}) {
+        car.advance(deepest, gravity, h, grip);
     }
     static void restore(Car& car, const RigidBodyState& state, const CarInputs& inputs,
                         std::span<const double> suspension) {
@@ -32,8 +31,6 @@ struct CarAccess {
                                 Ellipsoid& placed) {
         car.place_ellipsoid(i, orientation, placed);
     }
-    // Puts `replacement` (a copy of `car` with a restored state) in its place.
-    static void replace(Car& car, Car&& replacement) { car = std::move(replacement); }
 };
 
 }  // namespace trackphys::detail

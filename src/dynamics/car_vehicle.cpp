@@ -10,8 +10,8 @@
 
 namespace trackphys {
 
-Wrench Car::vehicle_wrench(std::span<const Contact> deepest, const WheelLoads& wheel_loads,
-                           const detail::BodyAxes& axes, double h) {
+Wrench Car::vehicle_wrench(std::span<const Contact> deepest, std::span<const double> grip,
+                           const WheelLoads& wheel_loads, const detail::BodyAxes& axes, double h) {
     Vehicle& vehicle = *vehicle_;
     const double speed_now = speed();
     const glm::dvec3& forward = axes.forward;
@@ -19,10 +19,11 @@ Wrench Car::vehicle_wrench(std::span<const Contact> deepest, const WheelLoads& w
                                          glm::dot(state_.linear_velocity, forward), h);
     Wrench wrench;
     // A body ellipsoid, or a wheel that cannot roll: pushed like the arcade car's body.
-    const auto add_body_contact = [&](const Contact& contact) {
-        wrench.add_at_point(body_contact_force(spec_.body_contact, contact.depth, contact.normal,
-                                               point_velocity(state_, contact.point)),
-                            contact.point, state_.position);
+    const auto add_body_contact = [&](const Contact& contact, double surface_grip) {
+        wrench.add_at_point(
+            body_contact_force(on_surface(spec_.body_contact, surface_grip), contact.depth,
+                               contact.normal, point_velocity(state_, contact.point)),
+            contact.point, state_.position);
     };
     // Every front wheel steers by the same angle and every rear wheel points ahead: two
     // headings per sub-step, each computed when its first wheel needs it.
@@ -37,9 +38,10 @@ Wrench Car::vehicle_wrench(std::span<const Contact> deepest, const WheelLoads& w
     for (std::size_t i = 0; i < deepest.size(); ++i) {
         const Contact& contact = deepest[i];
         const bool touching = contact.depth > 0.0;
+        const double surface_grip = grip.empty() ? 1.0 : grip[i];
         const int slot = vehicle.wheel_slot(i);
         if (slot < 0) {
-            if (touching) add_body_contact(contact);
+            if (touching) add_body_contact(contact, surface_grip);
             continue;
         }
         const auto w = static_cast<std::size_t>(slot);
@@ -52,14 +54,14 @@ Wrench Car::vehicle_wrench(std::span<const Contact> deepest, const WheelLoads& w
         const bool rolling = touching && wheel.load > 0.0 && in_plane_length >= 1e-6;
         if (!rolling) {
             detail::VehicleAccess::wheel_force(vehicle, w, 0.0, 0.0, 0.0, h);
-            if (touching) add_body_contact(contact);
+            if (touching) add_body_contact(contact, surface_grip);
             continue;
         }
         const glm::dvec3 rolling_direction = in_plane * (1.0 / in_plane_length);  // one division
         const glm::dvec3 lateral = glm::cross(contact.normal, rolling_direction);
         const TyreForce tyre = detail::VehicleAccess::wheel_force(
             vehicle, w, wheel.load, glm::dot(wheel.velocity, rolling_direction),
-            glm::dot(wheel.velocity, lateral), h);
+            glm::dot(wheel.velocity, lateral), h, surface_grip);
         wrench.add_at_point(contact.normal * wheel.load + rolling_direction * tyre.longitudinal +
                                 lateral * tyre.lateral,
                             contact.point, state_.position);

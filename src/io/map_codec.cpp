@@ -11,6 +11,7 @@ namespace trackphys::detail {
 static_assert(sizeof(glm::dvec3) == 24 && sizeof(std::array<std::uint32_t, 3>) == 12);
 static_assert(sizeof(BvhSlotBlock) == 128 && sizeof(BvhNode) == 256 && sizeof(BvhNodeGrid) == 48);
 static_assert(sizeof(PlaneTreeNode) == 24 && sizeof(PlaneTreeSlab) == 20);
+static_assert(sizeof(SurfaceId) == 2);
 
 void MapCodec::write(map_detail::BodyWriter& body, const StaticCollider& c, const PlaneTree& tree) {
     if (tree.triangle_count() != c.triangle_count())
@@ -27,6 +28,7 @@ void MapCodec::write(map_detail::BodyWriter& body, const StaticCollider& c, cons
     r.content_hash = c.content_hash_;
     std::memcpy(r.inside_extent, c.inside_extent_, sizeof r.inside_extent);
     r.plane_depth = tree.depth_;
+    r.surfaces = c.surfaces_.size();
     body.record(r);
     body.array(c.vertices_);
     body.array(c.slot_vertices_);
@@ -38,6 +40,7 @@ void MapCodec::write(map_detail::BodyWriter& body, const StaticCollider& c, cons
     body.array(tree.nodes_);
     body.array(tree.slabs_);
     body.array(tree.ids_);
+    body.array(c.surfaces_);
 }
 
 MapCodec::ColliderBytes MapCodec::locate(map_detail::BodyReader& body) {
@@ -60,6 +63,10 @@ MapCodec::ColliderBytes MapCodec::locate(map_detail::BodyReader& body) {
     b.plane_nodes = body.array<PlaneTreeNode>(r.plane_nodes, "plane-tree nodes");
     b.plane_slabs = body.array<PlaneTreeSlab>(r.plane_slabs, "plane-tree slabs");
     b.plane_ids = body.array<std::uint32_t>(r.slots, "plane-tree ids");
+    if (r.surfaces != 0 && r.surfaces != r.mesh_triangles)
+        throw Error("the collider has " + std::to_string(r.surfaces) + " surface ids for " +
+                    std::to_string(r.mesh_triangles) + " mesh triangles");
+    b.surfaces = body.array<SurfaceId>(r.surfaces, "surface ids");
     return b;
 }
 
@@ -72,6 +79,7 @@ MapCodec::Loaded MapCodec::read(const ColliderBytes& b, PlaneTreeFrames frames) 
     b.nodes.copy_to(c->nodes_);
     b.grids.copy_to(c->grids_);
     b.node_grid.copy_to(c->node_grid_);
+    b.surfaces.copy_to(c->surfaces_);
     c->content_hash_ = b.record.content_hash;
     std::memcpy(c->inside_extent_, b.record.inside_extent, sizeof b.record.inside_extent);
     check_collider(*c);

@@ -16,7 +16,7 @@ namespace trackphys::detail {
 
 struct MapCodec {
     /// What a map file keeps of one collider and its tree besides their arrays, and the
-    /// arrays' lengths. 96 bytes.
+    /// arrays' lengths. 104 bytes.
     struct ColliderRecord {
         std::uint64_t mesh_triangles;  ///< triangle_to_slot_
         std::uint64_t slots;           ///< kept triangles: slot_vertices_, plane tree ids
@@ -28,8 +28,9 @@ struct MapCodec {
         std::uint64_t content_hash;
         double inside_extent[3];
         std::int64_t plane_depth;
+        std::uint64_t surfaces;  ///< surfaces_: 0 (every triangle surface 0) or mesh_triangles
     };
-    static_assert(sizeof(ColliderRecord) == 96);
+    static_assert(sizeof(ColliderRecord) == 104);
 
     struct Loaded {
         std::shared_ptr<const StaticCollider> collider;
@@ -51,6 +52,7 @@ struct MapCodec {
         map_detail::ArrayBytes<PlaneTreeNode> plane_nodes;
         map_detail::ArrayBytes<PlaneTreeSlab> plane_slabs;
         map_detail::ArrayBytes<std::uint32_t> plane_ids;
+        map_detail::ArrayBytes<SurfaceId> surfaces;
     };
 
     /// Adds the collider and its tree (built over every kept triangle, ids = mesh indices)

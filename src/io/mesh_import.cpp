@@ -204,8 +204,20 @@ class SceneMerger {
     // give once triangulated (n - 2 for an n-gon).
     void inspect_before_triangulation(const aiScene& scene) {
         expected_triangles_.assign(scene.mNumMeshes, 0);
+        if (scene.mNumMaterials > std::numeric_limits<SurfaceId>::max() + 1u)
+            fail(path_, std::to_string(scene.mNumMaterials) +
+                            " materials, more than the 65536 surface ids");
+        report_.materials.clear();
+        for (unsigned k = 0; k < scene.mNumMaterials; ++k) {
+            aiString name;
+            scene.mMaterials[k]->Get(AI_MATKEY_NAME, name);
+            report_.materials.emplace_back(name.C_Str());
+        }
         for (unsigned m = 0; m < scene.mNumMeshes; ++m) {
             const aiMesh& mesh = *scene.mMeshes[m];
+            if (mesh.mMaterialIndex >= scene.mNumMaterials && scene.mNumMaterials != 0)
+                fail(path_, mesh_label(mesh, m) + " refers to missing material #" +
+                                std::to_string(mesh.mMaterialIndex));
             for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
                 const aiVector3D& p = mesh.mVertices[v];
                 const glm::dvec3 q(p.x, p.y, p.z);
@@ -269,6 +281,9 @@ class SceneMerger {
             world_[v] = glm::dvec3(to_world * glm::dvec4(p.x, p.y, p.z, 1.0));
         }
 
+        // A triangle's surface is its mesh's material index (checked against the materials).
+        const auto surface =
+            report_.materials.empty() ? SurfaceId{0} : static_cast<SurfaceId>(mesh.mMaterialIndex);
         std::size_t triangles_found = 0;
         for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
             const aiFace& face = mesh.mFaces[f];
@@ -314,6 +329,7 @@ class SceneMerger {
                                 (limits_.max_triangles == 1 ? " triangle" : " triangles") +
                                 ", the limit max_triangles");
             mesh_.triangles.push_back(indices);
+            mesh_.surfaces.push_back(surface);
             report_.bounds.expand(triangle.bounds());
             report_.area += triangle.area();
         }

@@ -133,9 +133,10 @@ void check_payload_size(std::uint64_t announced, std::uint64_t available) {
     throw Error(source + ": " + std::string(why));
 }
 
-// Every field but `profile`, `threads` and `jobs`, which do not change results. (A new field
+// Every field but `profile`, `threads` and `jobs`, which do not change results, and
+// `surfaces`, the environment (world_snapshot.cpp's settings_difference). (A new field
 // also needs a new format version, and settings_difference in world_snapshot.cpp.)
-static_assert(sizeof(WorldSettings) == 136,
+static_assert(sizeof(WorldSettings) == 160,
               "a new WorldSettings field must join the snapshot file");
 
 void write_settings(Writer& w, const WorldSettings& s) {

@@ -91,6 +91,8 @@ std::vector<TrackChunk> build_chunks(const std::vector<CenterlineSample>& rows, 
         chunk.road_triangle_count = mesh.triangles.size();
         add_quads(0, kFirstRoadPoint);
         add_quads(road_end, width - 1);
+        mesh.surfaces.assign(mesh.triangles.size(), kWallSurface);
+        std::fill_n(mesh.surfaces.begin(), chunk.road_triangle_count, kRoadSurface);
     }
     return chunks;
 }

@@ -82,6 +82,11 @@ void Vehicle::set_road_grip(std::size_t w, double grip) {
 }
 
 void Vehicle::set_state(const VehicleState& state) {
+    check_state(state);
+    state_ = state;
+}
+
+void Vehicle::check_state(const VehicleState& state) const {
     const auto reject = [](const std::string& why) { throw Error("vehicle state: " + why); };
     if (state.wheels.size() != wheels_.size())
         reject(std::to_string(state.wheels.size()) + " wheels for " +
@@ -100,7 +105,6 @@ void Vehicle::set_state(const VehicleState& state) {
     if (!(state.shift_time_left >= 0.0 && state.shift_time_left <= spec_.gearbox.shift_time))
         reject("shift_time_left is not in [0, gearbox.shift_time]");
     if (!(state.clutch >= 0.0 && state.clutch <= 1.0)) reject("clutch is not in [0, 1]");
-    state_ = state;
 }
 
 namespace {
@@ -119,17 +123,17 @@ double braked(double spin, double step) {
 // so above low_speed the spin follows from it explicitly; below, slow_wheel_force adds
 // the tyre's damping.
 TyreForce Vehicle::wheel_force(std::size_t w, double load, double rolling_velocity,
-                               double lateral_velocity, double h) {
+                               double lateral_velocity, double h, double surface_grip) {
     Wheel& wheel = wheels_[w];
+    const double grip = wheel.road_grip * surface_grip;
     WheelState& s = state_.wheels[w];
     const double r = wheel.radius;
     const double speed = std::abs(rolling_velocity);
     TyreForce force;
     if (load > 0.0 && speed < spec_.low_speed) {
-        force = slow_wheel_force(wheel, s, load, rolling_velocity, lateral_velocity, h);
+        force = slow_wheel_force(wheel, s, load, grip, rolling_velocity, lateral_velocity, h);
     } else {
-        if (load > 0.0)
-            force = tyre_of(wheel).force(wheel.slip, tyre_of(wheel).peaks(load, wheel.road_grip));
+        if (load > 0.0) force = tyre_of(wheel).force(wheel.slip, tyre_of(wheel).peaks(load, grip));
         const double drive = load > 0.0 ? wheel.drive_torque : wheel.airborne_drive_torque;
         const double torque = drive - r * force.longitudinal;
         s.spin = braked(s.spin + h * wheel.inverse_inertia * torque,
@@ -171,7 +175,7 @@ TyreForce Vehicle::wheel_force(std::size_t w, double load, double rolling_veloci
 // the deflection spring C / sigma under the wheel's share of the car's mass; the whole
 // force, damping included, stays in the friction ellipse. The spin is implicit in the
 // damping, then braked.
-TyreForce Vehicle::slow_wheel_force(const Wheel& wheel, WheelState& s, double load,
+TyreForce Vehicle::slow_wheel_force(const Wheel& wheel, WheelState& s, double load, double grip,
                                     double rolling_velocity, double lateral_velocity, double h) {
     const Tyre& tyre = tyre_of(wheel);
     const TyreSpec& ts = tyre.spec();
@@ -180,8 +184,8 @@ TyreForce Vehicle::slow_wheel_force(const Wheel& wheel, WheelState& s, double lo
     // The dry road's peaks, and the friction ellipse that bounds the total force, damping
     // included (N for each direction).
     const TyreForce dry = tyre.peaks(load);
-    const double dx = wheel.road_grip * dry.longitudinal;
-    const double dy = wheel.road_grip * dry.lateral;
+    const double dx = grip * dry.longitudinal;
+    const double dy = grip * dry.lateral;
     const TyreForce force = tyre.force(wheel.slip, TyreForce{dx, dy});
     // The fade reads the contact's whole speed, not the rolling speed alone: a wheel sliding
     // sideways faster than low_speed gets the curve's sliding force, as it does once it

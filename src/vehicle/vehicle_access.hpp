@@ -16,8 +16,9 @@ struct VehicleAccess {
         vehicle.begin_substep(throttle, brake, car_speed, forward_speed, h);
     }
     static TyreForce wheel_force(Vehicle& vehicle, std::size_t w, double load,
-                                 double rolling_velocity, double lateral_velocity, double h) {
-        return vehicle.wheel_force(w, load, rolling_velocity, lateral_velocity, h);
+                                 double rolling_velocity, double lateral_velocity, double h,
+                                 double surface_grip = 1.0) {
+        return vehicle.wheel_force(w, load, rolling_velocity, lateral_velocity, h, surface_grip);
     }
     static void measure_anti_roll(Vehicle& vehicle, std::span<const double> suspension) {
         vehicle.measure_anti_roll(suspension);

@@ -39,8 +39,11 @@ class CarIslands {
     std::span<const CarPair> pairs(std::size_t i) const {
         return std::span(pairs_).subspan(pair_begin_[i], pair_begin_[i + 1] - pair_begin_[i]);
     }
-    /// Every overlapping pair, over all islands.
+    /// Every overlapping pair, over all islands: island i's from first_pair(i) on.
+    std::span<const CarPair> all_pairs() const { return pairs_; }
     std::size_t pair_count() const { return pairs_.size(); }
+    /// Where island i's pairs start in all_pairs().
+    std::size_t first_pair(std::size_t i) const { return pair_begin_[i]; }
 
   private:
     std::uint32_t root(std::uint32_t car);

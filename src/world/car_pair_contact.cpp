@@ -118,7 +118,12 @@ CarPairTouch touch_cars(Car& a, std::span<const Ellipsoid> a_placed, Car& b,
             const Contact contact = ellipsoid_ellipsoid_contact(ea, eb);
             ++touch.exact_tests;
             if (!(contact.depth > 0.0)) continue;
-            touch.deepest = std::max(touch.deepest, contact.depth);
+            if (contact.depth > touch.deepest) {
+                touch.deepest = contact.depth;
+                touch.deepest_contact = contact;
+                touch.approach_speed =
+                    -glm::dot(relative_velocity(a, b, contact.point), contact.normal);
+            }
             const double budget =
                 deep_fraction * std::min(ea.sorted_radii().z, eb.sorted_radii().z);
             stop_if_too_deep(a, b, contact, material.stiffness, budget);

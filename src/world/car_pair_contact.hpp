@@ -4,6 +4,7 @@
 #include <span>
 
 #include "trackphys/dynamics/car.hpp"
+#include "trackphys/geometry/contact.hpp"
 #include "trackphys/geometry/ellipsoid.hpp"
 
 namespace trackphys::detail {
@@ -12,6 +13,11 @@ namespace trackphys::detail {
 struct CarPairTouch {
     std::uint64_t exact_tests = 0;  ///< ellipsoid pairs the cheap culls let through
     double deepest = 0.0;           ///< deepest overlap (m), 0 when they did not touch
+    /// The deepest overlapping ellipsoid pair's contact (normal: moving a along it separates)
+    /// and how fast the cars closed along its normal at its point before that pair pushed
+    /// (m/s, > 0 approaching): for the contact events. Unset when they did not touch.
+    Contact deepest_contact{0.0, glm::dvec3(0.0, 1.0, 0.0), glm::dvec3(0.0)};
+    double approach_speed = 0.0;
 };
 
 /// One sub-step of h seconds of contact between cars a and b, whose ellipsoids in the

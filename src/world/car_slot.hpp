@@ -7,11 +7,14 @@
 #include <string>
 #include <vector>
 
+#include <glm/geometric.hpp>
+
 #include "trackphys/collision/mid_phase.hpp"
 #include "trackphys/dynamics/car.hpp"
 #include "trackphys/geometry/aabb.hpp"
 #include "trackphys/geometry/contact.hpp"
 #include "trackphys/geometry/ellipsoid.hpp"
+#include "trackphys/world/contact_events.hpp"
 #include "trackphys/world/world.hpp"
 #include "world/car_scratch.hpp"
 
@@ -99,6 +102,25 @@ struct World::CarSlot {
     std::vector<TriangleRef> deepest_ref;  // its triangle, tried first next
     std::vector<KnownNormals> known;       // per ellipsoid: recent survivors' normals
     bool pushed = false;                   // by another car, this sub-step
+    // This update's body hits (car index left for World::update to fill), at most one per
+    // ellipsoid: room for every body ellipsoid is reserved, so recording never allocates.
+    std::vector<BodyHitEvent> hits;
+    std::uint64_t hit_ellipsoids = 0;  // bit i: ellipsoid i has its hit this update
+    void start_hits() {
+        hits.clear();
+        hit_ellipsoids = 0;
+    }
+    // Ellipsoid i's deepest contact, on `ref`, became an overlap at this sub-step: a hit if i
+    // is a body ellipsoid without one yet this update.
+    void note_touch(std::size_t i, const Contact& contact, const TriangleRef& ref) {
+        const std::uint64_t bit = std::uint64_t{1} << i;
+        if (car.spec().ellipsoids[i].role != EllipsoidRole::body || (hit_ellipsoids & bit)) return;
+        hit_ellipsoids |= bit;
+        const double approach =
+            -glm::dot(point_velocity(car.state(), contact.point), contact.normal);
+        hits.push_back({0, static_cast<std::uint32_t>(i), ref, contact.point, contact.normal,
+                        contact.depth, approach});
+    }
     // The reset policy's memory: the state at the start of this update, the resets.
     RigidBodyState start_state;
     std::vector<double> start_suspension;

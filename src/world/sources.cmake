@@ -3,6 +3,7 @@ target_sources(trackphys PRIVATE
   world/car_islands.cpp
   world/car_views.cpp
   world/car_pair_contact.cpp
+  world/car_touches.cpp
   world/cars_along_track.cpp
   world/physics_runner.cpp
   world/race_drivers.cpp

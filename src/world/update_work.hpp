@@ -9,9 +9,11 @@
 #include "trackphys/geometry/aabb.hpp"
 #include "trackphys/geometry/ellipsoid.hpp"
 #include "trackphys/profile/update_profile.hpp"
+#include "trackphys/world/contact_events.hpp"
 #include "trackphys/world/world.hpp"
 #include "world/car_islands.hpp"
 #include "world/car_scratch.hpp"
+#include "world/car_touches.hpp"
 #include "world/thread_pool.hpp"
 
 namespace trackphys {
@@ -86,6 +88,10 @@ struct World::UpdateWork {
     // any worker's scratch has held, so that copying them allocates nothing once warm.
     std::size_t drawn_listed_room = 0;
     std::size_t drawn_kept_room = 0;
+    // The contact events: the car pairs' (one record per pair, written by its island) and
+    // the body hits gathered from the cars' slots after the islands ran.
+    detail::CarTouches touches;
+    std::vector<BodyHitEvent> body_hits;
     // Per island: what stopped its update, rethrown after all islands ran.
     std::vector<std::exception_ptr> errors;
     std::unique_ptr<detail::ThreadPool> pool;  // started at the first update with 2 islands

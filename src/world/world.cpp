@@ -37,6 +37,7 @@ World::World(std::shared_ptr<const StaticWorld> statics, WorldSettings settings,
       work_(std::make_unique<UpdateWork>()) {
     if (!statics_) throw Error("World: the static world is null");
     if (std::string why = settings_.validate(); !why.empty()) throw Error(why);
+    check_surfaces();
     if (settings_.mid_phase != MidPhaseMode::precomputed_tree)
         trees.clear();
     else if (trees.empty())
@@ -46,6 +47,22 @@ World::World(std::shared_ptr<const StaticWorld> statics, WorldSettings settings,
     // The phase clock's rate is measured once, over a millisecond: here rather than inside
     // the first update, whose time it would otherwise carry.
     if (settings_.profile) static_cast<void>(TickClock::microseconds_per_tick());
+}
+
+void World::check_surfaces() const {
+    const std::vector<Surface>& table = settings_.surfaces;
+    if (table.empty()) return;
+    for (std::uint32_t id = 0; id < statics_->size(); ++id) {
+        const StaticCollider& collider = statics_->collider(id);
+        if (collider.highest_surface() < table.size()) continue;
+        const std::span<const SurfaceId> surfaces = collider.surfaces();
+        for (std::uint32_t t = 0; t < surfaces.size(); ++t)
+            if (surfaces[t] >= table.size() && collider.has_triangle(t))
+                throw Error("World: collider " + std::to_string(id) + "'s triangle " +
+                            std::to_string(t) + " is surface " + std::to_string(surfaces[t]) +
+                            ", beyond WorldSettings.surfaces (" + std::to_string(table.size()) +
+                            " entries)");
+    }
 }
 
 World::~World() = default;
@@ -58,6 +75,9 @@ World::CarSlot::CarSlot(Car car_in, MidPhase mid_in)
     deepest.resize(ellipsoids);
     deepest_ref.resize(ellipsoids, TriangleRef{~0u, ~0u});
     known.resize(ellipsoids);
+    hits.reserve(static_cast<std::size_t>(
+        std::count_if(car.spec().ellipsoids.begin(), car.spec().ellipsoids.end(),
+                      [](const CarEllipsoid& e) { return e.role == EllipsoidRole::body; })));
 }
 
 std::size_t World::add_car(const CarSpec& spec, const RigidBodyState& state) {
@@ -96,12 +116,26 @@ void World::remove_car(std::size_t i) {
     // The workers' scratch is sized at the next update for the field it has then: by the car
     // count alone, a removal and an add_car of a car with more ellipsoids would go unseen.
     work_->scratch_cars = 0;
+    work_->touches.remove_car(static_cast<std::uint32_t>(i));
+    work_->body_hits.clear();
 }
 
 std::size_t World::car_count() const { return cars_.size(); }
 Car& World::car(std::size_t i) { return car_slot(i).car; }
 const Car& World::car(std::size_t i) const { return car_slot(i).car; }
 std::span<const Contact> World::contacts(std::size_t i) const { return car_slot(i).deepest; }
+ContactEvents World::contact_events() const {
+    return {work_->touches.begins(), work_->touches.ends(), work_->body_hits};
+}
+std::optional<ContactSurface> World::contact_surface(std::size_t i, std::size_t ellipsoid) const {
+    const CarSlot& slot = car_slot(i);
+    if (ellipsoid >= slot.deepest.size())
+        throw Error("car " + std::to_string(i) + " has no ellipsoid " + std::to_string(ellipsoid) +
+                    " (it has " + std::to_string(slot.deepest.size()) + ")");
+    if (!(slot.deepest[ellipsoid].depth > 0.0)) return std::nullopt;
+    const TriangleRef ref = slot.deepest_ref[ellipsoid];
+    return ContactSurface{ref, statics_->collider(ref.collider).surface(ref.triangle)};
+}
 std::uint64_t World::car_resets(std::size_t i) const { return car_slot(i).resets; }
 const std::string& World::last_reset_reason(std::size_t i) const { return car_slot(i).last_reset; }
 
@@ -128,15 +162,30 @@ void World::update() {
             work.boxes[i] = detail::car_update_box(cars_[i].car, settings_);
         work.islands.build(work.boxes);
         profile_.car_pairs = work.islands.pair_count();
+        work.touches.start_update(work.islands.pair_count());
+        work.body_hits.clear();
         watch.lap(Phase::broad);
     }
     run_islands();
+    collect_contact_events();
     ++updates_;
     if (settings_.profile) {
         const auto end = PhaseStopwatch::Clock::now();
         profile_.update_us = std::chrono::duration<double, std::micro>(end - start).count();
         if (trace_) trace_->record("update", start, end);
     }
+}
+
+// The islands wrote each car's hits into its slot and each pair's touches into its record:
+// gathered here in car and pair order, whichever worker ran them.
+void World::collect_contact_events() {
+    UpdateWork& work = *work_;
+    work.touches.finish(work.islands.all_pairs());
+    for (std::size_t i = 0; i < cars_.size(); ++i)
+        for (BodyHitEvent hit : cars_[i].hits) {
+            hit.car = static_cast<std::uint32_t>(i);
+            work.body_hits.push_back(hit);
+        }
 }
 
 // Hands the islands out to the job system, the pool or this thread; then gathers the
@@ -176,6 +225,10 @@ void World::run_islands() {
         for (WorkerScratch& scratch : work.worker_scratch)
             scratch.set_cars(cars_.size(), ellipsoids);
         work.scratch_cars = cars_.size();
+        // Room for a hit of every body ellipsoid of the field, the most an update can have.
+        std::size_t body_ellipsoids = 0;
+        for (const CarSlot& slot : cars_) body_ellipsoids += slot.hits.capacity();
+        work.body_hits.reserve(body_ellipsoids);
     }
     // The trace recorder is not shared between threads.
     work.trace = workers == 1 ? trace_ : nullptr;
@@ -392,8 +445,10 @@ void World::find_contacts(CarSlot& slot, PhaseStopwatch& watch) {
     std::array<ContactWithSupport, CarSpec::max_ellipsoids> first_faces;
     std::array<bool, CarSpec::max_ellipsoids> first_certified;
     std::array<std::size_t, CarSpec::max_ellipsoids> first_owners;
-    std::size_t firsts = 0;  // ellipsoids with survivors
+    std::size_t firsts = 0;          // ellipsoids with survivors
+    std::uint64_t was_touching = 0;  // bit i: ellipsoid i overlapped at the last sub-step
     for (std::size_t i = 0; i < ellipsoids; ++i) {
+        was_touching |= std::uint64_t{deepest_of[i].depth > 0.0} << i;
         deepest_of[i].depth = -std::numeric_limits<double>::infinity();
         const std::uint32_t start = static_cast<std::uint32_t>(all_kept.size());
         kept_start[i + 1] = start;
@@ -474,12 +529,32 @@ void World::find_contacts(CarSlot& slot, PhaseStopwatch& watch) {
             tested(s.ref, exact_contact(*statics_, s.ref, frame, ellipsoid));
         }
         watch.profile().contacts += deepest.depth > 0.0;
+        if (deepest.depth > 0.0 && !(was_touching >> i & 1))
+            slot.note_touch(i, deepest, deepest_ref[i]);
     }
     watch.lap(Phase::exact);
 }
 
+// Each ellipsoid's grip is its deepest triangle's surface's, which find_contacts has just
+// named; without a surface table every surface is the dry road, and there is nothing to read.
 void World::advance(CarSlot& slot, PhaseStopwatch& watch) {
-    detail::CarAccess::advance(slot.car, slot.deepest, settings_.gravity, settings_.substep_dt());
+    const std::span<const Surface> table(settings_.surfaces);
+    if (table.empty()) {
+        detail::CarAccess::advance(slot.car, slot.deepest, settings_.gravity,
+                                   settings_.substep_dt());
+    } else {
+        const std::span<const Contact> deepest(slot.deepest);
+        std::array<double, CarSpec::max_ellipsoids> grip;
+        for (std::size_t i = 0; i < deepest.size(); ++i) {
+            grip[i] = 1.0;
+            if (!(deepest[i].depth > 0.0)) continue;
+            const TriangleRef ref = slot.deepest_ref[i];
+            const std::span<const SurfaceId> surfaces = statics_->collider(ref.collider).surfaces();
+            grip[i] = table[surfaces.empty() ? 0 : surfaces[ref.triangle]].grip;
+        }
+        detail::CarAccess::advance(slot.car, deepest, settings_.gravity, settings_.substep_dt(),
+                                   std::span<const double>(grip.data(), deepest.size()));
+    }
     watch.lap(Phase::integrate);
 }
 

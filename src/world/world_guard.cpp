@@ -240,6 +240,7 @@ void World::update_island_or_reset(std::size_t island, WorkerScratch& scratch,
             contact =
                 Contact{-std::numeric_limits<double>::infinity(), glm::dvec3(0.0), glm::dvec3(0.0)};
         for (TriangleRef& ref : slot.deepest_ref) ref = TriangleRef{~0u, ~0u};
+        slot.start_hits();  // hits of an undone update
         ++slot.resets;
         slot.last_reset = "update " + std::to_string(updates_ + 1) + ": " + why + stop_reason;
     }

@@ -19,19 +19,21 @@ namespace trackphys {
 // the same instant, then the contacts between cars push them (touch_cars), then each car
 // integrates; so both cars of a pair feel their contact in the same sub-step.
 void World::step_island(std::size_t island, WorkerScratch& scratch, PhaseStopwatch& watch) {
-    const UpdateWork& work = *work_;
+    UpdateWork& work = *work_;
     const std::span<const std::uint32_t> cars = work.islands.cars(island);
     // Each car's working memory, in the worker's scratch.
     for (std::size_t k = 0; k < cars.size(); ++k) {
         CarSlot& slot = cars_[cars[k]];
         scratch.cars[k].start_car(slot.car, slot.empty_lists);
         slot.scratch = &scratch.cars[k];
+        slot.start_hits();
     }
     if (cars.size() == 1) {
         update_car(cars_[cars[0]], work.boxes[cars[0]], watch);
         return;
     }
     const std::span<const detail::CarPair> pairs = work.islands.pairs(island);
+    const std::size_t first_pair = work.islands.first_pair(island);
     UpdateProfile& profile = watch.profile();
     const double h = settings_.substep_dt();
 
@@ -46,12 +48,14 @@ void World::step_island(std::size_t island, WorkerScratch& scratch, PhaseStopwat
                 find_contacts(cars_[i], watch);
                 cars_[i].pushed = false;
             }
-            for (const detail::CarPair& pair : pairs) {
+            for (std::size_t p = 0; p < pairs.size(); ++p) {
+                const detail::CarPair& pair = pairs[p];
                 CarSlot& a = cars_[pair.a];
                 CarSlot& b = cars_[pair.b];
                 const detail::CarPairTouch touch =
                     detail::touch_cars(a.car, a.scratch->placed, b.car, b.scratch->placed, h);
                 profile.car_pair_tests += touch.exact_tests;
+                work.touches.record(first_pair + p, touch);
                 // Only an overlap pushes.
                 if (touch.deepest > 0.0) a.pushed = b.pushed = true;
                 profile.car_contacts += touch.deepest > 0.0;

@@ -18,6 +18,7 @@
 #include "trackphys/world/world.hpp"
 #include "vehicle/vehicle_fingerprint.hpp"
 #include "world/car_slot.hpp"
+#include "world/update_work.hpp"
 
 namespace trackphys {
 namespace {
@@ -44,8 +45,9 @@ bool same(double x, double y) {
 }
 
 // The first stepping setting that differs, or empty. `profile`, `threads` and `jobs` do not
-// change results.
-static_assert(sizeof(WorldSettings) == 136,
+// change results; `surfaces` is the environment the cars drive in, like
+// Vehicle::set_road_grip, which a snapshot neither carries nor compares.
+static_assert(sizeof(WorldSettings) == 160,
               "a new WorldSettings field must join settings_difference and the snapshot file");
 std::string settings_difference(const WorldSettings& a, const WorldSettings& b) {
     std::ostringstream why;
@@ -75,6 +77,10 @@ std::string settings_difference(const WorldSettings& a, const WorldSettings& b) 
     else if (!same(a.max_spawn_distance, b.max_spawn_distance))
         why << "max_spawn_distance " << a.max_spawn_distance << " vs " << b.max_spawn_distance;
     return why.str();
+}
+
+ColliderFingerprint fingerprint(const StaticCollider& c) {
+    return {c.mesh_triangle_count(), c.triangle_count(), c.content_hash()};
 }
 
 std::string car_problem(const CarSnapshot& car) {
@@ -124,10 +130,8 @@ std::string car_problem(const CarSnapshot& car) {
 std::vector<ColliderFingerprint> fingerprint(const StaticWorld& statics) {
     std::vector<ColliderFingerprint> out;
     out.reserve(statics.size());
-    for (std::uint32_t id = 0; id < statics.size(); ++id) {
-        const StaticCollider& c = statics.collider(id);
-        out.push_back({c.mesh_triangle_count(), c.triangle_count(), c.content_hash()});
-    }
+    for (std::uint32_t id = 0; id < statics.size(); ++id)
+        out.push_back(fingerprint(statics.collider(id)));
     return out;
 }
 
@@ -164,47 +168,59 @@ std::string WorldSnapshot::validate() const {
 
 WorldSnapshot World::save_state() const {
     WorldSnapshot snapshot;
-    snapshot.colliders = fingerprint(*statics_);
-    snapshot.settings = settings_;
-    snapshot.update_count = updates_;
-    for (const CarSlot& slot : cars_) {
-        const std::span<const double> suspension = slot.car.suspension();
-        snapshot.cars.push_back(
-            {fingerprint(slot.car.spec()),
-             slot.car.state(),
-             slot.car.inputs(),
-             {suspension.begin(), suspension.end()},
-             slot.deepest,
-             slot.deepest_ref,
-             slot.resets,
-             slot.car.vehicle() ? std::optional(slot.car.vehicle()->state()) : std::nullopt});
-    }
+    save_state(snapshot);
     return snapshot;
 }
 
-// Everything is checked, and the new cars built aside, before anything changes: a
-// rejected snapshot leaves the World as it was.
+// Every vector is assigned over the one `into` has, whose room a snapshot of the same world
+// already has: rollback netcode saves a state every frame.
+void World::save_state(WorldSnapshot& into) const {
+    into.colliders.resize(statics_->size());
+    for (std::uint32_t id = 0; id < statics_->size(); ++id)
+        into.colliders[id] = fingerprint(statics_->collider(id));
+    into.settings = settings_;
+    into.update_count = updates_;
+    into.cars.resize(cars_.size());
+    for (std::size_t i = 0; i < cars_.size(); ++i) {
+        const CarSlot& slot = cars_[i];
+        CarSnapshot& saved = into.cars[i];
+        saved.spec_fingerprint = fingerprint(slot.car.spec());
+        saved.state = slot.car.state();
+        saved.inputs = slot.car.inputs();
+        const std::span<const double> suspension = slot.car.suspension();
+        saved.suspension.assign(suspension.begin(), suspension.end());
+        saved.contacts.assign(slot.deepest.begin(), slot.deepest.end());
+        saved.deepest_refs.assign(slot.deepest_ref.begin(), slot.deepest_ref.end());
+        saved.resets = slot.resets;
+        if (const Vehicle* vehicle = slot.car.vehicle())
+            saved.vehicle = vehicle->state();  // into the engaged one's wheels, if any
+        else
+            saved.vehicle.reset();
+    }
+}
+
+// Everything is checked before anything changes, so a rejected snapshot leaves the World
+// as it was; then each car is written in place (no copies of the cars, which allocate).
 void World::restore_state(const WorldSnapshot& snapshot) {
     const auto reject = [](const std::string& why) { throw Error("World::restore_state: " + why); };
     if (std::string why = snapshot.validate(); !why.empty())
         reject("the snapshot is invalid: " + why);
 
-    const std::vector<ColliderFingerprint> colliders = fingerprint(*statics_);
-    if (snapshot.colliders.size() != colliders.size())
+    if (snapshot.colliders.size() != statics_->size())
         reject("the snapshot was made over " + std::to_string(snapshot.colliders.size()) +
-               " colliders, this world has " + std::to_string(colliders.size()));
-    for (std::size_t i = 0; i < colliders.size(); ++i)
-        if (!(snapshot.colliders[i] == colliders[i]))
+               " colliders, this world has " + std::to_string(statics_->size()));
+    for (std::uint32_t i = 0; i < statics_->size(); ++i) {
+        const ColliderFingerprint ours = fingerprint(statics_->collider(i));
+        if (!(snapshot.colliders[i] == ours))
             reject("collider " + std::to_string(i) + " differs: the snapshot's has " +
-                   describe(snapshot.colliders[i]) + ", this world's " + describe(colliders[i]));
+                   describe(snapshot.colliders[i]) + ", this world's " + describe(ours));
+    }
     if (std::string why = settings_difference(snapshot.settings, settings_); !why.empty())
         reject("the world settings differ (snapshot vs this world): " + why);
     if (snapshot.cars.size() != cars_.size())
         reject("the snapshot has " + std::to_string(snapshot.cars.size()) + " cars, this world " +
                std::to_string(cars_.size()) + " (add the same cars first)");
 
-    std::vector<Car> restored;
-    restored.reserve(cars_.size());
     for (std::size_t i = 0; i < cars_.size(); ++i) {
         const CarSnapshot& saved = snapshot.cars[i];
         const Car& car = cars_[i].car;
@@ -216,28 +232,30 @@ void World::restore_state(const WorldSnapshot& snapshot) {
         if (std::string why = impossible_state(saved.state); !why.empty())
             reject("car " + std::to_string(i) + ": " + why);
         try {
-            Car copy = car;
-            detail::CarAccess::restore(copy, saved.state, saved.inputs, saved.suspension);
+            car.check_restore(saved.state, saved.inputs, saved.suspension);
             if (saved.vehicle.has_value() != (car.vehicle() != nullptr))
                 throw Error(car.vehicle() ? "the snapshot has no vehicle state for its model"
                                           : "the snapshot has a vehicle state for an arcade car");
-            if (saved.vehicle) copy.set_vehicle_state(*saved.vehicle);
-            restored.push_back(std::move(copy));
+            if (saved.vehicle) car.check_vehicle_state(*saved.vehicle);
         } catch (const Error& e) {
             reject("car " + std::to_string(i) + ": " + e.what());
         }
     }
 
+    // Checked above: nothing below throws.
     for (std::size_t i = 0; i < cars_.size(); ++i) {
         CarSlot& slot = cars_[i];
         const CarSnapshot& saved = snapshot.cars[i];
-        detail::CarAccess::replace(slot.car, std::move(restored[i]));
-        slot.deepest = saved.contacts;
-        slot.deepest_ref = saved.deepest_refs;
+        detail::CarAccess::restore(slot.car, saved.state, saved.inputs, saved.suspension);
+        if (saved.vehicle) slot.car.set_vehicle_state(*saved.vehicle);
+        slot.deepest.assign(saved.contacts.begin(), saved.contacts.end());
+        slot.deepest_ref.assign(saved.deepest_refs.begin(), saved.deepest_refs.end());
         slot.resets = saved.resets;
         slot.last_reset.clear();
     }
     updates_ = snapshot.update_count;
+    work_->touches.forget();
+    work_->body_hits.clear();
 }
 
 }  // namespace trackphys

@@ -5,6 +5,7 @@
 #include "trackphys/io/map_file.hpp"
 
 #include <algorithm>
+#include <cstddef>
 #include <cstring>
 #include <filesystem>
 #include <random>
@@ -84,6 +85,7 @@ std::vector<Section> sections_of(const std::string& bytes) {
         add(r.plane_nodes * 24, c + "plane nodes");
         add(r.plane_slabs * 20, c + "plane slabs");
         add(r.slots * 4, c + "plane ids");
+        add(r.surfaces * 2, c + "surface ids");
     }
     EXPECT_EQ(at, bytes.size()) << "the sections do not cover the file";
     return out;
@@ -330,15 +332,51 @@ TEST(MapFile, AnyThreadCountLoadsTheSameAndNamesTheFirstBadCollider) {
     }
 }
 
+// Surface ids go from the mesh through the collider and the file back, by mesh index, a
+// dropped triangle's too; a mesh without ids loads without any.
+TEST(MapFile, SurfaceIdsSurviveTheFile) {
+    TriangleMesh labelled;
+    labelled.vertices = {{0, 0, 0}, {10, 0, 0}, {10, 0, 10}, {0, 0, 10}, {20, 0, 0}};
+    labelled.triangles = {{0, 2, 1}, {0, 1, 4}, {0, 3, 2}};  // the second is degenerate
+    labelled.surfaces = {3, 7, 1};
+    TriangleMesh plain = labelled;
+    plain.surfaces.clear();
+    const std::vector<TriangleMesh> meshes = {labelled, plain};
+    const StaticMap loaded = decode_map(encode_map(bake_map(meshes)));
+    const StaticCollider& first = loaded.statics->collider(0);
+    for (std::uint32_t t = 0; t < 3; ++t) EXPECT_EQ(first.surface(t), labelled.surfaces[t]) << t;
+    EXPECT_EQ(first.highest_surface(), 3);
+    EXPECT_TRUE(loaded.statics->collider(1).surfaces().empty());
+    // Split into 5 m cells (bake --chunk), each triangle keeps its id: cells (0, 1), (1, 0),
+    // (2, 0) hold triangles 2, 0 and 1.
+    const std::vector<TriangleMesh> cells = split_into_chunks(labelled, 5.0);
+    ASSERT_EQ(cells.size(), 3u);
+    EXPECT_EQ(cells[0].surfaces, std::vector<SurfaceId>{1});
+    EXPECT_EQ(cells[1].surfaces, std::vector<SurfaceId>{3});
+    EXPECT_EQ(cells[2].surfaces, std::vector<SurfaceId>{7});
+    // The generated track's walls are surface 1.
+    const StaticMap track = decode_map(baked_bytes());
+    EXPECT_EQ(track.statics->collider(0).highest_surface(), kWallSurface);
+
+    // A count that is neither 0 nor the mesh triangles' is refused before it is read.
+    std::string bytes = encode_map(bake_map(meshes));
+    const std::size_t record = kHeaderBytes + 64;
+    const std::uint64_t wrong = 2;
+    std::memcpy(bytes.data() + record + offsetof(detail::MapCodec::ColliderRecord, surfaces),
+                &wrong, 8);
+    const std::string message = error_of([&] { decode_map(resealed(bytes)); });
+    EXPECT_NE(message.find("2 surface ids for 3 mesh triangles"), std::string::npos) << message;
+}
+
 TEST(MapFile, AnotherVersionOrOtherBuildOptionsAreNamed) {
     std::string bytes = baked_bytes();
-    // Version 1 (plane-tree slabs for every node) is what maps baked before version 2 hold.
-    static_assert(kMapFormatVersion == 2);
-    for (const std::uint32_t version : {1u, 3u}) {
+    // Version 2 (no surface ids) is what maps baked before version 3 hold.
+    static_assert(kMapFormatVersion == 3);
+    for (const std::uint32_t version : {2u, 4u}) {
         std::memcpy(bytes.data() + 8, &version, 4);
         const std::string message = error_of([&] { decode_map(resealed(bytes)); });
         EXPECT_NE(message.find("format version " + std::to_string(version) +
-                               ", this build reads only version 2: bake the map again"),
+                               ", this build reads only version 3: bake the map again"),
                   std::string::npos)
             << message;
     }

@@ -8,6 +8,7 @@
 #include <glm/geometric.hpp>
 
 #include "io_test_support.hpp"
+#include "trackphys/collision/static_collider.hpp"
 #include "trackphys/geometry/triangle.hpp"
 #include "trackphys/io/mesh_io.hpp"
 
@@ -168,6 +169,44 @@ TEST_F(MeshImport, GltfNodeTransformsAreComposedAndApplied) {
         EXPECT_NEAR(got.normal().y, 1.0, 1e-12) << "triangle " << t;
     }
     EXPECT_NEAR(report.area, 0.5 * (4.0 + 1.0 + 1.0), 1e-6);
+}
+
+// Each triangle's surface id is its mesh's material index; the report names the materials.
+TEST_F(MeshImport, GltfMaterialsBecomeSurfaceIds) {
+    const std::vector<float> positions{0, 0, 0, 0, 0, -1, 1, 0, 0, 1, 0, -1};
+    const std::vector<std::uint32_t> indices{0, 1, 2, 2, 1, 3};
+    test::write_gltf(
+        file("m.gltf"), positions, indices,
+        R"({"mesh":0},{"mesh":1,"translation":[10,0,0]},{"mesh":0,"translation":[20,0,0]})",
+        "0,1,2");
+    std::string json = test::read_file(file("m.gltf"));
+    const std::string one_mesh =
+        R"("meshes":[{"name":"road","primitives":[{"attributes":{"POSITION":0},"indices":1,"mode":4}]}])";
+    const std::size_t at = json.find(one_mesh);
+    ASSERT_NE(at, std::string::npos) << json;
+    json.replace(
+        at, one_mesh.size(),
+        R"("materials":[{"name":"asphalt"},{"name":"grass"}],"meshes":[)"
+        R"({"name":"road","primitives":[{"attributes":{"POSITION":0},"indices":1,"material":0}]},)"
+        R"({"name":"verge","primitives":[{"attributes":{"POSITION":0},"indices":1,"material":1}]}])");
+    test::write_file(file("m.gltf"), json);
+
+    MeshLoadReport report;
+    const TriangleMesh mesh = load_mesh(file("m.gltf"), report);
+    ASSERT_EQ(mesh.triangles.size(), 6u);
+    ASSERT_EQ(mesh.surfaces.size(), 6u);
+    ASSERT_GE(report.materials.size(), 2u);
+    EXPECT_EQ(report.materials[0], "asphalt");
+    EXPECT_EQ(report.materials[1], "grass");
+    // In node order: road, verge (10 m along x), road again.
+    const std::vector<SurfaceId> expected{0, 0, 1, 1, 0, 0};
+    EXPECT_EQ(mesh.surfaces, expected);
+    const StaticCollider collider(mesh);
+    for (std::uint32_t t = 0; t < 6; ++t) {
+        const bool verge =
+            triangle(mesh, t).vertices[0].x >= 10.0 && triangle(mesh, t).vertices[0].x < 20.0;
+        EXPECT_EQ(collider.surface(t), verge ? 1 : 0) << t;
+    }
 }
 
 TEST_F(MeshImport, GltfTriangleStripsBecomeTriangles) {

@@ -143,7 +143,7 @@ TEST(Soak, DefaultTrackOneSimulatedHourByAutopilotUpTo1000KmH) {
     const cli::DriveScene scene = cli::make_track_scene(7);
     const Track& track = *scene.track;
     const CarSpec spec = CarSpec::default_car();
-    World world(scene.statics);
+    World world(scene.statics, cli::tool_world_settings());
     world.add_car(spec, cli::start_on_track(track, spec));
 
     std::size_t lap = 0;
@@ -203,7 +203,7 @@ TEST(Soak, RealWorldTrackMeshFreeDriving) {
     constexpr double kSeconds = 600.0;
     const cli::DriveScene scene = cli::make_mesh_scene(mesh);
     const CarSpec spec = CarSpec::default_car();
-    World world(scene.statics);
+    World world(scene.statics, cli::tool_world_settings());
     // The car lands on whatever is below (0, 50, 0): on g-track-1, the road near the origin.
     world.add_car(spec, cli::spawn_on_surface(*scene.statics, spec, {0.0, 50.0, 0.0}, 90.0));
 

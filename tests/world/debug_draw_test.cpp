@@ -85,7 +85,7 @@ World three_cars(std::optional<int> only = std::nullopt) {
     auto statics = std::make_shared<StaticWorld>();
     statics->add(std::make_shared<StaticCollider>(test::flat_grid(60.0, 30)));
     statics->add(std::make_shared<StaticCollider>(test::wall(6.0, 60.0, 3.0)));
-    World world(statics);
+    World world(statics, test::tool_settings());
     const CarSpec spec = CarSpec::default_car();
     for (int k = 0; k < 3; ++k) {
         if (only && k != *only) continue;
@@ -283,7 +283,7 @@ TEST(DebugDraw, ACarsTrianglesAreItsOwnWhicheverCarRanAfterIt) {
 World side_by_side(std::optional<int> only = std::nullopt) {
     auto statics = std::make_shared<StaticWorld>();
     statics->add(std::make_shared<StaticCollider>(test::flat_grid(60.0, 30)));
-    World world(statics);
+    World world(statics, test::tool_settings());
     const CarSpec spec = CarSpec::default_car();
     for (int k = 0; k < 3; ++k) {
         if (only && k != *only) continue;

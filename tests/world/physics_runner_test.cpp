@@ -26,7 +26,7 @@ namespace {
 
 // Two cars side by side on flat ground.
 World two_cars(const CarSpec& spec = CarSpec::default_car()) {
-    World world(test::static_world_of(test::flat_grid(400.0, 40)));
+    World world(test::static_world_of(test::flat_grid(400.0, 40)), test::tool_settings());
     for (const double x : {-3.0, 3.0}) {
         RigidBodyState state;
         state.position = {x, spec.lowest_point_depth() + 0.001, -150.0};

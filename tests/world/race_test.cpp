@@ -15,6 +15,7 @@
 #include "trackphys/world/race_drivers.hpp"
 #include "trackphys/world/world.hpp"
 #include "world/track_world.hpp"
+#include "world/world_scenes.hpp"
 
 namespace trackphys {
 namespace {
@@ -135,7 +136,7 @@ TEST(Race, TwentyCarsFinishThreeLapsCleanlyFromANudgedGrid) {
 // clear of the car beside it, once, and races on from there.
 TEST(Race, ACarThatLeavesTheTrackIsRescuedAndRacesOn) {
     const test::TrackWorld& track = test::default_track();
-    World world(track.statics, WorldSettings{}, track.trees);
+    World world(track.statics, test::tool_settings(), track.trees);
     RaceDrivers drivers(track.track, CarSpec::default_car(), 2);
     drivers.add_cars(world);
     const auto update = [&] {

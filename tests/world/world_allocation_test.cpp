@@ -1,8 +1,10 @@
 // World::update allocates nothing once a field of cars has warmed up (issue 16): every
-// buffer an update needs is kept between updates; nor does PhysicsRunner's publishing of
-// each update, nor a render thread's reading of it. A binary of its own, because it
-// replaces the global operator new to count the allocations made inside World::update, on
-// every thread of the world's pool, and on the runner's physics thread.
+// buffer an update needs is kept between updates, its contact events' too; nor does
+// PhysicsRunner's publishing of each update, nor a render thread's reading of it, nor saving
+// into a kept snapshot and restoring one, which rollback netcode does every frame. A binary
+// of its own, because it replaces the global operator new to count the allocations made
+// inside World::update, on every thread of the world's pool, and on the runner's physics
+// thread.
 #include <atomic>
 #include <cstdint>
 #include <cstdlib>
@@ -66,16 +68,21 @@ TEST_P(WorldAllocation, ARaceOnTwoThreadsAllocatesNothingOnceWarm) {
     drivers.add_cars(world);
 
     std::uint64_t contacts = 0;
+    std::uint64_t touches = 0;
     for (int u = 0; u < kWarmUpdates + kCountedUpdates; ++u) {
         drivers.drive(world);
         counting.store(u >= kWarmUpdates);
         world.update();
         counting.store(false);
         drivers.after_update(world);
-        if (u >= kWarmUpdates) contacts += world.last_profile().car_contacts;
+        if (u >= kWarmUpdates) {
+            contacts += world.last_profile().car_contacts;
+            touches += world.contact_events().car_touch_begins.size();
+        }
     }
     EXPECT_EQ(allocations.load(), 0u) << "allocations in " << kCountedUpdates << " updates";
     EXPECT_GT(contacts, 0u) << "the counted updates had no car-car contact to allocate for";
+    EXPECT_GT(touches, 0u) << "the counted updates began no touch to record";
 }
 
 INSTANTIATE_TEST_SUITE_P(FrameSources, WorldAllocation,
@@ -89,7 +96,7 @@ INSTANTIATE_TEST_SUITE_P(FrameSources, WorldAllocation,
 // allocates nothing; a render thread reading a view into a CarView it keeps allocates
 // nothing either.
 TEST(PhysicsRunnerAllocation, PublishingAndReadingViewsAllocateNothingOnceWarm) {
-    World world(test::static_world_of(test::flat_grid(400.0, 40)));
+    World world(test::static_world_of(test::flat_grid(400.0, 40)), test::tool_settings());
     const CarSpec spec = CarSpec::preset("gt");
     for (const double x : {-3.0, 3.0}) {
         RigidBodyState state;
@@ -122,6 +129,41 @@ TEST(PhysicsRunnerAllocation, PublishingAndReadingViewsAllocateNothingOnceWarm) 
     counting.store(false);
     EXPECT_EQ(allocations.load(), 0u);
     EXPECT_EQ(view.wheels.size(), 4u);
+}
+
+// Eight gt cars driving on flat ground: once a snapshot has been saved into, saving into it
+// again and restoring it allocate nothing, and the restore gives the saved world's bits.
+TEST(WorldSnapshotAllocation, SavingIntoAKeptSnapshotAndRestoringAllocateNothing) {
+    World world(test::static_world_of(test::flat_grid(400.0, 40)));
+    const CarSpec spec = CarSpec::preset("gt");
+    for (int k = 0; k < 8; ++k) {
+        RigidBodyState state;
+        state.position = {-14.0 + 4.0 * k, spec.lowest_point_depth() + 0.001, -150.0};
+        world.add_car(spec, state);
+        world.car(static_cast<std::size_t>(k)).set_inputs({1.0, 0.0, 0.05 * (k - 4)});
+    }
+    for (int u = 0; u < 50; ++u) world.update();
+    WorldSnapshot kept;
+    world.save_state(kept);  // the first save grows the vectors
+    for (int u = 0; u < 50; ++u) world.update();
+
+    allocations.store(0);
+    counting.store(true);
+    world.save_state(kept);
+    counting.store(false);
+    EXPECT_EQ(allocations.load(), 0u) << "saving into a kept snapshot";
+    const std::uint64_t saved_hash = world.state_hash();
+    ASSERT_EQ(kept.cars.size(), 8u);
+    ASSERT_TRUE(kept.cars[0].vehicle.has_value());
+
+    for (int u = 0; u < 50; ++u) world.update();
+    ASSERT_NE(world.state_hash(), saved_hash);
+    allocations.store(0);
+    counting.store(true);
+    world.restore_state(kept);
+    counting.store(false);
+    EXPECT_EQ(allocations.load(), 0u) << "restoring";
+    EXPECT_EQ(world.state_hash(), saved_hash);
 }
 
 }  // namespace

@@ -18,7 +18,7 @@ namespace {
 
 // Cars of these presets in a row across flat ground, 4 m apart, each with its own inputs.
 World row_of(const std::vector<std::string>& presets) {
-    World world(test::static_world_of(test::flat_grid(400.0, 40)));
+    World world(test::static_world_of(test::flat_grid(400.0, 40)), test::tool_settings());
     for (const std::string& preset : presets) {
         const CarSpec spec = CarSpec::preset(preset);
         const double k = static_cast<double>(world.car_count());

@@ -1,12 +1,14 @@
 #pragma once
 
-// Small static worlds for the physics tests: flat ground, a wall, a single-triangle road.
+// Small static worlds for the physics tests: flat ground, a wall, a single-triangle road;
+// and the settings of the tests of several cars.
 
 #include <cstdint>
 #include <memory>
 
 #include "trackphys/collision/static_world.hpp"
 #include "trackphys/geometry/triangle_mesh.hpp"
+#include "trackphys/world/world_settings.hpp"
 
 namespace trackphys::test {
 
@@ -50,6 +52,17 @@ inline TriangleMesh wall(double z0, double width, double height) {
                      {-0.5 * width, height, z0}};
     mesh.triangles = {{0, 2, 1}, {0, 3, 2}};
     return mesh;
+}
+
+/// Settings for the tests of several cars, as the command line runs a world: the phase
+/// clock on and the islands on the hardware's threads, where the library's defaults are a
+/// game's (off, one thread). So these tests run the World's pool and profile too; their
+/// states are the same either way.
+inline WorldSettings tool_settings() {
+    WorldSettings settings;
+    settings.profile = true;
+    settings.threads = 0;
+    return settings;
 }
 
 inline std::shared_ptr<const StaticWorld> static_world_of(const TriangleMesh& mesh) {

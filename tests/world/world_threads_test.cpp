@@ -1,6 +1,6 @@
 // A field of cars that touch, on 1, 2 and 4 threads and on a plugged-in job system: the
-// same bits every time (World's class notes), across save_state / restore_state and with
-// cars removed on the way.
+// same bits and the same contact events every time (World's class notes), across
+// save_state / restore_state and with cars removed on the way.
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/fnv1a.hpp"
 #include "support/error_message.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/world/autopilot.hpp"
@@ -46,9 +47,14 @@ class Field {
                 world_.car(i).set_inputs(pilots_[i].drive(world_.car(i)));
             world_.update();
             contacts += world_.last_profile().car_contacts;
+            add_events();
         }
         return contacts;
     }
+
+    // Every contact event so far, in order, bit for bit.
+    std::uint64_t events_hash() const { return events_.value; }
+    std::uint64_t touches_begun() const { return touches_begun_; }
 
     // Car i retires: its autopilot goes with it.
     void remove(std::size_t i) {
@@ -60,8 +66,32 @@ class Field {
     std::vector<Autopilot>& pilots() { return pilots_; }
 
   private:
+    void add_events() {
+        const ContactEvents events = world_.contact_events();
+        touches_begun_ += events.car_touch_begins.size();
+        for (const CarTouchBeginEvent& e : events.car_touch_begins) {
+            events_.add(std::uint64_t{e.car_a} << 32 | e.car_b);
+            events_.add(e.point), events_.add(e.normal);
+            events_.add(e.depth), events_.add(e.approach_speed);
+        }
+        for (const CarTouchEndEvent& e : events.car_touch_ends) {
+            events_.add(std::uint64_t{e.car_a} << 32 | e.car_b);
+            events_.add(e.deepest);
+        }
+        for (const BodyHitEvent& e : events.body_hits) {
+            events_.add(std::uint64_t{e.car} << 32 | e.ellipsoid);
+            events_.add(std::uint64_t{e.triangle.collider} << 32 | e.triangle.triangle);
+            events_.add(e.point), events_.add(e.normal);
+            events_.add(e.depth), events_.add(e.approach_speed);
+        }
+        // Where one update's events end: the same events split otherwise hash otherwise.
+        events_.add(std::uint64_t{0});
+    }
+
     World world_;
     std::vector<Autopilot> pilots_;
+    core::Fnv1a events_;
+    std::uint64_t touches_begun_ = 0;
 };
 
 WorldSettings on_threads(int threads) {
@@ -76,11 +106,13 @@ TEST(WorldThreads, SameHashOnOneTwoAndFourThreads) {
     Field reference(on_threads(1));
     const std::uint64_t contacts = reference.run(kUpdates);
     EXPECT_GT(contacts, 0u) << "the field never touched: the test would prove little";
+    EXPECT_GT(reference.touches_begun(), 0u) << "no touch began: the events went unrecorded";
     const std::uint64_t expected = reference.world().state_hash();
     for (const int threads : {1, 2, 4, 2, 4}) {
         Field field(on_threads(threads));
         field.run(kUpdates);
         EXPECT_EQ(field.world().state_hash(), expected) << threads << " threads";
+        EXPECT_EQ(field.events_hash(), reference.events_hash()) << threads << " threads";
     }
 }
 
@@ -127,6 +159,7 @@ TEST(WorldThreads, PluggedInJobSystemGivesTheSameHash) {
     Field field(settings);
     field.run(kUpdates);
     EXPECT_EQ(field.world().state_hash(), reference.world().state_hash());
+    EXPECT_EQ(field.events_hash(), reference.events_hash());
     EXPECT_EQ(jobs.enqueued, kUpdates);
 }
 

@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <type_traits>
 #include <vector>
 
@@ -79,7 +80,8 @@ struct TriangleRef {
 /// two grid steps of the query's (sphere and capsule: for the distance test).
 /// NormalizedTriangle frames are not stored: 120 bytes in double would break the 80-byte
 /// budget, and every exact predicate needs the double vertices anyway. The mid phase builds
-/// the few hundred frames it culls per update with normalized_triangle().
+/// the few hundred frames it culls per update with normalized_triangle(). Surface ids, when
+/// the mesh has any but 0, by mesh index (2 bytes a triangle).
 class TRACKPHYS_API StaticCollider {
   public:
     /// Largest accepted |coordinate| (m): node bounds are float, and 1e18 m keeps every
@@ -130,6 +132,16 @@ class TRACKPHYS_API StaticCollider {
     Triangle triangle(std::uint32_t index) const;
     /// The NormalizedTriangle of kept triangle `index`, built on demand (see class notes).
     NormalizedTriangle normalized_triangle(std::uint32_t index) const;
+
+    /// The surface id of mesh triangle `index` (TriangleMesh::surfaces, 0 when the mesh gave
+    /// none), kept or dropped. Throws trackphys::Error past mesh_triangle_count().
+    SurfaceId surface(std::uint32_t index) const;
+    /// Every mesh triangle's surface id, by mesh index; empty when all are 0 (a mesh without
+    /// ids). The world reads it at each sub-step for the triangle under each wheel.
+    std::span<const SurfaceId> surfaces() const { return surfaces_; }
+    /// The highest surface id of a kept triangle (0 when none): a World refuses a surface
+    /// table that does not reach it.
+    SurfaceId highest_surface() const;
 
     /// A fingerprint of the mesh as kept: a hash of the mesh triangle count and of every kept
     /// triangle's index and vertex bits, in mesh order. Equal meshes give equal hashes; a
@@ -183,6 +195,7 @@ class TRACKPHYS_API StaticCollider {
     std::vector<BvhNodeGrid> grids_;        // the grids of the slot boxes, shared by node groups
     std::vector<std::uint32_t> node_grid_;  // per node with leaf lanes: its grids_ index
     double inside_extent_[3] = {0.0, 0.0, 0.0};  // box extents to look for whole lanes from
+    std::vector<SurfaceId> surfaces_;            // by mesh index; empty when all are 0
     Aabb bounds_;
     std::uint64_t content_hash_ = 0;
 };

@@ -70,6 +70,8 @@ class TRACKPHYS_API Car {
     Car(CarSpec spec, const RigidBodyState& initial_state);
     Car(const Car&) = default;
     Car(Car&&) noexcept = default;
+    Car& operator=(const Car&) = delete;  // see the class notes
+    Car& operator=(Car&&) = delete;
     ~Car() = default;
 
     const CarSpec& spec() const { return spec_; }
@@ -115,6 +117,13 @@ class TRACKPHYS_API Car {
     double suspension(std::size_t i) const { return suspension_[i]; }
     /// Suspension compression of every ellipsoid, in CarSpec order (m).
     std::span<const double> suspension() const { return suspension_; }
+    /// Throws what the private set_suspension would throw for `travel`, changing nothing.
+    void check_suspension(std::span<const double> travel) const;
+    /// Throws what the private restore (World::restore_state's) would throw for these,
+    /// changing nothing: a caller restoring several cars checks them all first, then
+    /// restores each in place.
+    void check_restore(const RigidBodyState& state, const CarInputs& inputs,
+                       std::span<const double> suspension) const;
     /// The vehicle model (wheel spins, slips, gear, clutch, telemetry) of a car whose spec
     /// has a `vehicle`; null for the arcade car.
     const Vehicle* vehicle() const { return vehicle_ ? &*vehicle_ : nullptr; }
@@ -123,6 +132,8 @@ class TRACKPHYS_API Car {
     /// Replaces the vehicle model's state (restore). Throws trackphys::Error when the car
     /// has no vehicle model or Vehicle::set_state rejects the state.
     void set_vehicle_state(const VehicleState& state);
+    /// Throws what set_vehicle_state() would throw for `state`, changing nothing.
+    void check_vehicle_state(const VehicleState& state) const;
     /// Radius about the centre of mass of a sphere holding every ellipsoid (m).
     double bounding_radius() const { return bounding_radius_; }
 
@@ -139,10 +150,6 @@ class TRACKPHYS_API Car {
 
   private:
     friend struct detail::CarAccess;
-
-    // Private (see the class notes; declaring it deletes the copy assignment):
-    // World::restore_state moves a validated copy into place.
-    Car& operator=(Car&&) noexcept = default;
 
     /// One sub-step of h seconds from each ellipsoid's deepest contact (one per ellipsoid,
     /// in order; depth <= 0 for none): impulses for contacts the springs cannot hold, the
@@ -165,7 +172,13 @@ class TRACKPHYS_API Car {
     /// - With a vehicle model (CarSpec::vehicle), the wheels' tangential forces come from
     ///   their spinning wheels and Magic Formula tyres instead (docs/vehicle.md), and the
     ///   anti-roll bars join the suspension.
-    void advance(std::span<const Contact> deepest, const glm::dvec3& gravity, double h);
+    /// - Surfaces: `grip` holds each ellipsoid's Surface::grip (in order, finite and > 0), the
+    ///   grip of the surface under its contact relative to the dry road; it scales the
+    ///   friction of that contact (wheel and body; a vehicle model's tyre peaks, on top of
+    ///   Vehicle::set_road_grip) and the traction limit of an arcade wheel. Empty: the dry
+    ///   road under every ellipsoid (World passes it from WorldSettings::surfaces).
+    void advance(std::span<const Contact> deepest, const glm::dvec3& gravity, double h,
+                 std::span<const double> grip = {});
 
     /// Makes this car read its body-frame ellipsoids, and what its sub-steps read of each,
     /// from `other`'s copy when the two hold the same bits (cars of one spec): a field of
@@ -247,11 +260,18 @@ class TRACKPHYS_API Car {
     AxleLoads measure_wheel_loads(std::span<const Contact> deepest, WheelLoads& wheel_loads) const;
     /// axes: detail::BodyAxes(state().orientation), this sub-step's (the forward axis is the rear
     /// wheels' heading and the downforce's speed).
-    Wrench contact_wrench(std::span<const Contact> deepest, const WheelLoads& wheel_loads,
-                          const AxleLoads& least_loads, const detail::BodyAxes& axes) const;
+    /// grip: advance's, empty for 1 everywhere.
+    Wrench contact_wrench(std::span<const Contact> deepest, std::span<const double> grip,
+                          const WheelLoads& wheel_loads, const AxleLoads& least_loads,
+                          const detail::BodyAxes& axes) const;
     /// contact_wrench for a car with a vehicle model; advances its wheels by h.
-    Wrench vehicle_wrench(std::span<const Contact> deepest, const WheelLoads& wheel_loads,
-                          const detail::BodyAxes& axes, double h);
+    Wrench vehicle_wrench(std::span<const Contact> deepest, std::span<const double> grip,
+                          const WheelLoads& wheel_loads, const detail::BodyAxes& axes, double h);
+    /// `material` with its friction scaled by a surface's grip (times 1 leaves its bits).
+    static ContactMaterial on_surface(ContactMaterial material, double grip) {
+        material.friction *= grip;
+        return material;
+    }
     /// The world direction the wheels of an axle roll in (the front ones steered); forward:
     /// the body's forward axis.
     glm::dvec3 wheel_heading(Axle axle, const glm::dvec3& forward) const {

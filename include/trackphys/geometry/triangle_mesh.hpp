@@ -8,11 +8,18 @@
 
 namespace trackphys {
 
+/// What a triangle is made of (road, grass, gravel, kerb, ice...): an index into the game's
+/// table of surfaces, WorldSettings::surfaces. The ids are geometry, fixed with the mesh;
+/// the table is tuning (docs/design.md#surfaces).
+using SurfaceId = std::uint16_t;
+
 /// An indexed triangle mesh in world space (metres): the exchange format between the track
 /// generator, mesh import/export and static colliders.
 struct TriangleMesh {
     std::vector<glm::dvec3> vertices;
     std::vector<std::array<std::uint32_t, 3>> triangles;  ///< indices into vertices, CCW
+    /// One surface id per triangle, in triangle order; empty: every triangle is surface 0.
+    std::vector<SurfaceId> surfaces{};
 };
 
 }  // namespace trackphys

@@ -2,6 +2,8 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include "trackphys/export.hpp"
 #include "trackphys/geometry/aabb.hpp"
@@ -36,6 +38,10 @@ struct MeshLoadReport {
     /// triangles were re-wound so that their normals keep facing the same side of the
     /// surface, as glTF specifies.
     std::size_t mirrored_instances = 0;
+    /// The file's material names as assimp lists them (its index order, which may include a
+    /// default material assimp adds, e.g. "DefaultMaterial"): surface id k of the mesh is
+    /// materials[k], so a game builds its WorldSettings::surfaces by these names.
+    std::vector<std::string> materials;
     Aabb bounds;        ///< world box of the kept triangles (m)
     double area = 0.0;  ///< total area of the kept triangles (m^2)
 };
@@ -46,7 +52,9 @@ struct MeshLoadReport {
 /// the file is placed by its nodes' composed transforms and merged; polygons are
 /// triangulated; points and lines are skipped; degenerate triangles are dropped; vertices
 /// with bit-identical world positions are welded into one and vertices no kept triangle uses
-/// are left out. All of this is counted in report.
+/// are left out. All of this is counted in report. Each triangle's surface id
+/// (TriangleMesh::surfaces) is the index of its mesh's material among the file's
+/// (report.materials names them): a file with one material gives every triangle surface 0.
 ///
 /// Throws trackphys::Error, with a message naming the file, when the file is missing,
 /// unreadable, empty, of another format, malformed or truncated (the message names the line

@@ -28,10 +28,16 @@ struct CenterlineSample {
     double distance = 0.0;
 };
 
+/// The surface ids the track generator gives its triangles (TriangleMesh::surfaces): a game
+/// tunes them in WorldSettings::surfaces (two entries, or none for grip 1 everywhere).
+inline constexpr SurfaceId kRoadSurface = 0;
+inline constexpr SurfaceId kWallSurface = 1;
+
 /// One static collider: a piece of the track about chunk_length_m long. Its first
-/// road_triangle_count triangles are road surface (normals up), the rest are wall faces
-/// (inner faces look at the road, tops up, outer faces away). Neighbouring chunks share
-/// their boundary row of vertices exactly (equal coordinates, duplicated).
+/// road_triangle_count triangles are road surface (normals up, kRoadSurface), the rest are
+/// wall faces (inner faces look at the road, tops up, outer faces away; kWallSurface).
+/// Neighbouring chunks share their boundary row of vertices exactly (equal coordinates,
+/// duplicated).
 struct TrackChunk {
     TriangleMesh mesh;                    ///< world-space vertices (m), CCW triangles
     Aabb bounds;                          ///< tight box of mesh.vertices

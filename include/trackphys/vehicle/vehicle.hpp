@@ -69,6 +69,8 @@ class TRACKPHYS_API Vehicle {
     /// Replaces the state. Throws trackphys::Error naming the field when it does not fit
     /// this vehicle (wheel count, gear range) or is not finite.
     void set_state(const VehicleState& state);
+    /// Throws what set_state() would throw for `state`, changing nothing.
+    void check_state(const VehicleState& state) const;
 
     /// This vehicle's state at rest: wheels still, first gear, clutch closed (a reset).
     VehicleState at_rest() const { return rolling_at(0.0); }
@@ -108,10 +110,11 @@ class TRACKPHYS_API Vehicle {
 
     /// The tyre force in its contact frame (N) of wheel slot w under load (N, 0 when in
     /// the air) with the contact point moving at rolling_velocity along the wheel's
-    /// heading and lateral_velocity across it (m/s, in the contact plane); advances the
-    /// wheel's spin and slips by h seconds.
+    /// heading and lateral_velocity across it (m/s, in the contact plane), on a surface of
+    /// grip surface_grip (Surface::grip, finite and > 0: it scales the tyre's peaks on top of
+    /// set_road_grip); advances the wheel's spin and slips by h seconds.
     TyreForce wheel_force(std::size_t w, double load, double rolling_velocity,
-                          double lateral_velocity, double h);
+                          double lateral_velocity, double h, double surface_grip = 1.0);
 
     /// Sets every wheel's anti-roll bar force from the suspension compression of every
     /// ellipsoid (m), all at once so that no wheel sees its partner's already updated.
@@ -144,7 +147,8 @@ class TRACKPHYS_API Vehicle {
         std::array<std::size_t, 2> pair{};  // its wheel slots, when it has two
     };
 
-    TyreForce slow_wheel_force(const Wheel& wheel, WheelState& s, double load,
+    /// grip: the wheel's road_grip times the surface's.
+    TyreForce slow_wheel_force(const Wheel& wheel, WheelState& s, double load, double grip,
                                double rolling_velocity, double lateral_velocity, double h);
     /// rolling_speed: the wheels' mean rolling speed; forward_speed: the body's along its
     /// heading (m/s, < 0 backwards).

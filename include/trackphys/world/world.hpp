@@ -14,7 +14,9 @@
 #include "trackphys/export.hpp"
 #include "trackphys/geometry/contact.hpp"
 #include "trackphys/profile/update_profile.hpp"
+#include "trackphys/world/contact_events.hpp"
 #include "trackphys/world/debug_draw.hpp"
+#include "trackphys/world/surface.hpp"
 #include "trackphys/world/world_settings.hpp"
 #include "trackphys/world/world_snapshot.hpp"
 
@@ -55,7 +57,8 @@ class TraceRecorder;
 /// render thread reads interpolated poses and views of the published states without locks.
 class TRACKPHYS_API World {
   public:
-    /// Throws trackphys::Error on a null static world or invalid settings. In the
+    /// Throws trackphys::Error on a null static world, invalid settings or a triangle whose
+    /// surface id is beyond a non-empty settings.surfaces. In the
     /// precomputed_tree mid-phase mode the colliders' plane trees are built here (the
     /// costliest part of making a World), on settings.thread_count() short-lived threads
     /// even with a job system plugged in, unless `trees` holds them already (one per
@@ -126,10 +129,26 @@ class TRACKPHYS_API World {
     /// Car i's deepest contact per ellipsoid (in CarSpec order) at the last sub-step of
     /// the last update; depth <= 0 where an ellipsoid touched nothing.
     std::span<const Contact> contacts(std::size_t i) const;
+    /// What ellipsoid `ellipsoid` (in CarSpec order) of car i touched at the last sub-step of
+    /// the last update: the triangle of its deepest contact, contacts(i)[ellipsoid], and that
+    /// triangle's surface id; nullopt where it touched nothing (depth <= 0). Throws
+    /// trackphys::Error past car_count() or the car's ellipsoids.
+    std::optional<ContactSurface> contact_surface(std::size_t i, std::size_t ellipsoid) const;
 
     /// Advances every car by settings().dt_update, resetting any car that ends it in an
     /// impossible state (see the class notes).
     void update();
+
+    /// What touched what during the last update (docs/design.md#contact-events): cars that
+    /// began or stopped touching each other, with where and how fast, and body ellipsoids
+    /// that started touching the static world (wheels rolling on the road are not events).
+    /// Read after update(); the same for any number of threads or a job system. A reset
+    /// car's hits of the undone update are dropped. Which car pairs are touching is the
+    /// World object's memory, not part of a snapshot: after restore_state every pair in
+    /// contact begins again at the next update; remove_car forgets the removed car's touches
+    /// (no end event) and empties the list. Recording them allocates nothing once a field is
+    /// warm.
+    ContactEvents contact_events() const;
 
     /// How many times car i was reset (counted over the whole simulation: snapshots keep it).
     std::uint64_t car_resets(std::size_t i) const;
@@ -139,11 +158,16 @@ class TRACKPHYS_API World {
 
     /// The complete dynamic state (see WorldSnapshot): a few hundred bytes per car.
     WorldSnapshot save_state() const;
+    /// The same into `into`, reusing its vectors: saving into a snapshot already saved from
+    /// this world (the same cars) allocates nothing, as rollback netcode saving every frame
+    /// wants.
+    void save_state(WorldSnapshot& into) const;
     /// Puts the world back into a saved state: the next update() gives bit-identical results
     /// to the world it was saved from. The world must have the same static colliders, the
     /// same stepping settings and the same cars (number and CarSpec, added in the same order;
     /// their current states do not matter). Throws trackphys::Error naming what differs or
-    /// what is invalid, and then changes nothing.
+    /// what is invalid, and then changes nothing. Checks everything first and then writes
+    /// each car in place: it allocates nothing (but on error).
     void restore_state(const WorldSnapshot& snapshot);
 
     /// Simulated time (s) and number of updates run.
@@ -185,10 +209,13 @@ class TRACKPHYS_API World {
     CarSlot& car_slot(std::size_t i);
     const CarSlot& car_slot(std::size_t i) const;
     void run_islands();
+    void collect_contact_events();
     // The job-system task over the update's islands (context: the World).
     static void island_task(int begin, int end, int worker, void* world);
     // step_island under the reset policy (world_guard.cpp).
     void update_island_or_reset(std::size_t island, WorkerScratch& scratch, PhaseStopwatch& watch);
+    // Throws naming the first triangle whose surface id settings_.surfaces has no entry for.
+    void check_surfaces() const;
     // Why this state breaks the reset policy's limits, or empty.
     std::string impossible_state(const RigidBodyState& state) const;
     // add_car's checks of where the car is (world_guard.cpp).

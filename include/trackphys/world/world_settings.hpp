@@ -1,12 +1,14 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include <glm/vec3.hpp>
 
 #include "trackphys/collision/mid_phase_mode.hpp"
 #include "trackphys/export.hpp"
 #include "trackphys/world/job_system.hpp"
+#include "trackphys/world/surface.hpp"
 
 namespace trackphys {
 
@@ -49,16 +51,26 @@ struct TRACKPHYS_API WorldSettings {
     /// box of every collider: a car placed far outside the map is a mistake (a wrong unit or
     /// frame) and would fall forever.
     double max_spawn_distance = 1000.0;
+    /// The game's surface table, indexed by the triangles' SurfaceId (TriangleMesh::surfaces):
+    /// each wheel and body ellipsoid drives with the grip of the triangle under its deepest
+    /// contact, at each sub-step. Empty (the default): every surface is the dry road, grip 1,
+    /// whatever ids the meshes carry. Otherwise World refuses a static world with a triangle
+    /// whose id has no entry; at most 65536 entries.
+    std::vector<Surface> surfaces;
     /// Threads World::update spreads the islands of cars over (>= 0, at most 256): 0 for
     /// the hardware's count, 1 to run on the calling thread alone. World starts its pool
-    /// the first time an update has two islands. Results do not depend on it.
-    int threads = 0;
+    /// the first time an update has two islands. Results do not depend on it. The default
+    /// is a game's: its own workers have the cores, and the pool's threads spin up to
+    /// 100 us before they sleep; plug the game's job system in (`jobs`) or raise this for a
+    /// big field. World also builds the colliders' plane trees on thread_count() threads.
+    int threads = 1;
     /// A game's own job system; when plugged in, World uses it instead of its own threads
     /// (and `threads` is not used). Results do not depend on it.
     JobSystem jobs;
     /// Measure per-phase times in the UpdateProfile (reads the clock a few times per
-    /// sub-step); counts are kept either way.
-    bool profile = true;
+    /// sub-step, a share of the update: docs/benchmarks.md); counts are kept either way.
+    /// Off by default, as a game runs; trackphys's own tools turn it on.
+    bool profile = false;
 
     /// `threads` with 0 resolved to the hardware's count (at least 1).
     int thread_count() const;

@@ -60,7 +60,9 @@ struct CarSnapshot {
 /// reason (the count is kept).
 struct TRACKPHYS_API WorldSnapshot {
     std::vector<ColliderFingerprint> colliders;  ///< of the World's static world
-    /// The stepping settings (every field but `profile` must match on restore).
+    /// The stepping settings (every field but `profile`, `threads`, `jobs` and `surfaces`
+    /// must match on restore: the surface table is the environment, as
+    /// Vehicle::set_road_grip is, and restores into whatever table the world has).
     WorldSettings settings;
     std::uint64_t update_count = 0;
     std::vector<CarSnapshot> cars;

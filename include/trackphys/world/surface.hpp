@@ -1,0 +1,27 @@
+#pragma once
+
+#include <cstdint>
+
+#include "trackphys/collision/static_collider.hpp"
+#include "trackphys/geometry/triangle_mesh.hpp"
+
+namespace trackphys {
+
+/// How one surface (an entry of WorldSettings::surfaces, indexed by SurfaceId) drives
+/// compared with the dry road (docs/design.md#surfaces).
+struct Surface {
+    /// Friction relative to the dry road (finite, > 0; 1 the dry road, about 0.6 grass or
+    /// gravel, 0.1 ice). It scales the friction of every contact on the surface: the arcade
+    /// car's wheel grip and traction limit, a vehicle model's tyre peaks (times the wheel's
+    /// Vehicle::set_road_grip), and any car's body friction.
+    double grip = 1.0;
+};
+
+/// What ellipsoid k of a car touched at the last sub-step of the last update
+/// (World::contact_surface): the triangle of its deepest contact and that triangle's surface.
+struct ContactSurface {
+    TriangleRef triangle;  ///< collider id and mesh triangle index
+    SurfaceId surface;     ///< TriangleMesh::surfaces of that triangle (0 when it had none)
+};
+
+}  // namespace trackphys

@@ -1,0 +1,75 @@
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "trackphys/world/contact_events.hpp"
+#include "world/car_islands.hpp"
+#include "world/car_pair_contact.hpp"
+
+namespace trackphys::detail {
+
+/// Turns the sub-steps' touches between cars into begin and end events
+/// (docs/design.md#contact-events). Each update gets one record per pair of overlapping
+/// update boxes (CarIslands::all_pairs), which only that pair's island writes, so islands on
+/// different threads write different records; finish() then compares the pairs touched with
+/// those touching at the end of the last update, in (a, b) order, whatever ran where.
+/// Every buffer is kept: a steady field allocates nothing.
+class CarTouches {
+  public:
+    /// Before the islands run: a blank record for each of the update's `pairs`.
+    void start_update(std::size_t pairs);
+
+    /// One sub-step of pair `index` of CarIslands::all_pairs().
+    void record(std::size_t index, const CarPairTouch& touch) {
+        PairRecord& r = records_[index];
+        r.touching_at_end = touch.deepest > 0.0;
+        if (!r.touching_at_end) return;
+        if (!r.touched) {
+            r.touched = true;
+            r.first = touch.deepest_contact;
+            r.approach_speed = touch.approach_speed;
+        }
+        if (touch.deepest > r.deepest) r.deepest = touch.deepest;
+    }
+
+    /// After the islands ran over `pairs` (the update's CarIslands::all_pairs()): the
+    /// update's events, and the pairs touching at its end for the next one.
+    void finish(std::span<const CarPair> pairs);
+
+    /// Car `car` left the world: its touches are forgotten without events, the cars after it
+    /// move down one; the last update's events are dropped (their indices are stale).
+    void remove_car(std::uint32_t car);
+    /// No pair is touching (a restored world): a pair in contact begins again.
+    void forget();
+
+    std::span<const CarTouchBeginEvent> begins() const { return begins_; }
+    std::span<const CarTouchEndEvent> ends() const { return ends_; }
+
+  private:
+    struct PairRecord {
+        bool touched = false;          // at any sub-step of the update
+        bool touching_at_end = false;  // at its last sub-step
+        double deepest = 0.0;          // m, over the update
+        Contact first{0.0, glm::dvec3(0.0, 1.0, 0.0), glm::dvec3(0.0)};  // first sub-step's
+        double approach_speed = 0.0;  // m/s, at the first sub-step
+    };
+    // A pair touching at the end of an update, with its deepest overlap since it began.
+    struct Touching {
+        std::uint32_t a;
+        std::uint32_t b;
+        double deepest;
+    };
+
+    std::size_t room_ = 0;                // pairs every list has room for
+    std::vector<PairRecord> records_;     // per pair of this update
+    std::vector<std::uint32_t> touched_;  // this update's touched records, by (a, b)
+    std::vector<Touching> touching_;      // at the end of the last update, by (a, b)
+    std::vector<Touching> next_touching_;
+    std::vector<CarTouchBeginEvent> begins_;
+    std::vector<CarTouchEndEvent> ends_;
+};
+
+}  // namespace trackphys::detail
