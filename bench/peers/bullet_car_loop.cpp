@@ -5,6 +5,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "dynamics/car_access.hpp"
 #include "world/update_box.hpp"
 
 namespace trackphys::peers {
@@ -50,7 +51,7 @@ void BulletCarLoop::update(Car& car) {
             mesh_.shape->processAllTriangles(&callback, to_bullet(box.min), to_bullet(box.max));
             deepest_[i] = callback.deepest;
         }
-        car.advance(deepest_, settings_.gravity, settings_.substep_dt());
+        detail::CarAccess::advance(car, deepest_, settings_.gravity, settings_.substep_dt());
     }
 }
 
@@ -79,7 +80,7 @@ void BulletNarrowPhaseLoop::update(Car& car) {
                     deepest.add(statics_->collider(c.ref.collider).triangle(c.ref.triangle));
                 deepest_[i] = deepest.deepest;
             }
-            car.advance(deepest_, settings_.gravity, settings_.substep_dt());
+            detail::CarAccess::advance(car, deepest_, settings_.gravity, settings_.substep_dt());
         }
     }
 }

@@ -17,6 +17,7 @@
 #include "trackphys/assert.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/math/types.hpp"
+#include "vehicle/vehicle_access.hpp"
 
 namespace trackphys {
 namespace {
@@ -268,7 +269,7 @@ Wrench Car::contact_wrench(std::span<const Contact> deepest, std::span<const dou
 void Car::update_suspension(std::span<const Contact> deepest, const WheelLoads& wheel_loads,
                             const glm::dvec3& up, double h) {
     const Suspension& spring = spec_.suspension;
-    if (vehicle_) vehicle_->measure_anti_roll(suspension_);
+    if (vehicle_) detail::VehicleAccess::measure_anti_roll(*vehicle_, suspension_);
     const Part* parts = shape_->parts.data();
     const std::size_t wheel_end = std::min(deepest.size(), shape_->wheel_end);
     for (std::size_t i = 0; i < wheel_end; ++i) {

@@ -6,6 +6,7 @@
 
 #include "dynamics/body_axes.hpp"
 #include "trackphys/dynamics/car.hpp"
+#include "vehicle/vehicle_access.hpp"
 
 namespace trackphys {
 
@@ -14,8 +15,8 @@ Wrench Car::vehicle_wrench(std::span<const Contact> deepest, std::span<const dou
     Vehicle& vehicle = *vehicle_;
     const double speed_now = speed();
     const glm::dvec3& forward = axes.forward;
-    vehicle.begin_substep(inputs_.throttle, inputs_.brake, speed_now,
-                          glm::dot(state_.linear_velocity, forward), h);
+    detail::VehicleAccess::begin_substep(vehicle, inputs_.throttle, inputs_.brake, speed_now,
+                                         glm::dot(state_.linear_velocity, forward), h);
     Wrench wrench;
     // A body ellipsoid, or a wheel that cannot roll: pushed like the arcade car's body.
     const auto add_body_contact = [&](const Contact& contact, double surface_grip) {
@@ -52,15 +53,15 @@ Wrench Car::vehicle_wrench(std::span<const Contact> deepest, std::span<const dou
         const WheelLoad& wheel = wheel_loads[i];  // measure_wheel_loads
         const bool rolling = touching && wheel.load > 0.0 && in_plane_length >= 1e-6;
         if (!rolling) {
-            vehicle.wheel_force(w, 0.0, 0.0, 0.0, h);
+            detail::VehicleAccess::wheel_force(vehicle, w, 0.0, 0.0, 0.0, h);
             if (touching) add_body_contact(contact, surface_grip);
             continue;
         }
         const glm::dvec3 rolling_direction = in_plane * (1.0 / in_plane_length);  // one division
         const glm::dvec3 lateral = glm::cross(contact.normal, rolling_direction);
-        const TyreForce tyre =
-            vehicle.wheel_force(w, wheel.load, glm::dot(wheel.velocity, rolling_direction),
-                                glm::dot(wheel.velocity, lateral), h, surface_grip);
+        const TyreForce tyre = detail::VehicleAccess::wheel_force(
+            vehicle, w, wheel.load, glm::dot(wheel.velocity, rolling_direction),
+            glm::dot(wheel.velocity, lateral), h, surface_grip);
         wrench.add_at_point(contact.normal * wheel.load + rolling_direction * tyre.longitudinal +
                                 lateral * tyre.lateral,
                             contact.point, state_.position);

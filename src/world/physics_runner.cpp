@@ -25,7 +25,10 @@ PhysicsRunner::PhysicsRunner(World world, bool real_time)
     : world_(std::move(world)),
       cars_(world_.car_count()),
       roster_version_(world_.roster_version()),
+      world_index_(cars_),
+      removed_(cars_, 0),
       real_time_(real_time) {
+    for (std::size_t i = 0; i < cars_; ++i) world_index_[i] = i;
     // Every buffer starts as the current state (both ends of the pair), sized for the cars
     // (and each car for its wheels) so that publishing never allocates.
     last_published_ = views_of(world_);
@@ -33,6 +36,7 @@ PhysicsRunner::PhysicsRunner(World world, bool real_time)
         frame.update = world_.update_count();
         frame.previous_time = frame.time = world_.time();
         frame.previous = frame.current = last_published_;
+        frame.removed = removed_;
     }
     last_published_time_ = world_.time();
 }
@@ -47,8 +51,10 @@ void PhysicsRunner::run_to(std::uint64_t last_update) {
     if (world_.roster_version() != roster_version_)
         throw Error(
             "PhysicsRunner::run_to: cars were added to or removed from world() since "
-            "the runner was made (it publishes the " +
-            std::to_string(cars_) + " cars it was made with: make a new runner for another field)");
+            "the runner last changed them (it publishes the " +
+            std::to_string(cars_) +
+            " cars it was made with: remove one with PhysicsRunner::remove_car, or make a new "
+            "runner for another field)");
     stopping_.store(false);
     error_ = nullptr;
     thread_ = std::thread([this, last_update] { loop(last_update); });
@@ -64,13 +70,27 @@ void PhysicsRunner::stop() {
     wait();
 }
 
+void PhysicsRunner::remove_car(std::size_t car) {
+    if (thread_.joinable()) throw Error("PhysicsRunner::remove_car: the physics thread is running");
+    check_present(car, removed_, "PhysicsRunner::remove_car");
+    world_.remove_car(world_index_[car]);
+    roster_version_ = world_.roster_version();
+    removed_[car] = 1;
+    for (std::size_t i = car + 1; i < cars_; ++i) --world_index_[i];
+    {
+        std::lock_guard lock(inputs_mutex_);
+        std::erase_if(pending_, [car](const StampedInputs& s) { return s.car == car; });
+    }
+    republish();
+}
+
 World& PhysicsRunner::world() {
     if (thread_.joinable()) throw Error("PhysicsRunner::world: the physics thread is running");
     return world_;
 }
 
 void PhysicsRunner::set_inputs(std::uint64_t update, std::size_t car, const CarInputs& inputs) {
-    check_car(car, "PhysicsRunner::set_inputs");
+    check_present(car, removed_, "PhysicsRunner::set_inputs");
     if (std::isnan(inputs.throttle) || std::isnan(inputs.brake) || std::isnan(inputs.steer))
         throw Error("PhysicsRunner::set_inputs: NaN input for car " + std::to_string(car));
     std::lock_guard lock(inputs_mutex_);
@@ -89,7 +109,7 @@ void PhysicsRunner::apply_due_inputs() {
     auto due = pending_.begin();
     for (; due != pending_.end() && due->update <= next; ++due) {
         if (due->update < next) late_inputs_.fetch_add(1, std::memory_order_relaxed);
-        world_.car(due->car).set_inputs(due->inputs);
+        world_.car(world_index_[due->car]).set_inputs(due->inputs);
     }
     pending_.erase(pending_.begin(), due);
 }
@@ -121,12 +141,33 @@ void PhysicsRunner::publish() {
     frame.previous = last_published_;
     frame.previous_time = last_published_time_;
     const double dt = world_.settings().dt_update;
+    // A removed car's entries keep its last published view, which nothing reads.
     for (std::size_t i = 0; i < cars_; ++i)
-        detail::take_view(world_.car(i), last_published_[i], dt, frame.current[i]);
+        if (!removed_[i])
+            detail::take_view(world_.car(world_index_[i]), last_published_[i], dt,
+                              frame.current[i]);
     last_published_ = frame.current;
     last_published_time_ = world_.time();
     frame.update = world_.update_count();
     frame.time = world_.time();
+    frame.removed = removed_;
+    swap_back();
+}
+
+void PhysicsRunner::republish() {
+    Frame& frame = frames_[back_];
+    const Frame& last = frames_[published_];  // never back_: only the render thread reads it
+    frame.update = last.update;
+    frame.previous_time = last.previous_time;
+    frame.time = last.time;
+    frame.previous = last.previous;
+    frame.current = last.current;
+    frame.removed = removed_;
+    swap_back();
+}
+
+void PhysicsRunner::swap_back() {
+    published_ = back_;
     back_ = middle_.exchange(back_ | kFresh, std::memory_order_acq_rel) & ~kFresh;
 }
 
@@ -144,20 +185,28 @@ void PhysicsRunner::check_car(std::size_t car, const char* caller) const {
                     std::to_string(cars_) + (cars_ == 1 ? " car" : " cars"));
 }
 
+void PhysicsRunner::check_present(std::size_t car, const std::vector<std::uint8_t>& removed,
+                                  const char* caller) const {
+    check_car(car, caller);
+    if (removed[car])
+        throw Error(std::string(caller) + ": car " + std::to_string(car) +
+                    " was removed (PhysicsRunner::remove_car)");
+}
+
 double PhysicsRunner::Frame::alpha(double t) const {
     const double span = time - previous_time;
     return span > 0.0 ? std::clamp((t - previous_time) / span, 0.0, 1.0) : 1.0;
 }
 
 CarPose PhysicsRunner::pose(std::size_t car, double t) const {
-    check_car(car, "PhysicsRunner::pose");
     const Frame& frame = front();
+    check_present(car, frame.removed, "PhysicsRunner::pose");
     return detail::interpolate(frame.previous[car].pose, frame.current[car].pose, frame.alpha(t));
 }
 
 void PhysicsRunner::view(std::size_t car, double t, CarView& out) const {
-    check_car(car, "PhysicsRunner::view");
     const Frame& frame = front();
+    check_present(car, frame.removed, "PhysicsRunner::view");
     detail::interpolate(frame.previous[car], frame.current[car], frame.alpha(t), out);
 }
 

@@ -257,7 +257,16 @@ void RaceDrivers::rescue(World& world, std::size_t i) {
     ++progress_.rescues[i];
 }
 
-int RaceDrivers::laps(std::size_t car) const { return std::max(0, pilots_.at(car).laps() - 1); }
+int RaceDrivers::laps(std::size_t car) const {
+    return std::max(0, autopilot(car, "RaceDrivers::laps").laps() - 1);
+}
+
+std::size_t RaceDrivers::checked(std::size_t car, const char* caller) const {
+    if (car >= pilots_.size())
+        throw Error(std::string(caller) + ": no car " + std::to_string(car) + ": the race has " +
+                    std::to_string(pilots_.size()) + (pilots_.size() == 1 ? " car" : " cars"));
+    return car;
+}
 
 int RaceDrivers::fewest_laps() const {
     int fewest = laps(0);

@@ -14,6 +14,7 @@
 #include <glm/geometric.hpp>
 
 #include "core/fnv1a.hpp"
+#include "dynamics/car_access.hpp"
 #include "geometry/ellipsoid_cull_list.hpp"
 #include "geometry/face_certificate_lanes.hpp"
 #include "profile/phase_stopwatch.hpp"
@@ -86,7 +87,7 @@ std::size_t World::add_car(const CarSpec& spec, const RigidBodyState& state) {
     // Every car of one spec reads the same body-frame ellipsoids: one shared copy stays
     // warm in a big field, where each car's own would be cold at each of its updates.
     for (const CarSlot& other : cars_)
-        if (car.share_ellipsoids_with(other.car)) break;
+        if (detail::CarAccess::share_ellipsoids_with(car, other.car)) break;
     cars_.emplace_back(std::move(car), MidPhase(settings_.mid_phase, *statics_, trees_));
     ++roster_version_;
     return cars_.size() - 1;
@@ -104,7 +105,13 @@ void World::teleport_car(std::size_t i, const RigidBodyState& state) {
 // per-car records (boxes, islands) are rebuilt at every update.
 void World::remove_car(std::size_t i) {
     car_slot(i);  // throws past the last car
-    cars_.erase(cars_.begin() + static_cast<std::ptrdiff_t>(i));
+    // A slot cannot be assigned, since its car cannot (Car's class notes), so vector::erase
+    // is out: the others move into a new vector, in order, as add_car's growth moves them.
+    std::vector<CarSlot> kept;
+    kept.reserve(cars_.capacity());
+    for (std::size_t j = 0; j < cars_.size(); ++j)
+        if (j != i) kept.push_back(std::move(cars_[j]));
+    cars_ = std::move(kept);
     ++roster_version_;
     // The workers' scratch is sized at the next update for the field it has then: by the car
     // count alone, a removal and an add_car of a car with more ellipsoids would go unseen.
@@ -372,7 +379,7 @@ void World::place_ellipsoids(CarSlot& slot, bool every) {
     const std::span<const LookAheadList> listed(slot.scratch->listed);
     for (std::size_t i = 0; i < placed.size(); ++i)
         if (every || !listed[i].candidates().empty())
-            slot.car.place_ellipsoid(i, orientation, placed[i]);
+            detail::CarAccess::place_ellipsoid(slot.car, i, orientation, placed[i]);
 }
 
 namespace {
@@ -533,7 +540,8 @@ void World::find_contacts(CarSlot& slot, PhaseStopwatch& watch) {
 void World::advance(CarSlot& slot, PhaseStopwatch& watch) {
     const std::span<const Surface> table(settings_.surfaces);
     if (table.empty()) {
-        slot.car.advance(slot.deepest, settings_.gravity, settings_.substep_dt());
+        detail::CarAccess::advance(slot.car, slot.deepest, settings_.gravity,
+                                   settings_.substep_dt());
     } else {
         const std::span<const Contact> deepest(slot.deepest);
         std::array<double, CarSpec::max_ellipsoids> grip;
@@ -544,8 +552,8 @@ void World::advance(CarSlot& slot, PhaseStopwatch& watch) {
             const std::span<const SurfaceId> surfaces = statics_->collider(ref.collider).surfaces();
             grip[i] = table[surfaces.empty() ? 0 : surfaces[ref.triangle]].grip;
         }
-        slot.car.advance(deepest, settings_.gravity, settings_.substep_dt(),
-                         std::span<const double>(grip.data(), deepest.size()));
+        detail::CarAccess::advance(slot.car, deepest, settings_.gravity, settings_.substep_dt(),
+                                   std::span<const double>(grip.data(), deepest.size()));
     }
     watch.lap(Phase::integrate);
 }

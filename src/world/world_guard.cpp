@@ -11,6 +11,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "dynamics/car_access.hpp"
 #include "profile/phase_stopwatch.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/geometry/contact.hpp"
@@ -232,7 +233,7 @@ void World::update_island_or_reset(std::size_t island, WorkerScratch& scratch,
         reset.angular_velocity = glm::dvec3(0.0);
         // Car::restore re-checks the start state: if even that were impossible it throws,
         // loudly.
-        slot.car.restore(reset, slot.car.inputs(), slot.start_suspension);
+        detail::CarAccess::restore(slot.car, reset, slot.car.inputs(), slot.start_suspension);
         if (const Vehicle* vehicle = slot.car.vehicle())
             slot.car.set_vehicle_state(vehicle->at_rest());
         for (Contact& contact : slot.deepest)

@@ -12,6 +12,7 @@
 #include <glm/geometric.hpp>
 
 #include "core/fnv1a.hpp"
+#include "dynamics/car_access.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/math/types.hpp"
 #include "trackphys/world/world.hpp"
@@ -245,7 +246,7 @@ void World::restore_state(const WorldSnapshot& snapshot) {
     for (std::size_t i = 0; i < cars_.size(); ++i) {
         CarSlot& slot = cars_[i];
         const CarSnapshot& saved = snapshot.cars[i];
-        slot.car.restore(saved.state, saved.inputs, saved.suspension);
+        detail::CarAccess::restore(slot.car, saved.state, saved.inputs, saved.suspension);
         if (saved.vehicle) slot.car.set_vehicle_state(*saved.vehicle);
         slot.deepest.assign(saved.contacts.begin(), saved.contacts.end());
         slot.deepest_ref.assign(saved.deepest_refs.begin(), saved.deepest_refs.end());

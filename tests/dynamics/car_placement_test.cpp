@@ -6,6 +6,7 @@
 
 #include <glm/gtc/quaternion.hpp>
 
+#include "dynamics/car_access.hpp"
 #include "trackphys/dynamics/car.hpp"
 
 namespace trackphys {
@@ -31,7 +32,7 @@ TEST(CarPlacement, GivesTheBitsOfThePlainRotation) {
         for (std::size_t i = 0; i < travel.size(); ++i)
             if (spec.ellipsoids[i].role != EllipsoidRole::body)
                 travel[i] = (0.5 + 0.5 * unit(rng)) * spec.suspension.travel;
-        car.set_suspension(travel);
+        detail::CarAccess::set_suspension(car, travel);
         const glm::dquat& q = car.state().orientation;
         for (std::size_t i = 0; i < car.ellipsoid_count(); ++i) {
             const glm::dvec3 lift = q * glm::dvec3(0.0, travel[i], 0.0);

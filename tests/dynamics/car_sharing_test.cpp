@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include "dynamics/car_access.hpp"
 #include "support/shared_ellipsoids.hpp"
 #include "trackphys/dynamics/car.hpp"
 
@@ -16,7 +17,7 @@ TEST(CarSharing, CarsOfOneSpecShareOnRequest) {
     const Car first(spec, RigidBodyState{});
     Car second(spec, RigidBodyState{});
     EXPECT_FALSE(share_one_copy(first, second)) << "each car builds its own copy";
-    EXPECT_TRUE(second.share_ellipsoids_with(first));
+    EXPECT_TRUE(detail::CarAccess::share_ellipsoids_with(second, first));
     EXPECT_TRUE(share_one_copy(first, second));
     const Car copy = second;
     EXPECT_TRUE(share_one_copy(first, copy)) << "a copy of a car shares what the car shares";
@@ -39,14 +40,14 @@ TEST(CarSharing, OnlyTheSameBitsShare) {
     fewer.ellipsoids.pop_back();
     for (const CarSpec& other : {wider, negative_zero, shallower, fewer}) {
         Car car(other, RigidBodyState{});
-        EXPECT_FALSE(car.share_ellipsoids_with(first));
+        EXPECT_FALSE(detail::CarAccess::share_ellipsoids_with(car, first));
         EXPECT_FALSE(share_one_copy(first, car));
     }
 
     CarSpec heavier = spec;
     heavier.mass.mass *= 1.2;
     Car car(heavier, RigidBodyState{});
-    EXPECT_TRUE(car.share_ellipsoids_with(first));
+    EXPECT_TRUE(detail::CarAccess::share_ellipsoids_with(car, first));
 }
 
 }  // namespace

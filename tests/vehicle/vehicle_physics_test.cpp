@@ -22,6 +22,7 @@
 #include "trackphys/io/snapshot_file.hpp"
 #include "trackphys/world/spawn.hpp"
 #include "trackphys/world/world.hpp"
+#include "vehicle/vehicle_access.hpp"
 #include "world/world_scenes.hpp"
 
 namespace trackphys {
@@ -647,8 +648,10 @@ TEST(VehiclePhysics, ASidewaysSlidingWheelGripsAsTheCurveSaysEitherSideOfLowSpee
             VehicleState state = vehicle.rolling_at(rolling);
             for (WheelState& wheel : state.wheels) wheel.lateral_slip = -sideways / rolling;
             vehicle.set_state(state);
-            vehicle.begin_substep(0.0, 0.0, std::hypot(rolling, sideways), rolling, h);
-            lateral[side] = vehicle.wheel_force(0, load, rolling, sideways, h).lateral;
+            detail::VehicleAccess::begin_substep(vehicle, 0.0, 0.0, std::hypot(rolling, sideways),
+                                                 rolling, h);
+            lateral[side] =
+                detail::VehicleAccess::wheel_force(vehicle, 0, load, rolling, sideways, h).lateral;
             const double curve = tyre.force(0.0, -sideways / rolling, load).lateral;
             EXPECT_LE(std::abs(lateral[side]), std::abs(curve) * (1.0 + 1e-12))
                 << "rolling at " << rolling << " m/s";

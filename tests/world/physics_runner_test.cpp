@@ -334,6 +334,76 @@ TEST(PhysicsRunner, ACarPastThePublishedOnesIsAnErrorNamingBoth) {
         EXPECT_NE(why.find("no car 2: the runner has 2 cars"), std::string::npos) << why;
 }
 
+// Three cars in a row, each with its own throttle.
+World three_cars() {
+    World world = two_cars();
+    const CarSpec spec = CarSpec::default_car();
+    RigidBodyState state;
+    state.position = {9.0, spec.lowest_point_depth() + 0.001, -150.0};
+    world.add_car(spec, state);
+    for (std::size_t i = 0; i < 3; ++i)
+        world.car(i).set_inputs({0.4 + 0.2 * static_cast<double>(i), 0.0, 0.0});
+    return world;
+}
+
+// Removing car 1 after 30 updates, then steering car 2 at update 40: the world's bits are a
+// direct replay's, the runner keeps numbering car 2 as 2, and car 1 is gone from every call.
+TEST(PhysicsRunner, RemoveCarBetweenRunsReplaysADirectRemoval) {
+    World direct = three_cars();
+    for (int u = 0; u < 30; ++u) direct.update();
+    direct.remove_car(1);
+    for (std::uint64_t update = 31; update <= 60; ++update) {
+        if (update == 40) direct.car(1).set_inputs({1.0, 0.0, 0.3});
+        direct.update();
+    }
+
+    PhysicsRunner runner(three_cars(), false);
+    runner.set_inputs(45, 1, {0.0, 1.0, 0.0});  // pending for the car removed: dropped
+    runner.run_to(30);
+    runner.wait();
+    runner.remove_car(1);
+    runner.set_inputs(40, 2, {1.0, 0.0, 0.3});
+    runner.run_to(60);
+    runner.wait();
+    EXPECT_EQ(runner.world().state_hash(), direct.state_hash());
+    EXPECT_EQ(runner.world().car_count(), 2u);
+    EXPECT_EQ(runner.pose(2, runner.world().time()).position, direct.car(1).state().position);
+    for (const std::string& why : {test::error_of([&] { runner.pose(1, 0.0); }),
+                                   test::error_of([&] { runner.view(1, 0.0); }),
+                                   test::error_of([&] { runner.set_inputs(61, 1, CarInputs{}); }),
+                                   test::error_of([&] { runner.remove_car(1); })})
+        EXPECT_NE(why.find("car 1 was removed"), std::string::npos) << why;
+    runner.start();
+    EXPECT_THROW(runner.remove_car(0), Error);
+    runner.stop();
+}
+
+// A render thread reads the published poses of the cars that stay while the game removes one
+// between runs (ThreadSanitizer: scripts/test_tsan.sh).
+TEST(PhysicsRunner, RenderThreadReadsWhileACarIsRemoved) {
+    PhysicsRunner runner(three_cars(), false);
+    std::atomic<bool> done{false};
+    std::atomic<int> reads{0};
+    std::thread render([&] {
+        while (!done.load()) {
+            const double t = 0.01 * static_cast<double>(runner.published_update());
+            for (const std::size_t car : {0u, 2u})
+                if (!std::isfinite(runner.pose(car, t).position.x)) return;
+            reads.fetch_add(1);
+        }
+    });
+    runner.run_to(20);
+    runner.wait();
+    runner.remove_car(1);
+    runner.run_to(40);
+    runner.wait();
+    done.store(true);
+    render.join();
+    EXPECT_GT(reads.load(), 0);
+    EXPECT_EQ(runner.published_update(), 40u);
+    EXPECT_THROW(runner.pose(1, 0.0), Error);
+}
+
 TEST(PhysicsRunner, StopEndsAnOpenRun) {
     PhysicsRunner runner(two_cars(), true);
     runner.start();

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -79,6 +80,25 @@ TEST(RaceRules, AWorldWhoseFieldChangedIsRefused) {
     for (const std::string& why : {test::error_of([&] { drivers.drive(world); }),
                                    test::error_of([&] { drivers.after_update(world); })})
         EXPECT_NE(why.find("the world has 2 cars, the race 3"), std::string::npos) << why;
+}
+
+// A car past the field is a trackphys::Error naming the accessor, the car and the count, as
+// World's and PhysicsRunner's are (not the standard library's out_of_range).
+TEST(RaceRules, ACarPastTheFieldIsAnErrorNamingItAndTheCount) {
+    const test::TrackWorld& track = test::default_track();
+    const RaceDrivers drivers(track.track, CarSpec::default_car(), 3);
+    const std::string expected = ": no car 3: the race has 3 cars";
+    const std::pair<const char*, std::string> calls[] = {
+        {"laps", test::error_of([&] { drivers.laps(3); })},
+        {"lap_times", test::error_of([&] { drivers.lap_times(3); })},
+        {"target_speed", test::error_of([&] { drivers.target_speed(3); })},
+        {"grip_use", test::error_of([&] { drivers.grip_use(3); })},
+        {"rescues", test::error_of([&] { drivers.rescues(3); })},
+        {"autopilot", test::error_of([&] { drivers.autopilot(3); })},
+    };
+    for (const auto& [name, why] : calls)
+        EXPECT_EQ(why, std::string("RaceDrivers::") + name + expected);
+    EXPECT_NO_THROW(drivers.laps(2));
 }
 
 // The lanes are read no farther than pass_look_ahead, so a merge_gap beyond it would act as

@@ -11,6 +11,13 @@ const COLUMNS = [
   { header: "spin rad/s", testid: "spin", digits: 1 },
 ];
 const LOAD = 2; // the column with a bar
+const REVERSE_GEAR = -1; // VehicleState::reverse_gear
+
+/** A gear as a driver reads it: "R" for reverse, the number of a forward gear (the model has
+ * no neutral: its gears are reverse and 1 to the top one). */
+export function gearLabel(gear: number): string {
+  return gear === REVERSE_GEAR ? "R" : String(gear);
+}
 
 // v to that many decimals, without the "-0.000" of a tiny negative value.
 function fixed(v: number, digits: number): string {
@@ -88,7 +95,7 @@ export class VehicleHud {
     const v = this.vehicle;
     if (!v) return;
     this.rpm.textContent = fixed(v.rpm[f], 0);
-    this.gear.textContent = String(v.gear[f]);
+    this.gear.textContent = gearLabel(v.gear[f]);
     const base = f * v.wheelCount * WHEEL_CHANNELS;
     this.values.forEach((e, i) => (e.textContent = fixed(v.wheels[base + i], COLUMNS[i % WHEEL_CHANNELS].digits)));
     this.loadBars.forEach((bar, w) => {

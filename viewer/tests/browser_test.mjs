@@ -27,6 +27,7 @@ import {
     handMadeSpeed,
     malformedRecording,
     multiCarRecording,
+    reversingRecording,
     vehicleMissingAWheel,
     versionOneRecording,
 } from "./recordings.mjs";
@@ -86,7 +87,7 @@ async function expectVehicle(page, lines, k, t, what) {
     assert.ok(shown.shown, `${what}: the HUD's vehicle part is hidden`);
     const close = (got, expected, digits) => Math.abs(got - expected) <= 0.5 * 10 ** -digits + 1e-6;
     assert.ok(close(shown.rpm, want.rpm, 0), `${what}: rpm ${shown.rpm}, recorded ${want.rpm}`);
-    assert.equal(shown.gear, want.gear, `${what}: gear`);
+    assert.equal(shown.gear, want.gear === -1 ? "R" : String(want.gear), `${what}: gear ${want.gear}`);
     assert.equal(shown.wheels.length, want.wheels.length, `${what}: wheels`);
     const digits = [3, 2, 0, 1]; // slip ratio, slip angle, load, spin as the HUD rounds them
     want.wheels.forEach((wheel, w) =>
@@ -260,6 +261,16 @@ await check("a gt drive's HUD shows its rpm, gear and wheels from the file; the 
         await page.screenshot({ path: join(args.work, "gt_drive.png") });
         await waitReady(page, await open(demoPage, "#t=30"));
         assert.equal((await vehicleHud(page)).shown, false, "the arcade demo shows a vehicle part");
+    }),
+);
+
+await check("a car in reverse shows gear R, a forward gear its number", () =>
+    withPage(browser, async ({ page, open }) => {
+        const reversing = makePage(writeRecording("reversing", reversingRecording(1)), "reversing");
+        await waitReady(page, await open(reversing, "#t=0.3"));
+        assert.equal((await vehicleHud(page)).gear, "1", "forwards at 0.3 s");
+        await setHash(page, "#t=0.8");
+        assert.equal((await vehicleHud(page)).gear, "R", "in reverse at 0.8 s");
     }),
 );
 

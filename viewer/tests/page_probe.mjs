@@ -83,15 +83,17 @@ export async function hud(page) {
     };
 }
 
-/** The HUD's vehicle part: shown or not, rpm, gear and per wheel the four numbers. */
+/** The HUD's vehicle part: shown or not, rpm, gear (as shown: "R" for reverse) and per wheel
+ * the four numbers. */
 export async function vehicleHud(page) {
     return page.evaluate(() => {
         const root = document.querySelector('[data-testid="hud-vehicle"]');
-        const number = (id) => Number(document.querySelector(`[data-testid="${id}"]`)?.textContent);
+        const text = (id) => document.querySelector(`[data-testid="${id}"]`)?.textContent;
+        const number = (id) => Number(text(id));
         const wheels = [];
         for (let w = 0; document.querySelector(`[data-testid="hud-wheel-${w}-load"]`); ++w)
             wheels.push(["slip-ratio", "slip-angle", "load", "spin"].map((c) => number(`hud-wheel-${w}-${c}`)));
-        return { shown: !root.hidden, rpm: number("hud-rpm"), gear: number("hud-gear"), wheels };
+        return { shown: !root.hidden, rpm: number("hud-rpm"), gear: text("hud-gear"), wheels };
     });
 }
 

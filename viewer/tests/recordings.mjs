@@ -71,6 +71,19 @@ export function versionOneRecording(seconds) {
     return [header(1, 1), ...frames(1, Math.round(seconds / DT), 1)].join("\n") + "\n";
 }
 
+/** One car with a vehicle model over `seconds`: first gear for the first half, then reverse
+ * (VehicleState::reverse_gear, -1). */
+export function reversingRecording(seconds) {
+    const [head, ...lines] = multiCarRecording(1, seconds).trimEnd().split("\n");
+    const withGears = lines.map((line) => {
+        const f = JSON.parse(line);
+        const gear = f.t <= seconds / 2 ? 1 : -1;
+        f.cars[0].vehicle = { rpm: 1500, gear, wheels: [0, 1, 2, 3].map(() => [0, 0, 3000, 10]) };
+        return JSON.stringify(f);
+    });
+    return [head, ...withGears].join("\n") + "\n";
+}
+
 /** One car whose first frame's vehicle lists three of its four wheels (line 2). */
 export function vehicleMissingAWheel() {
     const [head, frame] = multiCarRecording(1, 0.01).trimEnd().split("\n");

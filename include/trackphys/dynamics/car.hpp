@@ -24,7 +24,8 @@
 namespace trackphys {
 
 namespace detail {
-struct BodyAxes;  // src/dynamics/body_axes.hpp: the sub-step's body axes
+struct BodyAxes;   // src/dynamics/body_axes.hpp: the sub-step's body axes
+struct CarAccess;  // src/dynamics/car_access.hpp: World's private steps of a car
 }  // namespace detail
 
 /// The driver's controls. Out-of-range values are clamped by Car::set_inputs; NaN is
@@ -49,13 +50,29 @@ struct CarInputs {
 };
 
 /// A car: its spec (validated), its rigid-body state and its inputs, and the force laws
-/// that turn the contacts of its ellipsoids into a wrench on the body. A car moved from may
-/// only be assigned to or destroyed: its body ellipsoids went with the move.
+/// that turn the contacts of its ellipsoids into a wrench on the body.
+///
+/// The public surface is what a game does to a car, most often to a World's through
+/// World::car(i): set its inputs, move it (set_state), set its vehicle state or road grip,
+/// push it (apply_impulse), and read its spec, state, suspension and telemetry. What only
+/// World::update and World::restore_state may do (the sub-step, the restore of a snapshot's
+/// bits, the suspension's reset, sharing and placing the ellipsoids) is private, reached
+/// through detail::CarAccess (src/dynamics/car_access.hpp), which the World and the tests
+/// use: a car stepped outside World::update would leave the world's time and contacts
+/// behind it. A car can be copied (a copy is the game's own, apart from any world) but not
+/// assigned: a World keeps per-ellipsoid lists sized for each car it added, and a car of
+/// another spec assigned over one of them would break them. A car moved from may only be
+/// destroyed: its body ellipsoids went with the move.
 class TRACKPHYS_API Car {
   public:
     /// Throws trackphys::Error with CarSpec::validate()'s message for an invalid spec, or
     /// naming the field of a non-finite initial state.
     Car(CarSpec spec, const RigidBodyState& initial_state);
+    Car(const Car&) = default;
+    Car(Car&&) noexcept = default;
+    Car& operator=(const Car&) = delete;  // see the class notes
+    Car& operator=(Car&&) = delete;
+    ~Car() = default;
 
     const CarSpec& spec() const { return spec_; }
     const RigidBodyState& state() const { return state_; }
@@ -80,11 +97,6 @@ class TRACKPHYS_API Car {
     /// Ellipsoid i in the body frame (relative to the centre of mass). Cars that share their
     /// ellipsoids (share_ellipsoids_with) return the same object.
     const Ellipsoid& body_ellipsoid(std::size_t i) const { return shape_->body[i].ellipsoid(); }
-    /// Makes this car read its body-frame ellipsoids, and what its sub-steps read of each,
-    /// from `other`'s copy when the two hold the same bits (cars of one spec): a field of
-    /// many cars then keeps one copy warm in the cache rather than one per car. Nothing the
-    /// car computes changes, and copies of the car share too. Returns whether they share.
-    bool share_ellipsoids_with(const Car& other);
     /// Ellipsoid i placed in the world by the current state (wheels moved up by their
     /// suspension travel).
     Ellipsoid world_ellipsoid(std::size_t i) const {
@@ -101,37 +113,15 @@ class TRACKPHYS_API Car {
         place_ellipsoid(i, orientation, placed);
         return placed;
     }
-    /// The same written into `placed`, a copy of world_ellipsoid(i) of any state, with the
-    /// orientation given, PlacingRotation(state().orientation): a car places all its
-    /// ellipsoids of one state with one rotation, each into its own slot
-    /// (Ellipsoid::place_copy).
-    void place_ellipsoid(std::size_t i, const PlacingRotation& orientation,
-                         Ellipsoid& placed) const {
-        shape_->body[i].place_copy(placed, orientation, state_.position + lifted(suspension_[i]));
-    }
-    /// The same with the orientation's matrix given, glm::mat3_cast(state().orientation).
-    void place_ellipsoid(std::size_t i, const glm::dmat3& orientation_matrix,
-                         Ellipsoid& placed) const {
-        place_ellipsoid(i, PlacingRotation(state_.orientation, orientation_matrix), placed);
-    }
     /// Suspension compression of ellipsoid i from full droop (m; always 0 for the body).
     double suspension(std::size_t i) const { return suspension_[i]; }
     /// Suspension compression of every ellipsoid, in CarSpec order (m).
     std::span<const double> suspension() const { return suspension_; }
-    /// Replaces the suspension compressions (restore, reset). Throws trackphys::Error unless
-    /// there is one per ellipsoid, each in [0, CarSpec::suspension.travel] (0 for the body).
-    void set_suspension(std::span<const double> travel);
-    /// Throws what set_suspension() would throw for `travel`, changing nothing.
+    /// Throws what the private set_suspension would throw for `travel`, changing nothing.
     void check_suspension(std::span<const double> travel) const;
-    /// Replaces state, inputs and suspension with exactly these bits (no renormalisation, no
-    /// clamping), as World::restore_state needs for bit-identical results. Throws
-    /// trackphys::Error, changing nothing, when set_state or set_suspension would reject
-    /// them, the orientation is off unit length by more than 1e-6, or an input is NaN or out
-    /// of its range.
-    void restore(const RigidBodyState& state, const CarInputs& inputs,
-                 std::span<const double> suspension);
-    /// Throws what restore() would throw for these, changing nothing: a caller restoring
-    /// several cars checks them all first, then restores each in place.
+    /// Throws what the private restore (World::restore_state's) would throw for these,
+    /// changing nothing: a caller restoring several cars checks them all first, then
+    /// restores each in place.
     void check_restore(const RigidBodyState& state, const CarInputs& inputs,
                        std::span<const double> suspension) const;
     /// The vehicle model (wheel spins, slips, gear, clutch, telemetry) of a car whose spec
@@ -149,6 +139,17 @@ class TRACKPHYS_API Car {
 
     /// Speed of the centre of mass (m/s).
     double speed() const { return glm::length(state_.linear_velocity); }
+
+    /// Applies an impulse J (N s, world) at world point p: v += J / m and
+    /// omega += I_world^-1 ((p - x) x J), as a force J / h over a sub-step of h would.
+    /// Contacts between cars push both cars this way, equal and opposite.
+    void apply_impulse(const glm::dvec3& impulse, const glm::dvec3& point);
+    /// How much the velocity of the body point at world p changes along unit n per unit
+    /// impulse along n there (1/kg): 1/m + n . ((I_world^-1 (r x n)) x r), r = p - x.
+    double inverse_mass_along(const glm::dvec3& normal, const glm::dvec3& point) const;
+
+  private:
+    friend struct detail::CarAccess;
 
     /// One sub-step of h seconds from each ellipsoid's deepest contact (one per ellipsoid,
     /// in order; depth <= 0 for none): impulses for contacts the springs cannot hold, the
@@ -179,15 +180,30 @@ class TRACKPHYS_API Car {
     void advance(std::span<const Contact> deepest, const glm::dvec3& gravity, double h,
                  std::span<const double> grip = {});
 
-    /// Applies an impulse J (N s, world) at world point p: v += J / m and
-    /// omega += I_world^-1 ((p - x) x J), as a force J / h over a sub-step of h would.
-    /// Contacts between cars push both cars this way, equal and opposite.
-    void apply_impulse(const glm::dvec3& impulse, const glm::dvec3& point);
-    /// How much the velocity of the body point at world p changes along unit n per unit
-    /// impulse along n there (1/kg): 1/m + n . ((I_world^-1 (r x n)) x r), r = p - x.
-    double inverse_mass_along(const glm::dvec3& normal, const glm::dvec3& point) const;
+    /// Makes this car read its body-frame ellipsoids, and what its sub-steps read of each,
+    /// from `other`'s copy when the two hold the same bits (cars of one spec): a field of
+    /// many cars then keeps one copy warm in the cache rather than one per car. Nothing the
+    /// car computes changes, and copies of the car share too. Returns whether they share.
+    bool share_ellipsoids_with(const Car& other);
+    /// The same written into `placed`, a copy of world_ellipsoid(i) of any state, with the
+    /// orientation given, PlacingRotation(state().orientation): a car places all its
+    /// ellipsoids of one state with one rotation, each into its own slot
+    /// (Ellipsoid::place_copy).
+    void place_ellipsoid(std::size_t i, const PlacingRotation& orientation,
+                         Ellipsoid& placed) const {
+        shape_->body[i].place_copy(placed, orientation, state_.position + lifted(suspension_[i]));
+    }
+    /// Replaces the suspension compressions (restore, reset). Throws trackphys::Error unless
+    /// there is one per ellipsoid, each in [0, CarSpec::suspension.travel] (0 for the body).
+    void set_suspension(std::span<const double> travel);
+    /// Replaces state, inputs and suspension with exactly these bits (no renormalisation, no
+    /// clamping), as World::restore_state needs for bit-identical results. Throws
+    /// trackphys::Error, changing nothing, when set_state or set_suspension would reject
+    /// them, the orientation is off unit length by more than 1e-6, or an input is NaN or out
+    /// of its range.
+    void restore(const RigidBodyState& state, const CarInputs& inputs,
+                 std::span<const double> suspension);
 
-  private:
     /// state().orientation * (0, travel, 0), a wheel's suspension lift in the world, as glm
     /// rotates it (v + 2 (w (q x v) + q x (q x v)), q the vector part) but without the
     /// products by v's zero components, which change at most the sign of a zero: a fifth

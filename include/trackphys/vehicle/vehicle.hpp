@@ -14,6 +14,10 @@ namespace trackphys {
 
 struct CarSpec;
 
+namespace detail {
+struct VehicleAccess;  // src/vehicle/vehicle_access.hpp: Car's sub-step of its model
+}  // namespace detail
+
 /// One wheel's state: what the next sub-step reads.
 struct WheelState {
     double spin = 0.0;  ///< rad/s about its axle, > 0 rolling forward
@@ -51,7 +55,11 @@ struct WheelTelemetry {
 /// The vehicle model of a car whose CarSpec has a `vehicle` (docs/vehicle.md): the wheels'
 /// spin, the tyres' transient slips and forces, and the drivetrain (engine, clutch,
 /// automatic gearbox, differentials, brakes with anti-lock and traction control). Car
-/// drives it once per sub-step: begin_substep(), then wheel_force() for every wheel.
+/// drives it once per sub-step: begin_substep(), then wheel_force() for every wheel. Those
+/// steps are private, reached through detail::VehicleAccess (src/vehicle/vehicle_access.hpp)
+/// by Car and the tests: a game holds a World's car's model through Car::vehicle() to read
+/// its telemetry and set its road grip, and a sub-step run from there would leave the car
+/// behind.
 class TRACKPHYS_API Vehicle {
   public:
     /// spec must hold a vehicle (CarSpec::validate() has checked it).
@@ -83,6 +91,16 @@ class TRACKPHYS_API Vehicle {
     /// slip, adding energy; zero would leave its force 0 / 0).
     void set_road_grip(std::size_t w, double grip);
 
+    /// The anti-roll bar's force on wheel slot w's suspension (N, resisting compression).
+    double anti_roll_force(std::size_t w) const { return wheels_[w].anti_roll_force; }
+
+    /// The last sub-step's engine speed (rev/min) and each wheel's telemetry.
+    double engine_rpm() const { return engine_rpm_; }
+    std::span<const WheelTelemetry> telemetry() const { return telemetry_; }
+
+  private:
+    friend struct detail::VehicleAccess;
+
     /// The drivetrain's share of a sub-step of h seconds: the shifter, the clutch, the
     /// engine's torque through the gearbox and differentials, and the brakes, at throttle
     /// in -1..1 (< 0 asks for reverse, CarInputs), brake in 0..1, the car's speed (m/s) and
@@ -101,14 +119,7 @@ class TRACKPHYS_API Vehicle {
     /// Sets every wheel's anti-roll bar force from the suspension compression of every
     /// ellipsoid (m), all at once so that no wheel sees its partner's already updated.
     void measure_anti_roll(std::span<const double> suspension);
-    /// The anti-roll bar's force on wheel slot w's suspension (N, resisting compression).
-    double anti_roll_force(std::size_t w) const { return wheels_[w].anti_roll_force; }
 
-    /// The last sub-step's engine speed (rev/min) and each wheel's telemetry.
-    double engine_rpm() const { return engine_rpm_; }
-    std::span<const WheelTelemetry> telemetry() const { return telemetry_; }
-
-  private:
     struct Wheel {
         std::size_t ellipsoid = 0;
         bool front = false;

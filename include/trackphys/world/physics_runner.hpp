@@ -22,14 +22,16 @@ namespace trackphys {
 /// (CarView: pose, velocities, wheels, engine) per car for any render time without locks
 /// and without torn reads.
 ///
-/// The cars published are those the world had when the runner was made (in index order):
-/// the render thread may read the published states at any time, so they cannot grow or
-/// shrink, and run_to refuses a world that world() has added a car to or removed one from.
+/// The cars published are those the world had when the runner was made (in index order),
+/// and the runner's car numbers (set_inputs, pose, view) stay theirs: the render thread may
+/// read the published states at any time, so they cannot grow or shrink. remove_car takes a
+/// car out of the world between runs (its number then stays unused); run_to refuses a world
+/// that world() has added a car to or removed one from behind the runner's back.
 ///
-/// Threads: one game thread (start, run_to, stop, set_inputs, world) and one render thread
-/// (pose, view, published_update); the physics thread is the runner's own. Inputs go through a
-/// mutex (a few per update); publishing is a lock-free triple buffer (the render thread
-/// always reads a complete pair of states, the newest one published).
+/// Threads: one game thread (start, run_to, stop, set_inputs, remove_car, world) and one
+/// render thread (pose, view, published_update); the physics thread is the runner's own.
+/// Inputs go through a mutex (a few per update); publishing is a lock-free triple buffer (the
+/// render thread always reads a complete pair of states, the newest one published).
 class TRACKPHYS_API PhysicsRunner {
   public:
     /// Takes the world (with its cars). real_time: one update per dt_update of wall clock;
@@ -82,7 +84,18 @@ class TRACKPHYS_API PhysicsRunner {
         return out;
     }
 
-    /// The world, only while the thread is not running (throws trackphys::Error then).
+    /// Removes car `car` (a runner number) from the world between runs, as
+    /// World::remove_car does, deterministically: the same removals after the same updates
+    /// give the world's bits of a direct replay. The other cars keep their runner numbers
+    /// (the world's indices past it move down one; world() shows those); the removed car's
+    /// pending inputs are dropped, and from the frame published at once, pose() and view()
+    /// of it throw trackphys::Error saying it was removed, as set_inputs does. Throws
+    /// trackphys::Error while the thread runs, or for a car that does not exist or was
+    /// removed already.
+    void remove_car(std::size_t car);
+
+    /// The world, only while the thread is not running (throws trackphys::Error then). Its
+    /// car indices are the runner's numbers until a car is removed (see remove_car).
     World& world();
 
   private:
@@ -93,6 +106,7 @@ class TRACKPHYS_API PhysicsRunner {
         double time = 0.0;
         std::vector<CarView> previous;
         std::vector<CarView> current;
+        std::vector<std::uint8_t> removed;  // per runner number: 1 once remove_car took it
         // How far from previous_time to time simulated time t is (0..1, 1 for no span).
         double alpha(double t) const;
     };
@@ -104,15 +118,26 @@ class TRACKPHYS_API PhysicsRunner {
 
     // Throws trackphys::Error naming the caller for a car past the published ones.
     void check_car(std::size_t car, const char* caller) const;
+    // check_car, and that `removed` (a frame's or the game thread's) does not mark it.
+    void check_present(std::size_t car, const std::vector<std::uint8_t>& removed,
+                       const char* caller) const;
     void loop(std::uint64_t last_update);
     void apply_due_inputs();
     void publish();
+    // Publishes the last published pair again, with removed_ (remove_car).
+    void republish();
+    // Hands frames_[back_] to the render thread.
+    void swap_back();
     // The render thread's newest frame (takes a fresher one if the physics thread left it).
     const Frame& front() const;
 
     World world_;
     std::size_t cars_;
-    std::uint64_t roster_version_;  // the world's when the runner was made
+    std::uint64_t roster_version_;  // the world's after the runner's last change to its cars
+    // Per runner number: the car's world index, and whether remove_car took it. Written only
+    // between runs (remove_car), so the physics thread reads them without a lock.
+    std::vector<std::size_t> world_index_;
+    std::vector<std::uint8_t> removed_;
     bool real_time_;
     std::thread thread_;
     std::atomic<bool> stopping_{false};
@@ -127,6 +152,7 @@ class TRACKPHYS_API PhysicsRunner {
     static constexpr unsigned kFresh = 4;
     Frame frames_[3];
     unsigned back_ = 0;
+    unsigned published_ = 0;               // the frame last handed over: read-only to both threads
     std::vector<CarView> last_published_;  // physics thread's
     double last_published_time_ = 0.0;
     mutable unsigned front_ = 2;

@@ -127,21 +127,31 @@ class TRACKPHYS_API RaceDrivers {
     void after_update(World& world);
 
     std::size_t car_count() const { return pilots_.size(); }
+    // Each accessor of one car throws trackphys::Error naming the car and car_count() past
+    // the last car, as World and PhysicsRunner do.
     /// Laps car `car` has completed: its crossings of the start line after the first.
     int laps(std::size_t car) const;
     /// Fewest laps completed by any car.
     int fewest_laps() const;
     /// Car i's lap times (s), one per completed lap.
     const std::vector<double>& lap_times(std::size_t car) const {
-        return progress_.lap_times.at(car);
+        return progress_.lap_times[checked(car, "RaceDrivers::lap_times")];
     }
     /// Car i's target speed on straights (m/s).
-    double target_speed(std::size_t car) const { return pilots_.at(car).settings().target_speed; }
+    double target_speed(std::size_t car) const {
+        return autopilot(car, "RaceDrivers::target_speed").settings().target_speed;
+    }
     /// Car i's share of its tyres' grip planned in turns (AutopilotSettings::grip_use).
-    double grip_use(std::size_t car) const { return pilots_.at(car).settings().grip_use; }
+    double grip_use(std::size_t car) const {
+        return autopilot(car, "RaceDrivers::grip_use").settings().grip_use;
+    }
     /// Times car i left the track and was put back on it.
-    std::uint64_t rescues(std::size_t car) const { return progress_.rescues.at(car); }
-    const Autopilot& autopilot(std::size_t car) const { return pilots_.at(car); }
+    std::uint64_t rescues(std::size_t car) const {
+        return progress_.rescues[checked(car, "RaceDrivers::rescues")];
+    }
+    const Autopilot& autopilot(std::size_t car) const {
+        return autopilot(car, "RaceDrivers::autopilot");
+    }
 
     /// The race's progress, to save beside a world snapshot, and back. set_progress
     /// throws trackphys::Error for a progress of another field size or as
@@ -151,6 +161,11 @@ class TRACKPHYS_API RaceDrivers {
 
   private:
     using RoadPosition = detail::RoadPosition;
+    // car, or trackphys::Error naming the caller, car and car_count() past the last car.
+    std::size_t checked(std::size_t car, const char* caller) const;
+    const Autopilot& autopilot(std::size_t car, const char* caller) const {
+        return pilots_[checked(car, caller)];
+    }
     // Throws unless the world holds as many cars as the race drives.
     void check_field(const World& world, const char* caller) const;
     RoadPosition road_position(const World& world, std::size_t car) const;

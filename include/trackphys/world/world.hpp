@@ -46,6 +46,15 @@ class TraceRecorder;
 /// checked when it was reached, so the reset state is always possible. The other cars are
 /// not affected (in an island whose update stopped on an error, they keep the state they
 /// had reached).
+///
+/// Threads: a World is not thread-safe. While update() runs on one thread (its islands on
+/// its own workers or the plugged-in job system), no other thread may call anything on the
+/// World or on what it hands out: not a const getter (car(i).state(), contacts(),
+/// state_hash(), last_profile()), not debug_draw() nor save_state(), which read the cars
+/// update() is writing. Calls between updates from any one thread at a time are fine. A
+/// game that renders while the physics runs gives the World to a PhysicsRunner: its physics
+/// thread owns the World, the game thread stamps inputs (and removes cars) through it, and a
+/// render thread reads interpolated poses and views of the published states without locks.
 class TRACKPHYS_API World {
   public:
     /// Throws trackphys::Error on a null static world, invalid settings or a triangle whose
@@ -107,9 +116,13 @@ class TRACKPHYS_API World {
     /// count alone does not (a removal and an add leave it as it was).
     std::uint64_t roster_version() const { return roster_version_; }
     /// Car i (throws trackphys::Error past car_count(), as every call taking a car index
-    /// does): its inputs and state may be set through it, but it must not be replaced by
-    /// another car (assigned), since the world places its ellipsoids into copies made by
-    /// add_car; add another car instead.
+    /// does): the handle through which a game sets its inputs, moves it (Car::set_state,
+    /// unchecked; teleport_car checks), sets its vehicle state or road grip
+    /// (Car::vehicle()), pushes it (Car::apply_impulse) and reads its spec, state and
+    /// telemetry. It cannot replace the car (Car is not assignable: the world keeps
+    /// per-ellipsoid lists sized for the car add_car made; add another car instead), nor run
+    /// the world's own steps on it (the sub-step, a snapshot's restore: private to Car and
+    /// Vehicle, see Car's class notes), which would leave time() and contacts() behind it.
     Car& car(std::size_t i);
     const Car& car(std::size_t i) const;
 
