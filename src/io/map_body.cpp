@@ -66,7 +66,8 @@ void BodyWriter::add_to(MapChecksum& checksum) const {
         checksum.add(p.data, whole);
         // The last partial word and the padding, as they will be written.
         std::array<char, kMapAlignment> tail{};
-        std::memcpy(tail.data(), p.data + whole, p.size - whole);
+        // An empty array's data may be null, which memcpy must not be given even for 0 bytes.
+        if (p.size > whole) std::memcpy(tail.data(), p.data + whole, p.size - whole);
         checksum.add(tail.data(), padded(p.size) - whole);
     }
 }
