@@ -37,7 +37,7 @@ World::World(std::shared_ptr<const StaticWorld> statics, WorldSettings settings,
       work_(std::make_unique<UpdateWork>()) {
     if (!statics_) throw Error("World: the static world is null");
     if (std::string why = settings_.validate(); !why.empty()) throw Error(why);
-    check_surfaces();
+    check_new_surfaces();
     if (settings_.mid_phase != MidPhaseMode::precomputed_tree)
         trees.clear();
     else if (trees.empty())
@@ -49,10 +49,11 @@ World::World(std::shared_ptr<const StaticWorld> statics, WorldSettings settings,
     if (settings_.profile) static_cast<void>(TickClock::microseconds_per_tick());
 }
 
-void World::check_surfaces() const {
+void World::check_new_surfaces() {
     const std::vector<Surface>& table = settings_.surfaces;
-    if (table.empty()) return;
-    for (std::uint32_t id = 0; id < statics_->size(); ++id) {
+    const std::size_t colliders = statics_->size();
+    for (std::uint32_t id = static_cast<std::uint32_t>(colliders_checked_);
+         id < colliders && !table.empty(); ++id) {
         const StaticCollider& collider = statics_->collider(id);
         if (collider.highest_surface() < table.size()) continue;
         const std::span<const SurfaceId> surfaces = collider.surfaces();
@@ -63,6 +64,7 @@ void World::check_surfaces() const {
                             ", beyond WorldSettings.surfaces (" + std::to_string(table.size()) +
                             " entries)");
     }
+    colliders_checked_ = colliders;
 }
 
 World::~World() = default;
@@ -154,6 +156,7 @@ void World::update() {
     profile_ = UpdateProfile{};
     const auto start =
         settings_.profile ? PhaseStopwatch::Clock::now() : PhaseStopwatch::Clock::time_point{};
+    if (colliders_checked_ != statics_->size()) check_new_surfaces();
     UpdateWork& work = *work_;
     {
         PhaseStopwatch watch(profile_, settings_.profile, trace_);

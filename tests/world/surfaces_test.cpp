@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -143,6 +144,33 @@ TEST(Surfaces, BadGripsAndIdsBeyondTheTableAreRefusedByName) {
     wrong_count.surfaces.pop_back();
     const std::string count = test::error_of([&] { StaticCollider collider(wrong_count); });
     EXPECT_NE(count.find("surface ids for"), std::string::npos) << count;
+}
+
+// Where the mode lets a game add a collider after making the World, its ids are checked at
+// the next update, before a sub-step could read the table past its end.
+TEST(Surfaces, ALateColliderWithAnIdBeyondTheTableIsRefusedAtTheUpdate) {
+    auto statics = std::make_shared<StaticWorld>();
+    statics->add(std::make_shared<StaticCollider>(test::straight_road(600.0, 20.0, 5.0)));
+    WorldSettings settings;
+    settings.mid_phase = MidPhaseMode::none;
+    settings.surfaces = {Surface{1.0}, Surface{0.5}};
+    World world(statics, settings);
+    const CarSpec spec = CarSpec::preset("arcade");
+    world.add_car(spec, place_car_on_surface(world.statics(), spec, {0.0, 20.0, 30.0},
+                                             glm::dquat(1.0, 0.0, 0.0, 0.0)));
+    world.update();
+
+    TriangleMesh late = road_with_patch();
+    for (SurfaceId& id : late.surfaces) id = SurfaceId{40000};
+    statics->add(std::make_shared<StaticCollider>(late));
+    const std::uint64_t before = world.state_hash();
+    const std::string why = test::error_of([&] { world.update(); });
+    EXPECT_NE(why.find("collider 1's triangle 0 is surface 40000, beyond WorldSettings.surfaces"),
+              std::string::npos)
+        << why;
+    EXPECT_EQ(world.state_hash(), before);
+    // It stays refused: the colliders were not marked checked.
+    EXPECT_THROW(world.update(), Error);
 }
 
 // The collider keeps the ids by mesh index, dropped triangles' too, and none for all zeros.

@@ -136,7 +136,10 @@ class TRACKPHYS_API World {
     std::optional<ContactSurface> contact_surface(std::size_t i, std::size_t ellipsoid) const;
 
     /// Advances every car by settings().dt_update, resetting any car that ends it in an
-    /// impossible state (see the class notes).
+    /// impossible state (see the class notes). Throws trackphys::Error, changing nothing,
+    /// when a collider added to the static world since the last update (the mid-phase modes
+    /// without precomputed trees allow it) has a surface id settings().surfaces has no entry
+    /// for.
     void update();
 
     /// What touched what during the last update (docs/design.md#contact-events): cars that
@@ -214,8 +217,10 @@ class TRACKPHYS_API World {
     static void island_task(int begin, int end, int worker, void* world);
     // step_island under the reset policy (world_guard.cpp).
     void update_island_or_reset(std::size_t island, WorkerScratch& scratch, PhaseStopwatch& watch);
-    // Throws naming the first triangle whose surface id settings_.surfaces has no entry for.
-    void check_surfaces() const;
+    // Throws naming the first triangle whose surface id settings_.surfaces has no entry for,
+    // among the colliders not checked yet: the modes without precomputed trees let a game add
+    // colliders after the World was made, and the sub-step reads the table unchecked.
+    void check_new_surfaces();
     // Why this state breaks the reset policy's limits, or empty.
     std::string impossible_state(const RigidBodyState& state) const;
     // add_car's checks of where the car is (world_guard.cpp).
@@ -238,6 +243,7 @@ class TRACKPHYS_API World {
     std::shared_ptr<const ColliderPlaneTrees> trees_;  // never null; every car's MidPhase reads it
     std::vector<CarSlot> cars_;
     std::uint64_t roster_version_ = 0;
+    std::size_t colliders_checked_ = 0;  // by check_new_surfaces
     std::unique_ptr<UpdateWork> work_;
     std::uint64_t updates_ = 0;
     UpdateProfile profile_;
