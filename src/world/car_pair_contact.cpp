@@ -18,8 +18,13 @@ ContactMaterial mean_material(const ContactMaterial& a, const ContactMaterial& b
             0.5 * (a.friction + b.friction), 0.5 * (a.slip_speed + b.slip_speed)};
 }
 
+glm::dvec3 relative_velocity(const RigidBodyState& a, const RigidBodyState& b,
+                             const glm::dvec3& point) {
+    return point_velocity(a, point) - point_velocity(b, point);
+}
+
 glm::dvec3 relative_velocity(const Car& a, const Car& b, const glm::dvec3& point) {
-    return point_velocity(a.state(), point) - point_velocity(b.state(), point);
+    return relative_velocity(a.state(), b.state(), point);
 }
 
 void push_apart(Car& a, Car& b, const glm::dvec3& impulse, const glm::dvec3& point) {
@@ -108,6 +113,9 @@ CarPairTouch touch_cars(Car& a, std::span<const Ellipsoid> a_placed, Car& b,
     // only the few pairs near the gap meet the ellipsoid pair's own culls.
     const std::uint64_t a_reaching = reaching(a_placed, placed_reach(b, b_placed));
     const std::uint64_t b_reaching = reaching(b_placed, placed_reach(a, a_placed));
+    // The approach speed is the cars' before any pair of this sub-step pushed them.
+    const RigidBodyState a_before = a.state();
+    const RigidBodyState b_before = b.state();
     for (std::size_t i = 0; i < a_placed.size(); ++i) {
         if (!(a_reaching >> i & 1)) continue;
         const Ellipsoid& ea = a_placed[i];
@@ -122,7 +130,7 @@ CarPairTouch touch_cars(Car& a, std::span<const Ellipsoid> a_placed, Car& b,
                 touch.deepest = contact.depth;
                 touch.deepest_contact = contact;
                 touch.approach_speed =
-                    -glm::dot(relative_velocity(a, b, contact.point), contact.normal);
+                    -glm::dot(relative_velocity(a_before, b_before, contact.point), contact.normal);
             }
             const double budget =
                 deep_fraction * std::min(ea.sorted_radii().z, eb.sorted_radii().z);

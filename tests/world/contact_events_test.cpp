@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/quaternion.hpp>
 
 #include "trackphys/world/world.hpp"
 #include "world/world_scenes.hpp"
@@ -108,6 +109,37 @@ TEST(ContactEvents, ACarIntoAWallHitsIt) {
     EXPECT_GT(hit.approach_speed, 12.0);
     EXPECT_LE(hit.approach_speed, 15.0);
     for (const auto& later : log.hits) EXPECT_EQ(later.event.triangle.collider, 1u);
+}
+
+// A car with two bumper balls (one 0.5 mm further out) driven into a still car: the begin's
+// approach speed is the closing speed along its normal, as the cars moved before any pair of
+// that sub-step pushed them (the first ball's push must not slow the second's reading).
+TEST(ContactEvents, TheApproachSpeedIsTakenBeforeTheSubStepsPushes) {
+    CarSpec spec = CarSpec::default_car();
+    spec.air_density = 0.0;
+    CarSpec bumpers = spec;
+    bumpers.ellipsoids.push_back(
+        {{0.4, 0.05, 2.5}, {0.2, 0.2, 0.2}, {1.0, 0.0, 0.0, 0.0}, EllipsoidRole::body});
+    bumpers.ellipsoids.push_back(
+        {{-0.4, 0.05, 2.5005}, {0.2, 0.2, 0.2}, {1.0, 0.0, 0.0, 0.0}, EllipsoidRole::body});
+    for (const double gap : {0.0001, 0.0013, 0.0031, 0.0057}) {
+        WorldSettings settings;
+        settings.gravity = glm::dvec3(0.0);
+        World world(std::make_shared<StaticWorld>(), settings);
+        const double closing = 80.0;
+        world.add_car(spec, moving({0.0, 0.0, -5.0 - gap}, {0.0, 0.0, closing}));
+        RigidBodyState turned;
+        turned.orientation = glm::dquat(0.0, 0.0, 1.0, 0.0);  // half a turn about +Y
+        world.add_car(bumpers, turned);
+        EventLog log;
+        log.run(world, 50);
+        ASSERT_EQ(log.begins.size(), 1u) << "gap " << gap;
+        const CarTouchBeginEvent& begin = log.begins[0].event;
+        // Car 0 moves along +Z into car 1 at rest: the approach along the normal (moving
+        // car 0 along it separates them) is -closing n.z.
+        EXPECT_NEAR(begin.approach_speed, -closing * begin.normal.z, 1e-9 * closing)
+            << "gap " << gap << ", normal z " << begin.normal.z;
+    }
 }
 
 // Wheels rolling on the road are no events: a car driving circles on flat ground for 5 s.
