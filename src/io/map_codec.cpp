@@ -1,5 +1,6 @@
 #include "map_codec.hpp"
 
+#include <algorithm>
 #include <cstring>
 
 #include "trackphys/error.hpp"
@@ -80,6 +81,9 @@ MapCodec::Loaded MapCodec::read(const ColliderBytes& b, PlaneTreeFrames frames) 
     b.grids.copy_to(c->grids_);
     b.node_grid.copy_to(c->node_grid_);
     b.surfaces.copy_to(c->surfaces_);
+    // As a mesh's: a collider whose ids are all 0 keeps none, so the sub-step reads none.
+    if (std::all_of(c->surfaces_.begin(), c->surfaces_.end(), [](SurfaceId s) { return s == 0; }))
+        c->surfaces_.clear();
     c->content_hash_ = b.record.content_hash;
     std::memcpy(c->inside_extent_, b.record.inside_extent, sizeof b.record.inside_extent);
     check_collider(*c);
