@@ -6,9 +6,10 @@
 //
 // Every input must be rejected with trackphys::Error or load; a loaded map must answer box,
 // ray, sphere and swept-ellipsoid queries in bounds and in finite time. Any other exception,
-// crash, sanitizer report or hang is a finding. The seed is the map of tests/data's flat
-// ground (`trackphys bake tests/data/flat_ground.obj --out flat_ground.tpmap`); after a
-// format change, bake it again.
+// crash, sanitizer report or hang is a finding. The seeds are the maps of tests/data's flat
+// ground (`trackphys bake tests/data/flat_ground.obj --out flat_ground.tpmap`) and of its
+// two_surfaces.obj, whose two materials give the colliders surface ids (baked from inside
+// tests/data, which holds its .mtl); after a format change, bake them again.
 
 #include <cstddef>
 #include <cstdint>
