@@ -21,6 +21,10 @@ struct CarAccess {
                         std::span<const double> suspension) {
         car.restore(state, inputs, suspension);
     }
+    static void check_restore(const Car& car, const RigidBodyState& state, const CarInputs& inputs,
+                              std::span<const double> suspension) {
+        car.check_restore(state, inputs, suspension);
+    }
     static void set_suspension(Car& car, std::span<const double> travel) {
         car.set_suspension(travel);
     }

@@ -232,7 +232,7 @@ void World::restore_state(const WorldSnapshot& snapshot) {
         if (std::string why = impossible_state(saved.state); !why.empty())
             reject("car " + std::to_string(i) + ": " + why);
         try {
-            car.check_restore(saved.state, saved.inputs, saved.suspension);
+            detail::CarAccess::check_restore(car, saved.state, saved.inputs, saved.suspension);
             if (saved.vehicle.has_value() != (car.vehicle() != nullptr))
                 throw Error(car.vehicle() ? "the snapshot has no vehicle state for its model"
                                           : "the snapshot has a vehicle state for an arcade car");

@@ -117,13 +117,6 @@ class TRACKPHYS_API Car {
     double suspension(std::size_t i) const { return suspension_[i]; }
     /// Suspension compression of every ellipsoid, in CarSpec order (m).
     std::span<const double> suspension() const { return suspension_; }
-    /// Throws what the private set_suspension would throw for `travel`, changing nothing.
-    void check_suspension(std::span<const double> travel) const;
-    /// Throws what the private restore (World::restore_state's) would throw for these,
-    /// changing nothing: a caller restoring several cars checks them all first, then
-    /// restores each in place.
-    void check_restore(const RigidBodyState& state, const CarInputs& inputs,
-                       std::span<const double> suspension) const;
     /// The vehicle model (wheel spins, slips, gear, clutch, telemetry) of a car whose spec
     /// has a `vehicle`; null for the arcade car.
     const Vehicle* vehicle() const { return vehicle_ ? &*vehicle_ : nullptr; }
@@ -203,6 +196,12 @@ class TRACKPHYS_API Car {
     /// of its range.
     void restore(const RigidBodyState& state, const CarInputs& inputs,
                  std::span<const double> suspension);
+    /// Throws what restore() would throw for these, changing nothing: a caller restoring
+    /// several cars checks them all first, then restores each in place.
+    void check_restore(const RigidBodyState& state, const CarInputs& inputs,
+                       std::span<const double> suspension) const;
+    /// Throws what set_suspension() would throw for `travel`, changing nothing.
+    void check_suspension(std::span<const double> travel) const;
 
     /// state().orientation * (0, travel, 0), a wheel's suspension lift in the world, as glm
     /// rotates it (v + 2 (w (q x v) + q x (q x v)), q the vector part) but without the
