@@ -203,6 +203,27 @@ TEST(ContactEvents, ABadTouchingListIsRefused) {
     EXPECT_EQ(good.validate(), "");
 }
 
+// Car 1's absurd air density (1e300 kg/m^3) turns its state NaN as soon as the overlap with
+// car 0 pushes it, so it is reset to where each update began, at rest, overlapping car 0
+// again: its touches of the undone update are dropped like its hits, so the pair never
+// begins and is never listed as touching.
+TEST(ContactEvents, AResetCarTouchesNothingOfTheUndoneUpdate) {
+    WorldSettings settings;
+    settings.gravity = glm::dvec3(0.0);
+    World world(std::make_shared<StaticWorld>(), settings);
+    CarSpec absurd = CarSpec::default_car();
+    absurd.air_density = 1e300;
+    world.add_car(CarSpec::default_car(), moving(glm::dvec3(0.0), glm::dvec3(0.0)));
+    world.add_car(absurd, moving({0.0, 0.0, 3.5}, glm::dvec3(0.0)));
+    for (int u = 1; u <= 5; ++u) {
+        world.update();
+        ASSERT_EQ(world.car_resets(1), static_cast<std::uint64_t>(u)) << "car 1 is reset";
+        EXPECT_TRUE(world.contact_events().car_touch_begins.empty()) << "update " << u;
+        EXPECT_TRUE(world.save_state().touching.empty()) << "update " << u;
+    }
+    EXPECT_EQ(world.car_resets(0), 0u);
+}
+
 // The ground and a wall across the car's path, as colliders 0 and 1: the car hits the wall
 // with its body at about its speed.
 TEST(ContactEvents, ACarIntoAWallHitsIt) {
