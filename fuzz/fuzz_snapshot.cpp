@@ -2,9 +2,10 @@
 // a few updates.
 //
 // The world is the one `trackphys drive --mesh tests/data/flat_ground.obj --spawn 0,3,0`
-// drives on, so that the seed (a snapshot that drive saved) restores. Each input is tried
-// twice: as it is, which exercises the header checks (magic, version, length, checksum), and
-// re-sealed (its payload length and checksum rewritten to match), which lets mutations reach
+// drives on, with as many default cars as the snapshot has (up to 4), so that the seeds (a
+// snapshot that drive saved, and the same with its car twice, the two touching) restore.
+// Each input is tried twice: as it is, which exercises the header checks (magic, version,
+// length, checksum), and re-sealed (its payload length and checksum rewritten to match), which lets mutations reach
 // the payload parser, the snapshot's validation and restore_state's checks.
 //
 // Every input must be rejected with trackphys::Error, or restore. A restored world must save
@@ -12,6 +13,7 @@
 // with finite states (the reset policy catches the rest); any other exception, crash,
 // sanitizer report or hang is a finding.
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
@@ -35,6 +37,7 @@ using trackphys::Error;
 
 constexpr std::size_t kHeaderBytes = 32;
 constexpr int kUpdates = 5;
+constexpr std::size_t kMaxCars = 4;
 
 // Loaded once per process.
 const std::shared_ptr<const trackphys::StaticWorld>& statics() {
@@ -71,10 +74,16 @@ void try_snapshot(std::string_view bytes) {
     } catch (const Error&) {
         return;
     }
+    // As many default cars as the snapshot has (a few at most), side by side, so that a
+    // touching list between them restores too.
     trackphys::World world(statics());
-    trackphys::RigidBodyState start;
-    start.position = {0.0, trackphys::CarSpec::default_car().lowest_point_depth() + 0.001, 0.0};
-    world.add_car(trackphys::CarSpec::default_car(), start);
+    const std::size_t cars = std::clamp<std::size_t>(file.world.cars.size(), 1, kMaxCars);
+    for (std::size_t i = 0; i < cars; ++i) {
+        trackphys::RigidBodyState start;
+        start.position = {4.0 * static_cast<double>(i),
+                          trackphys::CarSpec::default_car().lowest_point_depth() + 0.001, 0.0};
+        world.add_car(trackphys::CarSpec::default_car(), start);
+    }
     try {
         world.restore_state(file.world);
     } catch (const Error&) {
@@ -88,10 +97,13 @@ void try_snapshot(std::string_view bytes) {
         } catch (const Error& e) {
             finding("update of a restored world threw:", e.what());
         }
-        const trackphys::RigidBodyState& s = world.car(0).state();
-        if (!(trackphys::is_finite(s.position) && trackphys::is_finite(s.orientation) &&
-              trackphys::is_finite(s.linear_velocity) && trackphys::is_finite(s.angular_velocity)))
-            finding("non-finite car state after an update");
+        for (std::size_t i = 0; i < cars; ++i) {
+            const trackphys::RigidBodyState& s = world.car(i).state();
+            if (!(trackphys::is_finite(s.position) && trackphys::is_finite(s.orientation) &&
+                  trackphys::is_finite(s.linear_velocity) &&
+                  trackphys::is_finite(s.angular_velocity)))
+                finding("non-finite car state after an update");
+        }
     }
 }
 

@@ -17,12 +17,13 @@ namespace {
 
 constexpr char kMagic[8] = {'T', 'P', 'S', 'N', 'A', 'P', '\x1a', '\n'};
 constexpr std::size_t kHeaderBytes = 32;
-// The fewest payload bytes one collider, car and ellipsoid take: a count claiming more
+// The fewest payload bytes one collider, car, ellipsoid and touching pair take: a count claiming more
 // than the bytes left is rejected before anything is allocated for it.
 constexpr std::size_t kColliderBytes = 24;
 constexpr std::size_t kCarBytes = 8 + 13 * 8 + 3 * 8 + 4 + 8 + 4;
 constexpr std::size_t kWheelBytes = 4 * 8;
 constexpr std::size_t kEllipsoidBytes = 8 * 8 + 2 * 4;
+constexpr std::size_t kTouchingBytes = 2 * 4 + 8;
 
 std::uint64_t checksum(std::string_view bytes) {
     core::Fnv1a hash;
@@ -258,6 +259,12 @@ std::string encode_snapshot(const WorldSnapshot& snapshot, std::string_view user
     payload.u64(snapshot.update_count);
     payload.u32(static_cast<std::uint32_t>(snapshot.cars.size()));
     for (const CarSnapshot& car : snapshot.cars) write_car(payload, car);
+    payload.u32(static_cast<std::uint32_t>(snapshot.touching.size()));
+    for (const CarTouchSnapshot& t : snapshot.touching) {
+        payload.u32(t.car_a);
+        payload.u32(t.car_b);
+        payload.f64(t.deepest);
+    }
     payload.u64(user_data.size());
     payload.bytes(user_data);
 
@@ -292,6 +299,12 @@ SnapshotFile decode_snapshot(std::string_view bytes) {
     const std::size_t cars = r.count(r.u32("car count"), kCarBytes, "car");
     s.cars.reserve(cars);
     for (std::size_t i = 0; i < cars; ++i) s.cars.push_back(read_car(r));
+    s.touching.resize(r.count(r.u32("touching count"), kTouchingBytes, "touching pair"));
+    for (CarTouchSnapshot& t : s.touching) {
+        t.car_a = r.u32("touching car_a");
+        t.car_b = r.u32("touching car_b");
+        t.deepest = r.f64("touching deepest");
+    }
     const std::size_t user = r.count(r.u64("user data length"), 1, "user data byte");
     file.user_data = std::string(r.bytes(user, "user data"));
     if (r.left() != 0)

@@ -37,16 +37,19 @@ void CarTouches::finish(std::span<const CarPair> pairs) {
 
     next_touching_.clear();
     std::size_t last = 0;
-    const auto came_apart = [&](const Touching& t) { ends_.push_back({t.a, t.b, t.deepest}); };
+    const auto came_apart = [&](const CarTouchSnapshot& t) {
+        ends_.push_back({t.car_a, t.car_b, t.deepest});
+    };
     for (const std::uint32_t i : touched_) {
         const auto [a, b] = key(i);
-        for (; last < touching_.size() && std::pair(touching_[last].a, touching_[last].b) < key(i);
+        for (; last < touching_.size() &&
+               std::pair(touching_[last].car_a, touching_[last].car_b) < key(i);
              ++last)
             came_apart(touching_[last]);
         const PairRecord& r = records_[i];
-        Touching now{a, b, r.deepest};
+        CarTouchSnapshot now{a, b, r.deepest};
         const bool went_on =
-            last < touching_.size() && touching_[last].a == a && touching_[last].b == b;
+            last < touching_.size() && touching_[last].car_a == a && touching_[last].car_b == b;
         if (went_on)
             now.deepest = std::max(now.deepest, touching_[last++].deepest);
         else
@@ -62,18 +65,24 @@ void CarTouches::finish(std::span<const CarPair> pairs) {
 }
 
 void CarTouches::remove_car(std::uint32_t car) {
-    std::erase_if(touching_, [car](const Touching& t) { return t.a == car || t.b == car; });
+    std::erase_if(touching_,
+                  [car](const CarTouchSnapshot& t) { return t.car_a == car || t.car_b == car; });
     // Moving every index past `car` down one keeps the (a, b) order.
-    for (Touching& t : touching_) {
-        t.a -= t.a > car;
-        t.b -= t.b > car;
+    for (CarTouchSnapshot& t : touching_) {
+        t.car_a -= t.car_a > car;
+        t.car_b -= t.car_b > car;
     }
     begins_.clear();
     ends_.clear();
 }
 
-void CarTouches::forget() {
-    touching_.clear();
+void CarTouches::save(std::vector<CarTouchSnapshot>& into) const {
+    into.reserve(room_);
+    into.assign(touching_.begin(), touching_.end());
+}
+
+void CarTouches::restore(std::span<const CarTouchSnapshot> touching) {
+    touching_.assign(touching.begin(), touching.end());
     begins_.clear();
     ends_.clear();
 }

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "trackphys/world/contact_events.hpp"
+#include "trackphys/world/world_snapshot.hpp"
 #include "world/car_islands.hpp"
 #include "world/car_pair_contact.hpp"
 
@@ -42,8 +43,17 @@ class CarTouches {
     /// Car `car` left the world: its touches are forgotten without events, the cars after it
     /// move down one; the last update's events are dropped (their indices are stale).
     void remove_car(std::uint32_t car);
-    /// No pair is touching (a restored world): a pair in contact begins again.
-    void forget();
+    /// Pair `index` of CarIslands::all_pairs() did not touch during this update after all: a
+    /// car of it was reset to where the update began (World's reset policy), so the pair
+    /// ends if it was touching, and begins again at the next update that finds it touching.
+    void undo(std::size_t index) { records_[index] = PairRecord{}; }
+
+    /// The pairs touching at the end of the last update, by (car_a, car_b), into `into`
+    /// with room for as many as this world's lists: a kept snapshot allocates once.
+    void save(std::vector<CarTouchSnapshot>& into) const;
+    /// A restored world: `touching` (checked by WorldSnapshot::validate) replaces the list,
+    /// the last update's events are dropped.
+    void restore(std::span<const CarTouchSnapshot> touching);
 
     std::span<const CarTouchBeginEvent> begins() const { return begins_; }
     std::span<const CarTouchEndEvent> ends() const { return ends_; }
@@ -56,18 +66,12 @@ class CarTouches {
         Contact first{0.0, glm::dvec3(0.0, 1.0, 0.0), glm::dvec3(0.0)};  // first sub-step's
         double approach_speed = 0.0;  // m/s, at the first sub-step
     };
-    // A pair touching at the end of an update, with its deepest overlap since it began.
-    struct Touching {
-        std::uint32_t a;
-        std::uint32_t b;
-        double deepest;
-    };
-
     std::size_t room_ = 0;                // pairs every list has room for
     std::vector<PairRecord> records_;     // per pair of this update
     std::vector<std::uint32_t> touched_;  // this update's touched records, by (a, b)
-    std::vector<Touching> touching_;      // at the end of the last update, by (a, b)
-    std::vector<Touching> next_touching_;
+    // At the end of the last update, by (a, b), each with its deepest overlap since it began.
+    std::vector<CarTouchSnapshot> touching_;
+    std::vector<CarTouchSnapshot> next_touching_;
     std::vector<CarTouchBeginEvent> begins_;
     std::vector<CarTouchEndEvent> ends_;
 };

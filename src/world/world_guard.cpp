@@ -192,6 +192,19 @@ void World::check_placement(const Car& car, const char* caller) const {
     }
 }
 
+namespace {
+
+// A reset car touches nothing of its undone update, as its road contacts are cleared: its
+// pairs that were touching end, and a touch still there begins again at the next update.
+void undo_touches(const detail::CarIslands& islands, detail::CarTouches& touches,
+                  std::size_t island, std::uint32_t car) {
+    const std::span<const detail::CarPair> pairs = islands.pairs(island);
+    for (std::size_t p = 0; p < pairs.size(); ++p)
+        if (pairs[p].a == car || pairs[p].b == car) touches.undo(islands.first_pair(island) + p);
+}
+
+}  // namespace
+
 // The hook around the hot loop: remember where each car of the island starts, run the
 // update, and reset every car that ended it impossible. A car whose state turns non-finite
 // mid-update makes a query of the update throw (non-finite shapes are rejected there);
@@ -241,6 +254,7 @@ void World::update_island_or_reset(std::size_t island, WorkerScratch& scratch,
                 Contact{-std::numeric_limits<double>::infinity(), glm::dvec3(0.0), glm::dvec3(0.0)};
         for (TriangleRef& ref : slot.deepest_ref) ref = TriangleRef{~0u, ~0u};
         slot.start_hits();  // hits of an undone update
+        undo_touches(work_->islands, work_->touches, island, i);
         ++slot.resets;
         slot.last_reset = "update " + std::to_string(updates_ + 1) + ": " + why + stop_reason;
     }

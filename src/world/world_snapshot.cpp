@@ -125,6 +125,23 @@ std::string car_problem(const CarSnapshot& car) {
     return {};
 }
 
+// The touching list as CarTouches keeps it: pairs of the snapshot's cars, in (a, b) order.
+std::string touching_problem(const std::vector<CarTouchSnapshot>& touching, std::size_t cars) {
+    for (std::size_t i = 0; i < touching.size(); ++i) {
+        const CarTouchSnapshot& t = touching[i];
+        const std::string which = "touching pair " + std::to_string(i) + " (cars " +
+                                  std::to_string(t.car_a) + ", " + std::to_string(t.car_b) + ")";
+        if (!(t.car_a < t.car_b)) return which + ": car_a is not below car_b";
+        if (t.car_b >= cars) return which + ": the snapshot has " + std::to_string(cars) + " cars";
+        if (i > 0 && !(std::pair(touching[i - 1].car_a, touching[i - 1].car_b) <
+                       std::pair(t.car_a, t.car_b)))
+            return which + ": not after the pair before it (sorted, unique)";
+        if (!(std::isfinite(t.deepest) && t.deepest >= 0.0))
+            return which + ": deepest is not finite and >= 0";
+    }
+    return {};
+}
+
 }  // namespace
 
 std::vector<ColliderFingerprint> fingerprint(const StaticWorld& statics) {
@@ -163,7 +180,7 @@ std::string WorldSnapshot::validate() const {
     for (std::size_t i = 0; i < cars.size(); ++i)
         if (std::string why = car_problem(cars[i]); !why.empty())
             return "car " + std::to_string(i) + ": " + why;
-    return {};
+    return touching_problem(touching, cars.size());
 }
 
 WorldSnapshot World::save_state() const {
@@ -197,6 +214,7 @@ void World::save_state(WorldSnapshot& into) const {
         else
             saved.vehicle.reset();
     }
+    work_->touches.save(into.touching);
 }
 
 // Everything is checked before anything changes, so a rejected snapshot leaves the World
@@ -254,7 +272,7 @@ void World::restore_state(const WorldSnapshot& snapshot) {
         slot.last_reset.clear();
     }
     updates_ = snapshot.update_count;
-    work_->touches.forget();
+    work_->touches.restore(snapshot.touching);
     work_->body_hits.clear();
 }
 

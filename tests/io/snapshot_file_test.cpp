@@ -72,6 +72,25 @@ TEST(SnapshotFile, RoundTripIsBitExact) {
     fs::remove_all(folder);
 }
 
+// The car pairs touching at the end of the last update come back bit for bit, and a list
+// that is not pairs of the snapshot's cars in order is refused naming the pair.
+TEST(SnapshotFile, TouchingCarPairsRoundTripAndAreChecked) {
+    WorldSnapshot snapshot = small_snapshot();
+    snapshot.cars.push_back(snapshot.cars[0]);
+    snapshot.cars.push_back(snapshot.cars[0]);
+    snapshot.touching = {{0, 1, 0.0125}, {1, 2, 0.0}};
+    const std::string bytes = encode_snapshot(snapshot, kUserData);
+    const SnapshotFile decoded = decode_snapshot(bytes);
+    EXPECT_EQ(decoded.world.touching, snapshot.touching);
+    EXPECT_EQ(encode_snapshot(decoded.world, kUserData), bytes);
+
+    snapshot.touching = {{1, 2, 0.0}, {0, 1, 0.0125}};
+    EXPECT_NE(error_of([&] {
+                  decode_snapshot(encode_snapshot(snapshot));
+              }).find("invalid contents: touching pair 1 (cars 0, 1): not after"),
+              std::string::npos);
+}
+
 TEST(SnapshotFile, EveryTruncationIsRejected) {
     const std::string bytes = encode_snapshot(small_snapshot(), kUserData);
     ASSERT_GT(bytes.size(), 400u);
@@ -100,7 +119,12 @@ TEST(SnapshotFile, EveryBitFlipIsRejected) {
 
 TEST(SnapshotFile, OtherVersionsMagicAndTrailingBytesAreRejected) {
     const std::string bytes = encode_snapshot(small_snapshot());
-    EXPECT_NE(error_of([&] { decode_snapshot(with_u32_at(bytes, 8, 3)); }).find("format version 3"),
+    // Version 2 had no touching car pairs.
+    EXPECT_NE(error_of([&] {
+                  decode_snapshot(with_u32_at(bytes, 8, 2));
+              }).find("format version 2, this build reads only version 3"),
+              std::string::npos);
+    EXPECT_NE(error_of([&] { decode_snapshot(with_u32_at(bytes, 8, 4)); }).find("format version 4"),
               std::string::npos);
     EXPECT_NE(error_of([&] { decode_snapshot(with_u32_at(bytes, 12, 1)); }).find("reserved"),
               std::string::npos);

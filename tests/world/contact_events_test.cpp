@@ -6,7 +6,9 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -14,6 +16,8 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include "core/fnv1a.hpp"
+#include "support/error_message.hpp"
 #include "trackphys/world/world.hpp"
 #include "world/world_scenes.hpp"
 
@@ -47,7 +51,45 @@ struct EventLog {
             for (const BodyHitEvent& e : events.body_hits) hits.push_back({u, e});
         }
     }
+
+    // Every car touch event with its update, bit for bit.
+    std::uint64_t touches_hash() const {
+        core::Fnv1a hash;
+        for (const auto& [u, e] : begins) {
+            hash.add(static_cast<std::uint64_t>(u)),
+                hash.add(std::uint64_t{e.car_a} << 32 | e.car_b);
+            hash.add(e.point), hash.add(e.normal), hash.add(e.depth), hash.add(e.approach_speed);
+        }
+        for (const auto& [u, e] : ends) {
+            hash.add(static_cast<std::uint64_t>(u)),
+                hash.add(std::uint64_t{e.car_a} << 32 | e.car_b);
+            hash.add(e.deepest);
+        }
+        return hash.value;
+    }
 };
+
+// Car 1 drives into the back of car 0, which brakes, on flat ground.
+World one_car_pushing_a_braked_one() {
+    World world(test::static_world_of(test::flat_grid(400.0, 40)));
+    const CarSpec spec = CarSpec::default_car();
+    const double y = spec.lowest_point_depth() + 0.001;
+    world.add_car(spec, moving({0.0, y, 0.0}, glm::dvec3(0.0)));
+    world.add_car(spec, moving({0.0, y, -8.0}, {0.0, 0.0, 4.0}));
+    world.car(0).set_inputs({0.0, 1.0, 0.0});
+    world.car(1).set_inputs({0.6, 0.0, 0.0});
+    return world;
+}
+
+// Updates `world` until a pair of cars is touching at the end of an update.
+WorldSnapshot run_until_touching(World& world) {
+    for (int u = 0; u < 1000; ++u) {
+        world.update();
+        if (WorldSnapshot now = world.save_state(); !now.touching.empty()) return now;
+    }
+    ADD_FAILURE() << "the cars never touched";
+    return world.save_state();
+}
 
 // Cars 1 and 2 meet head on at 10 m/s each in free space, car 0 is far away: one begin, at
 // the closing speed, then one end once they have bounced apart.
@@ -82,6 +124,105 @@ TEST(ContactEvents, TwoCarsDrivenIntoEachOtherBeginAndEndOnce) {
     EXPECT_GE(end.deepest, begin.depth);
     EXPECT_TRUE(log.hits.empty()) << "there is nothing static to hit";
     EXPECT_LT(world.car(1).state().linear_velocity.z, 0.0) << "the cars bounced apart";
+}
+
+// A snapshot taken while one car pushes the other: the original run, a fresh world restored
+// from it and the same world rolled back to it give the same events (no second begin for
+// the pair in contact, the same end), since the snapshot holds which pairs are touching.
+TEST(ContactEvents, ARestoredOrRolledBackWorldGivesTheOriginalEvents) {
+    World original = one_car_pushing_a_braked_one();
+    const WorldSnapshot snapshot = run_until_touching(original);
+    ASSERT_EQ(snapshot.touching.size(), 1u);
+    EXPECT_EQ(snapshot.touching[0].car_a, 0u);
+    EXPECT_EQ(snapshot.touching[0].car_b, 1u);
+    EXPECT_GT(snapshot.touching[0].deepest, 0.0);
+    EventLog first;
+    first.run(original, 300);
+    ASSERT_FALSE(first.begins.empty()) << "the cars bounce and meet again";
+    EXPECT_GT(first.begins[0].update, 0) << "the touch of the snapshot went on";
+    const std::uint64_t state = original.state_hash();
+
+    World restored = one_car_pushing_a_braked_one();
+    restored.restore_state(snapshot);
+    EventLog after_restore;
+    after_restore.run(restored, 300);
+    EXPECT_EQ(restored.state_hash(), state);
+    EXPECT_EQ(after_restore.begins.size(), first.begins.size());
+    EXPECT_EQ(after_restore.ends.size(), first.ends.size());
+    EXPECT_EQ(after_restore.touches_hash(), first.touches_hash());
+
+    original.restore_state(snapshot);
+    EventLog after_rollback;
+    after_rollback.run(original, 300);
+    EXPECT_EQ(original.state_hash(), state);
+    EXPECT_EQ(after_rollback.touches_hash(), first.touches_hash());
+}
+
+// A rollback to before the touch, from a world where the pair is touching: the events follow
+// the restored state (nothing touching), so no end for the pair, and its touch begins again
+// where the original's began.
+TEST(ContactEvents, ARollbackToBeforeATouchBeginsItAgainWhereItBegan) {
+    World world = one_car_pushing_a_braked_one();
+    const WorldSnapshot apart = world.save_state();
+    EventLog first;
+    int updates = 0;
+    while (world.save_state().touching.empty() && updates < 1000) first.run(world, 1), ++updates;
+    ASSERT_EQ(first.begins.size(), 1u);
+
+    world.restore_state(apart);
+    EXPECT_TRUE(world.save_state().touching.empty());
+    EventLog again;
+    for (int u = 0; u < updates; ++u) again.run(world, 1);
+    EXPECT_TRUE(again.ends.empty());
+    EXPECT_EQ(again.touches_hash(), first.touches_hash());
+}
+
+// A touching list that is not pairs of the world's cars in (car_a, car_b) order, each once
+// with a finite non-negative deepest overlap, is refused naming the problem, and the world
+// stays as it was.
+TEST(ContactEvents, ABadTouchingListIsRefused) {
+    World world = one_car_pushing_a_braked_one();
+    const WorldSnapshot good = run_until_touching(world);
+    const std::uint64_t state = world.state_hash();
+    const auto refusal = [&](std::vector<CarTouchSnapshot> touching) {
+        WorldSnapshot bad = good;
+        bad.touching = std::move(touching);
+        return test::error_of([&] { world.restore_state(bad); });
+    };
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    EXPECT_NE(refusal({{1, 0, 0.01}}).find("touching pair 0 (cars 1, 0): car_a is not below car_b"),
+              std::string::npos);
+    EXPECT_NE(refusal({{0, 0, 0.01}}).find("car_a is not below car_b"), std::string::npos);
+    EXPECT_NE(refusal({{0, 2, 0.01}}).find("touching pair 0 (cars 0, 2): the snapshot has 2 cars"),
+              std::string::npos);
+    EXPECT_NE(refusal({{0, 1, 0.01}, {0, 1, 0.02}}).find("touching pair 1 (cars 0, 1): not after"),
+              std::string::npos);
+    EXPECT_NE(refusal({{0, 1, -0.01}}).find("deepest is not finite and >= 0"), std::string::npos);
+    EXPECT_NE(refusal({{0, 1, nan}}).find("deepest is not finite and >= 0"), std::string::npos);
+    EXPECT_EQ(world.state_hash(), state);
+    EXPECT_EQ(world.save_state().touching, good.touching) << "a refusal changes nothing";
+    EXPECT_EQ(good.validate(), "");
+}
+
+// Car 1's absurd air density (1e300 kg/m^3) turns its state NaN as soon as the overlap with
+// car 0 pushes it, so it is reset to where each update began, at rest, overlapping car 0
+// again: its touches of the undone update are dropped like its hits, so the pair never
+// begins and is never listed as touching.
+TEST(ContactEvents, AResetCarTouchesNothingOfTheUndoneUpdate) {
+    WorldSettings settings;
+    settings.gravity = glm::dvec3(0.0);
+    World world(std::make_shared<StaticWorld>(), settings);
+    CarSpec absurd = CarSpec::default_car();
+    absurd.air_density = 1e300;
+    world.add_car(CarSpec::default_car(), moving(glm::dvec3(0.0), glm::dvec3(0.0)));
+    world.add_car(absurd, moving({0.0, 0.0, 3.5}, glm::dvec3(0.0)));
+    for (int u = 1; u <= 5; ++u) {
+        world.update();
+        ASSERT_EQ(world.car_resets(1), static_cast<std::uint64_t>(u)) << "car 1 is reset";
+        EXPECT_TRUE(world.contact_events().car_touch_begins.empty()) << "update " << u;
+        EXPECT_TRUE(world.save_state().touching.empty()) << "update " << u;
+    }
+    EXPECT_EQ(world.car_resets(0), 0u);
 }
 
 // The ground and a wall across the car's path, as colliders 0 and 1: the car hits the wall

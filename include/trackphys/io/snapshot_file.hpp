@@ -19,7 +19,7 @@ struct SnapshotFile {
 };
 
 /// The snapshot format this build writes and the only one it reads.
-inline constexpr std::uint32_t kSnapshotFormatVersion = 2;
+inline constexpr std::uint32_t kSnapshotFormatVersion = 3;
 
 /// The bytes of a snapshot file. Layout, every number little-endian, doubles as their IEEE
 /// bits (so they come back bit-exact):
@@ -40,6 +40,7 @@ inline constexpr std::uint32_t kSnapshotFormatVersion = 2;
 ///                               model), each {f64 spin, slip_ratio, lateral_slip,
 ///                               road_torque},
 ///                               and with a vehicle u32 gear, f64 shift_time_left, clutch}
+///               u32 touching pairs, each {u32 car_a, u32 car_b, f64 deepest}
 ///               u64 user data length, the user data
 TRACKPHYS_API std::string encode_snapshot(const WorldSnapshot& snapshot,
                                           std::string_view user_data = {});

@@ -10,7 +10,8 @@
 namespace trackphys {
 
 /// Two cars started touching during the update (docs/design.md#contact-events): the first
-/// sub-step at which an ellipsoid of one overlapped an ellipsoid of the other.
+/// sub-step at which an ellipsoid of one overlapped an ellipsoid of the other. A touch that
+/// goes on across save_state / restore_state does not begin again (WorldSnapshot::touching).
 struct CarTouchBeginEvent {
     std::uint32_t car_a = 0;  ///< the lower car index
     std::uint32_t car_b = 0;  ///< the higher car index

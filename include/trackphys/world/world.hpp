@@ -36,7 +36,7 @@ class TraceRecorder;
 /// together; a lone car runs its whole update alone. Islands run on settings().threads
 /// threads or on a plugged-in job system, and the results do not depend on either: same
 /// inputs, same build -> bit-identical states (state_hash()), for any number of threads,
-/// also across save_state/restore_state.
+/// also across save_state/restore_state, and so are the contact events.
 ///
 /// Reset policy: a car that ends an update in an impossible state (a non-finite position,
 /// orientation or velocity, a speed above settings().max_car_speed or an angular speed above
@@ -146,10 +146,11 @@ class TRACKPHYS_API World {
     /// began or stopped touching each other, with where and how fast, and body ellipsoids
     /// that started touching the static world (wheels rolling on the road are not events).
     /// Read after update(); the same for any number of threads or a job system. A reset
-    /// car's hits of the undone update are dropped. Which car pairs are touching is the
-    /// World object's memory, not part of a snapshot: after restore_state every pair in
-    /// contact begins again at the next update; remove_car forgets the removed car's touches
-    /// (no end event) and empties the list. Recording them allocates nothing once a field is
+    /// car touches nothing of the undone update: its hits are dropped, its pairs that were
+    /// touching end, and a touch still there begins again at the next update. Which car
+    /// pairs are touching is part of a snapshot (WorldSnapshot::touching): after
+    /// restore_state the next update gives the events the saved world's would have given;
+    /// remove_car forgets the removed car's touches (no end event) and empties the list. Recording them allocates nothing once a field is
     /// warm.
     ContactEvents contact_events() const;
 
@@ -170,7 +171,8 @@ class TRACKPHYS_API World {
     /// same stepping settings and the same cars (number and CarSpec, added in the same order;
     /// their current states do not matter). Throws trackphys::Error naming what differs or
     /// what is invalid, and then changes nothing. Checks everything first and then writes
-    /// each car in place: it allocates nothing (but on error).
+    /// each car in place: it allocates nothing (but on error, or for more touching pairs than
+    /// this world's lists ever held).
     void restore_state(const WorldSnapshot& snapshot);
 
     /// Simulated time (s) and number of updates run.

@@ -51,6 +51,17 @@ struct CarSnapshot {
     std::optional<VehicleState> vehicle;
 };
 
+/// A pair of cars touching at the end of the last update: the next update's begin and end
+/// events (World::contact_events) are told apart against these, so a restored world gives
+/// the events the saved one would have given (docs/design.md#contact-events).
+struct CarTouchSnapshot {
+    std::uint32_t car_a = 0;  ///< the lower car index
+    std::uint32_t car_b = 0;  ///< the higher car index
+    double deepest = 0.0;     ///< the deepest overlap since the touch began (m, >= 0)
+
+    bool operator==(const CarTouchSnapshot&) const = default;
+};
+
 /// The complete dynamic state of a World: restore_state() of it, then update(), gives
 /// bit-identical results to never having saved. The static world is referenced by its
 /// fingerprint, never copied; a few hundred bytes per car.
@@ -66,10 +77,14 @@ struct TRACKPHYS_API WorldSnapshot {
     WorldSettings settings;
     std::uint64_t update_count = 0;
     std::vector<CarSnapshot> cars;
+    /// The pairs of cars touching at the end of the last update, by (car_a, car_b).
+    std::vector<CarTouchSnapshot> touching;
 
     /// Empty when the snapshot is consistent on its own: valid settings, per-ellipsoid
     /// vectors of equal length, finite states with unit orientations, inputs in range and
-    /// not NaN, non-negative finite suspension, no NaN in a contact. Otherwise the first
+    /// not NaN, non-negative finite suspension, no NaN in a contact, a touching list of
+    /// pairs of its cars (car_a < car_b), sorted and unique, each deepest finite and >= 0.
+    /// Otherwise the first
     /// problem, naming the car and the field. (What only the World can check, fingerprints
     /// and suspension travel, restore_state checks.)
     std::string validate() const;
