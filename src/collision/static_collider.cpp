@@ -115,16 +115,21 @@ StaticCollider::StaticCollider(const TriangleMesh& mesh) {
     for (std::size_t v = 0; v < vertex_remap.size(); ++v)
         if (vertex_remap[v] != kNoSlot) vertices_[vertex_remap[v]] = mesh.vertices[v];
 
+    // All zeros is stored as none: the queries and the world then skip the lookup.
+    if (std::any_of(mesh.surfaces.begin(), mesh.surfaces.end(), [](SurfaceId s) { return s != 0; }))
+        surfaces_ = mesh.surfaces;
     core::WordHash hash;
     hash.add(static_cast<std::uint64_t>(mesh.triangles.size()));
     for (const std::uint32_t triangle : kept) {
         hash.add(static_cast<std::uint64_t>(triangle));
         for (const std::uint32_t v : mesh.triangles[triangle]) hash.add(mesh.vertices[v]);
     }
+    // The kept triangles' ids, where there are any: a world of other surfaces is another
+    // world to a snapshot, and no ids and all zeros, stored alike, hash alike.
+    if (!surfaces_.empty())
+        for (const std::uint32_t triangle : kept)
+            hash.add(static_cast<std::uint64_t>(surfaces_[triangle]));
     content_hash_ = hash.value;
-    // All zeros is stored as none: the queries and the world then skip the lookup.
-    if (std::any_of(mesh.surfaces.begin(), mesh.surfaces.end(), [](SurfaceId s) { return s != 0; }))
-        surfaces_ = mesh.surfaces;
     quantize_slot_boxes();
 }
 

@@ -11,7 +11,7 @@ set_tests_properties(map.bake_default_track map.bake_a_mesh PROPERTIES FIXTURES_
 # The baked default track drives exactly as the track built at start (drive.pinned_state_hash).
 trackphys_cli_test(map.drive_pinned_state_hash 0 "map .*seed7.tpmap.*state hash +9a386cdc499045ab"
                    drive --map ${maps}/seed7.tpmap --seconds 10)
-trackphys_cli_test(map.info 0 "format version 3.*colliders +50.*track +seed 7"
+trackphys_cli_test(map.info 0 "format version 4.*colliders +50.*track +seed 7"
                    info ${maps}/seed7.tpmap)
 trackphys_cli_test(map.drive_a_mesh_map_free 0 "map .*flat.tpmap.*state hash"
                    drive --map ${maps}/flat.tpmap --spawn 0,3,0 --seconds 1)

@@ -370,13 +370,13 @@ TEST(MapFile, SurfaceIdsSurviveTheFile) {
 
 TEST(MapFile, AnotherVersionOrOtherBuildOptionsAreNamed) {
     std::string bytes = baked_bytes();
-    // Version 2 (no surface ids) is what maps baked before version 3 hold.
-    static_assert(kMapFormatVersion == 3);
-    for (const std::uint32_t version : {2u, 4u}) {
+    // Version 3 hashed the colliders without their surface ids.
+    static_assert(kMapFormatVersion == 4);
+    for (const std::uint32_t version : {3u, 5u}) {
         std::memcpy(bytes.data() + 8, &version, 4);
         const std::string message = error_of([&] { decode_map(resealed(bytes)); });
         EXPECT_NE(message.find("format version " + std::to_string(version) +
-                               ", this build reads only version 3: bake the map again"),
+                               ", this build reads only version 4: bake the map again"),
                   std::string::npos)
             << message;
     }

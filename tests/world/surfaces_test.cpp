@@ -191,6 +191,33 @@ TEST(Surfaces, TheColliderKeepsTheIdsByMeshIndex) {
     EXPECT_TRUE(StaticCollider(mesh).surfaces().empty());
 }
 
+// The fingerprint a snapshot is tied to covers the ids: a map baked again with other
+// materials is another world, while no ids and all zeros (stored alike) are the same.
+TEST(Surfaces, TheContentHashTellsOtherSurfacesApart) {
+    TriangleMesh mesh = road_with_patch();
+    const std::uint64_t patched = StaticCollider(mesh).content_hash();
+    mesh.surfaces.back() = SurfaceId{2};
+    EXPECT_NE(StaticCollider(mesh).content_hash(), patched);
+    mesh.surfaces.assign(mesh.triangles.size(), SurfaceId{0});
+    const std::uint64_t zeros = StaticCollider(mesh).content_hash();
+    EXPECT_NE(zeros, patched);
+    mesh.surfaces.clear();
+    EXPECT_EQ(StaticCollider(mesh).content_hash(), zeros);
+
+    const auto world_with_a_car = [](const TriangleMesh& road) {
+        World world = world_on(road, {Surface{1.0}, Surface{0.5}});
+        const CarSpec spec = CarSpec::default_car();
+        world.add_car(spec, place_car_on_surface(world.statics(), spec, {0.0, 20.0, 30.0},
+                                                 glm::dquat(1.0, 0.0, 0.0, 0.0)));
+        return world;
+    };
+    const World saved = world_with_a_car(road_with_patch());
+    World relabelled = world_with_a_car(mesh);
+    EXPECT_NE(
+        test::error_of([&] { relabelled.restore_state(saved.save_state()); }).find("collider 0"),
+        std::string::npos);
+}
+
 // The generated track labels its road and its walls.
 TEST(Surfaces, TheTrackGeneratorLabelsRoadAndWalls) {
     const Track track = generate_track(TrackParams{});

@@ -22,7 +22,7 @@
 namespace trackphys {
 
 /// The map format this build writes and the only one it reads.
-inline constexpr std::uint32_t kMapFormatVersion = 3;
+inline constexpr std::uint32_t kMapFormatVersion = 4;
 
 /// A static world ready to drive on: what a map file holds.
 struct StaticMap {
