@@ -101,6 +101,7 @@ void World::teleport_car(std::size_t i, const RigidBodyState& state) {
     moved.set_state(state);
     check_placement(moved, "World::teleport_car");
     slot.car.set_state(state);
+    slot.forget_contacts();
 }
 
 // What a car keeps between updates is in its slot, which moves down with it; the update's

@@ -249,10 +249,7 @@ void World::update_island_or_reset(std::size_t island, WorkerScratch& scratch,
         detail::CarAccess::restore(slot.car, reset, slot.car.inputs(), slot.start_suspension);
         if (const Vehicle* vehicle = slot.car.vehicle())
             slot.car.set_vehicle_state(vehicle->at_rest());
-        for (Contact& contact : slot.deepest)
-            contact =
-                Contact{-std::numeric_limits<double>::infinity(), glm::dvec3(0.0), glm::dvec3(0.0)};
-        for (TriangleRef& ref : slot.deepest_ref) ref = TriangleRef{~0u, ~0u};
+        slot.forget_contacts();
         slot.start_hits();  // hits of an undone update
         undo_touches(work_->islands, work_->touches, island, i);
         ++slot.resets;

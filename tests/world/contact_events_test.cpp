@@ -252,6 +252,83 @@ TEST(ContactEvents, ACarIntoAWallHitsIt) {
     for (const auto& later : log.hits) EXPECT_EQ(later.event.triangle.collider, 1u);
 }
 
+// A car pressed into a wall, its body touching it at the end of an update: the touch goes on
+// without a new hit, but a teleport to where it still touches starts it afresh, and the
+// next update hits the wall again, as after a reset. (Eased back to 1 cm into the wall and
+// lifted by 5 cm: pressed by full throttle, the body and the squatting rear wheels are deeper
+// than a teleport accepts.)
+TEST(ContactEvents, ATeleportedCarHitsAfresh) {
+    auto statics = std::make_shared<StaticWorld>();
+    statics->add(std::make_shared<StaticCollider>(test::flat_grid(200.0, 100)));
+    statics->add(std::make_shared<StaticCollider>(test::wall(20.0, 20.0, 3.0)));
+    World world(statics);
+    const CarSpec spec = CarSpec::default_car();
+    world.add_car(spec, moving({0.0, spec.lowest_point_depth() + 0.001, 0.0}, {0.0, 0.0, 5.0}));
+    world.car(0).set_inputs({1.0, 0.0, 0.0});
+    const auto touching_body = [&]() -> std::size_t {
+        for (std::size_t e = 0; e < spec.ellipsoids.size(); ++e)
+            if (spec.ellipsoids[e].role == EllipsoidRole::body && world.contacts(0)[e].depth > 0.0)
+                return e;
+        return spec.ellipsoids.size();
+    };
+    int updates = 0;
+    while (touching_body() == spec.ellipsoids.size() && updates++ < 1000) world.update();
+    const std::size_t pressed = touching_body();
+    ASSERT_LT(pressed, spec.ellipsoids.size()) << "the car never pressed into the wall";
+    const WorldSnapshot against_the_wall = world.save_state();
+    const auto hits_of_pressed = [&] {
+        std::size_t count = 0;
+        for (const BodyHitEvent& hit : world.contact_events().body_hits)
+            count += hit.ellipsoid == pressed;
+        return count;
+    };
+
+    world.update();
+    ASSERT_GT(world.contacts(0)[pressed].depth, 0.0) << "the touch should go on";
+    EXPECT_EQ(hits_of_pressed(), 0u) << "a touch that goes on is no new hit";
+
+    world.restore_state(against_the_wall);
+    RigidBodyState eased = world.car(0).state();
+    eased.position.y += 0.05;                                     // off its squatting rear wheels
+    eased.position.z -= world.contacts(0)[pressed].depth - 0.01;  // 1 cm into the wall
+    world.teleport_car(0, eased);
+    EXPECT_EQ(world.contacts(0)[pressed].depth, -std::numeric_limits<double>::infinity())
+        << "a teleported car has no contacts until its next update";
+    world.update();
+    EXPECT_EQ(hits_of_pressed(), 1u) << "the teleported car hits the wall afresh";
+}
+
+// Car 0 leaves the world: the events after it name the cars by their new indices, a touch of
+// the removed car ends without an event, and the others' touches go on.
+TEST(ContactEvents, EventsAfterARemovalNameTheCarsByTheirNewIndices) {
+    WorldSettings settings;
+    settings.gravity = glm::dvec3(0.0);
+    World world(std::make_shared<StaticWorld>(), settings);
+    CarSpec spec = CarSpec::default_car();
+    spec.air_density = 0.0;
+    world.add_car(spec, moving({0.0, 0.0, 14.0}, {0.0, 0.0, -10.0}));
+    world.add_car(spec, moving({0.0, 0.0, 8.0}, glm::dvec3(0.0)));
+    world.add_car(spec, moving({50.0, 0.0, 0.0}, {0.0, 0.0, 10.0}));
+    world.add_car(spec, moving({50.0, 0.0, 16.0}, {0.0, 0.0, -10.0}));
+    const WorldSnapshot first_touch = run_until_touching(world);
+    ASSERT_EQ(first_touch.touching.size(), 1u);
+    EXPECT_EQ(first_touch.touching[0].car_a, 0u);
+    EXPECT_EQ(first_touch.touching[0].car_b, 1u);
+
+    world.remove_car(0);  // in the middle of its touch with car 1, now car 0
+    EXPECT_TRUE(world.save_state().touching.empty());
+    EventLog log;
+    log.run(world, 100);
+    for (const auto& end : log.ends)
+        EXPECT_NE(end.event.car_a, 0u) << "the removed car's touch ended without an event";
+    ASSERT_EQ(log.begins.size(), 1u) << "only cars 2 and 3, now 1 and 2, meet";
+    EXPECT_EQ(log.begins[0].event.car_a, 1u);
+    EXPECT_EQ(log.begins[0].event.car_b, 2u);
+    ASSERT_EQ(log.ends.size(), 1u);
+    EXPECT_EQ(log.ends[0].event.car_a, 1u);
+    EXPECT_EQ(log.ends[0].event.car_b, 2u);
+}
+
 // A car with two bumper balls (one 0.5 mm further out) driven into a still car: the begin's
 // approach speed is the closing speed along its normal, as the cars moved before any pair of
 // that sub-step pushed them (the first ball's push must not slow the second's reading).

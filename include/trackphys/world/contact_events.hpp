@@ -36,7 +36,7 @@ struct CarTouchEndEvent {
 /// A body ellipsoid (EllipsoidRole::body, not a wheel) started touching the static world
 /// during the update: at a sub-step its deepest contact was an overlap after one that was
 /// not. At most one per ellipsoid and update (its first); a touch that goes on over later
-/// updates gives none.
+/// updates gives none, unless World::teleport_car moved the car (its touches start afresh).
 struct BodyHitEvent {
     std::uint32_t car = 0;
     std::uint32_t ellipsoid = 0;       ///< index into the car's CarSpec::ellipsoids

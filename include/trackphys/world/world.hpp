@@ -97,6 +97,10 @@ class TRACKPHYS_API World {
     /// new speed) after add_car's checks of where a car may be: throws trackphys::Error
     /// naming the reason, changing nothing, for a state the reset policy would reset, a
     /// car far outside the map or inside geometry. car(i).set_state moves it unchecked.
+    /// Its contacts start afresh: contacts(i) reads none until the next update, and a body
+    /// ellipsoid touching the static world there gives a hit (contact_events), as after a
+    /// reset; its touches with other cars go on (a pair apart after it ends at the next
+    /// update).
     void teleport_car(std::size_t i, const RigidBodyState& state);
     /// Removes car i (a retirement, a player leaving) between updates. Indices work as
     /// std::vector::erase's: the cars before i keep theirs, each car after it moves down one
