@@ -23,6 +23,7 @@
 #include "reset_streak.hpp"
 #include "staged_outputs.hpp"
 #include "telemetry_csv.hpp"
+#include "tool_world_settings.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/io/car_spec_json.hpp"
 #include "trackphys/io/recording.hpp"

@@ -90,11 +90,4 @@ RigidBodyState spawn_on_surface(const StaticWorld& statics, const CarSpec& car,
     }
 }
 
-WorldSettings tool_world_settings() {
-    WorldSettings settings;
-    settings.profile = true;
-    settings.threads = 0;
-    return settings;
-}
-
 }  // namespace trackphys::cli

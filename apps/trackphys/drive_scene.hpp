@@ -13,7 +13,6 @@
 #include "trackphys/dynamics/rigid_body.hpp"
 #include "trackphys/io/mesh_load_limits.hpp"
 #include "trackphys/track/track.hpp"
-#include "trackphys/world/world_settings.hpp"
 
 namespace trackphys::cli {
 
@@ -26,11 +25,6 @@ struct DriveScene {
     std::size_t triangle_count = 0;
     std::string description;  ///< for the report
 };
-
-/// The World settings the commands and the benchmark suite start from: the phase clock on
-/// (they print phase times) and the hardware's threads (a race's islands, the plane trees
-/// built at start), where the library's defaults are a game's (profile off, one thread).
-WorldSettings tool_world_settings();
 
 /// The generated track of that seed, one collider per chunk.
 DriveScene make_track_scene(std::uint64_t seed);

@@ -19,6 +19,7 @@
 #include "race_report.hpp"
 #include "reset_streak.hpp"
 #include "staged_outputs.hpp"
+#include "tool_world_settings.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/io/recording.hpp"
 #include "trackphys/io/scenario.hpp"

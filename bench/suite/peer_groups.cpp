@@ -33,6 +33,7 @@
 #endif
 #if TRACKPHYS_HAVE_BULLET || TRACKPHYS_HAVE_FCL
 #include "peers/contact_peer_harness.hpp"
+#include "tool_world_settings.hpp"
 #endif
 #if TRACKPHYS_HAVE_MUJOCO
 #include <mujoco/mujoco.h>

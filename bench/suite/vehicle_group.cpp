@@ -11,6 +11,7 @@
 
 #include "bench_suite.hpp"
 #include "drive_scene.hpp"
+#include "tool_world_settings.hpp"
 #include "trackphys/world/world.hpp"
 
 namespace trackphys::suite {

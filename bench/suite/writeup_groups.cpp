@@ -17,6 +17,7 @@
 #include "midphase_scene.hpp"
 #include "point_queries.hpp"
 #include "tightest_turn_scene.hpp"
+#include "tool_world_settings.hpp"
 #include "trackphys/collision/brute_force_collider.hpp"
 #include "trackphys/collision/static_world.hpp"
 #include "trackphys/error.hpp"

@@ -2,6 +2,7 @@
 
 #include <sstream>
 
+#include "geometry/mesh_surface_check.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/geometry/triangle.hpp"
 #include "trackphys/math/types.hpp"
@@ -52,10 +53,7 @@ std::vector<std::uint32_t> validate_and_keep(const TriangleMesh& mesh) {
         throw Error("mesh has " + std::to_string(mesh.triangles.size()) +
                     " triangles, more than the collider limit " +
                     std::to_string(StaticCollider::kMaxTriangles));
-    if (!mesh.surfaces.empty() && mesh.surfaces.size() != mesh.triangles.size())
-        throw Error("mesh has " + std::to_string(mesh.surfaces.size()) + " surface ids for " +
-                    std::to_string(mesh.triangles.size()) +
-                    " triangles (give one per triangle, or none for surface 0)");
+    detail::check_surface_count(mesh);
     for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
         const glm::dvec3& v = mesh.vertices[i];
         if (!is_finite(v))

@@ -8,6 +8,7 @@
 #include <string>
 #include <utility>
 
+#include "geometry/mesh_surface_check.hpp"
 #include "trackphys/error.hpp"
 
 namespace trackphys {
@@ -22,10 +23,8 @@ std::vector<TriangleMesh> split_into_chunks(const TriangleMesh& mesh, double cel
         constexpr double kLimit = 1e15;
         return static_cast<std::int64_t>(std::isnan(c) ? 0.0 : std::clamp(c, -kLimit, kLimit));
     };
+    detail::check_surface_count(mesh);
     const bool labelled = !mesh.surfaces.empty();
-    if (labelled && mesh.surfaces.size() != mesh.triangles.size())
-        throw Error("mesh has " + std::to_string(mesh.surfaces.size()) + " surface ids for " +
-                    std::to_string(mesh.triangles.size()) + " triangles");
     std::map<std::pair<std::int64_t, std::int64_t>, std::vector<std::uint32_t>> cells;
     for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
         glm::dvec3 centroid(0.0);

@@ -24,6 +24,7 @@
 #include <glm/geometric.hpp>
 
 #include "drive_scene.hpp"
+#include "tool_world_settings.hpp"
 #include "trackphys/math/types.hpp"
 #include "trackphys/world/autopilot.hpp"
 #include "trackphys/world/world.hpp"

@@ -18,6 +18,7 @@
 
 #include <gtest/gtest.h>
 
+#include "tool_world_settings.hpp"
 #include "trackphys/io/recording.hpp"
 #include "trackphys/world/world.hpp"
 #include "world/world_scenes.hpp"
@@ -85,7 +86,7 @@ World three_cars(std::optional<int> only = std::nullopt) {
     auto statics = std::make_shared<StaticWorld>();
     statics->add(std::make_shared<StaticCollider>(test::flat_grid(60.0, 30)));
     statics->add(std::make_shared<StaticCollider>(test::wall(6.0, 60.0, 3.0)));
-    World world(statics, test::tool_settings());
+    World world(statics, cli::tool_world_settings());
     const CarSpec spec = CarSpec::default_car();
     for (int k = 0; k < 3; ++k) {
         if (only && k != *only) continue;
@@ -283,7 +284,7 @@ TEST(DebugDraw, ACarsTrianglesAreItsOwnWhicheverCarRanAfterIt) {
 World side_by_side(std::optional<int> only = std::nullopt) {
     auto statics = std::make_shared<StaticWorld>();
     statics->add(std::make_shared<StaticCollider>(test::flat_grid(60.0, 30)));
-    World world(statics, test::tool_settings());
+    World world(statics, cli::tool_world_settings());
     const CarSpec spec = CarSpec::default_car();
     for (int k = 0; k < 3; ++k) {
         if (only && k != *only) continue;

@@ -17,6 +17,7 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "support/error_message.hpp"
+#include "tool_world_settings.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/world/world.hpp"
 #include "world/world_scenes.hpp"
@@ -26,7 +27,7 @@ namespace {
 
 // Two cars side by side on flat ground.
 World two_cars(const CarSpec& spec = CarSpec::default_car()) {
-    World world(test::static_world_of(test::flat_grid(400.0, 40)), test::tool_settings());
+    World world(test::static_world_of(test::flat_grid(400.0, 40)), cli::tool_world_settings());
     for (const double x : {-3.0, 3.0}) {
         RigidBodyState state;
         state.position = {x, spec.lowest_point_depth() + 0.001, -150.0};

@@ -13,6 +13,7 @@
 #include <glm/geometric.hpp>
 
 #include "support/error_message.hpp"
+#include "tool_world_settings.hpp"
 #include "trackphys/world/race_drivers.hpp"
 #include "trackphys/world/world.hpp"
 #include "world/track_world.hpp"
@@ -57,7 +58,7 @@ double wrapped(const Track& track, double from, double to) {
 // the same column, so it starts with the speed limit of following it.
 TEST(RaceRules, TheFirstInputsSeeEveryCarWhereItStands) {
     const test::TrackWorld& track = test::default_track();
-    World world(track.statics, test::tool_settings(), track.trees);
+    World world(track.statics, cli::tool_world_settings(), track.trees);
     RaceSettings settings;
     settings.grid.row_gap = 20.0;
     RaceDrivers drivers(track.track, CarSpec::default_car(), 3, settings);
@@ -73,7 +74,7 @@ TEST(RaceRules, TheFirstInputsSeeEveryCarWhereItStands) {
 // the wrong cars, so drive and after_update refuse the world.
 TEST(RaceRules, AWorldWhoseFieldChangedIsRefused) {
     const test::TrackWorld& track = test::default_track();
-    World world(track.statics, test::tool_settings(), track.trees);
+    World world(track.statics, cli::tool_world_settings(), track.trees);
     RaceDrivers drivers(track.track, CarSpec::default_car(), 3);
     drivers.add_cars(world);
     world.remove_car(1);
@@ -167,7 +168,7 @@ TEST(RaceRules, TheFieldSharesOneCenterline) {
 // below). Without the rule, it would run into the car ahead.
 TEST(RaceRules, AFollowerThatCannotPassKeepsItsGapAndMatchesSpeed) {
     const test::TrackWorld& track = test::default_track();
-    World world(track.statics, test::tool_settings(), track.trees);
+    World world(track.statics, cli::tool_world_settings(), track.trees);
     RaceSettings settings;
     settings.merge_gap = settings.pass_look_ahead = track.track.length_m;
     RaceDrivers drivers(track.track, CarSpec::default_car(), 3, settings);
@@ -202,7 +203,7 @@ TEST(RaceRules, AFollowerThatCannotPassKeepsItsGapAndMatchesSpeed) {
 // would break the first rule.
 TEST(RaceRules, LaneChangesBeginOnlyIntoAFreeGapAndNotInAFastTurn) {
     const test::TrackWorld& track = test::default_track();
-    World world(track.statics, test::tool_settings(), track.trees);
+    World world(track.statics, cli::tool_world_settings(), track.trees);
     const RaceSettings settings;
     constexpr double kMirror = -20.0;  // m
     const std::size_t n = 4;

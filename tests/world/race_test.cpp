@@ -12,6 +12,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "tool_world_settings.hpp"
 #include "trackphys/world/race_drivers.hpp"
 #include "trackphys/world/world.hpp"
 #include "world/track_world.hpp"
@@ -136,7 +137,7 @@ TEST(Race, TwentyCarsFinishThreeLapsCleanlyFromANudgedGrid) {
 // clear of the car beside it, once, and races on from there.
 TEST(Race, ACarThatLeavesTheTrackIsRescuedAndRacesOn) {
     const test::TrackWorld& track = test::default_track();
-    World world(track.statics, test::tool_settings(), track.trees);
+    World world(track.statics, cli::tool_world_settings(), track.trees);
     RaceDrivers drivers(track.track, CarSpec::default_car(), 2);
     drivers.add_cars(world);
     const auto update = [&] {

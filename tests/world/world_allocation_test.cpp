@@ -12,6 +12,7 @@
 
 #include <gtest/gtest.h>
 
+#include "tool_world_settings.hpp"
 #include "trackphys/world/physics_runner.hpp"
 #include "trackphys/world/race_drivers.hpp"
 #include "trackphys/world/world.hpp"
@@ -96,7 +97,7 @@ INSTANTIATE_TEST_SUITE_P(FrameSources, WorldAllocation,
 // allocates nothing; a render thread reading a view into a CarView it keeps allocates
 // nothing either.
 TEST(PhysicsRunnerAllocation, PublishingAndReadingViewsAllocateNothingOnceWarm) {
-    World world(test::static_world_of(test::flat_grid(400.0, 40)), test::tool_settings());
+    World world(test::static_world_of(test::flat_grid(400.0, 40)), cli::tool_world_settings());
     const CarSpec spec = CarSpec::preset("gt");
     for (const double x : {-3.0, 3.0}) {
         RigidBodyState state;

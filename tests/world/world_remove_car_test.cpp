@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include "tool_world_settings.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/world/world.hpp"
 #include "trackphys/world/world_snapshot.hpp"
@@ -18,7 +19,7 @@ namespace {
 
 // Cars of these presets in a row across flat ground, 4 m apart, each with its own inputs.
 World row_of(const std::vector<std::string>& presets) {
-    World world(test::static_world_of(test::flat_grid(400.0, 40)), test::tool_settings());
+    World world(test::static_world_of(test::flat_grid(400.0, 40)), cli::tool_world_settings());
     for (const std::string& preset : presets) {
         const CarSpec spec = CarSpec::preset(preset);
         const double k = static_cast<double>(world.car_count());

@@ -54,17 +54,6 @@ inline TriangleMesh wall(double z0, double width, double height) {
     return mesh;
 }
 
-/// Settings for the tests of several cars, as the command line runs a world: the phase
-/// clock on and the islands on the hardware's threads, where the library's defaults are a
-/// game's (off, one thread). So these tests run the World's pool and profile too; their
-/// states are the same either way.
-inline WorldSettings tool_settings() {
-    WorldSettings settings;
-    settings.profile = true;
-    settings.threads = 0;
-    return settings;
-}
-
 inline std::shared_ptr<const StaticWorld> static_world_of(const TriangleMesh& mesh) {
     auto world = std::make_shared<StaticWorld>();
     world->add(std::make_shared<StaticCollider>(mesh));
