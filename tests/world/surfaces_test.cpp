@@ -1,6 +1,7 @@
 // Surfaces (docs/design.md#surfaces): the triangles' ids reach the contact, the world's table
 // sets each wheel's grip from them, and bad tables or ids are refused by name.
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -72,6 +73,47 @@ TEST(Surfaces, AnIcePatchLengthensBrakingForTheArcadeCarAndAVehicle) {
         EXPECT_LT(dry, 60.0) << preset;
         EXPECT_GT(ice, 4.0 * dry) << preset << ": dry " << dry << " m, ice " << ice << " m";
     }
+}
+
+// The arcade car rolling at 15 m/s on a flat square of one surface, steered fully left with
+// neither throttle nor brake: its wheels' sideways friction alone bends and slows it, so the
+// mean horizontal acceleration over 1.5 s is bounded by the surface's share of mu g. Braking
+// (above) is bounded by the traction limit; this is the friction.
+double mean_turning_acceleration(double grip) {
+    TriangleMesh square = test::flat_grid(400.0, 40);
+    square.surfaces.assign(square.triangles.size(), SurfaceId{1});
+    World world = world_on(square, {Surface{1.0}, Surface{grip}});
+    const CarSpec spec = CarSpec::preset("arcade");
+    RigidBodyState start = place_car_on_surface(world.statics(), spec, {0.0, 5.0, 0.0},
+                                                glm::dquat(1.0, 0.0, 0.0, 0.0));
+    world.add_car(spec, start);
+    start.linear_velocity = {0.0, 0.0, 15.0};
+    world.teleport_car(0, start);
+    world.car(0).set_inputs({0.0, 0.0, 1.0});
+    const auto horizontal = [&] {
+        const glm::dvec3 v = world.car(0).state().linear_velocity;
+        return glm::dvec3(v.x, 0.0, v.z);
+    };
+    double sum = 0.0;
+    const int updates = 150;
+    for (int i = 0; i < updates; ++i) {
+        const glm::dvec3 before = horizontal();
+        world.update();
+        sum += glm::length(horizontal() - before) / world.settings().dt_update;
+    }
+    return sum / updates;
+}
+
+TEST(Surfaces, ALowGripSurfaceBoundsTheArcadeCarsCornering) {
+    const CarSpec spec = CarSpec::preset("arcade");
+    const double g = 9.81;
+    const double mu = spec.wheel_contact.friction * std::max(1.0, spec.rear_grip_factor);
+    const double dry = mean_turning_acceleration(1.0);
+    const double ice = mean_turning_acceleration(0.25);
+    RecordProperty("dry_m_s2", std::to_string(dry));
+    RecordProperty("ice_m_s2", std::to_string(ice));
+    EXPECT_LT(ice, 0.25 * mu * g * 1.1) << "dry " << dry;
+    EXPECT_GT(dry, 2.0 * ice) << "ice " << ice;
 }
 
 // A table of ones drives exactly as no table: grip 1 leaves every force's bits.
