@@ -46,11 +46,12 @@ int main() {
         world.update();
         world.debug_draw(draw, options);  // between updates, on the thread that updates
     }
-    std::printf("per frame: %.1f ellipsoids (%.1f wheels), %.1f contacts, %.1f kept triangles; "
-                "deepest contact %.1f mm\n",
-                double(draw.ellipsoids) / updates, double(draw.wheels) / updates,
-                double(draw.contacts) / updates, double(draw.kept_triangles) / updates,
-                1000.0 * draw.deepest);
+    std::printf(
+        "per frame: %.1f ellipsoids (%.1f wheels), %.1f contacts, %.1f kept triangles; "
+        "deepest contact %.1f mm\n",
+        double(draw.ellipsoids) / updates, double(draw.wheels) / updates,
+        double(draw.contacts) / updates, double(draw.kept_triangles) / updates,
+        1000.0 * draw.deepest);
     // It starts a little above the ground and settles: most frames have all four wheels down.
     const bool wheels_on_the_ground = draw.contacts >= 3 * updates;
     return draw.wheels == 4 * updates && wheels_on_the_ground ? 0 : 1;

@@ -48,9 +48,10 @@ int main() {
 
     const World& after = runner.world();
     const double speed = after.car(0).speed();
-    std::printf("update %llu: %d frames drawn (%d off the ground), car at z = %.1f m, "
-                "%.2f m/s after braking\n",
-                static_cast<unsigned long long>(after.update_count()), frames, off_ground,
-                after.car(0).state().position.z, speed);
+    std::printf(
+        "update %llu: %d frames drawn (%d off the ground), car at z = %.1f m, "
+        "%.2f m/s after braking\n",
+        static_cast<unsigned long long>(after.update_count()), frames, off_ground,
+        after.car(0).state().position.z, speed);
     return after.update_count() == 100 && frames > 0 && off_ground == 0 && speed < 1.0 ? 0 : 1;
 }

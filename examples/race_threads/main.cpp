@@ -79,8 +79,8 @@ int main() {
                  .worker_count = kWorkers};
 
     const Outcome a = race(one_thread), b = race(two_threads), c = race(jobs);
-    const bool alike = a.hash == b.hash && b.hash == c.hash && a.touches == b.touches &&
-                       b.touches == c.touches;
+    const bool alike =
+        a.hash == b.hash && b.hash == c.hash && a.touches == b.touches && b.touches == c.touches;
     std::printf("8 cars, 3 s, %zu car touches: state hash %016" PRIx64
                 " on 1 thread, 2 threads and the game's jobs %s\n",
                 a.touches, a.hash, alike ? "alike" : "DIFFER");

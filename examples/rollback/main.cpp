@@ -61,8 +61,8 @@ int main() {
 
     std::size_t touches = 0;
     for (const std::size_t n : truth.touches) touches += n;
-    const bool same = local.world.state_hash() == truth.world.state_hash() &&
-                      local.touches == truth.touches;
+    const bool same =
+        local.world.state_hash() == truth.world.state_hash() && local.touches == truth.touches;
     std::printf("rolled back %llu updates: %zu car touches, state hash %016" PRIx64 " %s\n",
                 static_cast<unsigned long long>(kArrival - kSwerve + 1), touches,
                 local.world.state_hash(), same ? "as if never predicted" : "DIFFERS");

@@ -24,7 +24,7 @@ void add_quad(TriangleMesh& mesh, double x0, double x1, double z0, double z1, Su
 }
 
 int main() {
-    TriangleMesh road;  // the cars face +Z; +X is their left
+    TriangleMesh road;                          // the cars face +Z; +X is their left
     add_quad(road, 0, 10, -20, 100, kAsphalt);  // left lane
     add_quad(road, -10, 0, -20, 10, kAsphalt);  // right lane, then ice
     add_quad(road, -10, 0, 10, 100, kIce);
@@ -58,8 +58,9 @@ int main() {
     }
     const std::optional<ContactSurface> wheel = world.contact_surface(1, 0);
     const double dry_stop = world.car(0).state().position.z - 10.0;
-    std::printf("dry car stopped after %.1f m; the car on ice (its wheel 0 on surface %u) hit "
-                "the wall %s\n",
-                dry_stop, wheel ? unsigned{wheel->surface} : 99u, hits ? "once" : "never");
+    std::printf(
+        "dry car stopped after %.1f m; the car on ice (its wheel 0 on surface %u) hit "
+        "the wall %s\n",
+        dry_stop, wheel ? unsigned{wheel->surface} : 99u, hits ? "once" : "never");
     return hits == 1 && dry_stop < 30.0 && wheel && wheel->surface == kIce ? 0 : 1;
 }

@@ -10,7 +10,9 @@
 #include <cstdint>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <string>
+#include <string_view>
 
 #include <gtest/gtest.h>
 
@@ -529,12 +531,13 @@ TEST(VehiclePhysics, SkidpadReachesThePeakGripTheTyresAllow) {
 // Jolt's traction test: one driven wheel on ice (a twentieth of the grip), 30% throttle (the good
 // tyre's grip, not more) in first gear (an automatic box shifts up on the spinning wheel's speed,
 // and each shift lets the engine spin up again), no traction control (it would brake the spinning
-// wheel itself). The limited-slip clutch can hold 1500 N m: a locking differential.
-double distance_with_a_rear_wheel_on_ice(DifferentialKind rear) {
-    CarSpec spec = CarSpec::preset("gt");
+// wheel itself). The rear differential is the preset's own unless one is given.
+double distance_with_a_rear_wheel_on_ice(std::string_view preset,
+                                         std::optional<DifferentialSpec> rear = std::nullopt) {
+    CarSpec spec = CarSpec::preset(preset);
     spec.vehicle->traction_control = false;
     spec.vehicle->gearbox.ratios.resize(1);
-    spec.vehicle->rear_differential = {rear, 1500.0, 0.3};
+    if (rear) spec.vehicle->rear_differential = *rear;
     World world = world_with(test::flat_grid(-20.0, 20.0, -10.0, 300.0, 4, 31), spec);
     drive(world, {}, 1.0);
     Car& car = world.car(0);
@@ -547,15 +550,37 @@ double distance_with_a_rear_wheel_on_ice(DifferentialKind rear) {
     return glm::length(car.state().position - start);
 }
 
+// A clutch that can hold 1500 N m: a locking differential.
 TEST(VehiclePhysics, LimitedSlipMovesTheCarWithAWheelOnIceAndTheOpenOneBarely) {
-    const double limited = distance_with_a_rear_wheel_on_ice(DifferentialKind::limited_slip);
-    const double open = distance_with_a_rear_wheel_on_ice(DifferentialKind::open);
+    const double limited = distance_with_a_rear_wheel_on_ice(
+        "gt", DifferentialSpec{DifferentialKind::limited_slip, 1500.0, 0.3});
+    const double open = distance_with_a_rear_wheel_on_ice("gt", DifferentialSpec{});
     RecordProperty("limited_slip_m", std::to_string(limited));
     RecordProperty("open_m", std::to_string(open));
     // The open differential passes the ice wheel's torque, a twentieth of a tyre's peak, to
     // the other wheel too: at most 0.5 m/s^2, about 2 m in 3 s after the launch.
     EXPECT_GT(limited, 10.0);
     EXPECT_LT(open, 0.25 * limited) << "limited slip " << limited << " m, open " << open << " m";
+}
+
+// The presets' own limited slip (gt 100 N m + 30% of the input torque, formula 50 N m + 30%)
+// moves a car with a rear wheel on ice well beyond what the open differential gets, and no
+// farther than a locked one.
+TEST(VehiclePhysics, ThePresetsOwnLimitedSlipPullsOffIce) {
+    for (const std::string_view preset : {"gt", "formula"}) {
+        ASSERT_EQ(CarSpec::preset(preset).vehicle->rear_differential.kind,
+                  DifferentialKind::limited_slip)
+            << preset;
+        const double own = distance_with_a_rear_wheel_on_ice(preset);
+        const double open = distance_with_a_rear_wheel_on_ice(preset, DifferentialSpec{});
+        const double locked = distance_with_a_rear_wheel_on_ice(
+            preset, DifferentialSpec{DifferentialKind::limited_slip, 1e5, 1.0});
+        RecordProperty(std::string(preset) + "_own_m", std::to_string(own));
+        RecordProperty(std::string(preset) + "_open_m", std::to_string(open));
+        RecordProperty(std::string(preset) + "_locked_m", std::to_string(locked));
+        EXPECT_GT(own, 2.0 * open) << preset << ": own " << own << " m, open " << open << " m";
+        EXPECT_LE(own, locked * 1.02) << preset << ": own " << own << " m, locked " << locked;
+    }
 }
 
 // Parked: 10 s after settling, the car has moved less than 1 mm and never faster than
