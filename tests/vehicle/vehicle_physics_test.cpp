@@ -583,6 +583,32 @@ TEST(VehiclePhysics, ThePresetsOwnLimitedSlipPullsOffIce) {
     }
 }
 
+// Without traction control a full-throttle launch spins the driven wheels. The box stays in
+// first, the engine at its limiter, until the car itself is fast enough for second, and
+// never comes down while the throttle is held (it went 1-2-1-2 when it shifted on the
+// spinning wheels alone).
+TEST(VehiclePhysics, ALaunchWithoutTractionControlDoesNotHuntGears) {
+    for (const std::string_view preset : {"gt", "formula"}) {
+        CarSpec spec = CarSpec::preset(preset);
+        spec.vehicle->traction_control = false;
+        World world = world_with(test::flat_grid(-20.0, 20.0, -10.0, 400.0, 4, 41), spec);
+        drive(world, {}, 1.0);
+        const Vehicle& vehicle = *world.car(0).vehicle();
+        int downshifts = 0, highest = vehicle.state().gear;
+        bool spun = false;
+        for (int update = 0; update < 600; ++update) {
+            const int before = vehicle.state().gear;
+            drive(world, {1.0, 0.0, 0.0}, world.settings().dt_update);
+            downshifts += vehicle.state().gear < before;
+            highest = std::max(highest, vehicle.state().gear);
+            for (const WheelTelemetry& wheel : vehicle.telemetry()) spun |= wheel.slip_ratio > 0.5;
+        }
+        EXPECT_TRUE(spun) << preset << ": the launch should spin the driven wheels";
+        EXPECT_EQ(downshifts, 0) << preset;
+        EXPECT_GE(highest, 2) << preset << ": six seconds of full throttle reach second";
+    }
+}
+
 // Parked: 10 s after settling, the car has moved less than 1 mm and never faster than
 // 1 mm/s.
 void expect_parked(World& world, const CarInputs& inputs) {

@@ -154,6 +154,9 @@ class TRACKPHYS_API Vehicle {
     /// heading (m/s, < 0 backwards).
     void shift_gears(double drivetrain_rpm, double throttle, double rolling_speed,
                      double forward_speed, double h);
+    /// The engine's rpm in forward gear `gear` were the driven wheels rolling at the car's
+    /// forward speed (m/s), without slip.
+    double ground_rpm(int gear, double forward_speed) const;
     /// The current gear's ratio, negative in reverse (without the final drive).
     double gear_ratio() const;
     double engine_torque(double rpm, double throttle) const;
