@@ -225,15 +225,22 @@ TEST(ContactEvents, AResetCarTouchesNothingOfTheUndoneUpdate) {
     EXPECT_EQ(world.car_resets(0), 0u);
 }
 
-// The ground and a wall across the car's path, as colliders 0 and 1: the car hits the wall
-// with its body at about its speed.
-TEST(ContactEvents, ACarIntoAWallHitsIt) {
+// The ground and a wall across +Z at z = 20 m, as colliders 0 and 1, and a default car on
+// the ground at the origin rolling towards the wall at `speed`.
+World car_towards_a_wall(double speed) {
     auto statics = std::make_shared<StaticWorld>();
     statics->add(std::make_shared<StaticCollider>(test::flat_grid(200.0, 100)));
     statics->add(std::make_shared<StaticCollider>(test::wall(20.0, 20.0, 3.0)));
     World world(statics);
     const CarSpec spec = CarSpec::default_car();
-    world.add_car(spec, moving({0.0, spec.lowest_point_depth() + 0.001, 0.0}, {0.0, 0.0, 15.0}));
+    world.add_car(spec, moving({0.0, spec.lowest_point_depth() + 0.001, 0.0}, {0.0, 0.0, speed}));
+    return world;
+}
+
+// The car hits the wall with its body at about its speed.
+TEST(ContactEvents, ACarIntoAWallHitsIt) {
+    World world = car_towards_a_wall(15.0);
+    const CarSpec& spec = world.car(0).spec();
 
     EventLog log;
     log.run(world, 300);
@@ -258,12 +265,8 @@ TEST(ContactEvents, ACarIntoAWallHitsIt) {
 // lifted by 5 cm: pressed by full throttle, the body and the squatting rear wheels are deeper
 // than a teleport accepts.)
 TEST(ContactEvents, ATeleportedCarHitsAfresh) {
-    auto statics = std::make_shared<StaticWorld>();
-    statics->add(std::make_shared<StaticCollider>(test::flat_grid(200.0, 100)));
-    statics->add(std::make_shared<StaticCollider>(test::wall(20.0, 20.0, 3.0)));
-    World world(statics);
-    const CarSpec spec = CarSpec::default_car();
-    world.add_car(spec, moving({0.0, spec.lowest_point_depth() + 0.001, 0.0}, {0.0, 0.0, 5.0}));
+    World world = car_towards_a_wall(5.0);
+    const CarSpec& spec = world.car(0).spec();
     world.car(0).set_inputs({1.0, 0.0, 0.0});
     const auto touching_body = [&]() -> std::size_t {
         for (std::size_t e = 0; e < spec.ellipsoids.size(); ++e)
