@@ -31,6 +31,13 @@ RigidBodyState moving(const glm::dvec3& position, const glm::dvec3& velocity) {
     return state;
 }
 
+// No static world and no gravity: cars meet only each other.
+World world_in_free_space() {
+    WorldSettings settings;
+    settings.gravity = glm::dvec3(0.0);
+    return World(std::make_shared<StaticWorld>(), settings);
+}
+
 // Every event of `updates` updates, with the update it came from.
 struct EventLog {
     template <typename Event>
@@ -94,9 +101,7 @@ WorldSnapshot run_until_touching(World& world) {
 // Cars 1 and 2 meet head on at 10 m/s each in free space, car 0 is far away: one begin, at
 // the closing speed, then one end once they have bounced apart.
 TEST(ContactEvents, TwoCarsDrivenIntoEachOtherBeginAndEndOnce) {
-    WorldSettings settings;
-    settings.gravity = glm::dvec3(0.0);
-    World world(std::make_shared<StaticWorld>(), settings);
+    World world = world_in_free_space();
     CarSpec spec = CarSpec::default_car();
     spec.air_density = 0.0;  // only the contact slows them
     world.add_car(spec, moving({100.0, 0.0, 0.0}, {0.0, 0.0, 10.0}));
@@ -209,9 +214,7 @@ TEST(ContactEvents, ABadTouchingListIsRefused) {
 // again: its touches of the undone update are dropped like its hits, so the pair never
 // begins and is never listed as touching.
 TEST(ContactEvents, AResetCarTouchesNothingOfTheUndoneUpdate) {
-    WorldSettings settings;
-    settings.gravity = glm::dvec3(0.0);
-    World world(std::make_shared<StaticWorld>(), settings);
+    World world = world_in_free_space();
     CarSpec absurd = CarSpec::default_car();
     absurd.air_density = 1e300;
     world.add_car(CarSpec::default_car(), moving(glm::dvec3(0.0), glm::dvec3(0.0)));
@@ -304,9 +307,7 @@ TEST(ContactEvents, ATeleportedCarHitsAfresh) {
 // Car 0 leaves the world: the events after it name the cars by their new indices, a touch of
 // the removed car ends without an event, and the others' touches go on.
 TEST(ContactEvents, EventsAfterARemovalNameTheCarsByTheirNewIndices) {
-    WorldSettings settings;
-    settings.gravity = glm::dvec3(0.0);
-    World world(std::make_shared<StaticWorld>(), settings);
+    World world = world_in_free_space();
     CarSpec spec = CarSpec::default_car();
     spec.air_density = 0.0;
     world.add_car(spec, moving({0.0, 0.0, 14.0}, {0.0, 0.0, -10.0}));
@@ -344,9 +345,7 @@ TEST(ContactEvents, TheApproachSpeedIsTakenBeforeTheSubStepsPushes) {
     bumpers.ellipsoids.push_back(
         {{-0.4, 0.05, 2.5005}, {0.2, 0.2, 0.2}, {1.0, 0.0, 0.0, 0.0}, EllipsoidRole::body});
     for (const double gap : {0.0001, 0.0013, 0.0031, 0.0057}) {
-        WorldSettings settings;
-        settings.gravity = glm::dvec3(0.0);
-        World world(std::make_shared<StaticWorld>(), settings);
+        World world = world_in_free_space();
         const double closing = 80.0;
         world.add_car(spec, moving({0.0, 0.0, -5.0 - gap}, {0.0, 0.0, closing}));
         RigidBodyState turned;
