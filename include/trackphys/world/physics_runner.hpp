@@ -74,8 +74,8 @@ class TRACKPHYS_API PhysicsRunner {
     /// this car's wheels). The ends are the states' views exactly; in between, velocities,
     /// engine rpm and each wheel's position, suspension, steer, spin and spin angle are
     /// linear, each wheel's orientation is made from the interpolated body orientation and
-    /// angles, and the gear is the newer state's. Throws trackphys::Error for no such car, as pose and
-    /// set_inputs do.
+    /// angles, and the gear is the newer state's. Throws trackphys::Error for no such car, as
+    /// pose and set_inputs do.
     void view(std::size_t car, double t, CarView& out) const;
     /// The same, returned (allocates the wheels).
     CarView view(std::size_t car, double t) const {

@@ -154,8 +154,8 @@ class TRACKPHYS_API World {
     /// touching end, and a touch still there begins again at the next update. Which car
     /// pairs are touching is part of a snapshot (WorldSnapshot::touching): after
     /// restore_state the next update gives the events the saved world's would have given;
-    /// remove_car forgets the removed car's touches (no end event) and empties the list. Recording them allocates nothing once a field is
-    /// warm.
+    /// remove_car forgets the removed car's touches (no end event) and empties the list.
+    /// Recording them allocates nothing once a field is warm.
     ContactEvents contact_events() const;
 
     /// How many times car i was reset (counted over the whole simulation: snapshots keep it).
