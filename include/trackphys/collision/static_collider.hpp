@@ -146,9 +146,9 @@ class TRACKPHYS_API StaticCollider {
     /// A fingerprint of the mesh as kept: a hash of the mesh triangle count and of every kept
     /// triangle's index and vertex bits, in mesh order, and of their surface ids when any is
     /// not 0. Equal meshes give equal hashes; a moved vertex, another triangle, another order
-    /// or another surface id give another. Computed at build (a
-    /// small share of building the collider), so a world snapshot can tell whether it
-    /// belongs to these colliders without copying them.
+    /// or another surface id give another. Computed at build (a small share of building the
+    /// collider), so a world snapshot can tell whether it belongs to these colliders without
+    /// copying them.
     std::uint64_t content_hash() const { return content_hash_; }
 
     /// Box around every kept triangle (empty when none was kept).
