@@ -154,8 +154,9 @@ class TRACKPHYS_API World {
     /// touching end, and a touch still there begins again at the next update. Which car
     /// pairs are touching is part of a snapshot (WorldSnapshot::touching): after
     /// restore_state the next update gives the events the saved world's would have given;
-    /// remove_car forgets the removed car's touches (no end event) and empties the list.
-    /// Recording them allocates nothing once a field is warm.
+    /// remove_car forgets the removed car's touches (no end event) and drops the last
+    /// update's events, whose indices are stale: contact_events() is empty until the next
+    /// update. Recording them allocates nothing once a field is warm.
     ContactEvents contact_events() const;
 
     /// How many times car i was reset (counted over the whole simulation: snapshots keep it).
@@ -186,8 +187,9 @@ class TRACKPHYS_API World {
     /// What the last update did: per-phase times (if settings().profile) and counts.
     const UpdateProfile& last_profile() const { return profile_; }
 
-    /// FNV-1a hash of the bits of the update count and of every car's state and inputs:
-    /// equal hashes mean bit-identical simulations.
+    /// FNV-1a hash of the bits of the update count and of every car's rigid-body state,
+    /// suspension travel, inputs and, with a vehicle model, vehicle state (wheel spins and
+    /// slips, gear, clutch): equal hashes mean bit-identical simulations.
     std::uint64_t state_hash() const;
 
     /// Records each update's phases into trace while settings().profile is on (or stops, for
