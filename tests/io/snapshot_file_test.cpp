@@ -7,6 +7,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <string>
 
@@ -230,6 +231,33 @@ TEST(SnapshotFile, LoadRefusesAFileWhoseSizeIsNotTheHeaders) {
     EXPECT_EQ(load_snapshot(write("whole.snap", bytes)).world.update_count,
               small_snapshot().update_count);
     fs::remove_all(folder);
+}
+
+// fuzz_snapshot's two-car seed is its one-car seed (a snapshot of `trackphys drive`) with the
+// car copied 1.5 m to its side and the two listed as touching, so that mutated inputs reach a
+// touching list that restores. Built here from the one-car seed, it must be the committed file:
+// after a format change this test writes the new seed for fuzz/seeds to take.
+TEST(SnapshotFile, TheTouchingFuzzSeedIsTheDriveSeedWithItsCarTwice) {
+    const fs::path seeds(TRACKPHYS_SNAPSHOT_SEEDS_DIR);
+    SnapshotFile file = load_snapshot(seeds / "flat_ground.snap.seed");
+    ASSERT_EQ(file.world.cars.size(), 1u) << "drive saves one car";
+    ASSERT_TRUE(file.world.touching.empty());
+    CarSnapshot beside = file.world.cars[0];
+    beside.state.position.x += 1.5;
+    file.world.cars.push_back(beside);
+    file.world.touching = {{0, 1, 0.01}};
+    const std::string expected = encode_snapshot(file.world, file.user_data);
+
+    std::ifstream committed(seeds / "two_touching.snap.seed", std::ios::binary);
+    const std::string actual{std::istreambuf_iterator<char>(committed), {}};
+    if (actual != expected) {
+        const fs::path made = fs::absolute("two_touching.snap.seed");
+        std::ofstream(made, std::ios::binary) << expected;
+        FAIL() << "fuzz/seeds/fuzz_snapshot/two_touching.snap.seed is not the one-car seed with "
+                  "its car twice: take "
+               << made << " in its place";
+    }
+    EXPECT_EQ(decode_snapshot(actual).world.touching.size(), 1u);
 }
 
 }  // namespace
