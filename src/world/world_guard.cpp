@@ -186,6 +186,9 @@ void World::check_placement(const Car& car, const char* caller) const {
                     << " m deep in collider " << ref.collider << "'s triangle " << ref.triangle
                     << ", more than half its smallest semi-axis (" << limit
                     << " m): the car starts inside geometry";
+                if (car.spec().ellipsoids[i].role != EllipsoidRole::body)
+                    why << " (its wheels hang at full droop: place_car_on_surface gives the "
+                           "height at which they rest on the road)";
                 throw Error(why.str());
             }
         }

@@ -13,6 +13,7 @@
 #include "support/error_message.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/math/types.hpp"
+#include "trackphys/world/spawn.hpp"
 #include "trackphys/world/world.hpp"
 #include "world/world_scenes.hpp"
 
@@ -232,6 +233,30 @@ TEST(Preconditions, ATeleportIsCheckedAsAnAddedCarIs) {
     world.teleport_car(car, at({10.0, 0.501, -10.0}, {0.0, 0.0, 20.0}));
     EXPECT_EQ(world.car(car).state().position, glm::dvec3(10.0, 0.501, -10.0));
     EXPECT_EQ(world.car(car).state().linear_velocity, glm::dvec3(0.0, 0.0, 20.0));
+}
+
+// A teleport hangs the wheels at full droop, as add_car does: the default car squatting under
+// full throttle (rear suspension ~7 cm compressed) is refused its own state, its rear wheel
+// ~8 cm into the road there, and the error says why and what to use instead.
+TEST(Preconditions, ATeleportHangsTheWheelsAtFullDroop) {
+    World world(test::static_world_of(test::flat_grid(200.0, 8)));
+    world.add_car(CarSpec::default_car(), at({0.0, 0.501, 0.0}));
+    world.car(0).set_inputs({1.0, 0.0, 0.0});
+    for (int i = 0; i < 100; ++i) world.update();
+    const RigidBodyState squatting = world.car(0).state();
+    EXPECT_GT(world.car(0).suspension(1), 0.05) << "rear wheel";
+
+    const std::string why = error_of([&] { world.teleport_car(0, squatting); });
+    EXPECT_NE(why.find("(rear wheel) is 0.07"), std::string::npos) << why;
+    EXPECT_NE(why.find("full droop: place_car_on_surface gives the height"), std::string::npos)
+        << why;
+    EXPECT_EQ(world.car(0).state().position, squatting.position);
+
+    const RigidBodyState resting = place_car_on_surface(world.statics(), world.car(0).spec(),
+                                                        squatting.position, squatting.orientation);
+    world.teleport_car(0, resting);
+    EXPECT_EQ(world.car(0).suspension(1), 0.0);
+    EXPECT_GT(world.car(0).state().position.y, squatting.position.y);
 }
 
 TEST(Preconditions, ACarIndexPastTheLastCarIsAnErrorNamingBoth) {

@@ -97,6 +97,9 @@ class TRACKPHYS_API World {
     /// new speed) after add_car's checks of where a car may be: throws trackphys::Error
     /// naming the reason, changing nothing, for a state the reset policy would reset, a
     /// car far outside the map or inside geometry. car(i).set_state moves it unchecked.
+    /// The suspension starts at full droop, as after add_car, so a car's own state from
+    /// an update that compressed it can be refused (a squatting car's rear wheels hang
+    /// 8 cm into the road at droop); place_car_on_surface gives a resting height.
     /// Its contacts start afresh: contacts(i) reads none until the next update, and a body
     /// ellipsoid touching the static world there gives a hit (contact_events), as after a
     /// reset; its touches with other cars go on (a pair apart after it ends at the next
