@@ -29,7 +29,7 @@ Wrench Car::vehicle_wrench(std::span<const Contact> deepest, std::span<const dou
     // headings per sub-step, each computed when its first wheel needs it.
     glm::dvec3 headings[2];
     bool heading_known[2] = {false, false};
-    const auto heading_of = [&](std::size_t i) {
+    const auto heading_of = [&](std::size_t i) -> const glm::dvec3& {
         const Axle axle = axle_of(i);
         const int k = static_cast<int>(axle);
         if (!heading_known[k]) headings[k] = wheel_heading(axle, forward), heading_known[k] = true;
@@ -47,7 +47,7 @@ Wrench Car::vehicle_wrench(std::span<const Contact> deepest, std::span<const dou
         const auto w = static_cast<std::size_t>(slot);
         // A wheel pressed on its side (heading along the normal) has no rolling direction
         // and only slides: it carries no load into the tyre model then.
-        const glm::dvec3 heading = heading_of(i);
+        const glm::dvec3& heading = heading_of(i);
         const glm::dvec3 in_plane = heading - contact.normal * glm::dot(heading, contact.normal);
         const double in_plane_length = glm::length(in_plane);
         const WheelLoad& wheel = wheel_loads[i];  // measure_wheel_loads
