@@ -66,6 +66,16 @@ void add_mesh_limit_options(CLI::App& command, MeshLoadLimits& limits) {
         ->capture_default_str();
 }
 
+void add_surface_grips_option(CLI::App& command, std::vector<double>& grips) {
+    command
+        .add_option("--surface-grips", grips,
+                    "Grip of the track's surfaces by id, from 0 (a mesh's materials in order; "
+                    "the generated track's road 0, walls 1); the ids past them grip 1, the dry "
+                    "road")
+        ->delimiter(',')
+        ->type_name("G0,G1,...");
+}
+
 void add_drive_command(CLI::App& app) {
     auto o = std::make_shared<DriveOptions>();
     CLI::App* command = app.add_subcommand(
@@ -115,6 +125,7 @@ void add_drive_command(CLI::App& app) {
                      "Free mode: start above x,y,z (the car lands on the surface below)")
         ->delimiter(',')
         ->expected(3);
+    add_surface_grips_option(*command, o->surface_grips);
     command
         ->add_option("--heading", o->flags.heading_deg,
                      "Free mode: heading about +Y in degrees (0 = +X, 90 = -Z)")
@@ -170,6 +181,7 @@ void add_race_command(CLI::App& app) {
     command->add_option("--map", o->map,
                         "Race on this baked map (trackphys bake --seed) instead of generating "
                         "the track");
+    add_surface_grips_option(*command, o->surface_grips);
     command->add_option("--cars", o->cars, "Cars on the grid (1 to 128)")
         ->check(not_negative())
         ->capture_default_str();

@@ -51,6 +51,13 @@ inline void refuse_zero_duration(const OptionGiven& given, int laps, double seco
         throw Error("--seconds must be > 0, got 0 (leave it out for the default)");
 }
 
+/// --surface-grips G0,G1,... as Scenario::surfaces (checked with the scenario).
+inline std::vector<Surface> surfaces_of(const std::vector<double>& grips) {
+    std::vector<Surface> surfaces;
+    for (double grip : grips) surfaces.push_back({grip});
+    return surfaces;
+}
+
 /// Pairs of a Scenario field and the option that sets it ({"Scenario.laps", "--laps"}).
 using FieldOptions = std::span<const std::pair<const char*, const char*>>;
 
@@ -76,6 +83,7 @@ struct DriveOptions {
     bool print_scenario = false;
     Scenario flags;
     std::vector<double> spawn;
+    std::vector<double> surface_grips;  ///< --surface-grips, by surface id
     std::filesystem::path json, trace, record, svg, telemetry;
     std::pair<std::string, std::string> save_at;  // T FILE
     std::filesystem::path resume;
@@ -91,7 +99,8 @@ struct RaceOptions {
     int laps = 0;
     double seconds = 0.0;
     int threads = 0;
-    std::filesystem::path map;  ///< a baked map instead of the generated track
+    std::filesystem::path map;          ///< a baked map instead of the generated track
+    std::vector<double> surface_grips;  ///< --surface-grips, by surface id
     std::filesystem::path json, trace, record, svg;
 };
 void run_race(const RaceOptions& options, const OptionGiven& given);

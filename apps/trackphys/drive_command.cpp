@@ -52,6 +52,7 @@ constexpr std::pair<const char*, const char*> kFieldOptions[] = {
     {"Scenario.map", "--map"},
     {"Scenario.spawn", "--spawn"},
     {"Scenario.heading_deg", "--heading"},
+    {"Scenario.surfaces", "--surface-grips"},
     {"Scenario.target_speed_kmh", "--target-speed"},
     {"Scenario.inputs.throttle", "--throttle"},
     {"Scenario.inputs.steer", "--steer"},
@@ -72,6 +73,7 @@ Scenario build_scenario(const DriveOptions& o, const OptionGiven& given) {
     if (given("--map")) s.map = f.map;
     if (given("--spawn")) s.spawn = glm::dvec3(o.spawn.at(0), o.spawn.at(1), o.spawn.at(2));
     if (given("--heading")) s.heading_deg = f.heading_deg;
+    if (given("--surface-grips")) s.surfaces = surfaces_of(o.surface_grips);
     if (given("--target-speed")) s.target_speed_kmh = f.target_speed_kmh;
     if (given("--throttle")) s.inputs.throttle = f.inputs.throttle;
     if (given("--steer")) s.inputs.steer = f.inputs.steer;
@@ -185,9 +187,13 @@ void run_drive(const DriveOptions& o, const OptionGiven& given) {
                                 telemetry_file = stage(o.telemetry, "--telemetry");
     std::optional<SavePoint> save_at = parse_save_at(o, s.seconds);
     if (save_at) save_at->staged = stage(save_at->file, "--save-at");
-    DriveSession session{
-        s.free_mode(), s.seed, s.target_speed_kmh, s.inputs.throttle, s.inputs.steer, {}, 0.0,
-        0.0,           {}};
+    DriveSession session;
+    session.free_mode = s.free_mode();
+    session.seed = s.seed;
+    session.target_speed_kmh = s.target_speed_kmh;
+    session.throttle = s.inputs.throttle;
+    session.steer = s.inputs.steer;
+    for (const Surface& surface : s.surfaces) session.surface_grips.push_back(surface.grip);
     std::optional<SnapshotFile> resume;
     if (!o.resume.empty()) {
         resume = load_snapshot(o.resume);
@@ -203,7 +209,9 @@ void run_drive(const DriveOptions& o, const OptionGiven& given) {
         throw Error("the map '" + s.map.string() +
                     "' was baked from a mesh and has no centreline for the autopilot: give "
                     "--spawn x,y,z to drive it in free mode");
-    World world(scene.statics, tool_world_settings(), scene.plane_trees);
+    WorldSettings world_settings = tool_world_settings();
+    world_settings.surfaces = surface_table(scene, s.surfaces);
+    World world(scene.statics, world_settings, scene.plane_trees);
     const RigidBodyState start =
         s.free_mode() ? spawn_on_surface(*scene.statics, s.car, *s.spawn, s.heading_deg)
                       : start_on_track(*scene.track, s.car);
@@ -241,7 +249,7 @@ void run_drive(const DriveOptions& o, const OptionGiven& given) {
     if (!telemetry_file.empty()) telemetry.emplace(telemetry_file, world.car(0));
 
     DriveReport report;
-    report.scene = scene.description;
+    report.scene = scene.description + describe_grips(s.surfaces);
     report.triangles = scene.triangle_count;
     report.distance_m = session.distance_m;
     report.top_speed_kmh = session.top_speed_kmh;

@@ -1,5 +1,6 @@
 #include "drive_scene.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <sstream>
@@ -63,6 +64,23 @@ DriveScene make_map_scene(const std::filesystem::path& map) {
     scene.plane_trees = std::move(loaded.plane_trees);
     scene.description = "map " + map.string();
     return scene;
+}
+
+std::vector<Surface> surface_table(const DriveScene& scene, std::span<const Surface> grips) {
+    if (grips.empty()) return {};
+    std::size_t size = grips.size();
+    for (std::uint32_t id = 0; id < scene.statics->size(); ++id)
+        size = std::max(size, std::size_t{scene.statics->collider(id).highest_surface()} + 1);
+    std::vector<Surface> table(grips.begin(), grips.end());
+    table.resize(size);  // Surface{} is the dry road
+    return table;
+}
+
+std::string describe_grips(std::span<const Surface> grips) {
+    std::ostringstream text;
+    for (std::size_t id = 0; id < grips.size(); ++id)
+        text << (id == 0 ? ", surface grips " : ", ") << grips[id].grip;
+    return text.str();
 }
 
 RigidBodyState start_on_track(const Track& track, const CarSpec& car) {

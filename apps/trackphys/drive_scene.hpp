@@ -3,7 +3,9 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
+#include <vector>
 
 #include <glm/vec3.hpp>
 
@@ -13,6 +15,7 @@
 #include "trackphys/dynamics/rigid_body.hpp"
 #include "trackphys/io/mesh_load_limits.hpp"
 #include "trackphys/track/track.hpp"
+#include "trackphys/world/surface.hpp"
 
 namespace trackphys::cli {
 
@@ -34,6 +37,15 @@ DriveScene make_mesh_scene(const std::filesystem::path& mesh,
 /// A baked map (trackphys bake): its colliders and plane trees, and its track when it was
 /// baked from one.
 DriveScene make_map_scene(const std::filesystem::path& map);
+
+/// The World's surface table for a scenario's grips (Scenario::surfaces) on the scene: the
+/// grips by surface id, then the dry road (grip 1) for every id of its triangles past them,
+/// so that a scenario lists only the surfaces up to the last it changes. Empty for none.
+std::vector<Surface> surface_table(const DriveScene& scene, std::span<const Surface> grips);
+
+/// The grips as the reports show them after the scene: ", surface grips 1, 0.25", or
+/// nothing for none.
+std::string describe_grips(std::span<const Surface> grips);
 
 /// The car at rest on the track's start line, facing along the track.
 RigidBodyState start_on_track(const Track& track, const CarSpec& car);

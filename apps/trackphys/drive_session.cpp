@@ -23,6 +23,7 @@ std::string session_json(const DriveSession& s) {
     json["distance_m"] = s.distance_m;
     json["top_speed_kmh"] = s.top_speed_kmh;
     json["lap_times_s"] = s.lap_times_s;
+    json["surface_grips"] = s.surface_grips;
     return json.dump();
 }
 
@@ -44,6 +45,9 @@ DriveSession parse_session(std::string_view text) {
         s.distance_m = json.at("distance_m").get<double>();
         s.top_speed_kmh = json.at("top_speed_kmh").get<double>();
         s.lap_times_s = json.at("lap_times_s").get<std::vector<double>>();
+        // Sessions saved before surfaces had none: every surface the dry road.
+        if (json.contains("surface_grips"))
+            s.surface_grips = json.at("surface_grips").get<std::vector<double>>();
         if (s.free_mode == s.autopilot.has_value())
             throw Error(s.free_mode ? "free mode with an autopilot" : "no autopilot progress");
         return s;
@@ -53,6 +57,18 @@ DriveSession parse_session(std::string_view text) {
         throw Error(std::string("the snapshot's drive session is not valid: ") + e.what());
     }
 }
+
+namespace {
+
+std::string grips_option(const std::vector<double>& grips) {
+    if (grips.empty()) return "no --surface-grips";
+    std::ostringstream text;
+    text << "--surface-grips ";
+    for (std::size_t i = 0; i < grips.size(); ++i) text << (i ? "," : "") << grips[i];
+    return text.str();
+}
+
+}  // namespace
 
 void check_same_drive(const DriveSession& saved, const DriveSession& now) {
     std::ostringstream why;
@@ -68,6 +84,9 @@ void check_same_drive(const DriveSession& saved, const DriveSession& now) {
     else if (saved.free_mode && (saved.throttle != now.throttle || saved.steer != now.steer))
         why << "the snapshot was made with --throttle " << saved.throttle << " --steer "
             << saved.steer << ", this drive has " << now.throttle << ' ' << now.steer;
+    else if (saved.surface_grips != now.surface_grips)
+        why << "the snapshot was made with " << grips_option(saved.surface_grips)
+            << ", this drive has " << grips_option(now.surface_grips);
     if (why.tellp() > 0)
         throw Error("--resume: " + why.str() + " (resume with the original drive's options)");
 }

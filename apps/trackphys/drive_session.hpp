@@ -24,6 +24,7 @@ struct DriveSession {
     double distance_m = 0.0;
     double top_speed_kmh = 0.0;
     std::vector<double> lap_times_s;
+    std::vector<double> surface_grips;  ///< --surface-grips (Scenario::surfaces), by id
 };
 
 /// The session as JSON text (doubles round-trip exactly).

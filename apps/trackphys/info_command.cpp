@@ -1,9 +1,11 @@
 // `trackphys info FILE`: what a static collider would get from a mesh file, or what a baked
 // map holds (map_info.cpp).
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -19,7 +21,31 @@ namespace {
 
 nlohmann::json to_json(const glm::dvec3& v) { return nlohmann::json::array({v.x, v.y, v.z}); }
 
-void print_json(const InfoOptions& options, const MeshLoadReport& r) {
+// What --surface-grips and WorldSettings::surfaces index: each surface id's material (its
+// name in the file, report.materials) and how many triangles have it.
+struct SurfaceInfo {
+    std::string material;
+    std::size_t triangles = 0;
+};
+
+std::vector<SurfaceInfo> surfaces_in(const TriangleMesh& mesh, const MeshLoadReport& r) {
+    std::vector<SurfaceInfo> surfaces(std::max<std::size_t>(r.materials.size(), 1));
+    for (std::size_t id = 0; id < r.materials.size(); ++id) surfaces[id].material = r.materials[id];
+    if (mesh.surfaces.empty()) surfaces[0].triangles = mesh.triangles.size();
+    for (const SurfaceId id : mesh.surfaces) {
+        if (id >= surfaces.size()) surfaces.resize(std::size_t{id} + 1);
+        ++surfaces[id].triangles;
+    }
+    return surfaces;
+}
+
+void print_json(const InfoOptions& options, const MeshLoadReport& r,
+                const std::vector<SurfaceInfo>& surfaces) {
+    nlohmann::json surface_list = nlohmann::json::array();
+    for (std::size_t id = 0; id < surfaces.size(); ++id)
+        surface_list.push_back({{"id", id},
+                                {"material", surfaces[id].material},
+                                {"triangles", surfaces[id].triangles}});
     const nlohmann::json out = {
         {"file", options.file},
         {"triangles", r.triangles},
@@ -35,6 +61,7 @@ void print_json(const InfoOptions& options, const MeshLoadReport& r) {
         {"lines_skipped", r.lines_skipped},
         {"triangulation_lost", r.triangulation_lost},
         {"mirrored_instances", r.mirrored_instances},
+        {"surfaces", surface_list},
     };
     std::printf("%s\n", out.dump(2).c_str());
 }
@@ -43,7 +70,8 @@ void print_vector(const char* label, const glm::dvec3& v) {
     std::printf("%-20s %.6f %.6f %.6f m\n", label, v.x, v.y, v.z);
 }
 
-void print_text(const InfoOptions& options, const MeshLoadReport& r) {
+void print_text(const InfoOptions& options, const MeshLoadReport& r,
+                const std::vector<SurfaceInfo>& surfaces) {
     std::printf("%-20s %s\n", "file", options.file.c_str());
     std::printf("%-20s %zu\n", "triangles", r.triangles);
     std::printf("%-20s %zu\n", "vertices", r.vertices);
@@ -57,6 +85,9 @@ void print_text(const InfoOptions& options, const MeshLoadReport& r) {
     std::printf("%-20s %zu\n", "lines skipped", r.lines_skipped);
     std::printf("%-20s %zu\n", "triangulation lost", r.triangulation_lost);
     std::printf("%-20s %zu\n", "mirrored instances", r.mirrored_instances);
+    for (std::size_t id = 0; id < surfaces.size(); ++id)
+        std::printf("%-20s %zu: %zu triangles, material '%s'\n", id == 0 ? "surfaces" : "", id,
+                    surfaces[id].triangles, surfaces[id].material.c_str());
 }
 
 }  // namespace
@@ -76,10 +107,11 @@ void run_info(const InfoOptions& options) {
     } catch (const Error& e) {
         throw Error("mesh file '" + options.file + "': a static collider refuses it: " + e.what());
     }
+    const std::vector<SurfaceInfo> surfaces = surfaces_in(mesh, report);
     if (options.json)
-        print_json(options, report);
+        print_json(options, report, surfaces);
     else
-        print_text(options, report);
+        print_text(options, report, surfaces);
 }
 
 }  // namespace trackphys::cli

@@ -4,6 +4,8 @@
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <span>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -20,6 +22,26 @@ struct MapFigures {
 
     double per_triangle(double bytes) const { return kept > 0 ? bytes / double(kept) : 0.0; }
 };
+
+// The kept triangles of each surface id (what --surface-grips indexes; a map keeps the ids,
+// not the mesh's material names).
+std::vector<std::size_t> triangles_per_surface(const StaticWorld& statics) {
+    std::vector<std::size_t> counts(1, 0);
+    for (std::uint32_t id = 0; id < statics.size(); ++id) {
+        const StaticCollider& collider = statics.collider(id);
+        const std::span<const SurfaceId> surfaces = collider.surfaces();
+        if (surfaces.empty()) {
+            counts[0] += collider.triangle_count();
+            continue;
+        }
+        for (std::uint32_t t = 0; t < surfaces.size(); ++t) {
+            if (!collider.has_triangle(t)) continue;
+            if (surfaces[t] >= counts.size()) counts.resize(std::size_t{surfaces[t]} + 1, 0);
+            ++counts[surfaces[t]];
+        }
+    }
+    return counts;
+}
 
 nlohmann::json to_json(const glm::dvec3& v) { return nlohmann::json::array({v.x, v.y, v.z}); }
 
@@ -42,6 +64,7 @@ void print_map_info(const std::string& file, bool json) {
         f.tree_bytes += map.plane_trees[id]->bytes_used();
         bounds.expand(c.bounds());
     }
+    const std::vector<std::size_t> surfaces = triangles_per_surface(*map.statics);
     const PlaneTreeSettings& s = map.plane_tree_settings;
     const char* rule = s.rule == PlaneSplitRule::cost_based ? "cost_based" : "pca_median";
     if (json) {
@@ -62,7 +85,10 @@ void print_map_info(const std::string& file, bool json) {
             {"collider_bytes", f.collider_bytes},
             {"plane_tree_bytes", f.tree_bytes},
             {"load_ms", f.load_ms},
+            {"surfaces", nlohmann::json::array()},
         };
+        for (std::size_t id = 0; id < surfaces.size(); ++id)
+            out["surfaces"].push_back({{"id", id}, {"triangles", surfaces[id]}});
         if (map.track)
             out["track"] = {{"seed", map.track->params.seed},
                             {"length_m", map.track->length_m},
@@ -85,6 +111,8 @@ void print_map_info(const std::string& file, bool json) {
                     map.track->centerline.size());
     else
         std::printf("%-20s none (baked from a mesh: drive it with --spawn)\n", "track");
+    for (std::size_t id = 0; id < surfaces.size(); ++id)
+        std::printf("%-20s %zu: %zu triangles\n", id == 0 ? "surfaces" : "", id, surfaces[id]);
     std::printf("%-20s %.1f MB, %.1f bytes a triangle\n", "file", double(f.file_bytes) / 1e6,
                 f.per_triangle(double(f.file_bytes)));
     std::printf("%-20s %.1f MB, %.1f bytes a triangle\n", "colliders in memory",

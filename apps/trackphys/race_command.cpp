@@ -52,6 +52,7 @@ Race build_race(const RaceOptions& o, const OptionGiven& given) {
         throw Error("--seed picks a generated track, but this race is on the map '" +
                     o.map.string() + "'");
     if (given("--seed")) s.seed = o.seed;
+    if (given("--surface-grips")) s.surfaces = surfaces_of(o.surface_grips);
     refuse_zero_duration(given, o.laps, o.seconds);
     if (given("--laps")) s.laps = o.laps;
     if (given("--seconds")) s.seconds = o.seconds;
@@ -67,6 +68,7 @@ constexpr double kMaxSecondsPerLap = 600.0;
 // The option that sets each Scenario field race reads, to name it in validate()'s messages.
 constexpr std::pair<const char*, const char*> kFieldOptions[] = {
     {"Scenario.cars", "--cars"},
+    {"Scenario.surfaces", "--surface-grips"},
     {"Scenario.laps", "--laps"},
     {"Scenario.seconds", "--seconds"},
 };
@@ -130,6 +132,7 @@ void run_race(const RaceOptions& o, const OptionGiven& given) {
     WorldSettings settings = tool_world_settings();
     // The trace records the calling thread's zones only: a full profile needs one thread.
     settings.threads = o.trace.empty() ? o.threads : 1;
+    settings.surfaces = surface_table(scene, s.surfaces);
     World world(scene.statics, settings, scene.plane_trees);
     const CarSpec& car = s.car;
     RaceDrivers drivers(*scene.track, car, cars, race.settings);
@@ -159,7 +162,7 @@ void run_race(const RaceOptions& o, const OptionGiven& given) {
     if (!svg.empty()) plot.paths.resize(cars);
 
     RaceReport report;
-    report.scene = scene.description;
+    report.scene = scene.description + describe_grips(s.surfaces);
     report.cars = cars;
     report.threads = settings.thread_count();
     ProgressBar progress(laps > 0 ? static_cast<double>(laps) : seconds);

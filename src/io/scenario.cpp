@@ -48,6 +48,17 @@ void read_track(ObjectReader& scenario, Scenario& s, const std::filesystem::path
         json_io::fail(track.source(), track.path_of("heading_deg"),
                       "a heading applies to a spawn point (free mode): add 'spawn'");
     track.read("heading_deg", s.heading_deg);
+    if (const Json* list = track.find("surfaces")) {
+        if (!list->is_array())
+            json_io::fail(track.source(), track.path_of("surfaces"),
+                          "expected an array of surfaces ({\"grip\": g} by surface id)");
+        for (std::size_t i = 0; i < list->size(); ++i) {
+            ObjectReader surface((*list)[i], json_io::index_path(track.path_of("surfaces"), i),
+                                 track.source());
+            surface.read("grip", s.surfaces.emplace_back().grip);
+            surface.finish();
+        }
+    }
     track.finish();
 }
 
@@ -111,6 +122,7 @@ std::string Scenario::validate() const {
             << spawn->z << ")";
     if (why.tellp() == 0 && !std::isfinite(heading_deg))
         why << "Scenario.heading_deg must be finite, got " << heading_deg;
+    if (why.tellp() == 0) why << check_surface_table(surfaces, "Scenario.surfaces");
     if (why.tellp() == 0 && !(target_speed_kmh > 0.0 && target_speed_kmh <= max_target_speed_kmh))
         why << "Scenario.target_speed_kmh must be in (0, " << max_target_speed_kmh << "], got "
             << target_speed_kmh;
@@ -167,6 +179,10 @@ std::string scenario_to_json(const Scenario& s) {
     if (s.spawn) {
         track["spawn"] = Json::array({s.spawn->x, s.spawn->y, s.spawn->z});
         track["heading_deg"] = s.heading_deg;
+    }
+    if (!s.surfaces.empty()) {
+        Json& surfaces = track["surfaces"] = Json::array();
+        for (const Surface& surface : s.surfaces) surfaces.push_back({{"grip", surface.grip}});
     }
     Json out = {{"track", std::move(track)}, {"car", json_io::car_spec_to_json_value(s.car)}};
     if (s.free_mode())

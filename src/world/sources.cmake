@@ -9,6 +9,7 @@ target_sources(trackphys PRIVATE
   world/race_drivers.cpp
   world/race_grid.cpp
   world/spawn.cpp
+  world/surface.cpp
   world/thread_pool.cpp
   world/world.cpp
   world/world_debug_draw.cpp

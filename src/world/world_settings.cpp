@@ -43,15 +43,9 @@ std::string WorldSettings::validate() const {
     else if (!(max_spawn_distance >= 0.0))
         why << "WorldSettings.max_spawn_distance must be >= 0 (infinity for no limit), got "
             << max_spawn_distance;
-    else if (surfaces.size() > std::size_t{1} << 16)
-        why << "WorldSettings.surfaces has " << surfaces.size()
-            << " entries, more than the 65536 surface ids";
-    else if (const auto bad = std::find_if(
-                 surfaces.begin(), surfaces.end(),
-                 [](const Surface& s) { return !(std::isfinite(s.grip) && s.grip > 0.0); });
-             bad != surfaces.end())
-        why << "WorldSettings.surfaces[" << bad - surfaces.begin()
-            << "].grip must be finite and > 0, got " << bad->grip;
+    else if (const std::string bad = check_surface_table(surfaces, "WorldSettings.surfaces");
+             !bad.empty())
+        why << bad;
     else if (threads < 0 || threads > 256)
         why << "WorldSettings.threads must be in [0, 256] (0: the hardware's count), got "
             << threads;

@@ -75,6 +75,37 @@ TEST_F(InfoCommand, PrintsCountsBoundsAndDrops) {
     EXPECT_DOUBLE_EQ(info["area_m2"].get<double>(), 2.0 * std::sqrt(10.0));
 }
 
+// The surface ids that --surface-grips and WorldSettings::surfaces index, with their
+// materials: assimp numbers an OBJ file's materials after its own default one, in the order
+// the faces first use them (not the .mtl file's), which is why a user needs this list.
+TEST_F(InfoCommand, ListsTheSurfacesByIdWithTheirMaterials) {
+    test::write_file(file("two.mtl"), "newmtl road\nKd 0.5 0.5 0.5\nnewmtl grass\nKd 0 1 0\n");
+    test::write_file(file("two.obj"),
+                     "mtllib two.mtl\nv 0 0 0\nv 1 0 0\nv 1 0 -1\nv 0 0 -1\n"
+                     "usemtl grass\nf 1 2 3\nusemtl road\nf 1 3 4\nusemtl grass\nf 2 3 4\n");
+    const CommandResult text = run("info " + quoted("two.obj"));
+    ASSERT_EQ(text.exit_code, 0) << text.err;
+    EXPECT_NE(text.out.find("surfaces             0: 0 triangles, material 'DefaultMaterial'\n"
+                            "                     1: 2 triangles, material 'grass'\n"
+                            "                     2: 1 triangles, material 'road'\n"),
+              std::string::npos)
+        << text.out;
+
+    const nlohmann::json surfaces =
+        nlohmann::json::parse(run("info --json " + quoted("two.obj")).out)["surfaces"];
+    ASSERT_EQ(surfaces.size(), 3u);
+    EXPECT_EQ(surfaces[1]["id"], 1);
+    EXPECT_EQ(surfaces[1]["material"], "grass");
+    EXPECT_EQ(surfaces[1]["triangles"], 2);
+
+    // Without materials every triangle is surface 0.
+    test::write_file(file("plain.obj"), "v 0 0 0\nv 1 0 0\nv 1 0 -1\nf 1 2 3\n");
+    const nlohmann::json plain =
+        nlohmann::json::parse(run("info --json " + quoted("plain.obj")).out)["surfaces"];
+    ASSERT_EQ(plain.size(), 1u);
+    EXPECT_EQ(plain[0]["triangles"], 1);
+}
+
 TEST_F(InfoCommand, ReadsWhatSaveMeshWrites) {
     save_mesh({{{0, 0, 0}, {1, 0, 0}, {0, 0, -1}}, {{0, 1, 2}}}, file("t.glb"));
     const CommandResult result = run("info --json " + quoted("t.glb"));

@@ -13,11 +13,16 @@ trackphys_cli_test(map.drive_pinned_state_hash 0 "map .*seed7.tpmap.*state hash 
                    drive --map ${maps}/seed7.tpmap --seconds 10)
 trackphys_cli_test(map.info 0 "format version 4.*colliders +50.*track +seed 7"
                    info ${maps}/seed7.tpmap)
+# The generated track's surfaces, kept in the map: its road (0) and its walls (1).
+trackphys_cli_test(map.info_lists_the_surfaces 0
+                   "surfaces +0: 189280 triangles\n +1: 113568 triangles\n"
+                   info ${maps}/seed7.tpmap)
 trackphys_cli_test(map.drive_a_mesh_map_free 0 "map .*flat.tpmap.*state hash"
                    drive --map ${maps}/flat.tpmap --spawn 0,3,0 --seconds 1)
 trackphys_cli_test(map.drive_a_mesh_map_needs_a_spawn 1 "baked from a mesh and has no centreline"
                    drive --map ${maps}/flat.tpmap --seconds 1)
-set_tests_properties(map.drive_pinned_state_hash map.info map.drive_a_mesh_map_free
+set_tests_properties(map.drive_pinned_state_hash map.info map.info_lists_the_surfaces
+                     map.drive_a_mesh_map_free
                      map.drive_a_mesh_map_needs_a_spawn PROPERTIES FIXTURES_REQUIRED baked_maps)
 
 # race --map: the baked track races as the generated one (the same hash as race --seed 7);

@@ -213,6 +213,18 @@ TEST(ScenarioJson, ReadsEveryKeyAndRoundTrips) {
     const Scenario race = parse_scenario(R"({"cars": 20, "laps": 3})");
     EXPECT_EQ(race.cars, 20);
     EXPECT_EQ(parse_scenario(scenario_to_json(race)).cars, 20);
+    EXPECT_TRUE(race.surfaces.empty());
+
+    const Scenario icy =
+        parse_scenario(R"({"track": {"seed": 7, "surfaces": [{"grip": 0.1}, {}, {"grip": 0.6}]}})");
+    ASSERT_EQ(icy.surfaces.size(), 3u);
+    EXPECT_EQ(icy.surfaces[0].grip, 0.1);
+    EXPECT_EQ(icy.surfaces[1].grip, 1.0) << "a key left out keeps the dry road";
+    EXPECT_EQ(icy.surfaces[2].grip, 0.6);
+    const Scenario icy_again = parse_scenario(scenario_to_json(icy));
+    ASSERT_EQ(icy_again.surfaces.size(), 3u);
+    EXPECT_EQ(icy_again.surfaces[2].grip, 0.6);
+    EXPECT_EQ(scenario_to_json(icy_again), scenario_to_json(icy));
 }
 
 TEST(ScenarioJson, EveryBadFileNamesTheKeyAndTheReason) {
@@ -251,6 +263,16 @@ TEST(ScenarioJson, EveryBadFileNamesTheKeyAndTheReason) {
          "Scenario.target_speed_kmh must be in (0, 1500], got 2000"},
         {R"({"autopilot": {"speed": 200}})",
          "autopilot.speed: unknown key (expected one of: target_speed_kmh)"},
+        {R"({"track": {"surfaces": {"grip": 1}}})",
+         "track.surfaces: expected an array of surfaces"},
+        {R"({"track": {"surfaces": [{"grip": 1}, {"grip": 0}]}})",
+         "Scenario.surfaces[1].grip must be finite and > 0, got 0"},
+        {R"({"track": {"surfaces": [{"grip": -2}]}})",
+         "Scenario.surfaces[0].grip must be finite and > 0, got -2"},
+        {R"({"track": {"surfaces": [{"friction": 1}]}})",
+         "track.surfaces[0].friction: unknown key (expected one of: grip)"},
+        {R"({"track": {"surfaces": [5]}})",
+         "track.surfaces[0]: expected an object, got the number 5"},
         {R"({"cars": 0})", "Scenario.cars must be in [1, 128], got 0"},
         {R"({"cars": 129})", "Scenario.cars must be in [1, 128], got 129"},
         {R"({"cars": 2, "track": {"spawn": [0, 1, 0]}, "seconds": 1})",

@@ -5,6 +5,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <glm/vec3.hpp>
 
@@ -12,6 +13,7 @@
 #include "trackphys/dynamics/car_spec.hpp"
 #include "trackphys/export.hpp"
 #include "trackphys/track/track_params.hpp"
+#include "trackphys/world/surface.hpp"
 
 /// Scenarios: what `trackphys drive --scenario FILE` drives, as a value and as a JSON file.
 ///
@@ -19,6 +21,7 @@
 ///       "track": {"seed": 7},                  the generated track of that seed, or
 ///       "track": {"mesh": "g-track-1.ac", "spawn": [0, 50, 0], "heading_deg": 90}, or
 ///       "track": {"map": "oval.tpmap"},        a baked map (trackphys bake; spawn optional)
+///       "track": {..., "surfaces": [{"grip": 1}, {"grip": 0.6}]},   grips by surface id
 ///       "car": {...} or "car.json",            inline (car_spec_json.hpp) or a car spec file
 ///       "autopilot": {"target_speed_kmh": 600},       drives the generated track, or
 ///       "inputs": {"throttle": 0.5, "brake": 0, "steer": 0},   fixed inputs, needs a spawn
@@ -56,6 +59,10 @@ struct TRACKPHYS_API Scenario {
     /// below it; it drives with `inputs` instead of the autopilot.
     std::optional<glm::dvec3> spawn;
     double heading_deg = 0.0;  ///< free mode: about +Y, 0 = +X, 90 = -Z (degrees)
+    /// The grip of the track's surfaces by id (TriangleMesh::surfaces: a mesh's materials in
+    /// order; the generated track's road 0, its walls 1), from id 0; ids past the list are
+    /// the dry road (grip 1). Empty: every surface is (WorldSettings::surfaces).
+    std::vector<Surface> surfaces;
     CarSpec car = CarSpec::default_car();
     double target_speed_kmh = 600.0;  ///< autopilot: speed on straights, (0, 1500]
     /// Free mode: fixed throttle (-1..1, < 0 reverse), brake (0..1) and steer (-1..1).

@@ -1,8 +1,12 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
+#include <string>
+#include <string_view>
 
 #include "trackphys/collision/static_collider.hpp"
+#include "trackphys/export.hpp"
 #include "trackphys/geometry/triangle_mesh.hpp"
 
 namespace trackphys {
@@ -16,6 +20,15 @@ struct Surface {
     /// Vehicle::set_road_grip), and any car's body friction.
     double grip = 1.0;
 };
+
+/// The most entries a surface table holds: one per SurfaceId.
+inline constexpr std::size_t max_surfaces = std::size_t{1} << 16;
+
+/// Empty when `table` can be a surface table (WorldSettings::surfaces): at most max_surfaces
+/// entries, each grip finite and > 0. Otherwise the first problem, the table called `name`
+/// ("WorldSettings.surfaces[2].grip must be finite and > 0, got -1").
+TRACKPHYS_API std::string check_surface_table(std::span<const Surface> table,
+                                              std::string_view name);
 
 /// What ellipsoid k of a car touched at the last sub-step of the last update
 /// (World::contact_surface): the triangle of its deepest contact and that triangle's surface.

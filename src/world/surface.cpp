@@ -1,0 +1,23 @@
+#include "trackphys/world/surface.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace trackphys {
+
+std::string check_surface_table(std::span<const Surface> table, std::string_view name) {
+    std::ostringstream why;
+    if (table.size() > max_surfaces)
+        why << name << " has " << table.size() << " entries, more than the " << max_surfaces
+            << " surface ids";
+    else if (const auto bad = std::find_if(
+                 table.begin(), table.end(),
+                 [](const Surface& s) { return !(std::isfinite(s.grip) && s.grip > 0.0); });
+             bad != table.end())
+        why << name << "[" << bad - table.begin() << "].grip must be finite and > 0, got "
+            << bad->grip;
+    return why.str();
+}
+
+}  // namespace trackphys
