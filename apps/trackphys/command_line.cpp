@@ -69,9 +69,9 @@ void add_mesh_limit_options(CLI::App& command, MeshLoadLimits& limits) {
 void add_surface_grips_option(CLI::App& command, std::vector<double>& grips) {
     command
         .add_option("--surface-grips", grips,
-                    "Grip of the track's surfaces by id, from 0 (a mesh's materials in order; "
-                    "the generated track's road 0, walls 1); the ids past them grip 1, the dry "
-                    "road")
+                    "Grip of the track's surfaces by id, from 0 (`trackphys info MESH` lists a "
+                    "mesh's; the generated track's road 0, walls 1); the ids past them grip 1, "
+                    "the dry road")
         ->delimiter(',')
         ->type_name("G0,G1,...");
 }
