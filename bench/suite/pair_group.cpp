@@ -255,7 +255,8 @@ void bench_pair_peers(BenchRun& run) {
     // mean over a whole family is mostly its few searched pairs, which the single call's
     // median leaves out.
     bool batch_same = true;
-    double batch_car_like_ns = 0.0, batch_car_like_whole_ns = 0.0;
+    double batch_car_like_ns = 0.0, batch_car_like_whole_ns = 0.0, cycled_car_like_ns = 0.0;
+    std::size_t unsearched_car_like = 0;
     for (const peers::PairFamily& family : families) {
         const std::string name = test::pair_kind_name(family.kind);
         for (const bool unsearched : {false, true}) {
@@ -277,6 +278,8 @@ void bench_pair_peers(BenchRun& run) {
             if (family.kind == test::PairKind::car_like) {
                 figures(run.add(kGroup, pairs + ": trackphys batches of 8", s.eights_ns, single));
                 (unsearched ? batch_car_like_ns : batch_car_like_whole_ns) = s.batch_ns;
+                if (unsearched) cycled_car_like_ns = s.single_ns;
+                if (unsearched) unsearched_car_like = lists.a.size();
             }
         }
     }
@@ -312,7 +315,13 @@ void bench_pair_peers(BenchRun& run) {
                        150.0 / ns, 1.0, held, why);
     };
     const double ours_ns = car_like_ns[0];
-    add_150_ns_line("car-like", "median", ours_ns, contract, pair_evidence);
+    // The median times each pair over back-to-back calls, whose branches the CPU learns; one
+    // call a pair over a list of them, as a game's sub-step makes, is beside it.
+    std::snprintf(evidence, sizeof evidence,
+                  "; one call a pair cycled over the %zu pairs certified without a search: "
+                  "%.0f ns a pair",
+                  unsearched_car_like, cycled_car_like_ns);
+    add_150_ns_line("car-like", "median", ours_ns, contract, pair_evidence + evidence);
     std::snprintf(evidence, sizeof evidence,
                   "warm: err_max %.2g m over %zu car-like pairs; the minimiser turns %.2g rad "
                   "(median), %.2g (90th percentile) in a sub-step",
@@ -322,15 +331,18 @@ void bench_pair_peers(BenchRun& run) {
                   "; car-like pairs certified without a search (the whole family, searches "
                   "included: %.0f ns); the batch's contacts %s the single call's",
                   batch_car_like_whole_ns, batch_same ? "are" : "are NOT");
-    add_150_ns_line("car-like, batched", "mean time a pair", batch_car_like_ns,
-                    contract && batch_same, pair_evidence + evidence);
+    add_150_ns_line("car-like certified without a search, batched", "mean time a pair",
+                    batch_car_like_ns, contract && batch_same, pair_evidence + evidence);
     const double slower_rejection = std::max(spheres_ns, gap_ns);
     std::snprintf(evidence, sizeof evidence, "spheres %.1f ns, gap %.1f ns; %zu rejected pairs, %s",
                   spheres_ns, gap_ns, rejections.by_spheres.size() + rejections.by_gap.size(),
                   rejections.proven ? "every one beyond reach by the reference"
                                     : "ONE WITHIN REACH by the reference");
-    run.add_target("ellipsoid pair rejection: 20 ns / the slower certificate's median",
-                   20.0 / slower_rejection, 1.0, rejections.proven, evidence);
+    run.add_target(
+        "ellipsoid pair rejection: 20 ns / the slower certificate's median",
+        20.0 / slower_rejection, 1.0,
+        rejections.proven && !rejections.by_spheres.empty() && !rejections.by_gap.empty(),
+        evidence);
     if (methods.size() > 1) {
         std::size_t fastest = 1, most_accurate = 1;
         for (std::size_t m = 2; m < methods.size(); ++m) {
@@ -340,11 +352,13 @@ void bench_pair_peers(BenchRun& run) {
         run.add_target(
             "ellipsoid pair, car-like: fastest peer's time / ours (" + methods[fastest].name + ")",
             car_like_ns[fastest] / ours_ns, 10.0, contract, pair_evidence);
-        // Our errors are ~1e-15 m or exactly 0: a floor of 1e-15 m keeps the ratio finite.
+        // Our errors are ~1e-15 m or exactly 0: a floor of 1e-15 m keeps the ratio finite. A
+        // peer that failed on any pair has an infinite error: when every peer has, no peer
+        // answered every pair, and there is no accuracy to compare.
         run.add_target("ellipsoid pair: most accurate peer's max error / ours (" +
                            methods[most_accurate].name + ")",
-                       worst_error[most_accurate] / std::max(our_error, 1e-15), 100.0, contract,
-                       pair_evidence);
+                       worst_error[most_accurate] / std::max(our_error, 1e-15), 100.0,
+                       contract && std::isfinite(worst_error[most_accurate]), pair_evidence);
     }
 }
 

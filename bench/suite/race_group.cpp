@@ -29,6 +29,8 @@ struct RaceTiming {
     double mean_ns = 0.0;      // wall clock
     double cpu_mean_ns = 0.0;  // this thread's CPU time: the whole update on one thread
     std::uint64_t state_hash = 0;
+    std::uint64_t resets = 0;   // the reset policy's, over the field
+    std::uint64_t rescues = 0;  // cars put back on the road by RaceDrivers
 };
 
 double mean(const std::vector<double>& x) {
@@ -74,6 +76,10 @@ class TimedRace {
         timing.cpu_mean_ns = mean(cpu_ns_);
         timing.update_ns = spread(ns_);
         timing.state_hash = world_.state_hash();
+        for (std::size_t i = 0; i < world_.car_count(); ++i) {
+            timing.resets += world_.car_resets(i);
+            timing.rescues += drivers_.rescues(i);
+        }
         return timing;
     }
 
@@ -253,6 +259,7 @@ void bench_race(BenchRun& run) {
     double load[1] = {0.0};
     getloadavg(load, 1);  // the threads' ratio needs a free core
     double per_car_worst_us = 0.0;
+    std::uint64_t resets_1 = 0, rescues_1 = 0;  // over every field's one-thread race
     double p99_64_on_2_us = 0.0;
     double median_64[3] = {};
     std::uint64_t hash_64[3] = {};
@@ -280,6 +287,8 @@ void bench_race(BenchRun& run) {
                 const double cpu_per_car_us = t.cpu_mean_ns * 1e-3 / static_cast<double>(cars);
                 row.figures.emplace_back("cpu_per_car_us", cpu_per_car_us);
                 per_car_worst_us = std::max(per_car_worst_us, cpu_per_car_us);
+                resets_1 += t.resets;
+                rescues_1 += t.rescues;
             }
             if (cars == 64) {
                 median_64[threads] = t.update_ns.median;
@@ -306,9 +315,13 @@ void bench_race(BenchRun& run) {
     BenchRow& schedule = run.add("race", "64 cars, 2 workers' critical path", 0.0);
     schedule.figures = {{"speed_up", allowed}};
     schedule.note = "thread CPU: 1-thread update over broad phase + busiest worker's islands";
-    std::snprintf(evidence, sizeof evidence, "worst %.1f us CPU per car-update", per_car_worst_us);
+    // A car the reset policy put back skipped the work it would have done.
+    std::snprintf(evidence, sizeof evidence,
+                  "worst %.1f us CPU per car-update; resets %llu, rescues %llu over the fields",
+                  per_car_worst_us, static_cast<unsigned long long>(resets_1),
+                  static_cast<unsigned long long>(rescues_1));
     run.add_target("race: 50 us per car-update on 1 thread, any field", 50.0 / per_car_worst_us,
-                   1.0, true, evidence);
+                   1.0, resets_1 == 0, evidence);
 
     run.progress("race", "a pair of cars apart");
     const PairCost pair = time_pair(scene, trees, run.quick() ? 1 : 5);
