@@ -27,14 +27,17 @@ int main() {
     runner.set_inputs(1, 0, {.throttle = 1.0, .brake = 0.0, .steer = 0.0});
     runner.set_inputs(50, 0, {.throttle = 0.0, .brake = 1.0, .steer = 0.0});  // at 0.5 s
 
-    // The render thread draws a frame every 1/60 s at a simulated time of its own choosing,
-    // here half an update behind the newest state; it only checks that each pose it reads
-    // stands on the ground.
+    // The render thread draws a frame every 1/60 s at a simulated time from its own clock,
+    // one update behind the wall clock, so that the states around it are (nearly always)
+    // published; it only checks that each pose it reads stands on the ground. (A time
+    // taken from published_update() and a pose read after it may come from two frames.)
     std::atomic<bool> done = false;
     int frames = 0, off_ground = 0;
+    const auto started = std::chrono::steady_clock::now();
     std::thread render([&] {
         while (!done.load()) {
-            const double t = runner.published_update() * 0.01 - 0.005;  // between two states
+            const std::chrono::duration<double> wall = std::chrono::steady_clock::now() - started;
+            const double t = wall.count() - 0.01;
             const CarPose pose = runner.pose(0, t);
             off_ground += !(pose.position.y > 0.0 && pose.position.y < 1.0);
             ++frames;

@@ -29,7 +29,10 @@ namespace trackphys {
 /// that world() has added a car to or removed one from behind the runner's back.
 ///
 /// Threads: one game thread (start, run_to, stop, set_inputs, remove_car, world) and one
-/// render thread (pose, view, published_update); the physics thread is the runner's own.
+/// render thread (pose, view, published_update; const, but a second reader at once would
+/// race with the first over the buffer they take turns on); the physics thread is the
+/// runner's own. Each render call reads the newest frame, so two calls may read two frames:
+/// take the render time from the game's clock, not from published_update().
 /// Inputs go through a mutex (a few per update); publishing is a lock-free triple buffer (the
 /// render thread always reads a complete pair of states, the newest one published).
 class TRACKPHYS_API PhysicsRunner {
