@@ -32,6 +32,7 @@
 #include "trackphys/profile/trace_recorder.hpp"
 #include "trackphys/world/autopilot.hpp"
 #include "trackphys/world/world.hpp"
+#include "trackphys/world/world_snapshot.hpp"
 
 namespace trackphys::cli {
 namespace {
@@ -199,6 +200,12 @@ void run_drive(const DriveOptions& o, const OptionGiven& given) {
         resume = load_snapshot(o.resume);
         const DriveSession saved = parse_session(resume->user_data);
         check_same_drive(saved, session);
+        // World::restore_state would refuse it too, but by the spec's fingerprint alone.
+        if (resume->world.cars.size() == 1 &&
+            resume->world.cars[0].spec_fingerprint != fingerprint(s.car))
+            throw Error(
+                "--resume: the snapshot was made with another car (--car, --car-preset "
+                "or the scenario's car; resume with the original drive's options)");
         session = saved;
     }
 

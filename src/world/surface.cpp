@@ -1,7 +1,6 @@
 #include "trackphys/world/surface.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <sstream>
 
 namespace trackphys {
@@ -13,10 +12,10 @@ std::string check_surface_table(std::span<const Surface> table, std::string_view
             << " surface ids";
     else if (const auto bad = std::find_if(
                  table.begin(), table.end(),
-                 [](const Surface& s) { return !(std::isfinite(s.grip) && s.grip > 0.0); });
+                 [](const Surface& s) { return !(s.grip > 0.0 && s.grip <= max_surface_grip); });
              bad != table.end())
-        why << name << "[" << bad - table.begin() << "].grip must be finite and > 0, got "
-            << bad->grip;
+        why << name << "[" << bad - table.begin() << "].grip must be in (0, " << max_surface_grip
+            << "], got " << bad->grip;
     return why.str();
 }
 
