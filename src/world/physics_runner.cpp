@@ -47,7 +47,7 @@ PhysicsRunner::~PhysicsRunner() {
 }
 
 void PhysicsRunner::run_to(std::uint64_t last_update) {
-    if (thread_.joinable()) throw Error("PhysicsRunner::run_to: the physics thread runs already");
+    if (still_running()) throw Error("PhysicsRunner::run_to: the physics thread runs already");
     if (world_.roster_version() != roster_version_)
         throw Error(
             "PhysicsRunner::run_to: cars were added to or removed from world() since "
@@ -57,7 +57,15 @@ void PhysicsRunner::run_to(std::uint64_t last_update) {
             "runner for another field)");
     stopping_.store(false);
     error_ = nullptr;
+    running_.store(true, std::memory_order_relaxed);
     thread_ = std::thread([this, last_update] { loop(last_update); });
+}
+
+bool PhysicsRunner::still_running() {
+    if (!thread_.joinable()) return false;
+    if (running()) return true;
+    wait();
+    return false;
 }
 
 void PhysicsRunner::wait() {
@@ -71,7 +79,7 @@ void PhysicsRunner::stop() {
 }
 
 void PhysicsRunner::remove_car(std::size_t car) {
-    if (thread_.joinable()) throw Error("PhysicsRunner::remove_car: the physics thread is running");
+    if (still_running()) throw Error("PhysicsRunner::remove_car: the physics thread is running");
     check_present(car, removed_, "PhysicsRunner::remove_car");
     world_.remove_car(world_index_[car]);
     roster_version_ = world_.roster_version();
@@ -85,7 +93,7 @@ void PhysicsRunner::remove_car(std::size_t car) {
 }
 
 World& PhysicsRunner::world() {
-    if (thread_.joinable()) throw Error("PhysicsRunner::world: the physics thread is running");
+    if (still_running()) throw Error("PhysicsRunner::world: the physics thread is running");
     return world_;
 }
 
@@ -132,6 +140,7 @@ void PhysicsRunner::loop(std::uint64_t last_update) {
     } catch (...) {
         error_ = std::current_exception();
     }
+    running_.store(false, std::memory_order_release);
 }
 
 void PhysicsRunner::publish() {

@@ -5,6 +5,7 @@
 #include "trackphys/world/physics_runner.hpp"
 
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -19,15 +20,17 @@
 #include "support/error_message.hpp"
 #include "tool_world_settings.hpp"
 #include "trackphys/error.hpp"
+#include "trackphys/world/job_system.hpp"
 #include "trackphys/world/world.hpp"
 #include "world/world_scenes.hpp"
 
 namespace trackphys {
 namespace {
 
-// Two cars side by side on flat ground.
-World two_cars(const CarSpec& spec = CarSpec::default_car()) {
-    World world(test::static_world_of(test::flat_grid(400.0, 40)), cli::tool_world_settings());
+// Two cars side by side on flat ground (two islands: their boxes are 4 m apart).
+World two_cars(const CarSpec& spec = CarSpec::default_car(),
+               const WorldSettings& settings = cli::tool_world_settings()) {
+    World world(test::static_world_of(test::flat_grid(400.0, 40)), settings);
     for (const double x : {-3.0, 3.0}) {
         RigidBodyState state;
         state.position = {x, spec.lowest_point_depth() + 0.001, -150.0};
@@ -403,6 +406,51 @@ TEST(PhysicsRunner, RenderThreadReadsWhileACarIsRemoved) {
     EXPECT_GT(reads.load(), 0);
     EXPECT_EQ(runner.published_update(), 40u);
     EXPECT_THROW(runner.pose(1, 0.0), Error);
+}
+
+// Polls running() as a game that start()ed would, for at most 20 s.
+void wait_until_it_stops(const PhysicsRunner& runner) {
+    for (int ms = 0; ms < 20000 && runner.running(); ++ms)
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+}
+
+// A run that reached its update leaves the world to the game without a wait(): the thread
+// has ended, and the next run starts.
+TEST(PhysicsRunner, TheWorldIsTheGamesOnceARunHasEnded) {
+    PhysicsRunner runner(two_cars());
+    runner.run_to(5);
+    wait_until_it_stops(runner);
+    EXPECT_FALSE(runner.running());
+    EXPECT_EQ(runner.world().update_count(), 5u);
+    runner.run_to(8);
+    runner.wait();
+    EXPECT_EQ(runner.world().update_count(), 8u);
+}
+
+// A job system that runs every range on worker 1 while it says it has one worker: each
+// update throws on the physics thread.
+void* on_a_worker_that_is_not_there(TaskCallback* task, int items, int, void* context, void*) {
+    task(0, items, 1, context);
+    return nullptr;
+}
+
+// An update that throws ends the run: running() says so, and the next call that needs the
+// thread gone rethrows the error once (it used to say "the physics thread is running").
+TEST(PhysicsRunner, AnUpdateThatThrowsEndsTheRunAndIsRethrownOnce) {
+    WorldSettings settings;
+    settings.jobs = {&on_a_worker_that_is_not_there, [](void*, void*) {}, nullptr, 1};
+    PhysicsRunner runner(two_cars(CarSpec::default_car(), settings));
+    runner.start();
+    wait_until_it_stops(runner);
+    EXPECT_FALSE(runner.running());
+    const std::string why = test::error_of([&] { runner.world(); });
+    EXPECT_NE(why.find("worker 1, outside 0 .. worker_count - 1 = 0"), std::string::npos) << why;
+    EXPECT_NO_THROW(runner.world()) << "rethrown once";
+    const std::string again = test::error_of([&] {
+        runner.run_to(3);
+        runner.wait();
+    });
+    EXPECT_NE(again.find("worker 1, outside"), std::string::npos) << again;
 }
 
 TEST(PhysicsRunner, StopEndsAnOpenRun) {

@@ -56,6 +56,11 @@ class TRACKPHYS_API PhysicsRunner {
     void stop();
     /// Waits until the thread has reached run_to's update (or stopped); rethrows as stop().
     void wait();
+    /// Whether the physics thread is still updating (game thread): false once it reached
+    /// run_to's update, was stopped or an update threw. A game that start()ed polls it to
+    /// learn that the world stopped; the next run_to, remove_car or world() then rethrows
+    /// what stopped it, once, as wait() does.
+    bool running() const { return running_.load(std::memory_order_acquire); }
 
     /// Sets car `car`'s inputs from update number `update` on (the world's
     /// update_count() once that update has run: the next update after n runs is n + 1).
@@ -97,8 +102,10 @@ class TRACKPHYS_API PhysicsRunner {
     /// removed already.
     void remove_car(std::size_t car);
 
-    /// The world, only while the thread is not running (throws trackphys::Error then). Its
-    /// car indices are the runner's numbers until a car is removed (see remove_car).
+    /// The world, only while the thread is not running (throws trackphys::Error then; a
+    /// thread that has finished is joined first, and what stopped it rethrown, as wait()
+    /// does). Its car indices are the runner's numbers until a car is removed (see
+    /// remove_car).
     World& world();
 
   private:
@@ -124,6 +131,9 @@ class TRACKPHYS_API PhysicsRunner {
     // check_car, and that `removed` (a frame's or the game thread's) does not mark it.
     void check_present(std::size_t car, const std::vector<std::uint8_t>& removed,
                        const char* caller) const;
+    // Joins a thread that has finished and rethrows what stopped it (as wait()); whether a
+    // thread is still running.
+    bool still_running();
     void loop(std::uint64_t last_update);
     void apply_due_inputs();
     void publish();
@@ -144,7 +154,8 @@ class TRACKPHYS_API PhysicsRunner {
     bool real_time_;
     std::thread thread_;
     std::atomic<bool> stopping_{false};
-    std::exception_ptr error_;
+    std::atomic<bool> running_{false};  // set by run_to, cleared by the thread as it ends
+    std::exception_ptr error_;          // written by the thread before it clears running_
 
     std::mutex inputs_mutex_;
     std::vector<StampedInputs> pending_;  // guarded by inputs_mutex_
