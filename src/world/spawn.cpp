@@ -30,6 +30,9 @@ namespace {
 
 // The bisection stops when its clear and touching heights are this close (m).
 constexpr double kHeightTolerance = 1e-4;
+// Heights beyond this are not placed: doubles there lie more than kHeightTolerance apart
+// (1.5e-5 m at 1e11 m, 1.4e14 m at 1e30), and the bisection would land anywhere.
+constexpr double kMaxHeight = 1e11;
 
 // Where the car overlaps the statics most at one height: the deepest contact of any of its
 // ellipsoids (-infinity when none is within the clearance of a triangle).
@@ -119,6 +122,10 @@ RigidBodyState place_car_on_surface(const StaticWorld& statics, const CarSpec& s
     placed.position = position;
     placed.orientation = glm::normalize(orientation);
     const Car car(spec, placed);  // validates the spec and the pose
+    if (!(std::abs(position.y) <= kMaxHeight))
+        throw Error("place_car_on_surface: the car at " + describe(position) +
+                    " is more than 1e11 m from y = 0, where doubles are too coarse to place it "
+                    "to 0.1 mm");
     CarProbe probe(statics, car, clearance);
     auto at = [&](double y) { return glm::dvec3(position.x, y, position.z); };
 
@@ -133,6 +140,10 @@ RigidBodyState place_car_on_surface(const StaticWorld& statics, const CarSpec& s
         clear_y = position.y;
         // A little further and a lowest point is inside the surface it reached.
         touching_y = position.y - *drop - kHeightTolerance;
+        if (!(std::abs(touching_y) <= kMaxHeight))
+            throw Error("place_car_on_surface: the surface below the car at " + describe(position) +
+                        " is more than 1e11 m from y = 0, where doubles are too coarse to "
+                        "place the car to 0.1 mm");
     } else {
         const double max_rise = 2.0 * car.bounding_radius();
         double rise = std::clamp(start.depth + clearance, kHeightTolerance, max_rise);

@@ -137,6 +137,12 @@ TEST(Spawn, RejectsNothingBelowAWallAndBadInput) {
                   place_car_on_surface(*ground, spec, {0, 3, 0}, heading(0), 0.0);
               }).find("clearance must be in (0, 1] m"),
               std::string::npos);
+    // A point 1e30 m up: doubles there are 1.4e14 m apart, and the drop used to land the car
+    // at y = -1.4e14.
+    EXPECT_NE(test::error_of([&] {
+                  place_car_on_surface(*ground, spec, {0, 1e30, 0}, heading(0));
+              }).find("more than 1e11 m from y = 0"),
+              std::string::npos);
     CarSpec bad = spec;
     bad.ellipsoids[0].semi_axes.y = 0.0;
     EXPECT_NE(test::error_of([&] {

@@ -23,8 +23,9 @@ namespace trackphys {
 /// The car then rests on what it touches and settles onto its wheels when simulated.
 /// Returns the state with zero velocities. Throws trackphys::Error when nothing is below
 /// any of the car's ellipsoids, when rising by twice the car's bounding radius does not
-/// clear it (a point inside a wall or a hill), for a clearance outside (0, 1] m, or for an
-/// invalid spec or pose (as Car's constructor).
+/// clear it (a point inside a wall or a hill), for a clearance outside (0, 1] m, for a
+/// position or a surface below it more than 1e11 m from y = 0 (doubles there are too coarse
+/// for the 0.1 mm it places to), or for an invalid spec or pose (as Car's constructor).
 TRACKPHYS_API RigidBodyState place_car_on_surface(const StaticWorld& statics, const CarSpec& car,
                                                   const glm::dvec3& position,
                                                   const glm::dquat& orientation,
