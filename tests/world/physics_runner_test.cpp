@@ -73,6 +73,38 @@ TEST(PhysicsRunner, StampedInputsGiveTheHashOfADirectReplay) {
     EXPECT_EQ(runner.published_update(), kUpdates);
 }
 
+// The game thread gives the stream's later inputs while the physics thread runs in real
+// time (each 20 updates, 200 ms, before its stamp) and a render thread reads: the inputs'
+// mutex under contention (ThreadSanitizer), and still the direct replay's bits.
+TEST(PhysicsRunner, InputsGivenWhileTheThreadRunsReplayBitForBit) {
+    constexpr std::uint64_t kAhead = 20;
+    PhysicsRunner runner(two_cars(), true);
+    for (const Stamped& s : kStream)
+        if (s.update <= kAhead) runner.set_inputs(s.update, s.car, s.inputs);
+    std::atomic<bool> done{false};
+    bool finite = true;
+    std::thread render([&] {
+        while (!done.load()) {
+            const CarPose pose =
+                runner.pose(1, 0.01 * static_cast<double>(runner.published_update()));
+            finite = finite && std::isfinite(pose.position.z);
+        }
+    });
+    runner.run_to(kUpdates);
+    for (const Stamped& s : kStream) {
+        if (s.update <= kAhead) continue;
+        while (runner.published_update() + kAhead < s.update)
+            std::this_thread::sleep_for(std::chrono::milliseconds(1));
+        runner.set_inputs(s.update, s.car, s.inputs);
+    }
+    runner.wait();
+    done.store(true);
+    render.join();
+    EXPECT_TRUE(finite);
+    EXPECT_EQ(runner.late_inputs(), 0u);
+    EXPECT_EQ(runner.world().state_hash(), direct_replay());
+}
+
 TEST(PhysicsRunner, LateInputsApplyAtTheNextUpdateAndAreCounted) {
     PhysicsRunner runner(two_cars(), false);
     runner.run_to(10);

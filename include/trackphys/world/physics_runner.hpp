@@ -37,8 +37,11 @@ namespace trackphys {
 /// render thread always reads a complete pair of states, the newest one published).
 class TRACKPHYS_API PhysicsRunner {
   public:
-    /// Takes the world (with its cars). real_time: one update per dt_update of wall clock;
-    /// otherwise as fast as possible. Publishes the world's current state at once.
+    /// Takes the world (with its cars). real_time: one update per dt_update of wall clock
+    /// (after a stall, an update slower than dt_update, the thread catches up with the wall
+    /// clock by running the missed updates back to back, so that a render time taken from
+    /// the game's clock stays covered); otherwise as fast as possible. Publishes the world's
+    /// current state at once.
     explicit PhysicsRunner(World world, bool real_time = true);
     /// Stops the thread.
     ~PhysicsRunner();
