@@ -74,11 +74,13 @@ TEST(PhysicsRunner, StampedInputsGiveTheHashOfADirectReplay) {
 }
 
 // The game thread gives the stream's later inputs while the physics thread runs in real
-// time (each 20 updates, 200 ms, before its stamp) and a render thread reads: the inputs'
-// mutex under contention (ThreadSanitizer), and still the direct replay's bits.
+// time (each 20 updates, 200 ms, before its stamp, by its own clock: published_update() is
+// the render thread's) and a render thread reads: the inputs' mutex under contention
+// (ThreadSanitizer), and still the direct replay's bits.
 TEST(PhysicsRunner, InputsGivenWhileTheThreadRunsReplayBitForBit) {
     constexpr std::uint64_t kAhead = 20;
     PhysicsRunner runner(two_cars(), true);
+    const double dt = runner.world().settings().dt_update;
     for (const Stamped& s : kStream)
         if (s.update <= kAhead) runner.set_inputs(s.update, s.car, s.inputs);
     std::atomic<bool> done{false};
@@ -90,11 +92,12 @@ TEST(PhysicsRunner, InputsGivenWhileTheThreadRunsReplayBitForBit) {
             finite = finite && std::isfinite(pose.position.z);
         }
     });
+    const auto started = std::chrono::steady_clock::now();
     runner.run_to(kUpdates);
     for (const Stamped& s : kStream) {
         if (s.update <= kAhead) continue;
-        while (runner.published_update() + kAhead < s.update)
-            std::this_thread::sleep_for(std::chrono::milliseconds(1));
+        std::this_thread::sleep_until(
+            started + std::chrono::duration<double>(dt * static_cast<double>(s.update - kAhead)));
         runner.set_inputs(s.update, s.car, s.inputs);
     }
     runner.wait();
