@@ -278,8 +278,8 @@ void bench_pair_peers(BenchRun& run) {
             if (family.kind == test::PairKind::car_like) {
                 figures(run.add(kGroup, pairs + ": trackphys batches of 8", s.eights_ns, single));
                 (unsearched ? batch_car_like_ns : batch_car_like_whole_ns) = s.batch_ns;
-                if (unsearched) cycled_car_like_ns = s.single_ns;
-                if (unsearched) unsearched_car_like = lists.a.size();
+                if (unsearched)
+                    cycled_car_like_ns = s.single_ns, unsearched_car_like = lists.a.size();
             }
         }
     }

@@ -204,9 +204,9 @@ class SceneMerger {
     // give once triangulated (n - 2 for an n-gon).
     void inspect_before_triangulation(const aiScene& scene) {
         expected_triangles_.assign(scene.mNumMeshes, 0);
-        if (scene.mNumMaterials > std::numeric_limits<SurfaceId>::max() + 1u)
-            fail(path_, std::to_string(scene.mNumMaterials) +
-                            " materials, more than the 65536 surface ids");
+        if (scene.mNumMaterials > max_surfaces)
+            fail(path_, std::to_string(scene.mNumMaterials) + " materials, more than the " +
+                            std::to_string(max_surfaces) + " surface ids");
         report_.materials.clear();
         for (unsigned k = 0; k < scene.mNumMaterials; ++k) {
             aiString name;

@@ -122,10 +122,13 @@ RigidBodyState place_car_on_surface(const StaticWorld& statics, const CarSpec& s
     placed.position = position;
     placed.orientation = glm::normalize(orientation);
     const Car car(spec, placed);  // validates the spec and the pose
-    if (!(std::abs(position.y) <= kMaxHeight))
-        throw Error("place_car_on_surface: the car at " + describe(position) +
-                    " is more than 1e11 m from y = 0, where doubles are too coarse to place it "
-                    "to 0.1 mm");
+    const auto refuse_beyond_max_height = [&](double y, const char* what) {
+        if (!(std::abs(y) <= kMaxHeight))
+            throw Error(std::string("place_car_on_surface: ") + what + describe(position) +
+                        " is more than 1e11 m from y = 0, where doubles are too coarse to "
+                        "place the car to 0.1 mm");
+    };
+    refuse_beyond_max_height(position.y, "the car at ");
     CarProbe probe(statics, car, clearance);
     auto at = [&](double y) { return glm::dvec3(position.x, y, position.z); };
 
@@ -140,10 +143,7 @@ RigidBodyState place_car_on_surface(const StaticWorld& statics, const CarSpec& s
         clear_y = position.y;
         // A little further and a lowest point is inside the surface it reached.
         touching_y = position.y - *drop - kHeightTolerance;
-        if (!(std::abs(touching_y) <= kMaxHeight))
-            throw Error("place_car_on_surface: the surface below the car at " + describe(position) +
-                        " is more than 1e11 m from y = 0, where doubles are too coarse to "
-                        "place the car to 0.1 mm");
+        refuse_beyond_max_height(touching_y, "the surface below the car at ");
     } else {
         const double max_rise = 2.0 * car.bounding_radius();
         double rise = std::clamp(start.depth + clearance, kHeightTolerance, max_rise);

@@ -1,7 +1,9 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -12,6 +14,8 @@ namespace trackphys {
 /// table of surfaces, WorldSettings::surfaces. The ids are geometry, fixed with the mesh;
 /// the table is tuning (docs/design.md#surfaces).
 using SurfaceId = std::uint16_t;
+/// How many surface ids there are: the most entries a surface table holds.
+inline constexpr std::size_t max_surfaces = std::size_t{std::numeric_limits<SurfaceId>::max()} + 1;
 
 /// An indexed triangle mesh in world space (metres): the exchange format between the track
 /// generator, mesh import/export and static colliders.

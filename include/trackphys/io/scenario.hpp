@@ -59,9 +59,9 @@ struct TRACKPHYS_API Scenario {
     /// below it; it drives with `inputs` instead of the autopilot.
     std::optional<glm::dvec3> spawn;
     double heading_deg = 0.0;  ///< free mode: about +Y, 0 = +X, 90 = -Z (degrees)
-    /// The grip of the track's surfaces by id (TriangleMesh::surfaces: a mesh's materials in
-    /// order; the generated track's road 0, its walls 1), from id 0; ids past the list are
-    /// the dry road (grip 1). Empty: every surface is (WorldSettings::surfaces).
+    /// The grip of the track's surfaces by id (TriangleMesh::surfaces: `trackphys info`
+    /// lists a mesh's; the generated track's road 0, its walls 1), from id 0; ids past the
+    /// list are the dry road (grip 1). Empty: every surface is the dry road.
     std::vector<Surface> surfaces;
     CarSpec car = CarSpec::default_car();
     double target_speed_kmh = 600.0;  ///< autopilot: speed on straights, (0, 1500]

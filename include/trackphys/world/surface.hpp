@@ -15,7 +15,8 @@ namespace trackphys {
 /// compared with the dry road (docs/design.md#surfaces).
 struct Surface {
     /// Friction relative to the dry road (in (0, max_surface_grip]; 1 the dry road, about
-    /// 0.6 grass or gravel, 0.1 ice). It scales the friction of every contact on the surface: the arcade
+    /// 0.6 grass or gravel, 0.1 ice). It scales the friction of every contact on the
+    /// surface: the arcade
     /// car's wheel grip and traction limit, a vehicle model's tyre peaks (times the wheel's
     /// Vehicle::set_road_grip), and any car's body friction.
     double grip = 1.0;
@@ -25,9 +26,6 @@ struct Surface {
 /// and a friction much stiffer than that outruns the sub-step (a grip of 1000 throws the
 /// car off the road in its first updates).
 inline constexpr double max_surface_grip = 10.0;
-
-/// The most entries a surface table holds: one per SurfaceId.
-inline constexpr std::size_t max_surfaces = std::size_t{1} << 16;
 
 /// Empty when `table` can be a surface table (WorldSettings::surfaces): at most max_surfaces
 /// entries, each grip in (0, max_surface_grip]. Otherwise the first problem, the table
