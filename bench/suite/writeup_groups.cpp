@@ -16,6 +16,7 @@
 #include "drive_scene.hpp"
 #include "midphase_scene.hpp"
 #include "point_queries.hpp"
+#include "support/ellipsoid_reference.hpp"
 #include "tightest_turn_scene.hpp"
 #include "tool_world_settings.hpp"
 #include "trackphys/collision/brute_force_collider.hpp"
@@ -93,20 +94,29 @@ void bench_cull(BenchRun& run) {
         const double ns = medians[i];
         BenchRow& row = run.add("cull", v.name, ns,
                                 v.variant == bench::CullVariant::xyz_order ? "" : variants[0].name);
+        // A cull may keep too much, never too little: the pairs within reach by the
+        // long-double distance that it dropped.
+        const bench::CullCheck check = bench::check_cull(scene, v.variant);
         row.figures = {{"ns_per_test", ns / tests},
                        {"candidates", double(scene.longest_edge_origin.size())},
-                       {"kept_pct", 100.0 * double(kept[i]) / tests}};
-        row.note = v.note;
+                       {"kept_pct", 100.0 * double(kept[i]) / tests},
+                       {"touching", double(check.touching)},
+                       {"missed", double(check.missed)}};
+        row.note = check.missed ? "DROPS TOUCHING PAIRS" : v.note;
     }
 }
 
 // Point-ellipsoid roots: 4096 points of every class (tests/support's generator), each finder
-// on all of them; error = |distance - ours| (ours is exact to ~1e-15 relative).
+// on all of them; error = |distance - the long-double reference's| (tests/support).
 void bench_roots(BenchRun& run) {
     const std::vector<bench::PointQuery> queries = bench::point_queries(test::PointClass::count);
+    run.progress("roots", "long-double references");
     std::vector<double> exact;
     for (const bench::PointQuery& q : queries)
-        exact.push_back(bench::closest_point(q, bench::RootFinder::ours).distance);
+        exact.push_back(double(
+            test::ReferenceSolver<3>({q.radii.x, q.radii.y, q.radii.z}, {q.p.x, q.p.y, q.p.z})
+                .closest()
+                .offset));
     struct Finder {
         bench::RootFinder finder;
         const char* name;
@@ -127,6 +137,10 @@ void bench_roots(BenchRun& run) {
             int(queries.size()), run.batches(11, 51));
         double steps = 0.0, worst_steps = 0.0;
         std::vector<double> error;
+        // Relative to the query's scale, the larger of its distance and its longest semi-axis:
+        // the far class's points are up to 1e6 semi-axes out, where 1e-16 of the distance is
+        // already 1e-10 m.
+        double worst_relative = 0.0;
         std::size_t not_finite = 0;
         for (std::size_t k = 0; k < queries.size(); ++k) {
             const PointEllipsoid r = bench::closest_point(queries[k], f.finder);
@@ -137,6 +151,8 @@ void bench_roots(BenchRun& run) {
                 continue;
             }
             error.push_back(std::abs(r.distance - exact[k]));
+            worst_relative = std::max(
+                worst_relative, error.back() / std::max(std::abs(exact[k]), queries[k].radii.x));
         }
         const Spread e = spread(error);
         BenchRow& row = run.add("roots", f.name, ns,
@@ -145,6 +161,7 @@ void bench_roots(BenchRun& run) {
                        {"steps_max", worst_steps},
                        {"err_median_m", e.median},
                        {"err_max_m", e.max},
+                       {"err_max_relative", worst_relative},
                        {"not_finite", double(not_finite)}};
         row.note = f.note;
     }

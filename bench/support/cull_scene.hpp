@@ -20,9 +20,10 @@ namespace trackphys::bench {
 
 enum class CullVariant { xyz_order, normal_first, longest_edge_normal_first };
 
-/// The candidates in both stored layouts, and the spheres.
+/// The candidates as given and in both stored layouts, and the spheres.
 struct CullScene {
     std::vector<BoundingSphere> spheres;
+    std::vector<Triangle> triangles;
     std::vector<ArbitraryOriginTriangle> first_vertex_origin;
     std::vector<NormalizedTriangle> longest_edge_origin;
 
@@ -30,6 +31,7 @@ struct CullScene {
         : CullScene(turn.bounding_spheres(), turn.candidates()) {}
     CullScene(std::vector<BoundingSphere> query_spheres, const std::vector<Triangle>& candidates)
         : spheres(std::move(query_spheres)),
+          triangles(candidates),
           first_vertex_origin(candidates.begin(), candidates.end()),
           longest_edge_origin(candidates.begin(), candidates.end()) {}
 
@@ -39,5 +41,13 @@ struct CullScene {
 
 /// One pass of `variant` over the scene: the number of (sphere, triangle) pairs kept.
 std::size_t cull_pass(const CullScene& scene, CullVariant variant);
+
+/// What a pass of `variant` must keep and did not: the (sphere, triangle) pairs within the
+/// sphere's radius by the long-double reference distance that the variant rejects (0 for a
+/// conservative cull), and how many pairs the reference places within reach.
+struct CullCheck {
+    std::size_t touching = 0, missed = 0;
+};
+CullCheck check_cull(const CullScene& scene, CullVariant variant);
 
 }  // namespace trackphys::bench
