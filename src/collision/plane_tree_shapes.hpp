@@ -39,21 +39,19 @@ inline glm::dvec3 node_normal(const PlaneTreeNode& node) {
     return {node.normal[0], node.normal[1], node.normal[2]};
 }
 
-/// A float at or below x (the largest; branch-free: a map load rounds six bounds for each
-/// of its triangles).
+/// A float at or below x (the largest).
 inline float float_down(double x) { return round_down(x); }
 
 /// A float at or above x (the smallest).
 inline float float_up(double x) { return round_up(x); }
 
-/// The float box of a triangle's vertices, rounded outward.
+/// The float box of a triangle's vertices, rounded outward: float_down's and float_up's
+/// floats, rounded in SSE2 lanes (a map load rounds a box for each of its triangles).
 inline PlaneTreeBox float_box(const Triangle& t) {
-    PlaneTreeBox box;
-    for (int k = 0; k < 3; ++k) {
-        box.low[k] = float_down(std::min({t[0][k], t[1][k], t[2][k]}));
-        box.high[k] = float_up(std::max({t[0][k], t[1][k], t[2][k]}));
-    }
-    return box;
+    FloatBox outward, inward;
+    round_both_ways(triangle_box(t[0], t[1], t[2]), outward, inward);
+    return {{outward.min[0], outward.min[1], outward.min[2]},
+            {outward.max[0], outward.max[1], outward.max[2]}};
 }
 
 /// True when the box [lo, hi] (a shape's, in double) meets a slot's box.
