@@ -256,47 +256,63 @@ StaticMap decode_checked(std::string_view bytes, const std::optional<PlaneTreeSe
         throw Error("the body's " + std::to_string(h.body_bytes) +
                     " bytes are not a whole number of 64-byte blocks");
     const std::string_view body_bytes = bytes.substr(sizeof(Header));
-    Header unsealed = h;
-    unsealed.checksum = 0;
-    MapChecksum checksum;
-    checksum.add(&unsealed, sizeof unsealed);
-    checksum.add(body_bytes.data(), body_bytes.size());
-    if (checksum.value() != h.checksum) throw Error("checksum mismatch (the file is corrupted)");
+    // The checksum runs beside the colliders' reading (a tenth of a large map's load), so the
+    // body is read before it is known to be intact: every read is bounds-checked and every
+    // structure verified (a file altered and sealed again is refused cleanly, see map_codec),
+    // and a corrupted file still reports its checksum first, whatever else broke.
+    const auto verify_checksum = [&] {
+        Header unsealed = h;
+        unsealed.checksum = 0;
+        MapChecksum checksum;
+        checksum.add(&unsealed, sizeof unsealed);
+        checksum.add(body_bytes.data(), body_bytes.size());
+        if (checksum.value() != h.checksum)
+            throw Error("checksum mismatch (the file is corrupted)");
+    };
 
     StaticMap map;
-    map.plane_tree_settings = read_settings(h);
-    if (expected && !same_settings(*expected, map.plane_tree_settings))
-        throw Error("its plane trees were built with other options (" +
-                    describe(map.plane_tree_settings) + ") than this world needs (" +
-                    describe(*expected) + "): bake the map again with this build");
-
-    BodyReader body(body_bytes);
-    const auto record = body.record<MapRecord>("map record");
-    for (const std::uint64_t r : record.reserved)
-        if (r != 0) throw Error("a reserved field of the map record is not 0");
-    if (record.colliders > std::numeric_limits<std::uint32_t>::max())
-        throw Error(std::to_string(record.colliders) + " colliders, more than a world holds");
-    if (record.centerline_samples != 0) map.track = read_track(body, record);
     const auto in_collider = [](std::size_t id, const Error& e) {
         return Error("collider " + std::to_string(id) + ": " + e.what());
     };
     std::vector<detail::MapCodec::ColliderBytes> colliders;
-    for (std::uint64_t id = 0; id < record.colliders; ++id) {
-        try {
-            colliders.push_back(detail::MapCodec::locate(body));
-        } catch (const Error& e) {
-            throw in_collider(id, e);
-        }
-    }
-    if (body.left() != 0)
-        throw Error(std::to_string(body.left()) + " unread bytes at the end of the body");
-    std::uint64_t triangles = 0;
-    for (const detail::MapCodec::ColliderBytes& c : colliders) triangles += c.record.slots;
-    const PlaneTreeFrames frames = plane_tree_frames_within(triangles, frame_budget_bytes);
+    PlaneTreeFrames frames{};
+    try {
+        map.plane_tree_settings = read_settings(h);
+        if (expected && !same_settings(*expected, map.plane_tree_settings))
+            throw Error("its plane trees were built with other options (" +
+                        describe(map.plane_tree_settings) + ") than this world needs (" +
+                        describe(*expected) + "): bake the map again with this build");
 
-    // Copying and verifying are most of a load, and each collider's are independent.
+        BodyReader body(body_bytes);
+        const auto record = body.record<MapRecord>("map record");
+        for (const std::uint64_t r : record.reserved)
+            if (r != 0) throw Error("a reserved field of the map record is not 0");
+        if (record.colliders > std::numeric_limits<std::uint32_t>::max())
+            throw Error(std::to_string(record.colliders) + " colliders, more than a world holds");
+        if (record.centerline_samples != 0) map.track = read_track(body, record);
+        for (std::uint64_t id = 0; id < record.colliders; ++id) {
+            try {
+                colliders.push_back(detail::MapCodec::locate(body));
+            } catch (const Error& e) {
+                throw in_collider(id, e);
+            }
+        }
+        if (body.left() != 0)
+            throw Error(std::to_string(body.left()) + " unread bytes at the end of the body");
+        std::uint64_t triangles = 0;
+        for (const detail::MapCodec::ColliderBytes& c : colliders) triangles += c.record.slots;
+        frames = plane_tree_frames_within(triangles, frame_budget_bytes);
+    } catch (const Error&) {
+        verify_checksum();
+        throw;
+    }
+
+    // Copying and verifying are most of a load, and each collider's are independent. Item 0
+    // is the checksum, so that its error is the one reported (the first item's).
     std::vector<detail::MapCodec::Loaded> loaded(colliders.size());
-    detail::run_items_in_parallel(colliders.size(), threads, [&](std::size_t id) {
+    detail::run_items_in_parallel(colliders.size() + 1, threads, [&](std::size_t item) {
+        if (item == 0) return verify_checksum();
+        const std::size_t id = item - 1;
         try {
             loaded[id] = detail::MapCodec::read(colliders[id], frames);
         } catch (const Error& e) {
