@@ -215,39 +215,31 @@ void add_track_command(CLI::App& app) {
     command->add_option("--seed", p.seed, "Random seed (same seed, same track)")
         ->check(not_negative())
         ->capture_default_str();
-    command->add_option("--length", p.length_m, "Centreline length (m)")->capture_default_str();
-    command->add_option("--width", p.width_m, "Road width (m)")->capture_default_str();
-    command->add_option("--max-bank", p.max_bank_deg, "Largest bank angle (degrees)")
-        ->capture_default_str();
-    command
-        ->add_option("--full-bank-radius", p.full_bank_radius_m,
-                     "Turns this tight or tighter get the full bank (m)")
-        ->capture_default_str();
-    command
-        ->add_option("--elevation", p.elevation_amplitude_m,
-                     "Height amplitude of the control points (m)")
-        ->capture_default_str();
-    command->add_option("--wall-height", p.wall_height_m, "Wall height (m)")->capture_default_str();
-    command->add_option("--min-radius", p.min_turn_radius_m, "Tightest allowed turn radius (m)")
-        ->capture_default_str();
-    command
-        ->add_option("--edge-tight", p.edge_tight_m,
-                     "Density: road edge length along the track in tight turns (m)")
-        ->capture_default_str();
-    command
-        ->add_option("--edge-straight", p.edge_straight_m,
-                     "Density: road edge length on straights (m)")
-        ->capture_default_str();
-    command
-        ->add_option("--tight-radius", p.tight_radius_m,
-                     "Density: turns this tight or tighter get --edge-tight (m)")
-        ->capture_default_str();
-    command->add_option("--strips", p.strips, "Density: road strips across the width")
-        ->capture_default_str();
-    command
-        ->add_option("--chunk-length", p.chunk_length_m,
-                     "Collider chunk length along the track (m)")
-        ->capture_default_str();
+    // Each parameter's flag, and the TrackParams field it sets: the generator's errors name
+    // the field, the command's the flag.
+    const auto add_param = [&](const char* flag, const char* field, auto& value, const char* help) {
+        options->flag_of_field.emplace_back(field, flag);
+        command->add_option(flag, value, help)->capture_default_str();
+    };
+    add_param("--length", "length_m", p.length_m, "Centreline length (m)");
+    add_param("--width", "width_m", p.width_m, "Road width (m)");
+    add_param("--max-bank", "max_bank_deg", p.max_bank_deg, "Largest bank angle (degrees)");
+    add_param("--full-bank-radius", "full_bank_radius_m", p.full_bank_radius_m,
+              "Turns this tight or tighter get the full bank (m)");
+    add_param("--elevation", "elevation_amplitude_m", p.elevation_amplitude_m,
+              "Height amplitude of the control points (m)");
+    add_param("--wall-height", "wall_height_m", p.wall_height_m, "Wall height (m)");
+    add_param("--min-radius", "min_turn_radius_m", p.min_turn_radius_m,
+              "Tightest allowed turn radius (m)");
+    add_param("--edge-tight", "edge_tight_m", p.edge_tight_m,
+              "Density: road edge length along the track in tight turns (m)");
+    add_param("--edge-straight", "edge_straight_m", p.edge_straight_m,
+              "Density: road edge length on straights (m)");
+    add_param("--tight-radius", "tight_radius_m", p.tight_radius_m,
+              "Density: turns this tight or tighter get --edge-tight (m)");
+    add_param("--strips", "strips", p.strips, "Density: road strips across the width");
+    add_param("--chunk-length", "chunk_length_m", p.chunk_length_m,
+              "Collider chunk length along the track (m)");
     command->add_option("--out", options->out,
                         "Write the track mesh (FILE.glb, .gltf, .obj, .ply or .stl)");
     command->add_option("--svg", options->svg,

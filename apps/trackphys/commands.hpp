@@ -113,6 +113,8 @@ struct TrackOptions {
     TrackParams params;
     std::filesystem::path out;  ///< mesh file (any format save_mesh writes), empty for none
     std::filesystem::path svg;  ///< picture, empty for none
+    /// (TrackParams field, the flag that sets it), for the generator's error messages.
+    std::vector<std::pair<std::string, std::string>> flag_of_field;
 };
 void run_track(const TrackOptions& options);
 

@@ -2,6 +2,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <regex>
 #include <string>
 #include <system_error>
 
@@ -54,9 +55,24 @@ void print_summary(const Track& track, double seconds) {
     std::printf("generated in %.1f ms\n", seconds * 1000.0);
 }
 
+// validate_track_params, its message naming the command's flags rather than the fields they
+// set ("TrackParams.length_m must be ..." -> "--length must be ..."); a field without a flag
+// keeps its name.
+void check_track_flags(const TrackOptions& options) {
+    try {
+        validate_track_params(options.params);
+    } catch (const Error& e) {
+        std::string message = std::regex_replace(e.what(), std::regex("TrackParams\\."), "");
+        for (const auto& [field, flag] : options.flag_of_field)
+            message = std::regex_replace(message, std::regex("\\b" + field + "\\b"), flag);
+        throw Error(message);
+    }
+}
+
 }  // namespace
 
 void run_track(const TrackOptions& options) {
+    check_track_flags(options);
     // Check the output names before spending time on the track.
     refuse_file_clashes({}, {{"--out", options.out}, {"--svg", options.svg}});
     if (!options.out.empty() && !can_save_mesh_as(options.out))
