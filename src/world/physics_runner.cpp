@@ -161,6 +161,7 @@ void PhysicsRunner::publish() {
     frame.time = world_.time();
     frame.removed = removed_;
     swap_back();
+    latest_update_.store(world_.update_count(), std::memory_order_release);
 }
 
 void PhysicsRunner::republish() {

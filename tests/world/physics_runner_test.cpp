@@ -108,6 +108,35 @@ TEST(PhysicsRunner, InputsGivenWhileTheThreadRunsReplayBitForBit) {
     EXPECT_EQ(runner.world().state_hash(), direct_replay());
 }
 
+// A game thread follows the physics' progress by latest_update() while a render thread
+// reads (ThreadSanitizer): it only grows, passes through the run, and ends at its last
+// update, where the render thread's frame is.
+TEST(PhysicsRunner, TheGameThreadFollowsTheLatestUpdate) {
+    PhysicsRunner runner(two_cars(), true);
+    EXPECT_EQ(runner.latest_update(), 0u);
+    std::atomic<bool> done{false};
+    std::thread render([&] {
+        while (!done.load()) static_cast<void>(runner.pose(0, 0.0));
+    });
+    runner.run_to(kUpdates);
+    std::uint64_t last = 0, seen_between = 0;
+    bool grows = true;
+    while (runner.running()) {
+        const std::uint64_t now = runner.latest_update();
+        grows = grows && now >= last && now <= kUpdates;
+        if (now > 0 && now < kUpdates) ++seen_between;
+        last = now;
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    runner.wait();
+    done.store(true);
+    render.join();
+    EXPECT_TRUE(grows);
+    EXPECT_GT(seen_between, 0u);
+    EXPECT_EQ(runner.latest_update(), kUpdates);
+    EXPECT_EQ(runner.published_update(), kUpdates);
+}
+
 TEST(PhysicsRunner, LateInputsApplyAtTheNextUpdateAndAreCounted) {
     PhysicsRunner runner(two_cars(), false);
     runner.run_to(10);

@@ -31,8 +31,9 @@ namespace trackphys {
 /// Threads: one game thread (start, run_to, stop, set_inputs, remove_car, world) and one
 /// render thread (pose, view, published_update; const, but a second reader at once would
 /// race with the first over the buffer they take turns on); the physics thread is the
-/// runner's own. Each render call reads the newest frame, so two calls may read two frames:
-/// take the render time from the game's clock, not from published_update().
+/// runner's own; latest_update() from any thread. Each render call reads the newest frame,
+/// so two calls may read two frames: take the render time from the game's clock, not from
+/// published_update().
 /// Inputs go through a mutex (a few per update); publishing is a lock-free triple buffer (the
 /// render thread always reads a complete pair of states, the newest one published).
 class TRACKPHYS_API PhysicsRunner {
@@ -76,6 +77,10 @@ class TRACKPHYS_API PhysicsRunner {
 
     /// The last published update number (render thread).
     std::uint64_t published_update() const;
+    /// The newest published update number (the world's update_count() when it was
+    /// published), for any thread: a game thread that stamps inputs by the physics' progress
+    /// rather than by its own clock stamps the next update latest_update() + 1.
+    std::uint64_t latest_update() const { return latest_update_.load(std::memory_order_acquire); }
     /// Car `car`'s pose at simulated time `t` (s), interpolated between the last two
     /// published states (linearly, and slerp for the orientation): the older state's pose
     /// at or before its time, the newer one's at or after its time (render thread).
@@ -163,6 +168,7 @@ class TRACKPHYS_API PhysicsRunner {
     std::mutex inputs_mutex_;
     std::vector<StampedInputs> pending_;  // guarded by inputs_mutex_
     std::atomic<std::uint64_t> late_inputs_{0};
+    std::atomic<std::uint64_t> latest_update_{0};  // beside the triple buffer, for any thread
 
     // Triple buffer: the physics thread owns frames_[back_], the render thread
     // frames_[front_], and the third waits in middle_ (index | kFresh once it is new).
