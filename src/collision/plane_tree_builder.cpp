@@ -316,31 +316,49 @@ void PlaneTreeBuilder::evaluate_directions_binned(std::size_t begin, std::size_t
     for (std::size_t d = 0; d < kCount; ++d) along[d].n = float_direction(directions[d]);
 
     // One pass over the node's items for every direction (each item is read once), keeping
-    // each item's centroid key and vertex interval along each.
+    // each item's centroid key and vertex interval along each. The directions lie in one
+    // array per coordinate, so that the compiler runs them side by side in vector lanes:
+    // each lane makes glm::dot's products and sums in its order, so the keys are the same.
+    std::array<double, kCount> nx, ny, nz, key_min, key_max, low, high;
+    for (std::size_t d = 0; d < kCount; ++d) {
+        nx[d] = along[d].n.x;
+        ny[d] = along[d].n.y;
+        nz[d] = along[d].n.z;
+        key_min[d] = low[d] = kInf;
+        key_max[d] = high[d] = -kInf;
+    }
+    const auto dot = [&](std::size_t d, const glm::dvec3& v) {
+        return nx[d] * v.x + ny[d] * v.y + nz[d] * v.z;
+    };
     const std::size_t count = end - begin;
     keys_.resize(count * kCount);
     lows_.resize(count * kCount);
     highs_.resize(count * kCount);
     for (std::size_t i = 0; i < count; ++i) {
         const Item& item = items_[order_[begin + i]];
+        double* keys = &keys_[i * kCount];
+        double* lows = &lows_[i * kCount];
+        double* highs = &highs_[i * kCount];
         for (std::size_t d = 0; d < kCount; ++d) {
-            Along& a = along[d];
             // The same expression as order_along's key, so the cut found is the cut made.
-            const double key = glm::dot(a.n, item.centroid);
-            double lo = glm::dot(a.n, item.vertices[0]), hi = lo;
-            for (int k = 1; k < 3; ++k) {
-                const double v = glm::dot(a.n, item.vertices[std::size_t(k)]);
-                lo = std::min(lo, v);
-                hi = std::max(hi, v);
-            }
-            keys_[i * kCount + d] = key;
-            lows_[i * kCount + d] = lo;
-            highs_[i * kCount + d] = hi;
-            a.key_min = std::min(a.key_min, key);
-            a.key_max = std::max(a.key_max, key);
-            a.low = std::min(a.low, lo);
-            a.high = std::max(a.high, hi);
+            const double key = dot(d, item.centroid);
+            const double v0 = dot(d, item.vertices[0]), v1 = dot(d, item.vertices[1]),
+                         v2 = dot(d, item.vertices[2]);
+            const double lo = std::min(std::min(v0, v1), v2), hi = std::max(std::max(v0, v1), v2);
+            keys[d] = key;
+            lows[d] = lo;
+            highs[d] = hi;
+            key_min[d] = std::min(key_min[d], key);
+            key_max[d] = std::max(key_max[d], key);
+            low[d] = std::min(low[d], lo);
+            high[d] = std::max(high[d], hi);
         }
+    }
+    for (std::size_t d = 0; d < kCount; ++d) {
+        along[d].key_min = key_min[d];
+        along[d].key_max = key_max[d];
+        along[d].low = low[d];
+        along[d].high = high[d];
     }
 
     // Bins of equal width over the centroid keys. The bin index never decreases with the
