@@ -9,6 +9,8 @@
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <random>
 #include <string>
 #include <vector>
@@ -117,6 +119,12 @@ std::uint32_t terrain_triangle(const TriangleRef& ref, int cells, int tiles) {
                         tj = ref.collider % std::uint32_t(tiles);
     const std::uint32_t cell = ref.triangle / 2, i = cell / per_tile, j = cell % per_tile;
     return 2 * ((ti * per_tile + i) * std::uint32_t(cells) + tj * per_tile + j) + ref.triangle % 2;
+}
+
+// The bytes of a file (empty when it cannot be read).
+std::string bytes_of(const std::filesystem::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 // Whether a load of `file` on `threads` threads encodes back to `baked_bytes`, the bytes of
@@ -274,16 +282,7 @@ void bench_big_map(BenchRun& run) {
         keep(load_static_world(file, PlaneTreeSettings::precomputed(), 2).statics->size());
     });
     run.progress("bigmap", "checking the load against the file");
-    std::string file_bytes_read(std::size_t(file_bytes), '\0');
-    {
-        std::FILE* in = std::fopen(file.c_str(), "rb");
-        const bool read = in && std::fread(file_bytes_read.data(), 1, file_bytes_read.size(), in) ==
-                                    file_bytes_read.size();
-        if (in) std::fclose(in);
-        if (!read) file_bytes_read.clear();
-    }
-    const bool loads_what_was_baked = loaded_map_is_the_file(file, 2, file_bytes_read);
-    file_bytes_read = {};
+    const bool loads_what_was_baked = loaded_map_is_the_file(file, 2, bytes_of(file));
     std::filesystem::remove(file);
     const double resident = double(collider_bytes + tree_bytes) / triangles;
 
