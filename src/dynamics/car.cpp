@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <sstream>
 #include <string>
 #include <utility>
 
@@ -315,8 +316,20 @@ void Car::resolve_deep_contacts(std::span<const Contact> deepest) {
 void Car::apply_impulse(const glm::dvec3& impulse, const glm::dvec3& point) {
     const glm::dvec3 angular = glm::cross(point - state_.position, impulse);
     const glm::dvec3 body_angular = glm::conjugate(state_.orientation) * angular;
-    state_.linear_velocity += impulse / spec_.mass.mass;
-    state_.angular_velocity += state_.orientation * (body_angular / spec_.mass.principal_inertia);
+    const glm::dvec3 linear_velocity = state_.linear_velocity + impulse / spec_.mass.mass;
+    const glm::dvec3 angular_velocity =
+        state_.angular_velocity +
+        state_.orientation * (body_angular / spec_.mass.principal_inertia);
+    // Also what overflows: a finite impulse far from the centre can give an infinite spin.
+    if (!is_finite(linear_velocity) || !is_finite(angular_velocity)) {
+        std::ostringstream why;
+        why << "Car::apply_impulse: impulse (" << impulse.x << ", " << impulse.y << ", "
+            << impulse.z << ") N s at point (" << point.x << ", " << point.y << ", " << point.z
+            << ") m leaves the car's velocity not finite; the car is unchanged";
+        throw Error(why.str());
+    }
+    state_.linear_velocity = linear_velocity;
+    state_.angular_velocity = angular_velocity;
 }
 
 double Car::inverse_mass_along(const glm::dvec3& normal, const glm::dvec3& point) const {

@@ -158,6 +158,7 @@ void World::update() {
     const auto start =
         settings_.profile ? PhaseStopwatch::Clock::now() : PhaseStopwatch::Clock::time_point{};
     if (colliders_checked_ != statics_->size()) check_new_surfaces();
+    reset_impossible_starts();
     UpdateWork& work = *work_;
     {
         PhaseStopwatch watch(profile_, settings_.profile, trace_);

@@ -1,6 +1,7 @@
 // The World's guards: add_car's placement checks and the reset policy around each car's
 // update (see World's class notes).
 
+#include <algorithm>
 #include <cmath>
 #include <exception>
 #include <limits>
@@ -130,6 +131,12 @@ std::string World::impossible_state(const RigidBodyState& s) const {
     if (is_finite(s.position) && is_finite(s.orientation) && v <= settings_.max_car_speed &&
         w <= settings_.max_car_angular_speed)
         return {};
+    // In the message, lengths whose squares overflow (a push of 1e300 N s) by their largest
+    // component: "speed 1e+297 m/s", not "inf".
+    const auto magnitude = [](const glm::dvec3& u) {
+        const double largest = std::max({std::abs(u.x), std::abs(u.y), std::abs(u.z)});
+        return largest > 0.0 ? largest * glm::length(u / largest) : 0.0;
+    };
     std::ostringstream why;
     if (!is_finite(s.position))
         why << "position is not finite";
@@ -140,10 +147,11 @@ std::string World::impossible_state(const RigidBodyState& s) const {
     else if (!is_finite(s.angular_velocity))
         why << "angular velocity is not finite";
     else if (!(v <= settings_.max_car_speed))
-        why << "speed " << v << " m/s is above WorldSettings.max_car_speed "
-            << settings_.max_car_speed;
+        why << "speed " << magnitude(s.linear_velocity)
+            << " m/s is above WorldSettings.max_car_speed " << settings_.max_car_speed;
     else
-        why << "angular speed " << w << " rad/s is above WorldSettings.max_car_angular_speed "
+        why << "angular speed " << magnitude(s.angular_velocity)
+            << " rad/s is above WorldSettings.max_car_angular_speed "
             << settings_.max_car_angular_speed;
     return why.str();
 }
@@ -244,21 +252,40 @@ void World::update_island_or_reset(std::size_t island, WorkerScratch& scratch,
         const std::string why = impossible_state(slot.car.state());
         if (why.empty()) continue;
         reset_any = true;
-        RigidBodyState reset = slot.start_state;
-        reset.linear_velocity = glm::dvec3(0.0);
-        reset.angular_velocity = glm::dvec3(0.0);
-        // Car::restore re-checks the start state: if even that were impossible it throws,
-        // loudly.
-        detail::CarAccess::restore(slot.car, reset, slot.car.inputs(), slot.start_suspension);
-        if (const Vehicle* vehicle = slot.car.vehicle())
-            slot.car.set_vehicle_state(vehicle->at_rest());
-        slot.forget_contacts();
+        reset_at_rest(slot, slot.start_state, slot.start_suspension,
+                      "update " + std::to_string(updates_ + 1) + ": " + why + stop_reason);
         slot.start_hits();  // hits of an undone update
         undo_touches(work_->islands, work_->touches, island, i);
-        ++slot.resets;
-        slot.last_reset = "update " + std::to_string(updates_ + 1) + ": " + why + stop_reason;
     }
     if (stopped && !reset_any) std::rethrow_exception(stopped);
+}
+
+// A car a game made impossible between updates (Car::set_state or apply_impulse with a
+// finite but absurd velocity) would make its update box, and so the broad phase of every
+// car, infinite: it is reset at rest where it is, before the broad phase.
+void World::reset_impossible_starts() {
+    for (CarSlot& slot : cars_) {
+        const std::string why = impossible_state(slot.car.state());
+        if (why.empty()) continue;
+        const std::span<const double> suspension = slot.car.suspension();
+        reset_at_rest(slot, slot.car.state(),
+                      std::vector<double>(suspension.begin(), suspension.end()),
+                      "before update " + std::to_string(updates_ + 1) + ": " + why +
+                          " (a state given since the last update: Car::set_state, "
+                          "Car::apply_impulse)");
+    }
+}
+
+void World::reset_at_rest(CarSlot& slot, RigidBodyState at, std::span<const double> suspension,
+                          std::string reason) {
+    at.linear_velocity = glm::dvec3(0.0);
+    at.angular_velocity = glm::dvec3(0.0);
+    // Car::restore re-checks the state: if even that were impossible it throws, loudly.
+    detail::CarAccess::restore(slot.car, at, slot.car.inputs(), suspension);
+    if (const Vehicle* vehicle = slot.car.vehicle()) slot.car.set_vehicle_state(vehicle->at_rest());
+    slot.forget_contacts();
+    ++slot.resets;
+    slot.last_reset = std::move(reason);
 }
 
 }  // namespace trackphys

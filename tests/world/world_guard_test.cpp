@@ -2,6 +2,7 @@
 // poison the world) and the API preconditions (settings, inputs, where a car is added).
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <string>
 #include <utility>
 
@@ -110,6 +111,53 @@ TEST(ResetPolicy, ResetsTravelWithSnapshots) {
     copy.add_car(CarSpec::default_car(), at({0.0, 900.0, 0.0}));
     copy.restore_state(world.save_state());
     EXPECT_EQ(copy.car_resets(0), 1u);
+}
+
+// A push a game gives between updates: a non-finite one is refused at once and changes
+// nothing; a finite one that spins the car far beyond the limits (an impulse of 1e300 N s
+// 10 m from its centre) leaves a car the next update resets at rest where it is, before its
+// broad phase, whose box it would make infinite for every car. The other car drives on as
+// in a world without the push, and the pushed one drives on after its reset.
+TEST(ResetPolicy, ACarPushedBeyondTheLimitsBetweenUpdatesIsResetBeforeTheUpdate) {
+    const auto two_cars = [] {
+        auto world = std::make_unique<World>(test::static_world_of(test::flat_grid(80.0, 16)));
+        for (const double x : {-10.0, 10.0})
+            world->add_car(CarSpec::default_car(), at({x, 0.6, 0.0}));
+        for (int i = 0; i < 2; ++i) world->car(i).set_inputs({0.5, 0.0, 0.0});
+        world->update();
+        return world;
+    };
+    const std::unique_ptr<World> pushed = two_cars(), untouched = two_cars();
+    Car& car = pushed->car(0);
+    const RigidBodyState before = car.state();
+    for (const auto& [impulse, point] :
+         {std::pair{glm::dvec3(0.0, kNaN, 0.0), before.position},
+          std::pair{glm::dvec3(0.0, 1.0, 0.0), glm::dvec3(kInf, 0.0, 0.0)},
+          std::pair{glm::dvec3(0.0, 1e308, 0.0), before.position + glm::dvec3(1e10, 0.0, 0.0)}}) {
+        EXPECT_NE(error_of([&] {
+                      car.apply_impulse(impulse, point);
+                  }).find("Car::apply_impulse: impulse ("),
+                  std::string::npos);
+        EXPECT_EQ(car.state().angular_velocity, before.angular_velocity) << "unchanged";
+    }
+    car.apply_impulse({0.0, 1e300, 0.0}, before.position + glm::dvec3(10.0, 0.0, 0.0));
+    ASSERT_TRUE(finite(car.state()));
+    pushed->update();
+    untouched->update();
+    EXPECT_EQ(pushed->car_resets(0), 1u);
+    const std::string why = pushed->last_reset_reason(0);
+    EXPECT_EQ(why.rfind("before update 2: ", 0), 0u) << why;
+    EXPECT_NE(why.find("above WorldSettings.max_car_"), std::string::npos) << why;
+    EXPECT_EQ(why.find("inf"), std::string::npos) << "a speed whose square overflows: " << why;
+    // Reset at rest where it was, then one update from there: it has barely moved.
+    EXPECT_LT(glm::distance(pushed->car(0).state().position, before.position), 0.01);
+    EXPECT_LT(pushed->car(0).speed(), 0.5);
+    EXPECT_EQ(pushed->car_resets(1), 0u);
+    EXPECT_EQ(pushed->car(1).state().position, untouched->car(1).state().position);
+    for (int i = 0; i < 20; ++i) pushed->update();
+    EXPECT_EQ(pushed->car_resets(0), 1u);
+    EXPECT_GT(glm::distance(pushed->car(0).state().position, before.position), 0.02)
+        << "it drives on";
 }
 
 TEST(Preconditions, WorldSettingsNameTheFieldAndTheReason) {

@@ -135,7 +135,9 @@ class TRACKPHYS_API Car {
 
     /// Applies an impulse J (N s, world) at world point p: v += J / m and
     /// omega += I_world^-1 ((p - x) x J), as a force J / h over a sub-step of h would.
-    /// Contacts between cars push both cars this way, equal and opposite.
+    /// Contacts between cars push both cars this way, equal and opposite. Throws
+    /// trackphys::Error, changing nothing, when J or p is not finite or the velocities would
+    /// not be (a finite but absurd push is the World's reset policy's: see World).
     void apply_impulse(const glm::dvec3& impulse, const glm::dvec3& point);
     /// How much the velocity of the body point at world p changes along unit n per unit
     /// impulse along n there (1/kg): 1/m + n . ((I_world^-1 (r x n)) x r), r = p - x.

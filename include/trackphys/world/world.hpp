@@ -45,7 +45,9 @@ class TraceRecorder;
 /// inputs kept; car_resets() counts it and last_reset_reason() says why. The start state was
 /// checked when it was reached, so the reset state is always possible. The other cars are
 /// not affected (in an island whose update stopped on an error, they keep the state they
-/// had reached).
+/// had reached). A car that starts an update impossible, given a speed or spin beyond the
+/// limits since the last one (Car::set_state, Car::apply_impulse), is reset at rest where it
+/// is, before the update, and counted the same way.
 ///
 /// Threads: a World is not thread-safe. While update() runs on one thread (its islands on
 /// its own workers or the plugged-in job system), no other thread may call anything on the
@@ -234,6 +236,12 @@ class TRACKPHYS_API World {
     void check_new_surfaces();
     // Why this state breaks the reset policy's limits, or empty.
     std::string impossible_state(const RigidBodyState& state) const;
+    // The reset policy for the cars made impossible between updates (world_guard.cpp).
+    void reset_impossible_starts();
+    // Puts the slot's car at `at` at rest with `suspension`, forgetting its contacts, and
+    // counts the reset with its reason.
+    void reset_at_rest(CarSlot& slot, RigidBodyState at, std::span<const double> suspension,
+                       std::string reason);
     // add_car's checks of where the car is (world_guard.cpp).
     void check_placement(const Car& car, const char* caller) const;
     // add_car's check that the sub-step integrates the spec's contacts and wheel spins
