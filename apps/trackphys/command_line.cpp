@@ -67,12 +67,31 @@ void add_mesh_limit_options(CLI::App& command, MeshLoadLimits& limits) {
 }
 
 void add_surface_grips_option(CLI::App& command, std::vector<double>& grips) {
+    // Split here rather than by CLI11's delimiter, which drops empty elements: "1,,0.2" would
+    // grip surface 1 at 0.2 where the user meant surface 2.
     command
-        .add_option("--surface-grips", grips,
-                    "Grip of the track's surfaces by id, from 0 (`trackphys info MESH` lists a "
-                    "mesh's; the generated track's road 0, walls 1); the ids past them grip 1, "
-                    "the dry road")
-        ->delimiter(',')
+        .add_option_function<std::string>(
+            "--surface-grips",
+            [&grips](const std::string& list) {
+                grips.clear();
+                std::size_t start = 0;
+                for (std::size_t id = 0;; ++id) {
+                    const std::size_t comma = std::min(list.find(',', start), list.size());
+                    const std::string element = list.substr(start, comma - start);
+                    double grip = 0.0;
+                    if (!CLI::detail::lexical_cast(element, grip))
+                        throw CLI::ConversionError(
+                            "Could not convert: --surface-grips = " + list + ": surface " +
+                            std::to_string(id) + "'s grip " +
+                            (element.empty() ? "is missing" : "'" + element + "' is not a number"));
+                    grips.push_back(grip);
+                    if (comma == list.size()) break;
+                    start = comma + 1;
+                }
+            },
+            "Grip of the track's surfaces by id, from 0 (`trackphys info MESH` lists a "
+            "mesh's; the generated track's road 0, walls 1); the ids past them grip 1, "
+            "the dry road")
         ->type_name("G0,G1,...");
 }
 
