@@ -208,13 +208,21 @@ double PhysicsRunner::Frame::alpha(double t) const {
     return span > 0.0 ? std::clamp((t - previous_time) / span, 0.0, 1.0) : 1.0;
 }
 
+// A NaN time would interpolate a NaN pose (std::clamp passes NaN through); infinite ones
+// clamp to the ends like any time outside the pair.
+void PhysicsRunner::check_time(double t, const char* caller) {
+    if (std::isnan(t)) throw Error(std::string(caller) + ": the render time is NaN");
+}
+
 CarPose PhysicsRunner::pose(std::size_t car, double t) const {
+    check_time(t, "PhysicsRunner::pose");
     const Frame& frame = front();
     check_present(car, frame.removed, "PhysicsRunner::pose");
     return detail::interpolate(frame.previous[car].pose, frame.current[car].pose, frame.alpha(t));
 }
 
 void PhysicsRunner::view(std::size_t car, double t, CarView& out) const {
+    check_time(t, "PhysicsRunner::view");
     const Frame& frame = front();
     check_present(car, frame.removed, "PhysicsRunner::view");
     detail::interpolate(frame.previous[car], frame.current[car], frame.alpha(t), out);

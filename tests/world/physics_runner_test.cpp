@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <thread>
 #include <vector>
@@ -135,6 +136,22 @@ TEST(PhysicsRunner, TheGameThreadFollowsTheLatestUpdate) {
     EXPECT_GT(seen_between, 0u);
     EXPECT_EQ(runner.latest_update(), kUpdates);
     EXPECT_EQ(runner.published_update(), kUpdates);
+}
+
+// A render clock that once divides 0 by 0 gets an error, not a NaN pose to draw; infinite
+// times are the ends of the published pair.
+TEST(PhysicsRunner, ANaNRenderTimeIsAnErrorAndInfiniteOnesAreTheEnds) {
+    PhysicsRunner runner(two_cars(), false);
+    runner.run_to(3);
+    runner.wait();
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    EXPECT_EQ(test::error_of([&] { runner.pose(0, nan); }),
+              "PhysicsRunner::pose: the render time is NaN");
+    EXPECT_EQ(test::error_of([&] { runner.view(0, nan); }),
+              "PhysicsRunner::view: the render time is NaN");
+    const double inf = std::numeric_limits<double>::infinity();
+    EXPECT_EQ(runner.pose(0, inf).position, runner.pose(0, 0.03).position);
+    EXPECT_EQ(runner.pose(0, -inf).position, runner.pose(0, 0.02).position);
 }
 
 TEST(PhysicsRunner, LateInputsApplyAtTheNextUpdateAndAreCounted) {

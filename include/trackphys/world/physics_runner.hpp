@@ -78,20 +78,23 @@ class TRACKPHYS_API PhysicsRunner {
     /// The last published update number (render thread).
     std::uint64_t published_update() const;
     /// The newest published update number (the world's update_count() when it was
-    /// published), for any thread: a game thread that stamps inputs by the physics' progress
-    /// rather than by its own clock stamps the next update latest_update() + 1.
+    /// published), for any thread. A game thread that stamps inputs by the physics' progress
+    /// rather than by its own clock stamps them latest_update() + 2: update
+    /// latest_update() + 1 may be running already, its inputs taken, and an input stamped for
+    /// it would be late (late_inputs()), applied an update later than a replay applies it.
     std::uint64_t latest_update() const { return latest_update_.load(std::memory_order_acquire); }
     /// Car `car`'s pose at simulated time `t` (s), interpolated between the last two
     /// published states (linearly, and slerp for the orientation): the older state's pose
-    /// at or before its time, the newer one's at or after its time (render thread).
+    /// at or before its time, the newer one's at or after its time (render thread). Throws
+    /// trackphys::Error for no such car or a NaN time.
     CarPose pose(std::size_t car, double t) const;
     /// Car `car`'s view at simulated time `t` (s) between the last two published states, as
     /// pose() interpolates, into `out` (render thread; no allocation once `out` has held
     /// this car's wheels). The ends are the states' views exactly; in between, velocities,
     /// engine rpm and each wheel's position, suspension, steer, spin and spin angle are
     /// linear, each wheel's orientation is made from the interpolated body orientation and
-    /// angles, and the gear is the newer state's. Throws trackphys::Error for no such car, as
-    /// pose and set_inputs do.
+    /// angles, and the gear is the newer state's. Throws trackphys::Error for no such car or
+    /// a NaN time, as pose does.
     void view(std::size_t car, double t, CarView& out) const;
     /// The same, returned (allocates the wheels).
     CarView view(std::size_t car, double t) const {
@@ -136,6 +139,8 @@ class TRACKPHYS_API PhysicsRunner {
 
     // Throws trackphys::Error naming the caller for a car past the published ones.
     void check_car(std::size_t car, const char* caller) const;
+    // Throws trackphys::Error naming the caller for a NaN render time.
+    static void check_time(double t, const char* caller);
     // check_car, and that `removed` (a frame's or the game thread's) does not mark it.
     void check_present(std::size_t car, const std::vector<std::uint8_t>& removed,
                        const char* caller) const;
