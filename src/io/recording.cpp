@@ -62,6 +62,8 @@ void put_vehicle(std::ofstream& out, const RecordedVehicle& vehicle) {
 
 RecordingWriter::RecordingWriter(const std::filesystem::path& path, const RecordingHeader& header)
     : path_(path), temporary_(path.string() + ".partial") {
+    for (const std::vector<CarEllipsoid>& car : header.car_ellipsoids)
+        ellipsoids_.push_back(car.size());
     out_.open(temporary_, std::ios::binary | std::ios::trunc);
     if (!out_) throw Error("cannot open '" + temporary_.string() + "' to write the recording");
     json_io::Json line = {{"format", "trackphys-recording"},
@@ -93,12 +95,26 @@ void RecordingWriter::begin_frame(double t, std::uint64_t state_hash,
     out_ << ",\"hash\":\"" << hash << '"';
     if (update_us) out_ << ",\"us\":", put(out_, *update_us, kNanoseconds);
     out_ << ",\"cars\":[";
-    first_car_ = true;
+    line_cars_ = 0;
 }
 
 void RecordingWriter::add_car(const RecordedCar& car) {
-    out_ << (first_car_ ? "" : ",") << "{\"p\":";
-    first_car_ = false;
+    const std::size_t k = line_cars_;
+    const auto refuse = [&](const std::string& why) {
+        unfinished_line_ = true;
+        throw Error("recording '" + path_.string() + "': " + why);
+    };
+    if (k >= ellipsoids_.size())
+        refuse("car " + std::to_string(k) + " is past the header's " +
+               std::to_string(ellipsoids_.size()));
+    // The viewer reads one suspension per ellipsoid; contacts are by ellipsoid, or none.
+    if (car.suspension.size() != ellipsoids_[k] ||
+        (!car.contacts.empty() && car.contacts.size() != ellipsoids_[k]))
+        refuse("car " + std::to_string(k) + " has " + std::to_string(car.suspension.size()) +
+               " ellipsoids' suspension and " + std::to_string(car.contacts.size()) +
+               " contacts, its header " + std::to_string(ellipsoids_[k]) + " ellipsoids");
+    out_ << (k == 0 ? "" : ",") << "{\"p\":";
+    ++line_cars_;
     put(out_, car.position);
     out_ << ",\"q\":";
     put_list(out_, {car.orientation.w, car.orientation.x, car.orientation.y, car.orientation.z});
@@ -126,9 +142,19 @@ void RecordingWriter::add_car(const RecordedCar& car) {
     out_ << '}';
 }
 
-void RecordingWriter::end_frame() { out_ << "]}\n"; }
+void RecordingWriter::end_frame() {
+    if (line_cars_ != ellipsoids_.size()) {
+        unfinished_line_ = true;
+        throw Error("recording '" + path_.string() + "': a line of " + std::to_string(line_cars_) +
+                    " cars, the header's " + std::to_string(ellipsoids_.size()));
+    }
+    out_ << "]}\n";
+}
 
 void RecordingWriter::finish() {
+    if (unfinished_line_)
+        throw Error("recording '" + path_.string() +
+                    "': not put in place, an earlier error left a line unfinished");
     out_.flush();
     if (!out_) throw Error("cannot write the recording '" + temporary_.string() + "'");
     out_.close();

@@ -3,13 +3,23 @@
 // is written once the next car starts or the frame ends.
 
 #include <limits>
+#include <string>
 
+#include "trackphys/error.hpp"
 #include "trackphys/io/recording.hpp"
 #include "trackphys/world/world.hpp"
 
 namespace trackphys {
 
 void RecordingWriter::write_frame(const World& world, std::span<const std::optional<int>> laps) {
+    // Checked before the line starts, so that a mismatch writes nothing.
+    bool same_cars = world.car_count() == ellipsoids_.size();
+    for (std::size_t k = 0; same_cars && k < ellipsoids_.size(); ++k)
+        same_cars = world.car(k).ellipsoid_count() == ellipsoids_[k];
+    if (!same_cars)
+        throw Error("recording '" + path_.string() + "': the world's " +
+                    std::to_string(world.car_count()) + " cars are not the header's " +
+                    std::to_string(ellipsoids_.size()) + " (as many, with as many ellipsoids)");
     const std::optional<double> update_us =
         world.settings().profile ? std::optional(world.last_profile().update_us) : std::nullopt;
     begin_frame(world.time(), world.state_hash(), update_us);

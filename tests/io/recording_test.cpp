@@ -5,7 +5,10 @@
 #include "trackphys/io/recording.hpp"
 
 #include <array>
+#include <functional>
 #include <limits>
+#include <optional>
+#include <span>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -15,6 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include "io_test_support.hpp"
+#include "support/error_message.hpp"
 
 namespace trackphys {
 namespace {
@@ -41,6 +45,25 @@ RecordingHeader two_car_header() {
 }
 
 class RecordingTest : public test::ScratchFolderTest {};
+
+// A line of two_car_header's cars at rest, apart from everything.
+void write_cars_at_rest(RecordingWriter& writer, double t, std::uint64_t hash,
+                        std::optional<double> update_us = std::nullopt) {
+    const std::vector<double> suspension(CarSpec::default_car().ellipsoids.size(), 0.0);
+    const std::vector<Contact> apart(suspension.size(),
+                                     Contact{-1.0, {0.0, 1.0, 0.0}, {0.0, 0.0, 0.0}});
+    writer.begin_frame(t, hash, update_us);
+    writer.add_car({{0.0, 1.0, 0.0}, {1.0, 0.0, 0.0, 0.0}, 0.0, suspension, apart, {}, {}, {}});
+    writer.add_car({{4.0, 1.0, 0.0},
+                    {1.0, 0.0, 0.0, 0.0},
+                    0.0,
+                    std::span(suspension).first(1),
+                    std::span(apart).first(1),
+                    {},
+                    {},
+                    {}});
+    writer.end_frame();
+}
 
 TEST_F(RecordingTest, HeaderNamesTheTrackAndEveryCarsEllipsoids) {
     const RecordingHeader header = two_car_header();
@@ -80,10 +103,14 @@ TEST_F(RecordingTest, NoTrackMeansNoTrackKey) {
 
 TEST_F(RecordingTest, FramesCarryEveryCarBitForBit) {
     RecordingWriter writer(file("r.jsonl"), two_car_header());
-    const std::array<double, 2> suspension = {0.1 / 3.0, 0.0};
+    std::vector<double> suspension(CarSpec::default_car().ellipsoids.size(), 0.0);
+    suspension[0] = 0.1 / 3.0;
     Contact touching{0.012345678901234567, {0.0, 1.0, 0.0}, {1.0 / 3.0, 2.0, -7.25}};
     Contact apart{-0.5, {0.0, 1.0, 0.0}, {0.0, 0.0, 0.0}};
-    const std::array<Contact, 2> contacts = {apart, touching};
+    std::vector<Contact> contacts(suspension.size(), apart);
+    contacts[1] = touching;
+    const std::array<double, 1> ball_suspension = {0.0};
+    const std::array<Contact, 1> ball_contacts = {apart};
     writer.begin_frame(0.01, 0xfedcba9876543210ull, 61.25);
     writer.add_car({{1.0 / 7.0, 2.0, 3.0},
                     {0.5, 0.5, 0.5, 0.5},
@@ -93,10 +120,10 @@ TEST_F(RecordingTest, FramesCarryEveryCarBitForBit) {
                     CarInputs{1.0, 0.25, -0.125},
                     3,
                     std::nullopt});
-    writer.add_car({{4.0, 5.0, 6.0}, {1.0, 0.0, 0.0, 0.0}, 20.0, {}, {}, {}, {}, {}});
+    writer.add_car(
+        {{4.0, 5.0, 6.0}, {1.0, 0.0, 0.0, 0.0}, 20.0, ball_suspension, ball_contacts, {}, {}, {}});
     writer.end_frame();
-    writer.begin_frame(0.02, 1);  // no update time measured
-    writer.end_frame();
+    write_cars_at_rest(writer, 0.02, 1);  // no update time measured
     writer.finish();
 
     const std::vector<Json> lines = read_lines(file("r.jsonl"));
@@ -110,7 +137,8 @@ TEST_F(RecordingTest, FramesCarryEveryCarBitForBit) {
     EXPECT_EQ(car["p"], Json::array({1.0 / 7.0, 2.0, 3.0}));
     EXPECT_EQ(car["q"], Json::array({0.5, 0.5, 0.5, 0.5}));
     EXPECT_EQ(car["v"].get<double>(), std::numeric_limits<double>::denorm_min());
-    EXPECT_EQ(car["s"], Json::array({0.1 / 3.0, 0.0}));
+    EXPECT_EQ(car["s"][0], 0.1 / 3.0);
+    EXPECT_EQ(car["s"].size(), suspension.size());
     EXPECT_EQ(car["in"], Json::array({1.0, 0.25, -0.125}));
     EXPECT_EQ(car["lap"], 3);
     // Only the overlapping contact, tagged with its ellipsoid's index.
@@ -122,13 +150,12 @@ TEST_F(RecordingTest, FramesCarryEveryCarBitForBit) {
     EXPECT_FALSE(other.contains("lap"));
     EXPECT_EQ(other["contacts"], Json::array());
     EXPECT_FALSE(lines[2].contains("us"));
-    EXPECT_EQ(lines[2]["cars"], Json::array());
+    EXPECT_EQ(lines[2]["cars"].size(), 2u);
 }
 
 TEST_F(RecordingTest, UpdateTimesAreWrittenToTheNanosecond) {
     RecordingWriter writer(file("r.jsonl"), two_car_header());
-    writer.begin_frame(0.01, 1, 61.2345678912);
-    writer.end_frame();
+    write_cars_at_rest(writer, 0.01, 1, 61.2345678912);
     writer.finish();
     const std::string text = test::read_file(file("r.jsonl"));
     EXPECT_NE(text.find(",\"us\":61.235,"), std::string::npos) << text;
@@ -137,11 +164,38 @@ TEST_F(RecordingTest, UpdateTimesAreWrittenToTheNanosecond) {
 TEST_F(RecordingTest, AppearsOnlyWhenFinished) {
     {
         RecordingWriter writer(file("r.jsonl"), two_car_header());
-        writer.begin_frame(0.01, 1);
-        writer.end_frame();
+        write_cars_at_rest(writer, 0.01, 1);
         EXPECT_FALSE(std::filesystem::exists(file("r.jsonl")));
     }
     EXPECT_TRUE(folder_listing().empty());
+}
+
+// A line whose cars are not the header's (another count, another number of ellipsoids) is
+// refused naming the car, and the file is not put in place: a viewer would draw each car
+// with another's shape.
+TEST_F(RecordingTest, CarsThatAreNotTheHeadersAreRefused) {
+    const auto refused = [&](const std::function<void(RecordingWriter&)>& write) {
+        RecordingWriter writer(file("r.jsonl"), two_car_header());
+        write_cars_at_rest(writer, 0.01, 1);
+        const std::string why = test::error_of([&] { write(writer); });
+        const std::string unfinished = test::error_of([&] { writer.finish(); });
+        EXPECT_FALSE(std::filesystem::exists(file("r.jsonl")));
+        EXPECT_NE(unfinished.find("not put in place"), std::string::npos) << unfinished;
+        return why;
+    };
+    const std::vector<double> one(1, 0.0);
+    const std::vector<Contact> none(1, Contact{-1.0, {0.0, 1.0, 0.0}, {0.0, 0.0, 0.0}});
+    const RecordedCar ball{{0.0, 1.0, 0.0}, {1.0, 0.0, 0.0, 0.0}, 0.0, one, none, {}, {}, {}};
+    EXPECT_NE(refused([&](RecordingWriter& w) {
+                  w.begin_frame(0.02, 1);
+                  w.add_car(ball);
+              }).find("car 0 has 1 ellipsoids' suspension and 1 contacts, its header 8"),
+              std::string::npos);
+    EXPECT_NE(refused([&](RecordingWriter& w) {
+                  w.begin_frame(0.02, 1);
+                  w.end_frame();
+              }).find("a line of 0 cars, the header's 2"),
+              std::string::npos);
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "io_test_support.hpp"
+#include "support/error_message.hpp"
 #include "trackphys/io/recording.hpp"
 #include "trackphys/world/spawn.hpp"
 #include "trackphys/world/world.hpp"
@@ -112,7 +113,9 @@ TEST_F(RecordingVehicleTest, VehicleComesAfterTheContactsWithNineDigits) {
     {
         RecordingWriter writer(file("r.jsonl"), header);
         writer.begin_frame(0.01, 1);
+        const std::vector<double> suspension(header.car_ellipsoids[0].size(), 0.0);
         RecordedCar car;
+        car.suspension = suspension;
         car.vehicle = RecordedVehicle{7123.456789012, 4, wheels};
         writer.add_car(car);
         writer.end_frame();
@@ -129,6 +132,28 @@ TEST_F(RecordingVehicleTest, VehicleComesAfterTheContactsWithNineDigits) {
     const Json& vehicle = frame["cars"][0]["vehicle"];
     EXPECT_EQ(vehicle["wheels"][0], Json::array({0.125, 5.72957795, 4000.0, 55.5}));
     EXPECT_EQ(vehicle["wheels"][1], Json::array({-0.5, 0.0, 0.0, -1.0}));
+}
+
+// write_frame checks the world's cars against the header before the line starts: a world
+// of two cars under a one-car header writes nothing and leaves the file good to finish.
+TEST_F(RecordingVehicleTest, AWorldWhoseCarsAreNotTheHeadersWritesNothing) {
+    World world(test::static_world_of(test::flat_grid(400.0, 40)));
+    const CarSpec arcade = CarSpec::default_car();
+    for (const double x : {0.0, 10.0})
+        world.add_car(arcade, place_car_on_surface(world.statics(), arcade, {x, 5.0, -150.0},
+                                                   glm::dquat(1.0, 0.0, 0.0, 0.0)));
+    world.update();
+    RecordingHeader header;
+    header.car_ellipsoids = {arcade.ellipsoids};
+    RecordingWriter writer(file("r.jsonl"), header);
+    const std::string why = test::error_of([&] { writer.write_frame(world); });
+    EXPECT_NE(why.find("the world's 2 cars are not the header's 1"), std::string::npos) << why;
+    writer.finish();
+    std::istringstream in(test::read_file(file("r.jsonl")));
+    std::string line;
+    int lines = 0;
+    while (std::getline(in, line)) ++lines;
+    EXPECT_EQ(lines, 1) << "the header only";
 }
 
 }  // namespace

@@ -90,18 +90,24 @@ class TRACKPHYS_API RecordingWriter : private DebugDraw {
     /// settings().profile), and each car's pose, speed, suspension, inputs and contacts as
     /// World::debug_draw reports them, with its vehicle model's telemetry if it has one. laps[k]:
     /// car k's laps completed, when someone counts them (empty: no one does). The world's cars must
-    /// be the header's.
+    /// be the header's, as many with as many ellipsoids each: throws trackphys::Error, writing
+    /// nothing, when they are not.
     void write_frame(const World& world, std::span<const std::optional<int>> laps = {});
 
     /// Starts the line of the update that ended at time t (s), with the world's state hash
     /// and, when measured, how long the update took (us).
     void begin_frame(double t, std::uint64_t state_hash,
                      std::optional<double> update_us = std::nullopt);
-    /// Adds the next car to the current line; cars come in the header's order.
+    /// Adds the next car to the current line; cars come in the header's order. Throws
+    /// trackphys::Error for a car past the header's or with another number of ellipsoids
+    /// (a suspension for each, and a contact for each or none), as end_frame does for a line
+    /// short of the header's cars;
+    /// the line is then unfinished, and finish() refuses to put the file in place.
     void add_car(const RecordedCar& car);
     void end_frame();
 
-    /// Flushes and renames the file into place; throws trackphys::Error on failure.
+    /// Flushes and renames the file into place; throws trackphys::Error on failure or after a
+    /// line was left unfinished.
     void finish();
 
   private:
@@ -115,7 +121,9 @@ class TRACKPHYS_API RecordingWriter : private DebugDraw {
     std::filesystem::path path_;
     std::filesystem::path temporary_;
     std::ofstream out_;
-    bool first_car_ = true;
+    std::vector<std::size_t> ellipsoids_;  // per car, the header's
+    std::size_t line_cars_ = 0;            // cars on the current line
+    bool unfinished_line_ = false;         // an error left a line half written
     bool finished_ = false;
     // The car write_frame is drawing and its laps, suspension and contacts so far (the
     // vectors keep their capacity: no allocation per frame).
