@@ -313,6 +313,11 @@ void Car::resolve_deep_contacts(std::span<const Contact> deepest) {
     }
 }
 
+void Car::throw_no_ellipsoid(std::size_t i) const {
+    throw Error("the car has no ellipsoid " + std::to_string(i) + " (it has " +
+                std::to_string(shape_->body.size()) + ")");
+}
+
 void Car::apply_impulse(const glm::dvec3& impulse, const glm::dvec3& point) {
     const glm::dvec3 angular = glm::cross(point - state_.position, impulse);
     const glm::dvec3 body_angular = glm::conjugate(state_.orientation) * angular;

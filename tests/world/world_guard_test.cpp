@@ -319,6 +319,19 @@ TEST(Preconditions, ACarIndexPastTheLastCarIsAnErrorNamingBoth) {
     EXPECT_NO_THROW(world.car(0));
 }
 
+TEST(Preconditions, AnEllipsoidIndexPastTheCarsIsAnErrorNamingBoth) {
+    World world(std::make_shared<StaticWorld>());
+    world.add_car(CarSpec::default_car(), at({0.0, 5.0, 0.0}));
+    const Car& car = world.car(0);
+    const std::size_t past = car.ellipsoid_count();
+    const std::string expected = "the car has no ellipsoid " + std::to_string(past) + " (it has " +
+                                 std::to_string(past) + ")";
+    EXPECT_EQ(error_of([&] { car.suspension(past); }), expected);
+    EXPECT_EQ(error_of([&] { car.body_ellipsoid(past); }), expected);
+    EXPECT_EQ(error_of([&] { car.world_ellipsoid(past); }), expected);
+    EXPECT_NO_THROW(car.world_ellipsoid(past - 1));
+}
+
 TEST(Preconditions, ImpossibleStartsAreRejected) {
     World world(test::static_world_of(test::flat_grid(40.0, 8)));
     EXPECT_NE(error_of([&] {

@@ -95,8 +95,11 @@ class TRACKPHYS_API Car {
 
     std::size_t ellipsoid_count() const { return shape_->body.size(); }
     /// Ellipsoid i in the body frame (relative to the centre of mass). Cars that share their
-    /// ellipsoids (share_ellipsoids_with) return the same object.
-    const Ellipsoid& body_ellipsoid(std::size_t i) const { return shape_->body[i].ellipsoid(); }
+    /// ellipsoids (share_ellipsoids_with) return the same object. Every call taking an
+    /// ellipsoid index throws trackphys::Error past ellipsoid_count().
+    const Ellipsoid& body_ellipsoid(std::size_t i) const {
+        return shape_->body[checked(i)].ellipsoid();
+    }
     /// Ellipsoid i placed in the world by the current state (wheels moved up by their
     /// suspension travel).
     Ellipsoid world_ellipsoid(std::size_t i) const {
@@ -109,12 +112,12 @@ class TRACKPHYS_API Car {
     }
     /// The same with the orientation given as a PlacingRotation of state().orientation.
     Ellipsoid world_ellipsoid(std::size_t i, const PlacingRotation& orientation) const {
-        Ellipsoid placed = shape_->body[i].ellipsoid();
+        Ellipsoid placed = shape_->body[checked(i)].ellipsoid();
         place_ellipsoid(i, orientation, placed);
         return placed;
     }
     /// Suspension compression of ellipsoid i from full droop (m; always 0 for the body).
-    double suspension(std::size_t i) const { return suspension_[i]; }
+    double suspension(std::size_t i) const { return suspension_[checked(i)]; }
     /// Suspension compression of every ellipsoid, in CarSpec order (m).
     std::span<const double> suspension() const { return suspension_; }
     /// The vehicle model (wheel spins, slips, gear, clutch, telemetry) of a car whose spec
@@ -145,6 +148,13 @@ class TRACKPHYS_API Car {
 
   private:
     friend struct detail::CarAccess;
+
+    // i, when the car has an ellipsoid i.
+    std::size_t checked(std::size_t i) const {
+        if (i >= shape_->body.size()) throw_no_ellipsoid(i);
+        return i;
+    }
+    [[noreturn]] void throw_no_ellipsoid(std::size_t i) const;
 
     /// One sub-step of h seconds from each ellipsoid's deepest contact (one per ellipsoid,
     /// in order; depth <= 0 for none): impulses for contacts the springs cannot hold, the
