@@ -75,7 +75,8 @@ World::CarSlot::CarSlot(Car car_in, MidPhase mid_in)
     : car(std::move(car_in)), mid(std::move(mid_in)) {
     const std::size_t ellipsoids = car.ellipsoid_count();
     deepest.resize(ellipsoids);
-    deepest_ref.resize(ellipsoids, TriangleRef{~0u, ~0u});
+    deepest_ref.resize(ellipsoids);
+    forget_contacts();  // an added car has touched nothing yet
     known.resize(ellipsoids);
     hits.reserve(static_cast<std::size_t>(
         std::count_if(car.spec().ellipsoids.begin(), car.spec().ellipsoids.end(),

@@ -319,6 +319,17 @@ TEST(Preconditions, ACarIndexPastTheLastCarIsAnErrorNamingBoth) {
     EXPECT_NO_THROW(world.car(0));
 }
 
+// Before its first update an added car has touched nothing, written as after a reset: a
+// game testing depth >= 0 sees no touch.
+TEST(Preconditions, AnAddedCarHasNoContactsUntilItsFirstUpdate) {
+    World world(test::static_world_of(test::flat_grid(40.0, 8)));
+    world.add_car(CarSpec::default_car(), at({0.0, 5.0, 0.0}));
+    for (const Contact& c : world.contacts(0)) {
+        EXPECT_EQ(c.depth, -kInf);
+        EXPECT_EQ(c.normal, glm::dvec3(0.0));
+    }
+}
+
 TEST(Preconditions, AnEllipsoidIndexPastTheCarsIsAnErrorNamingBoth) {
     World world(std::make_shared<StaticWorld>());
     world.add_car(CarSpec::default_car(), at({0.0, 5.0, 0.0}));

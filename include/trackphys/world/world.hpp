@@ -136,7 +136,8 @@ class TRACKPHYS_API World {
     const Car& car(std::size_t i) const;
 
     /// Car i's deepest contact per ellipsoid (in CarSpec order) at the last sub-step of
-    /// the last update; depth <= 0 where an ellipsoid touched nothing.
+    /// the last update; where an ellipsoid touched nothing (or the car has not been updated
+    /// since it was added, reset or teleported), depth -infinity and a zero normal and point.
     std::span<const Contact> contacts(std::size_t i) const;
     /// What ellipsoid `ellipsoid` (in CarSpec order) of car i touched at the last sub-step of
     /// the last update: the triangle of its deepest contact, contacts(i)[ellipsoid], and that
