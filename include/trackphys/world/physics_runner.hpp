@@ -36,6 +36,9 @@ namespace trackphys {
 /// published_update().
 /// Inputs go through a mutex (a few per update); publishing is a lock-free triple buffer (the
 /// render thread always reads a complete pair of states, the newest one published).
+/// Only poses and views are published: the world's contact events, contact surfaces and
+/// resets are read through world() between runs (a game that needs them every update runs
+/// World::update on a thread of its own, with its job system if it has one).
 class TRACKPHYS_API PhysicsRunner {
   public:
     /// Takes the world (with its cars). real_time: one update per dt_update of wall clock
