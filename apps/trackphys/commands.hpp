@@ -42,14 +42,14 @@ inline void check_threads(long long threads) {
                     std::to_string(threads));
 }
 
-/// Refuses an explicit --laps or --seconds of 0 or less: Scenario reads 0 as "not given" and
+/// Refuses an explicit --laps or --seconds of 0 or less (or NaN): Scenario reads 0 as "not given" and
 /// would drive a lap for a user who asked for none, and its range message ("in [0, 86400]")
 /// would offer 0 to one who gave -1.
 inline void refuse_zero_duration(const OptionGiven& given, int laps, double seconds) {
     if (given("--laps") && laps <= 0)
         throw Error("--laps must be >= 1, got " + std::to_string(laps) +
                     " (leave it out for the default)");
-    if (given("--seconds") && seconds <= 0.0)
+    if (given("--seconds") && !(seconds > 0.0))  // NaN too
         throw Error("--seconds must be > 0, got " + shown(seconds) +
                     " (leave it out for the default)");
 }

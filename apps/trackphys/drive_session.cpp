@@ -51,6 +51,11 @@ DriveSession parse_session(std::string_view text) {
         if (s.free_mode == s.autopilot.has_value())
             throw Error(s.free_mode ? "free mode with an autopilot" : "no autopilot progress");
         return s;
+    } catch (const nlohmann::json::parse_error&) {
+        // A snapshot saved by the library (save_snapshot) rather than by the command.
+        throw Error(
+            "the snapshot holds no drive session: it was not saved by `trackphys drive "
+            "--save-at`");
     } catch (const nlohmann::json::exception& e) {
         throw Error(std::string("the snapshot's drive session is not valid: ") + e.what());
     } catch (const Error& e) {
