@@ -58,6 +58,7 @@
 #include "trackphys/world/physics_runner.hpp"
 #include "trackphys/world/race_drivers.hpp"
 #include "trackphys/world/race_grid.hpp"
+#include "trackphys/world/runner_events.hpp"
 #include "trackphys/world/spawn.hpp"
 #include "trackphys/world/surface.hpp"
 #include "trackphys/world/world.hpp"

@@ -8,6 +8,7 @@
 
 #include "trackphys/error.hpp"
 #include "world/car_views.hpp"
+#include "world/runner_event_log.hpp"
 
 namespace trackphys {
 namespace {
@@ -27,7 +28,8 @@ PhysicsRunner::PhysicsRunner(World world, bool real_time)
       roster_version_(world_.roster_version()),
       world_index_(cars_),
       removed_(cars_, 0),
-      real_time_(real_time) {
+      real_time_(real_time),
+      events_(std::make_unique<detail::RunnerEventLog>()) {
     for (std::size_t i = 0; i < cars_; ++i) world_index_[i] = i;
     // Every buffer starts as the current state (both ends of the pair), sized for the cars
     // (and each car for its wheels) so that publishing never allocates.
@@ -57,6 +59,7 @@ void PhysicsRunner::run_to(std::uint64_t last_update) {
             "runner for another field)");
     stopping_.store(false);
     error_ = nullptr;
+    events_->start(world_, world_index_, removed_);
     running_.store(true, std::memory_order_relaxed);
     thread_ = std::thread([this, last_update] { loop(last_update); });
 }
@@ -91,6 +94,8 @@ void PhysicsRunner::remove_car(std::size_t car) {
     }
     republish();
 }
+
+void PhysicsRunner::take_events(RunnerEvents& out) { events_->take(out); }
 
 World& PhysicsRunner::world() {
     if (still_running()) throw Error("PhysicsRunner::world: the physics thread is running");
@@ -135,6 +140,8 @@ void PhysicsRunner::loop(std::uint64_t last_update) {
             }
             apply_due_inputs();
             world_.update();
+            if (keep_events_.load(std::memory_order_relaxed))
+                events_->collect(world_, world_index_, removed_);
             publish();
         }
     } catch (...) {

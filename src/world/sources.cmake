@@ -8,6 +8,7 @@ target_sources(trackphys PRIVATE
   world/physics_runner.cpp
   world/race_drivers.cpp
   world/race_grid.cpp
+  world/runner_event_log.cpp
   world/spawn.cpp
   world/surface.cpp
   world/thread_pool.cpp

@@ -11,6 +11,7 @@
 #include <limits>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -109,11 +110,15 @@ TEST(PhysicsRunner, InputsGivenWhileTheThreadRunsReplayBitForBit) {
     EXPECT_EQ(runner.world().state_hash(), direct_replay());
 }
 
-// A game thread follows the physics' progress by latest_update() while a render thread
-// reads (ThreadSanitizer): it only grows, passes through the run, and ends at its last
-// update, where the render thread's frame is.
+// A game thread follows the physics' progress by latest_update() and takes the kept events
+// while a render thread reads (ThreadSanitizer): the update only grows, passes through the
+// run, and ends at its last update, where the render thread's frame is; the two cars, apart
+// on their wheels, give no event.
 TEST(PhysicsRunner, TheGameThreadFollowsTheLatestUpdate) {
     PhysicsRunner runner(two_cars(), true);
+    runner.keep_events(true);
+    RunnerEvents events;
+    std::size_t taken = 0;
     EXPECT_EQ(runner.latest_update(), 0u);
     std::atomic<bool> done{false};
     std::thread render([&] {
@@ -127,6 +132,8 @@ TEST(PhysicsRunner, TheGameThreadFollowsTheLatestUpdate) {
         grows = grows && now >= last && now <= kUpdates;
         if (now > 0 && now < kUpdates) ++seen_between;
         last = now;
+        runner.take_events(events);
+        taken += events.car_touch_begins.size() + events.body_hits.size() + events.resets.size();
         std::this_thread::sleep_for(std::chrono::milliseconds(1));
     }
     runner.wait();
@@ -134,6 +141,7 @@ TEST(PhysicsRunner, TheGameThreadFollowsTheLatestUpdate) {
     render.join();
     EXPECT_TRUE(grows);
     EXPECT_GT(seen_between, 0u);
+    EXPECT_EQ(taken, 0u);
     EXPECT_EQ(runner.latest_update(), kUpdates);
     EXPECT_EQ(runner.published_update(), kUpdates);
 }
@@ -461,6 +469,91 @@ TEST(PhysicsRunner, RemoveCarBetweenRunsReplaysADirectRemoval) {
     runner.start();
     EXPECT_THROW(runner.remove_car(0), Error);
     runner.stop();
+}
+
+// The outer two of three cars thrown at each other once the middle one is removed: the
+// events a runner keeps are a direct replay's, stamped with their updates and in the
+// runner's numbers (its car 2 is the world's 1); a push beyond the limits given between runs
+// comes back as a reset; a runner not asked keeps nothing.
+TEST(PhysicsRunner, KeptEventsAreADirectReplaysInTheRunnersNumbers) {
+    constexpr std::uint64_t kRemoved = 10, kLast = 100;
+    const auto thrown = [](World& world) {  // the world's cars 0 and 1, 12 m apart
+        for (const auto& [car, vx] : {std::pair{0, 20.0}, std::pair{1, -20.0}}) {
+            RigidBodyState state = world.car(car).state();
+            state.linear_velocity = {vx, 0.0, 0.0};
+            world.car(car).set_state(state);
+        }
+    };
+    World direct = three_cars();
+    for (std::uint64_t u = 0; u < kRemoved; ++u) direct.update();
+    direct.remove_car(1);
+    thrown(direct);
+    RunnerEvents expected;
+    const auto runner_number = [](std::uint32_t world_car) { return world_car == 0 ? 0u : 2u; };
+    for (std::uint64_t u = kRemoved; u < kLast; ++u) {
+        direct.update();
+        const ContactEvents events = direct.contact_events();
+        for (CarTouchBeginEvent e : events.car_touch_begins) {
+            e.car_a = runner_number(e.car_a);
+            e.car_b = runner_number(e.car_b);
+            expected.car_touch_begins.push_back({u + 1, e});
+        }
+        for (CarTouchEndEvent e : events.car_touch_ends) {
+            e.car_a = runner_number(e.car_a);
+            e.car_b = runner_number(e.car_b);
+            expected.car_touch_ends.push_back({u + 1, e});
+        }
+        for (BodyHitEvent e : events.body_hits) {
+            e.car = runner_number(e.car);
+            expected.body_hits.push_back({u + 1, e});
+        }
+    }
+    ASSERT_FALSE(expected.car_touch_begins.empty()) << "the cars must meet";
+
+    PhysicsRunner runner(three_cars(), false);
+    runner.keep_events(true);
+    runner.run_to(kRemoved);
+    runner.wait();
+    RunnerEvents before;
+    runner.take_events(before);  // the first updates' (none between the cars)
+    runner.remove_car(1);
+    thrown(runner.world());
+    runner.run_to(kLast);
+    runner.wait();
+    RunnerEvents kept;
+    runner.take_events(kept);
+    const auto bits = [](const auto& x) {
+        return std::vector<char>(reinterpret_cast<const char*>(&x),
+                                 reinterpret_cast<const char*>(&x) + sizeof x);
+    };
+    const auto same = [&](const auto& a, const auto& b) {
+        if (a.size() != b.size()) return false;
+        for (std::size_t i = 0; i < a.size(); ++i)
+            if (a[i].update != b[i].update || bits(a[i].event) != bits(b[i].event)) return false;
+        return true;
+    };
+    EXPECT_TRUE(same(kept.car_touch_begins, expected.car_touch_begins));
+    EXPECT_TRUE(same(kept.car_touch_ends, expected.car_touch_ends));
+    EXPECT_TRUE(same(kept.body_hits, expected.body_hits));
+    EXPECT_TRUE(kept.resets.empty());
+    EXPECT_EQ(kept.car_touch_begins.front().event.car_b, 2u);
+
+    const glm::dvec3 centre = runner.world().car(1).state().position;
+    runner.world().car(1).apply_impulse({0.0, 1e300, 0.0}, centre + glm::dvec3(10.0, 0.0, 0.0));
+    runner.run_to(kLast + 1);
+    runner.wait();
+    runner.take_events(kept);
+    ASSERT_EQ(kept.resets.size(), 1u);
+    EXPECT_EQ(kept.resets[0].update, kLast + 1);
+    EXPECT_EQ(kept.resets[0].event.car, 2u);
+    EXPECT_EQ(kept.resets[0].event.reason.rfind("before update 101: ", 0), 0u)
+        << kept.resets[0].event.reason;
+
+    PhysicsRunner quiet(three_cars(), false);
+    quiet.run_to(kRemoved);
+    quiet.wait();
+    quiet.take_events(kept);
+    EXPECT_TRUE(kept.empty());
 }
 
 // A render thread reads the published poses of the cars that stay while the game removes one

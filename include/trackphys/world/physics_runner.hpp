@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <exception>
+#include <memory>
 #include <mutex>
 #include <thread>
 #include <vector>
@@ -11,9 +12,14 @@
 #include "trackphys/dynamics/car.hpp"
 #include "trackphys/export.hpp"
 #include "trackphys/world/car_view.hpp"
+#include "trackphys/world/runner_events.hpp"
 #include "trackphys/world/world.hpp"
 
 namespace trackphys {
+
+namespace detail {
+class RunnerEventLog;
+}
 
 /// A World on a physics thread of its own, the "fix your timestep" loop of a game: the
 /// thread runs World::update every dt_update (in real time, or as fast as it can), applies
@@ -36,9 +42,10 @@ namespace trackphys {
 /// published_update().
 /// Inputs go through a mutex (a few per update); publishing is a lock-free triple buffer (the
 /// render thread always reads a complete pair of states, the newest one published).
-/// Only poses and views are published: the world's contact events, contact surfaces and
-/// resets are read through world() between runs (a game that needs them every update runs
-/// World::update on a thread of its own, with its job system if it has one).
+/// Poses and views are published for the render thread; the world's contact events and
+/// resets, once keep_events(true), are kept for the game thread's take_events (crash
+/// sounds, damage, a reset car's message). Contact surfaces and the rest of the World are
+/// read through world() between runs.
 class TRACKPHYS_API PhysicsRunner {
   public:
     /// Takes the world (with its cars). real_time: one update per dt_update of wall clock
@@ -75,6 +82,16 @@ class TRACKPHYS_API PhysicsRunner {
     /// counted by late_inputs(); on time, a recorded input stream replays bit-identically.
     /// Throws trackphys::Error for a car that does not exist or NaN inputs.
     void set_inputs(std::uint64_t update, std::size_t car, const CarInputs& inputs);
+    /// Keeps (or stops keeping) the world's contact events and resets after each update for
+    /// take_events, from the next update on (game thread). Off at first: a game that never
+    /// takes them keeps nothing.
+    void keep_events(bool keep) { keep_events_.store(keep, std::memory_order_relaxed); }
+    /// Moves the events kept since the last call into `out` (game thread, while the physics
+    /// thread runs or not): out's earlier contents are dropped and its capacity goes to the
+    /// runner's next events, so that a game taking them every frame allocates nothing once
+    /// the lists have grown. See RunnerEvents.
+    void take_events(RunnerEvents& out);
+
     /// How many set_inputs calls came after their update had run (see set_inputs).
     std::uint64_t late_inputs() const { return late_inputs_.load(std::memory_order_relaxed); }
 
@@ -177,6 +194,8 @@ class TRACKPHYS_API PhysicsRunner {
     std::vector<StampedInputs> pending_;  // guarded by inputs_mutex_
     std::atomic<std::uint64_t> late_inputs_{0};
     std::atomic<std::uint64_t> latest_update_{0};  // beside the triple buffer, for any thread
+    std::atomic<bool> keep_events_{false};
+    std::unique_ptr<detail::RunnerEventLog> events_;
 
     // Triple buffer: the physics thread owns frames_[back_], the render thread
     // frames_[front_], and the third waits in middle_ (index | kFresh once it is new).
