@@ -1,8 +1,12 @@
 #include "world/car_views.hpp"
 
+#include <limits>
+#include <string>
+
 #include <glm/gtc/quaternion.hpp>
 #include <glm/mat3x3.hpp>
 
+#include "trackphys/error.hpp"
 #include "trackphys/vehicle/vehicle.hpp"
 
 namespace trackphys::detail {
@@ -88,3 +92,42 @@ void interpolate(const CarView& older, const CarView& newer, double alpha, CarVi
 }
 
 }  // namespace trackphys::detail
+
+namespace trackphys {
+namespace {
+
+// Whether the view holds car's wheels, in order.
+bool holds_wheels_of(const CarView& view, const Car& car) {
+    std::size_t w = 0;
+    for (std::size_t i = 0; i < car.ellipsoid_count(); ++i) {
+        if (car.spec().ellipsoids[i].role == EllipsoidRole::body) continue;
+        if (w >= view.wheels.size() || view.wheels[w].ellipsoid != i) return false;
+        ++w;
+    }
+    return w == view.wheels.size();
+}
+
+}  // namespace
+
+void update_car_view(const Car& car, double dt, CarView& view) {
+    if (!(dt >= 0.0 && dt <= std::numeric_limits<double>::max()))
+        throw Error("update_car_view: dt must be finite and >= 0, got " + std::to_string(dt));
+    if (!holds_wheels_of(view, car)) {
+        view = detail::sized_view(car);
+        return;
+    }
+    detail::take_view(car, view, dt, view);
+}
+
+void interpolate_car_view(const CarView& older, const CarView& newer, double alpha, CarView& out) {
+    if (!(alpha >= 0.0 && alpha <= 1.0))
+        throw Error("interpolate_car_view: alpha must be in [0, 1], got " + std::to_string(alpha));
+    bool same_wheels = older.wheels.size() == newer.wheels.size();
+    for (std::size_t w = 0; same_wheels && w < older.wheels.size(); ++w)
+        same_wheels = older.wheels[w].ellipsoid == newer.wheels[w].ellipsoid;
+    if (!same_wheels)
+        throw Error("interpolate_car_view: the two views hold other wheels (views of two cars?)");
+    detail::interpolate(older, newer, alpha, out);
+}
+
+}  // namespace trackphys

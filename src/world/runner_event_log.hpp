@@ -30,7 +30,7 @@ class RunnerEventLog {
 
   private:
     std::mutex mutex_;
-    RunnerEvents kept_;                          // guarded by mutex_
+    RunnerEvents kept_;                           // guarded by mutex_
     std::vector<std::uint32_t> runner_of_world_;  // per world index, the runner's number
     std::vector<std::uint64_t> resets_seen_;      // per runner number
 };

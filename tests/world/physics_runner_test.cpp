@@ -366,6 +366,45 @@ TEST_P(PhysicsRunnerView, ViewInterpolatesBetweenThePublishedStates) {
     }
 }
 
+// A game that runs World::update itself keeps the same views with update_car_view: after
+// each update, bit for bit what the runner publishes (spin angles included), and
+// interpolate_car_view between two of them is PhysicsRunner::view's.
+TEST_P(PhysicsRunnerView, UpdateCarViewIsWhatTheRunnerPublishes) {
+    World world = two_cars(CarSpec::preset(GetParam()));
+    world.car(0).set_inputs({1.0, 0.0, 0.2});
+    runner_.set_inputs(1, 0, {1.0, 0.0, 0.2});
+    CarView view, before;
+    update_car_view(world.car(0), 0.0, view);  // made for the car, spin angles 0
+    const double dt = world.settings().dt_update;
+    double before_time = 0.0;
+    for (int u = 0; u < 60; ++u) {
+        before_time = world.time();
+        world.update();
+        before = view;
+        update_car_view(world.car(0), dt, view);
+    }
+    runner_.run_to(60);
+    runner_.wait();
+    const auto bits = [](const CarView& v) {
+        std::vector<double> b = {v.pose.position.x,    v.pose.position.y, v.pose.position.z,
+                                 v.pose.orientation.w, v.engine_rpm,      double(v.gear)};
+        for (const WheelView& w : v.wheels)
+            b.insert(b.end(), {w.position.x, w.position.y, w.position.z, w.orientation.x,
+                               w.suspension, w.steer_angle, w.spin, w.spin_angle});
+        return b;
+    };
+    EXPECT_EQ(bits(view), bits(runner_.view(0, world.time())));
+    // The runner's alpha for a render time between the two updates, as it computes it.
+    const double t = world.time() - 0.75 * dt;
+    CarView between;
+    interpolate_car_view(before, view, (t - before_time) / (world.time() - before_time), between);
+    EXPECT_EQ(bits(between), bits(runner_.view(0, t)));
+    EXPECT_EQ(test::error_of([&] { interpolate_car_view(before, view, 1.5, between); }),
+              "interpolate_car_view: alpha must be in [0, 1], got 1.500000");
+    EXPECT_EQ(test::error_of([&] { update_car_view(world.car(0), -dt, view); }),
+              "update_car_view: dt must be finite and >= 0, got -0.010000");
+}
+
 INSTANTIATE_TEST_SUITE_P(Presets, PhysicsRunnerView, ::testing::Values("arcade", "gt"));
 
 // A render thread reading views while the physics thread runs a vehicle-model car in real

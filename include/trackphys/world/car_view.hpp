@@ -6,7 +6,11 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/vec3.hpp>
 
+#include "trackphys/export.hpp"
+
 namespace trackphys {
+
+class Car;
 
 /// Where a car is, for drawing it.
 struct CarPose {
@@ -49,5 +53,22 @@ struct CarView {
     int gear = 0;
     std::vector<WheelView> wheels;  ///< the spec's wheels, in CarSpec order
 };
+
+/// Brings `view`, the car's view of dt seconds before, to the car's state now, as a
+/// PhysicsRunner publishes it after each update (bit for bit): for a game that runs
+/// World::update itself. Each wheel's spin angle advances by the trapezoid of its two spins
+/// over dt. A view that does not hold this car's wheels (a default CarView, another car's) is
+/// made for it first, its spin angles from 0 (dt is then not used); after that, no
+/// allocation. Throws trackphys::Error for a dt that is negative or not finite.
+TRACKPHYS_API void update_car_view(const Car& car, double dt, CarView& view);
+
+/// The view `alpha` (0..1) of the way from `older` to `newer`, two views of one car, into
+/// `out`, as PhysicsRunner::view interpolates (no allocation once out has held as many
+/// wheels): older's exactly at 0 and newer's at 1; in between, the position and the other
+/// numbers linear, the orientation slerped, each wheel's orientation made from the
+/// interpolated body orientation and angles, the gear newer's. Throws trackphys::Error for
+/// an alpha outside [0, 1] (NaN too) or views with other wheels.
+TRACKPHYS_API void interpolate_car_view(const CarView& older, const CarView& newer, double alpha,
+                                        CarView& out);
 
 }  // namespace trackphys
