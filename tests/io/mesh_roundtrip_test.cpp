@@ -1,9 +1,11 @@
-// save_mesh then load_mesh gives back the same triangles, in every export format.
+// save_mesh then load_mesh gives back the same triangles, in every export format, and glTF
+// their surface ids.
 
 #include <algorithm>
 #include <cmath>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -67,6 +69,28 @@ TriangleMesh rounded_to_float(TriangleMesh mesh) {
     return mesh;
 }
 
+// Whether each of loaded's triangles, found by its corners (sorted: STL and welding may
+// rotate a triangle's), has mesh's surface id (kept) or 0.
+void expect_surfaces(const TriangleMesh& mesh, const TriangleMesh& loaded, bool kept) {
+    const auto ids_by_corners = [](const TriangleMesh& m) {
+        std::vector<std::pair<std::vector<double>, SurfaceId>> ids;
+        for (std::size_t t = 0; t < m.triangles.size(); ++t) {
+            std::vector<std::vector<double>> corners;
+            for (const std::uint32_t v : m.triangles[t])
+                corners.push_back({m.vertices[v].x, m.vertices[v].y, m.vertices[v].z});
+            std::sort(corners.begin(), corners.end());
+            std::vector<double> key;
+            for (const auto& c : corners) key.insert(key.end(), c.begin(), c.end());
+            ids.push_back({key, m.surfaces.empty() ? SurfaceId{0} : m.surfaces[t]});
+        }
+        std::sort(ids.begin(), ids.end());
+        return ids;
+    };
+    TriangleMesh expected = mesh;
+    if (!kept) expected.surfaces.assign(mesh.triangles.size(), 0);
+    EXPECT_EQ(ids_by_corners(loaded), ids_by_corners(expected));
+}
+
 class MeshRoundTrip : public test::ScratchFolderTest,
                       public ::testing::WithParamInterface<std::string> {};
 
@@ -119,6 +143,28 @@ TEST_P(MeshRoundTrip, LeavesOnlyTheFilesOfTheFormat) {
     if (GetParam() == ".gltf") expected = {"m.bin", "m.gltf"};  // JSON + its buffer
     EXPECT_EQ(folder_listing(), expected);
     EXPECT_EQ(load_mesh(file("m" + GetParam())).triangles.size(), 12u);
+}
+
+// Surface ids come back from glTF (one material per id, the triangles grouped by id) when
+// ids 0 to the highest all have triangles: each triangle, found by its corners, has its id
+// again, materials named by id. The other formats, and glTF for ids with one unused in
+// between (4 without 3: glTF would drop the unused material and shift 4), hold one surface.
+TEST_P(MeshRoundTrip, SurfaceIdsComeBackFromGltfAlone) {
+    for (const SurfaceId highest : {3, 4}) {
+        TriangleMesh mesh = height_field(6, 5, 1.25, {-3.0, 2.0, 4.0}, nullptr);
+        for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
+            mesh.surfaces.push_back(static_cast<SurfaceId>(t % 7 == 0 ? highest : t % 3));
+        const fs::path path = file("surfaces" + std::to_string(highest) + GetParam());
+        save_mesh(mesh, path);
+        MeshLoadReport report;
+        const TriangleMesh loaded = load_mesh(path, report);
+        ASSERT_EQ(loaded.triangles.size(), mesh.triangles.size());
+        const bool kept = (GetParam() == ".glb" || GetParam() == ".gltf") && highest == 3;
+        expect_surfaces(mesh, loaded, kept);
+        if (kept)
+            for (int id = 0; id <= highest; ++id)
+                EXPECT_EQ(report.materials.at(std::size_t(id)), "surface " + std::to_string(id));
+    }
 }
 
 INSTANTIATE_TEST_SUITE_P(Formats, MeshRoundTrip,

@@ -83,11 +83,18 @@ TRACKPHYS_API TriangleMesh load_mesh(const std::filesystem::path& path, MeshLoad
 TRACKPHYS_API TriangleMesh load_mesh(const std::filesystem::path& path,
                                      const MeshLoadLimits& limits = MeshLoadLimits{});
 
-/// Writes mesh (world space, one mesh, one node, no materials beyond assimp's default) in
-/// the format named by the extension, case-insensitive: .glb (binary glTF 2), .gltf (glTF 2
-/// JSON with its buffer in a .bin file of the same stem beside it), .obj (Wavefront, no
-/// material file), .ply (binary PLY), .stl (binary STL, unindexed). Positions are stored as
-/// float32 in every one of them (see the precision note above).
+/// Writes mesh (world space, one node) in the format named by the extension,
+/// case-insensitive: .glb (binary glTF 2), .gltf (glTF 2 JSON with its buffer in a .bin file
+/// of the same stem beside it), .obj (Wavefront, no material file), .ply (binary PLY), .stl
+/// (binary STL, unindexed). Positions are stored as float32 in every one of them (see the
+/// precision note above). Surface ids (TriangleMesh::surfaces) are kept by glTF alone, for
+/// a mesh whose ids 0 to the highest all have triangles (as the generated track's road 0
+/// and walls 1): it is written as one material per id ("surface 0", "surface 1", ...) and one
+/// mesh of each id's triangles, so that load_mesh gives each triangle its id again. The
+/// other formats, and glTF for any other mesh (one surface, or an id without triangles
+/// below the highest, which glTF's unused material would not keep), hold one mesh with
+/// assimp's default material, in triangle order: every id 0 when read back.
+/// Throws also for a surface list that is neither empty nor one id per triangle.
 ///
 /// The files are first written into a fresh temporary folder beside the destination and
 /// then renamed into place, so a failure never leaves a partial file and never disturbs an
