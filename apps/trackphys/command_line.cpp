@@ -68,11 +68,14 @@ void add_mesh_limit_options(CLI::App& command, MeshLoadLimits& limits) {
 
 void add_surface_grips_option(CLI::App& command, std::vector<double>& grips) {
     // Split here rather than by CLI11's delimiter, which drops empty elements: "1,,0.2" would
-    // grip surface 1 at 0.2 where the user meant surface 2.
+    // grip surface 1 at 0.2 where the user meant surface 2. Values given apart ("1 0.5", or
+    // the option twice) continue the list, as they did with the delimiter.
     command
-        .add_option_function<std::string>(
+        .add_option_function<std::vector<std::string>>(
             "--surface-grips",
-            [&grips](const std::string& list) {
+            [&grips](const std::vector<std::string>& values) {
+                std::string list;
+                for (const std::string& value : values) list += (list.empty() ? "" : ",") + value;
                 grips.clear();
                 std::size_t start = 0;
                 for (std::size_t id = 0;; ++id) {

@@ -318,23 +318,32 @@ void Car::throw_no_ellipsoid(std::size_t i) const {
                 std::to_string(shape_->body.size()) + ")");
 }
 
-void Car::apply_impulse(const glm::dvec3& impulse, const glm::dvec3& point) {
+Car::Velocities Car::pushed(const glm::dvec3& impulse, const glm::dvec3& point) const {
     const glm::dvec3 angular = glm::cross(point - state_.position, impulse);
     const glm::dvec3 body_angular = glm::conjugate(state_.orientation) * angular;
-    const glm::dvec3 linear_velocity = state_.linear_velocity + impulse / spec_.mass.mass;
-    const glm::dvec3 angular_velocity =
-        state_.angular_velocity +
-        state_.orientation * (body_angular / spec_.mass.principal_inertia);
+    return {state_.linear_velocity + impulse / spec_.mass.mass,
+            state_.angular_velocity +
+                state_.orientation * (body_angular / spec_.mass.principal_inertia)};
+}
+
+void Car::push(const glm::dvec3& impulse, const glm::dvec3& point) {
+    const Velocities v = pushed(impulse, point);
+    state_.linear_velocity = v.linear;
+    state_.angular_velocity = v.angular;
+}
+
+void Car::apply_impulse(const glm::dvec3& impulse, const glm::dvec3& point) {
+    const Velocities v = pushed(impulse, point);
     // Also what overflows: a finite impulse far from the centre can give an infinite spin.
-    if (!is_finite(linear_velocity) || !is_finite(angular_velocity)) {
+    if (!is_finite(v.linear) || !is_finite(v.angular)) {
         std::ostringstream why;
         why << "Car::apply_impulse: impulse (" << impulse.x << ", " << impulse.y << ", "
             << impulse.z << ") N s at point (" << point.x << ", " << point.y << ", " << point.z
             << ") m leaves the car's velocity not finite; the car is unchanged";
         throw Error(why.str());
     }
-    state_.linear_velocity = linear_velocity;
-    state_.angular_velocity = angular_velocity;
+    state_.linear_velocity = v.linear;
+    state_.angular_velocity = v.angular;
 }
 
 double Car::inverse_mass_along(const glm::dvec3& normal, const glm::dvec3& point) const {

@@ -25,6 +25,9 @@ struct CarAccess {
                               std::span<const double> suspension) {
         car.check_restore(state, inputs, suspension);
     }
+    static void push(Car& car, const glm::dvec3& impulse, const glm::dvec3& point) {
+        car.push(impulse, point);
+    }
     static void set_suspension(Car& car, std::span<const double> travel) {
         car.set_suspension(travel);
     }

@@ -8,6 +8,7 @@
 #include <exception>
 #include <limits>
 #include <memory>
+#include <span>
 #include <string>
 #include <string_view>
 #include <system_error>
@@ -74,30 +75,29 @@ void validate(const TriangleMesh& mesh, const fs::path& path) {
                                std::to_string(i));
 }
 
-// An aiMesh of the mesh's triangles that `keep` takes, with the vertices they use
-// (renumbered in order of first use; all of them, unrenumbered, when every triangle is kept).
-template <class Keep>
-aiMesh* make_mesh(const TriangleMesh& mesh, const std::string& name, unsigned material, Keep keep) {
-    auto* out = new aiMesh();
+// An aiMesh of the given triangles of the mesh with the vertices they use, renumbered in
+// order of first use through `renumbered` (one entry per mesh vertex, ~0u, and left so);
+// all the vertices, unrenumbered, when it takes every triangle.
+aiMesh* make_mesh(const TriangleMesh& mesh, const std::string& name, unsigned material,
+                  std::span<const std::uint32_t> triangles,
+                  std::vector<std::uint32_t>& renumbered) {
+    const bool whole = triangles.size() == mesh.triangles.size();
+    std::vector<std::uint32_t> used;  // new vertex -> mesh vertex
+    if (whole) {
+        used.resize(mesh.vertices.size());
+        for (std::uint32_t v = 0; v < used.size(); ++v) renumbered[v] = used[v] = v;
+    } else {
+        for (const std::uint32_t t : triangles)
+            for (const std::uint32_t v : mesh.triangles[t])
+                if (renumbered[v] == ~0u) {
+                    renumbered[v] = static_cast<std::uint32_t>(used.size());
+                    used.push_back(v);
+                }
+    }
+    auto out = std::make_unique<aiMesh>();
     out->mName = aiString(name);
     out->mMaterialIndex = material;
     out->mPrimitiveTypes = aiPrimitiveType_TRIANGLE;
-    std::vector<std::uint32_t> used;  // new vertex -> mesh vertex
-    std::vector<std::uint32_t> renumbered(mesh.vertices.size(), ~0u);
-    std::vector<std::size_t> triangles;
-    for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
-        if (!keep(t)) continue;
-        triangles.push_back(t);
-        for (const std::uint32_t v : mesh.triangles[t])
-            if (renumbered[v] == ~0u) {
-                renumbered[v] = static_cast<std::uint32_t>(used.size());
-                used.push_back(v);
-            }
-    }
-    if (triangles.size() == mesh.triangles.size()) {  // one mesh: the vertices as they are
-        used.resize(mesh.vertices.size());
-        for (std::uint32_t v = 0; v < used.size(); ++v) renumbered[v] = used[v] = v;
-    }
     out->mNumVertices = static_cast<unsigned>(used.size());
     out->mVertices = new aiVector3D[used.size()];
     for (std::size_t v = 0; v < used.size(); ++v) {
@@ -114,7 +114,8 @@ aiMesh* make_mesh(const TriangleMesh& mesh, const std::string& name, unsigned ma
         face.mNumIndices = 3;
         face.mIndices = new unsigned[3]{renumbered[t[0]], renumbered[t[1]], renumbered[t[2]]};
     }
-    return out;
+    for (const std::uint32_t v : used) renumbered[v] = ~0u;
+    return out.release();
 }
 
 // The highest surface id of a mesh whose ids 0 to it all have triangles, else 0: glTF keeps
@@ -132,32 +133,38 @@ SurfaceId highest_of_contiguous_surfaces(const TriangleMesh& mesh) {
 // `by_surface` and a mesh whose surface ids 0 to the highest all have triangles, one
 // material per id ("surface 0", "surface 1", ...) and one mesh of its triangles, so that a
 // glTF file read back gives each triangle its id again (its material's index). aiScene's
-// destructor frees everything reachable from it, hence the raw new[].
+// destructor frees everything reachable from it (hence the raw new[]), up to its counts,
+// which grow as each part is made: an allocation that fails leaks nothing.
 std::unique_ptr<aiScene> make_scene(const TriangleMesh& mesh, const std::string& name,
                                     bool by_surface) {
     const SurfaceId highest = by_surface ? highest_of_contiguous_surfaces(mesh) : SurfaceId{0};
-    const unsigned materials = unsigned(highest) + 1;
-    std::vector<aiMesh*> meshes;
-    if (highest == 0)
-        meshes.push_back(make_mesh(mesh, name, 0, [](std::size_t) { return true; }));
-    else
-        for (unsigned id = 0; id < materials; ++id)
-            meshes.push_back(make_mesh(mesh, name + " surface " + std::to_string(id), id,
-                                       [&](std::size_t t) { return mesh.surfaces[t] == id; }));
+    const unsigned parts = unsigned(highest) + 1;  // meshes and materials
+    // Each id's triangles in mesh order, one after the other (a counting sort by id).
+    std::vector<std::uint32_t> by_id(mesh.triangles.size());
+    std::vector<std::size_t> first(std::size_t(parts) + 1, 0);
+    for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
+        ++first[std::size_t(highest == 0 ? 0 : mesh.surfaces[t]) + 1];
+    for (unsigned id = 0; id < parts; ++id) first[id + 1] += first[id];
+    std::vector<std::size_t> next(first.begin(), first.end() - 1);
+    for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
+        by_id[next[highest == 0 ? 0 : mesh.surfaces[t]]++] = static_cast<std::uint32_t>(t);
 
     auto scene = std::make_unique<aiScene>();
     scene->mRootNode = new aiNode(name);
-    scene->mRootNode->mNumMeshes = static_cast<unsigned>(meshes.size());
-    scene->mRootNode->mMeshes = new unsigned[meshes.size()];
-    for (unsigned m = 0; m < meshes.size(); ++m) scene->mRootNode->mMeshes[m] = m;
-    scene->mNumMeshes = static_cast<unsigned>(meshes.size());
-    scene->mMeshes = new aiMesh*[meshes.size()];
-    std::copy(meshes.begin(), meshes.end(), scene->mMeshes);
-
-    scene->mNumMaterials = materials;
-    scene->mMaterials = new aiMaterial*[materials];
-    for (unsigned id = 0; id < materials; ++id) {
+    scene->mRootNode->mMeshes = new unsigned[parts];
+    scene->mMeshes = new aiMesh*[parts];
+    scene->mMaterials = new aiMaterial*[parts];
+    std::vector<std::uint32_t> renumbered(mesh.vertices.size(), ~0u);
+    for (unsigned id = 0; id < parts; ++id) {
+        const std::span<const std::uint32_t> triangles(by_id.data() + first[id],
+                                                       first[id + 1] - first[id]);
+        scene->mMeshes[id] =
+            make_mesh(mesh, highest == 0 ? name : name + " surface " + std::to_string(id), id,
+                      triangles, renumbered);
+        scene->mRootNode->mMeshes[id] = id;
+        scene->mNumMeshes = scene->mRootNode->mNumMeshes = id + 1;
         scene->mMaterials[id] = new aiMaterial();
+        scene->mNumMaterials = id + 1;
         if (highest == 0) continue;
         const aiString material_name("surface " + std::to_string(id));
         scene->mMaterials[id]->AddProperty(&material_name, AI_MATKEY_NAME);

@@ -7,6 +7,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "dynamics/car_access.hpp"
 #include "trackphys/dynamics/contact_force.hpp"
 #include "trackphys/geometry/ellipsoid_pair.hpp"
 
@@ -28,8 +29,8 @@ glm::dvec3 relative_velocity(const Car& a, const Car& b, const glm::dvec3& point
 }
 
 void push_apart(Car& a, Car& b, const glm::dvec3& impulse, const glm::dvec3& point) {
-    a.apply_impulse(impulse, point);
-    b.apply_impulse(-impulse, point);
+    detail::CarAccess::push(a, impulse, point);
+    detail::CarAccess::push(b, -impulse, point);
 }
 
 // The plastic impulse for a contact the spring cannot hold within `budget` (m) of depth:

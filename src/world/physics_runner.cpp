@@ -41,6 +41,7 @@ PhysicsRunner::PhysicsRunner(World world, bool real_time)
         frame.removed = removed_;
     }
     last_published_time_ = world_.time();
+    latest_update_.store(world_.update_count(), std::memory_order_relaxed);
 }
 
 PhysicsRunner::~PhysicsRunner() {
@@ -140,8 +141,8 @@ void PhysicsRunner::loop(std::uint64_t last_update) {
             }
             apply_due_inputs();
             world_.update();
-            if (keep_events_.load(std::memory_order_relaxed))
-                events_->collect(world_, world_index_, removed_);
+            events_->collect(world_, world_index_, removed_,
+                             keep_events_.load(std::memory_order_relaxed));
             publish();
         }
     } catch (...) {

@@ -8,6 +8,7 @@ void RunnerEventLog::start(const World& world, std::span<const std::size_t> worl
                            std::span<const std::uint8_t> removed) {
     runner_of_world_.assign(world.car_count(), 0);
     resets_seen_.assign(world_index.size(), 0);
+    resets_now_.reserve(world_index.size());  // so that following resets never allocates
     for (std::size_t r = 0; r < world_index.size(); ++r) {
         if (removed[r]) continue;
         runner_of_world_[world_index[r]] = static_cast<std::uint32_t>(r);
@@ -16,9 +17,19 @@ void RunnerEventLog::start(const World& world, std::span<const std::size_t> worl
 }
 
 void RunnerEventLog::collect(const World& world, std::span<const std::size_t> world_index,
-                             std::span<const std::uint8_t> removed) {
-    const ContactEvents events = world.contact_events();
+                             std::span<const std::uint8_t> removed, bool keep) {
     const std::uint64_t update = world.update_count();
+    // The reset counts first, outside the lock: only this thread touches them.
+    resets_now_.clear();
+    for (std::size_t r = 0; r < world_index.size(); ++r) {
+        if (removed[r]) continue;
+        const std::uint64_t resets = world.car_resets(world_index[r]);
+        if (resets == resets_seen_[r]) continue;
+        resets_seen_[r] = resets;
+        resets_now_.push_back(static_cast<std::uint32_t>(r));
+    }
+    if (!keep) return;
+    const ContactEvents events = world.contact_events();
     const auto runner = [&](std::uint32_t car) { return runner_of_world_[car]; };
     std::lock_guard lock(mutex_);
     for (CarTouchBeginEvent e : events.car_touch_begins) {
@@ -35,14 +46,8 @@ void RunnerEventLog::collect(const World& world, std::span<const std::size_t> wo
         e.car = runner(e.car);
         kept_.body_hits.push_back({update, e});
     }
-    for (std::size_t r = 0; r < world_index.size(); ++r) {
-        if (removed[r]) continue;
-        const std::uint64_t resets = world.car_resets(world_index[r]);
-        if (resets == resets_seen_[r]) continue;
-        resets_seen_[r] = resets;
-        kept_.resets.push_back(
-            {update, {static_cast<std::uint32_t>(r), world.last_reset_reason(world_index[r])}});
-    }
+    for (const std::uint32_t r : resets_now_)
+        kept_.resets.push_back({update, {r, world.last_reset_reason(world_index[r])}});
 }
 
 void RunnerEventLog::take(RunnerEvents& out) {

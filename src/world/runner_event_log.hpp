@@ -22,9 +22,10 @@ class RunnerEventLog {
     /// restored or edited world reports only what its updates reset.
     void start(const World& world, std::span<const std::size_t> world_index,
                std::span<const std::uint8_t> removed);
-    /// After an update (physics thread).
+    /// After each update (physics thread): keeps its events when `keep`, and follows the
+    /// cars' reset counts either way, so that a reset is reported at its own update only.
     void collect(const World& world, std::span<const std::size_t> world_index,
-                 std::span<const std::uint8_t> removed);
+                 std::span<const std::uint8_t> removed, bool keep);
     /// Swaps the events kept so far into `out`, emptied first (any thread).
     void take(RunnerEvents& out);
 
@@ -33,6 +34,7 @@ class RunnerEventLog {
     RunnerEvents kept_;                           // guarded by mutex_
     std::vector<std::uint32_t> runner_of_world_;  // per world index, the runner's number
     std::vector<std::uint64_t> resets_seen_;      // per runner number
+    std::vector<std::uint32_t> resets_now_;       // the cars reset by the last update
 };
 
 }  // namespace trackphys::detail

@@ -595,6 +595,27 @@ TEST(PhysicsRunner, KeptEventsAreADirectReplaysInTheRunnersNumbers) {
     EXPECT_TRUE(kept.empty());
 }
 
+// A runner made from a world that has run already says so at once (a game stamping inputs
+// latest_update() + 2 stamps them after it), and a reset at update 6 while events are off is
+// not reported once they are turned on later in the same run (in real time, at update 8).
+TEST(PhysicsRunner, EventsAndTheLatestUpdateStartWhereTheWorldIs) {
+    World world = three_cars();
+    for (int u = 0; u < 5; ++u) world.update();
+    PhysicsRunner runner(std::move(world), true);
+    EXPECT_EQ(runner.latest_update(), 5u);
+    const glm::dvec3 centre = runner.world().car(0).state().position;
+    runner.world().car(0).apply_impulse({0.0, 1e300, 0.0}, centre + glm::dvec3(10.0, 0.0, 0.0));
+    runner.start();
+    while (runner.latest_update() < 8) std::this_thread::yield();
+    runner.keep_events(true);
+    while (runner.latest_update() < 12) std::this_thread::yield();
+    runner.stop();
+    ASSERT_EQ(runner.world().car_resets(0), 1u);
+    RunnerEvents events;
+    runner.take_events(events);
+    EXPECT_TRUE(events.resets.empty()) << "stamped " << events.resets.front().update;
+}
+
 // A render thread reads the published poses of the cars that stay while the game removes one
 // between runs (ThreadSanitizer: scripts/test_tsan.sh).
 TEST(PhysicsRunner, RenderThreadReadsWhileACarIsRemoved) {

@@ -149,6 +149,16 @@ class TRACKPHYS_API Car {
   private:
     friend struct detail::CarAccess;
 
+    struct Velocities {
+        glm::dvec3 linear, angular;
+    };
+    // The velocities after an impulse J at world point p: apply_impulse's arithmetic.
+    Velocities pushed(const glm::dvec3& impulse, const glm::dvec3& point) const;
+    // apply_impulse without its check, for the contacts between cars in an update: a
+    // non-finite push there is the reset policy's (an impossible state at the update's end),
+    // not an error that would stop the World.
+    void push(const glm::dvec3& impulse, const glm::dvec3& point);
+
     // i, when the car has an ellipsoid i.
     std::size_t checked(std::size_t i) const {
         if (i >= shape_->body.size()) throw_no_ellipsoid(i);

@@ -15,7 +15,9 @@ struct StampedEvent {
     Event event;
 };
 
-/// A car the world's reset policy put back (see World's class notes).
+/// A car the world's reset policy put back (see World's class notes): one event a car and
+/// update, with the update's last reason, also when the car was reset twice in it (before
+/// the update and at its end; World::car_resets counts both).
 struct CarResetEvent {
     std::uint32_t car = 0;  ///< the runner's number
     std::string reason;     ///< World::last_reset_reason
