@@ -66,31 +66,37 @@ void add_mesh_limit_options(CLI::App& command, MeshLoadLimits& limits) {
         ->capture_default_str();
 }
 
+// "G0,G1,..." as grips, each element a number: an empty or non-numeric one is a conversion
+// error naming the surface.
+std::vector<double> grips_of(const std::string& list) {
+    std::vector<double> grips;
+    std::size_t start = 0;
+    for (std::size_t id = 0;; ++id) {
+        const std::size_t comma = std::min(list.find(',', start), list.size());
+        const std::string element = list.substr(start, comma - start);
+        double grip = 0.0;
+        if (!CLI::detail::lexical_cast(element, grip))
+            throw CLI::ConversionError(
+                "Could not convert: --surface-grips = " + list + ": surface " + std::to_string(id) +
+                "'s grip " +
+                (element.empty() ? "is missing" : "'" + element + "' is not a number"));
+        grips.push_back(grip);
+        if (comma == list.size()) return grips;
+        start = comma + 1;
+    }
+}
+
 void add_surface_grips_option(CLI::App& command, std::vector<double>& grips) {
-    // Split here rather than by CLI11's delimiter, which drops empty elements: "1,,0.2" would
-    // grip surface 1 at 0.2 where the user meant surface 2. Values given apart ("1 0.5", or
-    // the option twice) continue the list, as they did with the delimiter.
+    // Split by grips_of rather than by CLI11's delimiter, which drops empty elements: "1,,0.2"
+    // would grip surface 1 at 0.2 where the user meant surface 2. Values given apart ("1 0.5",
+    // or the option twice) continue the list, as they did with the delimiter.
     command
         .add_option_function<std::vector<std::string>>(
             "--surface-grips",
             [&grips](const std::vector<std::string>& values) {
                 std::string list;
                 for (const std::string& value : values) list += (list.empty() ? "" : ",") + value;
-                grips.clear();
-                std::size_t start = 0;
-                for (std::size_t id = 0;; ++id) {
-                    const std::size_t comma = std::min(list.find(',', start), list.size());
-                    const std::string element = list.substr(start, comma - start);
-                    double grip = 0.0;
-                    if (!CLI::detail::lexical_cast(element, grip))
-                        throw CLI::ConversionError(
-                            "Could not convert: --surface-grips = " + list + ": surface " +
-                            std::to_string(id) + "'s grip " +
-                            (element.empty() ? "is missing" : "'" + element + "' is not a number"));
-                    grips.push_back(grip);
-                    if (comma == list.size()) break;
-                    start = comma + 1;
-                }
+                grips = grips_of(list);
             },
             "Grip of the track's surfaces by id, from 0 (`trackphys info MESH` lists a "
             "mesh's; the generated track's road 0, walls 1); the ids past them grip 1, "
