@@ -16,15 +16,16 @@ struct ReplayPageStats {
 };
 
 /// A recording as `trackphys view` reads it: checked to be a trackphys recording whose
-/// every frame line is a JSON object, and the track mesh its header names.
+/// every frame line is a JSON object listing the header's cars (each with the header's
+/// number of ellipsoids), and the track mesh its header names.
 struct ReplayRecording {
     std::filesystem::path file;
     std::string text;
     std::filesystem::path track_file;  ///< in file's folder; empty when it has no track
 };
 
-/// Reads and checks the recording. Throws trackphys::Error when it is not a trackphys
-/// recording, or when its track is not a plain file name (no folder, not absolute): a
+/// Reads and checks the recording. Throws trackphys::Error, naming the first bad line, when
+/// it is not a trackphys recording or a frame does not match its header, or when its track is not a plain file name (no folder, not absolute): a
 /// recording names the track that `drive --record` wrote beside it, and a page must not
 /// embed whatever file a recording points to.
 ReplayRecording read_replay_recording(const std::filesystem::path& file);
