@@ -218,6 +218,12 @@ void run_drive(const DriveOptions& o, const OptionGiven& given) {
                     "--spawn x,y,z to drive it in free mode");
     WorldSettings world_settings = tool_world_settings();
     world_settings.surfaces = surface_table(scene, s.surfaces);
+    // World::restore_state would refuse it too, but by collider fingerprints alone.
+    if (resume && resume->world.colliders != fingerprint(*scene.statics))
+        throw Error(
+            "--resume: the snapshot was made on another scene (its static colliders "
+            "are not those of " +
+            scene.description + "; resume with the original drive's --mesh or --map)");
     World world(scene.statics, world_settings, scene.plane_trees);
     const RigidBodyState start =
         s.free_mode() ? spawn_on_surface(*scene.statics, s.car, *s.spawn, s.heading_deg)
