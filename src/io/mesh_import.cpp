@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -207,8 +208,14 @@ class SceneMerger {
         if (scene.mNumMaterials > max_surfaces)
             fail(path_, std::to_string(scene.mNumMaterials) + " materials, more than the " +
                             std::to_string(max_surfaces) + " surface ids");
+        // Up to the last material a mesh uses: assimp's glTF importer appends a default one
+        // for meshes without a material, which would list a surface of no triangles.
+        unsigned used = 0;
+        for (unsigned m = 0; m < scene.mNumMeshes; ++m)
+            used =
+                std::max(used, std::min(scene.mMeshes[m]->mMaterialIndex + 1, scene.mNumMaterials));
         report_.materials.clear();
-        for (unsigned k = 0; k < scene.mNumMaterials; ++k) {
+        for (unsigned k = 0; k < used; ++k) {
             aiString name;
             scene.mMaterials[k]->Get(AI_MATKEY_NAME, name);
             report_.materials.emplace_back(name.C_Str());

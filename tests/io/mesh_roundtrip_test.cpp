@@ -150,7 +150,7 @@ TEST_P(MeshRoundTrip, LeavesOnlyTheFilesOfTheFormat) {
 // again, materials named by id. The other formats, and glTF for ids with one unused in
 // between (4 without 3: glTF would drop the unused material and shift 4), hold one surface.
 TEST_P(MeshRoundTrip, SurfaceIdsComeBackFromGltfAlone) {
-    for (const SurfaceId highest : {3, 4}) {
+    for (const SurfaceId highest : {SurfaceId{3}, SurfaceId{4}}) {
         TriangleMesh mesh = height_field(6, 5, 1.25, {-3.0, 2.0, 4.0}, nullptr);
         for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
             mesh.surfaces.push_back(static_cast<SurfaceId>(t % 7 == 0 ? highest : t % 3));
@@ -161,9 +161,11 @@ TEST_P(MeshRoundTrip, SurfaceIdsComeBackFromGltfAlone) {
         ASSERT_EQ(loaded.triangles.size(), mesh.triangles.size());
         const bool kept = (GetParam() == ".glb" || GetParam() == ".gltf") && highest == 3;
         expect_surfaces(mesh, loaded, kept);
-        if (kept)
+        if (kept) {
+            EXPECT_EQ(report.materials.size(), std::size_t(highest) + 1);
             for (int id = 0; id <= highest; ++id)
                 EXPECT_EQ(report.materials.at(std::size_t(id)), "surface " + std::to_string(id));
+        }
     }
 }
 

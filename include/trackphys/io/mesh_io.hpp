@@ -39,8 +39,9 @@ struct MeshLoadReport {
     /// surface, as glTF specifies.
     std::size_t mirrored_instances = 0;
     /// The file's material names as assimp lists them (its index order, which may include a
-    /// default material assimp adds, e.g. "DefaultMaterial"): surface id k of the mesh is
-    /// materials[k], so a game builds its WorldSettings::surfaces by these names.
+    /// default material assimp adds, e.g. "DefaultMaterial"), up to the last one a mesh of
+    /// the file uses: surface id k of the mesh is materials[k], so a game builds its
+    /// WorldSettings::surfaces by these names.
     std::vector<std::string> materials;
     Aabb bounds;        ///< world box of the kept triangles (m)
     double area = 0.0;  ///< total area of the kept triangles (m^2)
