@@ -47,7 +47,6 @@ CarInputs clamped(const CarInputs& in) {
 
 Car::Car(CarSpec spec, const RigidBodyState& initial_state) : spec_(std::move(spec)) {
     if (std::string why = spec_.validate(); !why.empty()) throw Error(why);
-    set_state(initial_state);
     auto shape = std::make_shared<Shape>();
     for (const CarEllipsoid& e : spec_.ellipsoids) {
         const Ellipsoid& body =
@@ -63,6 +62,8 @@ Car::Car(CarSpec spec, const RigidBodyState& initial_state) : spec_(std::move(sp
     }
     shape_ = std::move(shape);
     if (spec_.vehicle) vehicle_.emplace(spec_);
+    // After the vehicle model, which set_state starts rolling at the car's speed.
+    set_state(initial_state);
     take_inputs(inputs_);
 }
 

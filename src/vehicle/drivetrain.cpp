@@ -101,6 +101,12 @@ double Vehicle::gear_ratio() const {
 // again (1-2-1-2 in 2.6 s of a launch without traction control). The engine then meets its
 // limiter in the lower gear, as a real one does. In a clean upshift the next gear's rpm is
 // shift_up_rpm times the ratios' quotient, above shift_down_rpm, so the test does not bite.
+// Without throttle, up only when the car's speed drives the engine past its redline.
+//
+// Down only when the car's own speed would keep the engine at or below shift_up_rpm in the
+// gear below, for the same reason the other way: braked wheels, locked or stopped in the
+// air, read as a speed the car has not lost, and a box that shifted on them alone went
+// down to first and, once they rolled again, dragged the engine far past its redline.
 void Vehicle::shift_gears(double drivetrain_rpm, double throttle, double rolling_speed,
                           double forward_speed, double h) {
     const GearboxSpec& box = spec_.gearbox;
@@ -124,10 +130,12 @@ void Vehicle::shift_gears(double drivetrain_rpm, double throttle, double rolling
         gear = 1;
     else if (gear == reverse)
         return;
-    else if (drivetrain_rpm > box.shift_up_rpm && gear < top && throttle > 0.0 &&
-             ground_rpm(gear + 1, forward_speed) >= box.shift_down_rpm)
+    else if (drivetrain_rpm > box.shift_up_rpm && gear < top &&
+             (throttle > 0.0 ? ground_rpm(gear + 1, forward_speed) >= box.shift_down_rpm
+                             : ground_rpm(gear, forward_speed) > spec_.engine.redline_rpm))
         ++gear;
-    else if (drivetrain_rpm < box.shift_down_rpm && gear > 1)
+    else if (drivetrain_rpm < box.shift_down_rpm && gear > 1 &&
+             ground_rpm(gear - 1, forward_speed) <= box.shift_up_rpm)
         --gear;
     if (gear == state_.gear) return;
     state_.gear = gear;

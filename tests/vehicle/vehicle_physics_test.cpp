@@ -583,6 +583,79 @@ TEST(VehiclePhysics, ThePresetsOwnLimitedSlipPullsOffIce) {
     }
 }
 
+// A car added to a World already moving (a game spawning it into a race at speed) arrives
+// as a teleported one does: rolling at the road's speed in a gear for it. Its vehicle model
+// used to start at rest whatever the state, so a gt added at 30 m/s skidded on stopped
+// wheels in first gear, lost 3.3 m/s in half a second and ran near its redline.
+TEST(VehiclePhysics, ACarAddedMovingArrivesRollingAsATeleportedOne) {
+    for (const std::string_view preset : {"gt", "formula"}) {
+        SCOPED_TRACE(preset);
+        const CarSpec spec = CarSpec::preset(preset);
+        const double speed = 30.0;
+        RigidBodyState moving =
+            place_car_on_surface(*test::static_world_of(test::flat_grid(2000.0, 20)), spec,
+                                 {0.0, 20.0, -900.0}, glm::dquat(1.0, 0.0, 0.0, 0.0));
+        moving.linear_velocity = {0.0, 0.0, speed};
+        World added(test::static_world_of(test::flat_grid(2000.0, 20)));
+        added.add_car(spec, moving);
+        World teleported(test::static_world_of(test::flat_grid(2000.0, 20)));
+        teleported.add_car(spec, moving);
+        teleported.teleport_car(0, moving);
+        const double world_dt = added.settings().dt_update;
+
+        const VehicleState& state = added.car(0).vehicle()->state();
+        const VehicleState& expected = teleported.car(0).vehicle()->state();
+        EXPECT_EQ(state.gear, expected.gear);
+        ASSERT_EQ(state.wheels.size(), expected.wheels.size());
+        for (std::size_t w = 0; w < state.wheels.size(); ++w)
+            EXPECT_EQ(state.wheels[w].spin, expected.wheels[w].spin) << "wheel " << w;
+        drive(added, {}, world_dt);
+        for (const WheelTelemetry& wheel : added.car(0).vehicle()->telemetry())
+            EXPECT_LT(std::abs(wheel.slip_ratio), 0.01);
+        drive(added, {}, 0.5);
+        drive(teleported, {}, 0.5 + world_dt);
+        EXPECT_EQ(added.state_hash(), teleported.state_hash());
+    }
+}
+
+// Braked wheels that stop, locked on the road without anti-lock or in the air over a
+// crest, read as a speed the car has not lost: the box must not shift down on them into a
+// gear the car's speed would drive past shift_up_rpm. It went 3-2-1 within 0.2 s at 43 m/s
+// and, the brake released, dragged the engine to 9,000 rpm (locked) and 12,300 rpm (landed
+// from a crest), far past the gt's 8,500 rpm redline, and coasted there.
+TEST(VehiclePhysics, BrakedWheelsThatStopDoNotShiftTheBoxDownPastTheCarsSpeed) {
+    CarSpec spec = CarSpec::preset("gt");
+    spec.vehicle->anti_lock = false;
+    const GearboxSpec& box = spec.vehicle->gearbox;
+    const double radius = PointCar(spec, 0.0).radius;
+    for (const double lift : {0.0, 1.5}) {
+        SCOPED_TRACE(lift == 0.0 ? "locked on the road" : "stopped in the air");
+        World world = world_with(test::flat_grid(3000.0, 30), spec, 0.0, -1400.0);
+        drive(world, {}, 0.5);
+        Car& car = world.car(0);
+        RigidBodyState fast = car.state();
+        fast.position.y += lift;
+        fast.linear_velocity = fast.orientation * glm::dvec3(0.0, 0.0, 45.0);
+        car.set_state(fast);
+        const Vehicle& vehicle = *car.vehicle();
+        double fastest_engine = 0.0, highest_ground_rpm = 0.0;
+        bool stopped = false;
+        for (int update = 0; update < 250; ++update) {
+            drive(world, {0.0, update < 60 ? 1.0 : 0.0, 0.0}, world.settings().dt_update);
+            for (const WheelState& wheel : vehicle.state().wheels) stopped |= wheel.spin == 0.0;
+            const double ground_rpm = forward_speed(car) / radius *
+                                      box.ratios[std::size_t(vehicle.state().gear - 1)] *
+                                      box.final_drive * 60.0 / (2.0 * std::numbers::pi);
+            highest_ground_rpm = std::max(highest_ground_rpm, ground_rpm);
+            fastest_engine = std::max(fastest_engine, vehicle.engine_rpm());
+        }
+        EXPECT_TRUE(stopped) << "the brake should stop wheels";
+        EXPECT_LE(highest_ground_rpm, box.shift_up_rpm);
+        EXPECT_LE(fastest_engine, spec.vehicle->engine.redline_rpm);
+        EXPECT_EQ(world.car_resets(0), 0u);
+    }
+}
+
 // Without traction control a full-throttle launch spins the driven wheels. The box stays in
 // first, the engine at its limiter, until the car itself is fast enough for second, and
 // never comes down while the throttle is held (it went 1-2-1-2 when it shifted on the

@@ -65,8 +65,9 @@ struct CarInputs {
 /// destroyed: its body ellipsoids went with the move.
 class TRACKPHYS_API Car {
   public:
-    /// Throws trackphys::Error with CarSpec::validate()'s message for an invalid spec, or
-    /// naming the field of a non-finite initial state.
+    /// Starts as set_state(initial_state) leaves a car: a vehicle model rolling at the
+    /// state's speed. Throws trackphys::Error with CarSpec::validate()'s message for an
+    /// invalid spec, or naming the field of a non-finite initial state.
     Car(CarSpec spec, const RigidBodyState& initial_state);
     Car(const Car&) = default;
     Car(Car&&) noexcept = default;
