@@ -88,7 +88,11 @@ bool Car::share_ellipsoids_with(const Car& other) {
 void Car::set_state(const RigidBodyState& state) {
     check_state(state);
     state_ = state;
-    state_.orientation = glm::normalize(state.orientation);
+    // Normalising is not idempotent: a unit quaternion to rounding, a car's own state handed
+    // back, keeps its bits (docs/design.md#determinism).
+    const double norm2 = glm::dot(state.orientation, state.orientation);
+    if (!(std::abs(norm2 - 1.0) <= 8.0 * std::numeric_limits<double>::epsilon()))
+        state_.orientation = glm::normalize(state.orientation);
     std::fill(suspension_.begin(), suspension_.end(), 0.0);
     if (vehicle_)
         vehicle_->set_state(vehicle_->rolling_at(

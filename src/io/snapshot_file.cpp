@@ -20,7 +20,7 @@ constexpr std::size_t kHeaderBytes = 32;
 // The fewest payload bytes one collider, car, ellipsoid and touching pair take: a count claiming more
 // than the bytes left is rejected before anything is allocated for it.
 constexpr std::size_t kColliderBytes = 24;
-constexpr std::size_t kCarBytes = 8 + 13 * 8 + 3 * 8 + 4 + 8 + 4;
+constexpr std::size_t kCarBytes = 8 + 13 * 8 + 3 * 8 + 4 + 8 + 8 + 4;
 constexpr std::size_t kWheelBytes = 4 * 8;
 constexpr std::size_t kEllipsoidBytes = 8 * 8 + 2 * 4;
 constexpr std::size_t kTouchingBytes = 2 * 4 + 8;
@@ -191,6 +191,7 @@ void write_car(Writer& w, const CarSnapshot& car) {
         w.u32(car.deepest_refs[i].collider);
         w.u32(car.deepest_refs[i].triangle);
     }
+    w.u64(car.empty_lists);
     w.u64(car.resets);
     if (!car.vehicle) {
         w.u32(0);
@@ -228,6 +229,7 @@ CarSnapshot read_car(Reader& r) {
         car.deepest_refs[i].collider = r.u32("contact collider");
         car.deepest_refs[i].triangle = r.u32("contact triangle");
     }
+    car.empty_lists = r.u64("car empty lists");
     car.resets = r.u64("car resets");
     const std::uint32_t wheels_and_one = r.u32("vehicle wheel count");
     if (wheels_and_one == 0) return car;

@@ -103,12 +103,13 @@ struct World::CarSlot {
     std::vector<TriangleRef> deepest_ref;  // its triangle, tried first next
     std::vector<KnownNormals> known;       // per ellipsoid: recent survivors' normals
     bool pushed = false;                   // by another car, this sub-step
+    // What `deepest` holds where an ellipsoid touches nothing (World::contacts says so).
+    static constexpr Contact no_contact{-std::numeric_limits<double>::infinity(), glm::dvec3(0.0),
+                                        glm::dvec3(0.0)};
     // Where the car is now has nothing to do with its last sub-step (a reset, a teleport): no
     // contact and no hint, so that a touch there is a new one (a body hit).
     void forget_contacts() {
-        for (Contact& contact : deepest)
-            contact =
-                Contact{-std::numeric_limits<double>::infinity(), glm::dvec3(0.0), glm::dvec3(0.0)};
+        std::fill(deepest.begin(), deepest.end(), no_contact);
         for (TriangleRef& ref : deepest_ref) ref = TriangleRef{~0u, ~0u};
     }
     // This update's body hits (car index left for World::update to fill), at most one per

@@ -455,7 +455,7 @@ void World::find_contacts(CarSlot& slot, PhaseStopwatch& watch) {
     std::uint64_t was_touching = 0;  // bit i: ellipsoid i overlapped at the last sub-step
     for (std::size_t i = 0; i < ellipsoids; ++i) {
         was_touching |= std::uint64_t{deepest_of[i].depth > 0.0} << i;
-        deepest_of[i].depth = -std::numeric_limits<double>::infinity();
+        deepest_of[i] = CarSlot::no_contact;
         const std::uint32_t start = static_cast<std::uint32_t>(all_kept.size());
         kept_start[i + 1] = start;
         const std::vector<MidPhaseCandidate>& listed = lists[i].candidates();
@@ -534,6 +534,9 @@ void World::find_contacts(CarSlot& slot, PhaseStopwatch& watch) {
             }
             tested(s.ref, exact_contact(*statics_, s.ref, frame, ellipsoid));
         }
+        // Apart, the ellipsoid touches nothing (World::contacts): only the triangle of the
+        // deepest result stays, as the next sub-step's first test.
+        if (!(deepest.depth > 0.0)) deepest = CarSlot::no_contact;
         watch.profile().contacts += deepest.depth > 0.0;
         if (deepest.depth > 0.0 && !(was_touching >> i & 1))
             slot.note_touch(i, deepest, deepest_ref[i]);

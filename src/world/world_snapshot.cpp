@@ -208,6 +208,7 @@ void World::save_state(WorldSnapshot& into) const {
         saved.suspension.assign(suspension.begin(), suspension.end());
         saved.contacts.assign(slot.deepest.begin(), slot.deepest.end());
         saved.deepest_refs.assign(slot.deepest_ref.begin(), slot.deepest_ref.end());
+        saved.empty_lists = slot.empty_lists;
         saved.resets = slot.resets;
         if (const Vehicle* vehicle = slot.car.vehicle())
             saved.vehicle = vehicle->state();  // into the engaged one's wheels, if any
@@ -268,6 +269,7 @@ void World::restore_state(const WorldSnapshot& snapshot) {
         if (saved.vehicle) slot.car.set_vehicle_state(*saved.vehicle);
         slot.deepest.assign(saved.contacts.begin(), saved.contacts.end());
         slot.deepest_ref.assign(saved.deepest_refs.begin(), saved.deepest_refs.end());
+        slot.empty_lists = saved.empty_lists;
         slot.resets = saved.resets;
         slot.last_reset.clear();
     }

@@ -120,12 +120,12 @@ TEST(SnapshotFile, EveryBitFlipIsRejected) {
 
 TEST(SnapshotFile, OtherVersionsMagicAndTrailingBytesAreRejected) {
     const std::string bytes = encode_snapshot(small_snapshot());
-    // Version 2 had no touching car pairs.
+    // Version 3 had no empty-list bits of the cars.
     EXPECT_NE(error_of([&] {
-                  decode_snapshot(with_u32_at(bytes, 8, 2));
-              }).find("format version 2, this build reads only version 3"),
+                  decode_snapshot(with_u32_at(bytes, 8, 3));
+              }).find("format version 3, this build reads only version 4"),
               std::string::npos);
-    EXPECT_NE(error_of([&] { decode_snapshot(with_u32_at(bytes, 8, 4)); }).find("format version 4"),
+    EXPECT_NE(error_of([&] { decode_snapshot(with_u32_at(bytes, 8, 5)); }).find("format version 5"),
               std::string::npos);
     EXPECT_NE(error_of([&] { decode_snapshot(with_u32_at(bytes, 12, 1)); }).find("reserved"),
               std::string::npos);

@@ -3,6 +3,7 @@
 // tunnel.
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include <gtest/gtest.h>
@@ -209,6 +210,35 @@ TEST(CarPhysics, SameInputsGiveBitIdenticalStates) {
         hash = world.state_hash();
     }
     EXPECT_EQ(hashes[0], hashes[1]);
+}
+
+// A car's own state handed back (a lockstep peer adding the host's cars, a game reloading
+// its own saved states) keeps every bit: set_state normalised the orientation again, which
+// moved the last bit of some (4 of 20 mid-race states), and the worlds drove apart.
+TEST(CarPhysics, ACarsOwnStateHandedBackKeepsItsBits) {
+    const auto statics = test::static_world_of(test::flat_grid(100.0, 10));
+    World driven(statics);
+    driven.add_car(CarSpec::default_car(), at_height(0.6));
+    World copy(statics);
+    int changed = 0;
+    for (int i = 0; i < 200; ++i) {
+        driven.car(0).set_inputs({1.0, 0.0, std::sin(i * 0.05)});
+        driven.update();
+        const RigidBodyState own = driven.car(0).state();
+        copy.add_car(CarSpec::default_car(), own);
+        const glm::dquat q = copy.car(0).state().orientation;
+        copy.remove_car(0);
+        changed += std::memcmp(&q, &own.orientation, sizeof q) != 0;
+        driven.car(0).set_state(own);
+        const glm::dquat p = driven.car(0).state().orientation;
+        changed += std::memcmp(&p, &own.orientation, sizeof p) != 0;
+    }
+    EXPECT_EQ(changed, 0);
+    // Not a unit quaternion: normalised.
+    RigidBodyState tilted = at_height(0.6);
+    tilted.orientation = glm::dquat(2.0, 0.0, 0.0, 0.0);
+    driven.car(0).set_state(tilted);
+    EXPECT_EQ(driven.car(0).state().orientation, glm::dquat(1.0, 0.0, 0.0, 0.0));
 }
 
 TEST(CarPhysics, InvalidSettingsAndStatesAreRejected) {

@@ -19,7 +19,7 @@ struct SnapshotFile {
 };
 
 /// The snapshot format this build writes and the only one it reads.
-inline constexpr std::uint32_t kSnapshotFormatVersion = 3;
+inline constexpr std::uint32_t kSnapshotFormatVersion = 4;
 
 /// The bytes of a snapshot file. Layout, every number little-endian, doubles as their IEEE
 /// bits (so they come back bit-exact):
@@ -36,7 +36,7 @@ inline constexpr std::uint32_t kSnapshotFormatVersion = 3;
 ///                               linear_velocity[3], angular_velocity[3], f64 throttle, brake,
 ///                               steer, u32 ellipsoids, each {f64 suspension, f64 depth,
 ///                               f64 normal[3], f64 point[3], u32 collider, u32 triangle},
-///                               u64 resets, u32 vehicle wheels + 1 (0: no vehicle
+///                               u64 empty lists, u64 resets, u32 vehicle wheels + 1 (0: no vehicle
 ///                               model), each {f64 spin, slip_ratio, lateral_slip,
 ///                               road_torque},
 ///                               and with a vehicle u32 gear, f64 shift_time_left, clutch}

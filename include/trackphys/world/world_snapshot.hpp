@@ -42,9 +42,15 @@ struct CarSnapshot {
     std::vector<double> suspension;  ///< Car::suspension(i), m
     /// The deepest contact of the last sub-step (World::contacts; depth -infinity for none).
     std::vector<Contact> contacts;
-    /// The triangle of that contact, which the next sub-step tests first: it decides the
-    /// order of the exact tests, so it is state too. {~0u, ~0u} for none.
+    /// The triangle of the deepest exact result, touching or not, which the next sub-step
+    /// tests first: it decides the order of the exact tests, so it is state too. {~0u, ~0u}
+    /// for none.
     std::vector<TriangleRef> deepest_refs;
+    /// Bit i: ellipsoid i's last mid-phase list was empty. It sets how far the next
+    /// update's first query looks ahead (LookAheadList::steps_ahead), so which triangles,
+    /// and in which order, the next sub-steps test: state too. All bits set before a car's
+    /// first update.
+    std::uint64_t empty_lists = ~std::uint64_t{0};
     std::uint64_t resets = 0;  ///< World::car_resets
     /// Wheel spins and slips, gear, shift and clutch of a car with a vehicle model
     /// (Car::vehicle); empty for the arcade car.
