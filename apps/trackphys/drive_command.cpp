@@ -198,7 +198,13 @@ void run_drive(const DriveOptions& o, const OptionGiven& given) {
     std::optional<SnapshotFile> resume;
     if (!o.resume.empty()) {
         resume = load_snapshot(o.resume);
-        const DriveSession saved = parse_session(resume->user_data);
+        const DriveSession saved = [&] {
+            try {
+                return parse_session(resume->user_data);
+            } catch (const Error& e) {
+                throw Error("--resume '" + o.resume.string() + "': " + e.what());
+            }
+        }();
         check_same_drive(saved, session);
         // World::restore_state would refuse it too, but by the spec's fingerprint alone.
         if (resume->world.cars.size() == 1 &&

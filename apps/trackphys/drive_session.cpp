@@ -1,5 +1,7 @@
 #include "drive_session.hpp"
 
+#include <cmath>
+#include <limits>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -27,6 +29,31 @@ std::string session_json(const DriveSession& s) {
     return json.dump();
 }
 
+namespace {
+
+// A whole number from 0 to `most`: get<int>() would wrap 2^32 + 5 to 5 and truncate 1.5.
+std::uint64_t whole(const nlohmann::json& json, const char* key, std::uint64_t most) {
+    const nlohmann::json& value = json.at(key);
+    if (!value.is_number_unsigned() || value.get<std::uint64_t>() > most)
+        throw Error(std::string(key) + " is not a whole number from 0 to " + std::to_string(most));
+    return value.get<std::uint64_t>();
+}
+
+// The running figures a report prints: what a drive can have made of them. The checksum
+// guards against damage, not against an edited file re-sealed.
+void check_figures(const DriveSession& s) {
+    if (!(std::isfinite(s.distance_m) && s.distance_m >= 0.0))
+        throw Error("distance_m is not finite and >= 0");
+    if (!(std::isfinite(s.top_speed_kmh) && s.top_speed_kmh >= 0.0))
+        throw Error("top_speed_kmh is not finite and >= 0");
+    for (const double lap : s.lap_times_s)
+        if (!(std::isfinite(lap) && lap > 0.0)) throw Error("a lap time is not finite and > 0");
+    if (s.autopilot && static_cast<std::size_t>(s.autopilot->laps) != s.lap_times_s.size())
+        throw Error("autopilot.laps is not the number of lap times");
+}
+
+}  // namespace
+
 DriveSession parse_session(std::string_view text) {
     try {
         const nlohmann::json json = nlohmann::json::parse(text);
@@ -39,8 +66,10 @@ DriveSession parse_session(std::string_view text) {
         s.steer = json.at("steer").get<double>();
         if (json.contains("autopilot")) {
             const nlohmann::json& a = json.at("autopilot");
-            s.autopilot = AutopilotProgress{a.at("nearest_sample").get<std::size_t>(),
-                                            a.at("laps").get<int>(), a.at("located").get<bool>()};
+            constexpr std::uint64_t most_laps = std::numeric_limits<int>::max() / 2;
+            s.autopilot = AutopilotProgress{
+                static_cast<std::size_t>(whole(a, "nearest_sample", std::size_t(-1))),
+                static_cast<int>(whole(a, "laps", most_laps)), a.at("located").get<bool>()};
         }
         s.distance_m = json.at("distance_m").get<double>();
         s.top_speed_kmh = json.at("top_speed_kmh").get<double>();
@@ -50,6 +79,7 @@ DriveSession parse_session(std::string_view text) {
             s.surface_grips = json.at("surface_grips").get<std::vector<double>>();
         if (s.free_mode == s.autopilot.has_value())
             throw Error(s.free_mode ? "free mode with an autopilot" : "no autopilot progress");
+        check_figures(s);
         return s;
     } catch (const nlohmann::json::parse_error&) {
         // A snapshot saved by the library (save_snapshot) rather than by the command.

@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "io/mesh_checks.hpp"
+#include "trackphys/io/regular_file.hpp"
 
 namespace trackphys::detail {
 namespace {
@@ -104,6 +105,9 @@ fs::path local_file(std::string_view uri, const fs::path& folder, const std::str
     const fs::path file = folder / fs::path(uri);
     std::error_code ec;
     if (!fs::is_regular_file(file, ec)) fail(place, "the reference " + shown + " is no file");
+    if (!lies_inside(file, folder.empty() ? fs::path(".") : folder))
+        fail(place,
+             "the reference " + shown + " leads out of the mesh's folder through a symbolic link");
     return file;
 }
 
@@ -295,6 +299,10 @@ class GltfChecker {
             const std::uint64_t offset = number_of(a, "byteOffset", place, 0);
             const std::uint64_t stride = view.stride != 0 ? view.stride : element;
             if (count == 0 || count > 0xffffffffu) fail(place + ".count", "not 1 to 2^32 - 1");
+            if (stride < element)
+                fail(place, "elements of " + std::to_string(element) +
+                                " bytes overlap in its buffer view's stride of " +
+                                std::to_string(stride));
             // count <= 2^32 and stride <= 252: no overflow in 64 bits.
             if (offset > view.bytes || (count - 1) * stride + element > view.bytes - offset)
                 fail(place, std::to_string(count) + " elements of " + std::to_string(element) +
@@ -385,21 +393,33 @@ class GltfChecker {
         }
     }
 
-    // Skins and animations are not geometry, but assimp resolves their references.
+    // Skins and animations are not geometry, but assimp resolves their references. It also
+    // reads a skin's inverse bind matrices, one float MAT4 a joint, without looking: a skin
+    // without them (glTF allows it: identity matrices) crashed it, one with fewer than its
+    // joints made it read past them.
     void check_skins_and_animations() {
         const std::size_t nodes = array_of(doc_, "nodes").size();
-        const std::size_t accessors = array_of(doc_, "accessors").size();
+        const Json& accessors = array_of(doc_, "accessors");
         const Json& skins = array_of(doc_, "skins");
         for (std::size_t s = 0; s < skins.size(); ++s) {
             const std::string place = at("skins", s);
             if (!skins[s].is_object()) fail(place, "not an object");
-            check_index(skins[s], "inverseBindMatrices", place, accessors);
             check_index(skins[s], "skeleton", place, nodes);
             const Json& joints = array_of(skins[s], "joints");
             for (std::size_t j = 0; j < joints.size(); ++j)
                 if (!joints[j].is_number_unsigned() || joints[j].get<std::uint64_t>() >= nodes)
                     fail(at(place + ".joints", j), "no such node");
+            if (!skins[s].contains("inverseBindMatrices"))
+                fail(place, "no inverseBindMatrices (not read: the importer needs them)");
+            check_index(skins[s], "inverseBindMatrices", place, accessors.size());
+            const Json& matrices = accessors[skins[s]["inverseBindMatrices"].get<std::size_t>()];
+            if (components(matrices, place) != 16 ||
+                matrices.value("componentType", std::uint64_t{0}) != 5126 ||
+                matrices.value("count", std::uint64_t{0}) < joints.size())
+                fail(place + ".inverseBindMatrices", "not a float MAT4 for each of its " +
+                                                         std::to_string(joints.size()) + " joints");
         }
+        const std::size_t accessor_count = accessors.size();
         const Json& animations = array_of(doc_, "animations");
         for (std::size_t a = 0; a < animations.size(); ++a) {
             const std::string place = at("animations", a);
@@ -407,8 +427,8 @@ class GltfChecker {
             const Json& samplers = array_of(animations[a], "samplers");
             for (std::size_t s = 0; s < samplers.size(); ++s) {
                 if (!samplers[s].is_object()) fail(at(place + ".samplers", s), "not an object");
-                check_index(samplers[s], "input", at(place + ".samplers", s), accessors);
-                check_index(samplers[s], "output", at(place + ".samplers", s), accessors);
+                check_index(samplers[s], "input", at(place + ".samplers", s), accessor_count);
+                check_index(samplers[s], "output", at(place + ".samplers", s), accessor_count);
             }
             const Json& channels = array_of(animations[a], "channels");
             for (std::size_t c = 0; c < channels.size(); ++c) {

@@ -387,6 +387,9 @@ StaticMap load_static_world(const std::filesystem::path& path,
 }
 
 bool is_map_file(const std::filesystem::path& path) {
+    // Opening a FIFO would block until someone writes to it.
+    std::error_code error;
+    if (!std::filesystem::is_regular_file(path, error)) return false;
     std::ifstream in(path, std::ios::binary);
     char magic[sizeof kMagic] = {};
     return in.read(magic, sizeof magic) && std::memcmp(magic, kMagic, sizeof kMagic) == 0;

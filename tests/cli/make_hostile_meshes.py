@@ -185,6 +185,13 @@ def corpus(rng):
     files["gltf_nodes_nested_5000.gltf"] = gltf(
         nodes=[{"mesh": 0, "children": [1]}] + [{"children": [i + 1]} for i in range(1, 4999)] + [{}])
     files["gltf_json_nested_100000.gltf"] = "[" * 100000 + "]" * 100000
+    # assimp 5.2 reads a skin's inverse bind matrices without looking: none crashed it
+    # (SIGSEGV), too few for its joints it read past.
+    files["gltf_skin_without_matrices.gltf"] = gltf(
+        nodes=[{"mesh": 0, "skin": 0}], extra={"skins": [{"joints": [0]}]})
+    files["gltf_skin_short_of_matrices.gltf"] = gltf(
+        nodes=[{"mesh": 0, "skin": 0}, {}],
+        extra={"skins": [{"joints": [0, 1], "inverseBindMatrices": 0}]})
     valid_gltf = gltf()
     for cut in truncations(rng, valid_gltf, 1, len(valid_gltf) - 1, 5):
         files[f"gltf_cut_{cut}.gltf"] = valid_gltf[:cut]

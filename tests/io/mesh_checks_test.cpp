@@ -136,6 +136,22 @@ TEST_F(MeshChecks, GltfReferencesStayInTheMeshFolder) {
          R"({"asset":{"version":"2.0"},"buffers":[{"uri":"sub/inside.bin","byteLength":37}]})",
          "byteLength 37 but only 36 bytes hold it"},
     });
+    // A symbolic link beside the mesh is followed only to a file in its folder: a folder of
+    // downloaded files must not make it read anything else the user can.
+    fs::create_directories(file("elsewhere"));
+    test::write_file(file("elsewhere/secret.bin"), std::string(36, '\0'));
+    fs::create_directories(file("mesh/sub"));
+    test::write_file(file("mesh/sub/inside.bin"), std::string(36, '\0'));
+    fs::create_symlink(file("elsewhere/secret.bin"), file("mesh/secret.bin"));
+    fs::create_symlink(file("elsewhere"), file("mesh/linked_folder"));
+    fs::create_symlink(file("mesh/sub/inside.bin"), file("mesh/inside.bin"));
+    expect_refused({
+        {"mesh/out.gltf", gltf("secret.bin"),
+         "the reference 'secret.bin' leads out of the mesh's folder through a symbolic link"},
+        {"mesh/out_folder.gltf", gltf("linked_folder/secret.bin"), "through a symbolic link"},
+    });
+    test::write_file(file("mesh/in.gltf"), gltf("inside.bin"));
+    EXPECT_EQ(test::load_error(file("mesh/in.gltf")).find("symbolic link"), std::string::npos);
 }
 
 TEST_F(MeshChecks, GltfAccessorsAndNodes) {
@@ -144,6 +160,9 @@ TEST_F(MeshChecks, GltfAccessorsAndNodes) {
                std::string(48, 'A') +
                R"(","byteLength":36}],"bufferViews":[{"buffer":0,"byteLength":36}],"accessors":[)" +
                accessor + R"(],"nodes":[)" + nodes + "]}";
+    };
+    const auto with_skins = [](std::string doc, const std::string& skins) {
+        return doc.insert(doc.size() - 1, R"(,"skins":)" + skins);
     };
     const std::string ok = R"({"bufferView":0,"componentType":5126,"count":3,"type":"VEC3"})";
     std::string deep = R"({"children":[1]})";
@@ -165,6 +184,19 @@ TEST_F(MeshChecks, GltfAccessorsAndNodes) {
         {"deep.gltf", gltf(ok, deep), "nested deeper than 64"},
         {"json_deep.gltf", std::string(100, '[') + std::string(100, ']'),
          "glTF JSON nested deeper than 64"},
+        {"overlapping.gltf",
+         R"({"asset":{"version":"2.0"},"buffers":[{"uri":"data:application/octet-stream;base64,)" +
+             std::string(48, 'A') +
+             R"(","byteLength":36}],"bufferViews":[{"buffer":0,"byteLength":36,"byteStride":4}],)"
+             R"("accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3"}]})",
+         "glTF accessors[0]: elements of 12 bytes overlap in its buffer view's stride of 4"},
+        // assimp reads a skin's matrices without looking: none crashed it, too few it read
+        // past.
+        {"skin_without_matrices.gltf", with_skins(gltf(ok, R"({"skin":0})"), R"([{"joints":[0]}])"),
+         "glTF skins[0]: no inverseBindMatrices"},
+        {"skin_short_of_matrices.gltf",
+         with_skins(gltf(ok, R"({"skin":0},{})"), R"([{"joints":[0,1],"inverseBindMatrices":0}])"),
+         "glTF skins[0].inverseBindMatrices: not a float MAT4 for each of its 2 joints"},
         {"glb_length.glb",
          std::string("glTF\x02\x00\x00\x00\xff\xff\x00\x00", 12) + std::string(20, ' '),
          "byte 8: the GLB header's length 65535 is not the file's 32"},

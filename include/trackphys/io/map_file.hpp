@@ -88,7 +88,8 @@ TRACKPHYS_API StaticMap load_static_world(
     unsigned threads = 0, std::size_t frame_budget_bytes = kPlaneTreeFrameBudget);
 
 /// True when the file starts with the map magic (any version): what `trackphys info` uses to
-/// tell a map from a mesh file. False for a file it cannot read.
+/// tell a map from a mesh file. False for a file it cannot read and for anything but a regular
+/// file (a FIFO would block the open).
 TRACKPHYS_API bool is_map_file(const std::filesystem::path& path);
 
 }  // namespace trackphys

@@ -14,4 +14,10 @@ namespace trackphys {
 /// is a regular file (links followed); `name` is how messages name it ("snapshot 'a.snap'").
 TRACKPHYS_API void require_regular_file(const std::filesystem::path& path, const std::string& name);
 
+/// Whether `file` lies inside `folder` once symbolic links are followed (both exist): a file
+/// that names another beside it (a glTF its buffers, a recording its track) must not reach
+/// through a link anything else the user can read.
+TRACKPHYS_API bool lies_inside(const std::filesystem::path& file,
+                               const std::filesystem::path& folder);
+
 }  // namespace trackphys
