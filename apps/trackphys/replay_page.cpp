@@ -7,12 +7,12 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <system_error>
 #include <vector>
 
 #include <zlib.h>
 
-#include <nlohmann/json.hpp>
-
+#include "recording_lines.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/geometry/triangle_mesh.hpp"
 #include "trackphys/io/mesh_io.hpp"
@@ -27,81 +27,6 @@ std::string read_recording(const std::filesystem::path& path) {
     std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     if (in.bad()) throw Error("recording '" + path.string() + "': cannot read it");
     return text;
-}
-
-// The header (first line) as JSON, checked to be a recording's.
-nlohmann::json read_header(const std::string& text, const std::filesystem::path& path) {
-    const nlohmann::json header =
-        nlohmann::json::parse(text.substr(0, text.find('\n')), nullptr, false);
-    if (!header.is_object() || header.value("format", "") != "trackphys-recording")
-        throw Error("recording '" + path.string() +
-                    "': not a trackphys recording (its first line must be a header with "
-                    "\"format\":\"trackphys-recording\")");
-    return header;
-}
-
-// How many cars each frame lists and, when the header gives their shapes (version 2),
-// how many ellipsoids each car has: what a frame must match. Empty when the header does
-// not say; the page then reports the header.
-struct HeaderCars {
-    std::size_t count = 0;
-    std::vector<std::size_t> ellipsoids;  // per car; empty for a version 1 header
-};
-
-HeaderCars header_cars(const nlohmann::json& header) {
-    HeaderCars cars;
-    const auto count = header.find("cars");
-    if (count == header.end() || !count->is_number_unsigned()) return cars;
-    cars.count = count->get<std::size_t>();
-    const auto shapes = header.find("car_ellipsoids");
-    if (shapes == header.end() || !shapes->is_array() || shapes->size() != cars.count) return cars;
-    for (const nlohmann::json& shape : *shapes) {
-        if (!shape.is_array()) return {cars.count, {}};
-        cars.ellipsoids.push_back(shape.size());
-    }
-    return cars;
-}
-
-// Why a frame does not match its header's cars, or empty when it does.
-std::string frame_mismatch(const nlohmann::json& frame, const HeaderCars& cars) {
-    const auto listed = frame.find("cars");
-    if (listed == frame.end() || !listed->is_array() || listed->size() != cars.count)
-        return "it does not list the header's " + std::to_string(cars.count) + " cars";
-    for (std::size_t k = 0; k < cars.ellipsoids.size(); ++k) {
-        const nlohmann::json& car = (*listed)[k];
-        if (!car.is_object()) continue;
-        const auto suspension = car.find("s");
-        if (suspension != car.end() &&
-            (!suspension->is_array() || suspension->size() != cars.ellipsoids[k]))
-            return "car " + std::to_string(k) + "'s \"s\" is not one number for each of its " +
-                   std::to_string(cars.ellipsoids[k]) + " ellipsoids in the header";
-    }
-    return {};
-}
-
-// Every frame line is a JSON object that lists the header's cars with their ellipsoids, as
-// the viewer requires (viewer/src/recording.ts): a recording cut short by a crash or a full
-// disk, or whose frames belong to another header, is refused here, naming the line as the
-// page would, not written into a page that then refuses it. A frame's values are the page's
-// to check.
-void check_frames(std::string_view text, const nlohmann::json& header,
-                  const std::filesystem::path& path) {
-    const HeaderCars cars = header_cars(header);
-    std::size_t line = 1;
-    for (std::size_t at = text.find('\n'); at != std::string_view::npos && at + 1 < text.size();) {
-        ++line;
-        const std::size_t end = std::min(text.find('\n', at + 1), text.size());
-        const std::string_view frame_text = text.substr(at + 1, end - at - 1);
-        const nlohmann::json frame = nlohmann::json::parse(frame_text, nullptr, false);
-        const auto refuse = [&](const std::string& why) {
-            throw Error("recording '" + path.string() + "': line " + std::to_string(line) + ": " +
-                        why);
-        };
-        if (!frame.is_object()) refuse("not a JSON object (a truncated or corrupt recording)");
-        if (cars.count > 0)
-            if (const std::string why = frame_mismatch(frame, cars); !why.empty()) refuse(why);
-        at = end;
-    }
 }
 
 std::string deflate(std::string_view bytes) {
@@ -187,16 +112,21 @@ std::string attribute(std::string text) {
 
 ReplayRecording read_replay_recording(const std::filesystem::path& file) {
     ReplayRecording recording{file, read_recording(file), {}};
-    const nlohmann::json header = read_header(recording.text, file);
-    check_frames(recording.text, header, file);
-    if (header.contains("track") && header["track"].is_object() &&
-        header["track"].contains("mesh") && header["track"]["mesh"].is_string()) {
-        const std::filesystem::path track = header["track"]["mesh"].get<std::string>();
+    const RecordingLines lines = check_recording_lines(recording.text, file);
+    if (lines.track_mesh) {
+        const std::filesystem::path track = *lines.track_mesh;
         if (track.empty() || track != track.filename() || track == "." || track == "..")
             throw Error("recording '" + file.string() + "': its track '" + track.string() +
                         "' is not a plain file name in the recording's folder (a recording "
                         "names the track drive --record wrote beside it)");
-        recording.track_file = file.parent_path() / track;
+        const std::filesystem::path folder =
+            file.parent_path().empty() ? std::filesystem::path(".") : file.parent_path();
+        recording.track_file = folder / track;
+        std::error_code error;
+        if (std::filesystem::exists(recording.track_file, error) &&
+            !lies_inside(recording.track_file, folder))
+            throw Error("recording '" + file.string() + "': its track '" + track.string() +
+                        "' leads out of the recording's folder through a symbolic link");
     }
     return recording;
 }
