@@ -144,6 +144,16 @@ void check_resume_before_the_end(const std::filesystem::path& file, double snaps
     }
 }
 
+// Runs step, naming the snapshot in its error: the library's messages do not know the file.
+template <class Step>
+auto naming_snapshot(const std::filesystem::path& file, Step&& step) {
+    try {
+        return step();
+    } catch (const Error& e) {
+        throw Error("--resume '" + file.string() + "': " + e.what());
+    }
+}
+
 }  // namespace
 
 void run_drive(const DriveOptions& o, const OptionGiven& given) {
@@ -198,13 +208,8 @@ void run_drive(const DriveOptions& o, const OptionGiven& given) {
     std::optional<SnapshotFile> resume;
     if (!o.resume.empty()) {
         resume = load_snapshot(o.resume);
-        const DriveSession saved = [&] {
-            try {
-                return parse_session(resume->user_data);
-            } catch (const Error& e) {
-                throw Error("--resume '" + o.resume.string() + "': " + e.what());
-            }
-        }();
+        const DriveSession saved =
+            naming_snapshot(o.resume, [&] { return parse_session(resume->user_data); });
         check_same_drive(saved, session);
         // World::restore_state would refuse it too, but by the spec's fingerprint alone.
         if (resume->world.cars.size() == 1 &&
@@ -237,7 +242,7 @@ void run_drive(const DriveOptions& o, const OptionGiven& given) {
     world.add_car(s.car, start);
     // Resuming: the same static world, settings and car (restore_state checks their
     // fingerprints), then the snapshot's state, update count and time.
-    if (resume) world.restore_state(resume->world);
+    if (resume) naming_snapshot(o.resume, [&] { world.restore_state(resume->world); });
     ResetStreak reset_streak(world);
 
     std::optional<Autopilot> autopilot;

@@ -46,8 +46,8 @@ Header read_header(std::string_view text, const std::filesystem::path& path) {
     Header out;
     out.lines.cars = header["cars"].get<std::size_t>();
     if (version.get<double>() == 1) return out;
-    const std::string all_cars =
-        "car_ellipsoids must list the ellipsoids of all " + std::to_string(out.lines.cars) + " cars";
+    const std::string all_cars = "car_ellipsoids must list the ellipsoids of all " +
+                                 std::to_string(out.lines.cars) + " cars";
     const auto shapes = header.find("car_ellipsoids");
     if (shapes == header.end() || !shapes->is_array() || shapes->size() != out.lines.cars)
         refuse(path, 1, all_cars);

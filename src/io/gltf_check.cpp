@@ -1,9 +1,14 @@
 // check_gltf (mesh_checks.hpp): a glTF 2 document's references and sizes: every buffer it
 // names (external files only inside the mesh's folder, data: URIs well formed), every buffer
 // view and accessor inside what holds it, every index in range, and the node tree a tree of
-// bounded depth. assimp's glTF 2 reader trusts these (a sparse accessor without an indices
-// view crashes it; a buffer URI of /etc/passwd or ../ reads that file as a mesh).
+// bounded depth, accessors of the kinds the geometry needs, node transforms assimp composes
+// as glTF means them, and no required extension that would change the geometry unread.
+// assimp's glTF 2 reader trusts these (a sparse accessor without an indices view, or a skin
+// without its matrices, crashes it; a buffer URI of /etc/passwd or ../ reads that file as a
+// mesh).
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <set>
@@ -207,6 +212,7 @@ class GltfChecker {
             !(*asset)["version"].is_string() ||
             (*asset)["version"].get<std::string>().rfind("2.", 0) != 0)
             fail("asset.version", "not glTF 2");
+        check_required_extensions();
         check_buffers();
         check_images();
         check_buffer_views();
@@ -219,6 +225,21 @@ class GltfChecker {
     }
 
   private:
+    // assimp reads none of the extensions that change the geometry (compressed or quantized
+    // meshes, GPU instances): a file that requires one would load as something else. Those
+    // of materials, textures and lights leave the triangles alone.
+    void check_required_extensions() {
+        const Json& required_extensions = array_of(doc_, "extensionsRequired");
+        for (std::size_t e = 0; e < required_extensions.size(); ++e) {
+            const Json& name = required_extensions[e];
+            const std::string text = name.is_string() ? name.get<std::string>() : name.dump();
+            if (!(text.starts_with("KHR_materials_") || text.starts_with("KHR_texture_") ||
+                  text == "KHR_lights_punctual"))
+                fail(at("extensionsRequired", e),
+                     "'" + text + "' may change the geometry, and it is not read");
+        }
+    }
+
     void check_buffers() {
         const Json& buffers = array_of(doc_, "buffers");
         for (std::size_t i = 0; i < buffers.size(); ++i) {
@@ -312,6 +333,38 @@ class GltfChecker {
         }
     }
 
+    // What the importer reads of a primitive: positions as float triples and indices as
+    // unsigned integers, in whole triangles when the mode is triangles (the default): it
+    // read other kinds as garbage triangles and dropped a last partial triangle unsaid.
+    void check_geometry_accessors(const Json& primitive, const Json& attributes,
+                                  const std::string& place) {
+        const Json& accessors = array_of(doc_, "accessors");
+        const auto accessor = [&](const Json& index) -> const Json& {
+            return accessors[index.get<std::size_t>()];
+        };
+        const auto type = [](const Json& a) { return a.value("componentType", std::uint64_t{0}); };
+        const auto count = [](const Json& a) { return a.value("count", std::uint64_t{0}); };
+        const bool triangles = number_of(primitive, "mode", place, 4) == 4;
+        if (const auto position = attributes.find("POSITION"); position != attributes.end()) {
+            const Json& a = accessor(*position);
+            if (components(a, place) != 3 || type(a) != 5126)
+                fail(place + ".attributes.POSITION", "not an accessor of float VEC3");
+            if (triangles && !primitive.contains("indices") && count(a) % 3 != 0)
+                fail(place, std::to_string(count(a)) +
+                                " vertices without indices, not whole "
+                                "triangles");
+        }
+        if (const auto indices = primitive.find("indices"); indices != primitive.end()) {
+            const Json& a = accessor(*indices);
+            if (components(a, place) != 1 ||
+                !(type(a) == 5121 || type(a) == 5123 || type(a) == 5125))
+                fail(place + ".indices", "not an accessor of unsigned integers");
+            if (triangles && count(a) % 3 != 0)
+                fail(place + ".indices",
+                     std::to_string(count(a)) + " indices, not whole triangles");
+        }
+    }
+
     void check_meshes() {
         const std::size_t accessors = array_of(doc_, "accessors").size();
         const Json& meshes = array_of(doc_, "meshes");
@@ -330,6 +383,7 @@ class GltfChecker {
                     fail(place, "no attributes");
                 for (const auto& [name, index] : attributes->items())
                     check_index(*attributes, name.c_str(), place + ".attributes", accessors);
+                check_geometry_accessors(primitive, *attributes, place);
                 const Json& targets = array_of(primitive, "targets");
                 for (std::size_t t = 0; t < targets.size(); ++t) {
                     if (!targets[t].is_object()) fail(at(place + ".targets", t), "not an object");
@@ -338,6 +392,36 @@ class GltfChecker {
                 }
             }
         }
+    }
+
+    // A node's own transform as assimp composes it: a rotation that is not a unit quaternion
+    // scaled the mesh (a 1 m quad placed 199 m long), a matrix whose last row is not
+    // 0, 0, 0, 1 was taken as affine all the same, and GPU instances are not read at all.
+    void check_node_transform(const Json& node, const std::string& place) {
+        const auto extensions = node.find("extensions");
+        if (extensions != node.end() && extensions->is_object() &&
+            extensions->contains("EXT_mesh_gpu_instancing"))
+            fail(place,
+                 "EXT_mesh_gpu_instancing: its instances are not read (export them as "
+                 "nodes)");
+        const auto numbers = [&](const char* key, std::size_t n) -> std::vector<double> {
+            const auto it = node.find(key);
+            if (it == node.end()) return {};
+            if (!it->is_array() || it->size() != n ||
+                !std::all_of(it->begin(), it->end(), [](const Json& x) { return x.is_number(); }))
+                fail(place + "." + key, "not " + std::to_string(n) + " numbers");
+            std::vector<double> out;
+            for (const Json& x : *it) out.push_back(x.get<double>());
+            return out;
+        };
+        if (const std::vector<double> q = numbers("rotation", 4); !q.empty()) {
+            const double length2 = q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3];
+            if (!(std::abs(length2 - 1.0) <= 1e-3))
+                fail(place + ".rotation", "not a unit quaternion");
+        }
+        if (const std::vector<double> m = numbers("matrix", 16); !m.empty())
+            if (m[3] != 0.0 || m[7] != 0.0 || m[11] != 0.0 || m[15] != 1.0)
+                fail(place + ".matrix", "not an affine transform (its last row is not 0, 0, 0, 1)");
     }
 
     // Nodes form a forest: every child in range, no node a child twice, no cycle, at most
@@ -351,6 +435,7 @@ class GltfChecker {
             check_index(nodes[n], "mesh", place, array_of(doc_, "meshes").size());
             check_index(nodes[n], "skin", place, array_of(doc_, "skins").size());
             check_index(nodes[n], "camera", place, array_of(doc_, "cameras").size());
+            check_node_transform(nodes[n], place);
             const Json& children = array_of(nodes[n], "children");
             for (std::size_t c = 0; c < children.size(); ++c) {
                 if (!children[c].is_number_unsigned() ||

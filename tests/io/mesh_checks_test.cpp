@@ -161,8 +161,9 @@ TEST_F(MeshChecks, GltfAccessorsAndNodes) {
                R"(","byteLength":36}],"bufferViews":[{"buffer":0,"byteLength":36}],"accessors":[)" +
                accessor + R"(],"nodes":[)" + nodes + "]}";
     };
-    const auto with_skins = [](std::string doc, const std::string& skins) {
-        return doc.insert(doc.size() - 1, R"(,"skins":)" + skins);
+    // The document with one more member, e.g. R"("skins":[])".
+    const auto with = [](std::string doc, const std::string& member) {
+        return doc.insert(doc.size() - 1, "," + member);
     };
     const std::string ok = R"({"bufferView":0,"componentType":5126,"count":3,"type":"VEC3"})";
     std::string deep = R"({"children":[1]})";
@@ -192,11 +193,38 @@ TEST_F(MeshChecks, GltfAccessorsAndNodes) {
          "glTF accessors[0]: elements of 12 bytes overlap in its buffer view's stride of 4"},
         // assimp reads a skin's matrices without looking: none crashed it, too few it read
         // past.
-        {"skin_without_matrices.gltf", with_skins(gltf(ok, R"({"skin":0})"), R"([{"joints":[0]}])"),
+        {"skin_without_matrices.gltf",
+         with(gltf(ok, R"({"skin":0})"), R"("skins":[{"joints":[0]}])"),
          "glTF skins[0]: no inverseBindMatrices"},
         {"skin_short_of_matrices.gltf",
-         with_skins(gltf(ok, R"({"skin":0},{})"), R"([{"joints":[0,1],"inverseBindMatrices":0}])"),
+         with(gltf(ok, R"({"skin":0},{})"),
+              R"("skins":[{"joints":[0,1],"inverseBindMatrices":0}])"),
          "glTF skins[0].inverseBindMatrices: not a float MAT4 for each of its 2 joints"},
+        // What the importer reads as glTF does not mean it, or not at all.
+        {"gpu_instances.gltf", gltf(ok, R"({"extensions":{"EXT_mesh_gpu_instancing":{}}})"),
+         "glTF nodes[0]: EXT_mesh_gpu_instancing: its instances are not read"},
+        {"draco.gltf", with(gltf(ok, ""), R"("extensionsRequired":["KHR_draco_mesh_compression"])"),
+         "glTF extensionsRequired[0]: 'KHR_draco_mesh_compression' may change the geometry"},
+        {"rotation_not_unit.gltf", gltf(ok, R"({"rotation":[10,0,0,0]})"),
+         "glTF nodes[0].rotation: not a unit quaternion"},
+        {"projective.gltf", gltf(ok, R"({"matrix":[1,0,0,0,0,1,0,0,0,0,1,0,0,0,0,0]})"),
+         "glTF nodes[0].matrix: not an affine transform"},
+        {"positions_vec2.gltf",
+         with(gltf(R"({"bufferView":0,"componentType":5126,"count":3,"type":"VEC2"})", ""),
+              R"("meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}])"),
+         "glTF meshes[0].primitives[0].attributes.POSITION: not an accessor of float VEC3"},
+        {"partial_triangle.gltf",
+         with(gltf(R"({"bufferView":0,"componentType":5126,"count":2,"type":"VEC3"})", ""),
+              R"("meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}])"),
+         "glTF meshes[0].primitives[0]: 2 vertices without indices, not whole triangles"},
+        {"float_indices.gltf",
+         with(gltf(ok, ""),
+              R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":0}]}])"),
+         "glTF meshes[0].primitives[0].indices: not an accessor of unsigned integers"},
+        {"four_indices.gltf",
+         with(gltf(ok + R"(,{"bufferView":0,"componentType":5125,"count":4,"type":"SCALAR"})", ""),
+              R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1}]}])"),
+         "glTF meshes[0].primitives[0].indices: 4 indices, not whole triangles"},
         {"glb_length.glb",
          std::string("glTF\x02\x00\x00\x00\xff\xff\x00\x00", 12) + std::string(20, ' '),
          "byte 8: the GLB header's length 65535 is not the file's 32"},
@@ -218,6 +246,9 @@ TEST_F(MeshChecks, ObjIndicesAndStatements) {
         {"two.obj", square + "f 1 2\n", "line 7: a face of fewer than 3 corners"},
         {"word.obj", square + "v 1 2 z\n", "line 7: a vertex 'z' is not a number"},
         {"unknown.obj", "hello world\n", "line 1: the statement 'hello' is not read"},
+        // assimp lost the first statement after it: here the vertex the face needs.
+        {"byte_order_mark.obj", "\xEF\xBB\xBFv 0 0 0\nv 1 0 0\nv 0 0 -1\nf 1 2 3\n",
+         "line 1: a UTF-8 byte order mark before the first statement"},
         {"curve.obj", square + "curv 0 1 1 2\n", "the statement 'curv' is not read"},
         {"continued.obj", square + "f 1 2 \\\n3\n", "a line continued with"},
     });

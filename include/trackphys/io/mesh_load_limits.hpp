@@ -14,7 +14,8 @@ namespace trackphys {
 
 struct MeshLoadLimits {
     /// Triangles in the loaded mesh (MeshLoadReport::triangles: after triangulation, once
-    /// per placement of an instanced mesh, degenerate ones not counted). Twice the 50
+    /// per placement of an instanced mesh, degenerate ones not counted). A file whose nodes
+    /// place more, degenerate ones counted, is refused before any is placed. Twice the 50
     /// million a big track needs; a mesh at this limit holds 1.2 GB of indices.
     std::uint64_t max_triangles = 100'000'000;
     /// Vertices in the loaded mesh (MeshLoadReport::vertices: welded by position). A
