@@ -15,9 +15,8 @@ struct ReplayPageStats {
     std::size_t page_bytes = 0;
 };
 
-/// A recording as `trackphys view` reads it: checked to be a trackphys recording whose
-/// every frame line is a JSON object listing the header's cars (each with the header's
-/// number of ellipsoids), and the track mesh its header names.
+/// A recording as `trackphys view` reads it: checked as the viewer reads it
+/// (check_recording_lines), and the track mesh its header names.
 struct ReplayRecording {
     std::filesystem::path file;
     std::string text;
@@ -25,9 +24,10 @@ struct ReplayRecording {
 };
 
 /// Reads and checks the recording. Throws trackphys::Error, naming the first bad line, when
-/// it is not a trackphys recording or a frame does not match its header, or when its track is not a plain file name (no folder, not absolute): a
-/// recording names the track that `drive --record` wrote beside it, and a page must not
-/// embed whatever file a recording points to.
+/// check_recording_lines refuses it, or when its track is not a plain file name (no folder,
+/// not absolute) or is a symbolic link out of the recording's folder: a recording names the
+/// track that `drive --record` wrote beside it, and a page must not embed whatever file a
+/// recording points to.
 ReplayRecording read_replay_recording(const std::filesystem::path& file);
 
 /// One self-contained HTML page that replays the recording: the viewer bundle, the
