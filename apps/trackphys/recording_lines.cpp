@@ -31,7 +31,8 @@ struct Header {
 
 Header read_header(std::string_view text, const std::filesystem::path& path) {
     const Json header = Json::parse(text, nullptr, false);
-    if (!header.is_object() || header.value("format", "") != "trackphys-recording")
+    if (!header.is_object() || !header.contains("format") ||
+        header["format"] != "trackphys-recording")
         throw Error("recording '" + path.string() +
                     "': not a trackphys recording (its first line must be a header with "
                     "\"format\":\"trackphys-recording\")");

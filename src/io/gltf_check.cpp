@@ -225,16 +225,20 @@ class GltfChecker {
     }
 
   private:
-    // assimp reads none of the extensions that change the geometry (compressed or quantized
-    // meshes, GPU instances): a file that requires one would load as something else. Those
-    // of materials, textures and lights leave the triangles alone.
+    // A required extension that stores the geometry otherwise (Draco or meshopt compression)
+    // would load as something else, or not at all. Those of materials, textures, lights and
+    // quantized attributes (positions must still be float: check_geometry_accessors) leave
+    // the triangles alone, and GPU instancing is refused on the node that uses it, saying what
+    // to do.
     void check_required_extensions() {
         const Json& required_extensions = array_of(doc_, "extensionsRequired");
         for (std::size_t e = 0; e < required_extensions.size(); ++e) {
             const Json& name = required_extensions[e];
             const std::string text = name.is_string() ? name.get<std::string>() : name.dump();
             if (!(text.starts_with("KHR_materials_") || text.starts_with("KHR_texture_") ||
-                  text == "KHR_lights_punctual"))
+                  text.starts_with("EXT_texture_") || text == "MSFT_texture_dds" ||
+                  text == "KHR_lights_punctual" || text == "KHR_mesh_quantization" ||
+                  text == "EXT_mesh_gpu_instancing"))
                 fail(at("extensionsRequired", e),
                      "'" + text + "' may change the geometry, and it is not read");
         }
@@ -416,7 +420,8 @@ class GltfChecker {
         };
         if (const std::vector<double> q = numbers("rotation", 4); !q.empty()) {
             const double length2 = q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3];
-            if (!(std::abs(length2 - 1.0) <= 1e-3))
+            // float32 rounding leaves ~1e-7; 1e-3 would stretch a 5 km track by 2.5 m.
+            if (!(std::abs(length2 - 1.0) <= 1e-5))
                 fail(place + ".rotation", "not a unit quaternion");
         }
         if (const std::vector<double> m = numbers("matrix", 16); !m.empty())

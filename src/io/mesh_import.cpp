@@ -383,9 +383,14 @@ TriangleMesh load_mesh(const fs::path& path, MeshLoadReport& report, const MeshL
     // Mapped once: the check walks these bytes and assimp reads them (confined_io_system.hpp).
     const detail::MappedFile file(path);
     check_byte_limit(path, file.bytes().size(), limits, "the file is");
+    // What the check and assimp read: an OBJ without the UTF-8 byte order mark some editors
+    // write first, which made assimp's reader lose the first statement.
+    std::string_view bytes = file.bytes();
+    if (format == detail::MeshFormat::obj && bytes.starts_with("\xEF\xBB\xBF"))
+        bytes.remove_prefix(3);
     std::set<fs::path> buffers;
     try {
-        buffers = detail::check_mesh(file.bytes(), format, path.parent_path(), limits.max_nesting);
+        buffers = detail::check_mesh(bytes, format, path.parent_path(), limits.max_nesting);
     } catch (const detail::MeshCheckError& e) {
         fail(path, e.reason);
     }
@@ -400,7 +405,7 @@ TriangleMesh load_mesh(const fs::path& path, MeshLoadReport& report, const MeshL
     Assimp::Importer importer;
     const auto unused_readers = keep_only_reader(importer, format);
     // The importer owns the IO system.
-    importer.SetIOHandler(new detail::ConfinedIoSystem(path, file.bytes(), buffers));
+    importer.SetIOHandler(new detail::ConfinedIoSystem(path, bytes, buffers));
     // Some importers invent a mesh to visualise a skeleton when a file has bones but no
     // mesh; that would be phantom collision geometry.
     importer.SetPropertyBool(AI_CONFIG_IMPORT_NO_SKELETON_MESHES, true);

@@ -67,11 +67,6 @@ bool is_naming(std::string_view keyword) {
 }  // namespace
 
 void check_obj(std::string_view file) {
-    // Some editors write one first; assimp's reader then loses the first statement.
-    if (file.starts_with("\xEF\xBB\xBF"))
-        throw MeshCheckError{
-            "line 1: a UTF-8 byte order mark before the first statement (not "
-            "read: save the file without it)"};
     TextScanner scan(file);
     Counts counts;
     while (!scan.at_end()) {

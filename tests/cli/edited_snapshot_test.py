@@ -67,7 +67,7 @@ def main():
         "laps_wrapping_to_5": (set_autopilot("laps", 2**32 + 5), "laps is not a whole number"),
         "laps_a_fraction": (set_autopilot("laps", 1.5), "laps is not a whole number"),
         "laps_without_lap_times": (set_autopilot("laps", 5),
-                                   "autopilot.laps is not the number of lap times"),
+                                   "autopilot.laps is more than the lap times"),
         "negative_distance": (set_field("distance_m", -1e308), "distance_m is not finite"),
         "negative_lap_time": (lambda s: (s.__setitem__("lap_times_s", [-1.0]),
                                          s["autopilot"].__setitem__("laps", 1)),
