@@ -33,7 +33,7 @@ void run_bake(const BakeOptions& o, const OptionGiven& given) {
     if (!from_mesh && given("--chunk"))
         throw Error("--chunk splits a mesh file; a generated track comes in its own chunks");
     if (!(std::isfinite(o.chunk_m) && o.chunk_m > 0.0))
-        throw Error("--chunk must be finite and > 0 m, got " + shown(o.chunk_m));
+        throw Error("--chunk must be finite and > 0 m, got " + exact_text(o.chunk_m));
     check_threads(o.threads);
     if (o.out.extension() != ".tpmap")
         throw Error("--out '" + o.out.string() + "': a map file's name ends in .tpmap");

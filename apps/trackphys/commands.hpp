@@ -27,8 +27,9 @@ namespace trackphys::cli {
 /// from a default.
 using OptionGiven = std::function<bool(const std::string& option)>;
 
-/// A number as messages show it, %g-style like Scenario's ("2", "1e+300"), never
-/// std::to_string's six decimals or its 300 digits.
+/// A time or length as messages describe it, %g-style ("2", "1e+300"), never
+/// std::to_string's six decimals or its 300 digits. A value checked against a bound is
+/// shown by exact_text instead, so that one just past the bound does not read as the bound.
 inline std::string shown(double x) {
     char text[32];
     std::snprintf(text, sizeof text, "%g", x);
@@ -50,7 +51,7 @@ inline void refuse_zero_duration(const OptionGiven& given, int laps, double seco
         throw Error("--laps must be >= 1, got " + std::to_string(laps) +
                     " (leave it out for the default)");
     if (given("--seconds") && !(seconds > 0.0))  // NaN too
-        throw Error("--seconds must be > 0, got " + shown(seconds) +
+        throw Error("--seconds must be > 0, got " + exact_text(seconds) +
                     " (leave it out for the default)");
 }
 

@@ -1,7 +1,10 @@
 #include "drive_recording.hpp"
 
 #include <cstdint>
+#include <string>
 #include <system_error>
+
+#include <nlohmann/json.hpp>
 
 #include "track_mesh.hpp"
 #include "trackphys/collision/static_collider.hpp"
@@ -11,8 +14,15 @@
 namespace trackphys::cli {
 
 std::filesystem::path recording_track_mesh_file(const std::filesystem::path& record) {
-    return std::filesystem::absolute(record).parent_path() /
-           (record.stem().string() + ".track.glb");
+    const std::string name = record.stem().string() + ".track.glb";
+    try {
+        (void)nlohmann::json(name).dump();  // throws on bytes that are not UTF-8
+    } catch (const nlohmann::json::type_error&) {
+        throw Error("--record " + quoted_text(record.string()) +
+                    ": the file name is not UTF-8, and the recording names its track in JSON "
+                    "by it (rename the file)");
+    }
+    return std::filesystem::absolute(record).parent_path() / name;
 }
 
 namespace {

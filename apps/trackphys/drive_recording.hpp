@@ -20,7 +20,9 @@ struct DriveRecordingPlan {
 };
 
 /// The track mesh that `--record record` writes beside the recording: its folder, its stem
-/// + ".track.glb".
+/// + ".track.glb". Throws trackphys::Error when that name is not UTF-8: the header names the
+/// track in JSON, which could hold only a replacement naming no file, and the recording
+/// could not be viewed.
 std::filesystem::path recording_track_mesh_file(const std::filesystem::path& record);
 
 /// `cars` cars of one spec (drive: 1; race: the field).

@@ -51,13 +51,13 @@ void check_settings(const PlaneTreeSettings& s) {
                     std::to_string(s.max_leaf_size));
     if (!std::isfinite(s.query_radius) || !(s.query_radius > 0.0))
         throw Error("PlaneTreeSettings.query_radius must be finite and > 0, got " +
-                    std::to_string(s.query_radius));
+                    exact_text(s.query_radius));
     if (!std::isfinite(s.node_cost) || !(s.node_cost > 0.0))
         throw Error("PlaneTreeSettings.node_cost must be finite and > 0, got " +
-                    std::to_string(s.node_cost));
+                    exact_text(s.node_cost));
     if (!std::isfinite(s.slab_thickness) || !(s.slab_thickness >= 0.0))
         throw Error("PlaneTreeSettings.slab_thickness must be finite and >= 0, got " +
-                    std::to_string(s.slab_thickness));
+                    exact_text(s.slab_thickness));
 }
 
 }  // namespace

@@ -185,7 +185,7 @@ struct EllipsoidShape {
             throw Error("plane tree swept-ellipsoid query: end center is not finite");
         if (!std::isfinite(margin) || !(margin >= 0.0))
             throw Error("plane tree swept-ellipsoid query: margin must be finite and >= 0, got " +
-                        std::to_string(margin));
+                        exact_text(margin));
         const glm::dvec3 radii = e.sorted_radii() * (1.0 + margin / e.sorted_radii().z);
         // M = sum_k r_k^2 q_k q_k^T over the sorted axes q_k (columns); the unit-ball map's
         // rows are q_k / r_k.

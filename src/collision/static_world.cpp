@@ -18,7 +18,7 @@ Aabb swept_box(const Aabb& box, const glm::dvec3& displacement, double margin) {
         throw Error(
             "swept_box: displacement must be finite and margin finite and >= 0, got "
             "margin " +
-            std::to_string(margin));
+            exact_text(margin));
     Aabb swept = box;
     swept.expand(Aabb{box.min + displacement, box.max + displacement});
     return swept.padded(margin);

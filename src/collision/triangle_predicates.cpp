@@ -24,7 +24,7 @@ CapsuleQuery make_capsule_query(const glm::dvec3& start, const glm::dvec3& end, 
                     describe(start) + " to " + describe(end));
     if (!std::isfinite(radius) || !(radius >= 0.0))
         throw Error("sphere/capsule query: radius must be finite and >= 0, got " +
-                    std::to_string(radius));
+                    exact_text(radius));
     CapsuleQuery q{start, end, radius * radius, {}};
     q.box.expand(start);
     q.box.expand(end);
@@ -39,7 +39,7 @@ RayQuery make_ray_query(const glm::dvec3& origin, const glm::dvec3& unit_dir, do
     if (!(std::abs(glm::dot(unit_dir, unit_dir) - 1.0) <= 2e-6))
         throw Error("raycast: direction " + describe(unit_dir) + " is not unit length");
     if (!(max_distance >= 0.0))
-        throw Error("raycast: max_distance must be >= 0, got " + std::to_string(max_distance));
+        throw Error("raycast: max_distance must be >= 0, got " + exact_text(max_distance));
     RayQuery ray{origin, unit_dir, {}, max_distance};
     for (int a = 0; a < 3; ++a)
         ray.inv_dir[a] =

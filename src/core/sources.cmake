@@ -1,3 +1,4 @@
 target_sources(trackphys PRIVATE
   core/assert.cpp
-  core/build_target.cpp)
+  core/build_target.cpp
+  core/error.cpp)

@@ -143,8 +143,8 @@ void Car::check_suspension(std::span<const double> travel) const {
             spec_.ellipsoids[i].role == EllipsoidRole::body ? 0.0 : spec_.suspension.travel;
         if (!(travel[i] >= 0.0 && travel[i] <= limit))
             throw Error("car suspension: ellipsoid " + std::to_string(i) +
-                        "'s travel must be in [0, " + std::to_string(limit) + "] m, got " +
-                        std::to_string(travel[i]));
+                        "'s travel must be in [0, " + exact_text(limit) + "] m, got " +
+                        exact_text(travel[i]));
     }
 }
 

@@ -117,7 +117,7 @@ CarSpec CarSpec::preset(std::string_view name) {
     if (name == "arcade") return default_car();
     if (name == "gt") return gt_car();
     if (name == "formula") return formula_car();
-    throw Error("unknown car preset '" + std::string(name) + "' (expected arcade, gt or formula)");
+    throw Error("unknown car preset " + quoted_text(name) + " (expected arcade, gt or formula)");
 }
 
 }  // namespace trackphys

@@ -6,6 +6,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "trackphys/error.hpp"
 #include "trackphys/geometry/ellipsoid.hpp"
 #include "trackphys/math/types.hpp"
 
@@ -59,12 +60,12 @@ namespace {
 
 void check_positive(std::ostringstream& why, const char* field, double value) {
     if (why.tellp() == 0 && !(std::isfinite(value) && value > 0.0))
-        why << "CarSpec." << field << " must be finite and > 0, got " << value;
+        why << "CarSpec." << field << " must be finite and > 0, got " << exact_text(value);
 }
 
 void check_non_negative(std::ostringstream& why, const char* field, double value) {
     if (why.tellp() == 0 && !(std::isfinite(value) && value >= 0.0))
-        why << "CarSpec." << field << " must be finite and >= 0, got " << value;
+        why << "CarSpec." << field << " must be finite and >= 0, got " << exact_text(value);
 }
 
 void check_material(std::ostringstream& why, const char* name, const ContactMaterial& m) {
@@ -118,17 +119,18 @@ std::string CarSpec::validate() const {
     check_non_negative(why, "max_drive_power", max_drive_power);
     check_non_negative(why, "max_reverse_speed", max_reverse_speed);
     if (why.tellp() == 0 && !(front_drive_share >= 0.0 && front_drive_share <= 1.0))
-        why << "CarSpec.front_drive_share must be in [0, 1], got " << front_drive_share;
+        why << "CarSpec.front_drive_share must be in [0, 1], got " << exact_text(front_drive_share);
     if (why.tellp() == 0 && !(front_brake_share >= 0.0 && front_brake_share <= 1.0))
-        why << "CarSpec.front_brake_share must be in [0, 1], got " << front_brake_share;
+        why << "CarSpec.front_brake_share must be in [0, 1], got " << exact_text(front_brake_share);
     if (why.tellp() == 0 && !(traction_limit >= 0.0 && traction_limit <= 1.0))
-        why << "CarSpec.traction_limit must be in [0, 1], got " << traction_limit;
+        why << "CarSpec.traction_limit must be in [0, 1], got " << exact_text(traction_limit);
     check_non_negative(why, "max_brake_force", max_brake_force);
     check_non_negative(why, "max_steer_angle", max_steer_angle);
     if (why.tellp() == 0 && !(max_steer_angle < 1.5))
-        why << "CarSpec.max_steer_angle must be below 1.5 rad, got " << max_steer_angle;
+        why << "CarSpec.max_steer_angle must be below 1.5 rad, got " << exact_text(max_steer_angle);
     if (why.tellp() == 0 && !(deep_contact_fraction > 0.0 && deep_contact_fraction <= 1.0))
-        why << "CarSpec.deep_contact_fraction must be in (0, 1], got " << deep_contact_fraction;
+        why << "CarSpec.deep_contact_fraction must be in (0, 1], got "
+            << exact_text(deep_contact_fraction);
     check_non_negative(why, "drag_area", drag_area);
     check_non_negative(why, "downforce_area", downforce_area);
     check_non_negative(why, "air_density", air_density);

@@ -29,7 +29,7 @@ std::string Ellipsoid::validate(const glm::dvec3& center, const glm::dquat& orie
         for (int i = 0; i < 3; ++i) {
             if (!std::isfinite(semi_axes[i]) || !(semi_axes[i] > 0.0)) {
                 why << "ellipsoid semi-axis " << axis_name[i] << " must be finite and > 0, got "
-                    << semi_axes[i];
+                    << exact_text(semi_axes[i]);
                 break;
             }
         }

@@ -15,7 +15,7 @@ namespace trackphys {
 
 std::vector<TriangleMesh> split_into_chunks(const TriangleMesh& mesh, double cell_m) {
     if (!(std::isfinite(cell_m) && cell_m > 0.0))
-        throw Error("chunk size must be finite and > 0 m, got " + std::to_string(cell_m));
+        throw Error("chunk size must be finite and > 0 m, got " + exact_text(cell_m));
     // The cell of each triangle, clamped so that far or non-finite centroids still get one
     // (the collider then names the bad vertex).
     auto cell_of = [cell_m](double x) {

@@ -9,6 +9,7 @@
 
 #include "io/mesh_checks.hpp"
 #include "io/text_scanner.hpp"
+#include "trackphys/error.hpp"
 
 namespace trackphys::detail {
 namespace {
@@ -40,11 +41,11 @@ const SurfaceKind& surface_kind(TextScanner& scan) {
     const std::string_view flags = scan.words()[1];
     if (flags.size() < 3 || flags.size() > 10 || flags.substr(0, 2) != "0x" ||
         flags.find_first_not_of("0123456789abcdefABCDEF", 2) != std::string_view::npos)
-        scan.fail("SURF flags '" + std::string(flags) + "' are not hexadecimal 0x...");
+        scan.fail("SURF flags " + quoted_text(flags) + " are not hexadecimal 0x...");
     const unsigned type = std::stoul(std::string(flags.substr(2)), nullptr, 16) & 0xfu;
     for (const SurfaceKind& kind : kSurfaceKinds)
         if (kind.type == type) return kind;
-    scan.fail("SURF flags '" + std::string(flags) + "': unknown surface type " +
+    scan.fail("SURF flags " + quoted_text(flags) + ": unknown surface type " +
               std::to_string(type));
 }
 
@@ -112,7 +113,7 @@ std::uint64_t check_object(TextScanner& scan, std::size_t bytes) {
         } else if (keyword != "name" && keyword != "texture" && keyword != "url" &&
                    keyword != "crease" && keyword != "subdiv" && keyword != "hidden" &&
                    keyword != "locked" && keyword != "folded") {
-            scan.fail("unknown AC3D object line '" + std::string(keyword) + "'");
+            scan.fail("unknown AC3D object line " + quoted_text(keyword));
         }
     }
 }

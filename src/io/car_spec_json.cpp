@@ -29,7 +29,7 @@ EllipsoidRole role_from_json(ObjectReader& in) {
     for (const auto& [value, known] : kRoles)
         if (name == known) return value;
     fail(in.source(), in.path_of("role"),
-         "unknown role '" + name + "' (expected body, front_wheel or rear_wheel)");
+         "unknown role " + quoted_text(name) + " (expected body, front_wheel or rear_wheel)");
 }
 
 CarEllipsoid ellipsoid_from_json(const Json& value, const std::string& path,

@@ -20,6 +20,7 @@
 #include <nlohmann/json.hpp>
 
 #include "io/mesh_checks.hpp"
+#include "trackphys/error.hpp"
 #include "trackphys/io/regular_file.hpp"
 
 namespace trackphys::detail {
@@ -60,7 +61,7 @@ void check_index(const Json& object, const char* key, const std::string& place, 
     if (it == object.end()) return;
     if (!it->is_number_unsigned() || it->get<std::uint64_t>() >= size)
         fail(place + "." + key,
-             "'" + it->dump() + "' is not an index below " + std::to_string(size));
+             quoted_text(it->dump()) + " is not an index below " + std::to_string(size));
 }
 
 std::uint64_t required(const Json& object, const char* key, const std::string& place) {
@@ -92,8 +93,7 @@ std::uint64_t data_uri_bytes(std::string_view uri, const std::string& place) {
 // A reference to a file beside the mesh, refused when it could leave the mesh's folder or
 // name anything but a plain file there.
 fs::path local_file(std::string_view uri, const fs::path& folder, const std::string& place) {
-    std::string shown = "'";  // appended, not concatenated: g++ 12 warns (-Wrestrict) on that
-    shown.append(uri).append("'");
+    const std::string shown = quoted_text(uri);
     if (uri.empty()) fail(place, "an empty URI");
     if (uri.find(':') != std::string_view::npos)
         fail(place, "the reference " + shown +
@@ -240,7 +240,7 @@ class GltfChecker {
                   text == "KHR_lights_punctual" || text == "KHR_mesh_quantization" ||
                   text == "EXT_mesh_gpu_instancing"))
                 fail(at("extensionsRequired", e),
-                     "'" + text + "' may change the geometry, and it is not read");
+                     quoted_text(text) + " may change the geometry, and it is not read");
         }
     }
 

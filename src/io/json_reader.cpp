@@ -95,7 +95,7 @@ Json parse_document(std::string_view text, const std::string& source) {
             if (std::find(keys.begin(), keys.end(), key) != keys.end()) {
                 const std::string where = frames_path(frames);
                 fail(source, "",
-                     "duplicate key '" + key + "' in " +
+                     "duplicate key " + quoted_text(key) + " in " +
                          (where.empty() ? "the top-level object" : where));
             }
             keys.push_back(key);
@@ -207,8 +207,9 @@ void ObjectReader::finish() const {
         if (std::find(known_.begin(), known_.end(), key) != known_.end()) continue;
         std::string expected;
         for (const std::string& k : known_) expected += (expected.empty() ? "" : ", ") + k;
-        fail(source_, path_of(key),
-             "unknown key" + (expected.empty() ? "" : " (expected one of: " + expected + ")"));
+        fail(source_, path_,
+             "unknown key " + quoted_text(key) +
+                 (expected.empty() ? "" : " (expected one of: " + expected + ")"));
     }
 }
 

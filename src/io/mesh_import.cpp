@@ -51,12 +51,12 @@ std::string format_point(const glm::dvec3& p) {
 }
 
 std::string mesh_label(const aiMesh& mesh, unsigned index) {
-    if (mesh.mName.length > 0) return "mesh '" + std::string(mesh.mName.C_Str()) + "'";
+    if (mesh.mName.length > 0) return "mesh " + quoted_text({mesh.mName.data, mesh.mName.length});
     return "mesh #" + std::to_string(index);
 }
 
 std::string node_label(const aiNode& node) {
-    return "node '" + std::string(node.mName.C_Str()) + "'";
+    return "node " + quoted_text({node.mName.data, node.mName.length});
 }
 
 // assimp answers a missing or empty file with messages that depend on the format it guesses

@@ -9,6 +9,7 @@
 
 #include "io/mesh_checks.hpp"
 #include "io/text_scanner.hpp"
+#include "trackphys/error.hpp"
 
 namespace trackphys::detail {
 namespace {
@@ -44,7 +45,7 @@ void check_corner(const TextScanner& scan, std::string_view corner, const Counts
     const std::string_view vt = corner.substr(first + 1, second - first - 1);
     if (!vt.empty()) check_index(scan, vt, counts.vt, "texture coordinate index");
     if (second == std::string_view::npos) {
-        if (vt.empty()) scan.fail("an empty index in '" + std::string(corner) + "'");
+        if (vt.empty()) scan.fail("an empty index in " + quoted_text(corner));
         return;
     }
     check_index(scan, corner.substr(second + 1), counts.vn, "normal index");
@@ -88,8 +89,8 @@ void check_obj(std::string_view file) {
             if (words.size() < 2) scan.fail("a line or point without an index");
             for (std::size_t k = 1; k < words.size(); ++k) check_corner(scan, words[k], counts);
         } else if (!is_naming(keyword)) {
-            scan.fail("the statement '" + std::string(keyword) +
-                      "' is not read (free-form curves and surfaces are not collision geometry)");
+            scan.fail("the statement " + quoted_text(keyword) +
+                      " is not read (free-form curves and surfaces are not collision geometry)");
         }
     }
 }

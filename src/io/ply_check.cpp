@@ -11,6 +11,7 @@
 
 #include "io/mesh_checks.hpp"
 #include "io/text_scanner.hpp"
+#include "trackphys/error.hpp"
 
 namespace trackphys::detail {
 namespace {
@@ -87,7 +88,7 @@ IndexRule index_rule(std::string_view element, std::string_view property) {
 const ScalarType& type_named(const TextScanner& scan, std::string_view name) {
     for (const ScalarType& t : kTypes)
         if (t.name == name) return t;
-    scan.fail("unknown PLY property type '" + std::string(name) + "'");
+    scan.fail("unknown PLY property type " + quoted_text(name));
 }
 
 bool is_face_element(std::string_view name) { return name == "face" || name == "tristrips"; }
@@ -111,7 +112,7 @@ Header read_header(std::string_view file) {
             scan.expect_words(3, 3, "format");
             if (has_format) scan.fail("a second format line");
             has_format = true;
-            if (words[2] != "1.0") scan.fail("PLY version '" + std::string(words[2]) + "'");
+            if (words[2] != "1.0") scan.fail("PLY version " + quoted_text(words[2]));
             if (words[1] == "ascii")
                 header.encoding = Encoding::ascii;
             else if (words[1] == "binary_little_endian")
@@ -119,18 +120,17 @@ Header read_header(std::string_view file) {
             else if (words[1] == "binary_big_endian")
                 header.encoding = Encoding::big_endian;
             else
-                scan.fail("unknown PLY format '" + std::string(words[1]) + "'");
+                scan.fail("unknown PLY format " + quoted_text(words[1]));
         } else if (keyword == "element") {
             scan.expect_words(3, 3, "element");
             // assimp sizes the vertex or face array by an element's first declaration and
             // writes a later one's instances into it, past its end (found by fuzz_mesh_import);
             // faces and triangle strips share one array that way, so a file holds one kind.
             for (const Element& e : header.elements) {
-                if (e.name == words[1])
-                    scan.fail("a second element '" + std::string(words[1]) + "'");
+                if (e.name == words[1]) scan.fail("a second element " + quoted_text(words[1]));
                 if (is_face_element(e.name) && is_face_element(words[1]))
-                    scan.fail("an element '" + std::string(words[1]) + "' besides '" +
-                              std::string(e.name) + "' (faces or triangle strips, not both)");
+                    scan.fail("an element " + quoted_text(words[1]) + " besides " +
+                              quoted_text(e.name) + " (faces or triangle strips, not both)");
             }
             header.elements.push_back({words[1], scan.count(words[2], "element count"), {}});
         } else if (keyword == "property") {
@@ -140,7 +140,7 @@ Header read_header(std::string_view file) {
                 scan.expect_words(5, 5, "list property");
                 property.count_type = &type_named(scan, words[2]);
                 if (!property.count_type->is_integer)
-                    scan.fail("a list count of type '" + std::string(words[2]) + "'");
+                    scan.fail("a list count of type " + quoted_text(words[2]));
                 property.type = &type_named(scan, words[3]);
                 property.name = words[4];
             } else {
@@ -150,10 +150,10 @@ Header read_header(std::string_view file) {
             }
             Element& element = header.elements.back();
             if (index_rule(element.name, property.name).applies && !property.type->is_integer)
-                scan.fail("vertex indices of type '" + std::string(property.type->name) + "'");
+                scan.fail("vertex indices of type " + quoted_text(property.type->name));
             element.properties.push_back(property);
         } else {
-            scan.fail("unknown PLY header line '" + std::string(keyword) + "'");
+            scan.fail("unknown PLY header line " + quoted_text(keyword));
         }
     }
     if (!has_format) scan.fail("the PLY header has no format line");
@@ -167,10 +167,10 @@ Header read_header(std::string_view file) {
     // any would still make assimp allocate an instance record per claimed instance.
     for (const Element& e : header.elements) {
         if (e.count > 0 && e.properties.empty())
-            throw MeshCheckError{"PLY element '" + std::string(e.name) + "' claims " +
+            throw MeshCheckError{"PLY element " + quoted_text(e.name) + " claims " +
                                  std::to_string(e.count) + " instances but has no properties"};
         if (e.count > file.size() - header.body)
-            throw MeshCheckError{"PLY element '" + std::string(e.name) + "' claims " +
+            throw MeshCheckError{"PLY element " + quoted_text(e.name) + " claims " +
                                  std::to_string(e.count) + " instances, more than the " +
                                  std::to_string(file.size() - header.body) +
                                  " bytes after the header can hold"};
@@ -185,8 +185,8 @@ std::uint64_t vertex_count(const Header& header) {
 }
 
 std::string place(const Element& e, std::uint64_t instance, const Property& p) {
-    return "PLY element '" + std::string(e.name) + "' " + std::to_string(instance) +
-           ", property '" + std::string(p.name) + "'";
+    return "PLY element " + quoted_text(e.name) + " " + std::to_string(instance) + ", property " +
+           quoted_text(p.name);
 }
 
 // Why index breaks rule, or empty when it does not.
@@ -214,7 +214,7 @@ void check_ascii_body(std::string_view file, const Header& header) {
     for (const Element& e : header.elements) {
         for (std::uint64_t i = 0; i < e.count; ++i) {
             if (scan.at_end())
-                scan.fail("the file ends before PLY element '" + std::string(e.name) + "' " +
+                scan.fail("the file ends before PLY element " + quoted_text(e.name) + " " +
                           std::to_string(i));
             const std::vector<std::string_view>& words = scan.next_line();
             std::size_t w = 0;
@@ -240,7 +240,7 @@ void check_ascii_body(std::string_view file, const Header& header) {
                 }
             }
             if (w != words.size())
-                scan.fail("more values than PLY element '" + std::string(e.name) + "' declares");
+                scan.fail("more values than PLY element " + quoted_text(e.name) + " declares");
         }
     }
     while (!scan.at_end())

@@ -18,7 +18,8 @@ using json_io::ObjectReader;
 // Appends "Scenario.<field> must be in [lo, hi], got x" when x is outside or not finite.
 void check_range(std::ostringstream& why, const char* field, double x, double lo, double hi) {
     if (why.tellp() == 0 && !(std::isfinite(x) && x >= lo && x <= hi))
-        why << "Scenario." << field << " must be in [" << lo << ", " << hi << "], got " << x;
+        why << "Scenario." << field << " must be in [" << exact_text(lo) << ", " << exact_text(hi)
+            << "], got " << exact_text(x);
 }
 
 void read_track(ObjectReader& scenario, Scenario& s, const std::filesystem::path& base) {
@@ -121,11 +122,11 @@ std::string Scenario::validate() const {
         why << "Scenario.spawn must be finite, got (" << spawn->x << ", " << spawn->y << ", "
             << spawn->z << ")";
     if (why.tellp() == 0 && !std::isfinite(heading_deg))
-        why << "Scenario.heading_deg must be finite, got " << heading_deg;
+        why << "Scenario.heading_deg must be finite, got " << exact_text(heading_deg);
     if (why.tellp() == 0) why << check_surface_table(surfaces, "Scenario.surfaces");
     if (why.tellp() == 0 && !(target_speed_kmh > 0.0 && target_speed_kmh <= max_target_speed_kmh))
-        why << "Scenario.target_speed_kmh must be in (0, " << max_target_speed_kmh << "], got "
-            << target_speed_kmh;
+        why << "Scenario.target_speed_kmh must be in (0, " << exact_text(max_target_speed_kmh)
+            << "], got " << exact_text(target_speed_kmh);
     check_range(why, "inputs.throttle", inputs.throttle, -1.0, 1.0);
     check_range(why, "inputs.brake", inputs.brake, 0.0, 1.0);
     check_range(why, "inputs.steer", inputs.steer, -1.0, 1.0);

@@ -9,6 +9,7 @@
 
 #include "io/mesh_checks.hpp"
 #include "io/text_scanner.hpp"
+#include "trackphys/error.hpp"
 
 namespace trackphys::detail {
 namespace {
@@ -30,9 +31,9 @@ bool is_binary(std::string_view file) {
 const std::vector<std::string_view>& expect_keyword(TextScanner& scan, std::string_view keyword) {
     const std::vector<std::string_view>& words = scan.next_content_line();
     if (words.empty() || words[0] != keyword)
-        scan.fail("expected '" + std::string(keyword) + "'" +
-                  (words.empty() ? std::string(", the file ends")
-                                 : ", found '" + std::string(words[0]) + "'"));
+        scan.fail(
+            "expected " + quoted_text(keyword) +
+            (words.empty() ? std::string(", the file ends") : ", found " + quoted_text(words[0])));
     return words;
 }
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "io/mesh_checks.hpp"
+#include "trackphys/error.hpp"
 
 namespace trackphys::detail {
 
@@ -85,7 +86,7 @@ class TextScanner {
         const auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), value);
         if (word.empty() || word[0] == '+' || error != std::errc() ||
             end != word.data() + word.size() || value > max)
-            fail(std::string(what) + " '" + std::string(word) + "' is not a count from 0 to " +
+            fail(std::string(what) + " " + quoted_text(word) + " is not a count from 0 to " +
                  std::to_string(max));
         return value;
     }
@@ -95,7 +96,7 @@ class TextScanner {
         std::int64_t value = 0;
         const auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), value);
         if (word.empty() || error != std::errc() || end != word.data() + word.size())
-            fail(std::string(what) + " '" + std::string(word) + "' is not an integer");
+            fail(std::string(what) + " " + quoted_text(word) + " is not an integer");
         return value;
     }
 
@@ -109,7 +110,7 @@ class TextScanner {
             std::from_chars(digits.data(), digits.data() + digits.size(), value);
         if (digits.empty() || (error != std::errc() && error != std::errc::result_out_of_range) ||
             end != digits.data() + digits.size())
-            fail(std::string(what) + " '" + std::string(word) + "' is not a number");
+            fail(std::string(what) + " " + quoted_text(word) + " is not a number");
         return value;
     }
 

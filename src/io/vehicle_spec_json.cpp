@@ -2,6 +2,8 @@
 
 #include <utility>
 
+#include "trackphys/error.hpp"
+
 namespace trackphys::json_io {
 namespace {
 
@@ -83,7 +85,7 @@ void read_differential(ObjectReader& in, DifferentialSpec& d) {
             d.kind = DifferentialKind::limited_slip;
         else
             fail(in.source(), in.path_of("kind"),
-                 "unknown kind '" + kind + "' (expected open or limited_slip)");
+                 "unknown kind " + quoted_text(kind) + " (expected open or limited_slip)");
     }
     in.read("preload", d.preload);
     in.read("locking", d.locking);

@@ -17,7 +17,7 @@ constexpr double kTriangleBudget = 2e7;
 
 [[noreturn]] void fail(const std::string& field, const std::string& rule, double value) {
     std::ostringstream message;
-    message << "TrackParams." << field << " " << rule << ", got " << value;
+    message << "TrackParams." << field << " " << rule << ", got " << exact_text(value);
     throw Error(message.str());
 }
 
@@ -27,8 +27,8 @@ void check_range(const char* field, double value, double lo, double hi, const ch
     const bool low_ok = open_low ? value > lo : value >= lo;
     if (!std::isfinite(value) || !low_ok || !(value <= hi)) {
         std::ostringstream rule;
-        rule << "must be finite and in " << (open_low ? "(" : "[") << lo << ", " << hi << "] "
-             << unit;
+        rule << "must be finite and in " << (open_low ? "(" : "[") << exact_text(lo) << ", "
+             << exact_text(hi) << "] " << unit;
         fail(field, rule.str(), value);
     }
 }

@@ -42,23 +42,25 @@ std::string MagicFormulaCurve::validate(const std::string& prefix) const {
     std::ostringstream why;
     const auto positive = [&](const char* field, double value) {
         if (why.tellp() == 0 && !(std::isfinite(value) && value > 0.0))
-            why << prefix << field << " must be finite and > 0, got " << value;
+            why << prefix << field << " must be finite and > 0, got " << exact_text(value);
     };
     positive("stiffness", stiffness);
     positive("friction", friction);
     // C in (1, 2]: the curve rises to a peak at C atan(Phi) = pi/2 and stays >= 0 beyond.
     if (why.tellp() == 0 && !(shape > 1.0 && shape <= 2.0))
-        why << prefix << "shape must be in (1, 2], got " << shape;
+        why << prefix << "shape must be in (1, 2], got " << exact_text(shape);
     if (why.tellp() == 0 && !(std::isfinite(curvature) && curvature <= 1.0))
-        why << prefix << "curvature must be finite and <= 1, got " << curvature;
+        why << prefix << "curvature must be finite and <= 1, got " << exact_text(curvature);
     // With E = 1, Phi = atan(u) < pi/2 never reaches tan(pi / 2C) when C is near 1: it
     // does for C > pi / (2 atan(pi/2)) = 1.5647.
     if (why.tellp() == 0 && curvature == 1.0 &&
         !(std::tan(0.5 * std::numbers::pi / shape) < 0.5 * std::numbers::pi))
-        why << prefix << "shape must exceed 1.565 when curvature is 1 (no peak), got " << shape;
+        why << prefix << "shape must exceed 1.565 when curvature is 1 (no peak), got "
+            << exact_text(shape);
     if (why.tellp() == 0 && !(std::isfinite(friction_load_slope) && friction_load_slope <= 0.0 &&
                               friction_load_slope > -1.0))
-        why << prefix << "friction_load_slope must be in (-1, 0], got " << friction_load_slope;
+        why << prefix << "friction_load_slope must be in (-1, 0], got "
+            << exact_text(friction_load_slope);
     return why.str();
 }
 
@@ -88,7 +90,7 @@ std::string TyreSpec::validate(const std::string& prefix) const {
     std::ostringstream why;
     const auto positive = [&](const char* field, double value) {
         if (why.tellp() == 0 && !(std::isfinite(value) && value > 0.0))
-            why << prefix << field << " must be finite and > 0, got " << value;
+            why << prefix << field << " must be finite and > 0, got " << exact_text(value);
     };
     positive("nominal_load", nominal_load);
     positive("longitudinal_relaxation", longitudinal_relaxation);

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "trackphys/error.hpp"
+
 namespace trackphys {
 namespace {
 
@@ -11,15 +13,15 @@ class Checker {
   public:
     void positive(const std::string& field, double value) {
         if (ok() && !(std::isfinite(value) && value > 0.0))
-            why_ << kPrefix << field << " must be finite and > 0, got " << value;
+            why_ << kPrefix << field << " must be finite and > 0, got " << exact_text(value);
     }
     void non_negative(const std::string& field, double value) {
         if (ok() && !(std::isfinite(value) && value >= 0.0))
-            why_ << kPrefix << field << " must be finite and >= 0, got " << value;
+            why_ << kPrefix << field << " must be finite and >= 0, got " << exact_text(value);
     }
     void in_unit(const std::string& field, double value) {
         if (ok() && !(value >= 0.0 && value <= 1.0))
-            why_ << kPrefix << field << " must be in [0, 1], got " << value;
+            why_ << kPrefix << field << " must be in [0, 1], got " << exact_text(value);
     }
     void require(bool condition, const std::string& field, const std::string& what) {
         if (ok() && !condition) why_ << kPrefix << field << " " << what;
@@ -83,8 +85,9 @@ std::string VehicleSpec::validate() const {
     // Above the redline the engine's torque at launch_rpm is the fuel cut's drag, which
     // would turn the wheels backwards under throttle; below idle the engine would stall.
     std::ostringstream launch_range;
-    launch_range << "must be in [engine.idle_rpm, gearbox.shift_up_rpm] = [" << engine.idle_rpm
-                 << ", " << gearbox.shift_up_rpm << "], got " << gearbox.launch_rpm;
+    launch_range << "must be in [engine.idle_rpm, gearbox.shift_up_rpm] = ["
+                 << exact_text(engine.idle_rpm) << ", " << exact_text(gearbox.shift_up_rpm)
+                 << "], got " << exact_text(gearbox.launch_rpm);
     check.require(
         gearbox.launch_rpm >= engine.idle_rpm && gearbox.launch_rpm <= gearbox.shift_up_rpm,
         "gearbox.launch_rpm", launch_range.str());
@@ -97,7 +100,7 @@ std::string VehicleSpec::validate() const {
     check.non_negative("rear_anti_roll", rear_anti_roll);
     check.positive("low_speed", low_speed);
     std::ostringstream rolling_range;
-    rolling_range << "must be in [0, 0.1], got " << rolling_resistance;
+    rolling_range << "must be in [0, 0.1], got " << exact_text(rolling_resistance);
     check.require(rolling_resistance >= 0.0 && rolling_resistance <= 0.1, "rolling_resistance",
                   rolling_range.str());
     return check.str();

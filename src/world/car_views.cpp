@@ -111,7 +111,7 @@ bool holds_wheels_of(const CarView& view, const Car& car) {
 
 void update_car_view(const Car& car, double dt, CarView& view) {
     if (!(dt >= 0.0 && dt <= std::numeric_limits<double>::max()))
-        throw Error("update_car_view: dt must be finite and >= 0, got " + std::to_string(dt));
+        throw Error("update_car_view: dt must be finite and >= 0, got " + exact_text(dt));
     if (!holds_wheels_of(view, car)) {
         view = detail::sized_view(car);
         return;
@@ -121,7 +121,7 @@ void update_car_view(const Car& car, double dt, CarView& view) {
 
 void interpolate_car_view(const CarView& older, const CarView& newer, double alpha, CarView& out) {
     if (!(alpha >= 0.0 && alpha <= 1.0))
-        throw Error("interpolate_car_view: alpha must be in [0, 1], got " + std::to_string(alpha));
+        throw Error("interpolate_car_view: alpha must be in [0, 1], got " + exact_text(alpha));
     bool same_wheels = older.wheels.size() == newer.wheels.size();
     for (std::size_t w = 0; same_wheels && w < older.wheels.size(); ++w)
         same_wheels = older.wheels[w].ellipsoid == newer.wheels[w].ellipsoid;

@@ -41,8 +41,8 @@ RaceDrivers::RaceDrivers(const Track& track, const CarSpec& car, std::size_t car
             "follow_time, pass_closing and swerve_turn_accel must be >= 0");
     if (!(settings_.merge_gap <= settings_.pass_look_ahead)) {
         std::ostringstream why;
-        why << "RaceSettings: merge_gap (" << settings_.merge_gap
-            << " m) must be <= pass_look_ahead (" << settings_.pass_look_ahead
+        why << "RaceSettings: merge_gap (" << exact_text(settings_.merge_gap)
+            << " m) must be <= pass_look_ahead (" << exact_text(settings_.pass_look_ahead)
             << " m), as far as the lanes are read";
         throw Error(why.str());
     }

@@ -117,7 +117,7 @@ RigidBodyState place_car_on_surface(const StaticWorld& statics, const CarSpec& s
     // every surface.
     if (!(clearance > 0.0 && clearance <= 1.0))
         throw Error("place_car_on_surface: clearance must be in (0, 1] m, got " +
-                    std::to_string(clearance));
+                    exact_text(clearance));
     RigidBodyState placed;
     placed.position = position;
     placed.orientation = glm::normalize(orientation);

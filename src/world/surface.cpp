@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <sstream>
 
+#include "trackphys/error.hpp"
+
 namespace trackphys {
 
 std::string check_surface_table(std::span<const Surface> table, std::string_view name) {
@@ -14,8 +16,8 @@ std::string check_surface_table(std::span<const Surface> table, std::string_view
                  table.begin(), table.end(),
                  [](const Surface& s) { return !(s.grip > 0.0 && s.grip <= max_surface_grip); });
              bad != table.end())
-        why << name << "[" << bad - table.begin() << "].grip must be in (0, " << max_surface_grip
-            << "], got " << bad->grip;
+        why << name << "[" << bad - table.begin() << "].grip must be in (0, "
+            << exact_text(max_surface_grip) << "], got " << exact_text(bad->grip);
     return why.str();
 }
 

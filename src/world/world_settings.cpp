@@ -7,6 +7,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "trackphys/error.hpp"
 #include "trackphys/math/types.hpp"
 
 namespace trackphys {
@@ -19,30 +20,32 @@ int WorldSettings::thread_count() const {
 std::string WorldSettings::validate() const {
     std::ostringstream why;
     if (!(std::isfinite(dt_update) && dt_update > 0.0 && dt_update <= 1.0))
-        why << "WorldSettings.dt_update must be in (0, 1] s, got " << dt_update;
+        why << "WorldSettings.dt_update must be in (0, 1] s, got " << exact_text(dt_update);
     else if (steps < 1 || steps > 10000)
         why << "WorldSettings.steps must be in [1, 10000], got " << steps;
     else if (substeps < 1 || substeps > 10000)
         why << "WorldSettings.substeps must be in [1, 10000], got " << substeps;
     else if (!(is_finite(gravity) && glm::length(gravity) <= kMaxGravity))
-        why << "WorldSettings.gravity must be finite and at most " << kMaxGravity
-            << " m/s^2 in magnitude, got (" << gravity.x << ", " << gravity.y << ", " << gravity.z
-            << ")";
+        why << "WorldSettings.gravity must be finite and at most " << exact_text(kMaxGravity)
+            << " m/s^2 in magnitude, got (" << exact_text(gravity.x) << ", "
+            << exact_text(gravity.y) << ", " << exact_text(gravity.z) << ")";
     else if (!(std::isfinite(broad_phase_margin) && broad_phase_margin >= 0.0))
         why << "WorldSettings.broad_phase_margin must be finite and >= 0, got "
-            << broad_phase_margin;
+            << exact_text(broad_phase_margin);
     else if (mid_phase_look_ahead < 1)
         why << "WorldSettings.mid_phase_look_ahead must be >= 1, got " << mid_phase_look_ahead;
     else if (!(std::isfinite(mid_phase_slack) && mid_phase_slack >= 0.0))
-        why << "WorldSettings.mid_phase_slack must be finite and >= 0, got " << mid_phase_slack;
+        why << "WorldSettings.mid_phase_slack must be finite and >= 0, got "
+            << exact_text(mid_phase_slack);
     else if (!(std::isfinite(max_car_speed) && max_car_speed > 0.0))
-        why << "WorldSettings.max_car_speed must be finite and > 0, got " << max_car_speed;
+        why << "WorldSettings.max_car_speed must be finite and > 0, got "
+            << exact_text(max_car_speed);
     else if (!(std::isfinite(max_car_angular_speed) && max_car_angular_speed > 0.0))
         why << "WorldSettings.max_car_angular_speed must be finite and > 0, got "
-            << max_car_angular_speed;
+            << exact_text(max_car_angular_speed);
     else if (!(max_spawn_distance >= 0.0))
         why << "WorldSettings.max_spawn_distance must be >= 0 (infinity for no limit), got "
-            << max_spawn_distance;
+            << exact_text(max_spawn_distance);
     else if (const std::string bad = check_surface_table(surfaces, "WorldSettings.surfaces");
              !bad.empty())
         why << bad;

@@ -400,9 +400,9 @@ TEST_P(PhysicsRunnerView, UpdateCarViewIsWhatTheRunnerPublishes) {
     interpolate_car_view(before, view, (t - before_time) / (world.time() - before_time), between);
     EXPECT_EQ(bits(between), bits(runner_.view(0, t)));
     EXPECT_EQ(test::error_of([&] { interpolate_car_view(before, view, 1.5, between); }),
-              "interpolate_car_view: alpha must be in [0, 1], got 1.500000");
+              "interpolate_car_view: alpha must be in [0, 1], got 1.5");
     EXPECT_EQ(test::error_of([&] { update_car_view(world.car(0), -dt, view); }),
-              "update_car_view: dt must be finite and >= 0, got -0.010000");
+              "update_car_view: dt must be finite and >= 0, got -0.01");
 }
 
 INSTANTIATE_TEST_SUITE_P(Presets, PhysicsRunnerView, ::testing::Values("arcade", "gt"));
