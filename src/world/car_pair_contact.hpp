@@ -20,6 +20,9 @@ struct CarPairTouch {
     double approach_speed = 0.0;
 };
 
+/// The material between two cars: the mean of their CarSpec::car_contact.
+ContactMaterial mean_material(const ContactMaterial& a, const ContactMaterial& b);
+
 /// One sub-step of h seconds of contact between cars a and b, whose ellipsoids in the
 /// world are a_placed and b_placed (Car::world_ellipsoid, in CarSpec order). Each
 /// overlapping ellipsoid pair pushes the two cars apart at its contact point, equally and
@@ -29,7 +32,7 @@ struct CarPairTouch {
 ///   times the smaller ellipsoid's smallest semi-axis (already that deep, or closing so
 ///   fast that the spring would let it sink that deep), still approaching, first gets the
 ///   impulse that stops the approach at the point (plastic, as Car::advance does for the
-///   road). A spring stiff enough to stop 1000 km/h within centimetres is not stable at
+///   road), with Coulomb friction of up to mu times it against the slip. A spring stiff enough to stop 1000 km/h within centimetres is not stable at
 ///   this sub-step, and deeper than an ellipsoid's thinnest half the least-translation
 ///   normal turns sideways and lets the cars through; so hard impacts are plastic along
 ///   the normal, as real crashes nearly are;

@@ -86,7 +86,7 @@ World::CarSlot::CarSlot(Car car_in, MidPhase mid_in)
 std::size_t World::add_car(const CarSpec& spec, const RigidBodyState& state) {
     Car car(spec, state);
     check_integrable(spec);
-    check_placement(car, "World::add_car");
+    check_placement(car, "World::add_car", cars_.size());
     // Every car of one spec reads the same body-frame ellipsoids: one shared copy stays
     // warm in a big field, where each car's own would be cold at each of its updates.
     for (const CarSlot& other : cars_)
@@ -100,7 +100,7 @@ void World::teleport_car(std::size_t i, const RigidBodyState& state) {
     CarSlot& slot = car_slot(i);
     Car moved = slot.car;
     moved.set_state(state);
-    check_placement(moved, "World::teleport_car");
+    check_placement(moved, "World::teleport_car", i);
     slot.car.set_state(state);
     slot.forget_contacts();
 }

@@ -16,9 +16,11 @@
 #include "profile/phase_stopwatch.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/geometry/contact.hpp"
+#include "trackphys/geometry/ellipsoid_pair.hpp"
 #include "trackphys/math/types.hpp"
 #include "trackphys/world/world.hpp"
 #include "vehicle/rolling_radius.hpp"
+#include "world/car_pair_contact.hpp"
 #include "world/car_scratch.hpp"
 #include "world/car_slot.hpp"
 #include "world/update_work.hpp"
@@ -54,6 +56,15 @@ double effective_mass_floor(const MassProperties& mass, const glm::dvec3& r) {
     const double turning =
         (r2 - r.x * r.x) / inertia.x + (r2 - r.y * r.y) / inertia.y + (r2 - r.z * r.z) / inertia.z;
     return 1.0 / (1.0 / mass.mass + turning);
+}
+
+// The least of effective_mass_floor over the car's ellipsoids: what another car touching
+// any of them may feel.
+double car_mass_floor(const CarSpec& spec) {
+    double floor = spec.mass.mass;
+    for (const CarEllipsoid& e : spec.ellipsoids)
+        floor = std::min(floor, effective_mass_floor(spec.mass, e.center));
+    return floor;
 }
 
 // Above low_speed a wheel's spin is explicit against its tyre's force and its slip ratio
@@ -100,8 +111,8 @@ void World::check_integrable(const CarSpec& spec) const {
     // 2 h c / m <= 4 (the update matrix's determinant 1 - h c / m and trace 2 - h c / m -
     // h^2 k / m). A spring beyond it does not slow the simulation down gracefully: the car
     // gains energy at every sub-step, is reset at every update and sweeps the whole map.
-    // Only the road's materials: car_contact acts between two cars, with their mean
-    // material on their pair's mass, which no one car's spec decides.
+    // car_contact acts between two cars, with their mean material on the pair's mass: it is
+    // checked against each car already here (below).
     const double h = settings_.substep_dt();
     for (std::size_t i = 0; i < spec.ellipsoids.size(); ++i) {
         const CarEllipsoid& e = spec.ellipsoids[i];
@@ -121,6 +132,24 @@ void World::check_integrable(const CarSpec& spec) const {
     }
     if (spec.vehicle)
         if (std::string why = wheel_spin_unstable(spec, h); !why.empty()) throw Error(why);
+    // Two cars in contact move as one spring-damper on their pair's effective mass, at most
+    // the two floors in series (a light car against a heavy one is nearly the light one).
+    const double floor = car_mass_floor(spec);
+    for (std::size_t other = 0; other < cars_.size(); ++other) {
+        const CarSpec& their = cars_[other].car.spec();
+        const double m = 1.0 / (1.0 / floor + 1.0 / car_mass_floor(their));
+        const ContactMaterial material = detail::mean_material(spec.car_contact, their.car_contact);
+        const double growth = h * h * material.stiffness / m + 2.0 * h * material.damping / m;
+        if (growth <= 4.0) continue;
+        std::ostringstream why;
+        why << "World::add_car: CarSpec.car_contact (the mean of this car's and car " << other
+            << "'s: stiffness " << material.stiffness << " N/m, damping " << material.damping
+            << " N s/m) is too stiff for a sub-step of " << h << " s between the two cars, "
+            << "whose pair's effective mass may be as low as " << m
+            << " kg: h^2 k / m + 2 h c / m is " << growth
+            << ", above the 4 that the integrator keeps stable";
+        throw Error(why.str());
+    }
 }
 
 std::string World::impossible_state(const RigidBodyState& s) const {
@@ -147,16 +176,16 @@ std::string World::impossible_state(const RigidBodyState& s) const {
     else if (!is_finite(s.angular_velocity))
         why << "angular velocity is not finite";
     else if (!(v <= settings_.max_car_speed))
-        why << "speed " << magnitude(s.linear_velocity)
-            << " m/s is above WorldSettings.max_car_speed " << settings_.max_car_speed;
+        why << "speed " << exact_text(magnitude(s.linear_velocity))
+            << " m/s is above WorldSettings.max_car_speed " << exact_text(settings_.max_car_speed);
     else
-        why << "angular speed " << magnitude(s.angular_velocity)
+        why << "angular speed " << exact_text(magnitude(s.angular_velocity))
             << " rad/s is above WorldSettings.max_car_angular_speed "
-            << settings_.max_car_angular_speed;
+            << exact_text(settings_.max_car_angular_speed);
     return why.str();
 }
 
-void World::check_placement(const Car& car, const char* caller) const {
+void World::check_placement(const Car& car, const char* caller, std::size_t index) const {
     const RigidBodyState& state = car.state();
     if (std::string why = impossible_state(state); !why.empty())
         throw Error(std::string(caller) + ": " + why);
@@ -197,6 +226,34 @@ void World::check_placement(const Car& car, const char* caller) const {
                 if (car.spec().ellipsoids[i].role != EllipsoidRole::body)
                     why << " (its wheels hang at full droop: place_car_on_surface gives the "
                            "height at which they rest on the road)";
+                throw Error(why.str());
+            }
+        }
+    }
+
+    // Inside another car: deeper than cars pressed together by a third sink (0.1 mm), the
+    // spring between them would throw them apart (4.4 cm gave 49 km/h, 40 cm 307 km/h).
+    constexpr double max_overlap = 1e-3;  // m
+    for (std::size_t other = 0; other < cars_.size(); ++other) {
+        if (other == index) continue;
+        const Car& them = cars_[other].car;
+        const double reach = car.bounding_radius() + them.bounding_radius();
+        const glm::dvec3 apart = car.state().position - them.state().position;
+        if (glm::dot(apart, apart) > reach * reach) continue;
+        for (std::size_t i = 0; i < car.ellipsoid_count(); ++i) {
+            const Ellipsoid ours = car.world_ellipsoid(i);
+            for (std::size_t j = 0; j < them.ellipsoid_count(); ++j) {
+                const Ellipsoid theirs = them.world_ellipsoid(j);
+                if (!ellipsoids_may_touch(ours, theirs)) continue;
+                const double depth = ellipsoid_ellipsoid_contact(ours, theirs).depth;
+                if (!(depth > max_overlap)) continue;
+                std::ostringstream why;
+                why << caller << ": ellipsoid " << i << " ("
+                    << role_name(car.spec().ellipsoids[i].role) << ") overlaps car " << other
+                    << "'s ellipsoid " << j << " by " << depth << " m, more than the "
+                    << max_overlap
+                    << " m a resting contact sinks: the spring between them would throw the "
+                       "cars apart (place the car clear of the others)";
                 throw Error(why.str());
             }
         }

@@ -14,6 +14,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/mat3x3.hpp>
 
+#include "support/error_message.hpp"
 #include "trackphys/geometry/ellipsoid_pair.hpp"
 #include "trackphys/world/world.hpp"
 #include "world/car_pair_contact.hpp"
@@ -281,6 +282,48 @@ TEST(CarContact, CarOnAnotherRoofSettlesAndStays) {
         << "the upper car fell off";
     EXPECT_GT(world.last_profile().car_contacts, 0u);
     EXPECT_LT(world.last_profile().max_car_penetration, 0.01);
+}
+
+// A car put into another (a respawn on a busy track): add_car and teleport_car refuse it, as
+// they refuse one inside the road, and a car beside the other, or back where it was, is fine.
+TEST(CarContact, AddCarAndTeleportRefuseACarInsideAnother) {
+    World world(std::make_shared<StaticWorld>(), without_gravity());
+    const CarSpec spec = free_space_car();
+    world.add_car(spec, moving({0.0, 0.0, 0.0}, 0.0, glm::dvec3(0.0)));
+    EXPECT_NE(test::error_of([&] {
+                  world.add_car(spec, moving({1.0, 0.0, 0.0}, 0.0, {}));
+              }).find("World::add_car: ellipsoid"),
+              std::string::npos);
+    EXPECT_EQ(world.car_count(), 1u);
+    const RigidBodyState beside = moving({5.0, 0.0, 0.0}, 0.0, glm::dvec3(0.0));
+    world.add_car(spec, beside);
+    const std::string why = test::error_of([&] {
+        world.teleport_car(1, moving({0.0, 0.0, 1.0}, 0.0, {}));
+    });
+    EXPECT_NE(why.find("World::teleport_car: ellipsoid"), std::string::npos) << why;
+    EXPECT_NE(why.find("overlaps car 0's ellipsoid"), std::string::npos) << why;
+    EXPECT_EQ(world.car(1).state().position, beside.position);
+    EXPECT_NO_THROW(world.teleport_car(1, beside));
+}
+
+// The spring between two cars is checked against the sub-step as the road's springs are:
+// two default cars at 60 updates a second of 2 x 1 sub-steps (8.3 ms), whose road springs
+// hold, would gain energy at every touch (a 10 km/h bump became 56 km/h).
+TEST(CarContact, AddCarRefusesACarSpringTooStiffForTheSubStep) {
+    WorldSettings coarse = without_gravity();
+    coarse.dt_update = 1.0 / 60.0;
+    coarse.steps = 2;
+    coarse.substeps = 1;
+    World world(std::make_shared<StaticWorld>(), coarse);
+    const CarSpec spec = free_space_car();
+    world.add_car(spec, moving({0.0, 0.0, 0.0}, 0.0, glm::dvec3(0.0)));
+    const std::string why = test::error_of([&] {
+        world.add_car(spec, moving({10.0, 0.0, 0.0}, 0.0, {}));
+    });
+    EXPECT_NE(why.find("World::add_car: CarSpec.car_contact (the mean of this car's and car 0's"),
+              std::string::npos)
+        << why;
+    EXPECT_EQ(world.car_count(), 1u);
 }
 
 }  // namespace

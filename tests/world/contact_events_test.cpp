@@ -218,7 +218,8 @@ TEST(ContactEvents, AResetCarTouchesNothingOfTheUndoneUpdate) {
     CarSpec absurd = CarSpec::default_car();
     absurd.air_density = 1e300;
     world.add_car(CarSpec::default_car(), moving(glm::dvec3(0.0), glm::dvec3(0.0)));
-    world.add_car(absurd, moving({0.0, 0.0, 3.5}, glm::dvec3(0.0)));
+    world.add_car(absurd, moving({0.0, 0.0, 20.0}, glm::dvec3(0.0)));
+    world.car(1).set_state(moving({0.0, 0.0, 3.5}, glm::dvec3(0.0)));  // into car 0: unchecked
     for (int u = 1; u <= 5; ++u) {
         world.update();
         ASSERT_EQ(world.car_resets(1), static_cast<std::uint64_t>(u)) << "car 1 is reset";

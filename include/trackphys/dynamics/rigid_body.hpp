@@ -6,6 +6,7 @@
 #include <glm/vec3.hpp>
 
 #include "trackphys/export.hpp"
+#include "trackphys/math/types.hpp"
 
 namespace trackphys {
 
@@ -43,8 +44,9 @@ struct Wrench {
 
 /// Advances state by h seconds under the wrench and gravity with semi-implicit (symplectic)
 /// Euler: velocities first, then positions with the new velocities. Angular velocity
-/// includes the gyroscopic term omega x (I omega) (Euler's equations in the world frame);
-/// the orientation takes q += h/2 (0, omega) q and is renormalised.
+/// follows Euler's equations, the gyroscopic term omega x (I omega) implicit in the body
+/// frame (one Newton step), so a free spin never gains energy; the orientation takes
+/// q += h/2 (0, omega) q and is renormalised.
 TRACKPHYS_API void integrate(RigidBodyState& state, const MassProperties& mass,
                              const Wrench& wrench, const glm::dvec3& gravity, double h);
 

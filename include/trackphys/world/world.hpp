@@ -57,6 +57,9 @@ class TraceRecorder;
 /// game that renders while the physics runs gives the World to a PhysicsRunner: its physics
 /// thread owns the World, the game thread stamps inputs (and removes cars) through it, and a
 /// render thread reads interpolated poses and views of the published states without locks.
+///
+/// A World moved from (into a PhysicsRunner, say) holds no static world: it may only be
+/// destroyed or assigned to; any other call is undefined (update() dereferences it).
 class TRACKPHYS_API World {
   public:
     /// Throws trackphys::Error on a null static world, invalid settings or a triangle whose
@@ -89,16 +92,23 @@ class TRACKPHYS_API World {
     ///   integrate (h^2 R^2 C / (I sigma) not below 4 + 2 h low_speed / sigma: wheel radius
     ///   R, wheel inertia I, the tyre's longitudinal slip stiffness C at three nominal
     ///   loads and relaxation length sigma);
+    /// - a spec whose car_contact springs the sub-step cannot integrate stably against a car
+    ///   already here (the same test with the two cars' mean car_contact on their pair's
+    ///   effective mass: a lighter car, a stiffer material or a coarser sub-step);
     /// - a state the reset policy would reset (too fast, spinning too fast);
     /// - a car inside geometry (an ellipsoid deeper than half its smallest semi-axis into a
     ///   static triangle) or far outside the map (its centre of mass farther than
     ///   settings().max_spawn_distance from every collider's box; a world without
-    ///   triangles has no map and accepts any position).
+    ///   triangles has no map and accepts any position);
+    /// - a car inside another car (an ellipsoid overlapping one of another car's by more
+    ///   than 1 mm, which a resting contact never sinks: the spring between them would
+    ///   throw the two apart).
     std::size_t add_car(const CarSpec& spec, const RigidBodyState& state);
     /// Moves car i to `state` (Car::set_state: a teleport, with the vehicle rolling at the
     /// new speed) after add_car's checks of where a car may be: throws trackphys::Error
     /// naming the reason, changing nothing, for a state the reset policy would reset, a
-    /// car far outside the map or inside geometry. car(i).set_state moves it unchecked.
+    /// car far outside the map, inside geometry or inside another car. car(i).set_state
+    /// moves it unchecked.
     /// The suspension starts at full droop, as after add_car, so a car's own state from
     /// an update that compressed it can be refused (a squatting car's rear wheels hang
     /// 8 cm into the road at droop); place_car_on_surface gives a resting height.
@@ -243,8 +253,9 @@ class TRACKPHYS_API World {
     // counts the reset with its reason.
     void reset_at_rest(CarSlot& slot, RigidBodyState at, std::span<const double> suspension,
                        std::string reason);
-    // add_car's checks of where the car is (world_guard.cpp).
-    void check_placement(const Car& car, const char* caller) const;
+    // add_car's checks of where the car is (world_guard.cpp), to be car `index` (the others
+    // are the cars it must not be inside).
+    void check_placement(const Car& car, const char* caller, std::size_t index) const;
     // add_car's check that the sub-step integrates the spec's contacts and wheel spins
     // stably (world_guard.cpp).
     void check_integrable(const CarSpec& spec) const;
