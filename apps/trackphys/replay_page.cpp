@@ -21,8 +21,18 @@
 namespace trackphys::cli {
 namespace {
 
+// The longest string Chromium holds (2^29 - 24 UTF-16 units): the page decodes a longer
+// recording to an empty text, without a word.
+constexpr std::uintmax_t max_page_recording_bytes = 536'870'888;
+
 std::string read_recording(const std::filesystem::path& path) {
     require_regular_file(path, "recording '" + path.string() + "'");
+    std::error_code error;
+    const std::uintmax_t size = std::filesystem::file_size(path, error);
+    if (!error && size > max_page_recording_bytes)
+        throw Error("recording '" + path.string() + "': " + std::to_string(size >> 20) +
+                    " MiB is more than a browser holds as text (512 MiB): record fewer cars, "
+                    "laps or seconds");
     std::ifstream in(path, std::ios::binary);
     std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     if (in.bad()) throw Error("recording '" + path.string() + "': cannot read it");
@@ -116,8 +126,9 @@ ReplayRecording read_replay_recording(const std::filesystem::path& file) {
     if (lines.track_mesh) {
         const std::filesystem::path track = *lines.track_mesh;
         if (track.empty() || track != track.filename() || track == "." || track == "..")
-            throw Error("recording '" + file.string() + "': its track '" + track.string() +
-                        "' is not a plain file name in the recording's folder (a recording "
+            throw Error("recording '" + file.string() + "': its track " +
+                        quoted_text(track.string()) +
+                        " is not a plain file name in the recording's folder (a recording "
                         "names the track drive --record wrote beside it)");
         const std::filesystem::path folder =
             file.parent_path().empty() ? std::filesystem::path(".") : file.parent_path();
@@ -125,8 +136,9 @@ ReplayRecording read_replay_recording(const std::filesystem::path& file) {
         std::error_code error;
         if (std::filesystem::exists(recording.track_file, error) &&
             !lies_inside(recording.track_file, folder))
-            throw Error("recording '" + file.string() + "': its track '" + track.string() +
-                        "' leads out of the recording's folder through a symbolic link");
+            throw Error("recording '" + file.string() + "': its track " +
+                        quoted_text(track.string()) +
+                        " leads out of the recording's folder through a symbolic link");
     }
     return recording;
 }

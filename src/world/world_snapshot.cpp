@@ -52,7 +52,7 @@ static_assert(sizeof(WorldSettings) == 160,
 std::string settings_difference(const WorldSettings& a, const WorldSettings& b) {
     std::ostringstream why;
     if (!same(a.dt_update, b.dt_update))
-        why << "dt_update " << a.dt_update << " vs " << b.dt_update;
+        why << "dt_update " << exact_text(a.dt_update) << " vs " << exact_text(b.dt_update);
     else if (a.steps != b.steps)
         why << "steps " << a.steps << " vs " << b.steps;
     else if (a.substeps != b.substeps)
@@ -61,21 +61,25 @@ std::string settings_difference(const WorldSettings& a, const WorldSettings& b) 
              !same(a.gravity.z, b.gravity.z))
         why << "gravity";
     else if (!same(a.broad_phase_margin, b.broad_phase_margin))
-        why << "broad_phase_margin " << a.broad_phase_margin << " vs " << b.broad_phase_margin;
+        why << "broad_phase_margin " << exact_text(a.broad_phase_margin) << " vs "
+            << exact_text(b.broad_phase_margin);
     else if (a.mid_phase != b.mid_phase)
         why << "mid_phase " << to_string(a.mid_phase) << " vs " << to_string(b.mid_phase);
     else if (a.mid_phase_look_ahead != b.mid_phase_look_ahead)
         why << "mid_phase_look_ahead " << a.mid_phase_look_ahead << " vs "
             << b.mid_phase_look_ahead;
     else if (!same(a.mid_phase_slack, b.mid_phase_slack))
-        why << "mid_phase_slack " << a.mid_phase_slack << " vs " << b.mid_phase_slack;
+        why << "mid_phase_slack " << exact_text(a.mid_phase_slack) << " vs "
+            << exact_text(b.mid_phase_slack);
     else if (!same(a.max_car_speed, b.max_car_speed))
-        why << "max_car_speed " << a.max_car_speed << " vs " << b.max_car_speed;
+        why << "max_car_speed " << exact_text(a.max_car_speed) << " vs "
+            << exact_text(b.max_car_speed);
     else if (!same(a.max_car_angular_speed, b.max_car_angular_speed))
-        why << "max_car_angular_speed " << a.max_car_angular_speed << " vs "
-            << b.max_car_angular_speed;
+        why << "max_car_angular_speed " << exact_text(a.max_car_angular_speed) << " vs "
+            << exact_text(b.max_car_angular_speed);
     else if (!same(a.max_spawn_distance, b.max_spawn_distance))
-        why << "max_spawn_distance " << a.max_spawn_distance << " vs " << b.max_spawn_distance;
+        why << "max_spawn_distance " << exact_text(a.max_spawn_distance) << " vs "
+            << exact_text(b.max_spawn_distance);
     return why.str();
 }
 
@@ -126,18 +130,24 @@ std::string car_problem(const CarSnapshot& car) {
 }
 
 // The touching list as CarTouches keeps it: pairs of the snapshot's cars, in (a, b) order.
+// Names a pair only when it is wrong: a rollback validates every restore, and must not
+// allocate for each pair in contact.
 std::string touching_problem(const std::vector<CarTouchSnapshot>& touching, std::size_t cars) {
     for (std::size_t i = 0; i < touching.size(); ++i) {
         const CarTouchSnapshot& t = touching[i];
-        const std::string which = "touching pair " + std::to_string(i) + " (cars " +
-                                  std::to_string(t.car_a) + ", " + std::to_string(t.car_b) + ")";
-        if (!(t.car_a < t.car_b)) return which + ": car_a is not below car_b";
-        if (t.car_b >= cars) return which + ": the snapshot has " + std::to_string(cars) + " cars";
-        if (i > 0 && !(std::pair(touching[i - 1].car_a, touching[i - 1].car_b) <
-                       std::pair(t.car_a, t.car_b)))
-            return which + ": not after the pair before it (sorted, unique)";
-        if (!(std::isfinite(t.deepest) && t.deepest >= 0.0))
-            return which + ": deepest is not finite and >= 0";
+        std::string problem;  // empty: no allocation
+        if (!(t.car_a < t.car_b))
+            problem = "car_a is not below car_b";
+        else if (t.car_b >= cars)
+            problem = "the snapshot has " + std::to_string(cars) + " cars";
+        else if (i > 0 && !(std::pair(touching[i - 1].car_a, touching[i - 1].car_b) <
+                            std::pair(t.car_a, t.car_b)))
+            problem = "not after the pair before it (sorted, unique)";
+        else if (!(std::isfinite(t.deepest) && t.deepest >= 0.0))
+            problem = "deepest is not finite and >= 0";
+        if (!problem.empty())
+            return "touching pair " + std::to_string(i) + " (cars " + std::to_string(t.car_a) +
+                   ", " + std::to_string(t.car_b) + "): " + problem;
     }
     return {};
 }

@@ -50,9 +50,10 @@ TEST(ExactText, ValidationMessagesShowTheValueGiven) {
 TEST(QuotedText, EscapesControlCharactersAndShortensLongText) {
     EXPECT_EQ(quoted_text("road"), "'road'");
     EXPECT_EQ(quoted_text(std::string("a\0b\x1b[2J\x7f\n", 9)), "'a\\x00b\\x1b[2J\\x7f\\x0a'");
-    EXPECT_EQ(quoted_text("stra\xc3\x9f" "e"), "'stra\xc3\x9f" "e'");  // UTF-8 kept
+    EXPECT_EQ(quoted_text("stra\xc3\x9f\x65"), "'stra\xc3\x9f\x65'");  // UTF-8 kept
     const std::string long_name(300, 'x');
-    EXPECT_EQ(quoted_text(long_name), "'" + std::string(120, 'x') + "' (the first 120 of 300 bytes)");
+    EXPECT_EQ(quoted_text(long_name),
+              "'" + std::string(120, 'x') + "' (the first 120 of 300 bytes)");
     // A cut never splits a UTF-8 sequence: 119 ASCII bytes, then a 2-byte letter across 120.
     const std::string across = std::string(119, 'x') + "\xc3\x9f" + std::string(10, 'y');
     EXPECT_EQ(quoted_text(across), "'" + std::string(119, 'x') + "' (the first 119 of 131 bytes)");

@@ -167,5 +167,33 @@ TEST(WorldSnapshotAllocation, SavingIntoAKeptSnapshotAndRestoringAllocateNothing
     EXPECT_EQ(world.state_hash(), saved_hash);
 }
 
+// A rollback restores most often while cars are in contact: a gt pushing a braked one, so
+// the snapshot holds touching pairs, whose check used to build a string each.
+TEST(WorldSnapshotAllocation, RestoringCarsInContactAllocatesNothing) {
+    World world(test::static_world_of(test::flat_grid(400.0, 40)));
+    const CarSpec spec = CarSpec::preset("gt");
+    for (const double z : {-150.0, -156.0}) {
+        RigidBodyState state;
+        state.position = {0.0, spec.lowest_point_depth() + 0.001, z};
+        world.add_car(spec, state);
+    }
+    world.car(0).set_inputs({0.0, 1.0, 0.0});
+    world.car(1).set_inputs({1.0, 0.0, 0.0});
+    for (int u = 0; u < 300; ++u) world.update();
+    WorldSnapshot kept;
+    world.save_state(kept);
+    ASSERT_FALSE(kept.touching.empty()) << "the cars are not in contact";
+    const std::uint64_t saved_hash = world.state_hash();
+    for (int u = 0; u < 20; ++u) world.update();
+    world.restore_state(kept);  // warms the touching lists
+
+    allocations.store(0);
+    counting.store(true);
+    world.restore_state(kept);
+    counting.store(false);
+    EXPECT_EQ(allocations.load(), 0u) << "restoring";
+    EXPECT_EQ(world.state_hash(), saved_hash);
+}
+
 }  // namespace
 }  // namespace trackphys

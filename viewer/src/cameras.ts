@@ -25,6 +25,9 @@ export class CameraRig {
     this.orbit.enabled = false;
     // Stay above the car's horizon: from below, the road hides the car.
     this.orbit.maxPolarAngle = Math.PI * 0.48;
+    // Within the far plane: zoomed out past it, the view was empty sky.
+    this.orbit.minDistance = 2;
+    this.orbit.maxDistance = 5000;
     this.orbit.addEventListener("change", onChange);
   }
 

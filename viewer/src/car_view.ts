@@ -8,8 +8,10 @@ const BODY_COLOURS = [0xd8432e, 0x2f7fd8, 0xe0b21a, 0x8a4fd0, 0x2fae6a, 0xe06fb0
 const WHEEL_COLOUR = 0x1d1d1f;
 const UNIT_SPHERE = new THREE.SphereGeometry(1, 32, 16);
 
+// Past the eight, hues a golden angle apart, so that no two cars of a big field look alike.
 export function carColour(k: number): number {
-  return BODY_COLOURS[k % BODY_COLOURS.length];
+  if (k < BODY_COLOURS.length) return BODY_COLOURS[k];
+  return new THREE.Color().setHSL((k * 0.381966) % 1, 0.65, 0.5).getHex();
 }
 
 export class CarView {

@@ -38,7 +38,10 @@ async function show(recording: Recording, track: TrackData | null): Promise<void
   delete document.body.dataset.ready;
   current?.dispose();
   current = null;
-  renderer ??= new THREE.WebGLRenderer({ antialias: false, preserveDrawingBuffer: true });
+  if (!renderer) {
+    renderer = new THREE.WebGLRenderer({ antialias: false, preserveDrawingBuffer: true });
+    renderer.setPixelRatio(window.devicePixelRatio); // sharp on high-DPI screens, as the charts
+  }
   ui.view.prepend(renderer.domElement);
   const mesh = track ? makeTrackMesh(track.positions, track.indices) : null;
   const view = new ReplayView(recording, mesh, renderer, ui);
@@ -48,6 +51,20 @@ async function show(recording: Recording, track: TrackData | null): Promise<void
   ui.error.classList.remove("shown");
   delete document.body.dataset.error;
   document.body.dataset.ready = "1";
+}
+
+// The longest string Chromium holds (2^29 - 24 UTF-16 units). TextDecoder returns "" for a
+// longer text without a word, which the parser then called an empty file.
+const MAX_TEXT_BYTES = 536_870_888;
+
+/** A recording's bytes as text, refused by name when the browser cannot hold it. */
+function recordingText(bytes: ArrayBuffer, name: string): string {
+  if (bytes.byteLength > MAX_TEXT_BYTES)
+    throw new Error(
+      `${name}: ${(bytes.byteLength / 2 ** 20).toFixed(0)} MiB is more than a browser holds as ` +
+        `text (512 MiB): record fewer cars, laps or seconds`,
+    );
+  return new TextDecoder().decode(bytes);
 }
 
 /** Runs one loading phase and records it as a performance measure (the browser tests print them). */
@@ -65,7 +82,7 @@ async function loadEmbedded(): Promise<void> {
     return;
   }
   const name = recording.element.dataset.name ?? "recording";
-  const parsed = await phase("parse recording", () => parseRecording(new TextDecoder().decode(recording.bytes), name));
+  const parsed = await phase("parse recording", () => parseRecording(recordingText(recording.bytes, name), name));
   const trackPayload = await phase("decode track", () => embeddedBytes("trackphys-track"));
   const track = trackPayload
     ? trackFromEmbedded(
@@ -81,7 +98,10 @@ async function loadEmbedded(): Promise<void> {
 async function loadDropped(files: File[]): Promise<void> {
   const recordingFile = files.find((f) => !f.name.toLowerCase().endsWith(".glb"));
   if (!recordingFile) throw new Error("drop a recording (.jsonl), optionally with its track (.glb)");
-  const recording = parseRecording(await recordingFile.text(), recordingFile.name);
+  const recording = parseRecording(
+    recordingText(await recordingFile.arrayBuffer(), recordingFile.name),
+    recordingFile.name,
+  );
   const glb = files.find((f) => f.name.toLowerCase().endsWith(".glb"));
   await show(recording, glb ? await trackFromGlb(await glb.arrayBuffer()) : null);
 }
@@ -103,7 +123,20 @@ window.addEventListener("drop", (e) => {
   ui.drop.classList.remove("shown");
   delete document.body.dataset.ready; // until the dropped recording is drawn
   const files = Array.from(e.dataTransfer?.files ?? []);
-  loadDropped(files).catch((error) => showError(describe(error)));
+  loadDropped(files).catch((error) => {
+    showError(describe(error));
+    // A refused drop leaves the replay before it running: a click goes back to it.
+    if (current) {
+      ui.errorText.textContent += "\n\n(click to go back to the replay)";
+      ui.error.addEventListener("click", backToReplay, { once: true });
+    }
+  });
 });
+
+function backToReplay(): void {
+  ui.error.classList.remove("shown");
+  delete document.body.dataset.error;
+  document.body.dataset.ready = "1";
+}
 
 loadEmbedded().catch((error) => showError(describe(error)));

@@ -373,6 +373,11 @@ await check("a malformed recording is refused by view and, dropped, shows a read
                 .querySelector('[data-testid="error"]')
                 .textContent.includes("line 2: cars[0].vehicle.wheels must list the car's 4 wheels"),
         );
+        // The replay before the refused drops still runs: a click on the message goes back.
+        await error.click();
+        await error.waitFor({ state: "hidden", timeout: 10000 });
+        await waitReady(page, Date.now());
+        assert.equal(await page.locator('[data-testid="car-list"] button').count(), 1);
     }),
 );
 

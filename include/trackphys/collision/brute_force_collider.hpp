@@ -11,6 +11,7 @@
 #include "trackphys/export.hpp"
 #include "trackphys/geometry/aabb.hpp"
 #include "trackphys/geometry/triangle_mesh.hpp"
+#include "trackphys/math/types.hpp"
 
 namespace trackphys {
 

@@ -10,6 +10,7 @@
 #include "trackphys/collision/mid_phase.hpp"
 #include "trackphys/collision/swept_ellipsoid.hpp"
 #include "trackphys/export.hpp"
+#include "trackphys/math/types.hpp"
 
 namespace trackphys {
 

@@ -17,6 +17,7 @@
 #include "trackphys/geometry/aabb.hpp"
 #include "trackphys/geometry/ellipsoid.hpp"
 #include "trackphys/geometry/normalized_triangle.hpp"
+#include "trackphys/math/types.hpp"
 
 namespace trackphys {
 

@@ -13,6 +13,7 @@
 #include "trackphys/export.hpp"
 #include "trackphys/geometry/ellipsoid.hpp"
 #include "trackphys/geometry/normalized_triangle.hpp"
+#include "trackphys/math/types.hpp"
 
 namespace trackphys {
 

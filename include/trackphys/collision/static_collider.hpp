@@ -18,6 +18,7 @@
 #include "trackphys/geometry/normalized_triangle.hpp"
 #include "trackphys/geometry/triangle.hpp"
 #include "trackphys/geometry/triangle_mesh.hpp"
+#include "trackphys/math/types.hpp"
 
 namespace trackphys {
 

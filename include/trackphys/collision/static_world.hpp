@@ -10,6 +10,7 @@
 #include "trackphys/collision/static_collider.hpp"
 #include "trackphys/export.hpp"
 #include "trackphys/geometry/aabb.hpp"
+#include "trackphys/math/types.hpp"
 
 namespace trackphys {
 

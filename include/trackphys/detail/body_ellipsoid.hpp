@@ -3,6 +3,7 @@
 #include <glm/vec3.hpp>
 
 #include "trackphys/geometry/ellipsoid.hpp"
+#include "trackphys/math/types.hpp"
 
 namespace trackphys {
 

@@ -11,6 +11,7 @@
 #include "trackphys/collision/plane_tree.hpp"
 #include "trackphys/export.hpp"
 #include "trackphys/geometry/normalized_triangle.hpp"
+#include "trackphys/math/types.hpp"
 
 namespace trackphys {
 

@@ -19,6 +19,7 @@
 #include "trackphys/geometry/aabb.hpp"
 #include "trackphys/geometry/contact.hpp"
 #include "trackphys/geometry/ellipsoid.hpp"
+#include "trackphys/math/types.hpp"
 #include "trackphys/vehicle/vehicle.hpp"
 
 namespace trackphys {
@@ -82,7 +83,8 @@ class TRACKPHYS_API Car {
     /// model Vehicle::rolling_at(the new velocity along the car's heading): wheels spun to
     /// the road's speed without slip, in a gear for it. Restoring a snapshot is
     /// World::restore_state's (Car::restore, set_vehicle_state). Throws trackphys::Error if
-    /// not finite.
+    /// not finite. An orientation that is not a unit quaternion to within 8 ulps is
+    /// normalised ((2, 0, 0, 0) is the identity); one no longer than 0.5 is refused.
     void set_state(const RigidBodyState& state);
     const CarInputs& inputs() const { return inputs_; }
     /// Sets the inputs, clamped to their ranges (throttle and steer -1..1, brake 0..1;

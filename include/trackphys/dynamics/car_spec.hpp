@@ -12,6 +12,7 @@
 
 #include "trackphys/dynamics/rigid_body.hpp"
 #include "trackphys/export.hpp"
+#include "trackphys/math/types.hpp"
 #include "trackphys/vehicle/vehicle_spec.hpp"
 
 namespace trackphys {

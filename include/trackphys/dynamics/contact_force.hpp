@@ -8,6 +8,7 @@
 
 #include "trackphys/dynamics/car_spec.hpp"
 #include "trackphys/export.hpp"
+#include "trackphys/math/types.hpp"
 
 namespace trackphys {
 

@@ -5,6 +5,8 @@
 #include <glm/common.hpp>
 #include <glm/vec3.hpp>
 
+#include "trackphys/math/types.hpp"
+
 namespace trackphys {
 
 /// Axis-aligned box [min, max] in metres. The default box is empty (min > max), so that

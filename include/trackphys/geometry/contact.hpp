@@ -5,6 +5,7 @@
 #include "trackphys/export.hpp"
 #include "trackphys/geometry/ellipsoid.hpp"
 #include "trackphys/geometry/triangle.hpp"
+#include "trackphys/math/types.hpp"
 
 namespace trackphys {
 

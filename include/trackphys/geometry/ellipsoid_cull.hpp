@@ -8,6 +8,7 @@
 
 #include "trackphys/geometry/ellipsoid.hpp"
 #include "trackphys/geometry/normalized_triangle.hpp"
+#include "trackphys/math/types.hpp"
 
 namespace trackphys {
 

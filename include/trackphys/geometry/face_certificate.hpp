@@ -9,6 +9,7 @@
 #include "trackphys/geometry/contact.hpp"
 #include "trackphys/geometry/ellipsoid.hpp"
 #include "trackphys/geometry/normalized_triangle.hpp"
+#include "trackphys/math/types.hpp"
 
 namespace trackphys {
 

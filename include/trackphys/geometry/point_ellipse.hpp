@@ -5,6 +5,7 @@
 #include <glm/vec2.hpp>
 
 #include "trackphys/export.hpp"
+#include "trackphys/math/types.hpp"
 
 namespace trackphys {
 

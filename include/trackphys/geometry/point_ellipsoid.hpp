@@ -6,6 +6,7 @@
 
 #include "trackphys/export.hpp"
 #include "trackphys/geometry/ellipsoid.hpp"
+#include "trackphys/math/types.hpp"
 
 namespace trackphys {
 

@@ -6,6 +6,7 @@
 
 #include "trackphys/export.hpp"
 #include "trackphys/geometry/aabb.hpp"
+#include "trackphys/math/types.hpp"
 
 namespace trackphys {
 

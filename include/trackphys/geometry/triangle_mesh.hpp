@@ -8,6 +8,8 @@
 
 #include <glm/vec3.hpp>
 
+#include "trackphys/math/types.hpp"
+
 namespace trackphys {
 
 /// What a triangle is made of (road, grass, gravel, kerb, ice...): an index into the game's

@@ -15,6 +15,7 @@
 #include "trackphys/dynamics/car_spec.hpp"
 #include "trackphys/export.hpp"
 #include "trackphys/geometry/contact.hpp"
+#include "trackphys/math/types.hpp"
 #include "trackphys/vehicle/vehicle.hpp"
 #include "trackphys/world/debug_draw.hpp"
 

@@ -12,6 +12,7 @@
 #include "trackphys/dynamics/car.hpp"
 #include "trackphys/dynamics/car_spec.hpp"
 #include "trackphys/export.hpp"
+#include "trackphys/math/types.hpp"
 #include "trackphys/track/track_params.hpp"
 #include "trackphys/world/surface.hpp"
 

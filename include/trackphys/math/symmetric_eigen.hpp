@@ -4,6 +4,7 @@
 #include <glm/vec3.hpp>
 
 #include "trackphys/export.hpp"
+#include "trackphys/math/types.hpp"
 
 namespace trackphys {
 

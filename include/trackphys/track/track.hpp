@@ -8,6 +8,7 @@
 #include "trackphys/export.hpp"
 #include "trackphys/geometry/aabb.hpp"
 #include "trackphys/geometry/triangle_mesh.hpp"
+#include "trackphys/math/types.hpp"
 #include "trackphys/track/track_params.hpp"
 
 namespace trackphys {

@@ -7,6 +7,7 @@
 
 #include "trackphys/export.hpp"
 #include "trackphys/geometry/aabb.hpp"
+#include "trackphys/math/types.hpp"
 #include "trackphys/track/track.hpp"
 
 namespace trackphys {

@@ -7,6 +7,7 @@
 #include <glm/vec3.hpp>
 
 #include "trackphys/export.hpp"
+#include "trackphys/math/types.hpp"
 
 namespace trackphys {
 

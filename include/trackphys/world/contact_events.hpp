@@ -6,6 +6,7 @@
 #include <glm/vec3.hpp>
 
 #include "trackphys/collision/static_collider.hpp"
+#include "trackphys/math/types.hpp"
 
 namespace trackphys {
 

@@ -7,6 +7,7 @@
 #include "trackphys/dynamics/car_spec.hpp"
 #include "trackphys/dynamics/rigid_body.hpp"
 #include "trackphys/export.hpp"
+#include "trackphys/math/types.hpp"
 
 namespace trackphys {
 

@@ -7,6 +7,7 @@
 
 #include "trackphys/collision/mid_phase_mode.hpp"
 #include "trackphys/export.hpp"
+#include "trackphys/math/types.hpp"
 #include "trackphys/world/job_system.hpp"
 #include "trackphys/world/surface.hpp"
 
