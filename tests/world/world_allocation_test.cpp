@@ -49,6 +49,16 @@ void operator delete(void* p, std::size_t, std::align_val_t) noexcept { std::fre
 namespace trackphys {
 namespace {
 
+// How many allocations `work` makes.
+template <typename Work>
+std::uint64_t allocations_in(Work&& work) {
+    allocations.store(0);
+    counting.store(true);
+    work();
+    counting.store(false);
+    return allocations.load();
+}
+
 // Run with the plane trees' frames kept (the default track's, within the budget) and built
 // into each car's frame cache (a budget of 0, as on a map too big to keep them).
 class WorldAllocation : public ::testing::TestWithParam<PlaneTreeFrames> {};
@@ -110,12 +120,10 @@ TEST(PhysicsRunnerAllocation, PublishingAndReadingViewsAllocateNothingOnceWarm) 
     runner.run_to(200);
     runner.wait();
     const auto allocations_of_run_to = [&](std::uint64_t last_update) {
-        allocations.store(0);
-        counting.store(true);
-        runner.run_to(last_update);
-        runner.wait();
-        counting.store(false);
-        return allocations.load();
+        return allocations_in([&] {
+            runner.run_to(last_update);
+            runner.wait();
+        });
     };
     const std::uint64_t start_only = allocations_of_run_to(200);
     EXPECT_EQ(allocations_of_run_to(400), start_only) << "allocations in 200 updates";
@@ -123,12 +131,11 @@ TEST(PhysicsRunnerAllocation, PublishingAndReadingViewsAllocateNothingOnceWarm) 
     const double t = runner.world().time() - 0.005;
     CarView view;
     runner.view(0, t, view);
-    allocations.store(0);
-    counting.store(true);
-    runner.view(1, t, view);
-    runner.view(0, t + 1.0, view);
-    counting.store(false);
-    EXPECT_EQ(allocations.load(), 0u);
+    EXPECT_EQ(allocations_in([&] {
+                  runner.view(1, t, view);
+                  runner.view(0, t + 1.0, view);
+              }),
+              0u);
     EXPECT_EQ(view.wheels.size(), 4u);
 }
 
@@ -148,22 +155,14 @@ TEST(WorldSnapshotAllocation, SavingIntoAKeptSnapshotAndRestoringAllocateNothing
     world.save_state(kept);  // the first save grows the vectors
     for (int u = 0; u < 50; ++u) world.update();
 
-    allocations.store(0);
-    counting.store(true);
-    world.save_state(kept);
-    counting.store(false);
-    EXPECT_EQ(allocations.load(), 0u) << "saving into a kept snapshot";
+    EXPECT_EQ(allocations_in([&] { world.save_state(kept); }), 0u) << "saving into a kept snapshot";
     const std::uint64_t saved_hash = world.state_hash();
     ASSERT_EQ(kept.cars.size(), 8u);
     ASSERT_TRUE(kept.cars[0].vehicle.has_value());
 
     for (int u = 0; u < 50; ++u) world.update();
     ASSERT_NE(world.state_hash(), saved_hash);
-    allocations.store(0);
-    counting.store(true);
-    world.restore_state(kept);
-    counting.store(false);
-    EXPECT_EQ(allocations.load(), 0u) << "restoring";
+    EXPECT_EQ(allocations_in([&] { world.restore_state(kept); }), 0u) << "restoring";
     EXPECT_EQ(world.state_hash(), saved_hash);
 }
 
@@ -187,11 +186,7 @@ TEST(WorldSnapshotAllocation, RestoringCarsInContactAllocatesNothing) {
     for (int u = 0; u < 20; ++u) world.update();
     world.restore_state(kept);  // warms the touching lists
 
-    allocations.store(0);
-    counting.store(true);
-    world.restore_state(kept);
-    counting.store(false);
-    EXPECT_EQ(allocations.load(), 0u) << "restoring";
+    EXPECT_EQ(allocations_in([&] { world.restore_state(kept); }), 0u) << "restoring";
     EXPECT_EQ(world.state_hash(), saved_hash);
 }
 
