@@ -14,8 +14,9 @@ std::string exact_text(double x) {
 std::string quoted_text(std::string_view text) {
     constexpr std::size_t shown_at_most = 120;
     std::size_t shown = std::min(text.size(), shown_at_most);
-    while (shown < text.size() && shown > 0 && (text[shown] & 0xC0) == 0x80)
-        --shown;  // not inside a UTF-8 sequence
+    // Not inside a UTF-8 sequence (at most 4 bytes): back to its lead byte, if it has one.
+    for (int back = 0; back < 3 && shown < text.size() && (text[shown] & 0xC0) == 0x80; ++back)
+        --shown;
     std::string quoted = "'";
     for (const char c : text.substr(0, shown)) {
         const auto byte = static_cast<unsigned char>(c);

@@ -57,6 +57,9 @@ TEST(QuotedText, EscapesControlCharactersAndShortensLongText) {
     // A cut never splits a UTF-8 sequence: 119 ASCII bytes, then a 2-byte letter across 120.
     const std::string across = std::string(119, 'x') + "\xc3\x9f" + std::string(10, 'y');
     EXPECT_EQ(quoted_text(across), "'" + std::string(119, 'x') + "' (the first 119 of 131 bytes)");
+    // Bytes that are no UTF-8 at all are cut no more than a sequence would be.
+    EXPECT_EQ(quoted_text(std::string(200, '\x80')).size(),
+              2 + 117 + std::string(" (the first 117 of 200 bytes)").size());
 }
 
 }  // namespace

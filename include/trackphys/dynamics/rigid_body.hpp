@@ -45,8 +45,8 @@ struct Wrench {
 /// Advances state by h seconds under the wrench and gravity with semi-implicit (symplectic)
 /// Euler: velocities first, then positions with the new velocities. Angular velocity
 /// follows Euler's equations, the gyroscopic term omega x (I omega) implicit in the body
-/// frame (one Newton step), so a free spin never gains energy; the orientation takes
-/// q += h/2 (0, omega) q and is renormalised.
+/// frame (one Newton step), so a free spin does not gain energy (it loses a little, as
+/// (h omega)^2); the orientation takes q += h/2 (0, omega) q and is renormalised.
 TRACKPHYS_API void integrate(RigidBodyState& state, const MassProperties& mass,
                              const Wrench& wrench, const glm::dvec3& gravity, double h);
 
