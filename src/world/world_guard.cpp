@@ -234,18 +234,19 @@ void World::check_placement(const Car& car, const char* caller, std::size_t inde
     // Inside another car: deeper than cars pressed together by a third sink (0.1 mm), the
     // spring between them would throw them apart (4.4 cm gave 49 km/h, 40 cm 307 km/h).
     constexpr double max_overlap = 1e-3;  // m
+    std::vector<Ellipsoid> ours;
+    for (std::size_t i = 0; i < car.ellipsoid_count(); ++i) ours.push_back(car.world_ellipsoid(i));
     for (std::size_t other = 0; other < cars_.size(); ++other) {
         if (other == index) continue;
         const Car& them = cars_[other].car;
         const double reach = car.bounding_radius() + them.bounding_radius();
         const glm::dvec3 apart = car.state().position - them.state().position;
         if (glm::dot(apart, apart) > reach * reach) continue;
-        for (std::size_t i = 0; i < car.ellipsoid_count(); ++i) {
-            const Ellipsoid ours = car.world_ellipsoid(i);
-            for (std::size_t j = 0; j < them.ellipsoid_count(); ++j) {
-                const Ellipsoid theirs = them.world_ellipsoid(j);
-                if (!ellipsoids_may_touch(ours, theirs)) continue;
-                const double depth = ellipsoid_ellipsoid_contact(ours, theirs).depth;
+        for (std::size_t j = 0; j < them.ellipsoid_count(); ++j) {
+            const Ellipsoid theirs = them.world_ellipsoid(j);
+            for (std::size_t i = 0; i < ours.size(); ++i) {
+                if (!ellipsoids_may_touch(ours[i], theirs)) continue;
+                const double depth = ellipsoid_ellipsoid_contact(ours[i], theirs).depth;
                 if (!(depth > max_overlap)) continue;
                 std::ostringstream why;
                 why << caller << ": ellipsoid " << i << " ("
