@@ -66,6 +66,38 @@ Header read_header(std::string_view text, const std::filesystem::path& path) {
     return out;
 }
 
+// Why a frame's contacts between cars (absent: none touched) do not name the header's cars
+// and ellipsoids, or empty when they do: the page would refuse them with these words.
+std::string car_contacts_mismatch(const Json& frame, const Header& header) {
+    const auto contacts = frame.find("car_contacts");
+    if (contacts == frame.end()) return {};
+    if (!contacts->is_array()) return "car_contacts must be an array";
+    const double cars = static_cast<double>(header.lines.cars);
+    // A version 1 header has no shapes: the page draws each car as one ellipsoid.
+    const auto ellipsoids = [&](double car) {
+        return header.ellipsoids.empty()
+                   ? 1.0
+                   : static_cast<double>(header.ellipsoids[static_cast<std::size_t>(car)]);
+    };
+    for (std::size_t i = 0; i < contacts->size(); ++i) {
+        const Json& c = (*contacts)[i];
+        const std::string what = "car_contacts[" + std::to_string(i) + "]";
+        if (!c.is_array() || c.size() != 11 || !std::all_of(c.begin(), c.end(), [](const Json& x) {
+                return x.is_number() && std::isfinite(x.get<double>());
+            }))
+            return what + " must be 11 finite numbers";
+        if (!whole_in(c[0], 0, cars - 1) || !whole_in(c[1], 0, cars - 1) ||
+            !(c[0].get<double>() < c[1].get<double>()))
+            return what + " must name two of the " + std::to_string(header.lines.cars) +
+                   " cars, the lower first";
+        if (!whole_in(c[2], 0, ellipsoids(c[0].get<double>()) - 1) ||
+            !whole_in(c[3], 0, ellipsoids(c[1].get<double>()) - 1))
+            return what + " must name an ellipsoid of each car";
+        if (!(c[10].get<double>() > 0.0)) return what + "'s depth must be > 0";
+    }
+    return {};
+}
+
 // Why a frame does not match its header, or empty when it does.
 std::string frame_mismatch(const Json& frame, const Header& header) {
     const auto listed = frame.find("cars");
@@ -80,7 +112,7 @@ std::string frame_mismatch(const Json& frame, const Header& header) {
             return "car " + std::to_string(k) + "'s \"s\" is not one number for each of its " +
                    std::to_string(header.ellipsoids[k]) + " ellipsoids in the header";
     }
-    return {};
+    return car_contacts_mismatch(frame, header);
 }
 
 }  // namespace

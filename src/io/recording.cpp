@@ -142,13 +142,35 @@ void RecordingWriter::add_car(const RecordedCar& car) {
     out_ << '}';
 }
 
-void RecordingWriter::end_frame() {
-    if (line_cars_ != ellipsoids_.size()) {
+void RecordingWriter::end_frame(std::span<const CarPairContact> car_contacts) {
+    const auto refuse = [&](const std::string& why) {
         unfinished_line_ = true;
-        throw Error("recording '" + path_.string() + "': a line of " + std::to_string(line_cars_) +
-                    " cars, the header's " + std::to_string(ellipsoids_.size()));
+        throw Error("recording '" + path_.string() + "': " + why);
+    };
+    if (line_cars_ != ellipsoids_.size())
+        refuse("a line of " + std::to_string(line_cars_) + " cars, the header's " +
+               std::to_string(ellipsoids_.size()));
+    // The viewer draws a car contact on the two cars' ellipsoids it names.
+    for (const CarPairContact& c : car_contacts)
+        if (!(c.car_a < c.car_b && c.car_b < ellipsoids_.size() &&
+              c.ellipsoid_a < ellipsoids_[c.car_a] && c.ellipsoid_b < ellipsoids_[c.car_b]))
+            refuse("a contact between car " + std::to_string(c.car_a) + "'s ellipsoid " +
+                   std::to_string(c.ellipsoid_a) + " and car " + std::to_string(c.car_b) +
+                   "'s ellipsoid " + std::to_string(c.ellipsoid_b) +
+                   ": not two of the header's cars, the lower first, and their ellipsoids");
+    out_ << ']';
+    bool first = true;
+    for (const CarPairContact& c : car_contacts) {
+        if (!(c.contact.depth > 0.0)) continue;
+        out_ << (first ? ",\"car_contacts\":[" : ",");
+        first = false;
+        const Contact& k = c.contact;
+        put_list(out_,
+                 {static_cast<double>(c.car_a), static_cast<double>(c.car_b),
+                  static_cast<double>(c.ellipsoid_a), static_cast<double>(c.ellipsoid_b), k.point.x,
+                  k.point.y, k.point.z, k.normal.x, k.normal.y, k.normal.z, k.depth});
     }
-    out_ << "]}\n";
+    out_ << (first ? "}\n" : "]}\n");
 }
 
 void RecordingWriter::finish() {

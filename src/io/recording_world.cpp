@@ -1,6 +1,7 @@
 // RecordingWriter::write_frame: a World's update recorded through its DebugDraw callbacks.
 // World::debug_draw reports a car, then its ellipsoids, then its contacts; the car's line
-// is written once the next car starts or the frame ends.
+// is written once the next car starts or the frame ends. The contacts between cars come
+// after the last car and end the line.
 
 #include <limits>
 #include <string>
@@ -24,15 +25,17 @@ void RecordingWriter::write_frame(const World& world, std::span<const std::optio
         world.settings().profile ? std::optional(world.last_profile().update_us) : std::nullopt;
     begin_frame(world.time(), world.state_hash(), update_us);
     frame_laps_ = laps;
+    drawn_car_contacts_.clear();
     // What the format holds; the pipeline's lists stay out.
     world.debug_draw(*this, {.cars = true,
                              .ellipsoids = true,
                              .contacts = true,
+                             .car_contacts = true,
                              .update_boxes = false,
                              .listed_triangles = false,
                              .kept_triangles = false});
     add_drawn_car();
-    end_frame();
+    end_frame(drawn_car_contacts_);
 }
 
 void RecordingWriter::draw_car(std::size_t index, const Car& car) {
@@ -51,6 +54,10 @@ void RecordingWriter::draw_ellipsoid(const DebugEllipsoid& ellipsoid) {
 
 void RecordingWriter::draw_contact(const DebugContact& contact) {
     drawn_contacts_[contact.ellipsoid] = contact.contact;
+}
+
+void RecordingWriter::draw_car_contact(const CarPairContact& contact) {
+    drawn_car_contacts_.push_back(contact);
 }
 
 void RecordingWriter::add_drawn_car() {

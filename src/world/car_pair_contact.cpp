@@ -144,6 +144,8 @@ CarPairTouch touch_cars(Car& a, std::span<const Ellipsoid> a_placed, Car& b,
             if (contact.depth > touch.deepest) {
                 touch.deepest = contact.depth;
                 touch.deepest_contact = contact;
+                touch.deepest_a = static_cast<std::uint32_t>(i);
+                touch.deepest_b = static_cast<std::uint32_t>(j);
                 touch.approach_speed =
                     -glm::dot(relative_velocity(a_before, b_before, contact.point), contact.normal);
             }

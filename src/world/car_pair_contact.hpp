@@ -18,6 +18,8 @@ struct CarPairTouch {
     /// (m/s, > 0 approaching): for the contact events. Unset when they did not touch.
     Contact deepest_contact{0.0, glm::dvec3(0.0, 1.0, 0.0), glm::dvec3(0.0)};
     double approach_speed = 0.0;
+    std::uint32_t deepest_a = 0;  ///< that pair's ellipsoid of a (CarSpec order)
+    std::uint32_t deepest_b = 0;  ///< and of b
 };
 
 /// The material between two cars: the mean of their CarSpec::car_contact.

@@ -17,10 +17,12 @@ void CarTouches::start_update(std::size_t pairs) {
         next_touching_.reserve(room_);
         begins_.reserve(room_);
         ends_.reserve(2 * room_);
+        contacts_.reserve(room_);
     }
     records_.assign(pairs, PairRecord{});
     begins_.clear();
     ends_.clear();
+    contacts_.clear();
 }
 
 // A merge of two lists sorted by (a, b): the pairs touched during this update and those
@@ -55,10 +57,14 @@ void CarTouches::finish(std::span<const CarPair> pairs) {
         else
             begins_.push_back(
                 {a, b, r.first.point, r.first.normal, r.first.depth, r.approach_speed});
-        if (r.touching_at_end)
+        if (r.touching_at_end) {
             next_touching_.push_back(now);
-        else
+            CarPairContact& contact = contacts_.emplace_back(r.last);
+            contact.car_a = a;
+            contact.car_b = b;
+        } else {
             came_apart(now);
+        }
     }
     for (; last < touching_.size(); ++last) came_apart(touching_[last]);
     std::swap(touching_, next_touching_);
@@ -74,6 +80,12 @@ void CarTouches::remove_car(std::uint32_t car) {
     }
     begins_.clear();
     ends_.clear();
+    contacts_.clear();
+}
+
+void CarTouches::forget_contacts_of(std::uint32_t car) {
+    std::erase_if(contacts_,
+                  [car](const CarPairContact& c) { return c.car_a == car || c.car_b == car; });
 }
 
 void CarTouches::save(std::vector<CarTouchSnapshot>& into) const {
@@ -85,6 +97,7 @@ void CarTouches::restore(std::span<const CarTouchSnapshot> touching) {
     touching_.assign(touching.begin(), touching.end());
     begins_.clear();
     ends_.clear();
+    contacts_.clear();
 }
 
 }  // namespace trackphys::detail

@@ -28,6 +28,7 @@ class CarTouches {
         PairRecord& r = records_[index];
         r.touching_at_end = touch.deepest > 0.0;
         if (!r.touching_at_end) return;
+        r.last = {0, 0, touch.deepest_a, touch.deepest_b, touch.deepest_contact};
         if (!r.touched) {
             r.touched = true;
             r.first = touch.deepest_contact;
@@ -41,8 +42,12 @@ class CarTouches {
     void finish(std::span<const CarPair> pairs);
 
     /// Car `car` left the world: its touches are forgotten without events, the cars after it
-    /// move down one; the last update's events are dropped (their indices are stale).
+    /// move down one; the last update's events and contacts are dropped (their indices are
+    /// stale).
     void remove_car(std::uint32_t car);
+    /// Car `car` was moved (World::teleport_car): the last update's contacts of its pairs are
+    /// dropped, as its road contacts are; its touches go on.
+    void forget_contacts_of(std::uint32_t car);
     /// Pair `index` of CarIslands::all_pairs() did not touch during this update after all: a
     /// car of it was reset to where the update began (World's reset policy), so the pair
     /// ends if it was touching, and begins again at the next update that finds it touching.
@@ -52,11 +57,13 @@ class CarTouches {
     /// with room for as many as this world's lists: a kept snapshot allocates once.
     void save(std::vector<CarTouchSnapshot>& into) const;
     /// A restored world: `touching` (checked by WorldSnapshot::validate) replaces the list,
-    /// the last update's events are dropped.
+    /// the last update's events and contacts are dropped.
     void restore(std::span<const CarTouchSnapshot> touching);
 
     std::span<const CarTouchBeginEvent> begins() const { return begins_; }
     std::span<const CarTouchEndEvent> ends() const { return ends_; }
+    /// The pairs touching at the last sub-step of the last update, by (car_a, car_b).
+    std::span<const CarPairContact> contacts() const { return contacts_; }
 
   private:
     struct PairRecord {
@@ -65,6 +72,7 @@ class CarTouches {
         double deepest = 0.0;          // m, over the update
         Contact first{0.0, glm::dvec3(0.0, 1.0, 0.0), glm::dvec3(0.0)};  // first sub-step's
         double approach_speed = 0.0;  // m/s, at the first sub-step
+        CarPairContact last;          // the last sub-step's, when touching_at_end
     };
     std::size_t room_ = 0;                // pairs every list has room for
     std::vector<PairRecord> records_;     // per pair of this update
@@ -74,6 +82,7 @@ class CarTouches {
     std::vector<CarTouchSnapshot> next_touching_;
     std::vector<CarTouchBeginEvent> begins_;
     std::vector<CarTouchEndEvent> ends_;
+    std::vector<CarPairContact> contacts_;
 };
 
 }  // namespace trackphys::detail

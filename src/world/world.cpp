@@ -103,6 +103,7 @@ void World::teleport_car(std::size_t i, const RigidBodyState& state) {
     check_placement(moved, "World::teleport_car", i);
     slot.car.set_state(state);
     slot.forget_contacts();
+    work_->touches.forget_contacts_of(static_cast<std::uint32_t>(i));
 }
 
 // What a car keeps between updates is in its slot, which moves down with it; the update's
@@ -128,6 +129,7 @@ std::size_t World::car_count() const { return cars_.size(); }
 Car& World::car(std::size_t i) { return car_slot(i).car; }
 const Car& World::car(std::size_t i) const { return car_slot(i).car; }
 std::span<const Contact> World::contacts(std::size_t i) const { return car_slot(i).deepest; }
+std::span<const CarPairContact> World::car_contacts() const { return work_->touches.contacts(); }
 ContactEvents World::contact_events() const {
     return {work_->touches.begins(), work_->touches.ends(), work_->body_hits};
 }

@@ -11,6 +11,7 @@ namespace trackphys {
 void DebugDraw::draw_car(std::size_t, const Car&) {}
 void DebugDraw::draw_ellipsoid(const DebugEllipsoid&) {}
 void DebugDraw::draw_contact(const DebugContact&) {}
+void DebugDraw::draw_car_contact(const CarPairContact&) {}
 void DebugDraw::draw_update_box(std::size_t, const Aabb&) {}
 void DebugDraw::draw_listed_triangle(const DebugTriangle&) {}
 void DebugDraw::draw_kept_triangle(const DebugTriangle&, double) {}
@@ -45,6 +46,8 @@ void World::debug_draw(DebugDraw& draw, const DebugDrawOptions& options) const {
                     draw.draw_kept_triangle(triangle(i, drawn.kept[j].ref),
                                             drawn.kept[j].depth_bound);
     }
+    if (options.car_contacts)
+        for (const CarPairContact& contact : car_contacts()) draw.draw_car_contact(contact);
 }
 
 }  // namespace trackphys

@@ -85,7 +85,7 @@ std::string wheel_spin_unstable(const CarSpec& spec, double h) {
         const TyreSpec& tyre = front ? v.front_tyre : v.rear_tyre;
         const MagicFormulaCurve& curve = tyre.longitudinal;
         const double load = MagicFormulaCurve::kMaxLoadRatio * tyre.nominal_load;
-        const double slope = curve.stiffness * curve.shape * curve.peak(load, tyre.nominal_load);
+        const double slope = curve.slip_stiffness(curve.peak(load, tyre.nominal_load));
         const double sigma = tyre.longitudinal_relaxation;
         const double r = detail::rolling_radius(e);
         const double growth = h * h * r * r * slope / (v.wheel_inertia * sigma);

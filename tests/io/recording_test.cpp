@@ -48,7 +48,8 @@ class RecordingTest : public test::ScratchFolderTest {};
 
 // A line of two_car_header's cars at rest, apart from everything.
 void write_cars_at_rest(RecordingWriter& writer, double t, std::uint64_t hash,
-                        std::optional<double> update_us = std::nullopt) {
+                        std::optional<double> update_us = std::nullopt,
+                        std::span<const CarPairContact> car_contacts = {}) {
     const std::vector<double> suspension(CarSpec::default_car().ellipsoids.size(), 0.0);
     const std::vector<Contact> apart(suspension.size(),
                                      Contact{-1.0, {0.0, 1.0, 0.0}, {0.0, 0.0, 0.0}});
@@ -62,7 +63,7 @@ void write_cars_at_rest(RecordingWriter& writer, double t, std::uint64_t hash,
                     {},
                     {},
                     {}});
-    writer.end_frame();
+    writer.end_frame(car_contacts);
 }
 
 TEST_F(RecordingTest, HeaderNamesTheTrackAndEveryCarsEllipsoids) {
@@ -122,7 +123,10 @@ TEST_F(RecordingTest, FramesCarryEveryCarBitForBit) {
                     std::nullopt});
     writer.add_car(
         {{4.0, 5.0, 6.0}, {1.0, 0.0, 0.0, 0.0}, 20.0, ball_suspension, ball_contacts, {}, {}, {}});
-    writer.end_frame();
+    const std::array<CarPairContact, 2> car_contacts = {
+        CarPairContact{0, 1, 3, 0, {0.0025 / 3.0, {0.0, 0.0, -1.0}, {1.0 / 3.0, 0.5, 2.0}}},
+        CarPairContact{0, 1, 2, 0, {-0.25, {0.0, 0.0, -1.0}, {0.0, 0.0, 0.0}}}};  // apart
+    writer.end_frame(car_contacts);
     write_cars_at_rest(writer, 0.02, 1);  // no update time measured
     writer.finish();
 
@@ -149,6 +153,11 @@ TEST_F(RecordingTest, FramesCarryEveryCarBitForBit) {
     EXPECT_FALSE(other.contains("in"));
     EXPECT_FALSE(other.contains("lap"));
     EXPECT_EQ(other["contacts"], Json::array());
+    // Only the overlapping pair, after the cars.
+    ASSERT_EQ(frame["car_contacts"].size(), 1u);
+    EXPECT_EQ(frame["car_contacts"][0],
+              Json::array({0.0, 1.0, 3.0, 0.0, 1.0 / 3.0, 0.5, 2.0, 0.0, 0.0, -1.0, 0.0025 / 3.0}));
+    EXPECT_FALSE(lines[2].contains("car_contacts")) << "no key for a frame where no cars touch";
     EXPECT_FALSE(lines[2].contains("us"));
     EXPECT_EQ(lines[2]["cars"].size(), 2u);
 }
@@ -196,6 +205,23 @@ TEST_F(RecordingTest, CarsThatAreNotTheHeadersAreRefused) {
                   w.end_frame();
               }).find("a line of 0 cars, the header's 2"),
               std::string::npos);
+    // Contacts between cars name two of the header's cars, the lower first, and an
+    // ellipsoid of each: the default car has 8, the ball 1.
+    const Contact touching{0.001, {0.0, 0.0, 1.0}, {0.0, 1.0, 0.0}};
+    for (const CarPairContact& bad :
+         {CarPairContact{1, 0, 0, 0, touching}, CarPairContact{0, 0, 0, 0, touching},
+          CarPairContact{0, 2, 0, 0, touching}, CarPairContact{0, 1, 8, 0, touching},
+          CarPairContact{0, 1, 0, 1, touching}}) {
+        const std::array<CarPairContact, 1> one_bad = {bad};
+        const std::string why = refused(
+            [&](RecordingWriter& w) { write_cars_at_rest(w, 0.02, 1, std::nullopt, one_bad); });
+        EXPECT_NE(why.find("a contact between car " + std::to_string(bad.car_a) + "'s ellipsoid " +
+                           std::to_string(bad.ellipsoid_a) + " and car " +
+                           std::to_string(bad.car_b) + "'s ellipsoid " +
+                           std::to_string(bad.ellipsoid_b) + ": not two of the header's cars"),
+                  std::string::npos)
+            << why;
+    }
 }
 
 }  // namespace

@@ -24,12 +24,8 @@
 namespace trackphys {
 namespace {
 
-RigidBodyState moving(const glm::dvec3& position, const glm::dvec3& velocity) {
-    RigidBodyState state;
-    state.position = position;
-    state.linear_velocity = velocity;
-    return state;
-}
+using test::moving;
+using test::one_car_pushing_a_braked_one;
 
 // No static world and no gravity: cars meet only each other.
 World world_in_free_space() {
@@ -75,18 +71,6 @@ struct EventLog {
         return hash.value;
     }
 };
-
-// Car 1 drives into the back of car 0, which brakes, on flat ground.
-World one_car_pushing_a_braked_one() {
-    World world(test::static_world_of(test::flat_grid(400.0, 40)));
-    const CarSpec spec = CarSpec::default_car();
-    const double y = spec.lowest_point_depth() + 0.001;
-    world.add_car(spec, moving({0.0, y, 0.0}, glm::dvec3(0.0)));
-    world.add_car(spec, moving({0.0, y, -8.0}, {0.0, 0.0, 4.0}));
-    world.car(0).set_inputs({0.0, 1.0, 0.0});
-    world.car(1).set_inputs({0.6, 0.0, 0.0});
-    return world;
-}
 
 // Updates `world` until a pair of cars is touching at the end of an update.
 WorldSnapshot run_until_touching(World& world) {

@@ -29,13 +29,15 @@ namespace {
 // Every call, as it came.
 struct CallLog final : DebugDraw {
     struct Event {
-        char kind;  // 'c'ar, 'e'llipsoid, 'k' contact, 'b'ox, 'l'isted, 'p'assed the cull
+        char kind;  // 'c'ar, 'e'llipsoid, 'k' contact, 'b'ox, 'l'isted, 'p'assed the cull,
+                    // 'x' contact between cars (car_a)
         std::size_t car;
     };
     std::vector<Event> events;
     std::vector<const Car*> cars;
     std::vector<DebugEllipsoid> ellipsoids;
     std::vector<DebugContact> contacts;
+    std::vector<CarPairContact> car_contacts;
     std::vector<Aabb> boxes;
     std::vector<DebugTriangle> listed;
     std::vector<DebugTriangle> kept;
@@ -52,6 +54,10 @@ struct CallLog final : DebugDraw {
     void draw_contact(const DebugContact& c) override {
         events.push_back({'k', c.car});
         contacts.push_back(c);
+    }
+    void draw_car_contact(const CarPairContact& c) override {
+        events.push_back({'x', c.car_a});
+        car_contacts.push_back(c);
     }
     void draw_update_box(std::size_t car, const Aabb& box) override {
         events.push_back({'b', car});
@@ -188,6 +194,7 @@ TEST(DebugDraw, OptionsOffCallNothingOfThem) {
     world.debug_draw(none, {.cars = false,
                             .ellipsoids = false,
                             .contacts = false,
+                            .car_contacts = false,
                             .update_boxes = false,
                             .listed_triangles = false,
                             .kept_triangles = false});
@@ -197,6 +204,7 @@ TEST(DebugDraw, OptionsOffCallNothingOfThem) {
     world.debug_draw(only_kept, {.cars = false,
                                  .ellipsoids = false,
                                  .contacts = false,
+                                 .car_contacts = false,
                                  .update_boxes = false,
                                  .listed_triangles = false,
                                  .kept_triangles = true});
@@ -339,30 +347,61 @@ std::string read_file(const std::filesystem::path& path) {
     return text.str();
 }
 
+// The contacts between cars come after every car's calls, exactly World::car_contacts.
+TEST(DebugDraw, ReportsTheContactsBetweenCarsAfterTheCars) {
+    World world = test::one_car_pushing_a_braked_one();
+    std::size_t drawn = 0;
+    for (int update = 0; update < 300; ++update) {
+        world.update();
+        CallLog log;
+        world.debug_draw(log);
+        const std::span<const CarPairContact> expected = world.car_contacts();
+        ASSERT_EQ(log.car_contacts.size(), expected.size());
+        for (std::size_t i = 0; i < expected.size(); ++i) {
+            const CarPairContact& c = log.car_contacts[i];
+            EXPECT_EQ(std::tie(c.car_a, c.car_b, c.ellipsoid_a, c.ellipsoid_b),
+                      std::tie(expected[i].car_a, expected[i].car_b, expected[i].ellipsoid_a,
+                               expected[i].ellipsoid_b));
+            EXPECT_TRUE(same_bits(c.contact, expected[i].contact));
+        }
+        const auto first_pair = std::find_if(log.events.begin(), log.events.end(),
+                                             [](const CallLog::Event& e) { return e.kind == 'x'; });
+        EXPECT_TRUE(std::all_of(first_pair, log.events.end(), [](const CallLog::Event& e) {
+            return e.kind == 'x';
+        })) << "a car's call after the contacts between cars";
+        drawn += expected.size();
+    }
+    EXPECT_GT(drawn, 0u) << "the cars never touched: the test would prove little";
+}
+
 // write_frame records through the DebugDraw callbacks; the line must be the one written by
-// hand from the same world, byte for byte, laps included.
-TEST(DebugDraw, RecordingWriterWritesTheLineOfAHandWrittenFrame) {
-    World world = three_cars();
+// hand from the same world, byte for byte, laps and contacts between cars included.
+void expect_recorded_as_by_hand(World world, int updates,
+                                const std::vector<std::optional<int>>& laps,
+                                const std::string& must_hold) {
     RecordingHeader header;
-    header.car_ellipsoids.assign(3, CarSpec::default_car().ellipsoids);
+    header.car_ellipsoids.assign(world.car_count(), CarSpec::default_car().ellipsoids);
     const std::filesystem::path folder = std::filesystem::temp_directory_path();
     const std::filesystem::path drawn_file = folder / "trackphys_debug_draw_drawn.jsonl";
     const std::filesystem::path by_hand_file = folder / "trackphys_debug_draw_by_hand.jsonl";
     {
         RecordingWriter drawn(drawn_file, header);
         RecordingWriter by_hand(by_hand_file, header);
-        const std::vector<std::optional<int>> laps = {2, std::nullopt, 0};
-        for (int update = 0; update < 40; ++update) {
+        for (int update = 0; update < updates; ++update) {
             world.update();
             drawn.write_frame(world, laps);
-            by_hand.begin_frame(world.time(), world.state_hash(), world.last_profile().update_us);
+            by_hand.begin_frame(world.time(), world.state_hash(),
+                                world.settings().profile
+                                    ? std::optional(world.last_profile().update_us)
+                                    : std::nullopt);
             for (std::size_t k = 0; k < world.car_count(); ++k) {
                 const Car& car = world.car(k);
                 by_hand.add_car({car.state().position, car.state().orientation, car.speed(),
-                                 car.suspension(), world.contacts(k), car.inputs(), laps[k],
+                                 car.suspension(), world.contacts(k), car.inputs(),
+                                 k < laps.size() ? laps[k] : std::nullopt,
                                  std::nullopt});  // arcade cars: no vehicle model
             }
-            by_hand.end_frame();
+            by_hand.end_frame(world.car_contacts());
         }
         drawn.finish();
         by_hand.finish();
@@ -370,8 +409,14 @@ TEST(DebugDraw, RecordingWriterWritesTheLineOfAHandWrittenFrame) {
     const std::string drawn = read_file(drawn_file), by_hand = read_file(by_hand_file);
     std::filesystem::remove(drawn_file);
     std::filesystem::remove(by_hand_file);
-    EXPECT_NE(drawn.find("\"contacts\":[["), std::string::npos) << "no contact recorded";
+    EXPECT_NE(drawn.find(must_hold), std::string::npos) << "no " << must_hold << " recorded";
     EXPECT_EQ(drawn, by_hand);
+}
+
+TEST(DebugDraw, RecordingWriterWritesTheLineOfAHandWrittenFrame) {
+    expect_recorded_as_by_hand(three_cars(), 40, {2, std::nullopt, 0}, "\"contacts\":[[");
+    expect_recorded_as_by_hand(test::one_car_pushing_a_braked_one(), 300, {},
+                               "\"car_contacts\":[[");
 }
 
 }  // namespace

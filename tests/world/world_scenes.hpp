@@ -1,14 +1,16 @@
 #pragma once
 
 // Small static worlds for the physics tests: flat ground, a wall, a single-triangle road;
-// and the settings of the tests of several cars.
+// a car's moving state, and a scene of two cars that touch.
 
 #include <cstdint>
 #include <memory>
 
 #include "trackphys/collision/static_world.hpp"
+#include "trackphys/dynamics/car_spec.hpp"
+#include "trackphys/dynamics/rigid_body.hpp"
 #include "trackphys/geometry/triangle_mesh.hpp"
-#include "trackphys/world/world_settings.hpp"
+#include "trackphys/world/world.hpp"
 
 namespace trackphys::test {
 
@@ -57,6 +59,26 @@ inline TriangleMesh wall(double z0, double width, double height) {
 inline std::shared_ptr<const StaticWorld> static_world_of(const TriangleMesh& mesh) {
     auto world = std::make_shared<StaticWorld>();
     world->add(std::make_shared<StaticCollider>(mesh));
+    return world;
+}
+
+/// A body at `position` (upright, not turning) moving at `velocity`.
+inline RigidBodyState moving(const glm::dvec3& position, const glm::dvec3& velocity) {
+    RigidBodyState state;
+    state.position = position;
+    state.linear_velocity = velocity;
+    return state;
+}
+
+/// Car 1 drives into the back of car 0, which brakes, on flat ground.
+inline World one_car_pushing_a_braked_one() {
+    World world(static_world_of(flat_grid(400.0, 40)));
+    const CarSpec spec = CarSpec::default_car();
+    const double y = spec.lowest_point_depth() + 0.001;
+    world.add_car(spec, moving({0.0, y, 0.0}, glm::dvec3(0.0)));
+    world.add_car(spec, moving({0.0, y, -8.0}, {0.0, 0.0, 4.0}));
+    world.car(0).set_inputs({0.0, 1.0, 0.0});
+    world.car(1).set_inputs({0.6, 0.0, 0.0});
     return world;
 }
 

@@ -1,5 +1,5 @@
 // A field of cars that touch, on 1, 2 and 4 threads and on a plugged-in job system: the
-// same bits and the same contact events every time (World's class notes), across
+// same bits, the same contact events and car contacts every time (World's class notes), across
 // save_state / restore_state and with cars removed on the way.
 #include <algorithm>
 #include <cstddef>
@@ -85,6 +85,12 @@ class Field {
             events_.add(std::uint64_t{e.triangle.collider} << 32 | e.triangle.triangle);
             events_.add(e.point), events_.add(e.normal);
             events_.add(e.depth), events_.add(e.approach_speed);
+        }
+        for (const CarPairContact& c : world_.car_contacts()) {
+            events_.add(std::uint64_t{c.car_a} << 32 | c.car_b);
+            events_.add(std::uint64_t{c.ellipsoid_a} << 32 | c.ellipsoid_b);
+            events_.add(c.contact.point), events_.add(c.contact.normal);
+            events_.add(c.contact.depth);
         }
         // Where one update's events end: the same events split otherwise hash otherwise.
         events_.add(std::uint64_t{0});

@@ -31,6 +31,7 @@ export interface Layout {
   updateUs: HTMLElement;
   camera: HTMLElement;
   contacts: HTMLElement;
+  carContacts: HTMLElement;
   vehicle: HTMLElement;
   cars: HTMLElement;
   play: HTMLButtonElement;
@@ -58,10 +59,11 @@ export function buildLayout(): Layout {
   const [lapRow, lap] = hudRow("lap", "hud-lap", "");
   const [usRow, updateUs] = hudRow("update", "hud-update-us", "us");
   const [contactsRow, contacts] = hudRow("contacts", "hud-contacts", "");
+  const [carContactsRow, carContacts] = hudRow("car contacts", "hud-car-contacts", "");
   const [cameraRow, camera] = hudRow("camera", "hud-camera", "");
   const vehicle = element("div", { class: "vehicle", "data-testid": "hud-vehicle" });
   vehicle.hidden = true;
-  hud.append(title, timeRow, speedRow, lapRow, usRow, contactsRow, cameraRow, vehicle);
+  hud.append(title, timeRow, speedRow, lapRow, usRow, contactsRow, carContactsRow, cameraRow, vehicle);
   const cars = element("div", { id: "cars", class: "panel", "data-testid": "car-list" });
   const help = element(
     "div",
@@ -101,6 +103,7 @@ export function buildLayout(): Layout {
     updateUs,
     camera,
     contacts,
+    carContacts,
     vehicle,
     cars,
     play,

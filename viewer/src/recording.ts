@@ -40,6 +40,9 @@ export interface CarTrack {
   vehicle: VehicleTrack | null;
 }
 
+/** A contact between cars: car a, car b (a < b), a's ellipsoid, b's, point, normal (moving a along it separates them), depth. */
+export const CAR_CONTACT_WIDTH = 11;
+
 export interface Recording {
   name: string;
   version: number;
@@ -51,6 +54,8 @@ export interface Recording {
   time: Float64Array;
   updateUs: Float32Array | null;
   cars: CarTrack[];
+  carContactStart: Uint32Array; // frame f's contacts between cars are [carContactStart[f], carContactStart[f+1])
+  carContacts: Float32Array; // CAR_CONTACT_WIDTH per contact
 }
 
 /** A recording that cannot be read; the message says where and why, for the page. */
@@ -249,6 +254,24 @@ class CarColumns {
   }
 }
 
+/** A frame's car_contacts (absent: none touched) onto `into`, each checked to name two of the header's cars and their ellipsoids. */
+function addCarContacts(value: unknown, shapes: CarEllipsoid[][], line: number, into: Column<Float32Array>): void {
+  if (value === undefined) return;
+  if (!Array.isArray(value)) fail(line, "car_contacts must be an array");
+  const index = (x: number, below: number) => Number.isInteger(x) && x >= 0 && x < below;
+  value.forEach((c: unknown, i: number) => {
+    const what = `car_contacts[${i}]`;
+    const v = numbers(c, CAR_CONTACT_WIDTH, line, what);
+    const [a, b, ea, eb] = v;
+    if (!(index(a, shapes.length) && index(b, shapes.length) && a < b))
+      fail(line, `${what} must name two of the ${shapes.length} cars, the lower first`);
+    if (!(index(ea, shapes[a].length) && index(eb, shapes[b].length)))
+      fail(line, `${what} must name an ellipsoid of each car`);
+    if (!(v[10] > 0)) fail(line, `${what}'s depth must be > 0`);
+    into.push(...v);
+  });
+}
+
 /** Reads a whole recording; throws RecordingError naming the line and the problem. */
 export function parseRecording(text: string, name: string): Recording {
   const lines = text.split("\n");
@@ -259,6 +282,9 @@ export function parseRecording(text: string, name: string): Recording {
   const time = new Column((n) => new Float64Array(n));
   const updateUs = new Column((n) => new Float32Array(n));
   let hasUpdateUs = true;
+  const carContacts = new Column((n) => new Float32Array(n));
+  const carContactStart = new Column((n) => new Uint32Array(n));
+  carContactStart.push(0);
   for (let i = 1; i < lines.length; ++i) {
     const line = i + 1;
     let frame: unknown;
@@ -276,6 +302,8 @@ export function parseRecording(text: string, name: string): Recording {
     if (!Array.isArray(frame.cars) || frame.cars.length !== cars.length)
       fail(line, `cars must list all ${cars.length} cars of the header`);
     frame.cars.forEach((car: unknown, k: number) => cars[k].add(car, line, k, header.version));
+    addCarContacts(frame.car_contacts, header.shapes, line, carContacts);
+    carContactStart.push(carContacts.length / CAR_CONTACT_WIDTH);
   }
   if (time.length === 0) fail(0, "the recording has a header but no frames");
   return {
@@ -288,5 +316,7 @@ export function parseRecording(text: string, name: string): Recording {
     time: time.trimmed(),
     updateUs: hasUpdateUs ? updateUs.trimmed() : null,
     cars: cars.map((c) => c.finish()),
+    carContactStart: carContactStart.trimmed(),
+    carContacts: carContacts.trimmed(),
   };
 }

@@ -7,7 +7,7 @@ import { Chart } from "./chart";
 import { ContactsView } from "./contacts_view";
 import type { Layout } from "./layout";
 import { Playback } from "./playback";
-import type { Recording } from "./recording";
+import { CAR_CONTACT_WIDTH, type Recording } from "./recording";
 import { lerpAt, sampleAt, type Sample } from "./sample";
 import { addLights } from "./track_view";
 import { VehicleHud } from "./vehicle_hud";
@@ -188,6 +188,17 @@ export class ReplayView {
     this.dirty = false;
   }
 
+  /** How many of frame f's contacts between cars the followed car is in. */
+  private carContactsOfSelected(f: number): number {
+    const r = this.recording;
+    let n = 0;
+    for (let c = r.carContactStart[f]; c < r.carContactStart[f + 1]; ++c) {
+      const at = c * CAR_CONTACT_WIDTH;
+      if (r.carContacts[at] === this.selected || r.carContacts[at + 1] === this.selected) ++n;
+    }
+    return n;
+  }
+
   private updateHud(s: Sample): void {
     const r = this.recording;
     const car = r.cars[this.selected];
@@ -198,6 +209,7 @@ export class ReplayView {
     ui.lap.textContent = car.laps ? String(car.laps[nearest] + 1) : "-";
     ui.updateUs.textContent = r.updateUs ? r.updateUs[nearest].toFixed(1) : "-";
     ui.contacts.textContent = String(car.contactStart[nearest + 1] - car.contactStart[nearest]);
+    ui.carContacts.textContent = String(this.carContactsOfSelected(nearest));
     this.vehicleHud.update(nearest);
     ui.play.textContent = this.playback.playing ? "❚❚" : "▶";
     ui.scrub.value = String(this.playback.t);

@@ -24,10 +24,12 @@ import {
     waitReady,
 } from "./page_probe.mjs";
 import {
+    carContactNamingNoCar,
     handMadeSpeed,
     malformedRecording,
     multiCarRecording,
     reversingRecording,
+    sideBySideRecording,
     vehicleMissingAWheel,
     versionOneRecording,
 } from "./recordings.mjs";
@@ -311,6 +313,32 @@ await check("a recording of three cars lists them all and follows the one picked
     }),
 );
 
+await check("contacts between cars show in the HUD of both cars and on the canvas", () =>
+    withPage(browser, async ({ page, open }) => {
+        const touching = makePage(writeRecording("side_by_side", sideBySideRecording(1)), "side_by_side");
+        const never = makePage(
+            writeRecording("side_by_side_apart", sideBySideRecording(1, { without: true })),
+            "side_by_side_apart",
+        );
+        const pixels = () => canvasPixels(page, 384, 216);
+        await waitReady(page, await open(touching, "#t=0.45"));
+        assert.equal((await hud(page)).carContacts, 1, "car 0 at 0.45 s");
+        const drawn = await pixels();
+        await setHash(page, "#t=0.1");
+        assert.equal((await hud(page)).carContacts, 0, "car 0 at 0.1 s");
+        const before = await pixels();
+        await waitReady(page, await open(never, "#t=0.45"));
+        assert.equal((await hud(page)).carContacts, 0, "the recording without them at 0.45 s");
+        const difference = meanDifference(drawn, await pixels());
+        assert.ok(difference > 0, "the contact between the cars is not drawn");
+        await setHash(page, "#t=0.1");
+        assert.equal(meanDifference(before, await pixels()), 0, "the pages differ where no cars touch");
+        await waitReady(page, await open(touching, "#t=0.45&car=1"));
+        assert.equal((await hud(page)).carContacts, 1, "car 1 at 0.45 s");
+        console.log(`car contact  drawn: the canvas differs by ${difference.toFixed(3)} per channel`);
+    }),
+);
+
 await check("a version-1 recording opens; a dropped recording replaces it", () =>
     withPage(browser, async ({ page, open }) => {
         const v1 = makePage(writeRecording("version_1", versionOneRecording(3)), "version_1");
@@ -366,6 +394,17 @@ await check("a malformed recording is refused by view and, dropped, shows a read
         await dropFiles(page, [["notes.txt", "hello"]]);
         await page.waitForFunction(() =>
             document.querySelector('[data-testid="error"]').textContent.includes("not a trackphys recording"),
+        );
+        const noCar = writeRecording("car_contact_naming_no_car", carContactNamingNoCar());
+        assert.throws(
+            () => makePage(noCar, "car_contact_naming_no_car"),
+            (e) => /line 2: car_contacts\[0\] must name two of the 2 cars, the lower first/.test(String(e.stderr)),
+        );
+        await dropFiles(page, [["no_car.jsonl", carContactNamingNoCar()]]);
+        await page.waitForFunction(() =>
+            document
+                .querySelector('[data-testid="error"]')
+                .textContent.includes("line 2: car_contacts[0] must name two of the 2 cars, the lower first"),
         );
         await dropFiles(page, [["short_of_a_wheel.jsonl", vehicleMissingAWheel()]]);
         await page.waitForFunction(() =>

@@ -80,6 +80,8 @@ export async function hud(page) {
         time: Number(await text("hud-time")),
         speed: Number(await text("hud-speed")),
         camera: await text("hud-camera"),
+        contacts: Number(await text("hud-contacts")),
+        carContacts: Number(await text("hud-car-contacts")),
     };
 }
 

@@ -1,5 +1,5 @@
-// Hand-made recordings for the browser tests: several cars, version 1, and malformed ones
-// (a line cut off, a vehicle short of a wheel). Cars run along straight lines on flat
+// Hand-made recordings for the browser tests: several cars, cars touching, version 1, and
+// malformed ones (a line cut off, a vehicle short of a wheel, a contact naming no car). Cars run along straight lines on flat
 // ground, so every value the page shows can be computed here.
 
 const DT = 0.01;
@@ -89,6 +89,30 @@ export function vehicleMissingAWheel() {
     const [head, frame] = multiCarRecording(1, 0.01).trimEnd().split("\n");
     const f = JSON.parse(frame);
     f.cars[0].vehicle = { rpm: 3000, gear: 1, wheels: [0, 1, 2].map(() => [0, 0, 3000, 10]) };
+    return `${head}\n${JSON.stringify(f)}\n`;
+}
+
+/** Two cars side by side, car 1 2.2 m to the left of car 0, whose bodies touch from 0.3 s
+ * to 0.6 s: each of those frames lists one contact between them, 2 cm deep, which `without`
+ * leaves out (the same recording otherwise). */
+export function sideBySideRecording(seconds, { without = false } = {}) {
+    const [head, ...lines] = multiCarRecording(2, seconds).trimEnd().split("\n");
+    const touching = lines.map((line) => {
+        const f = JSON.parse(line);
+        const [a, b] = f.cars;
+        b.p = [a.p[0] + 2.2, a.p[1], a.p[2]];
+        if (!without && f.t >= 0.3 && f.t <= 0.6)
+            f.car_contacts = [[0, 1, 4, 4, a.p[0] + 1.1, a.p[1], a.p[2], -1, 0, 0, 0.02]];
+        return JSON.stringify(f);
+    });
+    return [head, ...touching].join("\n") + "\n";
+}
+
+/** Two cars whose first frame lists a contact between car 0 and a car 2 (line 2). */
+export function carContactNamingNoCar() {
+    const [head, frame] = multiCarRecording(2, 0.01).trimEnd().split("\n");
+    const f = JSON.parse(frame);
+    f.car_contacts = [[0, 2, 0, 0, 0, 0, 0, 1, 0, 0, 0.01]];
     return `${head}\n${JSON.stringify(f)}\n`;
 }
 

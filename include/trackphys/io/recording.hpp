@@ -61,7 +61,7 @@ struct RecordedCar {
 /// Writes a drive as JSON Lines for a viewer to replay (format version 2, docs/recording.md):
 /// a header line, then one line per recorded update with every car's pose, speed,
 /// suspension, inputs, the contacts of its ellipsoids and, for a car with a vehicle model,
-/// its engine speed, gear and wheels.
+/// its engine speed, gear and wheels, and the contacts between cars (only when some touch).
 ///
 ///     {"format":"trackphys-recording","version":2,"dt":0.01,"cars":1,"scene":"...",
 ///      "track":{"mesh":"drive.track.glb"},"car_ellipsoids":[[{"center":[..],...}]]}
@@ -69,7 +69,8 @@ struct RecordedCar {
 ///       "s":[...],"in":[throttle,brake,steer],"lap":0,
 ///       "contacts":[[px,py,pz,nx,ny,nz,depth,ellipsoid],...],
 ///       "vehicle":{"rpm":6500,"gear":3,"wheels":[[slip_ratio,slip_angle_deg,load_n,
-///                  spin_rad_s],...]}}]}
+///                  spin_rad_s],...]}}],
+///      "car_contacts":[[car_a,car_b,ellipsoid_a,ellipsoid_b,px,py,pz,nx,ny,nz,depth],...]}
 ///
 /// Units are SI, world +Y up; q maps the car's body frame (+X left, +Y up, +Z forward) to
 /// the world. The file is written under a temporary name and renamed by finish(), so a
@@ -105,7 +106,10 @@ class TRACKPHYS_API RecordingWriter : private DebugDraw {
     /// short of the header's cars;
     /// the line is then unfinished, and finish() refuses to put the file in place.
     void add_car(const RecordedCar& car);
-    void end_frame();
+    /// Ends the line with the pairs of cars touching (World::car_contacts; only those with
+    /// depth > 0 are written). Throws trackphys::Error for a line short of the header's cars
+    /// or a contact naming a car or an ellipsoid the header has not (car_a < car_b).
+    void end_frame(std::span<const CarPairContact> car_contacts = {});
 
     /// Flushes and renames the file into place; throws trackphys::Error on failure or after a
     /// line was left unfinished.
@@ -116,6 +120,7 @@ class TRACKPHYS_API RecordingWriter : private DebugDraw {
     void draw_car(std::size_t index, const Car& car) override;
     void draw_ellipsoid(const DebugEllipsoid& ellipsoid) override;
     void draw_contact(const DebugContact& contact) override;
+    void draw_car_contact(const CarPairContact& contact) override;
     // Writes the car draw_car started, if any.
     void add_drawn_car();
 
@@ -132,6 +137,7 @@ class TRACKPHYS_API RecordingWriter : private DebugDraw {
     std::optional<int> drawn_laps_;
     std::vector<double> drawn_suspension_;
     std::vector<Contact> drawn_contacts_;
+    std::vector<CarPairContact> drawn_car_contacts_;
     std::span<const std::optional<int>> frame_laps_;
 };
 

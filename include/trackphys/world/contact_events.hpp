@@ -6,6 +6,7 @@
 #include <glm/vec3.hpp>
 
 #include "trackphys/collision/static_collider.hpp"
+#include "trackphys/geometry/contact.hpp"
 #include "trackphys/math/types.hpp"
 
 namespace trackphys {
@@ -47,6 +48,19 @@ struct BodyHitEvent {
     double depth = 0.0;                ///< overlap at that sub-step (m, > 0)
     /// How fast the body point moved into the triangle along the normal (m/s; > 0 into it).
     double approach_speed = 0.0;
+};
+
+/// Two cars touching at the last sub-step of the last update (World::car_contacts): the
+/// deepest of their overlapping ellipsoid pairs.
+struct CarPairContact {
+    std::uint32_t car_a = 0;        ///< the lower car index
+    std::uint32_t car_b = 0;        ///< the higher car index
+    std::uint32_t ellipsoid_a = 0;  ///< car_a's ellipsoid (index into its CarSpec::ellipsoids)
+    std::uint32_t ellipsoid_b = 0;  ///< car_b's ellipsoid
+    /// Their contact as ellipsoid_ellipsoid_contact gives it, found before the sub-step's
+    /// integration: point (m, world), unit normal (moving car_a along it separates the
+    /// cars), depth (m, > 0).
+    Contact contact{0.0, glm::dvec3(0.0, 1.0, 0.0), glm::dvec3(0.0)};
 };
 
 /// What touched what during the last World::update(), in an order that depends on the

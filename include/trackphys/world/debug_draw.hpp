@@ -10,6 +10,7 @@
 #include "trackphys/geometry/contact.hpp"
 #include "trackphys/geometry/ellipsoid.hpp"
 #include "trackphys/geometry/triangle.hpp"
+#include "trackphys/world/contact_events.hpp"
 
 namespace trackphys {
 
@@ -20,6 +21,7 @@ struct DebugDrawOptions {
     bool cars = true;               ///< DebugDraw::draw_car
     bool ellipsoids = true;         ///< DebugDraw::draw_ellipsoid
     bool contacts = true;           ///< DebugDraw::draw_contact
+    bool car_contacts = true;       ///< DebugDraw::draw_car_contact
     bool update_boxes = false;      ///< DebugDraw::draw_update_box
     bool listed_triangles = false;  ///< DebugDraw::draw_listed_triangle
     bool kept_triangles = false;    ///< DebugDraw::draw_kept_triangle
@@ -29,6 +31,7 @@ struct DebugDrawOptions {
         return {.cars = true,
                 .ellipsoids = true,
                 .contacts = true,
+                .car_contacts = true,
                 .update_boxes = true,
                 .listed_triangles = true,
                 .kept_triangles = true};
@@ -64,7 +67,8 @@ struct DebugTriangle {
 /// ellipsoids and contacts rather than lines). World::debug_draw calls these; each has an
 /// empty default, so an implementation overrides only what it draws. Calls come car by car
 /// (World::car order); within a car: draw_car, its ellipsoids, its contacts, its update box,
-/// its listed triangles, its kept triangles, each in ellipsoid order (CarSpec order).
+/// its listed triangles, its kept triangles, each in ellipsoid order (CarSpec order); then
+/// the contacts between cars, by pair.
 /// The recording writer (RecordingWriter::write_frame) is one implementation.
 class TRACKPHYS_API DebugDraw {
   public:
@@ -79,6 +83,9 @@ class TRACKPHYS_API DebugDraw {
     /// found before that sub-step's integration, so a contact point lags the drawn ellipsoid
     /// by one sub-step of motion (settings().substep_dt() times the car's speed).
     virtual void draw_contact(const DebugContact& contact);
+    /// Each pair of cars touching at the last sub-step, by (car_a, car_b): exactly
+    /// World::car_contacts(). Found before that sub-step's integration, as draw_contact's.
+    virtual void draw_car_contact(const CarPairContact& contact);
     /// The box the car's broad phase covered in its last update (m, world): every triangle
     /// the update could touch meets it.
     virtual void draw_update_box(std::size_t car, const Aabb& box);

@@ -162,6 +162,15 @@ class TRACKPHYS_API World {
     /// for.
     void update();
 
+    /// The pairs of cars touching at the last sub-step of the last update, by (car_a,
+    /// car_b): each pair's deepest overlapping ellipsoid pair and its contact, what
+    /// contacts(i) is for the road. The same for any number of threads or a job system.
+    /// Empty until the next update after restore_state or remove_car (whose indices it would
+    /// hold stale); teleport_car drops the moved car's pairs. A view into the World's
+    /// buffer, valid until its next update(), add_car, remove_car, teleport_car or
+    /// restore_state; a warm field allocates nothing for it.
+    std::span<const CarPairContact> car_contacts() const;
+
     /// What touched what during the last update (docs/design.md#contact-events): cars that
     /// began or stopped touching each other, with where and how fast, and body ellipsoids
     /// that started touching the static world (wheels rolling on the road are not events).
