@@ -3,7 +3,7 @@
 #include <array>
 #include <cmath>
 #include <cstring>
-#include <sstream>
+#include <string>
 #include <utility>
 
 #include <glm/geometric.hpp>
@@ -14,27 +14,21 @@
 
 namespace trackphys {
 
+// An empty string, which allocates nothing, for a valid ellipsoid: the constructor runs this
+// on every call (a game may build its ellipsoids every frame), so only a refusal formats.
 std::string Ellipsoid::validate(const glm::dvec3& center, const glm::dquat& orientation,
                                 const glm::dvec3& semi_axes) {
-    std::ostringstream why;
-    if (!is_finite(center)) {
-        why << "ellipsoid center is not finite (" << center.x << ", " << center.y << ", "
-            << center.z << ")";
-    } else if (!is_finite(orientation)) {
-        why << "ellipsoid orientation quaternion is not finite";
-    } else if (!(glm::length(orientation) > 1e-150)) {
-        why << "ellipsoid orientation quaternion is zero";
-    } else {
-        static constexpr const char* axis_name[3] = {"x", "y", "z"};
-        for (int i = 0; i < 3; ++i) {
-            if (!std::isfinite(semi_axes[i]) || !(semi_axes[i] > 0.0)) {
-                why << "ellipsoid semi-axis " << axis_name[i] << " must be finite and > 0, got "
-                    << exact_text(semi_axes[i]);
-                break;
-            }
-        }
-    }
-    return why.str();
+    if (!is_finite(center))
+        return "ellipsoid center is not finite (" + exact_text(center.x) + ", " +
+               exact_text(center.y) + ", " + exact_text(center.z) + ")";
+    if (!is_finite(orientation)) return "ellipsoid orientation quaternion is not finite";
+    if (!(glm::length(orientation) > 1e-150)) return "ellipsoid orientation quaternion is zero";
+    static constexpr const char* axis_name[3] = {"x", "y", "z"};
+    for (int i = 0; i < 3; ++i)
+        if (!std::isfinite(semi_axes[i]) || !(semi_axes[i] > 0.0))
+            return std::string("ellipsoid semi-axis ") + axis_name[i] +
+                   " must be finite and > 0, got " + exact_text(semi_axes[i]);
+    return {};
 }
 
 Ellipsoid::Ellipsoid(const glm::dvec3& center, const glm::dquat& orientation,
