@@ -1,6 +1,7 @@
 #include "trackphys/geometry/point_ellipse.hpp"
 
 #include "geometry/ellipsoid_roots.hpp"
+#include "geometry/sorted_query_check.hpp"
 #include "trackphys/assert.hpp"
 
 namespace trackphys {
@@ -13,6 +14,8 @@ EllipseCriticalPoint to_public(const detail::CriticalPoint<2>& cp) {
 }  // namespace
 
 EllipseCriticalPoints ellipse_critical_points(const glm::dvec2& sorted_radii, const glm::dvec2& p) {
+    detail::check_sorted_query<2>("ellipse_critical_points", {sorted_radii.x, sorted_radii.y},
+                                  {p.x, p.y});
     detail::CriticalSolver<2> solver({sorted_radii.x, sorted_radii.y}, {p.x, p.y});
     detail::CriticalPoints<2> found;
     solver.solve(detail::CriticalSet::all, found);
@@ -25,6 +28,8 @@ EllipseCriticalPoints ellipse_critical_points(const glm::dvec2& sorted_radii, co
 }
 
 EllipseCriticalPoint closest_point_on_ellipse(const glm::dvec2& sorted_radii, const glm::dvec2& p) {
+    detail::check_sorted_query<2>("closest_point_on_ellipse", {sorted_radii.x, sorted_radii.y},
+                                  {p.x, p.y});
     detail::CriticalSolver<2> solver({sorted_radii.x, sorted_radii.y}, {p.x, p.y});
     detail::CriticalPoints<2> found;
     solver.solve(detail::CriticalSet::closest, found);

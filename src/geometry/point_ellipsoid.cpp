@@ -5,6 +5,7 @@
 #include <glm/geometric.hpp>
 
 #include "geometry/ellipsoid_roots.hpp"
+#include "geometry/sorted_query_check.hpp"
 #include "trackphys/assert.hpp"
 
 namespace trackphys {
@@ -15,6 +16,8 @@ glm::dvec3 to_vec(const std::array<double, 3>& a) { return {a[0], a[1], a[2]}; }
 }  // namespace
 
 PointEllipsoid closest_point_on_sorted_ellipsoid(const glm::dvec3& r, const glm::dvec3& p) {
+    detail::check_sorted_query<3>("closest_point_on_sorted_ellipsoid", {r.x, r.y, r.z},
+                                  {p.x, p.y, p.z});
     detail::CriticalSolver<3> solver({r.x, r.y, r.z}, {p.x, p.y, p.z});
     detail::CriticalPoints<3> found;
     solver.solve(detail::CriticalSet::closest, found);
@@ -31,6 +34,7 @@ PointEllipsoid closest_point_on_ellipsoid(const Ellipsoid& ellipsoid, const glm:
 }
 
 EllipsoidCriticalPoints ellipsoid_critical_points(const glm::dvec3& r, const glm::dvec3& p) {
+    detail::check_sorted_query<3>("ellipsoid_critical_points", {r.x, r.y, r.z}, {p.x, p.y, p.z});
     detail::CriticalSolver<3> solver({r.x, r.y, r.z}, {p.x, p.y, p.z});
     detail::CriticalPoints<3> found;
     solver.solve(detail::CriticalSet::all, found);

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -11,6 +12,7 @@
 #include "geometry/writeup_root_finders.hpp"
 #include "support/ellipsoid_reference.hpp"
 #include "support/point_cases.hpp"
+#include "trackphys/error.hpp"
 #include "trackphys/geometry/point_ellipse.hpp"
 
 namespace trackphys {
@@ -256,6 +258,49 @@ TEST(PointEllipsoid, WorldFrameWrapperMatchesTheSortedFrame) {
     EXPECT_LE(glm::distance(e.to_sorted_local(world.point), local.point), 1e-14);
     EXPECT_NEAR(glm::distance(p, world.point), std::abs(world.distance), 1e-14);
     EXPECT_GT(glm::dot(world.normal, p - world.point) * world.distance, 0.0);
+}
+
+// Radii in another order (an ellipsoid's semi_axes() for its sorted_radii()) or a point that
+// is not finite are refused, naming the call: the solver would find no root.
+TEST(PointEllipsoid, UnsortedRadiiOrANonFinitePointAreRefused) {
+    const glm::dvec3 p(0.3, 0.2, 0.1);
+    const auto refused = [](const auto& call) {
+        try {
+            call();
+        } catch (const Error& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    EXPECT_EQ(refused([&] {
+                  closest_point_on_sorted_ellipsoid({0.15, 0.35, 0.35}, p);
+              }),
+              "closest_point_on_sorted_ellipsoid: the radii must be finite, > 0 and sorted from "
+              "the largest, got (0.15, 0.35, 0.35)");
+    EXPECT_EQ(refused([&] {
+                  ellipsoid_critical_points({1.0, 0.5, 0.0}, p);
+              }),
+              "ellipsoid_critical_points: the radii must be finite, > 0 and sorted from the "
+              "largest, got (1, 0.5, 0)");
+    EXPECT_EQ(refused([&] {
+                  closest_point_on_sorted_ellipsoid({1.0, 0.5, 0.25}, {0.0, NAN, 0.0});
+              }),
+              "closest_point_on_sorted_ellipsoid: the point is not finite (0, nan, 0)");
+    EXPECT_EQ(refused([&] {
+                  closest_point_on_ellipse({0.5, 1.0}, {0.3, 0.2});
+              }),
+              "closest_point_on_ellipse: the radii must be finite, > 0 and sorted from the "
+              "largest, got (0.5, 1)");
+    EXPECT_EQ(refused([&] {
+                  ellipse_critical_points({1.0, 0.5}, {INFINITY, 0.2});
+              }),
+              "ellipse_critical_points: the point is not finite (inf, 0.2)");
+    // Sorted, with equal radii: answered.
+    EXPECT_NEAR(
+        closest_point_on_sorted_ellipsoid({0.35, 0.35, 0.15}, p).distance,
+        closest_point_on_ellipsoid(Ellipsoid({0, 0, 0}, {1, 0, 0, 0}, {0.35, 0.35, 0.15}), p)
+            .distance,
+        1e-15);
 }
 
 /// The write-up's claims, measured: per point class, the share of cases where its 5-step

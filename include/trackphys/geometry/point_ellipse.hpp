@@ -31,11 +31,13 @@ struct EllipseCriticalPoints {
 };
 
 /// Every critical point of the distance from p to the ellipse with sorted_radii x >= y > 0
-/// (m) centred at the origin along the axes.
+/// (m) centred at the origin along the axes. Throws trackphys::Error for radii not so or a
+/// point not finite.
 TRACKPHYS_API EllipseCriticalPoints ellipse_critical_points(const glm::dvec2& sorted_radii,
                                                             const glm::dvec2& p);
 
 /// The closest point of that ellipse to p (count 1): its offset is the signed distance.
+/// Throws as ellipse_critical_points does.
 TRACKPHYS_API EllipseCriticalPoint closest_point_on_ellipse(const glm::dvec2& sorted_radii,
                                                             const glm::dvec2& p);
 

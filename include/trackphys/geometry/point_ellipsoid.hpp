@@ -23,7 +23,9 @@ struct PointEllipsoid {
 TRACKPHYS_API PointEllipsoid closest_point_on_ellipsoid(const Ellipsoid& ellipsoid,
                                                         const glm::dvec3& p);
 
-/// The same in the sorted frame: radii x >= y >= z > 0 (m), p in that frame.
+/// The same in the sorted frame: radii x >= y >= z > 0 (m), p in that frame. Throws
+/// trackphys::Error for radii not so (an ellipsoid's semi_axes() rather than its
+/// sorted_radii(), say) or a point not finite.
 TRACKPHYS_API PointEllipsoid closest_point_on_sorted_ellipsoid(const glm::dvec3& sorted_radii,
                                                                const glm::dvec3& p);
 
@@ -49,7 +51,8 @@ struct EllipsoidCriticalPoints {
 
 /// All critical points of the distance from p (sorted frame) to the ellipsoid with
 /// sorted_radii x >= y >= z > 0 (m). Roots are found by the robust concave-h climb beside
-/// each pole, which also proves when a middle interval of f holds no root.
+/// each pole, which also proves when a middle interval of f holds no root. Throws
+/// trackphys::Error as closest_point_on_sorted_ellipsoid does.
 TRACKPHYS_API EllipsoidCriticalPoints ellipsoid_critical_points(const glm::dvec3& sorted_radii,
                                                                 const glm::dvec3& p);
 
