@@ -168,5 +168,22 @@ TEST(Tyre, InvalidCoefficientsNameTheField) {
     EXPECT_NE(spec.validate("t.").find("t.lateral_relaxation"), std::string::npos);
 }
 
+// The friction must stay > 0 up to the top of the load range (3 F_z0): a slope at or below
+// -0.5 leaves the tyre no grip there, which an autopilot planning from lowest_friction()
+// would take for a road it cannot turn on.
+TEST(Tyre, ALoadSlopeThatLosesAllGripInTheLoadRangeIsRefused) {
+    TyreSpec spec = TyreSpec::road();
+    spec.lateral.friction_load_slope = -0.4999;
+    EXPECT_EQ(spec.validate("t."), "");
+    EXPECT_GT(spec.lateral.lowest_friction(), 0.0);
+    for (const double slope : {-0.5, -0.6, -0.9}) {
+        spec.lateral.friction_load_slope = slope;
+        EXPECT_EQ(spec.validate("t."),
+                  "t.lateral.friction_load_slope must be in (-0.5, 0] (the friction at 3 times "
+                  "the nominal load, mu (1 + 2 slope), must stay > 0), got " +
+                      exact_text(slope));
+    }
+}
+
 }  // namespace
 }  // namespace trackphys
