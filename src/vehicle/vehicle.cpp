@@ -193,8 +193,8 @@ TyreForce Vehicle::slow_wheel_force(const Wheel& wheel, WheelState& s, double lo
     // more, with a jump at low_speed).
     const double fade =
         std::max(0.0, 1.0 - std::hypot(rolling_velocity, lateral_velocity) / spec_.low_speed);
-    const double slope_x = ts.longitudinal.stiffness * ts.longitudinal.shape * dry.longitudinal;
-    const double slope_y = ts.lateral.stiffness * ts.lateral.shape * dry.lateral;
+    const double slope_x = ts.longitudinal.slip_stiffness(dry.longitudinal);
+    const double slope_y = ts.lateral.slip_stiffness(dry.lateral);
     const double damping_x =
         fade * 2.0 * std::sqrt(slope_x / ts.longitudinal_relaxation * wheel.critical_mass);
     const double damping_y =

@@ -18,7 +18,7 @@ namespace trackphys {
 /// dfz = (F_z - F_z0) / F_z0 the load's departure from the tyre's nominal load.
 struct MagicFormulaCurve {
     double stiffness = 10.0;  ///< B: stiffness factor
-    double shape = 1.9;       ///< C: shape factor, in (1, 2) for a curve that peaks
+    double shape = 1.9;       ///< C: shape factor, in (1, 2] for a curve that peaks
     double curvature = 0.97;  ///< E: curvature factor, <= 1
     double friction = 1.0;    ///< mu: peak force over load at the nominal load
     /// d mu / d dfz over mu: how the peak friction falls as the load rises (MF 5.2's
@@ -39,6 +39,9 @@ struct MagicFormulaCurve {
     }
     /// F(x) for peak force D (N).
     TRACKPHYS_API double force(double slip, double peak_force) const;
+    /// F'(0) = B C D for peak force D (N): the slip stiffness (N per unit slip) that a
+    /// damper or a stability bound on the curve reads.
+    double slip_stiffness(double peak_force) const { return stiffness * shape * peak_force; }
     /// The slip at which F peaks: where C atan(Phi) = pi/2, solved for x. Throws
     /// trackphys::Error when the curve has no peak (validate() says why).
     TRACKPHYS_API double peak_slip() const;
@@ -99,6 +102,10 @@ class TRACKPHYS_API Tyre {
     /// slip is minus the sideways velocity over the rolling speed).
     /// road_grip scales both peaks: the road's friction relative to the dry road the
     /// curves describe (0.05 for ice).
+    /// Unchecked, for the sub-step's sake: the slips must be finite and of a size whose
+    /// square is (the vehicle model keeps them within +-50; an infinite slip, from a speed
+    /// divided by zero, gives NaN) and road_grip > 0 (a negative one reverses the force,
+    /// which Vehicle::set_road_grip refuses for that reason).
     TyreForce force(double slip_ratio, double lateral_slip, double load,
                     double road_grip = 1.0) const;
     /// The same force from the peaks (N) that peaks() gives for its load and road: a wheel
