@@ -7,8 +7,7 @@ target_sources(trackphys PRIVATE
   geometry/contact.cpp
   geometry/contact_extremes.cpp
   geometry/point_ellipse.cpp
-  geometry/point_ellipsoid.cpp
-  geometry/writeup_root_finders.cpp)
+  geometry/point_ellipsoid.cpp)
 target_sources(trackphys PRIVATE
   geometry/ellipsoid_pair.cpp
   geometry/ellipsoid_pair_kernel.cpp
