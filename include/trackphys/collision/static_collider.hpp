@@ -79,9 +79,11 @@ struct TriangleRef {
 /// soup of unshared vertices. The box queries test the 16-bit
 /// boxes eight at a time and read a triangle's vertices only when its box lies within about
 /// two grid steps of the query's (sphere and capsule: for the distance test).
-/// NormalizedTriangle frames are not stored: 120 bytes in double would break the 80-byte
-/// budget, and every exact predicate needs the double vertices anyway. The mid phase builds
-/// the few hundred frames it culls per update with normalized_triangle(). Surface ids, when
+/// NormalizedTriangle frames are not stored here: 120 bytes in double would nearly triple
+/// the ~45 bytes a triangle, and every exact predicate needs the double vertices anyway.
+/// A world's plane trees keep them instead when they fit kPlaneTreeFrameBudget (a generated
+/// track's do); otherwise the mid phase builds the frames it culls with
+/// normalized_triangle(). Surface ids, when
 /// the mesh has any but 0, by mesh index (2 bytes a triangle).
 class TRACKPHYS_API StaticCollider {
   public:

@@ -75,25 +75,29 @@ struct TRACKPHYS_API CarSpec {
     /// 10 m/s sink at most 2.4 cm into each other (v sqrt(m_pair / k), m_pair = 600 kg); faster
     /// impacts are stopped by the deep-contact impulse (see World).
     ContactMaterial car_contact{1.0e8, 1.0e5, 0.5, 0.001};
-    /// The rear tyres are wider: their friction is wheel_contact.friction times this. With
+    // The drive, brake and grip fields below marked "arcade" are the arcade car's: a car with
+    // a vehicle model (CarSpec::vehicle) takes its torque, brakes and grip from the model's
+    // engine, brake torque and tyres, and ignores them (a printed gt spec lists them all).
+
+    /// Arcade: the rear tyres are wider: their friction is wheel_contact.friction times this. With
     /// tyres whose grip is proportional to load, both axles would saturate together and the
     /// car would be on the edge of a spin at every limit; more grip at the rear makes it
     /// understeer instead, as road cars are set up to.
     double rear_grip_factor = 1.15;
     Suspension suspension;
-    double max_drive_force = 2.0e4;  ///< N over all wheels, below the power limit
+    double max_drive_force = 2.0e4;  ///< arcade: N over all wheels, below the power limit
     /// Share of the drive force at the front wheels (0 = rear-wheel drive, 1 = front).
     double front_drive_share = 0.4;
-    /// Traction control and anti-lock brakes: a wheel's drive or brake force is at most
+    /// Arcade: traction control and anti-lock brakes: a wheel's drive or brake force is at most
     /// this share of its grip mu F_n, so that a spinning or locked wheel never uses up the
     /// lateral grip that keeps the car on its line.
     double traction_limit = 0.8;
-    double max_drive_power = 6.0e6;  ///< W: drive force is min(max_drive_force, P / v)
+    double max_drive_power = 6.0e6;  ///< arcade: W, drive force is min(max_drive_force, P / v)
     /// Top speed in reverse (m/s): the reverse drive force (a negative CarInputs::throttle)
     /// fades linearly from the full drive force at rest to none at this speed backwards;
     /// 0 gives the car no reverse. The vehicle model's reverse is its gearbox's instead.
     double max_reverse_speed = 10.0;
-    double max_brake_force = 3.0e4;  ///< N over all wheels, bounded by grip
+    double max_brake_force = 3.0e4;  ///< arcade: N over all wheels, bounded by grip
     /// Share of the brake force at the front wheels: more than half, so that the rear
     /// keeps its grip under braking and the car stays straight.
     double front_brake_share = 0.6;

@@ -59,7 +59,9 @@ struct DifferentialSpec {
 /// A car with spinning wheels, Magic Formula tyres and a drivetrain (docs/vehicle.md),
 /// on top of CarSpec's ellipsoids, mass, suspension and aerodynamics. CarSpec's
 /// front_drive_share splits the torque at the centre differential (0 = rear drive) and
-/// front_brake_share is the brake bias; the arcade drive and grip fields are not used.
+/// front_brake_share is the brake bias; the arcade drive and grip fields (rear_grip_factor,
+/// max_drive_force, max_drive_power, traction_limit, max_brake_force, max_reverse_speed)
+/// are not used.
 struct VehicleSpec {
     std::string model = "gt";  ///< the preset it came from, for the spec file's "model"
     TyreSpec front_tyre;
