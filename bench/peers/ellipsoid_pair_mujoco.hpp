@@ -5,8 +5,12 @@
 // convex collider (libccd's MPR on the two support functions, default mpr_tolerance and
 // mpr_iterations), through mj_collision after mj_kinematics, as a simulation step does.
 // Each query sets the two geoms' sizes and bounding radii and the free bodies' poses in one
-// model of two ellipsoids. MuJoCo reports a contact only within the geoms' margin, so the
-// margin is the centres' distance (beyond any gap) and the depth is -dist of its contact.
+// model of two ellipsoids. MuJoCo reports a contact only within the geoms' margin, and its
+// MPR answers worse the larger the margin (it works on the shapes grown by it: with the
+// centres' distance as the margin, a car-like pair's median error was 0.061 m, with none
+// 0.0062 m on the overlapping ones), so the margin is the least one sure to hold the gap
+// without knowing the answer: the centres' distance less the two smallest semi-axes (the
+// inscribed balls' gap, at least the solids'), plus 1 mm. The depth is -dist of its contact.
 
 #include <algorithm>
 #include <cstdio>
@@ -57,7 +61,9 @@ class MujocoPairScene {
 
     PairPeerDepth depth(const Ellipsoid& a, const Ellipsoid& b) {
         // Each geom's margin counts in full (MuJoCo takes the larger of the pair's two).
-        const double margin = glm::distance(a.center(), b.center()) + 1e-3;
+        const double balls_gap =
+            glm::distance(a.center(), b.center()) - a.sorted_radii().z - b.sorted_radii().z;
+        const double margin = std::max(balls_gap, 0.0) + 1e-3;
         place(0, a, margin);
         place(1, b, margin);
         mj_kinematics(model_, data_);

@@ -235,6 +235,8 @@ void bench_pair_peers(BenchRun& run) {
             BenchRow& row =
                 run.add(kGroup, name + ": " + methods[m].name, s.median_ns, m ? ours_name : "");
             row.figures = {{"pairs", double(family.cases.size())},
+                           {"mean_ns", s.mean_ns},
+                           {"p99_ns", s.p99_ns},
                            {"err_max_m", s.max_error},
                            {"failures", double(s.failures)}};
             if (m > 0 && !s.worst.empty()) row.note = "worst " + s.worst;
