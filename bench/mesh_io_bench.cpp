@@ -8,7 +8,7 @@
 
 #include <benchmark/benchmark.h>
 
-#include "io/mapped_file.hpp"
+#include "io/file_bytes.hpp"
 #include "io/mesh_checks.hpp"
 #include "support/grid_mesh.hpp"
 #include "trackphys/io/mesh_io.hpp"
@@ -50,7 +50,7 @@ void BM_LoadMesh(benchmark::State& state, const std::string& extension) {
     remove_bench_files(extension);
 }
 
-// The strict check alone, the file mapped as load_mesh maps it (src/io/mesh_checks.hpp):
+// The strict check alone, the file read as load_mesh reads it (src/io/mesh_checks.hpp):
 // what bounding the import adds to a load (docs/benchmarks.md).
 void BM_CheckMesh(benchmark::State& state, const std::string& extension) {
     const fs::path path = bench_file(extension);
@@ -58,7 +58,7 @@ void BM_CheckMesh(benchmark::State& state, const std::string& extension) {
     const trackphys::detail::MeshFormat format = *trackphys::detail::mesh_format_of(path);
     const trackphys::MeshLoadLimits limits;
     for (auto _ : state) {
-        const trackphys::detail::MappedFile file(path);
+        const trackphys::detail::FileBytes file(path);
         benchmark::DoNotOptimize(trackphys::detail::check_mesh(
             file.bytes(), format, path.parent_path(), limits.max_nesting));
     }

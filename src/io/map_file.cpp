@@ -14,9 +14,9 @@
 #include <system_error>
 
 #include "core/parallel_items.hpp"
+#include "file_bytes.hpp"
 #include "map_body.hpp"
 #include "map_codec.hpp"
-#include "mapped_file.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/io/regular_file.hpp"
 
@@ -381,8 +381,7 @@ StaticMap load_static_world(const std::filesystem::path& path,
                             std::size_t frame_budget_bytes) {
     const std::string source = "map '" + path.string() + "'";
     require_regular_file(path, source);
-    // Mapped, not read: the arrays are copied once, from the page cache into the structures.
-    const detail::MappedFile file(path, "map");
+    const detail::FileBytes file(path, "map");
     return decode_map(file.bytes(), source, expected, threads, frame_budget_bytes);
 }
 

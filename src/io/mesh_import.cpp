@@ -26,7 +26,7 @@
 #include <glm/matrix.hpp>
 
 #include "io/confined_io_system.hpp"
-#include "io/mapped_file.hpp"
+#include "io/file_bytes.hpp"
 #include "io/mesh_checks.hpp"
 #include "io/mesh_format.hpp"
 #include "trackphys/error.hpp"
@@ -380,8 +380,8 @@ TriangleMesh load_mesh(const fs::path& path, MeshLoadReport& report, const MeshL
     check_limits(limits);
     check_is_nonempty_file(path);
     const detail::MeshFormat format = format_of(path);
-    // Mapped once: the check walks these bytes and assimp reads them (confined_io_system.hpp).
-    const detail::MappedFile file(path);
+    // Read once: the check walks these bytes and assimp reads them (confined_io_system.hpp).
+    const detail::FileBytes file(path);
     check_byte_limit(path, file.bytes().size(), limits, "the file is");
     // What the check and assimp read: an OBJ without the UTF-8 byte order mark some editors
     // write first, which made assimp's reader lose the first statement.

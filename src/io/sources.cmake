@@ -11,7 +11,7 @@ target_sources(trackphys PRIVATE
   io/mesh_export.cpp
   io/confined_io_system.cpp
   io/gltf_check.cpp
-  io/mapped_file.cpp
+  io/file_bytes.cpp
   io/mesh_checks.cpp
   io/mesh_format.cpp
   io/mesh_import.cpp

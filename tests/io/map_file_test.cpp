@@ -5,11 +5,14 @@
 #include "trackphys/io/map_file.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cstddef>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <random>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -420,6 +423,40 @@ TEST(MapFile, SaveAndLoadNameTheFileAndLeaveNoPartialFile) {
               }).find("cannot write the map"),
               std::string::npos);
     EXPECT_FALSE(is_map_file(folder / "none.tpmap"));
+    std::filesystem::remove_all(folder);
+}
+
+// A map rewritten in place while a game loads it (an updater cutting it short and writing
+// it again): every load gives the map or an error naming the file, never a crash (a mapped
+// file's pages, gone with the truncation, killed the process with SIGBUS).
+TEST(MapFile, AFileRewrittenDuringTheLoadIsTheMapOrAnError) {
+    const std::filesystem::path folder = std::filesystem::temp_directory_path() /
+                                         ("trackphys-map-race-" + std::to_string(::getpid()));
+    std::filesystem::create_directories(folder);
+    const std::filesystem::path file = folder / "track.tpmap";
+    save_map(file, baked());
+    std::atomic<bool> stop{false};
+    std::thread writer([&] {
+        const std::string& bytes = baked_bytes();
+        while (!stop) {
+            std::filesystem::resize_file(file, bytes.size() / 3);
+            std::fstream(file, std::ios::binary | std::ios::in | std::ios::out)
+                .write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+        }
+    });
+    int loaded = 0, refused = 0;
+    for (int i = 0; i < 30; ++i) {
+        try {
+            EXPECT_EQ(load_static_world(file).statics->size(), baked().statics->size());
+            ++loaded;
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find("track.tpmap'"), std::string::npos) << e.what();
+            ++refused;
+        }
+    }
+    stop = true;
+    writer.join();
+    EXPECT_EQ(loaded + refused, 30);
     std::filesystem::remove_all(folder);
 }
 

@@ -68,7 +68,7 @@ struct MeshLoadReport {
 /// Bounded: the whole file is checked before assimp reads it (every count against the bytes
 /// that hold it, every index in range, nesting at most limits.max_nesting deep), so a hostile
 /// file is refused in time linear in its size and allocates at most a small multiple of it.
-/// The file is mapped and read once: the check and assimp see the same bytes. No file but the
+/// The file is read once: the check and assimp see the same bytes. No file but the
 /// mesh and, for glTF, the buffers it names inside its own folder is ever opened: no
 /// absolute path, `..`, URL or material file.
 ///
