@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "json_file.hpp"
 #include "map_info.hpp"
 #include "trackphys/collision/static_collider.hpp"
 #include "trackphys/error.hpp"
@@ -63,7 +64,7 @@ void print_json(const InfoOptions& options, const MeshLoadReport& r,
         {"mirrored_instances", r.mirrored_instances},
         {"surfaces", surface_list},
     };
-    std::printf("%s\n", out.dump(2).c_str());
+    std::printf("%s\n", report_text(out).c_str());
 }
 
 void print_vector(const char* label, const glm::dvec3& v) {

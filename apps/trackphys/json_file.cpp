@@ -7,10 +7,14 @@
 
 namespace trackphys::cli {
 
+std::string report_text(const nlohmann::json& json) {
+    return json.dump(2, ' ', false, nlohmann::json::error_handler_t::replace);
+}
+
 void write_json_file(const nlohmann::json& json, const std::filesystem::path& path) {
     std::ofstream out(path, std::ios::binary | std::ios::trunc);
     if (!out) throw Error("cannot open '" + path.string() + "' to write the JSON report");
-    out << json.dump(2) << '\n';
+    out << report_text(json) << '\n';
     if (!out.flush()) throw Error("cannot write the JSON report '" + path.string() + "'");
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <filesystem>
+#include <string>
 
 #include <nlohmann/json.hpp>
 
@@ -10,7 +11,12 @@ class TraceRecorder;
 
 namespace trackphys::cli {
 
-/// Writes `json` (indented) to `path`, a file StagedOutputs staged (so a reader never sees
+/// `json` as the reports print it: indented, and with bytes that are not UTF-8 (a file or
+/// material name in another encoding) replaced by U+FFFD, where nlohmann::json's dump would
+/// throw after the whole drive or race had run.
+std::string report_text(const nlohmann::json& json);
+
+/// Writes report_text(json) to `path`, a file StagedOutputs staged (so a reader never sees
 /// half a report). Throws trackphys::Error naming the file.
 void write_json_file(const nlohmann::json& json, const std::filesystem::path& path);
 

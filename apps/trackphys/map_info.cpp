@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "json_file.hpp"
 #include "trackphys/io/map_file.hpp"
 
 namespace trackphys::cli {
@@ -93,7 +94,7 @@ void print_map_info(const std::string& file, bool json) {
             out["track"] = {{"seed", map.track->params.seed},
                             {"length_m", map.track->length_m},
                             {"centerline_samples", map.track->centerline.size()}};
-        std::printf("%s\n", out.dump(2).c_str());
+        std::printf("%s\n", report_text(out).c_str());
         return;
     }
     std::printf("%-20s %s\n", "file", file.c_str());
