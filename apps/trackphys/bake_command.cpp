@@ -11,6 +11,7 @@
 
 #include "commands.hpp"
 #include "file_clashes.hpp"
+#include "staged_outputs.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/geometry/mesh_chunks.hpp"
 #include "trackphys/io/map_file.hpp"
@@ -38,6 +39,10 @@ void run_bake(const BakeOptions& o, const OptionGiven& given) {
     if (o.out.extension() != ".tpmap")
         throw Error("--out '" + o.out.string() + "': a map file's name ends in .tpmap");
     refuse_file_clashes({{"MESH", o.mesh}}, {{"--out", o.out}});
+    // Staged before the build, so that an --out the folder will not take is refused before
+    // seconds of work rather than after them.
+    StagedOutputs outputs;
+    const std::filesystem::path staged = outputs.stage(o.out, "--out");
     const auto start = std::chrono::steady_clock::now();
     StaticMap map;
     std::string source;
@@ -59,7 +64,8 @@ void run_bake(const BakeOptions& o, const OptionGiven& given) {
     }
     const double bake_s = seconds_since(start);
     const auto write_start = std::chrono::steady_clock::now();
-    save_map(o.out, map);
+    save_map(staged, map);
+    outputs.commit();
     const double write_s = seconds_since(write_start);
 
     std::size_t triangles = 0, kept = 0;
