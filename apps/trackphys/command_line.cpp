@@ -5,6 +5,7 @@
 #include "command_line.hpp"
 
 #include <cstddef>
+#include <limits>
 #include <memory>
 #include <string>
 
@@ -58,6 +59,12 @@ void add_mesh_limit_options(CLI::App& command, MeshLoadLimits& limits) {
                     "bytes of the mesh file and the glTF buffer files it names")
         ->group(group)
         ->check(at_least_one())
+        ->capture_default_str();
+    command
+        .add_option("--max-polygon-corners", limits.max_polygon_corners,
+                    "corners of one polygon (its triangulation's time grows with their square)")
+        ->group(group)
+        ->check(CLI::Range(std::size_t{3}, std::numeric_limits<std::size_t>::max()))
         ->capture_default_str();
     command
         .add_option("--max-nesting", limits.max_nesting, "nesting of AC3D objects and glTF nodes")

@@ -87,6 +87,9 @@ void check_limits(const MeshLoadLimits& limits) {
     if (limits.max_triangles == 0) refuse("max_triangles", "is 0: no mesh would load");
     if (limits.max_vertices == 0) refuse("max_vertices", "is 0: no mesh would load");
     if (limits.max_bytes == 0) refuse("max_bytes", "is 0: no mesh would load");
+    if (limits.max_polygon_corners < 3)
+        refuse("max_polygon_corners",
+               "is " + std::to_string(limits.max_polygon_corners) + ": no triangle would load");
     if (limits.max_nesting == 0) refuse("max_nesting", "is 0: no mesh would load");
     if (limits.max_nesting > max_mesh_nesting_allowed)
         refuse("max_nesting", "is " + std::to_string(limits.max_nesting) + ", more than the " +
@@ -238,6 +241,12 @@ class SceneMerger {
                 if (n == 0)
                     fail(path_,
                          mesh_label(mesh, m) + ", face " + std::to_string(f) + " has no indices");
+                if (n > limits_.max_polygon_corners)
+                    fail(path_, mesh_label(mesh, m) + ", face " + std::to_string(f) + " has " +
+                                    std::to_string(n) + " corners, more than " +
+                                    std::to_string(limits_.max_polygon_corners) +
+                                    ", the limit max_polygon_corners (triangulating a polygon "
+                                    "takes time growing with the square of its corners)");
                 if (n >= 3) expected_triangles_[m] += n - 2;
             }
         }

@@ -3,6 +3,7 @@
 
 #include "trackphys/io/mesh_load_limits.hpp"
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
@@ -148,6 +149,23 @@ TEST_F(MeshLoadLimitsTest, GltfNodeNestingAtTheLimitLoadsAndOneDeeperIsRefused) 
     expect_refused("thrice.gltf", limits, "nested deeper than 1, the limit max_nesting");
 }
 
+// A polygon at the corner limit loads, one corner more is refused before assimp triangulates
+// it (its time grows with the square of the corners: 32,000 took 12 s).
+TEST_F(MeshLoadLimitsTest, APolygonAtTheCornerLimitLoadsAndOneCornerMoreIsRefused) {
+    std::string obj;
+    for (int i = 0; i < 8; ++i)
+        obj += "v " + std::to_string(std::cos(i * 0.785398)) + " 0 " +
+               std::to_string(std::sin(i * 0.785398)) + "\n";
+    obj += "f 1 2 3 4 5 6 7 8\n";
+    test::write_file(file("octagon.obj"), obj);
+    MeshLoadLimits limits;
+    limits.max_polygon_corners = 8;
+    EXPECT_EQ(load_mesh(file("octagon.obj"), limits).triangles.size(), 6u);
+    limits.max_polygon_corners = 7;
+    expect_refused("octagon.obj", limits,
+                   "face 0 has 8 corners, more than 7, the limit max_polygon_corners");
+}
+
 TEST_F(MeshLoadLimitsTest, LimitsThatCannotBeMeantAreRefusedBeforeTheFileIsRead) {
     const fs::path missing = file("missing.obj");
     const auto message = [&missing](const MeshLoadLimits& limits) -> std::string {
@@ -158,12 +176,15 @@ TEST_F(MeshLoadLimitsTest, LimitsThatCannotBeMeantAreRefusedBeforeTheFileIsRead)
         }
         return "loaded";
     };
-    MeshLoadLimits zero_triangles, zero_vertices, zero_bytes, zero_nesting, too_deep;
+    MeshLoadLimits zero_triangles, zero_vertices, zero_bytes, zero_nesting, too_deep, two_corners;
     zero_triangles.max_triangles = 0;
     zero_vertices.max_vertices = 0;
     zero_bytes.max_bytes = 0;
     zero_nesting.max_nesting = 0;
     too_deep.max_nesting = max_mesh_nesting_allowed + 1;
+    two_corners.max_polygon_corners = 2;
+    EXPECT_EQ(message(two_corners),
+              "MeshLoadLimits::max_polygon_corners is 2: no triangle would load");
     EXPECT_EQ(message(zero_triangles), "MeshLoadLimits::max_triangles is 0: no mesh would load");
     EXPECT_EQ(message(zero_vertices), "MeshLoadLimits::max_vertices is 0: no mesh would load");
     EXPECT_EQ(message(zero_bytes), "MeshLoadLimits::max_bytes is 0: no mesh would load");
