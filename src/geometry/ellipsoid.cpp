@@ -113,8 +113,14 @@ PlacingRotation::PlacingRotation(const glm::dquat& rotation, const glm::dmat3& r
       entries_finite_nonzero(all_finite_nonzero(rotation, rotation_matrix)) {}
 
 Ellipsoid Ellipsoid::transformed(const glm::dquat& rotation, const glm::dvec3& translation) const {
+    // A game's interpolated quaternion (a lerp halfway through a 90 degree turn is 0.924
+    // long) would scale the axes and move the centre: normalised, as the constructor does.
+    // A unit quaternion's rounding (~1e-16) is far inside the tolerance and keeps its bits.
+    const double squared = glm::dot(rotation, rotation);
+    const glm::dquat unit =
+        std::abs(squared - 1.0) > 1e-12 ? rotation / std::sqrt(squared) : rotation;
     Ellipsoid moved = *this;
-    place_copy(moved, rotation, glm::mat3_cast(rotation), translation);
+    place_copy(moved, unit, glm::mat3_cast(unit), translation);
     return moved;
 }
 

@@ -11,6 +11,7 @@
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
+#include <glm/trigonometric.hpp>
 
 #include "trackphys/detail/body_ellipsoid.hpp"
 #include "trackphys/error.hpp"
@@ -91,6 +92,24 @@ TEST(Ellipsoid, TransformedEqualsBuildingTheMovedEllipsoid) {
         const glm::dvec3 p(normal(rng), normal(rng), normal(rng));
         ASSERT_LE(glm::length(moved.to_sorted_local(p) - rebuilt.to_sorted_local(p)), 1e-12);
     }
+}
+
+// A game's lerped quaternion, halfway through a 90 degree yaw (0.924 long), moves the
+// ellipsoid as its unit quaternion does: before, the centre moved 18 cm and the axes grew.
+TEST(Ellipsoid, TransformedNormalisesARotationNotOfUnitLength) {
+    const Ellipsoid body({0.9, -0.15, 1.45}, identity, {0.15, 0.35, 0.35});
+    const glm::dquat yaw = glm::angleAxis(glm::radians(90.0), glm::dvec3(0, 1, 0));
+    const glm::dquat lerped = 0.5 * identity + 0.5 * yaw;
+    ASSERT_LT(glm::length(lerped), 0.93);
+    const glm::dvec3 at(10.0, 1.0, -5.0);
+    const Ellipsoid moved = body.transformed(lerped, at);
+    const Ellipsoid unit = body.transformed(glm::normalize(lerped), at);
+    EXPECT_LE(glm::length(moved.center() - unit.center()), 1e-15);
+    for (int k = 0; k < 3; ++k) {
+        EXPECT_NEAR(glm::length(moved.sorted_axes()[k]), 1.0, 1e-15);
+        EXPECT_LE(glm::length(moved.sorted_axes()[k] - unit.sorted_axes()[k]), 1e-15);
+    }
+    EXPECT_NEAR(glm::length(moved.orientation()), 1.0, 1e-15);
 }
 
 template <typename T>

@@ -75,11 +75,12 @@ class TRACKPHYS_API Ellipsoid {
 
     /// This ellipsoid carried by the rigid motion x -> rotation * x + translation (a car's
     /// body frame to the world): the radii stay sorted, nothing is validated again, so it
-    /// is cheap enough for every ellipsoid of every sub-step. rotation must be a unit
-    /// quaternion.
+    /// is cheap enough for every ellipsoid of every sub-step. A rotation that is not of unit
+    /// length (a lerped quaternion, say) is normalised first; it must be finite and nonzero.
     Ellipsoid transformed(const glm::dquat& rotation, const glm::dvec3& translation) const;
     /// The same written into `copy`, which must already be a copy of this ellipsoid (placed
-    /// anywhere), with the rotation's matrix given, glm::mat3_cast(rotation), bit for bit: a
+    /// anywhere), with a unit rotation (unchecked, for the sub-step's sake) and its matrix
+    /// given, glm::mat3_cast(rotation), bit for bit: a
     /// car places all its ellipsoids with one matrix, each into its slot, and writes only
     /// what a motion changes (centre, orientation, sorted axes), not the radii.
     void place_copy(Ellipsoid& copy, const glm::dquat& rotation, const glm::dmat3& rotation_matrix,
