@@ -43,10 +43,30 @@ World::World(std::shared_ptr<const StaticWorld> statics, WorldSettings settings,
     else if (trees.empty())
         trees = make_collider_plane_trees(*statics_, PlaneTreeSettings::precomputed(),
                                           static_cast<unsigned>(settings_.thread_count()));
+    else
+        check_given_trees(trees);
     trees_ = std::make_shared<const ColliderPlaneTrees>(std::move(trees));
     // The phase clock's rate is measured once, over a millisecond: here rather than inside
     // the first update, whose time it would otherwise carry.
     if (settings_.profile) static_cast<void>(TickClock::microseconds_per_tick());
+}
+
+// Trees from another static world (another map's, or made before a collider was added)
+// would filter the wrong triangles or read past a collider's slots: refused here, by count
+// and by each tree's slots, rather than at the first add_car or update.
+void World::check_given_trees(const ColliderPlaneTrees& trees) const {
+    const std::string another = ": the trees are not this static world's";
+    if (trees.size() != statics_->size())
+        throw Error("World: " + std::to_string(trees.size()) + " plane trees for " +
+                    std::to_string(statics_->size()) + " colliders" + another);
+    for (std::uint32_t id = 0; id < trees.size(); ++id) {
+        if (!trees[id]) throw Error("World: plane tree " + std::to_string(id) + " is null");
+        const std::size_t slots = statics_->collider(id).triangle_count();
+        if (trees[id]->triangle_count() != slots)
+            throw Error("World: plane tree " + std::to_string(id) + " holds " +
+                        std::to_string(trees[id]->triangle_count()) + " triangles, collider " +
+                        std::to_string(id) + " " + std::to_string(slots) + another);
+    }
 }
 
 void World::check_new_surfaces() {

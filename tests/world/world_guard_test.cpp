@@ -197,6 +197,25 @@ TEST(Preconditions, WorldSettingsNameTheFieldAndTheReason) {
               std::string::npos);
 }
 
+// Plane trees handed to a World must be its colliders': another world's, fewer or a null
+// one are refused when the World is made, not at the first add_car or update (or never,
+// when another map's trees of the same count filtered the wrong triangles).
+TEST(Preconditions, PlaneTreesOfAnotherStaticWorldAreRefused) {
+    const auto statics = test::static_world_of(test::flat_grid(10.0, 2));  // 8 triangles
+    const auto other = test::static_world_of(test::flat_grid(10.0, 3));    // 18
+    const World own(statics);
+    EXPECT_NO_THROW(World(statics, {}, own.plane_trees()));
+    EXPECT_EQ(error_of([&] { World(statics, {}, World(other).plane_trees()); }),
+              "World: plane tree 0 holds 18 triangles, collider 0 8: the trees are not this "
+              "static world's");
+    ColliderPlaneTrees two = own.plane_trees();
+    two.push_back(two[0]);
+    EXPECT_EQ(error_of([&] { World(statics, {}, two); }),
+              "World: 2 plane trees for 1 colliders: the trees are not this static world's");
+    ColliderPlaneTrees null_tree(1);
+    EXPECT_EQ(error_of([&] { World(statics, {}, null_tree); }), "World: plane tree 0 is null");
+}
+
 TEST(Preconditions, NaNInputsAreRejectedAndInfinitiesClamped) {
     Car car(CarSpec::default_car(), RigidBodyState{});
     car.set_inputs({0.5, 0.25, -0.5});

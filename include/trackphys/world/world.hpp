@@ -67,7 +67,9 @@ class TRACKPHYS_API World {
     /// precomputed_tree mid-phase mode the colliders' plane trees are built here (the
     /// costliest part of making a World), on settings.thread_count() short-lived threads
     /// even with a job system plugged in, unless `trees` holds them already (one per
-    /// collider, in id order, e.g. another world's plane_trees() or a baked map's).
+    /// collider, in id order, e.g. another world's plane_trees() or a baked map's; trees of
+    /// another count, a null one, or one over another number of triangles than its collider
+    /// keeps are refused).
     explicit World(std::shared_ptr<const StaticWorld> statics, WorldSettings settings = {},
                    ColliderPlaneTrees trees = {});
     ~World();
@@ -246,6 +248,7 @@ class TRACKPHYS_API World {
     const CarSlot& car_slot(std::size_t i) const;
     void run_islands();
     void collect_contact_events();
+    void check_given_trees(const ColliderPlaneTrees& trees) const;
     // The job-system task over the update's islands (context: the World).
     static void island_task(int begin, int end, int worker, void* world);
     // step_island under the reset policy (world_guard.cpp).
