@@ -29,6 +29,8 @@ export interface Layout {
   speed: HTMLElement;
   lap: HTMLElement;
   updateUs: HTMLElement;
+  inputs: HTMLElement;
+  hash: HTMLElement;
   camera: HTMLElement;
   contacts: HTMLElement;
   carContacts: HTMLElement;
@@ -58,12 +60,26 @@ export function buildLayout(): Layout {
   const [speedRow, speed] = hudRow("speed", "hud-speed", "km/h");
   const [lapRow, lap] = hudRow("lap", "hud-lap", "");
   const [usRow, updateUs] = hudRow("update", "hud-update-us", "us");
+  const [inputsRow, inputs] = hudRow("throttle brake steer", "hud-inputs", "");
+  const [hashRow, hash] = hudRow("state hash", "hud-hash", "");
   const [contactsRow, contacts] = hudRow("contacts", "hud-contacts", "");
   const [carContactsRow, carContacts] = hudRow("car contacts", "hud-car-contacts", "");
   const [cameraRow, camera] = hudRow("camera", "hud-camera", "");
   const vehicle = element("div", { class: "vehicle", "data-testid": "hud-vehicle" });
   vehicle.hidden = true;
-  hud.append(title, timeRow, speedRow, lapRow, usRow, contactsRow, carContactsRow, cameraRow, vehicle);
+  hud.append(
+    title,
+    timeRow,
+    speedRow,
+    lapRow,
+    usRow,
+    inputsRow,
+    contactsRow,
+    carContactsRow,
+    hashRow,
+    cameraRow,
+    vehicle,
+  );
   const cars = element("div", { id: "cars", class: "panel", "data-testid": "car-list" });
   const help = element(
     "div",
@@ -101,6 +117,8 @@ export function buildLayout(): Layout {
     speed,
     lap,
     updateUs,
+    inputs,
+    hash,
     camera,
     contacts,
     carContacts,

@@ -53,6 +53,8 @@ export interface Recording {
   frameCount: number;
   time: Float64Array;
   updateUs: Float32Array | null;
+  /** Each frame's World::state_hash, 16 hex digits ("" where a frame has none). */
+  hash: string[];
   cars: CarTrack[];
   carContactStart: Uint32Array; // frame f's contacts between cars are [carContactStart[f], carContactStart[f+1])
   carContacts: Float32Array; // CAR_CONTACT_WIDTH per contact
@@ -282,6 +284,7 @@ export function parseRecording(text: string, name: string): Recording {
   const time = new Column((n) => new Float64Array(n));
   const updateUs = new Column((n) => new Float32Array(n));
   let hasUpdateUs = true;
+  const hash: string[] = [];
   const carContacts = new Column((n) => new Float32Array(n));
   const carContactStart = new Column((n) => new Uint32Array(n));
   carContactStart.push(0);
@@ -297,6 +300,7 @@ export function parseRecording(text: string, name: string): Recording {
     const t = finite(frame.t, line, "t");
     if (time.length > 0 && !(t > time.data[time.length - 1])) fail(line, "t must increase from frame to frame");
     time.push(t);
+    hash.push(typeof frame.hash === "string" ? frame.hash : "");
     if (typeof frame.us === "number") updateUs.push(frame.us);
     else hasUpdateUs = false;
     if (!Array.isArray(frame.cars) || frame.cars.length !== cars.length)
@@ -315,6 +319,7 @@ export function parseRecording(text: string, name: string): Recording {
     frameCount: time.length,
     time: time.trimmed(),
     updateUs: hasUpdateUs ? updateUs.trimmed() : null,
+    hash,
     cars: cars.map((c) => c.finish()),
     carContactStart: carContactStart.trimmed(),
     carContacts: carContacts.trimmed(),

@@ -208,6 +208,10 @@ export class ReplayView {
     ui.speed.textContent = (lerpAt(car.speed, 1, 0, s) * 3.6).toFixed(1);
     ui.lap.textContent = car.laps ? String(car.laps[nearest] + 1) : "-";
     ui.updateUs.textContent = r.updateUs ? r.updateUs[nearest].toFixed(1) : "-";
+    ui.inputs.textContent = car.inputs
+      ? Array.from(car.inputs.subarray(nearest * 3, nearest * 3 + 3), (v) => v.toFixed(2)).join(" ")
+      : "-";
+    ui.hash.textContent = r.hash[nearest] || "-";
     ui.contacts.textContent = String(car.contactStart[nearest + 1] - car.contactStart[nearest]);
     ui.carContacts.textContent = String(this.carContactsOfSelected(nearest));
     this.vehicleHud.update(nearest);

@@ -196,6 +196,9 @@ await check("#t= seeks on a fresh load and on a hash change, showing the recorde
         let shown = await hud(page);
         assert.equal(shown.time, 30);
         expectSpeed(shown.speed, demoSpeedKmh(30), "fresh load at 30 s");
+        const frame = frameAt(demoLines, 30);
+        assert.equal(shown.hash, frame.hash, "the state hash at 30 s");
+        assert.equal(shown.inputs, frame.cars[0].in.map((v) => v.toFixed(2)).join(" "), "the inputs at 30 s");
         await setHash(page, "#t=61.37");
         shown = await hud(page);
         assert.equal(shown.time, 61.37);
@@ -249,6 +252,24 @@ await check("playing moves time on; keys step and switch cameras (frame times pr
             await page.screenshot({ path: args.screenshot });
             console.log(`screenshot   ${args.screenshot}`);
         }
+    }),
+);
+
+await check("in a 640 x 400 window the HUD leaves the followed car in view", () =>
+    withPage(browser, async ({ page, open }) => {
+        await page.setViewportSize({ width: 640, height: 400 });
+        await waitReady(page, await open(demoPage, "#t=20"));
+        const box = (selector) => page.locator(selector).boundingBox();
+        const hudBox = await box('[data-testid="hud"]');
+        const view = await box("#view");
+        const [cx, cy] = [view.x + view.width / 2, view.y + view.height / 2];
+        const covers =
+            cx >= hudBox.x && cx <= hudBox.x + hudBox.width && cy >= hudBox.y && cy <= hudBox.y + hudBox.height;
+        assert.ok(
+            !covers,
+            `the HUD (${JSON.stringify(hudBox)}) covers the view's centre (${cx}, ${cy}), where the car is`,
+        );
+        assert.ok(!(await page.locator("#help").isVisible()), "the help line is shown in a small window");
     }),
 );
 

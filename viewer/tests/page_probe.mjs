@@ -82,6 +82,8 @@ export async function hud(page) {
         camera: await text("hud-camera"),
         contacts: Number(await text("hud-contacts")),
         carContacts: Number(await text("hud-car-contacts")),
+        inputs: await text("hud-inputs"),
+        hash: await text("hud-hash"),
     };
 }
 
