@@ -45,21 +45,6 @@ glm::dmat3 outer(const glm::dvec3& a, const glm::dvec3& b) {
     return m;
 }
 
-void check_settings(const PlaneTreeSettings& s) {
-    if (s.max_leaf_size < 1 || s.max_leaf_size > 64)
-        throw Error("PlaneTreeSettings.max_leaf_size must be in [1, 64], got " +
-                    std::to_string(s.max_leaf_size));
-    if (!std::isfinite(s.query_radius) || !(s.query_radius > 0.0))
-        throw Error("PlaneTreeSettings.query_radius must be finite and > 0, got " +
-                    exact_text(s.query_radius));
-    if (!std::isfinite(s.node_cost) || !(s.node_cost > 0.0))
-        throw Error("PlaneTreeSettings.node_cost must be finite and > 0, got " +
-                    exact_text(s.node_cost));
-    if (!std::isfinite(s.slab_thickness) || !(s.slab_thickness >= 0.0))
-        throw Error("PlaneTreeSettings.slab_thickness must be finite and >= 0, got " +
-                    exact_text(s.slab_thickness));
-}
-
 }  // namespace
 
 void PlaneTreeBuilder::build(std::span<const NormalizedTriangle> triangles,
@@ -71,7 +56,7 @@ void PlaneTreeBuilder::build(std::span<const NormalizedTriangle> triangles,
     if (triangles.size() > PlaneTreeNode::kCountMask)
         throw Error("PlaneTreeBuilder::build: too many triangles (" +
                     std::to_string(triangles.size()) + "), at most 2^30 - 1");
-    check_settings(settings);
+    if (std::string why = settings.validate(); !why.empty()) throw Error(why);
     settings_ = settings;
     tree_ = &tree;
 
@@ -450,6 +435,21 @@ PlaneTree make_collider_plane_tree(const StaticCollider& collider,
     tree.use_collider_frames(collider, frames);
     tree.shrink_to_fit();
     return tree;
+}
+
+std::string PlaneTreeSettings::validate() const {
+    if (max_leaf_size < 1 || max_leaf_size > 64)
+        return "PlaneTreeSettings.max_leaf_size must be in [1, 64], got " +
+               std::to_string(max_leaf_size);
+    if (!std::isfinite(query_radius) || !(query_radius > 0.0))
+        return "PlaneTreeSettings.query_radius must be finite and > 0, got " +
+               exact_text(query_radius);
+    if (!std::isfinite(node_cost) || !(node_cost > 0.0))
+        return "PlaneTreeSettings.node_cost must be finite and > 0, got " + exact_text(node_cost);
+    if (!std::isfinite(slab_thickness) || !(slab_thickness >= 0.0))
+        return "PlaneTreeSettings.slab_thickness must be finite and >= 0, got " +
+               exact_text(slab_thickness);
+    return {};
 }
 
 }  // namespace trackphys

@@ -124,6 +124,9 @@ PlaneTreeSettings read_settings(const Header& h) {
     s.query_radius = h.query_radius;
     s.node_cost = h.node_cost;
     s.slab_thickness = h.slab_thickness;
+    // Checked here too: a map read without expected settings hands them to the caller.
+    if (std::string why = s.validate(); !why.empty())
+        throw Error("the header's plane-tree settings: " + why);
     return s;
 }
 

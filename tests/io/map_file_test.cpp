@@ -10,6 +10,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <random>
 #include <string>
 #include <thread>
@@ -234,6 +235,30 @@ TEST(MapFile, EveryAlteredHeaderFieldIsAnError) {
         const std::string message = error_of([&] { decode_map(bytes); });
         EXPECT_NE(message.find(f.says), std::string::npos) << f.at << ": " << message;
     }
+}
+
+// Plane-tree settings no tree could be built with, in a sealed file read without expected
+// settings (which would hand them to the caller), are refused naming the field: the header's
+// max leaf size at byte 36, query radius at 40, node cost at 48, slab thickness at 56.
+TEST(MapFile, HeaderPlaneTreeSettingsNoTreeCouldUseAreRefused) {
+    const auto with = [](std::size_t at, auto value) {
+        std::string bytes = baked_bytes();
+        std::memcpy(bytes.data() + at, &value, sizeof value);
+        return error_of([&] { decode_map(resealed(bytes), "map", std::nullopt); });
+    };
+    EXPECT_NE(
+        with(36, std::uint32_t{0})
+            .find("the header's plane-tree settings: PlaneTreeSettings.max_leaf_size must be in "
+                  "[1, 64], got 0"),
+        std::string::npos);
+    EXPECT_NE(with(40, -1.0).find("PlaneTreeSettings.query_radius must be finite and > 0, got -1"),
+              std::string::npos);
+    EXPECT_NE(with(48, std::numeric_limits<double>::quiet_NaN())
+                  .find("PlaneTreeSettings.node_cost must be finite and > 0, got nan"),
+              std::string::npos);
+    EXPECT_NE(with(56, std::numeric_limits<double>::infinity())
+                  .find("PlaneTreeSettings.slab_thickness must be finite and >= 0, got inf"),
+              std::string::npos);
 }
 
 // The checksum is computed beside the colliders' reading, yet it is the error reported, on

@@ -3,6 +3,7 @@
 #include <bit>
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include <glm/gtc/quaternion.hpp>
@@ -138,6 +139,10 @@ struct PlaneTreeSettings {
     /// (every split runs across the road), so without slabs a car body above the road
     /// descends to the leaves; with them it stops at the first flat stretch.
     double slab_thickness = 0.0;
+
+    /// Empty when a tree can be built with these settings; else the first problem, naming
+    /// the field ("PlaneTreeSettings.node_cost must be finite and > 0, got nan").
+    TRACKPHYS_API std::string validate() const;
 
     /// The write-up's per-update tree: PCA median splits, leaves of up to 4 triangles.
     static PlaneTreeSettings per_update() { return {}; }

@@ -80,7 +80,7 @@ decode_map(std::string_view bytes, const std::string& source = "map",
 /// it). Throws trackphys::Error naming the path and the reason.
 TRACKPHYS_API void save_map(const std::filesystem::path& path, const StaticMap& map);
 
-/// Maps a map file into memory and decodes it (decode_map, the source named by its path, on
+/// Reads a map file into memory and decodes it (decode_map, the source named by its path, on
 /// up to `threads` threads, frames kept within `frame_budget_bytes`).
 TRACKPHYS_API StaticMap load_static_world(
     const std::filesystem::path& path,
