@@ -14,7 +14,8 @@ target_sources(trackphys PRIVATE
   world/thread_pool.cpp
   world/world.cpp
   world/world_debug_draw.cpp
-  world/world_guard.cpp
+  world/world_placement.cpp
+  world/world_reset.cpp
   world/world_island.cpp
   world/world_settings.cpp
   world/world_snapshot.cpp)

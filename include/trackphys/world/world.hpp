@@ -251,7 +251,7 @@ class TRACKPHYS_API World {
     void check_given_trees(const ColliderPlaneTrees& trees) const;
     // The job-system task over the update's islands (context: the World).
     static void island_task(int begin, int end, int worker, void* world);
-    // step_island under the reset policy (world_guard.cpp).
+    // step_island under the reset policy (world_reset.cpp).
     void update_island_or_reset(std::size_t island, WorkerScratch& scratch, PhaseStopwatch& watch);
     // Throws naming the first triangle whose surface id settings_.surfaces has no entry for,
     // among the colliders not checked yet: the modes without precomputed trees let a game add
@@ -259,17 +259,17 @@ class TRACKPHYS_API World {
     void check_new_surfaces();
     // Why this state breaks the reset policy's limits, or empty.
     std::string impossible_state(const RigidBodyState& state) const;
-    // The reset policy for the cars made impossible between updates (world_guard.cpp).
+    // The reset policy for the cars made impossible between updates (world_reset.cpp).
     void reset_impossible_starts();
     // Puts the slot's car at `at` at rest with `suspension`, forgetting its contacts, and
     // counts the reset with its reason.
     void reset_at_rest(CarSlot& slot, RigidBodyState at, std::span<const double> suspension,
                        std::string reason);
-    // add_car's checks of where the car is (world_guard.cpp), to be car `index` (the others
+    // add_car's checks of where the car is (world_placement.cpp), to be car `index` (the others
     // are the cars it must not be inside).
     void check_placement(const Car& car, const char* caller, std::size_t index) const;
     // add_car's check that the sub-step integrates the spec's contacts and wheel spins
-    // stably (world_guard.cpp).
+    // stably (world_placement.cpp).
     void check_integrable(const CarSpec& spec) const;
     // A lone car runs its whole update alone; an island's cars sub-step together
     // (world_island.cpp).
