@@ -180,9 +180,8 @@ class Solver {
     [[gnu::always_inline]] LocalContact run() {
         const LocalTriangle& tri = *pb_.tri;
         // A vertex inside the ellipsoid is tried before the face: a vertex contact (a
-        // triangle's corner pressed into the car) is then certified without the face (-9 ns
-        // at the hard mix's median), and a shallow road contact, whose vertices are all far
-        // outside, pays only the test (~2 ns, won back by the entry's flush test).
+        // triangle's corner pressed into the car) is then certified without the face, and a
+        // shallow road contact, whose vertices are all far outside, pays only the test.
         const int inner = deepest_inner_vertex();
         if (inner >= 0 && try_first_vertex(inner)) return finish(ContactPath::vertex_certified);
         // Face, from the unnormalised area normal N: |N| and h(N) = |N| h(n) are independent
@@ -590,8 +589,8 @@ Contact ellipsoid_triangle_contact(const Ellipsoid& ellipsoid, const Triangle& t
     // little moves sigma by less, while a subnormal one (1e-311 m from the center of a 32 m
     // ellipsoid, found by fuzz_contact) made the solver miss the minimum by 1.3 cm, and one
     // beside 1e-76 m radii gave an infinite depth. Tested on the smallest offset first: a
-    // car's coordinates are never that small (nor, in a rotated frame, exactly 0), and the
-    // mask on every coordinate cost the shallow road contact 2 ns.
+    // car's coordinates are never that small (nor, in a rotated frame, exactly 0), and a
+    // mask on every coordinate would cost the shallow road contact, the common case.
     const double negligible = std::max(local.extent, radii.x) * 0x1p-200;
     const glm::dvec3 smallest = glm::min(glm::min(abs_q[0], abs_q[1]), abs_q[2]);
     if (std::min({smallest.x, smallest.y, smallest.z}) < negligible) [[unlikely]]
