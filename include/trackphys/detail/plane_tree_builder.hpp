@@ -76,9 +76,9 @@ class TRACKPHYS_API PlaneTreeBuilder {
         double low, high;  ///< vertices along it
         std::uint32_t item;
     };
+    // Written with < alone: a user header compiled with -Wfloat-equal must not warn.
     static bool by_key_then_item(const SweepEntry& a, const SweepEntry& b) {
-        if (a.key != b.key) return a.key < b.key;
-        return a.item < b.item;
+        return a.key < b.key || (!(b.key < a.key) && a.item < b.item);
     }
     std::vector<SweepEntry> sweep_;  ///< a node's items along one direction
     std::vector<double> keys_;
