@@ -430,12 +430,18 @@ TEST(MapFile, AnotherVersionOrOtherBuildOptionsAreNamed) {
     EXPECT_EQ(decode_map(other_bytes, "q", std::nullopt).statics->size(), 1u);
 }
 
-TEST(MapFile, SaveAndLoadNameTheFileAndLeaveNoPartialFile) {
-    const std::filesystem::path folder = std::filesystem::temp_directory_path() /
-                                         ("trackphys-map-test-" + std::to_string(::getpid()));
+// baked() saved as track.tpmap in a new folder of this process's (the caller removes it).
+std::filesystem::path saved_in_new_folder(const std::string& name) {
+    const std::filesystem::path folder =
+        std::filesystem::temp_directory_path() / (name + "-" + std::to_string(::getpid()));
     std::filesystem::create_directories(folder);
-    const std::filesystem::path file = folder / "track.tpmap";
-    save_map(file, baked());
+    save_map(folder / "track.tpmap", baked());
+    return folder / "track.tpmap";
+}
+
+TEST(MapFile, SaveAndLoadNameTheFileAndLeaveNoPartialFile) {
+    const std::filesystem::path file = saved_in_new_folder("trackphys-map-test");
+    const std::filesystem::path folder = file.parent_path();
     EXPECT_EQ(load_static_world(file).statics->size(), baked().statics->size());
     EXPECT_TRUE(is_map_file(file));
     EXPECT_EQ(std::filesystem::directory_iterator(folder)->path(), file) << "a leftover file";
@@ -455,11 +461,7 @@ TEST(MapFile, SaveAndLoadNameTheFileAndLeaveNoPartialFile) {
 // it again): every load gives the map or an error naming the file, never a crash (a mapped
 // file's pages, gone with the truncation, killed the process with SIGBUS).
 TEST(MapFile, AFileRewrittenDuringTheLoadIsTheMapOrAnError) {
-    const std::filesystem::path folder = std::filesystem::temp_directory_path() /
-                                         ("trackphys-map-race-" + std::to_string(::getpid()));
-    std::filesystem::create_directories(folder);
-    const std::filesystem::path file = folder / "track.tpmap";
-    save_map(file, baked());
+    const std::filesystem::path file = saved_in_new_folder("trackphys-map-race");
     std::atomic<bool> stop{false};
     std::thread writer([&] {
         const std::string& bytes = baked_bytes();
@@ -482,7 +484,7 @@ TEST(MapFile, AFileRewrittenDuringTheLoadIsTheMapOrAnError) {
     stop = true;
     writer.join();
     EXPECT_EQ(loaded + refused, 30);
-    std::filesystem::remove_all(folder);
+    std::filesystem::remove_all(file.parent_path());
 }
 
 TEST(MapFile, MeshChunksCoverTheMeshOnce) {
