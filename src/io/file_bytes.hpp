@@ -1,7 +1,9 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <string_view>
 
@@ -16,8 +18,11 @@ namespace trackphys::detail {
 class FileBytes {
   public:
     /// Throws trackphys::Error naming the file ("<kind> '<path>': cannot open it: ...") when
-    /// it cannot be opened or read, or shrinks while it is read.
-    explicit FileBytes(const std::filesystem::path& path, const char* kind = "mesh file");
+    /// it cannot be opened or read, or shrinks while it is read. `check_size`, given, is
+    /// called with the size of the file opened before a byte is read or allocated (a byte
+    /// limit): what it throws propagates.
+    explicit FileBytes(const std::filesystem::path& path, const char* kind = "mesh file",
+                       const std::function<void(std::uintmax_t)>& check_size = {});
 
     std::string_view bytes() const { return {data_.get(), size_}; }
 

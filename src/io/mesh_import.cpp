@@ -390,8 +390,10 @@ TriangleMesh load_mesh(const fs::path& path, MeshLoadReport& report, const MeshL
     check_is_nonempty_file(path);
     const detail::MeshFormat format = format_of(path);
     // Read once: the check walks these bytes and assimp reads them (confined_io_system.hpp).
-    const detail::FileBytes file(path);
-    check_byte_limit(path, file.bytes().size(), limits, "the file is");
+    // The byte limit is checked on the size of the file opened, before it is read.
+    const detail::FileBytes file(path, "mesh file", [&](std::uintmax_t size) {
+        check_byte_limit(path, size, limits, "the file is");
+    });
     // What the check and assimp read: an OBJ without the UTF-8 byte order mark some editors
     // write first, which made assimp's reader lose the first statement.
     std::string_view bytes = file.bytes();

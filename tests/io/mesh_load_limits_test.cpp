@@ -10,6 +10,7 @@
 #include <string>
 
 #include <gtest/gtest.h>
+#include <sys/resource.h>
 
 #include "io_test_support.hpp"
 #include "trackphys/error.hpp"
@@ -111,6 +112,23 @@ TEST_F(MeshLoadLimitsTest, BytesAtTheLimitLoadAndOneMoreIsRefused) {
     expect_refused("fan.obj", limits,
                    "the file is " + std::to_string(kFan.size()) + " bytes, more than " +
                        std::to_string(kFan.size() - 1) + ", the limit max_bytes");
+}
+
+// A file over the byte limit is refused before it is read: a sparse 4 GiB OBJ (no disk
+// used) with a 1000-byte limit leaves the process's peak memory where it was (reading it
+// first, as the loader once did, took 4 GiB to refuse it).
+TEST_F(MeshLoadLimitsTest, AFileOverTheByteLimitIsRefusedBeforeItIsRead) {
+    const fs::path big = file("big.obj");
+    test::write_file(big, "v 0 0 0\n");
+    fs::resize_file(big, std::uintmax_t{4} << 30);
+    rusage before{};
+    ::getrusage(RUSAGE_SELF, &before);
+    MeshLoadLimits limits;
+    limits.max_bytes = 1000;
+    expect_refused("big.obj", limits, "the file is 4294967296 bytes, more than 1000");
+    rusage after{};
+    ::getrusage(RUSAGE_SELF, &after);
+    EXPECT_LT(after.ru_maxrss - before.ru_maxrss, 256 * 1024) << "KiB more at the peak";
 }
 
 TEST_F(MeshLoadLimitsTest, BytesCountTheBuffersAGltfNames) {
