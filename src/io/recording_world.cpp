@@ -1,7 +1,7 @@
 // RecordingWriter::write_frame: a World's update recorded through its DebugDraw callbacks.
 // World::debug_draw reports a car, then its ellipsoids, then its contacts; the car's line
-// is written once the next car starts or the frame ends. The contacts between cars come
-// after the last car and end the line.
+// is written once the next car starts or the frame ends. The contacts between cars end the
+// line, read from World::car_contacts (what draw_car_contact would report).
 
 #include <limits>
 #include <string>
@@ -25,17 +25,18 @@ void RecordingWriter::write_frame(const World& world, std::span<const std::optio
         world.settings().profile ? std::optional(world.last_profile().update_us) : std::nullopt;
     begin_frame(world.time(), world.state_hash(), update_us);
     frame_laps_ = laps;
-    drawn_car_contacts_.clear();
     // What the format holds; the pipeline's lists stay out.
     world.debug_draw(*this, {.cars = true,
                              .ellipsoids = true,
                              .contacts = true,
-                             .car_contacts = true,
+                             .car_contacts = false,
                              .update_boxes = false,
                              .listed_triangles = false,
                              .kept_triangles = false});
     add_drawn_car();
-    end_frame(drawn_car_contacts_);
+    // Read from the world rather than gathered from draw_car_contact: a list that grew with
+    // the most pairs yet touching would allocate.
+    end_frame(world.car_contacts());
 }
 
 void RecordingWriter::draw_car(std::size_t index, const Car& car) {
@@ -54,10 +55,6 @@ void RecordingWriter::draw_ellipsoid(const DebugEllipsoid& ellipsoid) {
 
 void RecordingWriter::draw_contact(const DebugContact& contact) {
     drawn_contacts_[contact.ellipsoid] = contact.contact;
-}
-
-void RecordingWriter::draw_car_contact(const CarPairContact& contact) {
-    drawn_car_contacts_.push_back(contact);
 }
 
 void RecordingWriter::add_drawn_car() {

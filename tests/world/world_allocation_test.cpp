@@ -1,18 +1,22 @@
 // World::update allocates nothing once a field of cars has warmed up (issue 16): every
 // buffer an update needs is kept between updates, its contact events' too; nor does
 // PhysicsRunner's publishing of each update, nor a render thread's reading of it, nor saving
-// into a kept snapshot and restoring one, which rollback netcode does every frame. A binary
-// of its own, because it replaces the global operator new to count the allocations made
-// inside World::update, on every thread of the world's pool, and on the runner's physics
-// thread.
+// into a kept snapshot and restoring one, which rollback netcode does every frame, nor a
+// recording's frame. A binary of its own, because it replaces the global operator new to
+// count the allocations made inside World::update, on every thread of the world's pool, and
+// on the runner's physics thread.
 #include <atomic>
 #include <cstdint>
 #include <cstdlib>
+#include <filesystem>
 #include <new>
+#include <string>
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include "tool_world_settings.hpp"
+#include "trackphys/io/recording.hpp"
 #include "trackphys/world/physics_runner.hpp"
 #include "trackphys/world/race_drivers.hpp"
 #include "trackphys/world/world.hpp"
@@ -164,6 +168,30 @@ TEST(WorldSnapshotAllocation, SavingIntoAKeptSnapshotAndRestoringAllocateNothing
     ASSERT_NE(world.state_hash(), saved_hash);
     EXPECT_EQ(allocations_in([&] { world.restore_state(kept); }), 0u) << "restoring";
     EXPECT_EQ(world.state_hash(), saved_hash);
+}
+
+// A recording's frames allocate nothing once the writer has written one of as many cars,
+// also the first frame that lists cars touching (its contacts were once gathered into a list
+// that grew then).
+TEST(RecordingAllocation, FramesOfCarsInContactAllocateNothing) {
+    World world = test::one_car_pushing_a_braked_one();
+    RecordingHeader header;
+    header.car_ellipsoids.assign(2, CarSpec::default_car().ellipsoids);
+    const std::filesystem::path file =
+        std::filesystem::temp_directory_path() /
+        ("trackphys_recording_allocation_" + std::to_string(::getpid()) + ".jsonl");
+    RecordingWriter writer(file, header);
+    world.update();
+    writer.write_frame(world);  // warms the writer's per-car lists
+    int touching = 0;
+    for (int u = 0; u < 300; ++u) {
+        world.update();
+        touching += !world.car_contacts().empty();
+        EXPECT_EQ(allocations_in([&] { writer.write_frame(world); }), 0u) << "update " << u;
+    }
+    EXPECT_GT(touching, 0) << "the cars never touched: the test would prove little";
+    writer.finish();
+    std::filesystem::remove(file);
 }
 
 // A rollback restores most often while cars are in contact: a gt pushing a braked one, so

@@ -90,7 +90,9 @@ class TRACKPHYS_API RecordingWriter : private DebugDraw {
 
     /// Writes the line of the update `world` ran last: its time, state hash and update time (when
     /// settings().profile), and each car's pose, speed, suspension, inputs and contacts as
-    /// World::debug_draw reports them, with its vehicle model's telemetry if it has one. laps[k]:
+    /// World::debug_draw reports them, with its vehicle model's telemetry if it has one, and
+    /// the contacts between cars (World::car_contacts). Allocates nothing once the writer has
+    /// written a frame of as many cars; laps[k]:
     /// car k's laps completed, when someone counts them (empty: no one does). The world's cars must
     /// be the header's, as many with as many ellipsoids each: throws trackphys::Error, writing
     /// nothing, when they are not.
@@ -120,7 +122,6 @@ class TRACKPHYS_API RecordingWriter : private DebugDraw {
     void draw_car(std::size_t index, const Car& car) override;
     void draw_ellipsoid(const DebugEllipsoid& ellipsoid) override;
     void draw_contact(const DebugContact& contact) override;
-    void draw_car_contact(const CarPairContact& contact) override;
     // Writes the car draw_car started, if any.
     void add_drawn_car();
 
@@ -137,7 +138,6 @@ class TRACKPHYS_API RecordingWriter : private DebugDraw {
     std::optional<int> drawn_laps_;
     std::vector<double> drawn_suspension_;
     std::vector<Contact> drawn_contacts_;
-    std::vector<CarPairContact> drawn_car_contacts_;
     std::span<const std::optional<int>> frame_laps_;
 };
 
