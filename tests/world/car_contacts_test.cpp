@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <cstring>
 #include <memory>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -21,19 +22,7 @@ namespace {
 
 using test::moving;
 
-// No static world and no gravity: cars meet only each other. Car 0 is far away; cars 1 and
-// 2 meet head on at 10 m/s each.
-World head_on(const WorldSettings& base = {}) {
-    WorldSettings settings = base;
-    settings.gravity = glm::dvec3(0.0);
-    World world(std::make_shared<StaticWorld>(), settings);
-    CarSpec spec = CarSpec::default_car();
-    spec.air_density = 0.0;
-    world.add_car(spec, moving({100.0, 0.0, 0.0}, {0.0, 0.0, 10.0}));
-    world.add_car(spec, moving({0.0, 0.0, 0.0}, {0.0, 0.0, 10.0}));
-    world.add_car(spec, moving({0.0, 0.0, 8.0}, {0.0, 0.0, -10.0}));
-    return world;
-}
+using test::head_on_in_free_space;
 
 std::vector<std::pair<std::uint32_t, std::uint32_t>> touching_pairs(const World& world) {
     std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
@@ -56,7 +45,7 @@ bool same_bits(const Contact& a, const Contact& b) {
 
 // Runs `world` until a pair of cars is touching at the end of an update; returns the
 // world's snapshot from before that update.
-WorldSnapshot run_until_touching(World& world) {
+WorldSnapshot snapshot_before_touching(World& world) {
     WorldSnapshot before = world.save_state();
     for (int u = 0; u < 1000; ++u) {
         world.update();
@@ -68,7 +57,7 @@ WorldSnapshot run_until_touching(World& world) {
 }
 
 TEST(CarContacts, AreThePairsTouchingAtTheEndOfEachUpdate) {
-    World world = head_on();
+    World world = head_on_in_free_space();
     int updates_touching = 0;
     for (int u = 0; u < 200; ++u) {
         world.update();
@@ -96,7 +85,7 @@ TEST(CarContacts, AreTheDeepestEllipsoidPairOfTheLastSubStep) {
     settings.steps = 1;
     settings.substeps = 1;
     settings.dt_update = WorldSettings{}.substep_dt();
-    World world = head_on(settings);
+    World world = head_on_in_free_space(settings);
     int checked = 0;
     for (int u = 0; u < 8000 && checked < 20; ++u) {
         const Car a = world.car(1);  // copies: the cars as the sub-step places them
@@ -125,9 +114,53 @@ TEST(CarContacts, AreTheDeepestEllipsoidPairOfTheLastSubStep) {
 }
 
 // The update after a restore gives the contacts the saved world's gave, bit for bit.
+bool same_contacts(std::span<const CarPairContact> a, std::span<const CarPairContact> b) {
+    if (a.size() != b.size()) return false;
+    for (std::size_t i = 0; i < a.size(); ++i)
+        if (a[i].car_a != b[i].car_a || a[i].car_b != b[i].car_b ||
+            a[i].ellipsoid_a != b[i].ellipsoid_a || a[i].ellipsoid_b != b[i].ellipsoid_b ||
+            !same_bits(a[i].contact, b[i].contact))
+            return false;
+    return true;
+}
+
+// An update of two steps of one sub-step runs the very states of two updates of one
+// sub-step each (the same bits): its contacts must be those of the second, its last
+// sub-step's, not the first's.
+TEST(CarContacts, AreTheUpdatesLastSubSteps) {
+    const double h = WorldSettings{}.substep_dt();
+    WorldSettings two_steps;
+    two_steps.steps = 2;
+    two_steps.substeps = 1;
+    two_steps.dt_update = 2.0 * h;
+    WorldSettings one_step = two_steps;
+    one_step.steps = 1;
+    one_step.dt_update = h;
+    World world = head_on_in_free_space(two_steps);
+    World halves = head_on_in_free_space(one_step);
+    int touching = 0, first_differs = 0;
+    for (int u = 0; u < 4000; ++u) {
+        world.update();
+        halves.update();
+        const std::vector<CarPairContact> first(halves.car_contacts().begin(),
+                                                halves.car_contacts().end());
+        halves.update();
+        for (std::size_t k = 0; k < world.car_count(); ++k)
+            ASSERT_EQ(
+                std::memcmp(&world.car(k).state(), &halves.car(k).state(), sizeof(RigidBodyState)),
+                0)
+                << "car " << k << " at update " << u;
+        EXPECT_TRUE(same_contacts(world.car_contacts(), halves.car_contacts())) << "update " << u;
+        touching += !world.car_contacts().empty();
+        first_differs += !same_contacts(first, halves.car_contacts());
+    }
+    EXPECT_GT(touching, 0) << "the cars never touched: the test would prove little";
+    EXPECT_GT(first_differs, 0) << "the first sub-step's contacts were the last's throughout";
+}
+
 TEST(CarContacts, ARestoredWorldListsNoneUntilItsNextUpdate) {
     World world = test::one_car_pushing_a_braked_one();
-    const WorldSnapshot before_touching = run_until_touching(world);
+    const WorldSnapshot before_touching = snapshot_before_touching(world);
     const std::vector<CarPairContact> original(world.car_contacts().begin(),
                                                world.car_contacts().end());
     world.restore_state(before_touching);
@@ -146,14 +179,14 @@ TEST(CarContacts, ARestoredWorldListsNoneUntilItsNextUpdate) {
 
 TEST(CarContacts, ARemovedCarsPairsAreDropped) {
     World world = test::one_car_pushing_a_braked_one();
-    run_until_touching(world);
+    snapshot_before_touching(world);
     world.remove_car(0);
     EXPECT_TRUE(world.car_contacts().empty()) << "remove_car keeps contacts of stale indices";
 }
 
 TEST(CarContacts, ATeleportedCarsPairsAreDropped) {
     World world = test::one_car_pushing_a_braked_one();
-    run_until_touching(world);
+    snapshot_before_touching(world);
     // At rest on the ground, 50 m to the side.
     world.teleport_car(1, moving({50.0, CarSpec::default_car().lowest_point_depth() + 0.001, 0.0},
                                  glm::dvec3(0.0)));

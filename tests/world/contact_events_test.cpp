@@ -85,12 +85,7 @@ WorldSnapshot run_until_touching(World& world) {
 // Cars 1 and 2 meet head on at 10 m/s each in free space, car 0 is far away: one begin, at
 // the closing speed, then one end once they have bounced apart.
 TEST(ContactEvents, TwoCarsDrivenIntoEachOtherBeginAndEndOnce) {
-    World world = world_in_free_space();
-    CarSpec spec = CarSpec::default_car();
-    spec.air_density = 0.0;  // only the contact slows them
-    world.add_car(spec, moving({100.0, 0.0, 0.0}, {0.0, 0.0, 10.0}));
-    world.add_car(spec, moving({0.0, 0.0, 0.0}, {0.0, 0.0, 10.0}));
-    world.add_car(spec, moving({0.0, 0.0, 8.0}, {0.0, 0.0, -10.0}));
+    World world = test::head_on_in_free_space();  // no air drag: only the contact slows them
 
     EventLog log;
     log.run(world, 200);

@@ -70,6 +70,20 @@ inline RigidBodyState moving(const glm::dvec3& position, const glm::dvec3& veloc
     return state;
 }
 
+/// No static world and no gravity (besides `base`'s settings): cars meet only each other.
+/// Car 0 is far away; cars 1 and 2, without air drag, meet head on at 10 m/s each.
+inline World head_on_in_free_space(const WorldSettings& base = {}) {
+    WorldSettings settings = base;
+    settings.gravity = glm::dvec3(0.0);
+    World world(std::make_shared<StaticWorld>(), settings);
+    CarSpec spec = CarSpec::default_car();
+    spec.air_density = 0.0;
+    world.add_car(spec, moving({100.0, 0.0, 0.0}, {0.0, 0.0, 10.0}));
+    world.add_car(spec, moving({0.0, 0.0, 0.0}, {0.0, 0.0, 10.0}));
+    world.add_car(spec, moving({0.0, 0.0, 8.0}, {0.0, 0.0, -10.0}));
+    return world;
+}
+
 /// Car 1 drives into the back of car 0, which brakes, on flat ground.
 inline World one_car_pushing_a_braked_one() {
     World world(static_world_of(flat_grid(400.0, 40)));
