@@ -295,6 +295,11 @@ TEST(PointEllipsoid, UnsortedRadiiOrANonFinitePointAreRefused) {
                   ellipse_critical_points({1.0, 0.5}, {INFINITY, 0.2});
               }),
               "ellipse_critical_points: the point is not finite (inf, 0.2)");
+    EXPECT_EQ(refused([&] {
+                  closest_point_on_ellipsoid(Ellipsoid({0, 0, 0}, {1, 0, 0, 0}, {1, 2, 3}),
+                                             {NAN, 1.0, 2.0});
+              }),
+              "closest_point_on_ellipsoid: the point is not finite (nan, 1, 2)");
     // Sorted, with equal radii: answered.
     EXPECT_NEAR(
         closest_point_on_sorted_ellipsoid({0.35, 0.35, 0.15}, p).distance,

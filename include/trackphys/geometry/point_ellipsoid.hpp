@@ -19,7 +19,8 @@ struct PointEllipsoid {
 };
 
 /// Closest surface point of `ellipsoid` to the world point p, with the signed distance
-/// (negative inside). Exact to ~1e-15 relative for every finite input.
+/// (negative inside). Exact to ~1e-15 relative for every finite input; throws
+/// trackphys::Error for a point that is not finite.
 TRACKPHYS_API PointEllipsoid closest_point_on_ellipsoid(const Ellipsoid& ellipsoid,
                                                         const glm::dvec3& p);
 
