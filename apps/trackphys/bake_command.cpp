@@ -64,7 +64,11 @@ void run_bake(const BakeOptions& o, const OptionGiven& given) {
     }
     const double bake_s = seconds_since(start);
     const auto write_start = std::chrono::steady_clock::now();
-    save_map(staged, map);
+    try {
+        save_map(staged, map);
+    } catch (const Error& e) {  // its words name the staged file, which the user never named
+        throw Error("--out '" + o.out.string() + "': " + e.what());
+    }
     outputs.commit();
     const double write_s = seconds_since(write_start);
 

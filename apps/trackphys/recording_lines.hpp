@@ -21,7 +21,8 @@ struct RecordingLines {
 /// a finite dt, cars a whole number >= 1, version 2's car_ellipsoids for every car and
 /// track.mesh a string), at least one frame, and every frame a JSON object whose t is finite
 /// and increasing and whose cars are the header's (each car's "s", when given, one value an
-/// ellipsoid of a version 2 header). A frame's other values are the page's to check. Throws
+/// ellipsoid of a version 2 header), and whose car_contacts, when given, name the header's
+/// cars and their ellipsoids. A frame's other values are the page's to check. Throws
 /// trackphys::Error naming `path` and the line.
 RecordingLines check_recording_lines(std::string_view text, const std::filesystem::path& path);
 

@@ -6,9 +6,8 @@
 // mpr_iterations), through mj_collision after mj_kinematics, as a simulation step does.
 // Each query sets the two geoms' sizes and bounding radii and the free bodies' poses in one
 // model of two ellipsoids. MuJoCo reports a contact only within the geoms' margin, and its
-// MPR answers worse the larger the margin (it works on the shapes grown by it: with the
-// centres' distance as the margin, a car-like pair's median error was 0.061 m, with none
-// 0.0062 m on the overlapping ones), so the margin is the least one sure to hold the gap
+// MPR answers worse the larger the margin (it works on the shapes grown by it; docs/
+// benchmarks.md, the pair group), so the margin is the least one sure to hold the gap
 // without knowing the answer: the centres' distance less the two smallest semi-axes (the
 // inscribed balls' gap, at least the solids'), plus 1 mm. The depth is -dist of its contact.
 

@@ -229,8 +229,7 @@ void bench_maps(BenchRun& run) {
                         {"wall_ms_2_threads", load_2.wall_ms},
                         {"cpu_ms_all_threads_2_threads", load_2.process_cpu_ms},
                         {"file_bytes_per_triangle", file_bytes / triangles}};
-    load_row.note =
-        "on 1 thread: file mapped, arrays copied and verified, plane-tree frames derived";
+    load_row.note = "on 1 thread: file read, arrays copied and verified, plane-tree frames derived";
     // The CPU time of a load on one thread: all the work a load does, which wall time on a
     // shared machine inflates and a second thread would hide.
     run.add_target("default track: load a baked map <= 50 ms (CPU, 1 thread)", 50.0 / load.cpu_ms,

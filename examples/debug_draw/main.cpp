@@ -38,7 +38,7 @@ int main() {
     world.add_car(CarSpec::default_car(), start);
     world.car(0).set_inputs({.throttle = 0.5, .brake = 0.0, .steer = 0.2});
 
-    DebugDrawOptions options;  // cars, ellipsoids, contacts; the triangles too:
+    DebugDrawOptions options;  // cars, ellipsoids, contacts, car contacts; the triangles too:
     options.kept_triangles = true;
     CountingDraw draw;
     const int updates = 100;

@@ -58,13 +58,13 @@ std::string MagicFormulaCurve::validate(const std::string& prefix) const {
         why << prefix << "shape must exceed 1.565 when curvature is 1 (no peak), got "
             << exact_text(shape);
     // The friction must stay > 0 over the whole load range: mu (1 + slope (kMaxLoadRatio - 1))
-    // at its top, so slope > -1 / (kMaxLoadRatio - 1) = -0.5 (at -0.6 the curve had no grip
-    // at 3 F_z0, and an autopilot planning from lowest_friction() crawled).
+    // at its top (lowest_friction(), which an autopilot plans its turns from).
+    const double range = kMaxLoadRatio - 1.0;
     if (why.tellp() == 0 && !(std::isfinite(friction_load_slope) && friction_load_slope <= 0.0 &&
-                              friction_load_slope * (kMaxLoadRatio - 1.0) > -1.0))
-        why << prefix << "friction_load_slope must be in (-0.5, 0] (the friction at "
-            << kMaxLoadRatio << " times the nominal load, mu (1 + 2 slope), must stay > 0), got "
-            << exact_text(friction_load_slope);
+                              friction_load_slope * range > -1.0))
+        why << prefix << "friction_load_slope must be in (" << exact_text(-1.0 / range)
+            << ", 0] (the friction at " << kMaxLoadRatio << " times the nominal load, mu (1 + "
+            << range << " slope), must stay > 0), got " << exact_text(friction_load_slope);
     return why.str();
 }
 

@@ -23,5 +23,8 @@ fi
 if ! "$trackphys" info "$mesh" --json >"$folder/info.json" 2>"$folder/info.log"; then
   echo "info --json: $(cat "$folder/info.log")"
   failed=1
+elif ! grep -q "quads$replaced.obj" "$folder/info.json"; then
+  echo "info --json: the report does not name the mesh with U+FFFD: $(head -c 400 "$folder/info.json")"
+  failed=1
 fi
 exit "$failed"

@@ -93,7 +93,7 @@ struct TRACKPHYS_API CarSpec {
     /// lateral grip that keeps the car on its line.
     double traction_limit = 0.8;
     double max_drive_power = 6.0e6;  ///< arcade: W, drive force is min(max_drive_force, P / v)
-    /// Top speed in reverse (m/s): the reverse drive force (a negative CarInputs::throttle)
+    /// Arcade: top speed in reverse (m/s): the reverse drive force (a negative CarInputs::throttle)
     /// fades linearly from the full drive force at rest to none at this speed backwards;
     /// 0 gives the car no reverse. The vehicle model's reverse is its gearbox's instead.
     double max_reverse_speed = 10.0;

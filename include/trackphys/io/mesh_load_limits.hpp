@@ -26,8 +26,8 @@ struct MeshLoadLimits {
     /// STL, the most verbose format, takes about 260 bytes a triangle, 13 GB for 50 million.
     std::uint64_t max_bytes = std::uint64_t{16} << 30;
     /// Corners of one polygon (a face of OBJ, PLY, OFF or AC3D). Triangulating a polygon takes
-    /// time growing with the square of its corners (one of 32,000 corners took 12 s, ten of
-    /// them two minutes, from a 2.6 MB file); no real track's polygon comes near the default.
+    /// time growing with the square of its corners, so a small file of a few huge polygons
+    /// could hold a core for minutes; no real track's polygon comes near the default.
     std::size_t max_polygon_corners = 1024;
     /// Nesting of AC3D objects and glTF nodes (glTF's JSON has its own fixed limit of 64
     /// levels). Real tracks nest a few levels.

@@ -102,9 +102,9 @@ class TRACKPHYS_API Tyre {
     /// slip is minus the sideways velocity over the rolling speed).
     /// road_grip scales both peaks: the road's friction relative to the dry road the
     /// curves describe (0.05 for ice).
-    /// Unchecked, for the sub-step's sake: the slips must be finite and of a size whose
-    /// square is (the vehicle model keeps them within +-50; an infinite slip, from a speed
-    /// divided by zero, gives NaN) and road_grip > 0 (a negative one reverses the force,
+    /// Unchecked, for the sub-step's sake: the slips must be finite, and so must their
+    /// squares (the vehicle model keeps them within +-50; an infinite slip, from a speed
+    /// divided by zero, gives NaN), and road_grip > 0 (a negative one reverses the force,
     /// which Vehicle::set_road_grip refuses for that reason).
     TyreForce force(double slip_ratio, double lateral_slip, double load,
                     double road_grip = 1.0) const;
