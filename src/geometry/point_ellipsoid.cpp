@@ -1,15 +1,12 @@
 #include "trackphys/geometry/point_ellipsoid.hpp"
 
 #include <cmath>
-#include <string>
 
 #include <glm/geometric.hpp>
 
 #include "geometry/ellipsoid_roots.hpp"
 #include "geometry/sorted_query_check.hpp"
 #include "trackphys/assert.hpp"
-#include "trackphys/error.hpp"
-#include "trackphys/math/types.hpp"
 
 namespace trackphys {
 namespace {
@@ -30,11 +27,10 @@ PointEllipsoid closest_point_on_sorted_ellipsoid(const glm::dvec3& r, const glm:
 }
 
 PointEllipsoid closest_point_on_ellipsoid(const Ellipsoid& ellipsoid, const glm::dvec3& p) {
-    // The ellipsoid's radii are sorted by construction; the point is the caller's, checked
-    // here so that the message names this call and the point as given.
-    if (!is_finite(p))
-        throw Error("closest_point_on_ellipsoid: the point is not finite (" + exact_text(p.x) +
-                    ", " + exact_text(p.y) + ", " + exact_text(p.z) + ")");
+    // The radii are sorted by construction; the point is checked as the caller gave it, so
+    // that a refusal names this call and that point.
+    const glm::dvec3& r = ellipsoid.sorted_radii();
+    detail::check_sorted_query<3>("closest_point_on_ellipsoid", {r.x, r.y, r.z}, {p.x, p.y, p.z});
     const PointEllipsoid local =
         closest_point_on_sorted_ellipsoid(ellipsoid.sorted_radii(), ellipsoid.to_sorted_local(p));
     return {ellipsoid.center() + ellipsoid.sorted_direction_to_world(local.point),
