@@ -24,7 +24,7 @@
 namespace trackphys {
 namespace {
 
-constexpr long double kTolerance = 1e-9L;
+constexpr long double kLimitTolerance = 1e-9L;
 
 struct TrackWorld {
     Track track;
@@ -138,7 +138,7 @@ TEST(MidPhase, EveryModeKeepsWhatTheCarTouchesOnTheDefaultTrack) {
                     EXPECT_EQ(cand.triangle->origin,
                               collider.normalized_triangle(cand.ref.triangle).origin);
                     EXPECT_LE(shape.distance(collider.triangle(cand.ref.triangle)),
-                              shape.limit() + kTolerance);
+                              shape.limit() + kLimitTolerance);
                 }
                 // Ground truth over every triangle near the shape.
                 near.clear();
@@ -147,7 +147,7 @@ TEST(MidPhase, EveryModeKeepsWhatTheCarTouchesOnTheDefaultTrack) {
                 const std::vector<TriangleRef> tree = refs_of(lists[2]);
                 for (const TriangleRef& ref : near) {
                     const Triangle t = w.world.collider(ref.collider).triangle(ref.triangle);
-                    if (shape.distance(t) > shape.limit() - kTolerance) continue;
+                    if (shape.distance(t) > shape.limit() - kLimitTolerance) continue;
                     ++touched;
                     EXPECT_TRUE(std::binary_search(none.begin(), none.end(), ref));
                     EXPECT_TRUE(std::binary_search(tree.begin(), tree.end(), ref))

@@ -28,7 +28,7 @@ using collision_detail::kIndexLimit;
 using collision_detail::quantize_down;
 using collision_detail::quantize_up;
 
-constexpr float kFloatInf = std::numeric_limits<float>::infinity();
+constexpr float kInfinity = std::numeric_limits<float>::infinity();
 
 // Grids of [lo, hi] boxes: ordinary, at huge coordinates, straddling 0, and flat ones
 // (zero extent: at 0, at a denormal, at 1e18, at a negative value).
@@ -50,7 +50,7 @@ TEST(QuantizedBoxes, GridsHoldTheirBox) {
         EXPECT_EQ(g.step * g.inv_step, 1.0);
         EXPECT_EQ(g.base, std::floor(g.base));
         const float magnitude = std::max(std::fabs(lo), std::fabs(hi));
-        EXPECT_GE(g.step, double(std::nextafter(magnitude, kFloatInf)) - magnitude);
+        EXPECT_GE(g.step, double(std::nextafter(magnitude, kInfinity)) - magnitude);
         for (const float x : {lo, hi}) {
             for (const int k : {quantize_down(x, g), quantize_up(x, g)}) {
                 EXPECT_GE(k, 1) << x;
@@ -70,8 +70,8 @@ TEST(QuantizedBoxes, RoundsOutwardAndTightly) {
     for (const auto& [lo, hi] : kBoxes) {
         const AxisGrid g = axis_grid(lo, hi);
         std::uniform_real_distribution<double> u(lo, hi);
-        std::vector<float> xs = {lo, hi, std::nextafter(lo, kFloatInf),
-                                 std::nextafter(hi, -kFloatInf)};
+        std::vector<float> xs = {lo, hi, std::nextafter(lo, kInfinity),
+                                 std::nextafter(hi, -kInfinity)};
         for (int i = 0; i < 2000; ++i) xs.push_back(static_cast<float>(u(rng)));
         for (float x : xs) {
             x = std::clamp(x, lo, hi);
@@ -111,12 +111,12 @@ TEST(QuantizedBoxes, QueryQuantizationMatchesScalar) {
         std::uniform_real_distribution<double> u(double(lo) - span, double(hi) + span);
         std::vector<float> xs = {lo,
                                  hi,
-                                 std::nextafter(lo, -kFloatInf),
-                                 std::nextafter(hi, kFloatInf),
+                                 std::nextafter(lo, -kInfinity),
+                                 std::nextafter(hi, kInfinity),
                                  0.0f,
                                  -0.0f,
-                                 kFloatInf,
-                                 -kFloatInf,
+                                 kInfinity,
+                                 -kInfinity,
                                  3e38f,
                                  -3e38f,
                                  1e-45f,

@@ -15,7 +15,7 @@ namespace {
 
 // Bits, not values, but any NaN for a NaN: which operand's NaN a sum passes on depends on
 // the order the compiler gives its operands, not on the law.
-bool same_bits(const glm::dvec3& a, const glm::dvec3& b) {
+bool same_bits_or_both_nan(const glm::dvec3& a, const glm::dvec3& b) {
     for (int c = 0; c < 3; ++c)
         if (std::isnan(a[c]) ? !std::isnan(b[c]) : std::memcmp(&a[c], &b[c], sizeof(double)) != 0)
             return false;
@@ -49,10 +49,11 @@ TEST(BodyAxes, GiveTheBitsOfGlmsProducts) {
         glm::dquat rotation(q[0], q[1], q[2], q[3]);
         if (kind < 2) rotation = glm::normalize(rotation);
         const detail::BodyAxes axes(rotation);
-        ASSERT_TRUE(same_bits(axes.forward, rotation * glm::dvec3(0.0, 0.0, 1.0)))
+        ASSERT_TRUE(same_bits_or_both_nan(axes.forward, rotation * glm::dvec3(0.0, 0.0, 1.0)))
             << "trial " << trial;
-        ASSERT_TRUE(same_bits(axes.up, rotation * glm::dvec3(0.0, 1.0, 0.0))) << "trial " << trial;
-        ASSERT_TRUE(same_bits(axes.down, rotation * glm::dvec3(0.0, -1.0, 0.0)))
+        ASSERT_TRUE(same_bits_or_both_nan(axes.up, rotation * glm::dvec3(0.0, 1.0, 0.0)))
+            << "trial " << trial;
+        ASSERT_TRUE(same_bits_or_both_nan(axes.down, rotation * glm::dvec3(0.0, -1.0, 0.0)))
             << "trial " << trial;
     }
 }
@@ -73,11 +74,14 @@ TEST(BodyAxes, GiveTheBitsOfGlmsProductsForZerosAndOverflow) {
                 for (const double w_sign : {1.0, -1.0}) {
                     const glm::dquat rotation(w_sign * q[0], q[1], q[2], q[3]);
                     const detail::BodyAxes axes(rotation);
-                    ASSERT_TRUE(same_bits(axes.forward, rotation * glm::dvec3(0.0, 0.0, 1.0)))
+                    ASSERT_TRUE(
+                        same_bits_or_both_nan(axes.forward, rotation * glm::dvec3(0.0, 0.0, 1.0)))
                         << axis << " " << step << " " << signs;
-                    ASSERT_TRUE(same_bits(axes.up, rotation * glm::dvec3(0.0, 1.0, 0.0)))
+                    ASSERT_TRUE(
+                        same_bits_or_both_nan(axes.up, rotation * glm::dvec3(0.0, 1.0, 0.0)))
                         << axis << " " << step << " " << signs;
-                    ASSERT_TRUE(same_bits(axes.down, rotation * glm::dvec3(0.0, -1.0, 0.0)))
+                    ASSERT_TRUE(
+                        same_bits_or_both_nan(axes.down, rotation * glm::dvec3(0.0, -1.0, 0.0)))
                         << axis << " " << step << " " << signs;
                     ++checked;
                 }
@@ -88,9 +92,12 @@ TEST(BodyAxes, GiveTheBitsOfGlmsProductsForZerosAndOverflow) {
         for (std::size_t b = 0; b < large.size(); ++b) {
             const glm::dquat rotation(large[a], large[b], large[(a + b) % 5], large[(a + 2) % 5]);
             const detail::BodyAxes axes(rotation);
-            ASSERT_TRUE(same_bits(axes.forward, rotation * glm::dvec3(0.0, 0.0, 1.0))) << a << b;
-            ASSERT_TRUE(same_bits(axes.up, rotation * glm::dvec3(0.0, 1.0, 0.0))) << a << b;
-            ASSERT_TRUE(same_bits(axes.down, rotation * glm::dvec3(0.0, -1.0, 0.0))) << a << b;
+            ASSERT_TRUE(same_bits_or_both_nan(axes.forward, rotation * glm::dvec3(0.0, 0.0, 1.0)))
+                << a << b;
+            ASSERT_TRUE(same_bits_or_both_nan(axes.up, rotation * glm::dvec3(0.0, 1.0, 0.0)))
+                << a << b;
+            ASSERT_TRUE(same_bits_or_both_nan(axes.down, rotation * glm::dvec3(0.0, -1.0, 0.0)))
+                << a << b;
         }
 }
 

@@ -1,4 +1,3 @@
-#include <cstring>
 #include <random>
 #include <vector>
 
@@ -7,14 +6,13 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "dynamics/car_access.hpp"
+#include "support/same_bits.hpp"
 #include "trackphys/dynamics/car.hpp"
 
 namespace trackphys {
 namespace {
 
-bool same_bits(const glm::dvec3& a, const glm::dvec3& b) {
-    return std::memcmp(&a, &b, sizeof a) == 0;
-}
+using test::same_bits;
 
 // Car::world_ellipsoid lifts each wheel by its suspension without glm's products by zero
 // and writes only what a motion changes; it must give the bits of the plain formula, the

@@ -19,6 +19,7 @@
 
 #include "geometry/ellipsoid_pair_kernel.hpp"
 #include "support/ellipsoid_pair_cases.hpp"
+#include "support/same_bits.hpp"
 #include "trackphys/geometry/ellipsoid_pair.hpp"
 
 namespace trackphys {
@@ -32,9 +33,7 @@ constexpr int kPerFamily = test::kSanitized ? 150 : 1000;
 
 std::uint64_t bits(double v) { return std::bit_cast<std::uint64_t>(v); }
 
-bool same_bits(const glm::dvec3& u, const glm::dvec3& v) {
-    return bits(u.x) == bits(v.x) && bits(u.y) == bits(v.y) && bits(u.z) == bits(v.z);
-}
+using test::same_bits;
 
 /// Every contact of the batch against the single call, with the pair's index on failure.
 void expect_batch_is_single(const std::vector<Ellipsoid>& a, const std::vector<Ellipsoid>& b,

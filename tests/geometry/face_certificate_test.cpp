@@ -19,8 +19,6 @@
 namespace trackphys {
 namespace {
 
-constexpr double kEpsilon = std::numeric_limits<double>::epsilon();
-
 double angle_between(const glm::dvec3& a, const glm::dvec3& b) {
     return std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b));
 }
@@ -48,7 +46,8 @@ void expect_exact(const Contact& got, const Ellipsoid& e, const Triangle& t) {
     // of their reach: a triangle of height y2 tilts it by that over y2 (a 1e-8 m triangle
     // by 1e-9 rad), and the extreme point moves with it.
     const Contact kernel = ellipsoid_triangle_contact(e, t);
-    const double rounding = 64.0 * kEpsilon * (reach(e, t) + e.sorted_radii().x);
+    const double rounding =
+        64.0 * std::numeric_limits<double>::epsilon() * (reach(e, t) + e.sorted_radii().x);
     const double tilt = 1e-12 + rounding / NormalizedTriangle(t).y2;
     EXPECT_LE(std::abs(got.depth - kernel.depth), rounding);
     EXPECT_LE(angle_between(got.normal, kernel.normal), tilt);

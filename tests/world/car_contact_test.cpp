@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <memory>
+#include <numbers>
 #include <random>
 #include <utility>
 #include <vector>
@@ -22,8 +23,6 @@
 
 namespace trackphys {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // No drag, no downforce: in free space only the cars' contact acts on them.
 CarSpec free_space_car() {
@@ -158,7 +157,7 @@ TEST(CarContact, TestsEveryEllipsoidPairTheCullsLetThrough) {
     const CarSpec spec = free_space_car();
     std::mt19937 random(16);
     std::uniform_real_distribution<double> offset(-4.0, 4.0);
-    std::uniform_real_distribution<double> angle(-kPi, kPi);
+    std::uniform_real_distribution<double> angle(-std::numbers::pi, std::numbers::pi);
     std::uniform_real_distribution<double> tilt(-0.6, 0.6);
     int row_left_out = 0;
     for (int trial = 0; trial < 2000; ++trial) {
@@ -231,7 +230,7 @@ TEST_P(HeadOn, At500PlusKmhNeverPassesThrough) {
     World world(std::make_shared<StaticWorld>(), without_gravity());
     const CarSpec spec = free_space_car();
     world.add_car(spec, moving({0.0, 0.0, 0.0}, 0.0, {0.0, 0.0, speed}));
-    world.add_car(spec, moving({offset, 0.0, 10.0}, kPi, {0.0, 0.0, -speed}));
+    world.add_car(spec, moving({offset, 0.0, 10.0}, std::numbers::pi, {0.0, 0.0, -speed}));
 
     double deepest = 0.0;
     for (int update = 0; update < 100; ++update) {

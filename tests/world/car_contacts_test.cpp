@@ -13,6 +13,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "support/same_bits.hpp"
 #include "trackphys/geometry/ellipsoid_pair.hpp"
 #include "trackphys/world/world.hpp"
 #include "world/world_scenes.hpp"
@@ -37,11 +38,7 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> contact_pairs(const World& 
     return pairs;
 }
 
-bool same_bits(const Contact& a, const Contact& b) {
-    return std::memcmp(&a.depth, &b.depth, sizeof a.depth) == 0 &&
-           std::memcmp(&a.normal, &b.normal, sizeof a.normal) == 0 &&
-           std::memcmp(&a.point, &b.point, sizeof a.point) == 0;
-}
+using test::same_bits;
 
 // Runs `world` until a pair of cars is touching at the end of an update; returns the
 // world's snapshot from before that update.

@@ -5,7 +5,6 @@
 #include "trackphys/world/debug_draw.hpp"
 
 #include <algorithm>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <optional>
@@ -18,6 +17,7 @@
 
 #include <gtest/gtest.h>
 
+#include "support/same_bits.hpp"
 #include "tool_world_settings.hpp"
 #include "trackphys/io/recording.hpp"
 #include "trackphys/world/world.hpp"
@@ -74,16 +74,7 @@ struct CallLog final : DebugDraw {
     }
 };
 
-bool same_bits(const glm::dvec3& a, const glm::dvec3& b) {
-    return std::memcmp(&a, &b, sizeof a) == 0;
-}
-bool same_bits(const glm::dquat& a, const glm::dquat& b) {
-    return std::memcmp(&a, &b, sizeof a) == 0;
-}
-bool same_bits(const Contact& a, const Contact& b) {
-    return std::memcmp(&a.depth, &b.depth, sizeof a.depth) == 0 && same_bits(a.normal, b.normal) &&
-           same_bits(a.point, b.point);
-}
+using test::same_bits;
 
 // Three default cars on flat ground, rolling towards a wall at different speeds: wheels on
 // the road from the start, the fastest car's body against the wall within half a second.

@@ -108,17 +108,17 @@ WorldSettings on_threads(int threads) {
     return settings;
 }
 
-constexpr int kUpdates = 300;
+constexpr int kFieldUpdates = 300;
 
 TEST(WorldThreads, SameHashOnOneTwoAndFourThreads) {
     Field reference(on_threads(1));
-    const std::uint64_t contacts = reference.run(kUpdates);
+    const std::uint64_t contacts = reference.run(kFieldUpdates);
     EXPECT_GT(contacts, 0u) << "the field never touched: the test would prove little";
     EXPECT_GT(reference.touches_begun(), 0u) << "no touch began: the events went unrecorded";
     const std::uint64_t expected = reference.world().state_hash();
     for (const int threads : {1, 2, 4, 2, 4}) {
         Field field(on_threads(threads));
-        field.run(kUpdates);
+        field.run(kFieldUpdates);
         EXPECT_EQ(field.world().state_hash(), expected) << threads << " threads";
         EXPECT_EQ(field.events_hash(), reference.events_hash()) << threads << " threads";
     }
@@ -159,16 +159,16 @@ struct BackwardsJobs {
 
 TEST(WorldThreads, PluggedInJobSystemGivesTheSameHash) {
     Field reference(on_threads(1));
-    reference.run(kUpdates);
+    reference.run(kFieldUpdates);
 
     BackwardsJobs jobs;
     WorldSettings settings;
     settings.jobs = {&BackwardsJobs::enqueue, &BackwardsJobs::finish, &jobs, 3};
     Field field(settings);
-    field.run(kUpdates);
+    field.run(kFieldUpdates);
     EXPECT_EQ(field.world().state_hash(), reference.world().state_hash());
     EXPECT_EQ(field.events_hash(), reference.events_hash());
-    EXPECT_EQ(jobs.enqueued, kUpdates);
+    EXPECT_EQ(jobs.enqueued, kFieldUpdates);
 }
 
 // BackwardsJobs runs items on workers 0, 1 and 2: a job system that says it has two

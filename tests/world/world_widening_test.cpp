@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <memory>
+#include <numbers>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -18,8 +19,6 @@
 
 namespace trackphys {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // Ground of 0.25 m cells, gently rolling, so that neighbouring triangles have frames of
 // their own and a wider box holds many more of them.
@@ -48,7 +47,7 @@ std::uint64_t side_impact(MidPhaseMode mode, int& widenings) {
     World world(statics, settings);
     const CarSpec spec = CarSpec::default_car();
     const double ride = spec.lowest_point_depth() + 0.03;
-    world.add_car(spec, standing({0.0, ride, 0.0}, 0.5 * kPi, 0.0));
+    world.add_car(spec, standing({0.0, ride, 0.0}, 0.5 * std::numbers::pi, 0.0));
     world.add_car(spec, standing({0.0, ride, -7.0}, 0.0, 250.0 / 3.6));
 
     // In these modes the profile counts each begin_update's broad-phase candidates: more
