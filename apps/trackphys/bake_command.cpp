@@ -8,9 +8,11 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "commands.hpp"
 #include "file_clashes.hpp"
+#include "progress_bar.hpp"
 #include "staged_outputs.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/geometry/mesh_chunks.hpp"
@@ -46,11 +48,21 @@ void run_bake(const BakeOptions& o, const OptionGiven& given) {
     const auto start = std::chrono::steady_clock::now();
     StaticMap map;
     std::string source;
+    // A map of millions of triangles bakes for tens of seconds: a bar of its colliders.
+    const auto bake_with_progress = [&](std::size_t colliders, auto&& bake) {
+        ProgressBar bar(static_cast<double>(colliders));
+        map = bake([&](std::size_t done, std::size_t) {
+            bar.show_count(static_cast<double>(done), "colliders");
+        });
+    };
+    const auto threads = static_cast<unsigned>(o.threads);
     if (from_mesh) {
-        const TriangleMesh mesh = load_mesh(o.mesh, o.mesh_limits);
+        const std::vector<TriangleMesh> chunks =
+            split_into_chunks(load_mesh(o.mesh, o.mesh_limits), o.chunk_m);
         try {
-            map = bake_map(split_into_chunks(mesh, o.chunk_m), PlaneTreeSettings::precomputed(),
-                           static_cast<unsigned>(o.threads));
+            bake_with_progress(chunks.size(), [&](const BakeProgress& progress) {
+                return bake_map(chunks, PlaneTreeSettings::precomputed(), threads, progress);
+            });
         } catch (const Error& e) {  // a chunk the collider refuses (coordinates beyond its limit)
             throw Error("mesh file '" + o.mesh.string() + "': " + e.what());
         }
@@ -58,8 +70,10 @@ void run_bake(const BakeOptions& o, const OptionGiven& given) {
     } else {
         TrackParams params;
         params.seed = o.seed;
-        map = bake_track_map(generate_track(params), PlaneTreeSettings::precomputed(),
-                             static_cast<unsigned>(o.threads));
+        const Track track = generate_track(params);
+        bake_with_progress(track.chunks.size(), [&](const BakeProgress& progress) {
+            return bake_track_map(track, PlaneTreeSettings::precomputed(), threads, progress);
+        });
         source = "generated track, seed " + std::to_string(o.seed);
     }
     const double bake_s = seconds_since(start);

@@ -14,13 +14,31 @@ ProgressBar::~ProgressBar() {
 }
 
 void ProgressBar::show(double done, double speed_kmh) {
-    if (!enabled_) return;
+    if (!advances(done)) return;
+    char note[32];
+    std::snprintf(note, sizeof note, "%6.1f km/h", speed_kmh);
+    draw(note);
+}
+
+void ProgressBar::show_count(double done, const char* unit) {
+    if (!advances(done)) return;
+    char note[96];
+    std::snprintf(note, sizeof note, "%.0f of %.0f %s", done, total_, unit);
+    draw(note);
+}
+
+bool ProgressBar::advances(double done) {
+    if (!enabled_) return false;
     const int percent = static_cast<int>(100.0 * std::min(done / total_, 1.0));
-    if (percent == last_) return;
+    if (percent == last_) return false;
     last_ = percent;
-    const int filled = percent / 4;
-    std::fprintf(stderr, "\r[%.*s%*s] %3d%%  %6.1f km/h", filled, "#########################",
-                 25 - filled, "", percent, speed_kmh);
+    return true;
+}
+
+void ProgressBar::draw(const std::string& note) const {
+    const int filled = last_ / 4;
+    std::fprintf(stderr, "\r[%.*s%*s] %3d%%  %s", filled, "#########################", 25 - filled,
+                 "", last_, note.c_str());
     std::fflush(stderr);
 }
 

@@ -1,5 +1,6 @@
 // Baking: every collider and its plane tree, built on several threads.
 
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -10,10 +11,12 @@
 namespace trackphys {
 
 StaticMap bake_map(std::span<const TriangleMesh> meshes, const PlaneTreeSettings& settings,
-                   unsigned threads) {
+                   unsigned threads, const BakeProgress& progress) {
     const std::size_t n = meshes.size();
     std::vector<std::shared_ptr<const StaticCollider>> colliders(n);
     ColliderPlaneTrees trees(n);
+    std::mutex progress_mutex;
+    std::size_t built = 0;
     detail::run_items_in_parallel(n, threads, [&](std::size_t i) {
         try {
             auto collider = std::make_shared<StaticCollider>(meshes[i]);
@@ -22,6 +25,10 @@ StaticMap bake_map(std::span<const TriangleMesh> meshes, const PlaneTreeSettings
         } catch (const Error& e) {
             if (n == 1) throw;
             throw Error("mesh " + std::to_string(i) + ": " + e.what());
+        }
+        if (progress) {
+            const std::scoped_lock lock(progress_mutex);
+            progress(++built, n);
         }
     });
 
@@ -35,11 +42,12 @@ StaticMap bake_map(std::span<const TriangleMesh> meshes, const PlaneTreeSettings
     return map;
 }
 
-StaticMap bake_track_map(const Track& track, const PlaneTreeSettings& settings, unsigned threads) {
+StaticMap bake_track_map(const Track& track, const PlaneTreeSettings& settings, unsigned threads,
+                         const BakeProgress& progress) {
     std::vector<TriangleMesh> meshes;
     meshes.reserve(track.chunks.size());
     for (const TrackChunk& chunk : track.chunks) meshes.push_back(chunk.mesh);
-    StaticMap map = bake_map(meshes, settings, threads);
+    StaticMap map = bake_map(meshes, settings, threads, progress);
     map.track = Track{
         track.params,         track.length_m, track.centerline, {}, track.bezier_segment_count,
         track.rejected_shapes};

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <numeric>
 #include <random>
 #include <string>
 #include <thread>
@@ -202,6 +203,30 @@ TEST(MapFile, BakeGivesTheSameMapOnAnyThreadCount) {
     const Track track = generate_track(params);
     EXPECT_EQ(encode_map(bake_track_map(track, PlaneTreeSettings::precomputed(), 1)),
               baked_bytes());
+}
+
+// The progress hears each collider once, counting up to all of them, one call at a time
+// from whichever thread built it, and the bake is the same map for listening.
+TEST(MapFile, BakeProgressHearsEachColliderOnceOnAnyThreadCount) {
+    TrackParams params;
+    params.seed = 3;
+    params.length_m = 1000.0;
+    const Track track = generate_track(params);
+    for (const unsigned threads : {1u, 2u, 4u}) {
+        std::vector<std::size_t> dones;
+        std::vector<std::size_t> totals;
+        const StaticMap map = bake_track_map(track, PlaneTreeSettings::precomputed(), threads,
+                                             [&](std::size_t done, std::size_t total) {
+                                                 dones.push_back(done);
+                                                 totals.push_back(total);
+                                             });
+        std::vector<std::size_t> counting(track.chunks.size());
+        std::iota(counting.begin(), counting.end(), std::size_t{1});
+        EXPECT_EQ(dones, counting) << threads << " threads";
+        EXPECT_EQ(totals, std::vector<std::size_t>(track.chunks.size(), track.chunks.size()))
+            << threads << " threads";
+        EXPECT_EQ(encode_map(map), baked_bytes()) << threads << " threads";
+    }
 }
 
 TEST(MapFile, EveryTruncationIsAnErrorNamingTheSource) {

@@ -1,7 +1,9 @@
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <span>
@@ -38,21 +40,28 @@ struct StaticMap {
     std::optional<Track> track;
 };
 
+/// Told how far a bake is: `done` of `total` colliders built. Called once per collider,
+/// `done` rising by one each time, from whichever thread built it, never two calls at once;
+/// it must not throw (the bake would report its error as the collider's).
+using BakeProgress = std::function<void(std::size_t done, std::size_t total)>;
+
 /// Builds a map with one collider per mesh, in order, and each collider's plane tree with
 /// `settings`, on up to `threads` threads (0: std::thread::hardware_concurrency()). The
 /// result does not depend on the thread count. Its trees build their frames
 /// (PlaneTreeFrames::built): a bake is for writing, and a map file stores no frames.
-/// Throws a StaticCollider's trackphys::Error when it refuses a mesh, prefixed "mesh i: "
-/// when there are several.
-TRACKPHYS_API StaticMap bake_map(
-    std::span<const TriangleMesh> meshes,
-    const PlaneTreeSettings& settings = PlaneTreeSettings::precomputed(), unsigned threads = 0);
+/// `progress`, when given, hears of every collider built (a bake of millions of triangles
+/// takes tens of seconds). Throws a StaticCollider's trackphys::Error when it refuses a
+/// mesh, prefixed "mesh i: " when there are several.
+TRACKPHYS_API StaticMap
+bake_map(std::span<const TriangleMesh> meshes,
+         const PlaneTreeSettings& settings = PlaneTreeSettings::precomputed(), unsigned threads = 0,
+         const BakeProgress& progress = {});
 
 /// bake_map over a generated track's chunks (one collider per chunk, as a World built from
 /// the track gets), keeping the track (without its chunks) in the map.
 TRACKPHYS_API StaticMap bake_track_map(
     const Track& track, const PlaneTreeSettings& settings = PlaneTreeSettings::precomputed(),
-    unsigned threads = 0);
+    unsigned threads = 0, const BakeProgress& progress = {});
 
 /// The map file's bytes (layout in docs/tpmap.md): a 64-byte header (magic, format version,
 /// body length, checksum, plane-tree build options), then the body: records and raw arrays,
