@@ -27,6 +27,10 @@ namespace trackphys::cli {
 /// from a default.
 using OptionGiven = std::function<bool(const std::string& option)>;
 
+/// A lap that takes longer than this (simulated) means a car is stuck: drive and race given
+/// laps give up after this many seconds a lap.
+inline constexpr double kMaxSecondsPerLap = 600.0;
+
 /// A time or length as messages describe it, %g-style ("2", "1e+300"), never
 /// std::to_string's six decimals or its 300 digits. A value checked against a bound is
 /// shown by exact_text instead, so that one just past the bound does not read as the bound.

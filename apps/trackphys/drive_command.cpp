@@ -44,11 +44,8 @@ struct SavePoint {
     std::filesystem::path staged;
 };
 
-// A lap that takes longer than this (simulated) means the car is stuck: give up.
-constexpr double kMaxSecondsPerLap = 600.0;
-
 // The option that sets each Scenario field, to name it in Scenario::validate()'s messages.
-constexpr std::pair<const char*, const char*> kFieldOptions[] = {
+constexpr std::pair<const char*, const char*> kDriveFieldOptions[] = {
     {"Scenario.mesh", "--mesh"},
     {"Scenario.map", "--map"},
     {"Scenario.spawn", "--spawn"},
@@ -102,7 +99,7 @@ Scenario build_scenario(const DriveOptions& o, const OptionGiven& given) {
         why = "Scenario.cars is " + std::to_string(s.cars) +
               ": drive drives one car (race a field with trackphys race --scenario)";
     if (why.empty()) return s;
-    fail_scenario(why, kFieldOptions, given, o.scenario_file);
+    fail_scenario(why, kDriveFieldOptions, given, o.scenario_file);
 }
 
 std::optional<SavePoint> parse_save_at(const DriveOptions& o, double drive_seconds) {

@@ -20,8 +20,6 @@
 namespace trackphys::cli {
 namespace {
 
-nlohmann::json to_json(const glm::dvec3& v) { return nlohmann::json::array({v.x, v.y, v.z}); }
-
 // What --surface-grips and WorldSettings::surfaces index: each surface id's material (its
 // name in the file, report.materials) and how many triangles have it.
 struct SurfaceInfo {
@@ -53,9 +51,9 @@ void print_json(const InfoOptions& options, const MeshLoadReport& r,
         {"vertices", r.vertices},
         {"mesh_instances", r.mesh_instances},
         {"bounds",
-         {{"min", to_json(r.bounds.min)},
-          {"max", to_json(r.bounds.max)},
-          {"size", to_json(r.bounds.extent())}}},
+         {{"min", json_of(r.bounds.min)},
+          {"max", json_of(r.bounds.max)},
+          {"size", json_of(r.bounds.extent())}}},
         {"area_m2", r.area},
         {"degenerate_dropped", r.degenerate_dropped},
         {"points_skipped", r.points_skipped},

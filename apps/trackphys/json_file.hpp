@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <string>
 
+#include <glm/vec3.hpp>
 #include <nlohmann/json.hpp>
 
 namespace trackphys {
@@ -10,6 +11,11 @@ class TraceRecorder;
 }
 
 namespace trackphys::cli {
+
+/// A point or vector as the reports write it: [x, y, z].
+inline nlohmann::json json_of(const glm::dvec3& v) {
+    return nlohmann::json::array({v.x, v.y, v.z});
+}
 
 /// `json` as the reports print it: indented, and with bytes that are not UTF-8 (a file or
 /// material name in another encoding) replaced by U+FFFD, where nlohmann::json's dump would

@@ -44,8 +44,6 @@ std::vector<std::size_t> triangles_per_surface(const StaticWorld& statics) {
     return counts;
 }
 
-nlohmann::json to_json(const glm::dvec3& v) { return nlohmann::json::array({v.x, v.y, v.z}); }
-
 }  // namespace
 
 void print_map_info(const std::string& file, bool json) {
@@ -81,7 +79,7 @@ void print_map_info(const std::string& file, bool json) {
             {"colliders", f.colliders},
             {"triangles", f.triangles},
             {"kept_triangles", f.kept},
-            {"bounds", {{"min", to_json(bounds.min)}, {"max", to_json(bounds.max)}}},
+            {"bounds", {{"min", json_of(bounds.min)}, {"max", json_of(bounds.max)}}},
             {"file_bytes", f.file_bytes},
             {"collider_bytes", f.collider_bytes},
             {"plane_tree_bytes", f.tree_bytes},

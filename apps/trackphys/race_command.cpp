@@ -62,11 +62,8 @@ Race build_race(const RaceOptions& o, const OptionGiven& given) {
     return race;
 }
 
-// A lap that takes longer than this (simulated) means a car is stuck: give up (as drive).
-constexpr double kMaxSecondsPerLap = 600.0;
-
 // The option that sets each Scenario field race reads, to name it in validate()'s messages.
-constexpr std::pair<const char*, const char*> kFieldOptions[] = {
+constexpr std::pair<const char*, const char*> kRaceFieldOptions[] = {
     {"Scenario.cars", "--cars"},
     {"Scenario.surfaces", "--surface-grips"},
     {"Scenario.laps", "--laps"},
@@ -105,7 +102,7 @@ void run_race(const RaceOptions& o, const OptionGiven& given) {
     const Race race = build_race(o, given);
     const Scenario& s = race.scenario;
     if (std::string why = s.validate(); !why.empty())
-        fail_scenario(why, kFieldOptions, given, o.scenario_file);
+        fail_scenario(why, kRaceFieldOptions, given, o.scenario_file);
     const auto cars = static_cast<std::size_t>(s.cars);
     refuse_file_clashes({{"--scenario", o.scenario_file}, {"--map", o.map}},
                         {{"--json", o.json},

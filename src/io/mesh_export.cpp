@@ -28,7 +28,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-[[noreturn]] void fail(const fs::path& path, const std::string& reason) {
+[[noreturn]] void fail_to_save(const fs::path& path, const std::string& reason) {
     throw Error("cannot save mesh to '" + path.string() + "': " + reason);
 }
 
@@ -49,30 +49,30 @@ const char* find_exporter_id(const fs::path& path) {
 
 const char* exporter_id(const fs::path& path) {
     if (const char* id = find_exporter_id(path)) return id;
-    fail(path, "unknown extension '" + path.extension().string() + "' (expected " +
-                   std::string(saved_mesh_extensions) + ")");
+    fail_to_save(path, "unknown extension '" + path.extension().string() + "' (expected " +
+                           std::string(saved_mesh_extensions) + ")");
 }
 
 // Rejects what no format can hold, before any file is created.
 void validate(const TriangleMesh& mesh, const fs::path& path) {
-    if (mesh.triangles.empty()) fail(path, "the mesh has no triangles");
+    if (mesh.triangles.empty()) fail_to_save(path, "the mesh has no triangles");
     if (mesh.vertices.size() > std::numeric_limits<unsigned>::max())
-        fail(path, "more vertices than assimp's 32-bit indices address");
+        fail_to_save(path, "more vertices than assimp's 32-bit indices address");
     constexpr double float_max = std::numeric_limits<float>::max();
     for (std::size_t v = 0; v < mesh.vertices.size(); ++v) {
         const glm::dvec3& p = mesh.vertices[v];
-        if (!is_finite(p)) fail(path, "vertex " + std::to_string(v) + " is not finite");
+        if (!is_finite(p)) fail_to_save(path, "vertex " + std::to_string(v) + " is not finite");
         if (std::abs(p.x) > float_max || std::abs(p.y) > float_max || std::abs(p.z) > float_max)
-            fail(path, "vertex " + std::to_string(v) + " lies beyond float32 range");
+            fail_to_save(path, "vertex " + std::to_string(v) + " lies beyond float32 range");
     }
     if (!mesh.surfaces.empty() && mesh.surfaces.size() != mesh.triangles.size())
-        fail(path, std::to_string(mesh.surfaces.size()) + " surface ids for " +
-                       std::to_string(mesh.triangles.size()) + " triangles");
+        fail_to_save(path, std::to_string(mesh.surfaces.size()) + " surface ids for " +
+                               std::to_string(mesh.triangles.size()) + " triangles");
     for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
         for (const std::uint32_t i : mesh.triangles[t])
             if (i >= mesh.vertices.size())
-                fail(path, "triangle " + std::to_string(t) + " refers to missing vertex " +
-                               std::to_string(i));
+                fail_to_save(path, "triangle " + std::to_string(t) + " refers to missing vertex " +
+                                       std::to_string(i));
 }
 
 // An aiMesh of the given triangles of the mesh with the vertices they use, renumbered in
@@ -186,8 +186,8 @@ class StagingFolder {
         name += ".tmp-XXXXXX";
         std::string pattern = (parent / name).string();
         if (::mkdtemp(pattern.data()) == nullptr)
-            fail(destination, "cannot create a temporary folder in '" + parent.string() +
-                                  "': " + std::generic_category().message(errno));
+            fail_to_save(destination, "cannot create a temporary folder in '" + parent.string() +
+                                          "': " + std::generic_category().message(errno));
         folder_ = pattern;
     }
     StagingFolder(const StagingFolder&) = delete;
@@ -217,7 +217,8 @@ class StagingFolder {
         } catch (const fs::filesystem_error& e) {
             std::error_code ignored;
             for (const fs::path& p : moved) fs::remove(p, ignored);
-            fail(destination_, "cannot move the written file into place: " + e.code().message());
+            fail_to_save(destination_,
+                         "cannot move the written file into place: " + e.code().message());
         }
     }
 
@@ -243,9 +244,9 @@ void save_mesh(const TriangleMesh& mesh, const fs::path& path) {
     try {
         result = exporter.Export(scene.get(), format, staging.staged_file().string());
     } catch (const std::exception& e) {
-        fail(path, std::string("export failed: ") + e.what());
+        fail_to_save(path, std::string("export failed: ") + e.what());
     }
-    if (result != aiReturn_SUCCESS) fail(path, exporter.GetErrorString());
+    if (result != aiReturn_SUCCESS) fail_to_save(path, exporter.GetErrorString());
     staging.commit();
 }
 

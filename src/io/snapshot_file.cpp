@@ -15,7 +15,7 @@
 namespace trackphys {
 namespace {
 
-constexpr char kMagic[8] = {'T', 'P', 'S', 'N', 'A', 'P', '\x1a', '\n'};
+constexpr char kSnapshotMagic[8] = {'T', 'P', 'S', 'N', 'A', 'P', '\x1a', '\n'};
 constexpr std::size_t kHeaderBytes = 32;
 // The fewest payload bytes one collider, car, ellipsoid and touching pair take: a count claiming more
 // than the bytes left is rejected before anything is allocated for it.
@@ -94,19 +94,19 @@ class Reader {
     std::size_t at_ = 0;
 };
 
-struct Header {
+struct SnapshotHeader {
     std::uint64_t payload_bytes;
     std::uint64_t checksum;
 };
 
 // The header's fields, checked; `bytes` begins with the file's first bytes.
-Header read_header(std::string_view bytes) {
+SnapshotHeader read_header(std::string_view bytes) {
     if (bytes.size() < kHeaderBytes)
         throw Error("snapshot: " + std::to_string(bytes.size()) + " bytes, shorter than the " +
                     std::to_string(kHeaderBytes) + "-byte header (truncated or not a snapshot)");
-    if (std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0)
+    if (std::memcmp(bytes.data(), kSnapshotMagic, sizeof kSnapshotMagic) != 0)
         throw Error("snapshot: wrong magic (not a trackphys snapshot file)");
-    Reader header(bytes.substr(sizeof kMagic, kHeaderBytes - sizeof kMagic));
+    Reader header(bytes.substr(sizeof kSnapshotMagic, kHeaderBytes - sizeof kSnapshotMagic));
     const std::uint32_t version = header.u32("format version");
     if (version != kSnapshotFormatVersion)
         throw Error("snapshot: format version " + std::to_string(version) +
@@ -271,7 +271,7 @@ std::string encode_snapshot(const WorldSnapshot& snapshot, std::string_view user
     payload.bytes(user_data);
 
     Writer file;
-    file.bytes(std::string_view(kMagic, sizeof kMagic));
+    file.bytes(std::string_view(kSnapshotMagic, sizeof kSnapshotMagic));
     file.u32(kSnapshotFormatVersion);
     file.u32(0);
     file.u64(payload.out().size());
@@ -281,7 +281,7 @@ std::string encode_snapshot(const WorldSnapshot& snapshot, std::string_view user
 }
 
 SnapshotFile decode_snapshot(std::string_view bytes) {
-    const Header header = read_header(bytes);
+    const SnapshotHeader header = read_header(bytes);
     check_payload_size(header.payload_bytes, bytes.size() - kHeaderBytes);
     const std::string_view payload = bytes.substr(kHeaderBytes);
     if (checksum(payload) != header.checksum)
@@ -356,7 +356,7 @@ SnapshotFile load_snapshot(const std::filesystem::path& path) {
     std::string bytes(static_cast<std::size_t>(std::min<std::uintmax_t>(size, kHeaderBytes)), '\0');
     try {
         in.read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-        const Header header = read_header(bytes);
+        const SnapshotHeader header = read_header(bytes);
         check_payload_size(header.payload_bytes, size - kHeaderBytes);
         bytes.resize(kHeaderBytes + static_cast<std::size_t>(header.payload_bytes));
         in.read(bytes.data() + kHeaderBytes, static_cast<std::streamsize>(header.payload_bytes));
