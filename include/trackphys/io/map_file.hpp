@@ -41,8 +41,9 @@ struct StaticMap {
 };
 
 /// Told how far a bake is: `done` of `total` colliders built. Called once per collider,
-/// `done` rising by one each time, from whichever thread built it, never two calls at once;
-/// it must not throw (the bake would report its error as the collider's).
+/// `done` rising by one each time, from whichever thread built it, never two calls at once.
+/// What it throws does not stop the bake: it comes out of bake_map, as it was, once every
+/// collider is built (the first such, by collider index, as a refused mesh would).
 using BakeProgress = std::function<void(std::size_t done, std::size_t total)>;
 
 /// Builds a map with one collider per mesh, in order, and each collider's plane tree with
