@@ -48,21 +48,19 @@ void run_bake(const BakeOptions& o, const OptionGiven& given) {
     const auto start = std::chrono::steady_clock::now();
     StaticMap map;
     std::string source;
-    // A map of millions of triangles bakes for tens of seconds: a bar of its colliders.
-    const auto bake_with_progress = [&](std::size_t colliders, auto&& bake) {
-        ProgressBar bar(static_cast<double>(colliders));
-        map = bake([&](std::size_t done, std::size_t) {
-            bar.show_count(static_cast<double>(done), "colliders");
-        });
+    // A map of millions of triangles bakes for tens of seconds: a bar of its colliders, ended
+    // (its line closed) before the summary is printed.
+    std::optional<ProgressBar> bar;
+    const BakeProgress progress = [&](std::size_t done, std::size_t total) {
+        if (!bar) bar.emplace(static_cast<double>(total));
+        bar->show_count(static_cast<double>(done), "colliders");
     };
     const auto threads = static_cast<unsigned>(o.threads);
     if (from_mesh) {
         const std::vector<TriangleMesh> chunks =
             split_into_chunks(load_mesh(o.mesh, o.mesh_limits), o.chunk_m);
         try {
-            bake_with_progress(chunks.size(), [&](const BakeProgress& progress) {
-                return bake_map(chunks, PlaneTreeSettings::precomputed(), threads, progress);
-            });
+            map = bake_map(chunks, PlaneTreeSettings::precomputed(), threads, progress);
         } catch (const Error& e) {  // a chunk the collider refuses (coordinates beyond its limit)
             throw Error("mesh file '" + o.mesh.string() + "': " + e.what());
         }
@@ -70,12 +68,11 @@ void run_bake(const BakeOptions& o, const OptionGiven& given) {
     } else {
         TrackParams params;
         params.seed = o.seed;
-        const Track track = generate_track(params);
-        bake_with_progress(track.chunks.size(), [&](const BakeProgress& progress) {
-            return bake_track_map(track, PlaneTreeSettings::precomputed(), threads, progress);
-        });
+        map = bake_track_map(generate_track(params), PlaneTreeSettings::precomputed(), threads,
+                             progress);
         source = "generated track, seed " + std::to_string(o.seed);
     }
+    bar.reset();
     const double bake_s = seconds_since(start);
     const auto write_start = std::chrono::steady_clock::now();
     try {

@@ -35,10 +35,10 @@ bool ProgressBar::advances(double done) {
     return true;
 }
 
-void ProgressBar::draw(const std::string& note) const {
+void ProgressBar::draw(const char* note) const {
     const int filled = last_ / 4;
     std::fprintf(stderr, "\r[%.*s%*s] %3d%%  %s", filled, "#########################", 25 - filled,
-                 "", last_, note.c_str());
+                 "", last_, note);
     std::fflush(stderr);
 }
 

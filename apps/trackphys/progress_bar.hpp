@@ -1,7 +1,5 @@
 #pragma once
 
-#include <string>
-
 namespace trackphys::cli {
 
 /// A progress bar on stderr, only when stderr is a terminal (never in logs or CI).
@@ -23,7 +21,7 @@ class ProgressBar {
   private:
     /// Whether the bar is on and `done` changes its whole percentage, which it then keeps.
     bool advances(double done);
-    void draw(const std::string& note) const;
+    void draw(const char* note) const;
 
     double total_;
     bool enabled_;
