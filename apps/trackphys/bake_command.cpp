@@ -12,6 +12,7 @@
 
 #include "commands.hpp"
 #include "file_clashes.hpp"
+#include "interrupt_guard.hpp"
 #include "progress_bar.hpp"
 #include "staged_outputs.hpp"
 #include "trackphys/error.hpp"
@@ -41,6 +42,9 @@ void run_bake(const BakeOptions& o, const OptionGiven& given) {
     if (o.out.extension() != ".tpmap")
         throw Error("--out '" + o.out.string() + "': a map file's name ends in .tpmap");
     refuse_file_clashes({{"MESH", o.mesh}}, {{"--out", o.out}});
+    // Ctrl-C stops the bake at the next collider built (or once a mesh file is read) and
+    // the staged file is removed, rather than the process killed and the file left behind.
+    const InterruptGuard interrupt_guard;
     // Staged before the build, so that an --out the folder will not take is refused before
     // seconds of work rather than after them.
     StagedOutputs outputs;
@@ -52,6 +56,7 @@ void run_bake(const BakeOptions& o, const OptionGiven& given) {
     // (its line closed) before the summary is printed.
     std::optional<ProgressBar> bar;
     const BakeProgress progress = [&](std::size_t done, std::size_t total) {
+        InterruptGuard::check();
         if (!bar) bar.emplace(static_cast<double>(total));
         bar->show_count(static_cast<double>(done), "colliders");
     };
@@ -59,8 +64,11 @@ void run_bake(const BakeOptions& o, const OptionGiven& given) {
     if (from_mesh) {
         const std::vector<TriangleMesh> chunks =
             split_into_chunks(load_mesh(o.mesh, o.mesh_limits), o.chunk_m);
+        InterruptGuard::check();
         try {
             map = bake_map(chunks, PlaneTreeSettings::precomputed(), threads, progress);
+        } catch (const Interrupted&) {
+            throw;
         } catch (const Error& e) {  // a chunk the collider refuses (coordinates beyond its limit)
             throw Error("mesh file '" + o.mesh.string() + "': " + e.what());
         }
@@ -80,6 +88,7 @@ void run_bake(const BakeOptions& o, const OptionGiven& given) {
     } catch (const Error& e) {  // its words name the staged file, which the user never named
         throw Error("--out '" + o.out.string() + "': " + e.what());
     }
+    InterruptGuard::check();
     outputs.commit();
     const double write_s = seconds_since(write_start);
 

@@ -1,17 +1,19 @@
 #include "interrupt_guard.hpp"
 
+#include <atomic>
 #include <csignal>
 #include <cstring>
 #include <string>
-
-#include "trackphys/error.hpp"
 
 namespace trackphys::cli {
 namespace {
 
 constexpr int kSignals[] = {SIGINT, SIGTERM, SIGHUP};
-// The signal that came, 0 for none: all a handler may safely do is set it.
-volatile std::sig_atomic_t g_signal = 0;
+// The signal that came, 0 for none: all a handler may safely do is set it. Atomic rather
+// than volatile sig_atomic_t because a bake's worker threads read it too; a lock-free atomic
+// is as safe in a handler.
+std::atomic<int> g_signal{0};
+static_assert(std::atomic<int>::is_always_lock_free);
 struct sigaction g_previous[3];
 
 extern "C" void note_signal(int signal) { g_signal = signal; }
@@ -31,9 +33,9 @@ InterruptGuard::~InterruptGuard() {
 }
 
 void InterruptGuard::check() {
-    if (g_signal != 0)
-        throw Error("interrupted by signal " + std::to_string(g_signal) + " (" +
-                    strsignal(g_signal) + "): no output written");
+    if (const int signal = g_signal; signal != 0)
+        throw Interrupted("interrupted by signal " + std::to_string(signal) + " (" +
+                          strsignal(signal) + "): no output written");
 }
 
 }  // namespace trackphys::cli

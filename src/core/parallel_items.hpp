@@ -1,7 +1,7 @@
 #pragma once
 
 // Runs independent jobs (one collider's BVH or plane tree each) on a few short-lived
-// threads, for builds done once: World's start, bake_map.
+// threads, for builds done once: World's start, bake_map, load_map.
 
 #include <algorithm>
 #include <atomic>
@@ -15,18 +15,23 @@ namespace trackphys::detail {
 /// Calls work(i) for every i in [0, count) on up to `threads` threads (0: one per core), the
 /// caller's included, and returns when all are done. Threads claim the next item in turn,
 /// so each item runs once whatever the thread count; results written to item i's place make
-/// the outcome independent of it. If items throw, the lowest such item's exception is
-/// rethrown after every item has run, the same one a serial loop reports first.
+/// the outcome independent of it. Once an item throws, no item above it is begun (a refused
+/// mesh or a cancelled bake ends the build at once rather than after every item); every item
+/// below it still runs, so the exception rethrown, the lowest item's, is the one a serial
+/// loop reports first.
 template <class Work>
 void run_items_in_parallel(std::size_t count, unsigned threads, Work&& work) {
     std::vector<std::exception_ptr> errors(count);
     std::atomic<std::size_t> next{0};
+    std::atomic<std::size_t> lowest_thrower{count};
     auto claim = [&] {
-        for (std::size_t i = next++; i < count; i = next++) {
+        for (std::size_t i = next++; i < count && i < lowest_thrower; i = next++) {
             try {
                 work(i);
             } catch (...) {
                 errors[i] = std::current_exception();
+                std::size_t lowest = lowest_thrower;
+                while (i < lowest && !lowest_thrower.compare_exchange_weak(lowest, i)) {}
             }
         }
     };

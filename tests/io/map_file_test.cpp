@@ -229,6 +229,30 @@ TEST(MapFile, BakeProgressHearsEachColliderOnceOnAnyThreadCount) {
     }
 }
 
+TEST(MapFile, BakeProgressThatThrowsCancelsTheBake) {
+    TrackParams params;
+    params.seed = 3;
+    params.length_m = 1000.0;
+    const Track track = generate_track(params);
+    ASSERT_GE(track.chunks.size(), 8u);
+    struct Cancelled {};
+    for (const unsigned threads : {1u, 2u}) {
+        std::size_t heard = 0;
+        EXPECT_THROW(bake_track_map(track, PlaneTreeSettings::precomputed(), threads,
+                                    [&](std::size_t done, std::size_t) {
+                                        heard = done;
+                                        if (done == 3) throw Cancelled{};
+                                    }),
+                     Cancelled);
+        // On one thread nothing is built after the third collider; on two, the other
+        // thread finishes the collider it had begun (and, descheduled, perhaps one more).
+        if (threads == 1) {
+            EXPECT_EQ(heard, 3u);
+        }
+        EXPECT_LT(heard, track.chunks.size()) << threads << " threads";
+    }
+}
+
 TEST(MapFile, EveryTruncationIsAnErrorNamingTheSource) {
     const std::string& bytes = baked_bytes();
     for (int k = 0; k < 64; ++k) {

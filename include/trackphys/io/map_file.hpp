@@ -42,8 +42,9 @@ struct StaticMap {
 
 /// Told how far a bake is: `done` of `total` colliders built. Called once per collider,
 /// `done` rising by one each time, from whichever thread built it, never two calls at once.
-/// What it throws does not stop the bake: it comes out of bake_map, as it was, once every
-/// collider is built (the first such, by collider index, as a refused mesh would).
+/// What it throws stops the bake, which is how a caller cancels one: no collider is begun
+/// after it, and it comes out of bake_map, as it was, once the colliders under way are built
+/// (unless a collider of lower index threw too, a refused mesh: the lowest one's comes out).
 using BakeProgress = std::function<void(std::size_t done, std::size_t total)>;
 
 /// Builds a map with one collider per mesh, in order, and each collider's plane tree with
