@@ -141,6 +141,14 @@ void set_primitive_types_from_faces(aiScene& scene) {
     }
 }
 
+// assimp reads coordinates as floats, so a file's 1e39 or 1e308 arrives as inf: said, so
+// that a message about "inf" is not taken to misread a finite number in the file.
+std::string beyond_single_precision_note(const glm::dvec3& p) {
+    if (!(std::isinf(p.x) || std::isinf(p.y) || std::isinf(p.z))) return {};
+    return " (assimp reads coordinates in single precision: a number beyond +-3.4e38 in the file "
+           "is inf there)";
+}
+
 // aiMatrix4x4 is row-major (a4, b4, c4 hold the translation); glm is column-major.
 glm::dmat4 to_dmat4(const aiMatrix4x4& m) {
     glm::dmat4 out(1.0);
@@ -234,7 +242,8 @@ class SceneMerger {
                 const glm::dvec3 q(p.x, p.y, p.z);
                 if (!trackphys::is_finite(q))
                     fail(path_, mesh_label(mesh, m) + ", vertex " + std::to_string(v) +
-                                    " has a non-finite coordinate " + format_point(q));
+                                    " has a non-finite coordinate " + format_point(q) +
+                                    beyond_single_precision_note(q));
             }
             for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
                 const unsigned n = mesh.mFaces[f].mNumIndices;
