@@ -1,9 +1,12 @@
 // The contacts at the nearest recorded update: each car's with the road, and those between
 // cars. A dot at each point and the normal drawn as a line whose length grows with the
 // depth, both coloured by depth; a contact between cars has a larger dot and its line runs
-// both ways from the point, since it pushes both cars.
+// both ways from the point, since it pushes both cars. Between updates the cars are drawn
+// where they are at that instant, and their contacts go with them: at 1000 km/h a car moves
+// 2.8 m from one 10 ms update to the next, and contacts left at the nearest update would lag
+// or lead it by up to half of that.
 import * as THREE from "three";
-import { CAR_CONTACT_WIDTH, type Recording } from "./recording";
+import { CAR_CONTACT_WIDTH, type CarTrack, type Recording } from "./recording";
 import type { Sample } from "./sample";
 
 /** Line length per metre of depth: a 1 cm overlap draws a 30 cm normal. */
@@ -71,9 +74,9 @@ class ContactLayer {
     this.count = 0;
   }
 
-  /** v[at..at+2] the point, v[at+3..at+5] the unit normal, v[at+6] the depth. */
-  add(v: Float32Array, at: number): void {
-    const [x, y, z, nx, ny, nz, depth] = v.subarray(at, at + 7);
+  add(point: THREE.Vector3, normal: THREE.Vector3, depth: number): void {
+    const { x, y, z } = point;
+    const { x: nx, y: ny, z: nz } = normal;
     const length = depth * LENGTH_PER_DEPTH;
     const back = this.bothWays ? length : 0;
     const c = depthColour(depth, this.colour);
@@ -97,6 +100,32 @@ class ContactLayer {
   }
 }
 
+/** Moves what was recorded with a car at one update to where the car is drawn now. */
+class Carry {
+  private readonly turn = new THREE.Quaternion();
+  private readonly from = new THREE.Vector3();
+  private readonly to = new THREE.Vector3();
+
+  /** From the car's recorded pose at frame f to `drawn`, its pose at the sample. */
+  set(track: CarTrack, f: number, drawn: THREE.Object3D): void {
+    this.from.fromArray(track.position, f * 3);
+    this.turn
+      .fromArray(track.quaternion, f * 4)
+      .normalize()
+      .invert()
+      .premultiply(drawn.quaternion);
+    this.to.copy(drawn.position);
+  }
+
+  point(p: THREE.Vector3): THREE.Vector3 {
+    return p.sub(this.from).applyQuaternion(this.turn).add(this.to);
+  }
+
+  direction(n: THREE.Vector3): THREE.Vector3 {
+    return n.applyQuaternion(this.turn);
+  }
+}
+
 /** The most entries any frame has in a list indexed by `start`. */
 function mostPerFrame(start: Uint32Array): number {
   let most = 0;
@@ -108,23 +137,45 @@ export class ContactsView {
   readonly group = new THREE.Group();
   private readonly road: ContactLayer;
   private readonly between: ContactLayer;
+  private readonly carries: Carry[];
+  private readonly point = new THREE.Vector3();
+  private readonly normal = new THREE.Vector3();
+  private readonly other = new THREE.Vector3();
 
   constructor(private readonly recording: Recording) {
     const road = recording.cars.reduce((sum, car) => sum + mostPerFrame(car.contactStart), 0);
     this.road = new ContactLayer(road, ROAD_DOT, false, this.group);
     this.between = new ContactLayer(mostPerFrame(recording.carContactStart), CAR_DOT, true, this.group);
+    this.carries = recording.cars.map(() => new Carry());
   }
 
-  update(s: Sample): void {
+  /** The nearest update's contacts, carried with the cars as `drawn` (car k's pose at s). */
+  update(s: Sample, drawn: readonly THREE.Object3D[]): void {
     const f = s.fraction < 0.5 ? s.index : s.index + 1;
-    this.road.begin();
-    for (const car of this.recording.cars)
-      for (let c = car.contactStart[f]; c < car.contactStart[f + 1]; ++c) this.road.add(car.contacts, c * 8);
-    this.road.end();
     const r = this.recording;
+    r.cars.forEach((car, k) => this.carries[k].set(car, f, drawn[k]));
+    const { point, normal } = this;
+    this.road.begin();
+    r.cars.forEach((car, k) => {
+      for (let c = car.contactStart[f]; c < car.contactStart[f + 1]; ++c) {
+        point.fromArray(car.contacts, c * 8);
+        normal.fromArray(car.contacts, c * 8 + 3);
+        this.road.add(this.carries[k].point(point), this.carries[k].direction(normal), car.contacts[c * 8 + 6]);
+      }
+    });
+    this.road.end();
+    // A contact between cars pushes both: its point goes with each car, and is drawn halfway
+    // between where each takes it; its normal, the direction to move car a, turns with a.
     this.between.begin();
-    for (let c = r.carContactStart[f]; c < r.carContactStart[f + 1]; ++c)
-      this.between.add(r.carContacts, c * CAR_CONTACT_WIDTH + 4);
+    for (let c = r.carContactStart[f]; c < r.carContactStart[f + 1]; ++c) {
+      const at = c * CAR_CONTACT_WIDTH;
+      const [a, b] = [r.carContacts[at], r.carContacts[at + 1]];
+      point.fromArray(r.carContacts, at + 4);
+      this.carries[b].point(this.other.copy(point));
+      this.carries[a].point(point).add(this.other).multiplyScalar(0.5);
+      normal.fromArray(r.carContacts, at + 7);
+      this.between.add(point, this.carries[a].direction(normal), r.carContacts[at + 10]);
+    }
     this.between.end();
   }
 }

@@ -15,6 +15,8 @@ import { VehicleHud } from "./vehicle_hud";
 export class ReplayView {
   private readonly scene = new THREE.Scene();
   private readonly cars: CarView[];
+  /** Each car's posed group, which the contacts follow. */
+  private readonly carGroups: THREE.Object3D[];
   private readonly contacts: ContactsView;
   private readonly rig: CameraRig;
   readonly playback: Playback;
@@ -39,7 +41,8 @@ export class ReplayView {
     if (track) this.scene.add(track);
     else this.scene.add(new THREE.GridHelper(2000, 200, 0x555555, 0x777777));
     this.cars = recording.cars.map((car, k) => new CarView(car, k));
-    for (const car of this.cars) this.scene.add(car.group);
+    this.carGroups = this.cars.map((car) => car.group);
+    this.scene.add(...this.carGroups);
     this.contacts = new ContactsView(recording);
     this.scene.add(this.contacts.group);
     this.rig = new CameraRig(renderer.domElement, () => (this.dirty = true));
@@ -181,7 +184,7 @@ export class ReplayView {
   private draw(): void {
     const s = sampleAt(this.recording.time, this.playback.t);
     for (const car of this.cars) car.pose(s);
-    this.contacts.update(s);
+    this.contacts.update(s, this.carGroups);
     this.rig.follow(this.cars[this.selected].group);
     this.renderer.render(this.scene, this.rig.camera);
     this.updateHud(s);

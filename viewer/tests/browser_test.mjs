@@ -25,6 +25,7 @@ import {
 } from "./page_probe.mjs";
 import {
     carContactNamingNoCar,
+    fastPairRecording,
     handMadeSpeed,
     malformedRecording,
     multiCarRecording,
@@ -357,6 +358,47 @@ await check("contacts between cars show in the HUD of both cars and on the canva
         await waitReady(page, await open(touching, "#t=0.45&car=1"));
         assert.equal((await hud(page)).carContacts, 1, "car 1 at 0.45 s");
         console.log(`car contact  drawn: the canvas differs by ${difference.toFixed(3)} per channel`);
+    }),
+);
+
+await check("between updates the contacts go with the cars (1080 km/h, 3 m an update)", () =>
+    withPage(browser, async ({ page, open }) => {
+        const speed = 300;
+        const drawn = makePage(writeRecording("fast_pair", fastPairRecording(speed, 1)), "fast_pair");
+        const none = makePage(
+            writeRecording("fast_pair_none", fastPairRecording(speed, 1, { without: true })),
+            "fast_pair_none",
+        );
+        const [w, h] = [384, 216];
+        // The mean position of the pixels the contacts change: the page with them against
+        // the same recording without them, at time t.
+        const contactsAt = async (t) => {
+            await waitReady(page, await open(drawn, `#t=${t}`));
+            const shown = await canvasPixels(page, w, h);
+            await waitReady(page, await open(none, `#t=${t}`));
+            const bare = await canvasPixels(page, w, h);
+            let [sx, sy, n] = [0, 0, 0];
+            for (let i = 0; i < shown.length; i += 4) {
+                const change =
+                    Math.abs(shown[i] - bare[i]) +
+                    Math.abs(shown[i + 1] - bare[i + 1]) +
+                    Math.abs(shown[i + 2] - bare[i + 2]);
+                if (change < 60) continue;
+                sx += (i / 4) % w;
+                sy += Math.floor(i / 4 / w);
+                n++;
+            }
+            assert.ok(n > 0, `no contact drawn at ${t} s`);
+            return [sx / n, sy / n];
+        };
+        // At an update, and 0.45 of the way to the next one, whose contacts are still the
+        // nearest: the chase camera follows car 0, so contacts that go with the cars stay put
+        // on the screen, where contacts left at the update would be 1.35 m behind.
+        const [x0, y0] = await contactsAt(0.5);
+        const [x1, y1] = await contactsAt(0.5045);
+        const moved = Math.hypot(x1 - x0, y1 - y0);
+        console.log(`fast contacts moved ${moved.toFixed(2)} px on the screen between updates`);
+        assert.ok(moved < 2, `the contacts moved ${moved.toFixed(1)} px from (${x0.toFixed(1)}, ${y0.toFixed(1)})`);
     }),
 );
 

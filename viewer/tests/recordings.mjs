@@ -108,6 +108,24 @@ export function sideBySideRecording(seconds, { without = false } = {}) {
     return [head, ...touching].join("\n") + "\n";
 }
 
+/** Two cars side by side at `speed` (m/s) along +Z, car 1 2.2 m to the left of car 0, their
+ * bodies touching all along: every frame lists each car's contact with the road under its
+ * centre and one between them, 2 cm deep, halfway; `without` leaves all contacts out. */
+export function fastPairRecording(speed, seconds, { without = false } = {}) {
+    const [head, ...lines] = multiCarRecording(2, seconds).trimEnd().split("\n");
+    const fast = lines.map((line) => {
+        const f = JSON.parse(line);
+        f.cars.forEach((car, k) => {
+            car.p = [2.2 * k, 0.5, speed * f.t];
+            car.v = speed;
+            car.contacts = without ? [] : [[car.p[0], 0, car.p[2], 0, 1, 0, 0.004, 4]];
+        });
+        if (!without) f.car_contacts = [[0, 1, 4, 4, 1.1, 0.5, speed * f.t, -1, 0, 0, 0.02]];
+        return JSON.stringify(f);
+    });
+    return [head, ...fast].join("\n") + "\n";
+}
+
 /** Two cars whose first frame lists a contact between car 0 and a car 2 (line 2). */
 export function carContactNamingNoCar() {
     const [head, frame] = multiCarRecording(2, 0.01).trimEnd().split("\n");
