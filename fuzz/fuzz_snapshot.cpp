@@ -26,6 +26,7 @@
 #include "trackphys/collision/static_collider.hpp"
 #include "trackphys/collision/static_world.hpp"
 #include "trackphys/error.hpp"
+#include "trackphys/geometry/mesh_chunks.hpp"
 #include "trackphys/io/mesh_io.hpp"
 #include "trackphys/io/snapshot_file.hpp"
 #include "trackphys/math/types.hpp"
@@ -39,12 +40,14 @@ constexpr std::size_t kHeaderBytes = 32;
 constexpr int kUpdates = 5;
 constexpr std::size_t kMaxCars = 4;
 
-// Loaded once per process.
+// Loaded once per process, in the 100 m cells drive --mesh splits a mesh into (a collider
+// each), so that drive's snapshots are of this world.
 const std::shared_ptr<const trackphys::StaticWorld>& statics() {
     static const std::shared_ptr<const trackphys::StaticWorld> built = [] {
         auto world = std::make_shared<trackphys::StaticWorld>();
-        world->add(std::make_shared<trackphys::StaticCollider>(
-            trackphys::load_mesh(TRACKPHYS_FUZZ_GROUND)));
+        for (const trackphys::TriangleMesh& chunk :
+             trackphys::split_into_chunks(trackphys::load_mesh(TRACKPHYS_FUZZ_GROUND), 100.0))
+            world->add(std::make_shared<trackphys::StaticCollider>(chunk));
         return world;
     }();
     return built;

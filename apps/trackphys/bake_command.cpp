@@ -6,19 +6,15 @@
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
-#include <optional>
 #include <string>
-#include <vector>
 
+#include "collider_build.hpp"
 #include "commands.hpp"
 #include "file_clashes.hpp"
 #include "interrupt_guard.hpp"
-#include "progress_bar.hpp"
 #include "staged_outputs.hpp"
 #include "trackphys/error.hpp"
-#include "trackphys/geometry/mesh_chunks.hpp"
 #include "trackphys/io/map_file.hpp"
-#include "trackphys/io/mesh_io.hpp"
 #include "trackphys/track/track.hpp"
 
 namespace trackphys::cli {
@@ -42,45 +38,27 @@ void run_bake(const BakeOptions& o, const OptionGiven& given) {
     if (o.out.extension() != ".tpmap")
         throw Error("--out '" + o.out.string() + "': a map file's name ends in .tpmap");
     refuse_file_clashes({{"MESH", o.mesh}}, {{"--out", o.out}});
-    // Ctrl-C stops the bake at the next collider built (or once a mesh file is read) and
-    // the staged file is removed, rather than the process killed and the file left behind.
+    // Ctrl-C stops the bake at the next collider built (or once a mesh file is read:
+    // build_mesh_colliders) and the staged file is removed, rather than the process killed
+    // and the file left behind.
     const InterruptGuard interrupt_guard;
     // Staged before the build, so that an --out the folder will not take is refused before
     // seconds of work rather than after them.
     StagedOutputs outputs;
     const std::filesystem::path staged = outputs.stage(o.out, "--out");
     const auto start = std::chrono::steady_clock::now();
+    const auto threads = static_cast<unsigned>(o.threads);
     StaticMap map;
     std::string source;
-    // A map of millions of triangles bakes for tens of seconds: a bar of its colliders, ended
-    // (its line closed) before the summary is printed.
-    std::optional<ProgressBar> bar;
-    const BakeProgress progress = [&](std::size_t done, std::size_t total) {
-        InterruptGuard::check();
-        if (!bar) bar.emplace(static_cast<double>(total));
-        bar->show_count(static_cast<double>(done), "colliders");
-    };
-    const auto threads = static_cast<unsigned>(o.threads);
     if (from_mesh) {
-        const std::vector<TriangleMesh> chunks =
-            split_into_chunks(load_mesh(o.mesh, o.mesh_limits), o.chunk_m);
-        InterruptGuard::check();
-        try {
-            map = bake_map(chunks, PlaneTreeSettings::precomputed(), threads, progress);
-        } catch (const Interrupted&) {
-            throw;
-        } catch (const Error& e) {  // a chunk the collider refuses (coordinates beyond its limit)
-            throw Error("mesh file '" + o.mesh.string() + "': " + e.what());
-        }
+        map = build_mesh_colliders(o.mesh, o.mesh_limits, o.chunk_m, threads);
         source = "mesh " + o.mesh.string();
     } else {
         TrackParams params;
         params.seed = o.seed;
-        map = bake_track_map(generate_track(params), PlaneTreeSettings::precomputed(), threads,
-                             progress);
+        map = build_track_colliders(generate_track(params), threads);
         source = "generated track, seed " + std::to_string(o.seed);
     }
-    bar.reset();
     const double bake_s = seconds_since(start);
     const auto write_start = std::chrono::steady_clock::now();
     try {

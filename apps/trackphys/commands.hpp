@@ -31,6 +31,10 @@ using OptionGiven = std::function<bool(const std::string& option)>;
 /// laps give up after this many seconds a lap.
 inline constexpr double kMaxSecondsPerLap = 600.0;
 
+/// The cells (m on x and z, a collider each) `bake` and `drive --mesh` split a mesh file into
+/// (collider_build.hpp); `bake --chunk` changes it.
+inline constexpr double kDefaultChunkM = 100.0;
+
 /// A time or length as messages describe it, %g-style ("2", "1e+300"), never
 /// std::to_string's six decimals or its 300 digits. A value checked against a bound is
 /// shown by exact_text instead, so that one just past the bound does not read as the bound.
@@ -136,7 +140,7 @@ struct BakeOptions {
     std::filesystem::path mesh;
     std::uint64_t seed = kDemoTrackSeed;
     std::filesystem::path out;
-    double chunk_m = 100.0;
+    double chunk_m = kDefaultChunkM;
     int threads = 0;
     MeshLoadLimits mesh_limits;
 };

@@ -7,10 +7,11 @@
 
 #include <glm/gtc/quaternion.hpp>
 
+#include "collider_build.hpp"
+#include "commands.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/geometry/ellipsoid.hpp"
 #include "trackphys/io/map_file.hpp"
-#include "trackphys/io/mesh_io.hpp"
 #include "trackphys/world/spawn.hpp"
 
 namespace trackphys::cli {
@@ -19,6 +20,18 @@ namespace {
 // The centre of mass's height for the car to start a millimetre clear of the surface and
 // settle onto it.
 double ride_height(const CarSpec& car) { return car.lowest_point_depth() + 0.001; }
+
+// A baked or loaded map's colliders, plane trees and track (when it has one).
+DriveScene scene_of(StaticMap map, std::string description) {
+    DriveScene scene;
+    scene.track = std::move(map.track);
+    for (std::uint32_t id = 0; id < map.statics->size(); ++id)
+        scene.triangle_count += map.statics->collider(id).mesh_triangle_count();
+    scene.statics = std::move(map.statics);
+    scene.plane_trees = std::move(map.plane_trees);
+    scene.description = std::move(description);
+    return scene;
+}
 
 }  // namespace
 
@@ -40,30 +53,11 @@ DriveScene make_track_scene(std::uint64_t seed) {
 }
 
 DriveScene make_mesh_scene(const std::filesystem::path& mesh, const MeshLoadLimits& limits) {
-    DriveScene scene;
-    auto statics = std::make_shared<StaticWorld>();
-    const TriangleMesh loaded = load_mesh(mesh, limits);
-    scene.triangle_count = loaded.triangles.size();
-    try {
-        statics->add(std::make_shared<StaticCollider>(loaded));
-    } catch (const Error& e) {  // a mesh the collider refuses (coordinates beyond its limit)
-        throw Error("mesh file '" + mesh.string() + "': " + e.what());
-    }
-    scene.statics = std::move(statics);
-    scene.description = "mesh " + mesh.string();
-    return scene;
+    return scene_of(build_mesh_colliders(mesh, limits, kDefaultChunkM, 0), "mesh " + mesh.string());
 }
 
 DriveScene make_map_scene(const std::filesystem::path& map) {
-    StaticMap loaded = load_static_world(map);
-    DriveScene scene;
-    scene.track = std::move(loaded.track);
-    for (std::uint32_t id = 0; id < loaded.statics->size(); ++id)
-        scene.triangle_count += loaded.statics->collider(id).mesh_triangle_count();
-    scene.statics = std::move(loaded.statics);
-    scene.plane_trees = std::move(loaded.plane_trees);
-    scene.description = "map " + map.string();
-    return scene;
+    return scene_of(load_static_world(map), "map " + map.string());
 }
 
 std::vector<Surface> surface_table(const DriveScene& scene, std::span<const Surface> grips) {

@@ -31,7 +31,9 @@ struct DriveScene {
 
 /// The generated track of that seed, one collider per chunk.
 DriveScene make_track_scene(std::uint64_t seed);
-/// A mesh file (any format load_mesh reads, within limits) as one collider.
+/// A mesh file (any format load_mesh reads, within limits) as `bake` would bake it with its
+/// default --chunk: a collider and its plane tree for each 100 m cell, built on every core
+/// (build_mesh_colliders), so that the drive is the one on that map.
 DriveScene make_mesh_scene(const std::filesystem::path& mesh,
                            const MeshLoadLimits& limits = MeshLoadLimits{});
 /// A baked map (trackphys bake): its colliders and plane trees, and its track when it was

@@ -66,3 +66,27 @@ file(WRITE ${in}/scenario_map.json "{\"track\": {\"map\": \"${maps}/seed7.tpmap\
 trackphys_cli_test(map.scenario_file 0 "map .*seed7.tpmap.*simulated +2.00 s"
                    drive --scenario ${in}/scenario_map.json)
 set_tests_properties(map.scenario_file PROPERTIES FIXTURES_REQUIRED baked_maps)
+
+# drive --mesh drives on the colliders bake makes: the same state hash as on the baked map,
+# over a 300 m square of ground in 50 m squares (nine 100 m cells, nine colliders).
+set(grid_obj "")
+foreach(i RANGE 0 6)
+  foreach(j RANGE 0 6)
+    math(EXPR x "${i} * 50 - 150")
+    math(EXPR z "${j} * 50 - 150")
+    string(APPEND grid_obj "v ${x} 0 ${z}\n")
+  endforeach()
+endforeach()
+foreach(i RANGE 0 5)
+  foreach(j RANGE 0 5)
+    math(EXPR a "${i} * 7 + ${j} + 1")
+    math(EXPR b "${a} + 1")
+    math(EXPR c "${a} + 7")
+    math(EXPR d "${c} + 1")
+    string(APPEND grid_obj "f ${a} ${b} ${d}\nf ${a} ${d} ${c}\n")
+  endforeach()
+endforeach()
+file(WRITE ${maps}/grid_300m.obj "${grid_obj}")
+add_test(NAME map.drive_a_mesh_as_its_map
+         COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/mesh_drives_as_its_map.sh $<TARGET_FILE:trackphys_app>
+                 ${maps}/grid_300m.obj ${maps}/grid)

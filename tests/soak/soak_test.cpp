@@ -204,7 +204,7 @@ TEST(Soak, RealWorldTrackMeshFreeDriving) {
     constexpr double kSeconds = 600.0;
     const cli::DriveScene scene = cli::make_mesh_scene(mesh);
     const CarSpec spec = CarSpec::default_car();
-    World world(scene.statics, cli::tool_world_settings());
+    World world(scene.statics, cli::tool_world_settings(), scene.plane_trees);
     // The car lands on whatever is below (0, 50, 0): on g-track-1, the road near the origin.
     world.add_car(spec, cli::spawn_on_surface(*scene.statics, spec, {0.0, 50.0, 0.0}, 90.0));
 
@@ -212,7 +212,9 @@ TEST(Soak, RealWorldTrackMeshFreeDriving) {
     // a third: the terrain ends at the box, and the car would fall off its edge) and changes
     // throttle and brake every 2 s (fixed seed): it accelerates, brakes, turns both ways,
     // climbs, and bumps into whatever stands in its way.
-    const Aabb& bounds = scene.statics->collider(0).bounds();
+    Aabb bounds;  // the mesh's, over its 100 m colliders
+    for (std::uint32_t id = 0; id < scene.statics->size(); ++id)
+        bounds.expand(scene.statics->collider(id).bounds());
     const glm::dvec3 centre = 0.5 * (bounds.min + bounds.max),
                      reach = (bounds.max - bounds.min) / 3.0;
     std::mt19937 random(8);
