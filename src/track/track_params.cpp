@@ -51,13 +51,11 @@ void validate_track_params(const TrackParams& p) {
     if (p.strips < 1 || p.strips > 256) fail("strips", "must be in [1, 256]", p.strips);
 
     if (p.edge_straight_m < p.edge_tight_m)
-        fail("edge_straight_m",
-             "must be >= edge_tight_m (" + std::to_string(p.edge_tight_m) + " m)",
+        fail("edge_straight_m", "must be >= edge_tight_m (" + exact_text(p.edge_tight_m) + " m)",
              p.edge_straight_m);
     if (p.chunk_length_m < 4.0 * p.edge_straight_m)
         fail("chunk_length_m",
-             "must be at least 4 x edge_straight_m (" + std::to_string(4.0 * p.edge_straight_m) +
-                 " m)",
+             "must be at least 4 x edge_straight_m (" + exact_text(4.0 * p.edge_straight_m) + " m)",
              p.chunk_length_m);
 
     // Two parts of the track keep a clearance of both roads with walls and a gap between
@@ -66,8 +64,7 @@ void validate_track_params(const TrackParams& p) {
     const double clearance = track_detail::required_clearance(p);
     if (p.min_turn_radius_m < 0.5 * clearance)
         fail("min_turn_radius_m",
-             "must be at least 0.75 x width_m + wall_thickness_m (" +
-                 std::to_string(0.5 * clearance) +
+             "must be at least 0.75 x width_m + wall_thickness_m (" + exact_text(0.5 * clearance) +
                  " m) so that a turn's inner edge does not fold and its two sides keep clear",
              p.min_turn_radius_m);
     // A circle is the generator's last resort; it must itself be a valid track, with room
@@ -75,7 +72,7 @@ void validate_track_params(const TrackParams& p) {
     if (p.length_m < 2.0 * std::numbers::pi * 1.5 * p.min_turn_radius_m)
         fail("length_m",
              "is too short for min_turn_radius_m: needs at least 3 pi x min_turn_radius_m (" +
-                 std::to_string(3.0 * std::numbers::pi * p.min_turn_radius_m) + " m)",
+                 exact_text(3.0 * std::numbers::pi * p.min_turn_radius_m) + " m)",
              p.length_m);
 
     // Upper bound of the rows (all at the tight spacing on the outer edge of the tightest

@@ -77,7 +77,7 @@ void Vehicle::set_road_grip(std::size_t w, double grip) {
                     std::to_string(wheels_.size()));
     if (!(std::isfinite(grip) && grip > 0.0))
         throw Error("set_road_grip: wheel slot " + std::to_string(w) + ": grip " +
-                    std::to_string(grip) + " is not finite and above 0");
+                    exact_text(grip) + " is not finite and above 0");
     wheels_[w].road_grip = grip;
 }
 
@@ -96,7 +96,7 @@ void Vehicle::check_state(const VehicleState& state) const {
         if (!(std::isfinite(s.spin) && std::isfinite(s.road_torque) &&
               std::abs(s.slip_ratio) <= kMaxSlip && std::abs(s.lateral_slip) <= kMaxSlip))
             reject("wheel " + std::to_string(w) + " is not finite or its slip exceeds " +
-                   std::to_string(kMaxSlip));
+                   exact_text(kMaxSlip));
     }
     const int gears = static_cast<int>(spec_.gearbox.ratios.size());
     if (!((state.gear >= 1 && state.gear <= gears) || state.gear == VehicleState::reverse_gear))

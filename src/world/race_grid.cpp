@@ -45,9 +45,8 @@ std::vector<RigidBodyState> race_grid(const Track& track, const StaticWorld& sta
     const double grid_length =
         settings.first_row_back + 0.5 * settings.row_gap * static_cast<double>(cars);
     if (!(grid_length < track.length_m))
-        throw Error("race_grid: " + std::to_string(cars) + " cars need " +
-                    std::to_string(grid_length) + " m of grid, the track is only " +
-                    std::to_string(track.length_m) + " m long");
+        throw Error("race_grid: " + std::to_string(cars) + " cars need " + exact_text(grid_length) +
+                    " m of grid, the track is only " + exact_text(track.length_m) + " m long");
 
     std::vector<RigidBodyState> grid;
     grid.reserve(cars);
