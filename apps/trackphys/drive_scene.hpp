@@ -24,7 +24,7 @@ namespace trackphys::cli {
 struct DriveScene {
     std::optional<Track> track;  ///< set for a generated track
     std::shared_ptr<const StaticWorld> statics;
-    ColliderPlaneTrees plane_trees;  ///< a baked map's; empty: the World builds them
+    ColliderPlaneTrees plane_trees;  ///< a map's or a mesh's (baked); empty: the World builds them
     std::size_t triangle_count = 0;
     std::string description;  ///< for the report
 };

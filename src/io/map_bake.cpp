@@ -15,12 +15,20 @@ StaticMap bake_map(std::span<const TriangleMesh> meshes, const PlaneTreeSettings
     const std::size_t n = meshes.size();
     std::vector<std::shared_ptr<const StaticCollider>> colliders(n);
     ColliderPlaneTrees trees(n);
+    // Frames as a World's own trees or a loaded map's take them, so that a map driven where
+    // it was baked (drive --mesh) queries as fast as the same map loaded. The meshes' count
+    // is before degenerate triangles are dropped: near the budget it may choose built frames
+    // where a load keeps them, which costs speed, never a different answer.
+    std::size_t triangles = 0;
+    for (const TriangleMesh& mesh : meshes) triangles += mesh.triangles.size();
+    const PlaneTreeFrames frames = plane_tree_frames_within(triangles, kPlaneTreeFrameBudget);
     std::mutex progress_mutex;
     std::size_t built = 0;
     detail::run_items_in_parallel(n, threads, [&](std::size_t i) {
         try {
             auto collider = std::make_shared<StaticCollider>(meshes[i]);
-            trees[i] = std::make_shared<PlaneTree>(make_collider_plane_tree(*collider, settings));
+            trees[i] =
+                std::make_shared<PlaneTree>(make_collider_plane_tree(*collider, settings, frames));
             colliders[i] = std::move(collider);
         } catch (const Error& e) {
             if (n == 1) throw;

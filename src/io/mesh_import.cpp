@@ -141,12 +141,12 @@ void set_primitive_types_from_faces(aiScene& scene) {
     }
 }
 
-// assimp reads coordinates as floats, so a file's 1e39 or 1e308 arrives as inf: said, so
-// that a message about "inf" is not taken to misread a finite number in the file.
+// assimp reads coordinates as floats, so a file's 1e39 or 1e308 arrives as inf, as an "inf"
+// does: said, so that a message about "inf" is not taken to misread a finite number.
 std::string beyond_single_precision_note(const glm::dvec3& p) {
     if (!(std::isinf(p.x) || std::isinf(p.y) || std::isinf(p.z))) return {};
-    return " (assimp reads coordinates in single precision: a number beyond +-3.4e38 in the file "
-           "is inf there)";
+    return " (assimp reads coordinates in single precision: inf there is an infinite number in "
+           "the file or one beyond +-3.4e38)";
 }
 
 // aiMatrix4x4 is row-major (a4, b4, c4 hold the translation); glm is column-major.

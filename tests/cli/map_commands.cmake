@@ -68,7 +68,7 @@ trackphys_cli_test(map.scenario_file 0 "map .*seed7.tpmap.*simulated +2.00 s"
 set_tests_properties(map.scenario_file PROPERTIES FIXTURES_REQUIRED baked_maps)
 
 # drive --mesh drives on the colliders bake makes: the same state hash as on the baked map,
-# over a 300 m square of ground in 50 m squares (nine 100 m cells, nine colliders).
+# over a 300 m square of ground in 50 m squares (cells from the origin: 4 x 4 colliders).
 set(grid_obj "")
 foreach(i RANGE 0 6)
   foreach(j RANGE 0 6)

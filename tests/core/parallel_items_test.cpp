@@ -69,8 +69,9 @@ TEST(ParallelItems, TheLowestThrowingItemIsRethrownWhicheverThrowsFirst) {
 }
 
 TEST(ParallelItems, AThrowingFirstItemEndsTheRunOnAnyThreadCount) {
-    // The other items take a millisecond each: run to the end, 400 would take 0.1-0.4 s; the
-    // other threads should stop at the item they hold when item 0 throws.
+    // The other items take 5 ms each: run to the end, 400 would take 0.5-1 s; the other
+    // threads should stop at the item they hold when item 0 throws (half of them would need
+    // item 0's thread held off for a third of a second between its claim and its throw).
     for (const unsigned threads : {2u, 4u}) {
         std::atomic<int> ran{0};
         EXPECT_THROW(detail::run_items_in_parallel(400, threads,
@@ -78,7 +79,7 @@ TEST(ParallelItems, AThrowingFirstItemEndsTheRunOnAnyThreadCount) {
                                                        ++ran;
                                                        if (i == 0) throw std::runtime_error("0");
                                                        std::this_thread::sleep_for(
-                                                           std::chrono::milliseconds(1));
+                                                           std::chrono::milliseconds(5));
                                                    }),
                      std::runtime_error);
         EXPECT_LT(ran, 200) << threads << " threads";
