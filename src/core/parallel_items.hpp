@@ -42,8 +42,7 @@ void run_items_in_parallel(std::size_t count, unsigned threads, Work&& work) {
             helpers.emplace_back(claim);
         claim();
     }  // joins
-    for (const std::exception_ptr& error : errors)
-        if (error) std::rethrow_exception(error);
+    if (lowest_thrower < count) std::rethrow_exception(errors[lowest_thrower]);
 }
 
 }  // namespace trackphys::detail
