@@ -56,6 +56,7 @@ void print_json(const InfoOptions& options, const MeshLoadReport& r,
           {"size", json_of(r.bounds.extent())}}},
         {"area_m2", r.area},
         {"degenerate_dropped", r.degenerate_dropped},
+        {"duplicates_dropped", r.duplicates_dropped},
         {"points_skipped", r.points_skipped},
         {"lines_skipped", r.lines_skipped},
         {"triangulation_lost", r.triangulation_lost},
@@ -80,6 +81,7 @@ void print_text(const InfoOptions& options, const MeshLoadReport& r,
     print_vector("size", r.bounds.extent());
     std::printf("%-20s %.3f m^2\n", "area", r.area);
     std::printf("%-20s %zu\n", "degenerate dropped", r.degenerate_dropped);
+    std::printf("%-20s %zu\n", "duplicates dropped", r.duplicates_dropped);
     std::printf("%-20s %zu\n", "points skipped", r.points_skipped);
     std::printf("%-20s %zu\n", "lines skipped", r.lines_skipped);
     std::printf("%-20s %zu\n", "triangulation lost", r.triangulation_lost);

@@ -1,10 +1,10 @@
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <exception>
-#include <functional>
 #include <limits>
 #include <memory>
 #include <new>
@@ -12,7 +12,6 @@
 #include <string>
 #include <string_view>
 #include <system_error>
-#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -27,6 +26,7 @@
 
 #include "io/confined_io_system.hpp"
 #include "io/file_bytes.hpp"
+#include "io/first_of_each_key.hpp"
 #include "io/mesh_checks.hpp"
 #include "io/mesh_format.hpp"
 #include "trackphys/error.hpp"
@@ -164,45 +164,57 @@ bool is_finite(const glm::dmat4& m) {
     return true;
 }
 
+// Mixes three 64-bit words into a hash well mixed in every bit (for FirstOfEachKey).
+std::uint64_t mixed(std::uint64_t a, std::uint64_t b, std::uint64_t c) {
+    std::uint64_t h = a * 0x9E3779B97F4A7C15ull;
+    h = (h ^ (h >> 31) ^ b) * 0xC2B2AE3D27D4EB4Full;
+    h = (h ^ (h >> 29) ^ c) * 0x165667B19E3779F9ull;
+    return h ^ (h >> 32);
+}
+
+// A vertex is keyed by its position's bits (+0 stored for -0, so the two weld).
+struct PositionKey {
+    const glm::dvec3& operator()(const glm::dvec3& p) const { return p; }
+    std::uint64_t hash(const glm::dvec3& p) const {
+        return mixed(std::bit_cast<std::uint64_t>(p.x), std::bit_cast<std::uint64_t>(p.y),
+                     std::bit_cast<std::uint64_t>(p.z));
+    }
+};
+
+// A triangle is keyed by its corners in ascending order: the same in any order or winding.
+struct CornerSetKey {
+    using Corners = std::array<std::uint32_t, 3>;
+    Corners operator()(const Corners& c) const {
+        const std::uint32_t lo = std::min(c[0], c[1]), hi = std::max(c[0], c[1]);
+        return {std::min(lo, c[2]), std::max(lo, std::min(hi, c[2])), std::max(hi, c[2])};
+    }
+    std::uint64_t hash(const Corners& s) const { return mixed(s[0], s[1], s[2]); }
+};
+
 // Welds vertices whose world positions are bit-identical (+0 and -0 taken as equal), so
 // that a format which stores one vertex per face corner (OBJ through assimp, STL) still
 // gives a connected mesh. Exact equality only: welding near-equal points would move
 // geometry. Indices are handed out in first-use order, so the result is deterministic.
 class VertexWelder {
   public:
-    explicit VertexWelder(std::vector<glm::dvec3>& vertices) : vertices_(vertices) {}
+    explicit VertexWelder(std::vector<glm::dvec3>& vertices)
+        : vertices_(vertices), first_(vertices) {}
 
     /// The index of p in vertices, appending it on first use; false when the index would
     /// not fit the mesh's 32-bit indices.
     bool index_of(const glm::dvec3& p, std::uint32_t& index) {
-        const Key key{glm::dvec3(p.x + 0.0, p.y + 0.0, p.z + 0.0)};  // -0.0 + 0.0 = +0.0
-        const auto [it, inserted] = ids_.try_emplace(key, 0u);
-        if (inserted) {
-            if (vertices_.size() > std::numeric_limits<std::uint32_t>::max()) return false;
-            it->second = static_cast<std::uint32_t>(vertices_.size());
-            vertices_.push_back(key.p);
-        }
-        index = it->second;
+        if (vertices_.size() >= std::numeric_limits<std::uint32_t>::max()) return false;
+        vertices_.emplace_back(p.x + 0.0, p.y + 0.0, p.z + 0.0);  // -0.0 + 0.0 = +0.0
+        const std::size_t last = vertices_.size() - 1;
+        const std::size_t first = first_.first_of(last);
+        if (first != last) vertices_.pop_back();
+        index = static_cast<std::uint32_t>(first);
         return true;
     }
 
   private:
-    struct Key {
-        glm::dvec3 p;
-        bool operator==(const Key& other) const { return p == other.p; }
-    };
-    struct KeyHash {
-        std::size_t operator()(const Key& k) const {
-            const std::hash<double> h;
-            std::size_t seed = h(k.p.x);
-            seed ^= h(k.p.y) + 0x9e3779b97f4a7c15ULL + (seed << 6) + (seed >> 2);
-            seed ^= h(k.p.z) + 0x9e3779b97f4a7c15ULL + (seed << 6) + (seed >> 2);
-            return seed;
-        }
-    };
-
     std::vector<glm::dvec3>& vertices_;
-    std::unordered_map<Key, std::uint32_t, KeyHash> ids_;
+    detail::FirstOfEachKey<glm::dvec3, PositionKey> first_;
 };
 
 // Everything about one file's import: the scene is read in two passes (validation before
@@ -211,7 +223,11 @@ class VertexWelder {
 class SceneMerger {
   public:
     SceneMerger(const fs::path& path, MeshLoadReport& report, const MeshLoadLimits& limits)
-        : path_(path), report_(report), limits_(limits), welder_(mesh_.vertices) {}
+        : path_(path),
+          report_(report),
+          limits_(limits),
+          welder_(mesh_.vertices),
+          first_triangles_(mesh_.triangles) {}
 
     // Checks every vertex coordinate and counts, per mesh, the triangles its faces should
     // give once triangulated (n - 2 for an n-gon).
@@ -261,11 +277,11 @@ class SceneMerger {
         }
     }
 
-    // Refuses a file whose nodes place more triangles than limits.max_triangles before any is
-    // placed: a 1 MB glTF placing one 10k-triangle mesh by 20,000 nodes took 2.5 minutes and
-    // 3.8 GB to fail on the way. Counted as triangulation will give them, degenerate ones
-    // included (they are dropped later).
-    void check_placed_triangles(const aiScene& scene) const {
+    // The triangles the nodes place, counted as triangulation will give them, degenerate ones
+    // included (they are dropped later). Refuses a file that places more than
+    // limits.max_triangles before any is placed: a 1 MB glTF placing one 10k-triangle mesh by
+    // 20,000 nodes took 2.5 minutes and 3.8 GB to fail on the way.
+    std::uint64_t placed_triangles(const aiScene& scene) const {
         std::uint64_t placed = 0;
         std::vector<const aiNode*> stack;
         if (scene.mRootNode != nullptr) stack.push_back(scene.mRootNode);
@@ -281,12 +297,15 @@ class SceneMerger {
                                 ", the limit max_triangles");
             for (unsigned c = 0; c < node.mNumChildren; ++c) stack.push_back(node.mChildren[c]);
         }
+        return placed;
     }
 
     // Walks the node tree depth-first (iteratively: a hostile file can nest deeply) and
     // merges every mesh each node places.
     TriangleMesh merge(const aiScene& scene) {
-        check_placed_triangles(scene);
+        // Room for the triangles placed, up to 4M (a 64 MB table): a file whose placed
+        // triangles turn out degenerate must not cost memory for them.
+        first_triangles_.reserve(std::min<std::uint64_t>(placed_triangles(scene), 1u << 22));
         struct Pending {
             const aiNode* node;
             glm::dmat4 parent_to_world;
@@ -373,7 +392,16 @@ class SceneMerger {
                 fail(path_, "more than " + std::to_string(limits_.max_vertices) +
                                 (limits_.max_vertices == 1 ? " vertex" : " vertices") +
                                 ", the limit max_vertices");
+            if (mesh_.triangles.size() == std::numeric_limits<std::uint32_t>::max() - 1)
+                fail(path_, "more than 2^32 - 2 triangles");
             mesh_.triangles.push_back(indices);
+            // A duplicate's corners are the first's, so it welded no new vertex either.
+            const std::size_t last = mesh_.triangles.size() - 1;
+            if (first_triangles_.first_of(last) != last) {
+                mesh_.triangles.pop_back();
+                ++report_.duplicates_dropped;
+                continue;
+            }
             mesh_.surfaces.push_back(surface);
             report_.bounds.expand(triangle.bounds());
             report_.area += triangle.area();
@@ -387,6 +415,7 @@ class SceneMerger {
     const MeshLoadLimits& limits_;
     TriangleMesh mesh_;
     VertexWelder welder_;
+    detail::FirstOfEachKey<std::array<std::uint32_t, 3>, CornerSetKey> first_triangles_;
     std::vector<std::size_t> expected_triangles_;
     std::vector<glm::dvec3> world_;  // scratch: the current instance's vertices in world space
 };

@@ -50,16 +50,17 @@ class InfoCommand : public test::ScratchFolderTest {
 };
 
 TEST_F(InfoCommand, PrintsCountsBoundsAndDrops) {
-    // Two good triangles, one degenerate, a line and a point.
+    // Two good triangles, one degenerate, a duplicate, a line and a point.
     test::write_file(file("m.obj"),
                      "v 0 0 0\nv 2 0 0\nv 2 1 -3\nv 0 1 -3\nv 4 0 0\n"
-                     "f 1 2 3\nf 1 3 4\nf 1 2 5\nl 1 5\np 4\n");
+                     "f 1 2 3\nf 1 3 4\nf 1 2 5\nf 4 3 1\nl 1 5\np 4\n");
     const CommandResult text = run("info " + quoted("m.obj"));
     ASSERT_EQ(text.exit_code, 0) << text.err;
     EXPECT_TRUE(text.err.empty()) << text.err;
     EXPECT_NE(text.out.find("triangles            2\n"), std::string::npos) << text.out;
     EXPECT_NE(text.out.find("vertices             4\n"), std::string::npos) << text.out;
     EXPECT_NE(text.out.find("degenerate dropped   1\n"), std::string::npos) << text.out;
+    EXPECT_NE(text.out.find("duplicates dropped   1\n"), std::string::npos) << text.out;
 
     const CommandResult json = run("info --json " + quoted("m.obj"));
     ASSERT_EQ(json.exit_code, 0) << json.err;
@@ -67,6 +68,7 @@ TEST_F(InfoCommand, PrintsCountsBoundsAndDrops) {
     EXPECT_EQ(info["triangles"], 2);
     EXPECT_EQ(info["vertices"], 4);
     EXPECT_EQ(info["degenerate_dropped"], 1);
+    EXPECT_EQ(info["duplicates_dropped"], 1);
     EXPECT_EQ(info["lines_skipped"], 1);
     EXPECT_EQ(info["points_skipped"], 1);
     EXPECT_EQ(info["bounds"]["min"], nlohmann::json::array({0.0, 0.0, -3.0}));

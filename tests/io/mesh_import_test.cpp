@@ -1,5 +1,6 @@
 // load_mesh on hand-written files: what it keeps, drops, counts and where it puts things.
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -125,6 +126,65 @@ TEST_F(MeshImport, IdenticalPositionsAreWelded) {
     EXPECT_EQ(mesh.vertices.size(), 4u);
     EXPECT_EQ(mesh.triangles[0][1], mesh.triangles[1][0]);  // (1, 0, 0)
     EXPECT_EQ(mesh.triangles[0][2], mesh.triangles[1][2]);  // (0, 0, -1)
+}
+
+TEST_F(MeshImport, DuplicateTrianglesAreDroppedAndCounted) {
+    test::write_file(file("dup.obj"),
+                     "v 0 0 0\nv 1 0 0\nv 0 0 -1\nv 1 0 -1\n"
+                     "v 1 0 0\n"  // 5: vertex 2 written again (welded)
+                     "usemtl road\nf 1 2 3\nf 2 4 3\n"
+                     "usemtl grass\n"
+                     "f 3 2 1\n"    // the first, wound the other way
+                     "f 3 1 5\n"    // the first again, through the welded copy of vertex 2
+                     "f 2 4 1\n");  // two corners of the first: another triangle
+    MeshLoadReport report;
+    const TriangleMesh mesh = load_mesh(file("dup.obj"), report);
+    ASSERT_EQ(mesh.triangles.size(), 3u);
+    EXPECT_EQ(report.triangles, 3u);
+    EXPECT_EQ(report.duplicates_dropped, 2u);
+    EXPECT_EQ(report.degenerate_dropped, 0u);
+    EXPECT_DOUBLE_EQ(report.area, 1.5);
+    // The first of each is kept, with its winding and its surface.
+    EXPECT_EQ(triangle(mesh, 0).normal(), glm::dvec3(0, 1, 0));
+    ASSERT_EQ(mesh.surfaces.size(), 3u);
+    const std::vector<std::string> materials{report.materials[mesh.surfaces[0]],
+                                             report.materials[mesh.surfaces[1]],
+                                             report.materials[mesh.surfaces[2]]};
+    EXPECT_EQ(materials, (std::vector<std::string>{"road", "road", "grass"}));
+}
+
+// A double-sided export lists every face twice, the second wound the other way: it loads as
+// its one side, bit for bit, so it drives as that side does.
+TEST_F(MeshImport, ADoubleSidedExportLoadsAsItsOneSide) {
+    std::string vertices, one_side, both_sides;
+    constexpr int n = 20;
+    for (int i = 0; i <= n; ++i)
+        for (int k = 0; k <= n; ++k)
+            vertices += "v " + std::to_string(i) + " " + std::to_string((i * k) % 7 * 0.1) + " " +
+                        std::to_string(-k) + "\n";
+    for (int i = 0; i < n; ++i)
+        for (int k = 0; k < n; ++k) {
+            const int a = i * (n + 1) + k + 1, b = a + n + 1;  // OBJ counts from 1
+            for (const auto& [p, q, r] : {std::array{a, b, a + 1}, std::array{b, b + 1, a + 1}}) {
+                const std::string face =
+                    std::to_string(p) + " " + std::to_string(q) + " " + std::to_string(r) + "\n";
+                one_side += "f " + face;
+                both_sides += "f " + face + "f " + std::to_string(r) + " " + std::to_string(q) +
+                              " " + std::to_string(p) + "\n";
+            }
+        }
+    test::write_file(file("one.obj"), vertices + one_side);
+    test::write_file(file("both.obj"), vertices + both_sides);
+    MeshLoadReport one_report, both_report;
+    const TriangleMesh one = load_mesh(file("one.obj"), one_report);
+    const TriangleMesh both = load_mesh(file("both.obj"), both_report);
+    ASSERT_EQ(one.triangles.size(), 2u * n * n);
+    EXPECT_EQ(one_report.duplicates_dropped, 0u);
+    EXPECT_EQ(both_report.duplicates_dropped, 2u * n * n);
+    EXPECT_EQ(both.vertices, one.vertices);
+    EXPECT_EQ(both.triangles, one.triangles);
+    EXPECT_EQ(both.surfaces, one.surfaces);
+    EXPECT_EQ(both_report.area, one_report.area);
 }
 
 TEST_F(MeshImport, AllObjectsOfAFileAreMerged) {

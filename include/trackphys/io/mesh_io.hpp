@@ -28,8 +28,11 @@ struct MeshLoadReport {
     std::size_t triangles = 0;           ///< triangles kept: the result's triangles.size()
     std::size_t vertices = 0;            ///< vertices kept: the result's vertices.size()
     std::size_t degenerate_dropped = 0;  ///< zero or near-zero area (Triangle::is_degenerate)
-    std::size_t points_skipped = 0;      ///< point primitives (not collision geometry)
-    std::size_t lines_skipped = 0;       ///< line primitives (not collision geometry)
+    /// Triangles with the corners of one kept before, in any order (the back face of a
+    /// double-sided export): both sides of a triangle collide, so a copy is only work.
+    std::size_t duplicates_dropped = 0;
+    std::size_t points_skipped = 0;  ///< point primitives (not collision geometry)
+    std::size_t lines_skipped = 0;   ///< line primitives (not collision geometry)
     /// Triangles that assimp's polygon triangulation should have produced but did not: it
     /// gives up on polygons it cannot ear-clip (self-intersecting, or collinear runs), and
     /// this is the only trace of that loss.
@@ -53,7 +56,9 @@ struct MeshLoadReport {
 /// the file is placed by its nodes' composed transforms and merged; polygons are
 /// triangulated; points and lines are skipped; degenerate triangles are dropped; vertices
 /// with bit-identical world positions are welded into one and vertices no kept triangle uses
-/// are left out. All of this is counted in report. Each triangle's surface id
+/// are left out; a triangle whose welded corners are those of one kept before (in any order,
+/// so either winding) is dropped, the first kept with its surface. All of this is counted in
+/// report. Each triangle's surface id
 /// (TriangleMesh::surfaces) is the index of its mesh's material among the file's
 /// (report.materials names them): a file with one material gives every triangle surface 0.
 ///
