@@ -12,6 +12,7 @@
 #include "commands.hpp"
 #include "json_file.hpp"
 #include "map_info.hpp"
+#include "mesh_reading.hpp"
 #include "trackphys/collision/static_collider.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/io/map_file.hpp"
@@ -100,7 +101,7 @@ void run_info(const InfoOptions& options) {
         return print_map_info(options.file, options.json);
     MeshLoadReport report;
     // Throws trackphys::Error on bad input: main reports it.
-    const TriangleMesh mesh = load_mesh(options.file, report, options.mesh_limits);
+    const TriangleMesh mesh = read_mesh(options.file, report, options.mesh_limits);
     // A mesh every loader reads can still be one no collider takes (a coordinate beyond its
     // limit): bake and drive --mesh would refuse it, so info does too.
     try {

@@ -12,6 +12,7 @@
 
 #include <zlib.h>
 
+#include "mesh_reading.hpp"
 #include "recording_lines.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/geometry/triangle_mesh.hpp"
@@ -153,7 +154,7 @@ std::string make_replay_page(const ReplayRecording& recording, std::string_view 
     if (!recording.track_file.empty()) {
         TriangleMesh mesh;
         try {
-            mesh = load_mesh(recording.track_file, mesh_limits);
+            mesh = read_mesh(recording.track_file, mesh_limits);
         } catch (const Error& e) {
             throw Error("recording '" + recording.file.string() + "': its track: " + e.what());
         }

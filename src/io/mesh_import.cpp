@@ -302,10 +302,15 @@ class SceneMerger {
 
     // Walks the node tree depth-first (iteratively: a hostile file can nest deeply) and
     // merges every mesh each node places.
-    TriangleMesh merge(const aiScene& scene) {
+    // progress hears of the triangles placed (load_mesh's MeshLoadProgress).
+    TriangleMesh merge(const aiScene& scene, const MeshLoadProgress& progress) {
+        const std::uint64_t placed = placed_triangles(scene);
         // Room for the triangles placed, up to 4M (a 64 MB table): a file whose placed
         // triangles turn out degenerate must not cost memory for them.
-        first_triangles_.reserve(std::min<std::uint64_t>(placed_triangles(scene), 1u << 22));
+        first_triangles_.reserve(std::min<std::uint64_t>(placed, 1u << 22));
+        progress_ = progress;
+        placed_total_ = placed;
+        if (progress_) progress_(0, placed_total_);
         struct Pending {
             const aiNode* node;
             glm::dmat4 parent_to_world;
@@ -329,6 +334,7 @@ class SceneMerger {
             for (unsigned c = node.mNumChildren; c-- > 0;)
                 stack.push_back({node.mChildren[c], world});
         }
+        if (progress_) progress_(placed_total_, placed_total_);
         report_.triangles = mesh_.triangles.size();
         report_.vertices = mesh_.vertices.size();
         return std::move(mesh_);
@@ -367,6 +373,8 @@ class SceneMerger {
                 fail(path_, mesh_label(mesh, m) + ", face " + std::to_string(f) + " has " +
                                 std::to_string(face.mNumIndices) + " indices after triangulation");
             ++triangles_found;
+            if (++placed_done_ % kProgressEvery == 0 && progress_)
+                progress_(std::min(placed_done_, placed_total_), placed_total_);
             std::array<unsigned, 3> corner{face.mIndices[0], face.mIndices[1], face.mIndices[2]};
             if (mirrored) std::swap(corner[1], corner[2]);
             for (const unsigned v : corner) {
@@ -410,6 +418,8 @@ class SceneMerger {
             report_.triangulation_lost += expected_triangles_[m] - triangles_found;
     }
 
+    static constexpr std::size_t kProgressEvery = 65536;  // triangles between reports
+
     const fs::path& path_;
     MeshLoadReport& report_;
     const MeshLoadLimits& limits_;
@@ -418,11 +428,15 @@ class SceneMerger {
     detail::FirstOfEachKey<std::array<std::uint32_t, 3>, CornerSetKey> first_triangles_;
     std::vector<std::size_t> expected_triangles_;
     std::vector<glm::dvec3> world_;  // scratch: the current instance's vertices in world space
+    MeshLoadProgress progress_;
+    std::size_t placed_total_ = 0;
+    std::size_t placed_done_ = 0;
 };
 
 }  // namespace
 
-TriangleMesh load_mesh(const fs::path& path, MeshLoadReport& report, const MeshLoadLimits& limits) {
+TriangleMesh load_mesh(const fs::path& path, MeshLoadReport& report, const MeshLoadLimits& limits,
+                       const MeshLoadProgress& progress) {
     report = MeshLoadReport{};
     check_limits(limits);
     check_is_nonempty_file(path);
@@ -465,6 +479,16 @@ TriangleMesh load_mesh(const fs::path& path, MeshLoadReport& report, const MeshL
     // aiProcess_JoinIdenticalVertices compares normals and UVs too, so VertexWelder welds
     // by position instead. Triangulation runs as a second pass, after the validation below.
     SceneMerger merger(path, report, limits);
+    // What progress throws comes out as it was: the handlers below word the reader's own.
+    bool progress_threw = false;
+    const MeshLoadProgress heard = [&](std::size_t done, std::size_t total) {
+        try {
+            progress(done, total);
+        } catch (...) {
+            progress_threw = true;
+            throw;
+        }
+    };
     try {
         const aiScene* scene = importer.ReadFile(path.string(), aiProcess_ValidateDataStructure);
         // assimp's own words ("OBJ-file is too small.", "An unknown error occurred during
@@ -478,7 +502,7 @@ TriangleMesh load_mesh(const fs::path& path, MeshLoadReport& report, const MeshL
         scene = importer.ApplyPostProcessing(aiProcess_Triangulate);
         if (scene == nullptr)
             fail(path, std::string("assimp cannot triangulate it: ") + importer.GetErrorString());
-        TriangleMesh mesh = merger.merge(*scene);
+        TriangleMesh mesh = merger.merge(*scene, progress ? heard : MeshLoadProgress{});
         if (mesh.triangles.empty())
             fail(path, "contains no triangles (" + std::to_string(report.degenerate_dropped) +
                            " degenerate dropped, " + std::to_string(report.points_skipped) +
@@ -488,6 +512,7 @@ TriangleMesh load_mesh(const fs::path& path, MeshLoadReport& report, const MeshL
     } catch (const Error&) {
         throw;
     } catch (const std::bad_alloc&) {
+        if (progress_threw) throw;
         fail(path,
              "out of memory while reading it (MeshLoadLimits' max_triangles and "
              "max_vertices, the CLI's --max-triangles and --max-vertices, bound what a "
@@ -495,6 +520,7 @@ TriangleMesh load_mesh(const fs::path& path, MeshLoadReport& report, const MeshL
     } catch (const std::exception& e) {
         // assimp is built to catch its own exceptions, but an allocation failure on a
         // corrupt size field can still escape; it is bad input like any other.
+        if (progress_threw) throw;
         fail(path, std::string("import failed: ") + e.what());
     }
 }

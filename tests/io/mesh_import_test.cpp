@@ -1,7 +1,9 @@
 // load_mesh on hand-written files: what it keeps, drops, counts and where it puts things.
 
 #include <array>
+#include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -185,6 +187,57 @@ TEST_F(MeshImport, ADoubleSidedExportLoadsAsItsOneSide) {
     EXPECT_EQ(both.triangles, one.triangles);
     EXPECT_EQ(both.surfaces, one.surfaces);
     EXPECT_EQ(both_report.area, one_report.area);
+}
+
+// A strip of 2n triangles over 2n + 2 vertices as OBJ text.
+std::string strip_obj(int n) {
+    std::string text;
+    for (int i = 0; i <= n; ++i)
+        text += "v " + std::to_string(i) + " 0 0\nv " + std::to_string(i) + " 0 -1\n";
+    for (int i = 0; i < n; ++i) {
+        const int a = 2 * i + 1;  // OBJ counts from 1
+        text += "f " + std::to_string(a) + " " + std::to_string(a + 2) + " " +
+                std::to_string(a + 1) + "\nf " + std::to_string(a + 1) + " " +
+                std::to_string(a + 2) + " " + std::to_string(a + 3) + "\n";
+    }
+    return text;
+}
+
+TEST_F(MeshImport, ProgressHearsOfTheTrianglesPlaced) {
+    test::write_file(file("strip.obj"), strip_obj(70000));
+    std::vector<std::pair<std::size_t, std::size_t>> heard;
+    MeshLoadReport report;
+    const TriangleMesh mesh =
+        load_mesh(file("strip.obj"), report, MeshLoadLimits{},
+                  [&](std::size_t done, std::size_t total) { heard.emplace_back(done, total); });
+    ASSERT_EQ(mesh.triangles.size(), 140000u);
+    const std::vector<std::pair<std::size_t, std::size_t>> expected{
+        {0, 140000}, {65536, 140000}, {131072, 140000}, {140000, 140000}};
+    EXPECT_EQ(heard, expected);
+}
+
+TEST_F(MeshImport, ProgressThatThrowsCancelsTheLoadWithItsOwnException) {
+    test::write_file(file("strip.obj"), strip_obj(70000));
+    struct Stop {};
+    MeshLoadReport report;
+    std::size_t calls = 0;
+    EXPECT_THROW(load_mesh(file("strip.obj"), report, MeshLoadLimits{},
+                           [&](std::size_t done, std::size_t) {
+                               ++calls;
+                               if (done > 0) throw Stop{};
+                           }),
+                 Stop);
+    EXPECT_EQ(calls, 2u);  // the start, and the first report after it
+    // A standard exception is not worded as the reader's ("import failed: ...").
+    try {
+        load_mesh(file("strip.obj"), report, MeshLoadLimits{},
+                  [](std::size_t, std::size_t) { throw std::runtime_error("cancelled"); });
+        ADD_FAILURE() << "no exception";
+    } catch (const Error& e) {
+        ADD_FAILURE() << "worded as the reader's: " << e.what();
+    } catch (const std::runtime_error& e) {
+        EXPECT_STREQ(e.what(), "cancelled");
+    }
 }
 
 TEST_F(MeshImport, AllObjectsOfAFileAreMerged) {

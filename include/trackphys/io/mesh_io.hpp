@@ -2,6 +2,7 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -50,6 +51,13 @@ struct MeshLoadReport {
     double area = 0.0;  ///< total area of the kept triangles (m^2)
 };
 
+/// Hears how far load_mesh has placed the file's triangles: `done` of `total`, the triangles
+/// its nodes place, counted before degenerate and duplicate ones are dropped. Called once
+/// when the file is read and placing begins (done 0), every 65,536 triangles and at the end
+/// (done == total). What it throws stops the load and comes out of load_mesh as it was, which
+/// is how a caller cancels one.
+using MeshLoadProgress = std::function<void(std::size_t done, std::size_t total)>;
+
 /// Reads an OBJ, PLY, STL, glTF/GLB, AC3D or OFF file (by its extension: .obj, .ply, .stl,
 /// .gltf, .glb, .ac/.acc/.ac3d, .off, any case) into one triangle mesh in world space
 /// (metres, +Y up, coordinates as written in the file; no axis conversion). Every mesh of
@@ -82,8 +90,12 @@ struct MeshLoadReport {
 /// max_triangles". Bytes and nesting are checked before assimp reads the file; triangles and
 /// vertices as the mesh is assembled, so it never holds more. A limit of 0, or max_nesting
 /// above max_mesh_nesting_allowed, throws before the file is opened.
+///
+/// `progress`, when given, hears of the triangles placed (a file of millions of triangles
+/// takes seconds, most of them placing: welding, dropping and checking each triangle).
 TRACKPHYS_API TriangleMesh load_mesh(const std::filesystem::path& path, MeshLoadReport& report,
-                                     const MeshLoadLimits& limits = MeshLoadLimits{});
+                                     const MeshLoadLimits& limits = MeshLoadLimits{},
+                                     const MeshLoadProgress& progress = {});
 
 /// load_mesh without the report.
 TRACKPHYS_API TriangleMesh load_mesh(const std::filesystem::path& path,
