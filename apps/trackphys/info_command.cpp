@@ -88,8 +88,10 @@ void print_text(const InfoOptions& options, const MeshLoadReport& r,
     std::printf("%-20s %zu\n", "triangulation lost", r.triangulation_lost);
     std::printf("%-20s %zu\n", "mirrored instances", r.mirrored_instances);
     for (std::size_t id = 0; id < surfaces.size(); ++id)
-        std::printf("%-20s %zu: %zu triangles, material '%s'\n", id == 0 ? "surfaces" : "", id,
-                    surfaces[id].triangles, surfaces[id].material.c_str());
+        // Quoted as messages quote a file's text: a material name is the file's to choose,
+        // escape sequences that would drive the terminal included.
+        std::printf("%-20s %zu: %zu triangles, material %s\n", id == 0 ? "surfaces" : "", id,
+                    surfaces[id].triangles, quoted_text(surfaces[id].material).c_str());
 }
 
 }  // namespace

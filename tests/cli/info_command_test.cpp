@@ -108,6 +108,32 @@ TEST_F(InfoCommand, ListsTheSurfacesByIdWithTheirMaterials) {
     EXPECT_EQ(plain[0]["triangles"], 1);
 }
 
+// A glTF's material names may hold any character, escape sequences that would drive the
+// user's terminal among them: the text report quotes them as messages do.
+TEST_F(InfoCommand, QuotesMaterialNamesWithControlCharacters) {
+    test::write_gltf(file("m.gltf"), {0, 0, 0, 1, 0, 0, 0, 0, -1}, {0, 1, 2}, R"({"mesh":0})", "0");
+    std::string json = test::read_file(file("m.gltf"));
+    const std::string mesh = R"("meshes":[{"name":"road","primitives":[{)";
+    const std::size_t at = json.find(mesh);
+    ASSERT_NE(at, std::string::npos) << json;
+    json.replace(
+        at, mesh.size(),
+        R"("materials":[{"name":"red\u001b[31mgrass\u0007"}],)" + mesh + R"("material":0,)");
+    test::write_file(file("m.gltf"), json);
+
+    const CommandResult text = run("info " + quoted("m.gltf"));
+    ASSERT_EQ(text.exit_code, 0) << text.err;
+    EXPECT_NE(text.out.find("1 triangles, material 'red\\x1b[31mgrass\\x07'\n"), std::string::npos)
+        << text.out;
+    EXPECT_EQ(text.out.find('\x1b'), std::string::npos) << text.out;
+    EXPECT_EQ(text.out.find('\x07'), std::string::npos) << text.out;
+    // JSON escapes them itself: the name comes back whole.
+    const nlohmann::json surfaces =
+        nlohmann::json::parse(run("info --json " + quoted("m.gltf")).out)["surfaces"];
+    ASSERT_EQ(surfaces.size(), 1u);
+    EXPECT_EQ(surfaces[0]["material"], "red\x1b[31mgrass\x07");
+}
+
 TEST_F(InfoCommand, ReadsWhatSaveMeshWrites) {
     save_mesh({{{0, 0, 0}, {1, 0, 0}, {0, 0, -1}}, {{0, 1, 2}}}, file("t.glb"));
     const CommandResult result = run("info --json " + quoted("t.glb"));
