@@ -173,7 +173,8 @@ TyreForce Vehicle::wheel_force(std::size_t w, double load, double rolling_veloci
 // Below low_speed the tyre also damps its own deflection (Pacejka 2012, sec. 7.2.4),
 // fading out linearly with the contact's speed over the road, at the critical damping of
 // the deflection spring C / sigma under the wheel's share of the car's mass; the whole
-// force, damping included, stays in the friction ellipse. The spin is implicit in the
+// force, damping included, stays in the friction ellipse, and within the curve's force
+// once the tyre slides. The spin is implicit in the
 // damping, then braked.
 TyreForce Vehicle::slow_wheel_force(const Wheel& wheel, WheelState& s, double load, double grip,
                                     double rolling_velocity, double lateral_velocity, double h) {
@@ -200,14 +201,21 @@ TyreForce Vehicle::slow_wheel_force(const Wheel& wheel, WheelState& s, double lo
     const double damping_y =
         fade * 2.0 * std::sqrt(slope_y / ts.lateral_relaxation * wheel.critical_mass);
 
+    // How much of the ellipse the damper may fill: all of it while the tyre grips, the
+    // curve's own share F(s) / D once it slides past its peak slip (s > 1), so that a slow
+    // slide grips as the curve says, not at the ellipse's edge. The two meet at s = 1.
+    const double limit =
+        wheel.slip.combined > 1.0 ? std::hypot(force.longitudinal / dx, force.lateral / dy) : 1.0;
     const auto damped = [&](double spin) {
         TyreForce total{force.longitudinal - damping_x * (rolling_velocity - spin * r),
                         force.lateral - damping_y * lateral_velocity};
         const double ux = total.longitudinal / dx;
         const double uy = total.lateral / dy;
         const double used = std::sqrt(ux * ux + uy * uy);
-        if (used > 1.0) total.longitudinal /= used, total.lateral /= used;
-        return std::pair(total, used > 1.0);
+        if (used > limit)
+            total.longitudinal = total.longitudinal / used * limit,
+            total.lateral = total.lateral / used * limit;
+        return std::pair(total, used > limit);
     };
 
     // I dw/dt = T_drive - R (F_x - c_x (V_x - w R)), implicit in the damping. When that
