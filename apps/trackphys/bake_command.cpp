@@ -38,9 +38,9 @@ void run_bake(const BakeOptions& o, const OptionGiven& given) {
     if (o.out.extension() != ".tpmap")
         throw Error("--out '" + o.out.string() + "': a map file's name ends in .tpmap");
     refuse_file_clashes({{"MESH", o.mesh}}, {{"--out", o.out}});
-    // Ctrl-C stops the bake at the next collider built (or once a mesh file is read:
-    // build_mesh_colliders) and the staged file is removed, rather than the process killed
-    // and the file left behind.
+    // Ctrl-C stops the bake at the next collider built, or at the next report of a mesh
+    // file's placing (build_mesh_colliders), and the staged file is removed, rather than the
+    // process killed and the file left behind.
     const InterruptGuard interrupt_guard;
     // Staged before the build, so that an --out the folder will not take is refused before
     // seconds of work rather than after them.

@@ -16,7 +16,6 @@
 #include "recording_lines.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/geometry/triangle_mesh.hpp"
-#include "trackphys/io/mesh_io.hpp"
 #include "trackphys/io/regular_file.hpp"
 
 namespace trackphys::cli {

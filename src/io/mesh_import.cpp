@@ -164,12 +164,17 @@ bool is_finite(const glm::dmat4& m) {
     return true;
 }
 
-// Mixes three 64-bit words into a hash well mixed in every bit (for FirstOfEachKey).
+// Mixes three 64-bit words into a hash in which every input bit moves every output bit (for
+// FirstOfEachKey). Each word is folded in by a multiply, which carries a bit only upwards,
+// so MurmurHash3's 64-bit finaliser ends it: without it the sign and exponent bits of z
+// reached no slot bit, and (x, y, z) and (x, y, -z) probed from one slot.
 std::uint64_t mixed(std::uint64_t a, std::uint64_t b, std::uint64_t c) {
     std::uint64_t h = a * 0x9E3779B97F4A7C15ull;
     h = (h ^ (h >> 31) ^ b) * 0xC2B2AE3D27D4EB4Full;
     h = (h ^ (h >> 29) ^ c) * 0x165667B19E3779F9ull;
-    return h ^ (h >> 32);
+    h = (h ^ (h >> 33)) * 0xFF51AFD7ED558CCDull;
+    h = (h ^ (h >> 33)) * 0xC4CEB9FE1A85EC53ull;
+    return h ^ (h >> 33);
 }
 
 // A vertex is keyed by its position's bits (+0 stored for -0, so the two weld).
@@ -305,8 +310,8 @@ class SceneMerger {
     // progress hears of the triangles placed (load_mesh's MeshLoadProgress).
     TriangleMesh merge(const aiScene& scene, const MeshLoadProgress& progress) {
         const std::uint64_t placed = placed_triangles(scene);
-        // Room for the triangles placed, up to 4M (a 64 MB table): a file whose placed
-        // triangles turn out degenerate must not cost memory for them.
+        // Room for the triangles placed, up to 4M: a file whose placed triangles turn out
+        // degenerate costs at most that table (64 MB) for them.
         first_triangles_.reserve(std::min<std::uint64_t>(placed, 1u << 22));
         progress_ = progress;
         placed_total_ = placed;
@@ -334,7 +339,7 @@ class SceneMerger {
             for (unsigned c = node.mNumChildren; c-- > 0;)
                 stack.push_back({node.mChildren[c], world});
         }
-        if (progress_) progress_(placed_total_, placed_total_);
+        if (progress_ && placed_total_ > 0) progress_(placed_total_, placed_total_);
         report_.triangles = mesh_.triangles.size();
         report_.vertices = mesh_.vertices.size();
         return std::move(mesh_);
@@ -373,7 +378,7 @@ class SceneMerger {
                 fail(path_, mesh_label(mesh, m) + ", face " + std::to_string(f) + " has " +
                                 std::to_string(face.mNumIndices) + " indices after triangulation");
             ++triangles_found;
-            if (++placed_done_ % kProgressEvery == 0 && progress_)
+            if (++placed_done_ % kProgressEvery == 0 && placed_done_ < placed_total_ && progress_)
                 progress_(std::min(placed_done_, placed_total_), placed_total_);
             std::array<unsigned, 3> corner{face.mIndices[0], face.mIndices[1], face.mIndices[2]};
             if (mirrored) std::swap(corner[1], corner[2]);
@@ -393,7 +398,7 @@ class SceneMerger {
             std::array<std::uint32_t, 3> indices{};
             for (std::size_t k = 0; k < 3; ++k)
                 if (!welder_.index_of(world_[corner[k]], indices[k]))
-                    fail(path_, "more than 2^32 vertices");
+                    fail(path_, "more than 2^32 - 2 vertices");
             // Checked as the mesh grows, so that it never holds more than the caller allowed
             // (a glTF can place one mesh many times: the file's size does not bound this).
             if (mesh_.vertices.size() > limits_.max_vertices)

@@ -1,6 +1,8 @@
 // load_mesh on hand-written files: what it keeps, drops, counts and where it puts things.
 
 #include <array>
+#include <cmath>
+#include <new>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -238,6 +240,30 @@ TEST_F(MeshImport, ProgressThatThrowsCancelsTheLoadWithItsOwnException) {
     } catch (const std::runtime_error& e) {
         EXPECT_STREQ(e.what(), "cancelled");
     }
+    // Nor is an allocation failure worded as the file's ("out of memory while reading it").
+    EXPECT_THROW(load_mesh(file("strip.obj"), report, MeshLoadLimits{},
+                           [](std::size_t, std::size_t) { throw std::bad_alloc(); }),
+                 std::bad_alloc);
+}
+
+// The welder keys a position by its bits, which tell -0 from +0: it stores +0 for both,
+// so that they still weld into one vertex.
+TEST_F(MeshImport, MinusZeroAndZeroWeldIntoOneVertexAtPlusZero) {
+    test::write_file(file("z.obj"),
+                     "v -0 0 -0\nv 1 0 0\nv 0 -0 -1\n"
+                     "v 0 0 0\nv 1 0 -1\nv 0 0 -1\nv 0 0 1\n"
+                     "f 1 2 3\nf 2 5 6\nf 4 7 2\n");
+    const TriangleMesh mesh = load_mesh(file("z.obj"));
+    ASSERT_EQ(mesh.triangles.size(), 3u);
+    ASSERT_EQ(mesh.vertices.size(), 5u);
+    EXPECT_EQ(mesh.triangles[2][0], mesh.triangles[0][0]);  // (0, 0, 0) as -0 and as +0
+    EXPECT_EQ(mesh.triangles[1][2], mesh.triangles[0][2]);  // (0, 0, -1) with and without -0
+    for (const glm::dvec3& v : mesh.vertices)
+        for (int k = 0; k < 3; ++k) {
+            if (v[k] == 0.0) {
+                EXPECT_FALSE(std::signbit(v[k])) << "a -0 stored";
+            }
+        }
 }
 
 TEST_F(MeshImport, AllObjectsOfAFileAreMerged) {

@@ -54,8 +54,9 @@ struct MeshLoadReport {
 /// Hears how far load_mesh has placed the file's triangles: `done` of `total`, the triangles
 /// its nodes place, counted before degenerate and duplicate ones are dropped. Called once
 /// when the file is read and placing begins (done 0), every 65,536 triangles and at the end
-/// (done == total). What it throws stops the load and comes out of load_mesh as it was, which
-/// is how a caller cancels one.
+/// (done == total; once only when total is 0), with done rising. Nothing is heard while
+/// the file is checked and read, before placing. What it throws stops the load and comes out
+/// of load_mesh as it was, which is how a caller cancels one.
 using MeshLoadProgress = std::function<void(std::size_t done, std::size_t total)>;
 
 /// Reads an OBJ, PLY, STL, glTF/GLB, AC3D or OFF file (by its extension: .obj, .ply, .stl,
@@ -65,7 +66,7 @@ using MeshLoadProgress = std::function<void(std::size_t done, std::size_t total)
 /// triangulated; points and lines are skipped; degenerate triangles are dropped; vertices
 /// with bit-identical world positions are welded into one and vertices no kept triangle uses
 /// are left out; a triangle whose welded corners are those of one kept before (in any order,
-/// so either winding) is dropped, the first kept with its surface. All of this is counted in
+/// so either winding) is dropped, the first kept with its winding and surface. All of this is counted in
 /// report. Each triangle's surface id
 /// (TriangleMesh::surfaces) is the index of its mesh's material among the file's
 /// (report.materials names them): a file with one material gives every triangle surface 0.

@@ -16,7 +16,8 @@ struct MeshLoadLimits {
     /// Triangles in the loaded mesh (MeshLoadReport::triangles: after triangulation, once
     /// per placement of an instanced mesh, degenerate ones not counted). A file whose nodes
     /// place more, degenerate ones counted, is refused before any is placed. Twice the 50
-    /// million a big track needs; a mesh at this limit holds 1.2 GB of indices.
+    /// million a big track needs; a mesh at this limit holds 1.2 GB of indices, and its load
+    /// 2 to 3 GB more for finding duplicate triangles (16 to 32 bytes a triangle).
     std::uint64_t max_triangles = 100'000'000;
     /// Vertices in the loaded mesh (MeshLoadReport::vertices: welded by position). A
     /// connected surface has about half as many vertices as triangles; this lets through
