@@ -757,6 +757,20 @@ TEST(VehiclePhysics, ACoastingCarSlowsByDragRollingResistanceAndEngineBraking) {
     }
 }
 
+// The force of the first wheel (a front one) of a car rolling at `rolling` m/s and sliding
+// sideways at `sideways` m/s under `load` N in one sub-step of h s, its lateral slip at that
+// slide's steady state -V_y / V_x.
+TyreForce sliding_front_wheel_force(const CarSpec& spec, double rolling, double sideways,
+                                    double load, double h) {
+    Vehicle vehicle(spec);
+    VehicleState state = vehicle.rolling_at(rolling);
+    for (WheelState& wheel : state.wheels) wheel.lateral_slip = -sideways / rolling;
+    vehicle.set_state(state);
+    detail::VehicleAccess::begin_substep(vehicle, 0.0, 0.0, std::hypot(rolling, sideways), rolling,
+                                         h);
+    return detail::VehicleAccess::wheel_force(vehicle, 0, load, rolling, sideways, h);
+}
+
 // A front wheel sliding sideways at 5 and 20 m/s, rolling just below and just above
 // low_speed, its lateral slip at that slide's steady state -V_y / V_x: its lateral force is
 // the same either side (within 3%) and never more than the curve's for that slip. The
@@ -772,14 +786,7 @@ TEST(VehiclePhysics, ASidewaysSlidingWheelGripsAsTheCurveSaysEitherSideOfLowSpee
         double lateral[2];
         for (const int side : {0, 1}) {
             const double rolling = (side == 0 ? 0.99 : 1.01) * low;
-            Vehicle vehicle(spec);
-            VehicleState state = vehicle.rolling_at(rolling);
-            for (WheelState& wheel : state.wheels) wheel.lateral_slip = -sideways / rolling;
-            vehicle.set_state(state);
-            detail::VehicleAccess::begin_substep(vehicle, 0.0, 0.0, std::hypot(rolling, sideways),
-                                                 rolling, h);
-            lateral[side] =
-                detail::VehicleAccess::wheel_force(vehicle, 0, load, rolling, sideways, h).lateral;
+            lateral[side] = sliding_front_wheel_force(spec, rolling, sideways, load, h).lateral;
             const double curve = tyre.force(0.0, -sideways / rolling, load).lateral;
             EXPECT_LE(std::abs(lateral[side]), std::abs(curve) * (1.0 + 1e-12))
                 << "rolling at " << rolling << " m/s";
@@ -804,14 +811,8 @@ TEST(VehiclePhysics, ASlowSidewaysSlideGripsAsTheCurveSays) {
         ASSERT_LT(std::hypot(rolling, 2.5), spec.vehicle->low_speed) << preset;
         for (const double sideways : {1.0, 1.5, 2.0, 2.5}) {
             SCOPED_TRACE(std::string(preset) + " sliding at " + std::to_string(sideways));
-            Vehicle vehicle(spec);
-            VehicleState state = vehicle.rolling_at(rolling);
-            for (WheelState& wheel : state.wheels) wheel.lateral_slip = -sideways / rolling;
-            vehicle.set_state(state);
-            detail::VehicleAccess::begin_substep(vehicle, 0.0, 0.0, std::hypot(rolling, sideways),
-                                                 rolling, h);
             const double lateral =
-                detail::VehicleAccess::wheel_force(vehicle, 0, load, rolling, sideways, h).lateral;
+                sliding_front_wheel_force(spec, rolling, sideways, load, h).lateral;
             const double curve = tyre.force(0.0, -sideways / rolling, load).lateral;
             ASSERT_LT(curve, 0.0);
             EXPECT_LE(std::abs(lateral), std::abs(curve) * (1.0 + 1e-12));
