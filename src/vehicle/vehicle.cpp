@@ -174,8 +174,7 @@ TyreForce Vehicle::wheel_force(std::size_t w, double load, double rolling_veloci
 // fading out linearly with the contact's speed over the road, at the critical damping of
 // the deflection spring C / sigma under the wheel's share of the car's mass; the whole
 // force, damping included, stays in the friction ellipse, and within the curve's force
-// once the tyre slides. The spin is implicit in the
-// damping, then braked.
+// once the tyre slides. The spin is implicit in the damping, then braked.
 TyreForce Vehicle::slow_wheel_force(const Wheel& wheel, WheelState& s, double load, double grip,
                                     double rolling_velocity, double lateral_velocity, double h) {
     const Tyre& tyre = tyre_of(wheel);
@@ -204,8 +203,10 @@ TyreForce Vehicle::slow_wheel_force(const Wheel& wheel, WheelState& s, double lo
     // How much of the ellipse the damper may fill: all of it while the tyre grips, the
     // curve's own share F(s) / D once it slides past its peak slip (s > 1), so that a slow
     // slide grips as the curve says, not at the ellipse's edge. The two meet at s = 1.
+    // Formed as `used` is below, so that an undamped force is at its limit, not an ulp past.
+    const double curve_x = force.longitudinal / dx, curve_y = force.lateral / dy;
     const double limit =
-        wheel.slip.combined > 1.0 ? std::hypot(force.longitudinal / dx, force.lateral / dy) : 1.0;
+        wheel.slip.combined > 1.0 ? std::sqrt(curve_x * curve_x + curve_y * curve_y) : 1.0;
     const auto damped = [&](double spin) {
         TyreForce total{force.longitudinal - damping_x * (rolling_velocity - spin * r),
                         force.lateral - damping_y * lateral_velocity};
@@ -219,8 +220,8 @@ TyreForce Vehicle::slow_wheel_force(const Wheel& wheel, WheelState& s, double lo
     };
 
     // I dw/dt = T_drive - R (F_x - c_x (V_x - w R)), implicit in the damping. When that
-    // force leaves the friction ellipse the road holds the wheel only with the bounded
-    // force, explicitly. Then the brake.
+    // force passes its limit (the ellipse, or the curve's share for a sliding tyre) the road
+    // holds the wheel only with the bounded force, explicitly. Then the brake.
     const double step = h * wheel.inverse_inertia;
     double stiff = 1.0 + step * damping_x * r * r;
     double spin = (s.spin + step * (wheel.drive_torque - r * force.longitudinal +

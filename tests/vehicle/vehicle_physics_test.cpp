@@ -529,7 +529,7 @@ TEST(VehiclePhysics, SkidpadReachesThePeakGripTheTyresAllow) {
 }
 
 // Jolt's traction test: one driven wheel on ice (ice_grip: a twentieth of the grip), 30%
-// throttle (the good tyre's grip, not more) in first gear (an automatic box shifts up on the
+// throttle (about the gt's good tyre's grip; past the formula's) in first gear (an automatic box shifts up on the
 // spinning wheel's speed, and each shift lets the engine spin up again), no traction control
 // (it would brake the spinning wheel itself). The rear differential is the preset's own unless
 // one is given.
