@@ -379,7 +379,7 @@ class SceneMerger {
                                 std::to_string(face.mNumIndices) + " indices after triangulation");
             ++triangles_found;
             if (++placed_done_ % kProgressEvery == 0 && placed_done_ < placed_total_ && progress_)
-                progress_(std::min(placed_done_, placed_total_), placed_total_);
+                progress_(placed_done_, placed_total_);
             std::array<unsigned, 3> corner{face.mIndices[0], face.mIndices[1], face.mIndices[2]};
             if (mirrored) std::swap(corner[1], corner[2]);
             for (const unsigned v : corner) {

@@ -200,19 +200,20 @@ TyreForce Vehicle::slow_wheel_force(const Wheel& wheel, WheelState& s, double lo
     const double damping_y =
         fade * 2.0 * std::sqrt(slope_y / ts.lateral_relaxation * wheel.critical_mass);
 
+    // The share of the friction ellipse a force uses (1 at its edge).
+    const auto share = [&](const TyreForce& f) {
+        const double ux = f.longitudinal / dx;
+        const double uy = f.lateral / dy;
+        return std::sqrt(ux * ux + uy * uy);
+    };
     // How much of the ellipse the damper may fill: all of it while the tyre grips, the
     // curve's own share F(s) / D once it slides past its peak slip (s > 1), so that a slow
     // slide grips as the curve says, not at the ellipse's edge. The two meet at s = 1.
-    // Formed as `used` is below, so that an undamped force is at its limit, not an ulp past.
-    const double curve_x = force.longitudinal / dx, curve_y = force.lateral / dy;
-    const double limit =
-        wheel.slip.combined > 1.0 ? std::sqrt(curve_x * curve_x + curve_y * curve_y) : 1.0;
+    const double limit = wheel.slip.combined > 1.0 ? share(force) : 1.0;
     const auto damped = [&](double spin) {
         TyreForce total{force.longitudinal - damping_x * (rolling_velocity - spin * r),
                         force.lateral - damping_y * lateral_velocity};
-        const double ux = total.longitudinal / dx;
-        const double uy = total.lateral / dy;
-        const double used = std::sqrt(ux * ux + uy * uy);
+        const double used = share(total);
         if (used > limit)
             total.longitudinal = total.longitudinal / used * limit,
             total.lateral = total.lateral / used * limit;

@@ -66,8 +66,8 @@ using MeshLoadProgress = std::function<void(std::size_t done, std::size_t total)
 /// triangulated; points and lines are skipped; degenerate triangles are dropped; vertices
 /// with bit-identical world positions are welded into one and vertices no kept triangle uses
 /// are left out; a triangle whose welded corners are those of one kept before (in any order,
-/// so either winding) is dropped, the first kept with its winding and surface. All of this is counted in
-/// report. Each triangle's surface id
+/// so either winding) is dropped, the first kept with its winding and surface. All of this
+/// is counted in report. Each triangle's surface id
 /// (TriangleMesh::surfaces) is the index of its mesh's material among the file's
 /// (report.materials names them): a file with one material gives every triangle surface 0.
 ///
