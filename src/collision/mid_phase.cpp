@@ -39,9 +39,10 @@ ColliderPlaneTrees make_collider_plane_trees(const StaticWorld& world,
         triangles += world.collider(id).triangle_count();
     const PlaneTreeFrames frames = plane_tree_frames_within(triangles, frame_budget_bytes);
     ColliderPlaneTrees trees(world.size());
+    const unsigned threads_a_tree = detail::threads_per_item(world.size(), threads);
     detail::run_items_in_parallel(world.size(), threads, [&](std::size_t id) {
         trees[id] = std::make_shared<const PlaneTree>(make_collider_plane_tree(
-            world.collider(static_cast<std::uint32_t>(id)), settings, frames));
+            world.collider(static_cast<std::uint32_t>(id)), settings, frames, threads_a_tree));
     });
     return trees;
 }

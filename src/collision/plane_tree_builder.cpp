@@ -6,11 +6,13 @@
 #include <limits>
 #include <numeric>
 #include <string>
+#include <utility>
 
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
 
 #include "collision/plane_tree_shapes.hpp"
+#include "core/parallel_items.hpp"
 #include "trackphys/collision/static_collider.hpp"
 #include "trackphys/error.hpp"
 #include "trackphys/math/symmetric_eigen.hpp"
@@ -49,7 +51,7 @@ glm::dmat3 outer(const glm::dvec3& a, const glm::dvec3& b) {
 
 void PlaneTreeBuilder::build(std::span<const NormalizedTriangle> triangles,
                              std::span<const std::uint32_t> ids, const PlaneTreeSettings& settings,
-                             PlaneTree& tree) {
+                             PlaneTree& tree, unsigned threads) {
     if (triangles.size() != ids.size())
         throw Error("PlaneTreeBuilder::build: " + std::to_string(triangles.size()) +
                     " triangles but " + std::to_string(ids.size()) + " ids");
@@ -77,7 +79,10 @@ void PlaneTreeBuilder::build(std::span<const NormalizedTriangle> triangles,
     if (n > 0) {
         constexpr float kInf = std::numeric_limits<float>::infinity();
         tree.nodes_.push_back({{0.0f, 0.0f, 0.0f}, kInf, 0, 0});
-        build_node(0, 0, n, 0);
+        if (detail::resolved_thread_count(threads) == 1 || n <= kSplitApartAbove)
+            tree.depth_ = build_node(scratch_, tree.nodes_, 0, 0, n, 0);
+        else
+            build_nodes_in_parallel(threads);
     }
     tree.slabs_.clear();
     if (n > 0 && settings.slab_thickness > 0.0) {
@@ -91,6 +96,9 @@ void PlaneTreeBuilder::build(std::span<const NormalizedTriangle> triangles,
     tree.boxes_.clear();
     tree.ids_.clear();
     tree.collider_ = nullptr;
+    tree.frames_.reserve(n);
+    tree.boxes_.reserve(n);
+    tree.ids_.reserve(n);
     for (const std::uint32_t item : order_) {
         tree.frames_.push_back(triangles[item]);
         const auto& v = items_[item].vertices;
@@ -100,26 +108,131 @@ void PlaneTreeBuilder::build(std::span<const NormalizedTriangle> triangles,
     tree_ = nullptr;
 }
 
-void PlaneTreeBuilder::build_node(std::uint32_t node, std::size_t begin, std::size_t end,
-                                  int depth) {
-    const std::size_t count = end - begin;
-    tree_->depth_ = std::max(tree_->depth_, depth);
-    Split split;
-    if (depth >= PlaneTreeSettings::kMaxDepth || !choose_split(begin, end, split)) {
-        tree_->nodes_[node].first = static_cast<std::uint32_t>(begin);
-        tree_->nodes_[node].packed = PlaneTreeNode::kLeafBit | static_cast<std::uint32_t>(count);
-        return;
+int PlaneTreeBuilder::build_node(Scratch& scratch, Nodes& nodes, std::uint32_t node,
+                                 std::size_t begin, std::size_t end, int depth) {
+    Children children;
+    if (!split(scratch, begin, end, depth, children)) {
+        nodes[node].first = static_cast<std::uint32_t>(begin);
+        nodes[node].packed = PlaneTreeNode::kLeafBit | static_cast<std::uint32_t>(end - begin);
+        return depth;
     }
-    order_along(begin, end, split.normal, split.left_count);
+    const auto child = static_cast<std::uint32_t>(nodes.size());
+    nodes.insert(nodes.end(), children.nodes.begin(), children.nodes.end());
+    nodes[node].first = child;
+    nodes[node].packed = static_cast<std::uint32_t>(end - begin);
+    const std::size_t mid = begin + children.left_count;
+    // The left subtree's nodes first, then the right one's: the order the layout follows.
+    const int left_depth = build_node(scratch, nodes, child, begin, mid, depth + 1);
+    return std::max(left_depth, build_node(scratch, nodes, child + 1, mid, end, depth + 1));
+}
+
+bool PlaneTreeBuilder::split(Scratch& scratch, std::size_t begin, std::size_t end, int depth,
+                             Children& children) {
+    Split split;
+    if (depth >= PlaneTreeSettings::kMaxDepth || !choose_split(scratch, begin, end, split))
+        return false;
+    order_along(scratch, begin, end, split.normal, split.left_count);
     const std::size_t mid = begin + split.left_count;
-    const auto child = static_cast<std::uint32_t>(tree_->nodes_.size());
-    tree_->nodes_.resize(tree_->nodes_.size() + 2);
-    set_plane(tree_->nodes_[child], begin, mid, split.normal);
-    set_plane(tree_->nodes_[child + 1], mid, end, -split.normal);
-    tree_->nodes_[node].first = child;
-    tree_->nodes_[node].packed = static_cast<std::uint32_t>(count);
-    build_node(child, begin, mid, depth + 1);
-    build_node(child + 1, mid, end, depth + 1);
+    children.left_count = split.left_count;
+    set_plane(children.nodes[0], begin, mid, split.normal);
+    set_plane(children.nodes[1], mid, end, -split.normal);
+    return true;
+}
+
+void PlaneTreeBuilder::build_nodes_in_parallel(unsigned threads) {
+    threads = detail::resolved_thread_count(threads);
+    // A node of more items than this is split in a wave of its level's nodes, one node a
+    // thread; below it each subtree is built whole by one thread. A few subtrees a thread
+    // even out their sizes (a cost-based cut can be far from the middle).
+    const std::size_t n = order_.size();
+    const std::size_t subtree_at_most = std::max(kSplitApartAbove, n / (8 * threads));
+
+    struct Pending {
+        std::uint32_t node;  ///< in `top`
+        std::size_t begin, end;
+        int depth;
+    };
+    Nodes top = std::move(tree_->nodes_);  // the root, placed by build
+    std::vector<Pending> wave = {{0, 0, n, 0}}, subtrees;
+    int depth = 0;  // of the deepest leaf
+    while (!wave.empty()) {
+        std::vector<Children> children(wave.size());
+        std::vector<char> did_split(wave.size());
+        detail::run_items_in_parallel(wave.size(), threads, [&](std::size_t i) {
+            Scratch scratch;
+            const Pending& p = wave[i];
+            did_split[i] = split(scratch, p.begin, p.end, p.depth, children[i]);
+        });
+        std::vector<Pending> next;
+        for (std::size_t i = 0; i < wave.size(); ++i) {
+            const Pending& p = wave[i];
+            PlaneTreeNode& node = top[p.node];
+            if (!did_split[i]) {
+                depth = std::max(depth, p.depth);
+                node.first = static_cast<std::uint32_t>(p.begin);
+                node.packed = PlaneTreeNode::kLeafBit | static_cast<std::uint32_t>(p.end - p.begin);
+                continue;
+            }
+            const auto child = static_cast<std::uint32_t>(top.size());
+            node.first = child;
+            node.packed = static_cast<std::uint32_t>(p.end - p.begin);
+            top.insert(top.end(), children[i].nodes.begin(), children[i].nodes.end());
+            const std::size_t mid = p.begin + children[i].left_count;
+            for (const Pending& c : {Pending{child, p.begin, mid, p.depth + 1},
+                                     Pending{child + 1, mid, p.end, p.depth + 1}})
+                (c.end - c.begin > subtree_at_most ? next : subtrees).push_back(c);
+        }
+        wave = std::move(next);
+    }
+
+    std::vector<Nodes> built(subtrees.size());
+    std::vector<int> depths(subtrees.size());
+    detail::run_items_in_parallel(subtrees.size(), threads, [&](std::size_t i) {
+        const Pending& p = subtrees[i];
+        Scratch scratch;
+        built[i] = {top[p.node]};
+        depths[i] = build_node(scratch, built[i], 0, p.begin, p.end, p.depth);
+    });
+
+    // Lay the nodes out as build_node does on one thread: a split node's two children side
+    // by side, then the left child's subtree, then the right one's. A subtree built apart
+    // has that layout already, its root at index 0.
+    std::vector<std::int64_t> subtree_of(top.size(), -1);
+    for (std::size_t i = 0; i < subtrees.size(); ++i)
+        subtree_of[subtrees[i].node] = std::int64_t(i);
+    Nodes& out = tree_->nodes_;
+    out.clear();
+    out.reserve(top.size() + [&] {
+        std::size_t sum = 0;
+        for (const Nodes& b : built) sum += b.size();
+        return sum;
+    }());
+    out.push_back(top[0]);
+    const auto lay_out = [&](const auto& self, std::uint32_t from, std::uint32_t to) -> void {
+        if (subtree_of[from] >= 0) {
+            const Nodes& subtree = built[std::size_t(subtree_of[from])];
+            // Subtree index k > 0 lands at base + k; a leaf's first is an item slot.
+            const auto base = static_cast<std::uint32_t>(out.size() - 1);
+            const auto placed = [&](PlaneTreeNode node) {
+                if (!node.is_leaf()) node.first += base;
+                return node;
+            };
+            out[to] = placed(subtree[0]);
+            for (std::size_t k = 1; k < subtree.size(); ++k) out.push_back(placed(subtree[k]));
+            return;
+        }
+        out[to] = top[from];
+        if (top[from].is_leaf()) return;
+        const auto child = static_cast<std::uint32_t>(out.size());
+        out[to].first = child;
+        out.resize(out.size() + 2);
+        self(self, top[from].first, child);
+        self(self, top[from].first + 1, child + 1);
+    };
+    lay_out(lay_out, 0, 0);
+
+    for (const int d : depths) depth = std::max(depth, d);
+    tree_->depth_ = depth;
 }
 
 void PlaneTreeBuilder::mark_slabs(std::uint32_t node, std::size_t begin, std::size_t end) {
@@ -151,7 +264,8 @@ void PlaneTreeBuilder::mark_slabs(std::uint32_t node, std::size_t begin, std::si
     mark_slabs(left + 1, mid, end);
 }
 
-bool PlaneTreeBuilder::choose_split(std::size_t begin, std::size_t end, Split& split) {
+bool PlaneTreeBuilder::choose_split(Scratch& scratch, std::size_t begin, std::size_t end,
+                                    Split& split) {
     const std::size_t count = end - begin;
     if (count <= 1) return false;
     if (settings_.rule == PlaneSplitRule::pca_median) {
@@ -159,7 +273,7 @@ bool PlaneTreeBuilder::choose_split(std::size_t begin, std::size_t end, Split& s
         split = pca_median_split(begin, end);
         return true;
     }
-    return cost_based_split(begin, end, split);
+    return cost_based_split(scratch, begin, end, split);
 }
 
 PlaneTreeBuilder::Split PlaneTreeBuilder::pca_median_split(std::size_t begin, std::size_t end) {
@@ -183,7 +297,8 @@ PlaneTreeBuilder::Split PlaneTreeBuilder::pca_median_split(std::size_t begin, st
     return split;
 }
 
-bool PlaneTreeBuilder::cost_based_split(std::size_t begin, std::size_t end, Split& split) {
+bool PlaneTreeBuilder::cost_based_split(Scratch& scratch, std::size_t begin, std::size_t end,
+                                        Split& split) {
     const std::size_t count = end - begin;
     // Small nodes try the centroids' axes and the coordinate axes only: the two directions
     // fitted to the surface cost two more decompositions a node there, and made the trees
@@ -226,7 +341,7 @@ bool PlaneTreeBuilder::cost_based_split(std::size_t begin, std::size_t end, Spli
     // boundary falls between them), get the full sweep over every cut position.
     if (!(best.cost < std::numeric_limits<double>::infinity()))
         for (const glm::dvec3& direction : candidates)
-            evaluate_direction(begin, end, direction, best);
+            evaluate_direction(scratch, begin, end, direction, best);
     if (!(best.cost < std::numeric_limits<double>::infinity())) return false;
     // Small nodes split only when the model predicts less work than testing them all.
     if (count <= std::size_t(settings_.max_leaf_size) && !(best.cost < double(count))) return false;
@@ -234,13 +349,13 @@ bool PlaneTreeBuilder::cost_based_split(std::size_t begin, std::size_t end, Spli
     return true;
 }
 
-void PlaneTreeBuilder::evaluate_direction(std::size_t begin, std::size_t end,
+void PlaneTreeBuilder::evaluate_direction(Scratch& scratch, std::size_t begin, std::size_t end,
                                           const glm::dvec3& direction, Split& best) {
     const glm::dvec3 n = float_direction(direction);
     if (n == glm::dvec3(0.0)) return;
     const std::size_t count = end - begin;
-    sweep_.resize(count);
-    suffix_low_.resize(count + 1);
+    scratch.sweep.resize(count);
+    scratch.suffix_low.resize(count + 1);
     double node_low = std::numeric_limits<double>::infinity();
     double node_high = -node_low;
     for (std::size_t i = 0; i < count; ++i) {
@@ -252,16 +367,16 @@ void PlaneTreeBuilder::evaluate_direction(std::size_t begin, std::size_t end,
             lo = std::min(lo, d);
             hi = std::max(hi, d);
         }
-        sweep_[i] = {glm::dot(n, item.centroid), lo, hi, item_index};
+        scratch.sweep[i] = {glm::dot(n, item.centroid), lo, hi, item_index};
         node_low = std::min(node_low, lo);
         node_high = std::max(node_high, hi);
     }
     // Order by centroid along n, ties by item index, as order_along does. The entries carry
     // their key and interval, so the sort compares without looking anything up.
-    std::sort(sweep_.begin(), sweep_.end(), by_key_then_item);
-    suffix_low_[count] = std::numeric_limits<double>::infinity();
+    std::sort(scratch.sweep.begin(), scratch.sweep.end(), ByKeyThenItem{});
+    scratch.suffix_low[count] = std::numeric_limits<double>::infinity();
     for (std::size_t k = count; k-- > 0;)
-        suffix_low_[k] = std::min(suffix_low_[k + 1], sweep_[k].low);
+        scratch.suffix_low[k] = std::min(scratch.suffix_low[k + 1], scratch.sweep[k].low);
 
     // A query that reaches this node is taken as uniform along n over [low - r, high + r];
     // it reaches the left half-space (n.x <= left_high) with probability
@@ -270,9 +385,9 @@ void PlaneTreeBuilder::evaluate_direction(std::size_t begin, std::size_t end,
     const double span = node_high - node_low + r2;
     double left_high = -std::numeric_limits<double>::infinity();
     for (std::size_t k = 1; k < count; ++k) {
-        left_high = std::max(left_high, sweep_[k - 1].high);
+        left_high = std::max(left_high, scratch.sweep[k - 1].high);
         best = cheaper_cut(best, n, k, count, (left_high - node_low + r2) / span,
-                           (node_high - suffix_low_[k] + r2) / span);
+                           (node_high - scratch.suffix_low[k] + r2) / span);
     }
 }
 
@@ -292,58 +407,43 @@ void PlaneTreeBuilder::evaluate_directions_binned(std::size_t begin, std::size_t
                                                   const Directions& directions, Split& best) {
     constexpr double kInf = std::numeric_limits<double>::infinity();
     constexpr std::size_t kCount = kCandidateDirections;
-    struct Along {
-        glm::dvec3 n;
-        double key_min = kInf, key_max = -kInf;  // centroids
-        double low = kInf, high = -kInf;         // vertices
-    };
-    std::array<Along, kCount> along;
-    for (std::size_t d = 0; d < kCount; ++d) along[d].n = float_direction(directions[d]);
+    std::array<glm::dvec3, kCount> normals;
+    for (std::size_t d = 0; d < kCount; ++d) normals[d] = float_direction(directions[d]);
 
-    // One pass over the node's items for every direction (each item is read once), keeping
-    // each item's centroid key and vertex interval along each. The directions lie in one
-    // array per coordinate, so that the compiler runs them side by side in vector lanes:
-    // each lane makes glm::dot's products and sums in its order, so the keys are the same.
-    std::array<double, kCount> nx, ny, nz, key_min, key_max, low, high;
+    // Two passes over the node's items, each reading an item once for every direction: the
+    // first finds the centroid keys' range along each, the second bins (the keys made again:
+    // kept between the passes, they were 216 bytes a triangle at the root, more than the
+    // items). The directions lie in one array per coordinate, so that the compiler runs them
+    // side by side in vector lanes: each lane makes glm::dot's products and sums in its
+    // order, so the keys are the same.
+    std::array<double, kCount> nx, ny, nz, key_min, key_max;
     for (std::size_t d = 0; d < kCount; ++d) {
-        nx[d] = along[d].n.x;
-        ny[d] = along[d].n.y;
-        nz[d] = along[d].n.z;
-        key_min[d] = low[d] = kInf;
-        key_max[d] = high[d] = -kInf;
+        nx[d] = normals[d].x;
+        ny[d] = normals[d].y;
+        nz[d] = normals[d].z;
+        key_min[d] = kInf;
+        key_max[d] = -kInf;
     }
-    const auto dot = [&](std::size_t d, const glm::dvec3& v) {
-        return nx[d] * v.x + ny[d] * v.y + nz[d] * v.z;
+    // The same expression as order_along's key, so the cut found is the cut made.
+    const auto key_along = [&](std::size_t d, const Item& item) {
+        return nx[d] * item.centroid.x + ny[d] * item.centroid.y + nz[d] * item.centroid.z;
     };
-    const std::size_t count = end - begin;
-    keys_.resize(count * kCount);
-    lows_.resize(count * kCount);
-    highs_.resize(count * kCount);
-    for (std::size_t i = 0; i < count; ++i) {
-        const Item& item = items_[order_[begin + i]];
-        double* keys = &keys_[i * kCount];
-        double* lows = &lows_[i * kCount];
-        double* highs = &highs_[i * kCount];
+    const auto interval_along = [&](std::size_t d, const Item& item) {
+        double lo = kInf, hi = -kInf;
+        for (const glm::dvec3& v : item.vertices) {
+            const double along_d = nx[d] * v.x + ny[d] * v.y + nz[d] * v.z;
+            lo = std::min(lo, along_d);
+            hi = std::max(hi, along_d);
+        }
+        return std::pair{lo, hi};
+    };
+    for (std::size_t i = begin; i < end; ++i) {
+        const Item& item = items_[order_[i]];
         for (std::size_t d = 0; d < kCount; ++d) {
-            // The same expression as order_along's key, so the cut found is the cut made.
-            const double key = dot(d, item.centroid);
-            const double v0 = dot(d, item.vertices[0]), v1 = dot(d, item.vertices[1]),
-                         v2 = dot(d, item.vertices[2]);
-            const double lo = std::min(std::min(v0, v1), v2), hi = std::max(std::max(v0, v1), v2);
-            keys[d] = key;
-            lows[d] = lo;
-            highs[d] = hi;
+            const double key = key_along(d, item);
             key_min[d] = std::min(key_min[d], key);
             key_max[d] = std::max(key_max[d], key);
-            low[d] = std::min(low[d], lo);
-            high[d] = std::max(high[d], hi);
         }
-    }
-    for (std::size_t d = 0; d < kCount; ++d) {
-        along[d].key_min = key_min[d];
-        along[d].key_max = key_max[d];
-        along[d].low = low[d];
-        along[d].high = high[d];
     }
 
     // Bins of equal width over the centroid keys. The bin index never decreases with the
@@ -354,50 +454,64 @@ void PlaneTreeBuilder::evaluate_directions_binned(std::size_t begin, std::size_t
         std::size_t count = 0;
         double low = kInf, high = -kInf;
     };
+    std::array<std::array<Bin, kBins>, kCount> bins{};
+    std::array<double, kCount> scale{};  // 0 for a direction not binned: all in its bin 0
+    const auto binned = [&](std::size_t d) {
+        return normals[d] != glm::dvec3(0.0) && key_max[d] > key_min[d];
+    };
+    for (std::size_t d = 0; d < kCount; ++d)
+        if (binned(d)) scale[d] = double(kBins) / (key_max[d] - key_min[d]);
+    for (std::size_t i = begin; i < end; ++i) {
+        const Item& item = items_[order_[i]];
+        for (std::size_t d = 0; d < kCount; ++d) {
+            const auto at = std::size_t((key_along(d, item) - key_min[d]) * scale[d]);
+            const auto [lo, hi] = interval_along(d, item);
+            Bin& bin = bins[d][std::min(kBins - 1, at)];
+            bin.count += 1;
+            bin.low = std::min(bin.low, lo);
+            bin.high = std::max(bin.high, hi);
+        }
+    }
+
+    const std::size_t count = end - begin;
     const double r2 = 2.0 * settings_.query_radius;
     for (std::size_t d = 0; d < kCount; ++d) {
-        const Along& a = along[d];
-        if (a.n == glm::dvec3(0.0) || !(a.key_max > a.key_min)) continue;
-        std::array<Bin, kBins> bins{};
-        const double scale = double(kBins) / (a.key_max - a.key_min);
-        for (std::size_t i = 0; i < count; ++i) {
-            const std::size_t at = i * kCount + d;
-            Bin& bin = bins[std::min(kBins - 1, std::size_t((keys_[at] - a.key_min) * scale))];
-            bin.count += 1;
-            bin.low = std::min(bin.low, lows_[at]);
-            bin.high = std::max(bin.high, highs_[at]);
-        }
+        if (!binned(d)) continue;
         std::array<double, kBins + 1> suffix_low;
         suffix_low[kBins] = kInf;
-        for (std::size_t b = kBins; b-- > 0;)
-            suffix_low[b] = std::min(suffix_low[b + 1], bins[b].low);
-        const double span = a.high - a.low + r2;
+        double high = -kInf;
+        for (std::size_t b = kBins; b-- > 0;) {
+            suffix_low[b] = std::min(suffix_low[b + 1], bins[d][b].low);
+            high = std::max(high, bins[d][b].high);
+        }
+        const double low = suffix_low[0];
+        const double span = high - low + r2;
         double left_high = -kInf;
         std::size_t left_count = 0;
         for (std::size_t b = 1; b < kBins; ++b) {
-            left_count += bins[b - 1].count;
-            left_high = std::max(left_high, bins[b - 1].high);
+            left_count += bins[d][b - 1].count;
+            left_high = std::max(left_high, bins[d][b - 1].high);
             // An empty bin repeats the cut at its right boundary.
-            if (left_count == 0 || bins[b].count == 0) continue;
-            best = cheaper_cut(best, a.n, left_count, count, (left_high - a.low + r2) / span,
-                               (a.high - suffix_low[b] + r2) / span);
+            if (left_count == 0 || bins[d][b].count == 0) continue;
+            best = cheaper_cut(best, normals[d], left_count, count, (left_high - low + r2) / span,
+                               (high - suffix_low[b] + r2) / span);
         }
     }
 }
 
-void PlaneTreeBuilder::order_along(std::size_t begin, std::size_t end, const glm::dvec3& normal,
-                                   std::size_t left_count) {
+void PlaneTreeBuilder::order_along(Scratch& scratch, std::size_t begin, std::size_t end,
+                                   const glm::dvec3& normal, std::size_t left_count) {
     // Keys computed once, not at each comparison; nth_element makes the same moves on the
     // entries as it would on the indices, so order_ ends in the same order either way.
-    sweep_.resize(end - begin);
+    scratch.sweep.resize(end - begin);
     for (std::size_t i = begin; i < end; ++i) {
         const std::uint32_t item = order_[i];
-        sweep_[i - begin] = {glm::dot(normal, items_[item].centroid), 0.0, 0.0, item};
+        scratch.sweep[i - begin] = {glm::dot(normal, items_[item].centroid), 0.0, 0.0, item};
     }
     // Only the cut matters: the smallest left_count items along n go left.
-    std::nth_element(sweep_.begin(), sweep_.begin() + std::ptrdiff_t(left_count), sweep_.end(),
-                     by_key_then_item);
-    for (std::size_t i = begin; i < end; ++i) order_[i] = sweep_[i - begin].item;
+    std::nth_element(scratch.sweep.begin(), scratch.sweep.begin() + std::ptrdiff_t(left_count),
+                     scratch.sweep.end(), ByKeyThenItem{});
+    for (std::size_t i = begin; i < end; ++i) order_[i] = scratch.sweep[i - begin].item;
 }
 
 void PlaneTreeBuilder::set_plane(PlaneTreeNode& node, std::size_t begin, std::size_t end,
@@ -412,14 +526,14 @@ void PlaneTreeBuilder::set_plane(PlaneTreeNode& node, std::size_t begin, std::si
 
 std::size_t PlaneTreeBuilder::bytes_used() const {
     return items_.capacity() * sizeof(Item) + order_.capacity() * sizeof(std::uint32_t) +
-           sweep_.capacity() * sizeof(SweepEntry) +
-           (keys_.capacity() + lows_.capacity() + highs_.capacity() + suffix_low_.capacity()) *
-               sizeof(double) +
+           scratch_.sweep.capacity() * sizeof(SweepEntry) +
+           scratch_.suffix_low.capacity() * sizeof(double) +
            node_slabs_.capacity() * sizeof(PlaneTreeSlab);
 }
 
 PlaneTree make_collider_plane_tree(const StaticCollider& collider,
-                                   const PlaneTreeSettings& settings, PlaneTreeFrames frames) {
+                                   const PlaneTreeSettings& settings, PlaneTreeFrames frames,
+                                   unsigned threads) {
     std::vector<NormalizedTriangle> triangles;
     std::vector<std::uint32_t> ids;
     triangles.reserve(collider.triangle_count());
@@ -431,7 +545,7 @@ PlaneTree make_collider_plane_tree(const StaticCollider& collider,
         ids.push_back(index);
     }
     PlaneTree tree;
-    PlaneTreeBuilder().build(triangles, ids, settings, tree);
+    PlaneTreeBuilder().build(triangles, ids, settings, tree, threads);
     tree.use_collider_frames(collider, frames);
     tree.shrink_to_fit();
     return tree;

@@ -19,6 +19,19 @@ namespace trackphys::detail {
 /// mesh or a cancelled bake ends the build at once rather than after every item); every item
 /// below it still runs, so the exception rethrown, the lowest item's, is the one a serial
 /// loop reports first.
+/// `threads` resolved: 0 is one per core.
+inline unsigned resolved_thread_count(unsigned threads) {
+    return threads == 0 ? std::max(1u, std::thread::hardware_concurrency()) : threads;
+}
+
+/// The threads each of `count` items may run on inside it when run_items_in_parallel runs
+/// them on `threads`: those a thread of its own leaves over when there are fewer items than
+/// threads (one big collider gets them all), so that all together stay within `threads`.
+inline unsigned threads_per_item(std::size_t count, unsigned threads) {
+    threads = resolved_thread_count(threads);
+    return count < threads ? static_cast<unsigned>(threads / std::max<std::size_t>(count, 1)) : 1;
+}
+
 template <class Work>
 void run_items_in_parallel(std::size_t count, unsigned threads, Work&& work) {
     std::vector<std::exception_ptr> errors(count);
@@ -35,7 +48,7 @@ void run_items_in_parallel(std::size_t count, unsigned threads, Work&& work) {
             }
         }
     };
-    if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
+    threads = resolved_thread_count(threads);
     {
         std::vector<std::jthread> helpers;
         for (std::size_t t = 1; t < std::min<std::size_t>(threads, count); ++t)

@@ -24,11 +24,12 @@ StaticMap bake_map(std::span<const TriangleMesh> meshes, const PlaneTreeSettings
     const PlaneTreeFrames frames = plane_tree_frames_within(triangles, kPlaneTreeFrameBudget);
     std::mutex progress_mutex;
     std::size_t built = 0;
+    const unsigned threads_a_tree = detail::threads_per_item(n, threads);
     detail::run_items_in_parallel(n, threads, [&](std::size_t i) {
         try {
             auto collider = std::make_shared<StaticCollider>(meshes[i]);
-            trees[i] =
-                std::make_shared<PlaneTree>(make_collider_plane_tree(*collider, settings, frames));
+            trees[i] = std::make_shared<PlaneTree>(
+                make_collider_plane_tree(*collider, settings, frames, threads_a_tree));
             colliders[i] = std::move(collider);
         } catch (const Error& e) {
             if (n == 1) throw;

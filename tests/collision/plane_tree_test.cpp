@@ -343,6 +343,29 @@ TEST(PlaneTree, NodePlanesHoldTheirTrianglesAndSlotsArePermutation) {
     }
 }
 
+/// Same nodes, slabs, slots and depth, bit for bit.
+void expect_same_tree(const PlaneTree& a, const PlaneTree& b) {
+    ASSERT_EQ(a.nodes().size(), b.nodes().size());
+    for (std::uint32_t i = 0; i < b.nodes().size(); ++i) {
+        const PlaneTreeNode& x = a.nodes()[i];
+        const PlaneTreeNode& y = b.nodes()[i];
+        EXPECT_TRUE(x.normal[0] == y.normal[0] && x.normal[1] == y.normal[1] &&
+                    x.normal[2] == y.normal[2] && x.offset == y.offset && x.first == y.first &&
+                    x.packed == y.packed)
+            << "node " << i;
+        if (x.has_slab() && y.has_slab()) {
+            const PlaneTreeSlab &p = a.slab(i), &q = b.slab(i);
+            EXPECT_TRUE(p.normal[0] == q.normal[0] && p.normal[1] == q.normal[1] &&
+                        p.normal[2] == q.normal[2] && p.low == q.low && p.high == q.high)
+                << "slab of node " << i;
+        }
+    }
+    ASSERT_EQ(a.triangle_count(), b.triangle_count());
+    for (std::uint32_t slot = 0; slot < b.triangle_count(); ++slot)
+        EXPECT_EQ(a.id(slot), b.id(slot));
+    EXPECT_EQ(a.depth(), b.depth());
+}
+
 TEST(PlaneTree, BuildIsDeterministicAndRebuildReusesStorage) {
     const Soup soup = normalized(test::random_soup(1500, 41));
     const Soup other = normalized(test::random_soup(1200, 42));
@@ -352,22 +375,38 @@ TEST(PlaneTree, BuildIsDeterministicAndRebuildReusesStorage) {
         PlaneTree reused;
         builder.build(other.triangles, other.ids, settings, reused);
         builder.build(soup.triangles, soup.ids, settings, reused);
-        const PlaneTree fresh = build(soup, settings);
-        ASSERT_EQ(reused.nodes().size(), fresh.nodes().size());
-        for (std::size_t i = 0; i < fresh.nodes().size(); ++i) {
-            const PlaneTreeNode& a = reused.nodes()[i];
-            const PlaneTreeNode& b = fresh.nodes()[i];
-            EXPECT_TRUE(a.normal[0] == b.normal[0] && a.normal[1] == b.normal[1] &&
-                        a.normal[2] == b.normal[2] && a.offset == b.offset && a.first == b.first &&
-                        a.packed == b.packed)
-                << "node " << i;
-        }
-        for (std::uint32_t slot = 0; slot < fresh.triangle_count(); ++slot)
-            EXPECT_EQ(reused.id(slot), fresh.id(slot));
+        expect_same_tree(reused, build(soup, settings));
         // A rebuild over as many triangles keeps the tree's storage.
         const auto* nodes = reused.nodes().data();
         builder.build(soup.triangles, soup.ids, settings, reused);
         EXPECT_EQ(reused.nodes().data(), nodes);
+    }
+}
+
+TEST(PlaneTree, BuildOnSeveralThreadsIsTheSingleThreadBuild) {
+    // Enough triangles for the first levels to be split in waves and the subtrees below
+    // built apart, then laid out as one thread lays them: the same tree, whatever the count.
+    TriangleMesh mesh = test::random_soup(20000, 61);
+    // A flat square's 6000 copies too: equal cuts, slabs, and the depth cap's leaves.
+    for (int i = 0; i < 3000; ++i) {
+        const auto v = static_cast<std::uint32_t>(mesh.vertices.size());
+        mesh.vertices.insert(mesh.vertices.end(), {{0, 0, 0}, {1, 0, 0}, {1, 0, 1}, {0, 0, 1}});
+        mesh.triangles.push_back({v, v + 1, v + 2});
+        mesh.triangles.push_back({v, v + 2, v + 3});
+    }
+    const Soup soup = normalized(mesh);
+    for (const PlaneTreeSettings& settings :
+         {PlaneTreeSettings::per_update(), PlaneTreeSettings::precomputed()}) {
+        const PlaneTree one = build(soup, settings);
+        if (settings.slab_thickness > 0.0) {
+            ASSERT_GT(one.slab_count(), 0u);
+        }
+        for (const unsigned threads : {2u, 3u, 0u}) {
+            SCOPED_TRACE(threads);
+            PlaneTree several;
+            PlaneTreeBuilder().build(soup.triangles, soup.ids, settings, several, threads);
+            expect_same_tree(several, one);
+        }
     }
 }
 

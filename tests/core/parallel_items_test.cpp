@@ -26,6 +26,17 @@ TEST(ParallelItems, EveryItemRunsOnceOnAnyThreadCount) {
     detail::run_items_in_parallel(0, 2, [](std::size_t) { FAIL() << "no items, no calls"; });
 }
 
+TEST(ParallelItems, ItemsFewerThanThreadsShareTheRest) {
+    EXPECT_EQ(detail::threads_per_item(1, 8), 8u);
+    EXPECT_EQ(detail::threads_per_item(3, 8), 2u);
+    EXPECT_EQ(detail::threads_per_item(8, 8), 1u);
+    EXPECT_EQ(detail::threads_per_item(50, 8), 1u);
+    EXPECT_EQ(detail::threads_per_item(0, 4), 4u);
+    EXPECT_EQ(detail::threads_per_item(1, 0), detail::resolved_thread_count(0));
+    EXPECT_GE(detail::resolved_thread_count(0), 1u);
+    EXPECT_EQ(detail::resolved_thread_count(5), 5u);
+}
+
 TEST(ParallelItems, NoItemAboveAThrowerBeginsOnOneThread) {
     std::vector<int> ran;
     try {

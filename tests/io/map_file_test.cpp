@@ -205,6 +205,26 @@ TEST(MapFile, BakeGivesTheSameMapOnAnyThreadCount) {
               baked_bytes());
 }
 
+// One mesh is one collider, whose tree takes every thread: the same map as on one.
+TEST(MapFile, BakeGivesTheSameMapOnAnyThreadCountForOneMesh) {
+    TrackParams params;
+    params.seed = 3;
+    params.length_m = 1000.0;
+    TriangleMesh whole;
+    for (const TrackChunk& chunk : generate_track(params).chunks) {
+        const auto offset = static_cast<std::uint32_t>(whole.vertices.size());
+        whole.vertices.insert(whole.vertices.end(), chunk.mesh.vertices.begin(),
+                              chunk.mesh.vertices.end());
+        for (const auto& t : chunk.mesh.triangles)
+            whole.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+    }
+    ASSERT_GT(whole.triangles.size(), 20'000u) << "enough for the tree to split apart";
+    const std::string one = encode_map(bake_map({&whole, 1}, PlaneTreeSettings::precomputed(), 1));
+    for (const unsigned threads : {2u, 3u})
+        EXPECT_EQ(encode_map(bake_map({&whole, 1}, PlaneTreeSettings::precomputed(), threads)), one)
+            << threads << " threads";
+}
+
 // The progress hears each collider once, counting up to all of them, one call at a time
 // from whichever thread built it, and the bake is the same map for listening.
 TEST(MapFile, BakeProgressHearsEachColliderOnceOnAnyThreadCount) {

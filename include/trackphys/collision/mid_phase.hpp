@@ -40,8 +40,9 @@ struct MidPhaseCounters {
 
 /// Builds make_collider_plane_tree for every collider of `world` (result in id order) on up
 /// to `threads` threads (0: std::thread::hardware_concurrency()), keeping the frames when
-/// the world's fit in `frame_budget_bytes` (plane_tree_frames_within). The trees do not
-/// depend on the thread count.
+/// the world's fit in `frame_budget_bytes` (plane_tree_frames_within). With fewer colliders
+/// than threads, each tree is built on the threads left over (one big collider on them
+/// all). The trees do not depend on the thread count.
 TRACKPHYS_API ColliderPlaneTrees make_collider_plane_trees(
     const StaticWorld& world, const PlaneTreeSettings& settings = PlaneTreeSettings::precomputed(),
     unsigned threads = 0, std::size_t frame_budget_bytes = kPlaneTreeFrameBudget);

@@ -276,7 +276,7 @@ class TRACKPHYS_API PlaneTree {
     friend class PlaneTreeBuilder;
     friend struct detail::MapCodec;  // map files (src/io/map_codec.cpp)
     friend PlaneTree make_collider_plane_tree(const StaticCollider&, const PlaneTreeSettings&,
-                                              PlaneTreeFrames);
+                                              PlaneTreeFrames, unsigned);
 
     template <class Shape>
     PlaneTreeQueryCounts visit(const Shape& shape, std::vector<std::uint32_t>& out,
@@ -324,10 +324,11 @@ class TRACKPHYS_API PlaneTree {
 /// collider rather than stored in it: StaticCollider stays the broad phase's compact
 /// structure (~48 bytes a triangle) and worlds that use no precomputed mid phase pay
 /// nothing. The tree reads the collider's vertices: `collider` must outlive it (a
-/// StaticWorld's colliders do, as long as the world lives).
+/// StaticWorld's colliders do, as long as the world lives). Built on up to `threads`
+/// threads (0: one per core; PlaneTreeBuilder::build), the same tree whatever their count.
 TRACKPHYS_API PlaneTree
 make_collider_plane_tree(const StaticCollider& collider,
                          const PlaneTreeSettings& settings = PlaneTreeSettings::precomputed(),
-                         PlaneTreeFrames frames = PlaneTreeFrames::built);
+                         PlaneTreeFrames frames = PlaneTreeFrames::built, unsigned threads = 1);
 
 }  // namespace trackphys

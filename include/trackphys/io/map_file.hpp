@@ -48,8 +48,9 @@ struct StaticMap {
 using BakeProgress = std::function<void(std::size_t done, std::size_t total)>;
 
 /// Builds a map with one collider per mesh, in order, and each collider's plane tree with
-/// `settings`, on up to `threads` threads (0: std::thread::hardware_concurrency()). The
-/// result does not depend on the thread count. Its trees keep their frames when the meshes'
+/// `settings`, on up to `threads` threads (0: std::thread::hardware_concurrency()), a tree on
+/// several when there are fewer meshes than threads. The result does not depend on the
+/// thread count. Its trees keep their frames when the meshes'
 /// triangles fit kPlaneTreeFrameBudget, as a World's own trees and a loaded map's do
 /// (plane_tree_frames_within), and build them in their queries otherwise; a map file stores
 /// no frames either way.
