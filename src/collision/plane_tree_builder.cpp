@@ -108,18 +108,28 @@ void PlaneTreeBuilder::build(std::span<const NormalizedTriangle> triangles,
     tree_ = nullptr;
 }
 
+void PlaneTreeBuilder::make_leaf(PlaneTreeNode& node, std::size_t begin, std::size_t end) {
+    node.first = static_cast<std::uint32_t>(begin);
+    node.packed = PlaneTreeNode::kLeafBit | static_cast<std::uint32_t>(end - begin);
+}
+
+std::uint32_t PlaneTreeBuilder::adopt(Nodes& nodes, std::uint32_t node, std::size_t count,
+                                      const Children& children) {
+    const auto child = static_cast<std::uint32_t>(nodes.size());
+    nodes.insert(nodes.end(), children.nodes.begin(), children.nodes.end());
+    nodes[node].first = child;
+    nodes[node].packed = static_cast<std::uint32_t>(count);
+    return child;
+}
+
 int PlaneTreeBuilder::build_node(Scratch& scratch, Nodes& nodes, std::uint32_t node,
                                  std::size_t begin, std::size_t end, int depth) {
     Children children;
     if (!split(scratch, begin, end, depth, children)) {
-        nodes[node].first = static_cast<std::uint32_t>(begin);
-        nodes[node].packed = PlaneTreeNode::kLeafBit | static_cast<std::uint32_t>(end - begin);
+        make_leaf(nodes[node], begin, end);
         return depth;
     }
-    const auto child = static_cast<std::uint32_t>(nodes.size());
-    nodes.insert(nodes.end(), children.nodes.begin(), children.nodes.end());
-    nodes[node].first = child;
-    nodes[node].packed = static_cast<std::uint32_t>(end - begin);
+    const std::uint32_t child = adopt(nodes, node, end - begin, children);
     const std::size_t mid = begin + children.left_count;
     // The left subtree's nodes first, then the right one's: the order the layout follows.
     const int left_depth = build_node(scratch, nodes, child, begin, mid, depth + 1);
@@ -145,7 +155,7 @@ void PlaneTreeBuilder::build_nodes_in_parallel(unsigned threads) {
     // thread; below it each subtree is built whole by one thread. A few subtrees a thread
     // even out their sizes (a cost-based cut can be far from the middle).
     const std::size_t n = order_.size();
-    const std::size_t subtree_at_most = std::max(kSplitApartAbove, n / (8 * threads));
+    const std::size_t subtree_at_most = std::max(kSplitApartAbove, n / (8 * std::size_t{threads}));
 
     struct Pending {
         std::uint32_t node;  ///< in `top`
@@ -157,7 +167,7 @@ void PlaneTreeBuilder::build_nodes_in_parallel(unsigned threads) {
     int depth = 0;  // of the deepest leaf
     while (!wave.empty()) {
         std::vector<Children> children(wave.size());
-        std::vector<char> did_split(wave.size());
+        std::vector<char> did_split(wave.size());  // not bool: a byte a task, no shared word
         detail::run_items_in_parallel(wave.size(), threads, [&](std::size_t i) {
             Scratch scratch;
             const Pending& p = wave[i];
@@ -166,17 +176,12 @@ void PlaneTreeBuilder::build_nodes_in_parallel(unsigned threads) {
         std::vector<Pending> next;
         for (std::size_t i = 0; i < wave.size(); ++i) {
             const Pending& p = wave[i];
-            PlaneTreeNode& node = top[p.node];
             if (!did_split[i]) {
                 depth = std::max(depth, p.depth);
-                node.first = static_cast<std::uint32_t>(p.begin);
-                node.packed = PlaneTreeNode::kLeafBit | static_cast<std::uint32_t>(p.end - p.begin);
+                make_leaf(top[p.node], p.begin, p.end);
                 continue;
             }
-            const auto child = static_cast<std::uint32_t>(top.size());
-            node.first = child;
-            node.packed = static_cast<std::uint32_t>(p.end - p.begin);
-            top.insert(top.end(), children[i].nodes.begin(), children[i].nodes.end());
+            const std::uint32_t child = adopt(top, p.node, p.end - p.begin, children[i]);
             const std::size_t mid = p.begin + children[i].left_count;
             for (const Pending& c : {Pending{child, p.begin, mid, p.depth + 1},
                                      Pending{child + 1, mid, p.end, p.depth + 1}})
@@ -219,6 +224,7 @@ void PlaneTreeBuilder::build_nodes_in_parallel(unsigned threads) {
             };
             out[to] = placed(subtree[0]);
             for (std::size_t k = 1; k < subtree.size(); ++k) out.push_back(placed(subtree[k]));
+            built[std::size_t(subtree_of[from])] = {};  // laid out: its memory back
             return;
         }
         out[to] = top[from];

@@ -12,13 +12,6 @@
 
 namespace trackphys::detail {
 
-/// Calls work(i) for every i in [0, count) on up to `threads` threads (0: one per core), the
-/// caller's included, and returns when all are done. Threads claim the next item in turn,
-/// so each item runs once whatever the thread count; results written to item i's place make
-/// the outcome independent of it. Once an item throws, no item above it is begun (a refused
-/// mesh or a cancelled bake ends the build at once rather than after every item); every item
-/// below it still runs, so the exception rethrown, the lowest item's, is the one a serial
-/// loop reports first.
 /// `threads` resolved: 0 is one per core.
 inline unsigned resolved_thread_count(unsigned threads) {
     return threads == 0 ? std::max(1u, std::thread::hardware_concurrency()) : threads;
@@ -32,6 +25,13 @@ inline unsigned threads_per_item(std::size_t count, unsigned threads) {
     return count < threads ? static_cast<unsigned>(threads / std::max<std::size_t>(count, 1)) : 1;
 }
 
+/// Calls work(i) for every i in [0, count) on up to `threads` threads (0: one per core), the
+/// caller's included, and returns when all are done. Threads claim the next item in turn,
+/// so each item runs once whatever the thread count; results written to item i's place make
+/// the outcome independent of it. Once an item throws, no item above it is begun (a refused
+/// mesh or a cancelled bake ends the build at once rather than after every item); every item
+/// below it still runs, so the exception rethrown, the lowest item's, is the one a serial
+/// loop reports first.
 template <class Work>
 void run_items_in_parallel(std::size_t count, unsigned threads, Work&& work) {
     std::vector<std::exception_ptr> errors(count);

@@ -387,7 +387,7 @@ TEST(PlaneTree, BuildOnSeveralThreadsIsTheSingleThreadBuild) {
     // Enough triangles for the first levels to be split in waves and the subtrees below
     // built apart, then laid out as one thread lays them: the same tree, whatever the count.
     TriangleMesh mesh = test::random_soup(20000, 61);
-    // A flat square's 6000 copies too: equal cuts, slabs, and the depth cap's leaves.
+    // A flat square's 6000 copies too: equal cuts and slabs.
     for (int i = 0; i < 3000; ++i) {
         const auto v = static_cast<std::uint32_t>(mesh.vertices.size());
         mesh.vertices.insert(mesh.vertices.end(), {{0, 0, 0}, {1, 0, 0}, {1, 0, 1}, {0, 0, 1}});

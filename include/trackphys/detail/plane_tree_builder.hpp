@@ -18,7 +18,7 @@ namespace trackphys {
 /// Builds PlaneTrees: the engine of make_collider_plane_tree and of MidPhase's per-update
 /// tree, in an installed header only because MidPhase holds one by value. Keeps its scratch
 /// between builds, and the target tree keeps its storage, so rebuilding per update over a
-/// similar number of triangles does not allocate.
+/// similar number of triangles on one thread does not allocate.
 /// Deterministic: same triangles, ids and settings -> the same tree, bit for bit.
 class TRACKPHYS_API PlaneTreeBuilder {
   public:
@@ -72,6 +72,11 @@ class TRACKPHYS_API PlaneTreeBuilder {
     };
     using Nodes = std::vector<PlaneTreeNode>;
 
+    static void make_leaf(PlaneTreeNode& node, std::size_t begin, std::size_t end);
+    // Appends the children to `nodes` as those of `node` (of `count` items); returns the
+    // index of the left one.
+    static std::uint32_t adopt(Nodes& nodes, std::uint32_t node, std::size_t count,
+                               const Children& children);
     // The depth of the deepest leaf below `node`, whose subtree it builds into `nodes`.
     int build_node(Scratch& scratch, Nodes& nodes, std::uint32_t node, std::size_t begin,
                    std::size_t end, int depth);
