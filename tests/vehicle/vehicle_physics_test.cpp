@@ -758,16 +758,21 @@ TEST(VehiclePhysics, ACoastingCarSlowsByDragRollingResistanceAndEngineBraking) {
 }
 
 // The force of the first wheel (a front one) of a car rolling at `rolling` m/s and sliding
-// sideways at `sideways` m/s under `load` N in one sub-step of h s, its lateral slip at that
-// slide's steady state -V_y / V_x.
-TyreForce sliding_front_wheel_force(const CarSpec& spec, double rolling, double sideways,
-                                    double load, double h) {
+// sideways at `sideways` m/s under `load` N in one sub-step of h s, its slips at that
+// motion's steady state: lateral slip -V_y / V_x, slip ratio `slip_ratio` with the spin
+// (1 + slip_ratio) times the rolling one; at `brake` (0 to 1) with no throttle.
+TyreForce front_wheel_force(const CarSpec& spec, double rolling, double sideways, double load,
+                            double h, double slip_ratio = 0.0, double brake = 0.0) {
     Vehicle vehicle(spec);
     VehicleState state = vehicle.rolling_at(rolling);
-    for (WheelState& wheel : state.wheels) wheel.lateral_slip = -sideways / rolling;
+    for (WheelState& wheel : state.wheels) {
+        wheel.lateral_slip = -sideways / rolling;
+        wheel.slip_ratio = slip_ratio;  // kappa = (w R - V_x) / V_x
+        wheel.spin *= 1.0 + slip_ratio;
+    }
     vehicle.set_state(state);
-    detail::VehicleAccess::begin_substep(vehicle, 0.0, 0.0, std::hypot(rolling, sideways), rolling,
-                                         h);
+    detail::VehicleAccess::begin_substep(vehicle, 0.0, brake, std::hypot(rolling, sideways),
+                                         rolling, h);
     return detail::VehicleAccess::wheel_force(vehicle, 0, load, rolling, sideways, h);
 }
 
@@ -786,7 +791,7 @@ TEST(VehiclePhysics, ASidewaysSlidingWheelGripsAsTheCurveSaysEitherSideOfLowSpee
         double lateral[2];
         for (const int side : {0, 1}) {
             const double rolling = (side == 0 ? 0.99 : 1.01) * low;
-            lateral[side] = sliding_front_wheel_force(spec, rolling, sideways, load, h).lateral;
+            lateral[side] = front_wheel_force(spec, rolling, sideways, load, h).lateral;
             const double curve = tyre.force(0.0, -sideways / rolling, load).lateral;
             EXPECT_LE(std::abs(lateral[side]), std::abs(curve) * (1.0 + 1e-12))
                 << "rolling at " << rolling << " m/s";
@@ -811,12 +816,77 @@ TEST(VehiclePhysics, ASlowSidewaysSlideGripsAsTheCurveSays) {
         ASSERT_LT(std::hypot(rolling, 2.5), spec.vehicle->low_speed) << preset;
         for (const double sideways : {1.0, 1.5, 2.0, 2.5}) {
             SCOPED_TRACE(std::string(preset) + " sliding at " + std::to_string(sideways));
-            const double lateral =
-                sliding_front_wheel_force(spec, rolling, sideways, load, h).lateral;
+            const double lateral = front_wheel_force(spec, rolling, sideways, load, h).lateral;
             const double curve = tyre.force(0.0, -sideways / rolling, load).lateral;
             ASSERT_LT(curve, 0.0);
             EXPECT_LE(std::abs(lateral), std::abs(curve) * (1.0 + 1e-12));
             EXPECT_GE(std::abs(lateral), std::abs(curve) * (1.0 - 1e-12));
+        }
+    }
+}
+
+// The preset without its rolling resistance, which the tyre's longitudinal force carries.
+CarSpec without_rolling_resistance(const char* preset) {
+    CarSpec spec = CarSpec::preset(preset);
+    spec.vehicle->rolling_resistance = 0.0;
+    return spec;
+}
+
+// The share of the friction ellipse with semi-axes `peaks` that a force uses.
+double ellipse_share(const TyreForce& force, const TyreForce& peaks) {
+    return std::hypot(force.longitudinal / peaks.longitudinal, force.lateral / peaks.lateral);
+}
+
+// A wheel braked past its peak slip ratio, up to locked, while it rolls at 0.5 m/s, and
+// sliding sideways too or not: the damper below low_speed pulls the same way as the slips
+// and may tilt the force, but the force uses the share of the friction ellipse the curve
+// uses for those slips, no more (braked alone: the curve's force), as the sideways slide's.
+TEST(VehiclePhysics, ASlowBrakedSlideUsesTheCurvesShareOfTheEllipse) {
+    for (const char* preset : {"gt", "formula"}) {
+        const CarSpec spec = without_rolling_resistance(preset);
+        const Tyre tyre(spec.vehicle->front_tyre);
+        const double load = 3000.0, h = 0.002, rolling = 0.5;
+        const TyreForce peaks = tyre.peaks(load);
+        for (const double slip_ratio : {-1.5 * tyre.peak_slip_ratio(), -0.5, -1.0})
+            for (const double sideways : {0.0, 0.02, 0.5, 1.5}) {
+                SCOPED_TRACE(std::string(preset) + " slip ratio " + std::to_string(slip_ratio) +
+                             ", sliding at " + std::to_string(sideways));
+                ASSERT_GT(tyre.normalised(slip_ratio, -sideways / rolling).combined, 1.0);
+                const TyreForce force =
+                    front_wheel_force(spec, rolling, sideways, load, h, slip_ratio, 1.0);
+                const TyreForce curve = tyre.force(slip_ratio, -sideways / rolling, load);
+                const double used = ellipse_share(force, peaks);
+                const double curve_uses = ellipse_share(curve, peaks);
+                EXPECT_LE(used, curve_uses * (1.0 + 1e-12));
+                EXPECT_GE(used, curve_uses * (1.0 - 1e-12));
+                EXPECT_LT(force.longitudinal, 0.0);
+                if (sideways > 0.0) {
+                    EXPECT_LT(force.lateral, 0.0);
+                } else {
+                    EXPECT_EQ(force.lateral, 0.0);
+                }
+            }
+    }
+}
+
+// Through the peak slip, where the damper's room shrinks from the whole ellipse to the
+// curve's share: a part in 1e-7 of the peak slip either side, a braked wheel and a wheel
+// sliding sideways both get the peak force, within a part in 1e-6.
+TEST(VehiclePhysics, TheSlowTyreForceIsContinuousThroughThePeakSlip) {
+    for (const char* preset : {"gt", "formula"}) {
+        const CarSpec spec = without_rolling_resistance(preset);
+        const Tyre tyre(spec.vehicle->front_tyre);
+        const double load = 3000.0, h = 0.002, rolling = 0.5;
+        const TyreForce peaks = tyre.peaks(load);
+        for (const double side : {-1.0, 1.0}) {
+            SCOPED_TRACE(std::string(preset) + (side < 0 ? " below" : " above") + " the peak");
+            const double at = 1.0 + side * 1e-7;
+            const TyreForce braked =
+                front_wheel_force(spec, rolling, 0.0, load, h, -at * tyre.peak_slip_ratio(), 1.0);
+            const TyreForce sliding =
+                front_wheel_force(spec, rolling, at * tyre.peak_lateral_slip() * rolling, load, h);
+            EXPECT_NEAR(braked.longitudinal, -peaks.longitudinal, 1e-6 * peaks.longitudinal);
+            EXPECT_NEAR(sliding.lateral, -peaks.lateral, 1e-6 * peaks.lateral);
         }
     }
 }
