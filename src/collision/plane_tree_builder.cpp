@@ -52,6 +52,25 @@ glm::dmat3 outer(const glm::dvec3& a, const glm::dvec3& b) {
 void PlaneTreeBuilder::build(std::span<const NormalizedTriangle> triangles,
                              std::span<const std::uint32_t> ids, const PlaneTreeSettings& settings,
                              PlaneTree& tree, unsigned threads) {
+    build_nodes(triangles, ids, settings, tree, threads);
+    copy_frames(triangles, tree);
+    tree.boxes_.reserve(order_.size());
+    for (const std::uint32_t item : order_) {
+        const auto& v = items_[item].vertices;
+        tree.boxes_.push_back(collision_detail::float_box(Triangle(v[0], v[1], v[2])));
+    }
+}
+
+void PlaneTreeBuilder::copy_frames(std::span<const NormalizedTriangle> triangles,
+                                   PlaneTree& tree) const {
+    tree.frames_.reserve(order_.size());
+    for (const std::uint32_t item : order_) tree.frames_.push_back(triangles[item]);
+}
+
+void PlaneTreeBuilder::build_nodes(std::span<const NormalizedTriangle> triangles,
+                                   std::span<const std::uint32_t> ids,
+                                   const PlaneTreeSettings& settings, PlaneTree& tree,
+                                   unsigned threads) {
     if (triangles.size() != ids.size())
         throw Error("PlaneTreeBuilder::build: " + std::to_string(triangles.size()) +
                     " triangles but " + std::to_string(ids.size()) + " ids");
@@ -96,15 +115,8 @@ void PlaneTreeBuilder::build(std::span<const NormalizedTriangle> triangles,
     tree.boxes_.clear();
     tree.ids_.clear();
     tree.collider_ = nullptr;
-    tree.frames_.reserve(n);
-    tree.boxes_.reserve(n);
     tree.ids_.reserve(n);
-    for (const std::uint32_t item : order_) {
-        tree.frames_.push_back(triangles[item]);
-        const auto& v = items_[item].vertices;
-        tree.boxes_.push_back(collision_detail::float_box(Triangle(v[0], v[1], v[2])));
-        tree.ids_.push_back(ids[item]);
-    }
+    for (const std::uint32_t item : order_) tree.ids_.push_back(ids[item]);
     tree_ = nullptr;
 }
 
@@ -551,7 +563,16 @@ PlaneTree make_collider_plane_tree(const StaticCollider& collider,
         ids.push_back(index);
     }
     PlaneTree tree;
-    PlaneTreeBuilder().build(triangles, ids, settings, tree, threads);
+    {
+        PlaneTreeBuilder builder;
+        builder.build_nodes(triangles, ids, settings, tree, threads);
+        // Only a tree that keeps its frames takes the builder's (the collider's, in leaf
+        // order); the boxes, which build() would make too, only a tree that builds its
+        // frames keeps, made from the collider. Copied and dropped, they were 144 bytes a
+        // triangle at the peak.
+        if (frames == PlaneTreeFrames::kept) builder.copy_frames(triangles, tree);
+    }  // the builder's scratch freed
+    triangles = {};
     tree.use_collider_frames(collider, frames);
     tree.shrink_to_fit();
     return tree;

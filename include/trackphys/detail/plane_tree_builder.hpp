@@ -35,6 +35,15 @@ class TRACKPHYS_API PlaneTreeBuilder {
     std::size_t bytes_used() const;
 
   private:
+    friend PlaneTree make_collider_plane_tree(const StaticCollider&, const PlaneTreeSettings&,
+                                              PlaneTreeFrames, unsigned);
+    // build() but the frames and boxes: the nodes, slabs, ids and depth.
+    void build_nodes(std::span<const NormalizedTriangle> triangles,
+                     std::span<const std::uint32_t> ids, const PlaneTreeSettings& settings,
+                     PlaneTree& tree, unsigned threads);
+    // The triangles' frames into `tree` in leaf order, after build_nodes.
+    void copy_frames(std::span<const NormalizedTriangle> triangles, PlaneTree& tree) const;
+
     struct Item {
         std::array<glm::dvec3, 3> vertices;
         glm::dvec3 centroid;
