@@ -236,7 +236,6 @@ void PlaneTreeBuilder::build_nodes_in_parallel(unsigned threads) {
             };
             out[to] = placed(subtree[0]);
             for (std::size_t k = 1; k < subtree.size(); ++k) out.push_back(placed(subtree[k]));
-            built[std::size_t(subtree_of[from])] = {};  // laid out: its memory back
             return;
         }
         out[to] = top[from];
@@ -571,8 +570,7 @@ PlaneTree make_collider_plane_tree(const StaticCollider& collider,
         // frames keeps, made from the collider. Copied and dropped, they were 144 bytes a
         // triangle at the peak.
         if (frames == PlaneTreeFrames::kept) builder.copy_frames(triangles, tree);
-    }  // the builder's scratch freed
-    triangles = {};
+    }  // the builder's scratch freed before the boxes are made
     tree.use_collider_frames(collider, frames);
     tree.shrink_to_fit();
     return tree;

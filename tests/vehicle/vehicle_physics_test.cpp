@@ -838,9 +838,11 @@ double ellipse_share(const TyreForce& force, const TyreForce& peaks) {
 }
 
 // A wheel braked past its peak slip ratio, up to locked, while it rolls at 0.5 m/s, and
-// sliding sideways too or not: the damper below low_speed pulls the same way as the slips
-// and may tilt the force, but the force uses the share of the friction ellipse the curve
-// uses for those slips, no more (braked alone: the curve's force), as the sideways slide's.
+// sliding sideways too or not: the brake (through the damper's spin) and the lateral damper
+// push the force past the curve's, but it uses the share of the friction ellipse the curve
+// uses for those slips, no more (braked alone: the curve's force), as the sideways slide
+// does. At 1.5 m/s sideways the anti-lock lets the brake off; the lateral damper alone
+// reaches the limit there.
 TEST(VehiclePhysics, ASlowBrakedSlideUsesTheCurvesShareOfTheEllipse) {
     for (const char* preset : {"gt", "formula"}) {
         const CarSpec spec = without_rolling_resistance(preset);
