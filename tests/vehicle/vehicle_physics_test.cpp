@@ -832,6 +832,19 @@ CarSpec without_rolling_resistance(const char* preset) {
     return spec;
 }
 
+// A preset without rolling resistance, its front tyre under 3000 N rolling at 0.5 m/s (below
+// low_speed: the damper acts) in sub-steps of 2 ms.
+struct SlowFrontWheel {
+    explicit SlowFrontWheel(const char* preset)
+        : spec(without_rolling_resistance(preset)),
+          tyre(spec.vehicle->front_tyre),
+          peaks(tyre.peaks(load)) {}
+    static constexpr double load = 3000.0, h = 0.002, rolling = 0.5;
+    CarSpec spec;
+    Tyre tyre;
+    TyreForce peaks;  ///< the friction ellipse's semi-axes
+};
+
 // The share of the friction ellipse with semi-axes `peaks` that a force uses.
 double ellipse_share(const TyreForce& force, const TyreForce& peaks) {
     return std::hypot(force.longitudinal / peaks.longitudinal, force.lateral / peaks.lateral);
@@ -845,20 +858,17 @@ double ellipse_share(const TyreForce& force, const TyreForce& peaks) {
 // reaches the limit there.
 TEST(VehiclePhysics, ASlowBrakedSlideUsesTheCurvesShareOfTheEllipse) {
     for (const char* preset : {"gt", "formula"}) {
-        const CarSpec spec = without_rolling_resistance(preset);
-        const Tyre tyre(spec.vehicle->front_tyre);
-        const double load = 3000.0, h = 0.002, rolling = 0.5;
-        const TyreForce peaks = tyre.peaks(load);
-        for (const double slip_ratio : {-1.5 * tyre.peak_slip_ratio(), -0.5, -1.0})
+        const SlowFrontWheel w(preset);
+        for (const double slip_ratio : {-1.5 * w.tyre.peak_slip_ratio(), -0.5, -1.0})
             for (const double sideways : {0.0, 0.02, 0.5, 1.5}) {
                 SCOPED_TRACE(std::string(preset) + " slip ratio " + std::to_string(slip_ratio) +
                              ", sliding at " + std::to_string(sideways));
-                ASSERT_GT(tyre.normalised(slip_ratio, -sideways / rolling).combined, 1.0);
+                ASSERT_GT(w.tyre.normalised(slip_ratio, -sideways / w.rolling).combined, 1.0);
                 const TyreForce force =
-                    front_wheel_force(spec, rolling, sideways, load, h, slip_ratio, 1.0);
-                const TyreForce curve = tyre.force(slip_ratio, -sideways / rolling, load);
-                const double used = ellipse_share(force, peaks);
-                const double curve_uses = ellipse_share(curve, peaks);
+                    front_wheel_force(w.spec, w.rolling, sideways, w.load, w.h, slip_ratio, 1.0);
+                const TyreForce curve = w.tyre.force(slip_ratio, -sideways / w.rolling, w.load);
+                const double used = ellipse_share(force, w.peaks);
+                const double curve_uses = ellipse_share(curve, w.peaks);
                 EXPECT_LE(used, curve_uses * (1.0 + 1e-12));
                 EXPECT_GE(used, curve_uses * (1.0 - 1e-12));
                 EXPECT_LT(force.longitudinal, 0.0);
@@ -876,19 +886,16 @@ TEST(VehiclePhysics, ASlowBrakedSlideUsesTheCurvesShareOfTheEllipse) {
 // sliding sideways both get the peak force, within a part in 1e-6.
 TEST(VehiclePhysics, TheSlowTyreForceIsContinuousThroughThePeakSlip) {
     for (const char* preset : {"gt", "formula"}) {
-        const CarSpec spec = without_rolling_resistance(preset);
-        const Tyre tyre(spec.vehicle->front_tyre);
-        const double load = 3000.0, h = 0.002, rolling = 0.5;
-        const TyreForce peaks = tyre.peaks(load);
+        const SlowFrontWheel w(preset);
         for (const double side : {-1.0, 1.0}) {
             SCOPED_TRACE(std::string(preset) + (side < 0 ? " below" : " above") + " the peak");
             const double at = 1.0 + side * 1e-7;
-            const TyreForce braked =
-                front_wheel_force(spec, rolling, 0.0, load, h, -at * tyre.peak_slip_ratio(), 1.0);
-            const TyreForce sliding =
-                front_wheel_force(spec, rolling, at * tyre.peak_lateral_slip() * rolling, load, h);
-            EXPECT_NEAR(braked.longitudinal, -peaks.longitudinal, 1e-6 * peaks.longitudinal);
-            EXPECT_NEAR(sliding.lateral, -peaks.lateral, 1e-6 * peaks.lateral);
+            const TyreForce braked = front_wheel_force(w.spec, w.rolling, 0.0, w.load, w.h,
+                                                       -at * w.tyre.peak_slip_ratio(), 1.0);
+            const TyreForce sliding = front_wheel_force(
+                w.spec, w.rolling, at * w.tyre.peak_lateral_slip() * w.rolling, w.load, w.h);
+            EXPECT_NEAR(braked.longitudinal, -w.peaks.longitudinal, 1e-6 * w.peaks.longitudinal);
+            EXPECT_NEAR(sliding.lateral, -w.peaks.lateral, 1e-6 * w.peaks.lateral);
         }
     }
 }
