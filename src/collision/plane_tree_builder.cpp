@@ -24,11 +24,7 @@ using collision_detail::float_down;
 using collision_detail::float_up;
 
 // A float toward zero: |result| <= |x|.
-float float_toward_zero(double x) {
-    float f = static_cast<float>(x);
-    if (std::abs(double(f)) > std::abs(x)) f = std::nextafter(f, 0.0f);
-    return f;
-}
+float float_toward_zero(double x) { return x < 0.0 ? float_up(x) : float_down(x); }
 
 // The unit direction of v rounded to float toward zero, so that its length is at most 1:
 // a sphere test that treats it as unit (n.c - r) is then conservative. Zero when v is.
@@ -38,6 +34,14 @@ glm::dvec3 float_direction(const glm::dvec3& v) {
     const glm::dvec3 u = v / length;
     return {float_toward_zero(u.x), float_toward_zero(u.y), float_toward_zero(u.z)};
 }
+
+// Two doubles in one vector (GCC's vector extension, an SSE2 register on x86-64): the
+// binned pass takes the candidate directions two at a time.
+using DirectionPair = double __attribute__((vector_size(16)));
+
+// std::min and std::max lane by lane, returning the same operand on ties as they do.
+DirectionPair lanes_min(DirectionPair a, DirectionPair b) { return b < a ? b : a; }
+DirectionPair lanes_max(DirectionPair a, DirectionPair b) { return a < b ? b : a; }
 
 // sum (x - mean)(x - mean)^T over the centroids, lower triangle enough for symmetric_eigen.
 glm::dmat3 outer(const glm::dvec3& a, const glm::dvec3& b) {
@@ -403,63 +407,55 @@ void PlaneTreeBuilder::evaluate_direction(Scratch& scratch, std::size_t begin, s
     double left_high = -std::numeric_limits<double>::infinity();
     for (std::size_t k = 1; k < count; ++k) {
         left_high = std::max(left_high, scratch.sweep[k - 1].high);
-        best = cheaper_cut(best, n, k, count, (left_high - node_low + r2) / span,
-                           (node_high - scratch.suffix_low[k] + r2) / span);
+        consider_cut(best, n, k, count, (left_high - node_low + r2) / span,
+                     (node_high - scratch.suffix_low[k] + r2) / span);
     }
 }
 
-PlaneTreeBuilder::Split PlaneTreeBuilder::cheaper_cut(const Split& best, const glm::dvec3& normal,
-                                                      std::size_t left_count, std::size_t count,
-                                                      double p_left, double p_right) const {
+void PlaneTreeBuilder::consider_cut(Split& best, const glm::dvec3& normal, std::size_t left_count,
+                                    std::size_t count, double p_left, double p_right) const {
     // Equal costs (triangles that all overlap, duplicates) go to the most balanced cut,
     // which keeps such nodes from degenerating into a chain.
     const double imbalance = std::abs(2.0 * double(left_count) - double(count));
     const double cost = 2.0 * settings_.node_cost + double(left_count) * std::min(1.0, p_left) +
                         double(count - left_count) * std::min(1.0, p_right) + 1e-9 * imbalance;
-    if (!(cost < best.cost)) return best;
-    return {normal, left_count, cost};
+    if (cost < best.cost) best = {normal, left_count, cost};
 }
 
 void PlaneTreeBuilder::evaluate_directions_binned(std::size_t begin, std::size_t end,
                                                   const Directions& directions, Split& best) {
     constexpr double kInf = std::numeric_limits<double>::infinity();
     constexpr std::size_t kCount = kCandidateDirections;
-    std::array<glm::dvec3, kCount> normals;
+    constexpr std::size_t kPairs = (kCount + 1) / 2;
+    std::array<glm::dvec3, 2 * kPairs> normals{};  // a zero direction pads the last pair
     for (std::size_t d = 0; d < kCount; ++d) normals[d] = float_direction(directions[d]);
 
     // Two passes over the node's items, each reading an item once for every direction: the
     // first finds the centroid keys' range along each, the second bins (the keys made again:
     // kept between the passes, they were 216 bytes a triangle at the root, more than the
-    // items). The directions lie in one array per coordinate, so that the compiler runs them
-    // side by side in vector lanes: each lane makes glm::dot's products and sums in its
-    // order, so the keys are the same.
-    std::array<double, kCount> nx, ny, nz, key_min, key_max;
-    for (std::size_t d = 0; d < kCount; ++d) {
-        nx[d] = normals[d].x;
-        ny[d] = normals[d].y;
-        nz[d] = normals[d].z;
-        key_min[d] = kInf;
-        key_max[d] = -kInf;
+    // items). The directions go two to a vector, each lane making glm::dot's products and
+    // sums in its order, so the keys are the same.
+    std::array<DirectionPair, kPairs> nx, ny, nz, key_min, key_max;
+    for (std::size_t p = 0; p < kPairs; ++p) {
+        for (std::size_t lane = 0; lane < 2; ++lane) {
+            const glm::dvec3& n = normals[2 * p + lane];
+            nx[p][lane] = n.x;
+            ny[p][lane] = n.y;
+            nz[p][lane] = n.z;
+        }
+        key_min[p] = DirectionPair{kInf, kInf};
+        key_max[p] = -key_min[p];
     }
     // The same expression as order_along's key, so the cut found is the cut made.
-    const auto key_along = [&](std::size_t d, const Item& item) {
-        return nx[d] * item.centroid.x + ny[d] * item.centroid.y + nz[d] * item.centroid.z;
-    };
-    const auto interval_along = [&](std::size_t d, const Item& item) {
-        double lo = kInf, hi = -kInf;
-        for (const glm::dvec3& v : item.vertices) {
-            const double along_d = nx[d] * v.x + ny[d] * v.y + nz[d] * v.z;
-            lo = std::min(lo, along_d);
-            hi = std::max(hi, along_d);
-        }
-        return std::pair{lo, hi};
+    const auto keys_along = [&](std::size_t p, const glm::dvec3& x) {
+        return nx[p] * x.x + ny[p] * x.y + nz[p] * x.z;
     };
     for (std::size_t i = begin; i < end; ++i) {
         const Item& item = items_[order_[i]];
-        for (std::size_t d = 0; d < kCount; ++d) {
-            const double key = key_along(d, item);
-            key_min[d] = std::min(key_min[d], key);
-            key_max[d] = std::max(key_max[d], key);
+        for (std::size_t p = 0; p < kPairs; ++p) {
+            const DirectionPair keys = keys_along(p, item.centroid);
+            key_min[p] = lanes_min(key_min[p], keys);
+            key_max[p] = lanes_max(key_max[p], keys);
         }
     }
 
@@ -472,21 +468,37 @@ void PlaneTreeBuilder::evaluate_directions_binned(std::size_t begin, std::size_t
         double low = kInf, high = -kInf;
     };
     std::array<std::array<Bin, kBins>, kCount> bins{};
-    std::array<double, kCount> scale{};  // 0 for a direction not binned: all in its bin 0
-    const auto binned = [&](std::size_t d) {
-        return normals[d] != glm::dvec3(0.0) && key_max[d] > key_min[d];
+    const auto lane_of = [](const std::array<DirectionPair, kPairs>& pairs, std::size_t d) {
+        return pairs[d / 2][d % 2];  // direction d's lane
     };
+    const auto binned = [&](std::size_t d) {
+        return normals[d] != glm::dvec3(0.0) && lane_of(key_max, d) > lane_of(key_min, d);
+    };
+    std::array<DirectionPair, kPairs> scale{};  // 0 for a direction not binned: all in bin 0
     for (std::size_t d = 0; d < kCount; ++d)
-        if (binned(d)) scale[d] = double(kBins) / (key_max[d] - key_min[d]);
+        if (binned(d))
+            scale[d / 2][d % 2] = double(kBins) / (lane_of(key_max, d) - lane_of(key_min, d));
     for (std::size_t i = begin; i < end; ++i) {
         const Item& item = items_[order_[i]];
+        // Every direction's bin position and vertex interval in vectors, then the bins,
+        // whose scattered updates stay scalar.
+        std::array<DirectionPair, kPairs> position, low, high;
+        for (std::size_t p = 0; p < kPairs; ++p) {
+            position[p] = (keys_along(p, item.centroid) - key_min[p]) * scale[p];
+            low[p] = DirectionPair{kInf, kInf};
+            high[p] = -low[p];
+            for (const glm::dvec3& v : item.vertices) {
+                const DirectionPair along = keys_along(p, v);
+                low[p] = lanes_min(low[p], along);
+                high[p] = lanes_max(high[p], along);
+            }
+        }
         for (std::size_t d = 0; d < kCount; ++d) {
-            const auto at = std::size_t((key_along(d, item) - key_min[d]) * scale[d]);
-            const auto [lo, hi] = interval_along(d, item);
+            const auto at = std::size_t(lane_of(position, d));
             Bin& bin = bins[d][std::min(kBins - 1, at)];
             bin.count += 1;
-            bin.low = std::min(bin.low, lo);
-            bin.high = std::max(bin.high, hi);
+            bin.low = std::min(bin.low, lane_of(low, d));
+            bin.high = std::max(bin.high, lane_of(high, d));
         }
     }
 
@@ -510,8 +522,8 @@ void PlaneTreeBuilder::evaluate_directions_binned(std::size_t begin, std::size_t
             left_high = std::max(left_high, bins[d][b - 1].high);
             // An empty bin repeats the cut at its right boundary.
             if (left_count == 0 || bins[d][b].count == 0) continue;
-            best = cheaper_cut(best, normals[d], left_count, count, (left_high - low + r2) / span,
-                               (high - suffix_low[b] + r2) / span);
+            consider_cut(best, normals[d], left_count, count, (left_high - low + r2) / span,
+                         (high - suffix_low[b] + r2) / span);
         }
     }
 }

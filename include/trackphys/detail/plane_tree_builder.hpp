@@ -108,7 +108,8 @@ class TRACKPHYS_API PlaneTreeBuilder {
                             const glm::dvec3& direction, Split& best);
     void evaluate_directions_binned(std::size_t begin, std::size_t end,
                                     const Directions& directions, Split& best);
-    Split cheaper_cut(const Split& best, const glm::dvec3& normal, std::size_t left_count,
+    // Makes the cut `best` when it costs less.
+    void consider_cut(Split& best, const glm::dvec3& normal, std::size_t left_count,
                       std::size_t count, double p_left, double p_right) const;
     void order_along(Scratch& scratch, std::size_t begin, std::size_t end, const glm::dvec3& normal,
                      std::size_t left_count);
