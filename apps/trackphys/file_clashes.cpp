@@ -8,10 +8,21 @@ namespace trackphys::cli {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+// Absolute first: weakly_canonical leaves a path relative when none of its leading parts
+// exists ("x.json", not yet written) but makes "./x.json" absolute, so the two would differ.
+fs::path resolved(const fs::path& path, std::error_code& error) {
+    const fs::path absolute = fs::absolute(path, error);
+    return error ? fs::path() : fs::weakly_canonical(absolute, error);
+}
+
+}  // namespace
+
 bool same_file(const fs::path& a, const fs::path& b) {
     std::error_code error_a, error_b, error;
-    const fs::path canonical_a = fs::weakly_canonical(a, error_a);
-    const fs::path canonical_b = fs::weakly_canonical(b, error_b);
+    const fs::path canonical_a = resolved(a, error_a);
+    const fs::path canonical_b = resolved(b, error_b);
     if (!error_a && !error_b && canonical_a == canonical_b) return true;
     // False, with an error, unless both exist.
     return fs::equivalent(a, b, error);

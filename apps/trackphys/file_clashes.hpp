@@ -12,8 +12,8 @@ struct NamedFile {
     std::filesystem::path path;  ///< empty: the option was not given
 };
 
-/// Whether a and b name one file: the same path after std::filesystem::weakly_canonical
-/// (the output may not exist yet), or, when both exist, the same file by
+/// Whether a and b name one file: the same path once made absolute and then
+/// std::filesystem::weakly_canonical (the output may not exist yet), or, when both exist, the same file by
 /// std::filesystem::equivalent (a hard link, a symbolic link to it).
 bool same_file(const std::filesystem::path& a, const std::filesystem::path& b);
 
