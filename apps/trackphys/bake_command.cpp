@@ -30,6 +30,7 @@ void run_bake(const BakeOptions& o, const OptionGiven& given) {
     const bool from_mesh = !o.mesh.empty();
     if (from_mesh && given("--seed"))
         throw Error("give a mesh file or --seed (a generated track), not both");
+    if (!from_mesh) refuse_unused_mesh_limits(given, "bake", "the generated track of --seed");
     if (!from_mesh && given("--chunk"))
         throw Error("--chunk splits a mesh file; a generated track comes in its own chunks");
     if (!(std::isfinite(o.chunk_m) && o.chunk_m > 0.0))

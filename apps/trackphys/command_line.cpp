@@ -144,12 +144,15 @@ void add_drive_command(CLI::App& app) {
         ->check(not_negative())
         ->capture_default_str();
     command->add_option("--mesh", o->flags.mesh,
-                        "Drive on this mesh file instead (free mode, needs --spawn)");
-    command->add_option("--map", o->flags.map,
-                        "Drive on this baked map (trackphys bake): by autopilot when it was "
-                        "baked from a generated track, else in free mode (needs --spawn)");
-    command->add_option("--laps", o->flags.laps,
-                        "Laps to drive by autopilot, >= 1 (default 1 without --seconds)");
+                        "Drive on this mesh file instead (free mode, needs --spawn and --seconds)");
+    command->add_option(
+        "--map", o->flags.map,
+        "Drive on this baked map (trackphys bake): by autopilot when it was "
+        "baked from a generated track, else in free mode (needs --spawn and --seconds)");
+    command->add_option(
+        "--laps", o->flags.laps,
+        "Laps to drive by autopilot, 1 to 1000 (default 1 without --seconds; with it, "
+        "the drive fails if the time ends first)");
     command->add_option("--seconds", o->flags.seconds, "Simulated seconds to drive (> 0)");
     command
         ->add_option("--target-speed", o->flags.target_speed_kmh,
@@ -218,10 +221,12 @@ void add_race_command(CLI::App& app) {
                         "the track");
     add_surface_grips_option(*command, o->surface_grips);
     command->add_option("--cars", o->cars, "Cars on the grid (1 to 128)")
-        ->check(not_negative())
+        ->check(at_least_one())
         ->capture_default_str();
-    command->add_option("--laps", o->laps,
-                        "Laps every car must complete, >= 1 (default 1 without --seconds)");
+    command->add_option(
+        "--laps", o->laps,
+        "Laps every car must complete, 1 to 1000 (default 1 without --seconds; with "
+        "it, the race fails if the time ends first)");
     command->add_option("--seconds", o->seconds, "Simulated seconds to race (> 0)");
     command
         ->add_option("--threads", o->threads,

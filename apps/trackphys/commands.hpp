@@ -51,16 +51,28 @@ inline void check_threads(long long threads) {
                     std::to_string(threads));
 }
 
-/// Refuses an explicit --laps or --seconds of 0 or less (or NaN): Scenario reads 0 as "not given" and
-/// would drive a lap for a user who asked for none, and its range message ("in [0, 86400]")
-/// would offer 0 to one who gave -1.
-inline void refuse_zero_duration(const OptionGiven& given, int laps, double seconds) {
-    if (given("--laps") && laps <= 0)
-        throw Error("--laps must be >= 1, got " + std::to_string(laps) +
-                    " (leave it out for the default)");
-    if (given("--seconds") && !(seconds > 0.0))  // NaN too
-        throw Error("--seconds must be > 0, got " + exact_text(seconds) +
-                    " (leave it out for the default)");
+/// Refuses an explicit --laps or --seconds out of its range, 0 or less (or NaN) included:
+/// Scenario reads 0 as "not given" and would drive a lap for a user who asked for none, and
+/// its range message ("in [0, 86400]") would offer 0.
+inline void check_duration_options(const OptionGiven& given, int laps, double seconds) {
+    const char* default_hint = " (leave it out for the default)";
+    if (given("--laps") && (laps <= 0 || laps > max_scenario_laps))
+        throw Error("--laps must be in [1, " + std::to_string(max_scenario_laps) + "], got " +
+                    std::to_string(laps) + (laps <= 0 ? default_hint : ""));
+    if (given("--seconds") && !(seconds > 0.0 && seconds <= max_scenario_seconds))  // NaN too
+        throw Error("--seconds must be in (0, " + shown(max_scenario_seconds) + "], got " +
+                    exact_text(seconds) + (seconds <= 0.0 ? default_hint : ""));
+}
+
+/// Refuses a mesh limit (--max-triangles...) given to a run that reads no mesh file, where
+/// it would limit nothing: `command` ("drive") reads `instead` ("a generated track").
+inline void refuse_unused_mesh_limits(const OptionGiven& given, const std::string& command,
+                                      const std::string& instead) {
+    for (const char* option : {"--max-triangles", "--max-vertices", "--max-bytes",
+                               "--max-polygon-corners", "--max-nesting"})
+        if (given(option))
+            throw Error(std::string(option) + " limits a mesh file, but this " + command +
+                        " reads none (" + instead + ")");
 }
 
 /// --surface-grips G0,G1,... as Scenario::surfaces (checked with the scenario).

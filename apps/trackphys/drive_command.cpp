@@ -75,7 +75,7 @@ Scenario build_scenario(const DriveOptions& o, const OptionGiven& given) {
     if (given("--target-speed")) s.target_speed_kmh = f.target_speed_kmh;
     if (given("--throttle")) s.inputs.throttle = f.inputs.throttle;
     if (given("--steer")) s.inputs.steer = f.inputs.steer;
-    refuse_zero_duration(given, f.laps, f.seconds);
+    check_duration_options(given, f.laps, f.seconds);
     if (given("--laps")) s.laps = f.laps;
     if (given("--seconds")) s.seconds = f.seconds;
 
@@ -94,6 +94,14 @@ Scenario build_scenario(const DriveOptions& o, const OptionGiven& given) {
             throw Error(std::string(option) +
                         " applies in free mode only: add --spawn x,y,z (without a spawn "
                         "point the autopilot drives the generated track from its start line)");
+    if (s.mesh.empty())
+        refuse_unused_mesh_limits(
+            given, "drive",
+            s.map.empty() ? "a generated track" : "the map '" + s.map.string() + "'");
+    if (s.free_mode() && s.seconds == 0.0 && s.laps == 0 && o.scenario_file.empty())
+        throw Error(
+            "--spawn drives in free mode for --seconds S, which is missing (laps need "
+            "the generated track)");
     std::string why = s.validate();
     if (why.empty() && s.cars > 1)
         why = "Scenario.cars is " + std::to_string(s.cars) +

@@ -53,7 +53,7 @@ Race build_race(const RaceOptions& o, const OptionGiven& given) {
                     o.map.string() + "'");
     if (given("--seed")) s.seed = o.seed;
     if (given("--surface-grips")) s.surfaces = surfaces_of(o.surface_grips);
-    refuse_zero_duration(given, o.laps, o.seconds);
+    check_duration_options(given, o.laps, o.seconds);
     if (given("--laps")) s.laps = o.laps;
     if (given("--seconds")) s.seconds = o.seconds;
     // The field's speeds as the default race's (420 to 600 km/h) for a target of 600.

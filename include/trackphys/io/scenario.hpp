@@ -69,7 +69,8 @@ struct TRACKPHYS_API Scenario {
     /// Free mode: fixed throttle (-1..1, < 0 reverse), brake (0..1) and steer (-1..1).
     CarInputs inputs{0.5, 0.0, 0.0};
     /// Duration: laps of the generated track (autopilot only) and/or simulated seconds,
-    /// whichever ends first; both 0 means one lap (autopilot). Free mode needs seconds.
+    /// whichever ends first (the command line's drive and race fail when the seconds end
+    /// before the laps); both 0 means one lap (autopilot). Free mode needs seconds.
     int laps = 0;
     double seconds = 0.0;
     /// Cars in the field: 1 drives alone (`trackphys drive`), more race from the generated
