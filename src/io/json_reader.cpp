@@ -13,8 +13,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Where the parser is while it reads: one frame per open object or array, so that a
-// duplicate key can be reported with the path of its object.
+// Where the check is while it reads: one frame per open object or array, so that a key
+// given twice, a number out of range and nesting too deep can be reported with a path.
 struct Frame {
     bool object = true;
     std::vector<std::string> keys;  // object: keys seen so far
@@ -28,6 +28,26 @@ std::string frames_path(const std::vector<Frame>& frames) {
         path = frames[i].object ? join_path(path, frames[i].keys.back())
                                 : index_path(path, frames[i].elements - 1);
     return path;
+}
+
+// The path of the value being read: the innermost object's last key, or its array's next
+// element.
+std::string reading_path(const std::vector<Frame>& frames) {
+    if (frames.empty()) return {};
+    const Frame& inner = frames.back();
+    if (!inner.object) return index_path(frames_path(frames), inner.elements);
+    return inner.keys.empty() ? frames_path(frames)
+                              : join_path(frames_path(frames), inner.keys.back());
+}
+
+// "line L, column C" of text[offset], both from 1, as nlohmann counts them.
+std::string line_and_column(std::string_view text, std::size_t offset) {
+    const std::string_view before = text.substr(0, offset);
+    const std::size_t line_start = before.rfind('\n');
+    const std::size_t column =
+        line_start == std::string_view::npos ? offset + 1 : offset - line_start;
+    return "line " + std::to_string(std::count(before.begin(), before.end(), '\n') + 1) +
+           ", column " + std::to_string(column);
 }
 
 // nlohmann's messages start with "[json.exception.parse_error.101] ": keep what follows.
@@ -45,6 +65,75 @@ std::string describe(const Json& value) {
     return value.is_null() ? "null" : "a boolean";
 }
 
+// A SAX pass that refuses, with the path of each, a key given twice, nesting beyond
+// max_json_depth, an object of more than max_json_object_keys keys and more than
+// max_json_values values; and reports nlohmann's parse errors as trackphys::Error.
+class StructureCheck {
+  public:
+    explicit StructureCheck(const std::string& source) : source_(source) {}
+
+    bool null() { return value(); }
+    bool boolean(bool) { return value(); }
+    bool number_integer(Json::number_integer_t) { return value(); }
+    bool number_unsigned(Json::number_unsigned_t) { return value(); }
+    bool number_float(Json::number_float_t, const Json::string_t&) { return value(); }
+    bool string(Json::string_t&) { return value(); }
+    bool binary(Json::binary_t&) { return value(); }
+    bool start_object(std::size_t) { return open(true); }
+    bool start_array(std::size_t) { return open(false); }
+    bool end_object() { return close(); }
+    bool end_array() { return close(); }
+
+    bool key(Json::string_t& key) {
+        std::vector<std::string>& keys = frames_.back().keys;
+        if (std::find(keys.begin(), keys.end(), key) != keys.end())
+            fail(source_, "", "duplicate key " + quoted_text(key) + " in " + object_name());
+        if (keys.size() == max_json_object_keys)
+            fail(
+                source_, "",
+                object_name() + " has more than " + std::to_string(max_json_object_keys) + " keys");
+        keys.push_back(key);
+        return true;
+    }
+
+    bool parse_error(std::size_t, const std::string&, const Json::exception& e) {
+        // "parse error at line 3, column 7: syntax error while parsing object - ...", or a
+        // number too large for a double (out_of_range.406), which has no position.
+        const bool overflow = e.id == 406;
+        throw Error(source_ + ": malformed JSON" +
+                    (overflow && !frames_.empty() ? " at " + reading_path(frames_) : "") + ", " +
+                    without_exception_id(e.what()));
+    }
+
+  private:
+    // A plain value or a container begins the next element of an enclosing array.
+    bool value() {
+        if (++values_ > max_json_values)
+            fail(source_, "", "more than " + std::to_string(max_json_values) + " values");
+        if (!frames_.empty() && !frames_.back().object) ++frames_.back().elements;
+        return true;
+    }
+    bool open(bool object) {
+        value();
+        frames_.push_back({object, {}, 0});
+        if (frames_.size() > max_json_depth)
+            fail(source_, frames_path(frames_),
+                 "nested deeper than " + std::to_string(max_json_depth) + " levels");
+        return true;
+    }
+    bool close() {
+        frames_.pop_back();
+        return true;
+    }
+    std::string object_name() const {
+        const std::string where = frames_path(frames_);
+        return where.empty() ? "the top-level object" : where;
+    }
+
+    const std::string& source_;
+    std::vector<Frame> frames_;
+    std::size_t values_ = 0;
+};
 }  // namespace
 
 std::string join_path(const std::string& parent, std::string_view key) {
@@ -80,36 +169,17 @@ std::string read_text_file(const fs::path& path, const char* what) {
 }
 
 Json parse_document(std::string_view text, const std::string& source) {
-    std::vector<Frame> frames;
-    const Json::parser_callback_t track = [&](int, Json::parse_event_t event, Json& parsed) {
-        using Event = Json::parse_event_t;
-        const bool opens = event == Event::object_start || event == Event::array_start;
-        // A container or a plain value begins the next element of an enclosing array.
-        if ((opens || event == Event::value) && !frames.empty() && !frames.back().object)
-            ++frames.back().elements;
-        if (opens) frames.push_back({event == Event::object_start, {}, 0});
-        if (event == Event::object_end || event == Event::array_end) frames.pop_back();
-        if (event == Event::key) {
-            std::vector<std::string>& keys = frames.back().keys;
-            const std::string& key = parsed.get_ref<const std::string&>();
-            if (std::find(keys.begin(), keys.end(), key) != keys.end()) {
-                const std::string where = frames_path(frames);
-                fail(source, "",
-                     "duplicate key " + quoted_text(key) + " in " +
-                         (where.empty() ? "the top-level object" : where));
-            }
-            keys.push_back(key);
-        }
-        return true;
-    };
-    try {
-        return Json::parse(text.begin(), text.end(), track);
-    } catch (const Json::parse_error& e) {
-        // "parse error at line 3, column 7: syntax error while parsing object - ..."
-        throw Error(source + ": malformed JSON, " + without_exception_id(e.what()));
-    } catch (const Json::exception& e) {  // e.g. a number too large for a double
-        throw Error(source + ": malformed JSON, " + without_exception_id(e.what()));
-    }
+    // nlohmann's lexer reads a NUL byte as the end of the input, so what follows one would
+    // go unread rather than be refused as trailing text.
+    if (const std::size_t nul = text.find('\0'); nul != std::string_view::npos)
+        throw Error(source + ": malformed JSON, a NUL byte at " + line_and_column(text, nul));
+    // Checked first without building anything: the document built after it is then bounded
+    // (its keys searched at each insert, its memory about 20 to 60 bytes a value), and
+    // nlohmann's parser with a callback, which could check while building, searches the
+    // enclosing array at the end of each object (hours for a file of 2 million "{}").
+    StructureCheck check(source);
+    Json::sax_parse(text.begin(), text.end(), &check);
+    return Json::parse(text.begin(), text.end());
 }
 
 double to_number(const Json& value, const std::string& path, const std::string& source) {

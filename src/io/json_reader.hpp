@@ -6,6 +6,7 @@
 // error rather than something silently ignored (a typo in a key would otherwise leave the
 // default in place without a word).
 
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -25,13 +26,22 @@ using Json = nlohmann::ordered_json;
 /// A file larger than this is not a car spec or a scenario (bytes).
 inline constexpr std::uintmax_t max_file_bytes = 16u << 20;
 
+/// Deeper nesting, an object of more keys or a document of more values is refused: no car
+/// spec or scenario comes near (5 levels, 21 keys, a few hundred values), and they bound the
+/// time and memory a hostile file's parse takes.
+inline constexpr std::size_t max_json_depth = 64;
+inline constexpr std::size_t max_json_object_keys = 256;
+inline constexpr std::size_t max_json_values = std::size_t{1} << 20;
+
 /// The whole file as text. Throws trackphys::Error "<what> '<path>': <reason>" when it is
 /// missing, a folder or another non-regular file (a device, a pipe), unreadable, empty or
 /// larger than max_file_bytes.
 std::string read_text_file(const std::filesystem::path& path, const char* what);
 
-/// One JSON document. Throws trackphys::Error "<source>: malformed JSON at line L, column C:
-/// ..." for bad syntax, and "<source>: duplicate key 'k' in <path>" for a key given twice.
+/// One JSON document. Throws trackphys::Error "<source>: malformed JSON, parse error at line
+/// L, column C: ..." for bad syntax ("a NUL byte at line L, column C" for that byte),
+/// "<source>: duplicate key 'k' in <path>" for a key given twice, and refuses nesting or
+/// objects beyond the bounds above.
 Json parse_document(std::string_view text, const std::string& source);
 
 /// "a.b" / "a[2]" / "b" at the root.

@@ -34,6 +34,19 @@ std::string scenario_error(const std::string& text) {
     return error_of([](const std::string& t) { parse_scenario(t, "scenario 's.json'"); }, text);
 }
 
+std::string repeated(const std::string& text, int times) {
+    std::string result;
+    for (int i = 0; i < times; ++i) result += text;
+    return result;
+}
+
+// "k0": 0, "k1": 0, ...: an object's keys, each unknown.
+std::string keys_of_zero(int count) {
+    std::string keys;
+    for (int i = 0; i < count; ++i) keys += (i > 0 ? ", \"k" : "\"k") + std::to_string(i) + "\": 0";
+    return keys;
+}
+
 const std::string kBall = R"("center": [0, 0, 0], "semi_axes": [0.5, 0.5, 0.5], "role": "body")";
 
 TEST(CarSpecJson, DefaultCarRoundTripsBitForBit) {
@@ -155,7 +168,18 @@ TEST(CarSpecJson, EveryBadFileNamesTheKeyAndTheReason) {
         {R"({"ellipsoids": [{"center": [0, 0, 0], "semi_axes": [1, 1, 1], "role": "wing"}]})",
          "ellipsoids[0].role: unknown role 'wing' (expected body, front_wheel or rear_wheel)"},
         {R"({"drag_area": 1e999})",
-         "car spec 'c.json': malformed JSON, number overflow parsing '1e999'"},
+         "car spec 'c.json': malformed JSON at drag_area, number overflow parsing '1e999'"},
+        {R"({"ellipsoids": [{"center": [0, 0, 1e999]}]})",
+         "malformed JSON at ellipsoids[0].center[2], number overflow parsing '1e999'"},
+        // nlohmann's lexer ends the input at a NUL: what follows would go unread.
+        {std::string("{\"drag_area\": 0.3}\n\0 \"mass\": x", 24),
+         "car spec 'c.json': malformed JSON, a NUL byte at line 2, column 1"},
+        {R"({"mass": )" + std::string(64, '['),
+         "car spec 'c.json': mass" + repeated("[0]", 63) + ": nested deeper than 64 levels"},
+        {R"({"model": "gt", "vehicle": {)" + keys_of_zero(257) + "}}",
+         "car spec 'c.json': vehicle has more than 256 keys"},
+        {R"({"mass": [)" + repeated("0, ", 1 << 20) + "0]}",
+         "car spec 'c.json': more than 1048576 values"},
         {R"({"drag_area": NaN})", "malformed JSON, parse error at line 1, column 15"},
         {R"({"mass": {"mass": 1}, "mass": {}})", "duplicate key 'mass' in the top-level object"},
         {R"({"ellipsoids": [{}, {"center": [0, 0, 0], "center": [1, 1, 1]}]})",
