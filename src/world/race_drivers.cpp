@@ -13,6 +13,22 @@
 #include "world/cars_along_track.hpp"
 
 namespace trackphys {
+namespace {
+
+constexpr double kMirror = -20.0;  // m: a lane change looks this far back
+
+// The drivers' own copy of what they read of a track, its centreline and length: the
+// caller's track need not outlive them, and its meshes are not copied.
+std::shared_ptr<const Track> route_of(const Track& track) {
+    auto route = std::make_shared<Track>();
+    route->params = track.params;
+    route->length_m = track.length_m;
+    route->centerline = track.centerline;
+    return route;
+}
+
+}  // namespace
+
 AutopilotSettings race_autopilot() {
     AutopilotSettings driver;
     driver.lookahead_min = 6.0;
@@ -22,7 +38,7 @@ AutopilotSettings race_autopilot() {
 
 RaceDrivers::RaceDrivers(const Track& track, const CarSpec& car, std::size_t cars,
                          RaceSettings settings)
-    : track_(&track), car_(car), settings_(settings) {
+    : route_(route_of(track)), car_(car), settings_(settings) {
     if (cars == 0) throw Error("RaceDrivers: a race needs at least one car");
     if (!(std::isfinite(settings_.slowest_kmh) && settings_.slowest_kmh > 0.0 &&
           std::isfinite(settings_.fastest_kmh) && settings_.fastest_kmh >= settings_.slowest_kmh))
@@ -53,8 +69,10 @@ RaceDrivers::RaceDrivers(const Track& track, const CarSpec& car, std::size_t car
     // The lane rules keep the field in track order (cars_along_track.hpp), which holds only
     // for places along the track in [0, length_m): read_track checks a map's track, a track
     // built by hand is checked here.
-    if (!(std::isfinite(track.length_m) && track.length_m > 0.0))
-        throw Error("RaceDrivers: the track's length must be finite and > 0");
+    if (!(std::isfinite(track.length_m) && track.length_m > -kMirror))
+        throw Error("RaceDrivers: the track's length must be finite and > " + exact_text(-kMirror) +
+                    " m (a lane change looks that far back), got " + exact_text(track.length_m) +
+                    " m");
     for (const CenterlineSample& sample : track.centerline)
         if (!(sample.distance >= 0.0 && sample.distance < track.length_m)) {
             std::ostringstream why;
@@ -63,7 +81,8 @@ RaceDrivers::RaceDrivers(const Track& track, const CarSpec& car, std::size_t car
             throw Error(why.str());
         }
     // One copy of the centreline for the whole field.
-    const auto centerline = std::make_shared<const std::vector<CenterlineSample>>(track.centerline);
+    const std::shared_ptr<const std::vector<CenterlineSample>> centerline(route_,
+                                                                          &route_->centerline);
     for (std::size_t i = 0; i < cars; ++i) {
         const double share =
             cars == 1 ? 0.0 : static_cast<double>(i) / static_cast<double>(cars - 1);
@@ -91,12 +110,12 @@ double RaceDrivers::own_lane(std::size_t car) const {
 void RaceDrivers::add_cars(World& world) const {
     if (world.car_count() != 0) throw Error("RaceDrivers::add_cars: the world has cars already");
     for (const RigidBodyState& start :
-         race_grid(*track_, world.statics(), car_, pilots_.size(), settings_.grid))
+         race_grid(*route_, world.statics(), car_, pilots_.size(), settings_.grid))
         world.add_car(car_, start);
 }
 
 RaceDrivers::RoadPosition RaceDrivers::road_position(const World& world, std::size_t car) const {
-    const CenterlineSample& s = track_->centerline[pilots_[car].nearest_sample()];
+    const CenterlineSample& s = route_->centerline[pilots_[car].nearest_sample()];
     const glm::dvec3 offset = world.car(car).state().position - s.position;
     return RoadPosition{glm::dot(offset, s.left), s.distance};
 }
@@ -105,7 +124,7 @@ RaceDrivers::CarAhead RaceDrivers::car_ahead(const World& world, std::size_t i, 
                                              double from) const {
     const detail::CarInLane nearest = detail::nearest_car_ahead(
         road_positions_, cars_along_, i,
-        {line, settings_.lane_width, from, settings_.pass_look_ahead, track_->length_m});
+        {line, settings_.lane_width, from, settings_.pass_look_ahead, route_->length_m});
     const std::size_t j = nearest.car;
     if (j == i) return {i, nearest.gap, 0.0};
     const glm::dvec3 toward = world.car(j).state().position - world.car(i).state().position;
@@ -122,7 +141,6 @@ bool RaceDrivers::slower(std::size_t i, const CarAhead& ahead, double closing) c
 
 double RaceDrivers::lane(const World& world, std::size_t i) const {
     constexpr double kAlongside = -6.0;  // m: a car this far behind is still beside us
-    constexpr double kMirror = -20.0;    // m: a lane change looks this far back
     const double own = own_lane(i);
     const double current = progress_.lanes[i];
     // A swerve turned back halfway, as the lanes' cars change their minds, sways the car
@@ -130,7 +148,7 @@ double RaceDrivers::lane(const World& world, std::size_t i) const {
     if (progress_.lines[i] != current) return current;
     // Nor does a swerve begin in a fast turn: it adds its own sideways push to the turn's,
     // and a car near the limit slides.
-    const CenterlineSample& here = track_->centerline[pilots_[i].nearest_sample()];
+    const CenterlineSample& here = route_->centerline[pilots_[i].nearest_sample()];
     const double speed = world.car(i).speed();
     if (speed * speed * std::abs(here.curvature) > settings_.swerve_turn_accel) return current;
     // Blocked: the car ahead in the lane closes in faster than `closing`, or has the
@@ -225,7 +243,7 @@ void RaceDrivers::after_update(World& world) {
 }
 
 bool RaceDrivers::left_track(const World& world, std::size_t i) const {
-    const CenterlineSample& s = track_->centerline[pilots_[i].nearest_sample()];
+    const CenterlineSample& s = route_->centerline[pilots_[i].nearest_sample()];
     return !(glm::distance(world.car(i).state().position, s.position) <= settings_.rescue_distance);
 }
 
@@ -233,7 +251,7 @@ void RaceDrivers::rescue(World& world, std::size_t i) {
     // Clear of the others by about two car lengths: a car put down on top of another would
     // be thrown off again by the contact.
     constexpr double kClearance = 10.0;  // m
-    const std::vector<CenterlineSample>& centerline = track_->centerline;
+    const std::vector<CenterlineSample>& centerline = route_->centerline;
     const auto clear = [&](const glm::dvec3& spot) {
         for (std::size_t j = 0; j < pilots_.size(); ++j)
             if (j != i && glm::distance(world.car(j).state().position, spot) < kClearance)

@@ -145,7 +145,42 @@ TEST(RaceRules, ATrackWithPlacesOutsideItsLengthIsRefused) {
     Track no_length = track.track;
     no_length.length_m = std::numeric_limits<double>::infinity();
     EXPECT_EQ(test::error_of([&] { RaceDrivers(no_length, CarSpec::default_car(), 2); }),
-              "RaceDrivers: the track's length must be finite and > 0");
+              "RaceDrivers: the track's length must be finite and > 20 m (a lane change looks "
+              "that far back), got inf m");
+    // Shorter than a lane change looks back, a car would look more than a lap behind.
+    Track short_loop;
+    short_loop.length_m = 15.0;
+    short_loop.centerline.resize(3);
+    short_loop.centerline[1].distance = 5.0;
+    short_loop.centerline[2].distance = 10.0;
+    EXPECT_NE(test::error_of([&] {
+                  RaceDrivers(short_loop, CarSpec::default_car(), 1);
+              }).find("must be finite and > 20 m"),
+              std::string::npos);
+}
+
+// The drivers keep their own copy of what they read of the track: a field whose track was
+// overwritten after the drivers were made (a temporary, a reused variable) races as one
+// whose track stayed.
+TEST(RaceRules, TheDriversOutliveTheirTrack) {
+    const test::TrackWorld& track = test::default_track();
+    const auto race = [&](bool overwrite_the_track) {
+        Track given = track.track;
+        RaceDrivers drivers(given, CarSpec::default_car(), 2);
+        if (overwrite_the_track) {
+            given.centerline.assign(3, given.centerline[5]);
+            given.length_m = 50.0;
+        }
+        World world(track.statics, cli::tool_world_settings(), track.trees);
+        drivers.add_cars(world);
+        for (int update = 0; update < 50; ++update) {
+            drivers.drive(world);
+            world.update();
+            drivers.after_update(world);
+        }
+        return world.state_hash();
+    };
+    EXPECT_EQ(race(true), race(false));
 }
 
 // The field's autopilots share one copy of the track's centreline (a copy each would be

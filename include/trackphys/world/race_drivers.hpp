@@ -2,6 +2,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "trackphys/dynamics/car_spec.hpp"
@@ -108,8 +109,9 @@ class TRACKPHYS_API RaceDrivers {
   public:
     /// Throws trackphys::Error for no cars, speeds or grip shares that are not finite and
     /// > 0 or in the wrong order, negative lane distances or rule thresholds, a
-    /// merge_gap beyond pass_look_ahead, or a track whose length is not finite and > 0 or
-    /// with a centreline sample outside [0, length_m) along it.
+    /// merge_gap beyond pass_look_ahead, or a track whose length is not finite and > 20 m or
+    /// with a centreline sample outside [0, length_m) along it. The drivers keep their own
+    /// copy of the track's centreline: `track` need not outlive them.
     RaceDrivers(const Track& track, const CarSpec& car, std::size_t cars,
                 RaceSettings settings = {});
 
@@ -196,7 +198,7 @@ class TRACKPHYS_API RaceDrivers {
     // Puts car i back on the road (after_update).
     void rescue(World& world, std::size_t i);
 
-    const Track* track_;
+    std::shared_ptr<const Track> route_;  // the track's centreline and length (route_of)
     CarSpec car_;
     RaceSettings settings_;
     std::vector<Autopilot> pilots_;
