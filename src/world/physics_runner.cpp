@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <string>
+#include <system_error>
 #include <utility>
 
 #include "trackphys/error.hpp"
@@ -62,7 +63,13 @@ void PhysicsRunner::run_to(std::uint64_t last_update) {
     error_ = nullptr;
     events_->start(world_, world_index_, removed_);
     running_.store(true, std::memory_order_relaxed);
-    thread_ = std::thread([this, last_update] { loop(last_update); });
+    try {
+        thread_ = std::thread([this, last_update] { loop(last_update); });
+    } catch (const std::system_error& e) {
+        running_.store(false, std::memory_order_relaxed);  // no thread will clear it
+        throw Error(std::string("PhysicsRunner::run_to: could not start the physics thread (") +
+                    e.what() + ")");
+    }
 }
 
 bool PhysicsRunner::still_running() {

@@ -1,6 +1,10 @@
 #include "world/thread_pool.hpp"
 
 #include <chrono>
+#include <string>
+#include <system_error>
+
+#include "trackphys/error.hpp"
 
 namespace trackphys::detail {
 
@@ -36,11 +40,22 @@ T await(const std::atomic<T>& value, KeepWaiting keep_waiting) {
 }  // namespace
 
 ThreadPool::ThreadPool(int threads) {
-    for (int worker = 1; worker < threads; ++worker)
-        threads_.emplace_back([this, worker] { serve(worker); });
+    try {
+        for (int worker = 1; worker < threads; ++worker)
+            threads_.emplace_back([this, worker] { serve(worker); });
+    } catch (const std::system_error& e) {
+        // The workers already started are joined: destroyed joinable, they would end the
+        // program (no destructor runs for a constructor that throws).
+        stop_workers();
+        throw Error("WorldSettings.threads: could not start worker thread " +
+                    std::to_string(threads_.size() + 1) + " of " + std::to_string(threads - 1) +
+                    " (" + e.what() + ")");
+    }
 }
 
-ThreadPool::~ThreadPool() {
+ThreadPool::~ThreadPool() { stop_workers(); }
+
+void ThreadPool::stop_workers() {
     stopping_.store(true);
     task_state_.fetch_add(2);
     task_state_.notify_all();

@@ -20,7 +20,8 @@ namespace trackphys::detail {
 /// worker that finishes its last island or a run that follows at once costs no wake-up.
 class ThreadPool {
   public:
-    /// threads >= 1 in all, the caller included.
+    /// threads >= 1 in all, the caller included. Throws trackphys::Error when the system
+    /// cannot start them all (the ones started are joined first).
     explicit ThreadPool(int threads);
     ~ThreadPool();
     ThreadPool(const ThreadPool&) = delete;
@@ -36,6 +37,7 @@ class ThreadPool {
     void run(TaskCallback* task, int item_count, void* context);
 
   private:
+    void stop_workers();
     void serve(int worker);
     // Whether the worker joined the open task `task_state` (then it must leave() after).
     bool join(std::uint32_t task_state);
