@@ -424,8 +424,9 @@ TEST(Preconditions, ContactsTooStiffForTheSubStepAreRejected) {
 }
 
 // A vehicle's wheel spin, explicit against its tyre's force above low_speed, is stable while
-// h^2 R^2 C / (I sigma) < 4 + 2 h low_speed / sigma, C = B C D at three nominal loads
-// (physreview: the gt's tyre force swung over its full +-D at 8.33 ms sub-steps).
+// h^2 R^2 C / (I sigma) < 4 + 2 h low_speed / sigma, C = B C D at ten nominal loads, its
+// friction coefficient held from three (physreview: the gt's tyre force swung over its full
+// +-D at 8.33 ms sub-steps; a review: a wheel checked at three loads swung at four).
 TEST(Preconditions, AWheelSpinTooStiffForTheSubStepIsRejected) {
     const CarSpec gt = CarSpec::preset("gt");
     World fine(test::static_world_of(test::flat_grid(40.0, 8)));
@@ -445,7 +446,7 @@ TEST(Preconditions, AWheelSpinTooStiffForTheSubStepIsRejected) {
     // refused, one a hair heavier taken.
     const double h = fine.settings().substep_dt();
     const TyreSpec& tyre = gt.vehicle->rear_tyre;
-    const double load = 3.0 * tyre.nominal_load;
+    const double load = 10.0 * tyre.nominal_load;
     const double slope = tyre.longitudinal.stiffness * tyre.longitudinal.shape *
                          tyre.longitudinal.friction *
                          (1.0 + 2.0 * tyre.longitudinal.friction_load_slope) * load;
@@ -461,6 +462,32 @@ TEST(Preconditions, AWheelSpinTooStiffForTheSubStepIsRejected) {
               std::string::npos);
     light.vehicle->wheel_inertia = inertia * (1.0 + 1e-9);
     EXPECT_NO_THROW(fine.add_car(light, at({0.0, 5.0, 10.0})));
+}
+
+// The suspension's travel is explicit: stable while h (k + 2 a) / c < 2 (a the axle's
+// anti-roll rate). Beyond it the travel swings between its stops at every sub-step (a review:
+// a damping of 1 N s/m cost the default car a quarter of its top speed).
+TEST(Preconditions, ASuspensionTooStiffForTheSubStepIsRejected) {
+    World world(test::static_world_of(test::flat_grid(40.0, 8)));
+    const double h = world.settings().substep_dt();
+    CarSpec car = CarSpec::default_car();
+    car.suspension.damping = h * car.suspension.stiffness / 2.0 * (1.0 - 1e-9);
+    EXPECT_NE(error_of([&] {
+                  world.add_car(car, at({0.0, 5.0, 0.0}));
+              }).find("CarSpec.suspension (stiffness 60000 N/m, damping"),
+              std::string::npos);
+    car.suspension.damping = h * car.suspension.stiffness / 2.0 * (1.0 + 1e-9);
+    EXPECT_NO_THROW(world.add_car(car, at({0.0, 5.0, 0.0})));
+
+    // The anti-roll bar stiffens the mode where an axle's wheels move against each other.
+    CarSpec gt = CarSpec::preset("gt");
+    const double c = gt.suspension.damping;
+    gt.vehicle->rear_anti_roll = (2.0 * c / h - gt.suspension.stiffness) / 2.0 * (1.0 + 1e-9);
+    const std::string why = error_of([&] { world.add_car(gt, at({0.0, 5.0, 10.0})); });
+    EXPECT_NE(why.find("CarSpec.vehicle.rear_anti_roll"), std::string::npos) << why;
+    EXPECT_NE(why.find("h (stiffness + 2 anti_roll) / damping is 2"), std::string::npos) << why;
+    gt.vehicle->rear_anti_roll = (2.0 * c / h - gt.suspension.stiffness) / 2.0 * (1.0 - 1e-9);
+    EXPECT_NO_THROW(world.add_car(gt, at({0.0, 5.0, 10.0})));
 }
 
 }  // namespace

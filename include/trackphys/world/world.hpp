@@ -92,8 +92,11 @@ class TRACKPHYS_API World {
     ///   mass there);
     /// - with a vehicle model, a spec whose explicit wheel-spin update the sub-step cannot
     ///   integrate (h^2 R^2 C / (I sigma) not below 4 + 2 h low_speed / sigma: wheel radius
-    ///   R, wheel inertia I, the tyre's longitudinal slip stiffness C at three nominal
+    ///   R, wheel inertia I, the tyre's longitudinal slip stiffness C at ten nominal
     ///   loads and relaxation length sigma);
+    /// - a suspension whose explicit travel update the sub-step cannot integrate
+    ///   (h (k + 2 a) / c not below 2: its stiffness k and damping c, a vehicle model's
+    ///   anti-roll rate a of either axle);
     /// - a spec whose car_contact springs the sub-step cannot integrate stably against a car
     ///   already here (the same test with the two cars' mean car_contact on their pair's
     ///   effective mass: a lighter car, a stiffer material or a coarser sub-step);
