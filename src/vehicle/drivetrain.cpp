@@ -62,14 +62,18 @@ double Vehicle::engine_torque(double rpm, double throttle) const {
     const EngineSpec& engine = spec_.engine;
     if (rpm > engine.redline_rpm) return -engine.friction_torque;  // the limiter cuts fuel
     const std::vector<TorquePoint>& curve = engine.torque_curve;
-    double full = curve.front().torque;
-    if (rpm >= curve.back().rpm) full = curve.back().torque;
-    for (std::size_t k = 1; k < curve.size(); ++k)
-        if (rpm >= curve[k - 1].rpm && rpm < curve[k].rpm) {
-            const double t = (rpm - curve[k - 1].rpm) / (curve[k].rpm - curve[k - 1].rpm);
-            full = curve[k - 1].torque + t * (curve[k].torque - curve[k - 1].torque);
-            break;  // the points ascend: no other segment holds rpm
-        }
+    double full = curve.front().torque;  // below the first point
+    if (rpm >= curve.back().rpm) {
+        full = curve.back().torque;
+    } else if (rpm >= curve.front().rpm) {
+        // The points ascend: rpm's segment ends at the first point above it.
+        const auto above =
+            std::upper_bound(curve.begin(), curve.end(), rpm,
+                             [](double x, const TorquePoint& point) { return x < point.rpm; });
+        const TorquePoint& from = *(above - 1);
+        const double t = (rpm - from.rpm) / (above->rpm - from.rpm);
+        full = from.torque + t * (above->torque - from.torque);
+    }
     const double friction = engine.friction_torque * std::max(rpm, 0.0) / engine.redline_rpm;
     return throttle * full - (1.0 - throttle) * friction;
 }

@@ -23,6 +23,9 @@ struct VehicleAccess {
     static void measure_anti_roll(Vehicle& vehicle, std::span<const double> suspension) {
         vehicle.measure_anti_roll(suspension);
     }
+    static double engine_torque(const Vehicle& vehicle, double rpm, double throttle) {
+        return vehicle.engine_torque(rpm, throttle);
+    }
 };
 
 }  // namespace trackphys::detail

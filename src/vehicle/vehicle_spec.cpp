@@ -53,7 +53,9 @@ std::string VehicleSpec::validate() const {
     check.positive("wheel_inertia", wheel_inertia);
 
     const std::vector<TorquePoint>& curve = engine.torque_curve;
-    check.require(!curve.empty(), "engine.torque_curve", "must hold at least one point");
+    check.require(!curve.empty() && curve.size() <= EngineSpec::max_torque_points,
+                  "engine.torque_curve",
+                  "must hold 1 to " + std::to_string(EngineSpec::max_torque_points) + " points");
     for (std::size_t k = 0; k < curve.size(); ++k) {
         const std::string point = "engine.torque_curve[" + std::to_string(k) + "]";
         check.non_negative(point + ".rpm", curve[k].rpm);

@@ -47,6 +47,14 @@ std::string keys_of_zero(int count) {
     return keys;
 }
 
+// [1000, 300], [1001, 300], ...: a torque curve of `count` points.
+std::string torque_points(int count) {
+    std::string points;
+    for (int i = 0; i < count; ++i)
+        points += (i > 0 ? ", [" : "[") + std::to_string(1000 + i) + ", 300]";
+    return points;
+}
+
 const std::string kBall = R"("center": [0, 0, 0], "semi_axes": [0.5, 0.5, 0.5], "role": "body")";
 
 TEST(CarSpecJson, DefaultCarRoundTripsBitForBit) {
@@ -147,6 +155,9 @@ TEST(CarSpecJson, EveryBadFileNamesTheKeyAndTheReason) {
          "vehicle.rear_differential.kind: unknown kind 'welded' (expected open or limited_slip)"},
         {R"({"model": "gt", "vehicle": {"engine": {"torque_curve": [[1000, 300], [900, 1]]}}})",
          "CarSpec.vehicle.engine.torque_curve[1].rpm must exceed the previous point's"},
+        {R"({"model": "gt", "vehicle": {"engine": {"torque_curve": [)" + torque_points(4097) +
+             "]}}}",
+         "CarSpec.vehicle.engine.torque_curve must hold 1 to 4096 points"},
         {R"({"model": "gt", "vehicle": {"anti_lock": 1}})",
          "vehicle.anti_lock: expected true or false"},
         {R"({"ellipsoids": [{)" + kBall + R"(}, {)" + kBall + R"(, "colour": "red"}]})",

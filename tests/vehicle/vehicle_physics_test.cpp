@@ -171,6 +171,33 @@ double reference_braking(const PointCar& car) {
     return t;
 }
 
+// The engine's full-throttle torque interpolates its curve linearly, held at the ends: the
+// same bits as a scan of the points (the reference below) at each point, between points and
+// beyond both ends, for both presets' curves and one of the most points allowed.
+TEST(VehiclePhysics, FullThrottleTorqueFollowsTheCurve) {
+    CarSpec dense = CarSpec::preset("gt");
+    auto& curve = dense.vehicle->engine.torque_curve;
+    curve.clear();
+    for (std::size_t k = 0; k < EngineSpec::max_torque_points; ++k)
+        curve.push_back({500.0 + 2.0 * double(k), 300.0 + 100.0 * std::sin(0.01 * double(k))});
+    dense.vehicle->engine.redline_rpm = 9000.0;
+    for (const CarSpec& spec : {CarSpec::preset("gt"), CarSpec::preset("formula"), dense}) {
+        const Vehicle vehicle(spec);
+        const PointCar car(spec, 0.0);  // its full_torque, a scan of the points
+        const auto& points = spec.vehicle->engine.torque_curve;
+        std::vector<double> rpms = {0.0, points.front().rpm - 1.0, points.back().rpm + 1.0};
+        for (std::size_t k = 0; k < points.size(); ++k) {
+            rpms.push_back(points[k].rpm);
+            if (k + 1 < points.size()) rpms.push_back(0.5 * (points[k].rpm + points[k + 1].rpm));
+        }
+        for (const double rpm : rpms) {
+            if (rpm > spec.vehicle->engine.redline_rpm) continue;  // the limiter's
+            EXPECT_EQ(detail::VehicleAccess::engine_torque(vehicle, rpm, 1.0), car.full_torque(rpm))
+                << rpm << " rpm";
+        }
+    }
+}
+
 TEST(VehiclePhysics, AcceleratesAndBrakesAsTheReferencesSay) {
     const CarSpec spec = CarSpec::preset("gt");
     World world = world_with(test::straight_road(400.0, 20.0, 10.0), spec, 0.0, 10.0);

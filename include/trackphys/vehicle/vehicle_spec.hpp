@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,8 @@ struct TorquePoint {
 /// The engine: torque interpolated linearly between the curve's points (held flat beyond
 /// its ends), cut above the redline.
 struct EngineSpec {
+    /// The most points a torque curve may have (a dyno run every 5 rpm to 20,000 rpm).
+    static constexpr std::size_t max_torque_points = 4096;
     std::vector<TorquePoint> torque_curve;  ///< rpm strictly ascending, torque >= 0
     double idle_rpm = 1000.0;
     double redline_rpm = 7000.0;
