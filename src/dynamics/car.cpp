@@ -55,8 +55,14 @@ Car::Car(CarSpec spec, const RigidBodyState& initial_state) : spec_(std::move(sp
             {e.role, spec_.deep_contact_fraction * body.sorted_radii().z * (1.0 - 1e-12)});
         if (e.role != EllipsoidRole::body) shape->wheel_end = shape->parts.size();
         suspension_.push_back(0.0);
-        bounding_radius_ =
-            std::max(bounding_radius_, glm::length(e.center) + body.bounding_radius());
+        // A wheel rises along the body's up axis by up to the suspension's travel (lifted):
+        // the sphere holds it at both ends, and so all the way between.
+        const double raised =
+            e.role == EllipsoidRole::body
+                ? 0.0
+                : glm::length(e.center + glm::dvec3(0.0, spec_.suspension.travel, 0.0));
+        bounding_radius_ = std::max(
+            bounding_radius_, std::max(glm::length(e.center), raised) + body.bounding_radius());
         wheels_ += e.role != EllipsoidRole::body;
         front_wheels_ += e.role == EllipsoidRole::front_wheel;
     }

@@ -133,7 +133,8 @@ class TRACKPHYS_API Car {
     void set_vehicle_state(const VehicleState& state);
     /// Throws what set_vehicle_state() would throw for `state`, changing nothing.
     void check_vehicle_state(const VehicleState& state) const;
-    /// Radius about the centre of mass of a sphere holding every ellipsoid (m).
+    /// Radius about the centre of mass of a sphere holding every ellipsoid, the wheels at any
+    /// suspension travel (m).
     double bounding_radius() const { return bounding_radius_; }
 
     /// Speed of the centre of mass (m/s).
