@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <sstream>
 #include <string>
 #include <utility>
 
@@ -53,6 +54,24 @@ double crest_speed_limit(double kappa, double k) {
 
 }  // namespace
 
+std::string AutopilotSettings::validate() const {
+    std::ostringstream why;
+    const auto check = [&](const char* name, double value, bool zero_allowed) {
+        if (why.tellp() == 0 &&
+            !(std::isfinite(value) && (value > 0.0 || (zero_allowed && value == 0.0))))
+            why << "AutopilotSettings." << name << " must be finite and "
+                << (zero_allowed ? ">= 0" : "> 0") << ", got " << exact_text(value);
+    };
+    check("target_speed", target_speed, false);
+    check("grip_use", grip_use, false);
+    check("braking", braking, false);
+    check("braking_grip_use", braking_grip_use, false);
+    check("lookahead_min", lookahead_min, true);
+    check("lookahead_time", lookahead_time, true);
+    check("yaw_damping", yaw_damping, true);
+    return why.str();
+}
+
 Autopilot::Autopilot(const Track& track, const CarSpec& car, AutopilotSettings settings)
     : Autopilot(std::make_shared<const std::vector<CenterlineSample>>(track.centerline),
                 track.length_m, car, settings) {}
@@ -65,7 +84,7 @@ Autopilot::Autopilot(SharedCenterline shared, double length_m, const CarSpec& ca
     if (!(std::isfinite(length_) && length_ > 0.0))
         throw Error("Autopilot: the track's length must be finite and > 0");
     const std::vector<CenterlineSample>& line = *centerline_;
-    if (!(settings_.target_speed > 0.0)) throw Error("Autopilot: target_speed must be > 0");
+    if (std::string why = settings_.validate(); !why.empty()) throw Error("Autopilot: " + why);
 
     double front = -std::numeric_limits<double>::infinity();
     double rear = std::numeric_limits<double>::infinity();
@@ -242,7 +261,8 @@ CarInputs Autopilot::drive(const Car& car) {
     const double yaw_error = speed * curvature - yaw_rate;
     const double angle = std::atan(curvature * wheelbase_) +
                          settings_.yaw_damping * wheelbase_ * yaw_error / std::max(speed, 5.0);
-    inputs.steer = std::clamp(angle / max_steer_angle_, -1.0, 1.0);
+    // A car that cannot steer (max_steer_angle 0, which its spec allows) is held straight.
+    inputs.steer = max_steer_angle_ > 0.0 ? std::clamp(angle / max_steer_angle_, -1.0, 1.0) : 0.0;
     // A car with a vehicle model whose rear steps out (it yaws faster than the arc asks,
     // the same way) comes off the throttle, as a driver does: the drive torque takes the
     // rear tyres' lateral grip, and a rear-driven car would spin out of the turn.

@@ -234,6 +234,38 @@ TEST(Autopilot, SharesACenterlineAndDrivesAsWithItsOwnCopy) {
             << length;
 }
 
+// Settings that would plan or steer by a NaN or an infinity are refused, naming the field;
+// a car that cannot steer (max_steer_angle 0) is held straight rather than steered by 0 / 0.
+TEST(Autopilot, RefusesSettingsItCannotDriveByAndHoldsACarThatCannotSteerStraight) {
+    const test::TrackWorld& tw = test::default_track();
+    const auto refusal = [&](auto change) {
+        AutopilotSettings settings;
+        change(settings);
+        return test::error_of([&] { Autopilot(tw.track, CarSpec::default_car(), settings); });
+    };
+    EXPECT_EQ(refusal([](AutopilotSettings&) {}), "(no error)");
+    EXPECT_EQ(refusal([](AutopilotSettings& s) {
+                  s.target_speed = std::numeric_limits<double>::infinity();
+              }),
+              "Autopilot: AutopilotSettings.target_speed must be finite and > 0, got inf");
+    EXPECT_EQ(refusal([](AutopilotSettings& s) { s.grip_use = 0.0; }),
+              "Autopilot: AutopilotSettings.grip_use must be finite and > 0, got 0");
+    EXPECT_EQ(refusal([](AutopilotSettings& s) { s.yaw_damping = std::nan(""); }),
+              "Autopilot: AutopilotSettings.yaw_damping must be finite and >= 0, got nan");
+    EXPECT_EQ(refusal([](AutopilotSettings& s) { s.lookahead_min = -1.0; }),
+              "Autopilot: AutopilotSettings.lookahead_min must be finite and >= 0, got -1");
+    EXPECT_EQ(refusal([](AutopilotSettings& s) { s.yaw_damping = 0.0; }), "(no error)");
+
+    CarSpec rigid = CarSpec::default_car();
+    rigid.max_steer_angle = 0.0;
+    World world(tw.statics, WorldSettings{}, tw.trees);
+    world.add_car(rigid, on_start_line(tw.track));
+    Autopilot pilot(tw.track, rigid);
+    const CarInputs inputs = pilot.drive(world.car(0));
+    EXPECT_EQ(inputs.steer, 0.0);
+    EXPECT_GT(inputs.throttle, 0.0);
+}
+
 // A 7 km straight: full throttle to 1000 km/h, then full brakes to a stop, steering only
 // to hold the centre line.
 TEST(Autopilot, ReachesThousandKmHOnAStraightAndBrakesToAStop) {

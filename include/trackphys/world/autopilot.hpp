@@ -3,6 +3,7 @@
 #include <cstddef>
 #include <limits>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "trackphys/dynamics/car.hpp"
@@ -27,6 +28,11 @@ struct AutopilotSettings {
     double lookahead_time = 0.45;  ///< s of travel added to the look-ahead distance
     /// Gain of the yaw-rate feedback in the steering (0 = pure pursuit only).
     double yaw_damping = 0.5;
+
+    /// Empty when every field is finite, target_speed, grip_use, braking and
+    /// braking_grip_use > 0 and the rest >= 0; else the first field that is not, named
+    /// ("AutopilotSettings.grip_use must be finite and > 0, got nan").
+    TRACKPHYS_API std::string validate() const;
 };
 
 /// Where an Autopilot is along its track: all it remembers between calls (besides what
@@ -53,7 +59,8 @@ class TRACKPHYS_API Autopilot {
     Autopilot(const Track& track, const CarSpec& car, AutopilotSettings settings = {});
     /// Shares `centerline` (a closed loop of length_m metres, as Track's) with whoever else
     /// holds it; copies of an Autopilot share theirs too. Throws trackphys::Error for a null
-    /// or shorter than three samples centreline, or a length that is not finite and > 0.
+    /// or shorter than three samples centreline, a length that is not finite and > 0, or
+    /// settings that AutopilotSettings::validate refuses.
     Autopilot(SharedCenterline centerline, double length_m, const CarSpec& car,
               AutopilotSettings settings = {});
 
