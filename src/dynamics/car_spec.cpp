@@ -103,8 +103,21 @@ std::string CarSpec::validate() const {
         const std::string prefix = "ellipsoids[" + std::to_string(i) + "].";
         static constexpr const char* axis[3] = {"x", "y", "z"};
         if (!is_finite(e.center)) why << "CarSpec." << prefix << "center is not finite";
-        for (int k = 0; k < 3; ++k)
-            check_positive(why, (prefix + "semi_axes." + axis[k]).c_str(), e.semi_axes[k]);
+        // Its length overflows beyond 1e154 m: each coordinate is bounded first.
+        const glm::dvec3 c = e.center;
+        if (why.tellp() == 0 &&
+            !(std::max({std::abs(c.x), std::abs(c.y), std::abs(c.z)}) <= max_extent &&
+              glm::length(c) <= max_extent))
+            why << "CarSpec." << prefix << "center (" << exact_text(c.x) << ", " << exact_text(c.y)
+                << ", " << exact_text(c.z) << ") is beyond the " << max_extent
+                << " m from the centre of mass that a car may reach";
+        for (int k = 0; k < 3; ++k) {
+            const std::string name = prefix + "semi_axes." + axis[k];
+            check_positive(why, name.c_str(), e.semi_axes[k]);
+            if (why.tellp() == 0 && !(e.semi_axes[k] <= max_extent))
+                why << "CarSpec." << name << " must be at most " << max_extent << " m, got "
+                    << exact_text(e.semi_axes[k]);
+        }
         if (why.tellp() == 0 && !(is_finite(e.orientation) && glm::length(e.orientation) > 0.5))
             why << "CarSpec." << prefix << "orientation must be a finite unit quaternion";
     }

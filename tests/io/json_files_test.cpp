@@ -124,6 +124,12 @@ TEST(CarSpecJson, EveryBadFileNamesTheKeyAndTheReason) {
         {R"({"ellipsoids": [{"center": [0,0,0], "semi_axes": [0.3, -1, 0.3], "role": "body"}]})",
          "CarSpec.ellipsoids[0].semi_axes.y must be finite and > 0, got -1"},
         {R"({"ellipsoids": []})", "CarSpec.ellipsoids must hold 1 to 64 ellipsoids, got 0"},
+        // Beyond any car, and where the placement checks' squares would overflow.
+        {R"({"ellipsoids": [{"center": [1e200, 0, 0], "semi_axes": [1, 1, 1], "role": "body"}]})",
+         "CarSpec.ellipsoids[0].center (1e+200, 0, 0) is beyond the 10000 m from the centre of "
+         "mass"},
+        {R"({"ellipsoids": [{"center": [0, 0, 0], "semi_axes": [1, 2e4, 1], "role": "body"}]})",
+         "CarSpec.ellipsoids[0].semi_axes.y must be at most 10000 m, got 20000"},
         {R"({"ellipsoids": [{)" + kBall + R"(, "orientation": [0, 0, 0, 0]}]})",
          "ellipsoids[0].orientation must be a finite unit quaternion"},
         // A key's control characters are escaped: a NUL cut the message short.

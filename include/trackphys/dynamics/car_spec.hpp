@@ -58,6 +58,10 @@ struct Suspension {
 struct TRACKPHYS_API CarSpec {
     /// The most ellipsoids a car may have.
     static constexpr std::size_t max_ellipsoids = 64;
+    /// The farthest an ellipsoid's centre may lie from the centre of mass, and its longest
+    /// semi-axis (m): far beyond any vehicle, near enough that the checks' squares of them
+    /// stay finite.
+    static constexpr double max_extent = 1.0e4;
     /// A negative throttle drives a car backwards only below this forward speed (m/s):
     /// nearly stopped or already rolling backwards; a vehicle model in reverse gear goes
     /// back to first under a positive throttle only below this speed backwards (CarInputs).
