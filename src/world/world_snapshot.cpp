@@ -260,6 +260,17 @@ void World::restore_state(const WorldSnapshot& snapshot) {
                    " ellipsoids, the snapshot " + std::to_string(saved.suspension.size()));
         if (std::string why = impossible_state(saved.state); !why.empty())
             reject("car " + std::to_string(i) + ": " + why);
+        // A touching ellipsoid's triangle is read for its surface (contact_surface, the
+        // grip): it must be one of this world's.
+        for (std::size_t e = 0; e < saved.contacts.size(); ++e) {
+            const TriangleRef ref = saved.deepest_refs[e];
+            if (saved.contacts[e].depth > 0.0 &&
+                !(ref.collider < statics_->size() &&
+                  statics_->collider(ref.collider).has_triangle(ref.triangle)))
+                reject("car " + std::to_string(i) + ": ellipsoid " + std::to_string(e) +
+                       " touches triangle " + std::to_string(ref.triangle) + " of collider " +
+                       std::to_string(ref.collider) + ", which this world does not have");
+        }
         try {
             detail::CarAccess::check_restore(car, saved.state, saved.inputs, saved.suspension);
             if (saved.vehicle.has_value() != (car.vehicle() != nullptr))

@@ -223,6 +223,18 @@ TEST(WorldSnapshot, InvalidStatesAreRejectedAndChangeNothing) {
          "contact"},
         {"short list", [](WorldSnapshot& s, double) { s.cars[0].contacts.pop_back(); },
          "lists differ"},
+        {"touching a triangle the world lacks",
+         [](WorldSnapshot& s, double) {
+             s.cars[0].contacts[0].depth = 0.01;
+             s.cars[0].deepest_refs[0] = TriangleRef{0, 1u << 30};
+         },
+         "ellipsoid 0 touches triangle 1073741824 of collider 0, which this world does not have"},
+        {"touching a collider the world lacks",
+         [](WorldSnapshot& s, double) {
+             s.cars[0].contacts[1].depth = 0.01;
+             s.cars[0].deepest_refs[1] = TriangleRef{~0u, 0};
+         },
+         "ellipsoid 1 touches triangle 0 of collider 4294967295"},
         {"bad dt", [](WorldSnapshot& s, double) { s.settings.dt_update = -1.0; }, "dt_update"},
     };
     for (const Case& c : cases) {
