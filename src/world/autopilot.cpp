@@ -222,12 +222,16 @@ void Autopilot::locate(const Car& car) {
     located_ = true;
 }
 
-void Autopilot::set_progress(const AutopilotProgress& progress) {
+void Autopilot::check_progress(const AutopilotProgress& progress) const {
     if (progress.nearest_sample >= centerline().size())
         throw Error("Autopilot progress: sample " + std::to_string(progress.nearest_sample) +
                     " is beyond the centreline's " + std::to_string(centerline().size()) +
                     " samples");
     if (progress.laps < 0) throw Error("Autopilot progress: laps must be >= 0");
+}
+
+void Autopilot::set_progress(const AutopilotProgress& progress) {
+    check_progress(progress);
     nearest_ = progress.nearest_sample;
     laps_ = progress.laps;
     located_ = progress.located;

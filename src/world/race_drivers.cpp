@@ -305,6 +305,8 @@ void RaceDrivers::set_progress(const RaceProgress& progress) {
         progress.rescues.size() != n)
         throw Error("RaceDrivers::set_progress: the progress is not of a field of " +
                     std::to_string(n) + " cars");
+    // Every pilot's checked before any is set: a refused progress changes nothing.
+    for (std::size_t i = 0; i < n; ++i) pilots_[i].check_progress(progress.pilots[i]);
     for (std::size_t i = 0; i < n; ++i) pilots_[i].set_progress(progress.pilots[i]);
     progress_ = progress;
     progress_.pilots.clear();

@@ -159,6 +159,22 @@ TEST(RaceRules, ATrackWithPlacesOutsideItsLengthIsRefused) {
               std::string::npos);
 }
 
+// A progress whose third car is off the centreline is refused before any car's is set.
+TEST(RaceRules, ARefusedProgressChangesNoCar) {
+    const test::TrackWorld& track = test::default_track();
+    RaceDrivers drivers(track.track, CarSpec::default_car(), 3);
+    RaceProgress progress = drivers.progress();
+    for (AutopilotProgress& pilot : progress.pilots) pilot = {7, 2, true};
+    progress.pilots[2].nearest_sample = track.track.centerline.size();
+    EXPECT_NE(
+        test::error_of([&] { drivers.set_progress(progress); }).find("is beyond the centreline's"),
+        std::string::npos);
+    for (std::size_t i = 0; i < drivers.car_count(); ++i) {
+        EXPECT_EQ(drivers.autopilot(i).laps(), 0) << "car " << i;
+        EXPECT_FALSE(drivers.autopilot(i).progress().located) << "car " << i;
+    }
+}
+
 // The drivers keep their own copy of what they read of the track: a field whose track was
 // overwritten after the drivers were made (a temporary, a reused variable) races as one
 // whose track stayed.

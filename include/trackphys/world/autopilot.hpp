@@ -99,6 +99,8 @@ class TRACKPHYS_API Autopilot {
     /// Continues from saved progress. Throws trackphys::Error when the sample is not on
     /// this track's centreline or laps is negative.
     void set_progress(const AutopilotProgress& progress);
+    /// Throws what set_progress() would throw for `progress`, changing nothing.
+    void check_progress(const AutopilotProgress& progress) const;
 
   private:
     std::size_t find_nearest(const glm::dvec3& position) const;

@@ -157,7 +157,7 @@ class TRACKPHYS_API RaceDrivers {
 
     /// The race's progress, to save beside a world snapshot, and back. set_progress
     /// throws trackphys::Error for a progress of another field size or as
-    /// Autopilot::set_progress does.
+    /// Autopilot::set_progress does for any car's, changing nothing.
     RaceProgress progress() const;
     void set_progress(const RaceProgress& progress);
 
