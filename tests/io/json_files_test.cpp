@@ -248,6 +248,7 @@ TEST(ScenarioJson, ReadsEveryKeyAndRoundTrips) {
         parse_scenario(R"({"track": {"seed": 3}, "autopilot": {"target_speed_kmh": 1000},
                                                  "laps": 2, "seconds": 500})");
     EXPECT_EQ(autopilot.seed, 3u);
+    EXPECT_EQ(parse_scenario(R"({"track": {"seed": -0}})").seed, 0u);  // was "must be >= 0, got 0"
     EXPECT_EQ(autopilot.target_speed_kmh, 1000.0);
     EXPECT_EQ(autopilot.laps, 2);
     EXPECT_EQ(scenario_to_json(parse_scenario(scenario_to_json(autopilot))),
