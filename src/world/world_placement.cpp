@@ -106,24 +106,26 @@ std::string wheel_spin_unstable(const CarSpec& spec, double h) {
     return {};
 }
 
-// The suspension's travel follows its massless wheel explicitly: s' = (lift - k s - a (s -
-// s_partner)) / c, whose modes decay at k / c (both wheels of an axle together) and (k +
-// 2 a) / c (against each other, a the axle's anti-roll rate). The update is stable while h
-// times the faster one is below 2; beyond it the travel swings between its stops at every
-// sub-step (a damping of 1 N s/m: the default car's top speed fell from 139 to 101 km/h).
-// Empty when it holds; else why not.
+// The suspension's travel follows its massless wheel explicitly: c s' = lift - k s - a (s -
+// s_partner), where the lift is the tyre's contact force, k_t (d - s) on flat ground, its
+// depth d taken with the wheel placed at the last sub-step's travel. Its modes decay at (k +
+// k_t) / c (an axle's wheels together) and (k + k_t + 2 a) / c (against each other, a the
+// axle's anti-roll rate); the update is stable while h times the faster one is below 2.
+// Beyond it the travel swings between its stops at every sub-step (a damping of 1 N s/m: the
+// default car's top speed fell from 139 to 101 km/h). Empty when it holds; else why not.
 std::string suspension_unstable(const CarSpec& spec, double h) {
     const Suspension& s = spec.suspension;
+    const double springs = s.stiffness + spec.wheel_contact.stiffness;
     const auto check = [&](double anti_roll, const char* bar) -> std::string {
-        const double rate = h * (s.stiffness + 2.0 * anti_roll) / s.damping;
+        const double rate = h * (springs + 2.0 * anti_roll) / s.damping;
         if (rate < 2.0) return {};
         std::ostringstream why;
-        why << "World::add_car: CarSpec.suspension (stiffness " << s.stiffness << " N/m, damping "
-            << s.damping << " N s/m";
-        if (bar) why << ", CarSpec.vehicle." << bar << " " << anti_roll << " N/m";
-        why << ") is too stiff for a sub-step of " << h
-            << " s: " << (bar ? "h (stiffness + 2 anti_roll)" : "h stiffness") << " / damping is "
-            << rate << ", not below the 2 that the explicit travel update keeps stable";
+        why << "World::add_car: CarSpec.suspension.damping " << s.damping
+            << " N s/m is too low for a sub-step of " << h << " s: h (suspension.stiffness "
+            << s.stiffness << " + wheel_contact.stiffness " << spec.wheel_contact.stiffness;
+        if (bar) why << " + 2 vehicle." << bar << " " << anti_roll;
+        why << ") / damping is " << rate
+            << ", not below the 2 that the explicit travel update keeps stable";
         return why.str();
     };
     if (!spec.vehicle) return check(0.0, nullptr);

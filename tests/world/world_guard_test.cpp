@@ -464,29 +464,32 @@ TEST(Preconditions, AWheelSpinTooStiffForTheSubStepIsRejected) {
     EXPECT_NO_THROW(fine.add_car(light, at({0.0, 5.0, 10.0})));
 }
 
-// The suspension's travel is explicit: stable while h (k + 2 a) / c < 2 (a the axle's
-// anti-roll rate). Beyond it the travel swings between its stops at every sub-step (a review:
-// a damping of 1 N s/m cost the default car a quarter of its top speed).
+// The suspension's travel is explicit: stable while h (k + k_t + 2 a) / c < 2 (k_t the
+// tyre's contact stiffness, a the axle's anti-roll rate). Beyond it the travel swings
+// between its stops at every sub-step (a review: a damping of 1 N s/m cost the default car a
+// quarter of its top speed).
 TEST(Preconditions, ASuspensionTooStiffForTheSubStepIsRejected) {
     World world(test::static_world_of(test::flat_grid(40.0, 8)));
     const double h = world.settings().substep_dt();
     CarSpec car = CarSpec::default_car();
-    car.suspension.damping = h * car.suspension.stiffness / 2.0 * (1.0 - 1e-9);
+    const double springs = car.suspension.stiffness + car.wheel_contact.stiffness;
+    car.suspension.damping = h * springs / 2.0 * (1.0 - 1e-9);
     EXPECT_NE(error_of([&] {
                   world.add_car(car, at({0.0, 5.0, 0.0}));
-              }).find("CarSpec.suspension (stiffness 60000 N/m, damping"),
+              }).find("CarSpec.suspension.damping 57.5 N s/m is too low"),
               std::string::npos);
-    car.suspension.damping = h * car.suspension.stiffness / 2.0 * (1.0 + 1e-9);
+    car.suspension.damping = h * springs / 2.0 * (1.0 + 1e-9);
     EXPECT_NO_THROW(world.add_car(car, at({0.0, 5.0, 0.0})));
 
     // The anti-roll bar stiffens the mode where an axle's wheels move against each other.
     CarSpec gt = CarSpec::preset("gt");
     const double c = gt.suspension.damping;
-    gt.vehicle->rear_anti_roll = (2.0 * c / h - gt.suspension.stiffness) / 2.0 * (1.0 + 1e-9);
+    const double gt_springs = gt.suspension.stiffness + gt.wheel_contact.stiffness;
+    gt.vehicle->rear_anti_roll = (2.0 * c / h - gt_springs) / 2.0 * (1.0 + 1e-9);
     const std::string why = error_of([&] { world.add_car(gt, at({0.0, 5.0, 10.0})); });
-    EXPECT_NE(why.find("CarSpec.vehicle.rear_anti_roll"), std::string::npos) << why;
-    EXPECT_NE(why.find("h (stiffness + 2 anti_roll) / damping is 2"), std::string::npos) << why;
-    gt.vehicle->rear_anti_roll = (2.0 * c / h - gt.suspension.stiffness) / 2.0 * (1.0 - 1e-9);
+    EXPECT_NE(why.find("+ 2 vehicle.rear_anti_roll"), std::string::npos) << why;
+    EXPECT_NE(why.find(") / damping is 2"), std::string::npos) << why;
+    gt.vehicle->rear_anti_roll = (2.0 * c / h - gt_springs) / 2.0 * (1.0 - 1e-9);
     EXPECT_NO_THROW(world.add_car(gt, at({0.0, 5.0, 10.0})));
 }
 

@@ -95,8 +95,8 @@ class TRACKPHYS_API World {
     ///   R, wheel inertia I, the tyre's longitudinal slip stiffness C at ten nominal
     ///   loads and relaxation length sigma);
     /// - a suspension whose explicit travel update the sub-step cannot integrate
-    ///   (h (k + 2 a) / c not below 2: its stiffness k and damping c, a vehicle model's
-    ///   anti-roll rate a of either axle);
+    ///   (h (k + k_t + 2 a) / c not below 2: its stiffness k and damping c, the
+    ///   wheel_contact stiffness k_t, a vehicle model's anti-roll rate a of either axle);
     /// - a spec whose car_contact springs the sub-step cannot integrate stably against a car
     ///   already here (the same test with the two cars' mean car_contact on their pair's
     ///   effective mass: a lighter car, a stiffer material or a coarser sub-step);
