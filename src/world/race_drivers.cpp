@@ -21,7 +21,6 @@ constexpr double kMirror = -20.0;  // m: a lane change looks this far back
 // caller's track need not outlive them, and its meshes are not copied.
 std::shared_ptr<const Track> route_of(const Track& track) {
     auto route = std::make_shared<Track>();
-    route->params = track.params;
     route->length_m = track.length_m;
     route->centerline = track.centerline;
     return route;
